@@ -1,0 +1,162 @@
+//! Compiler-style diagnostics that point at a file and line of the pack's sources.
+
+use std::fmt;
+use std::ops::Range;
+
+use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
+use codespan_reporting::files::SimpleFiles;
+use codespan_reporting::term::{self, termcolor::WriteColor};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Warning,
+    Error,
+}
+
+/// A place in a source file: a pack-relative path and a 1-based line, optionally narrowed to
+/// a byte range within that line.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Location {
+    pub path: String,
+    pub line: u32,
+    pub columns: Option<Range<usize>>,
+}
+
+impl Location {
+    pub fn line(path: impl Into<String>, line: u32) -> Self {
+        Location { path: path.into(), line, columns: None }
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.columns {
+            Some(cols) => write!(f, "{}:{}:{}", self.path, self.line, cols.start + 1),
+            None => write!(f, "{}:{}", self.path, self.line),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    pub message: String,
+    pub location: Option<Location>,
+    /// Further context, each printed as a `= note:` line.
+    pub notes: Vec<String>,
+}
+
+impl Diagnostic {
+    pub fn error(message: impl Into<String>, location: Option<Location>) -> Self {
+        Diagnostic { severity: Severity::Error, message: message.into(), location, notes: Vec::new() }
+    }
+
+    pub fn warning(message: impl Into<String>, location: Option<Location>) -> Self {
+        Diagnostic { severity: Severity::Warning, message: message.into(), location, notes: Vec::new() }
+    }
+
+    pub fn with_note(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kind = match self.severity {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        };
+        if let Some(loc) = &self.location {
+            write!(f, "{loc}: ")?;
+        }
+        write!(f, "{kind}: {}", self.message)?;
+        for note in &self.notes {
+            write!(f, "\n  = note: {note}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for Diagnostic {}
+
+/// Prints diagnostics the way rustc and naga do, with a snippet of the source line.
+/// `source_of` returns the text of a path named by a location (`None` prints no snippet).
+pub fn emit(
+    writer: &mut dyn WriteColor,
+    diagnostics: &[Diagnostic],
+    source_of: &dyn Fn(&str) -> Option<String>,
+) -> std::io::Result<()> {
+    let mut files = SimpleFiles::new();
+    let mut ids = std::collections::HashMap::new();
+    let config = term::Config::default();
+    for diag in diagnostics {
+        let severity = match diag.severity {
+            Severity::Warning => codespan_reporting::diagnostic::Severity::Warning,
+            Severity::Error => codespan_reporting::diagnostic::Severity::Error,
+        };
+        let mut out = CsDiagnostic::new(severity).with_message(&diag.message).with_notes(diag.notes.clone());
+        if let Some(loc) = &diag.location {
+            let id = *ids.entry(loc.path.clone()).or_insert_with(|| {
+                source_of(&loc.path).map(|text| files.add(loc.path.clone(), text))
+            });
+            match id.and_then(|id| Some((id, span_of(files.get(id).ok()?.source(), loc)?))) {
+                Some((id, span)) => out = out.with_labels(vec![Label::primary(id, span)]),
+                None => out.message = format!("{loc}: {}", diag.message),
+            }
+        }
+        term::emit_to_write_style(writer, &config, &files, &out).map_err(std::io::Error::other)?;
+    }
+    Ok(())
+}
+
+/// Byte range in `text` of a location: its columns, or the line without leading indentation.
+fn span_of(text: &str, loc: &Location) -> Option<Range<usize>> {
+    let start = line_start(text, loc.line)?;
+    let line = text[start..].split('\n').next().unwrap_or("").trim_end_matches('\r');
+    match &loc.columns {
+        Some(cols) if cols.end <= line.len() => Some(start + cols.start..start + cols.end),
+        _ => {
+            let indent = line.len() - line.trim_start().len();
+            Some(start + indent..start + line.len())
+        }
+    }
+}
+
+/// Byte offset where 1-based `line` starts, if the text has that many lines.
+pub fn line_start(text: &str, line: u32) -> Option<usize> {
+    if line == 0 {
+        return None;
+    }
+    if line == 1 {
+        return Some(0);
+    }
+    text.match_indices('\n').nth(line as usize - 2).map(|(i, _)| i + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use codespan_reporting::term::termcolor::NoColor;
+
+    #[test]
+    fn renders_snippet_with_file_and_line() {
+        let diag = Diagnostic::error("unknown identifier `foo`", Some(Location::line("lib/water.glsl", 2)));
+        let mut out = NoColor::new(Vec::new());
+        emit(&mut out, &[diag], &|_| Some("a;\n  foo = 1;\n".into())).unwrap();
+        let text = String::from_utf8(out.into_inner()).unwrap();
+        assert!(text.contains("lib/water.glsl:2:3"), "{text}");
+        assert!(text.contains("foo = 1;"), "{text}");
+    }
+
+    #[test]
+    fn line_start_finds_each_line() {
+        let text = "a\nbc\n\nd";
+        assert_eq!([1, 2, 3, 4].map(|l| line_start(text, l)), [Some(0), Some(2), Some(5), Some(6)]);
+        assert_eq!(line_start(text, 5), None);
+    }
+}

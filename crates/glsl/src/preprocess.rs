@@ -1,0 +1,1021 @@
+//! OptiFine's GLSL preprocessor: `#include`, macros and conditionals, with a source map.
+//!
+//! The output keeps exactly one output line per source line it came from: directives and
+//! inactive lines become empty lines, an `#include` line is replaced by the included file's
+//! lines. `Preprocessed::lines` maps every output line back to its file and line, so an error
+//! that a later stage reports at an output line can be shown where the author wrote it.
+//! Comments are dropped (their line breaks kept); the loader's comment directives
+//! (`/* DRAWBUFFERS:.. */`, `/* RENDERTARGETS: .. */`) are recorded when they are active.
+
+use std::collections::{BTreeSet, HashMap};
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+use crate::diagnostic::{Diagnostic, Location};
+use crate::token::{Token, TokenKind, tokenize};
+
+/// OptiFine's limit on `#include` nesting.
+pub const MAX_INCLUDE_DEPTH: usize = 10;
+
+/// Reads pack files by their pack-relative path (`lib/water.glsl`, `world-1/composite.fsh`).
+pub trait FileProvider {
+    fn read(&self, path: &str) -> Result<Arc<str>, String>;
+}
+
+impl FileProvider for HashMap<String, Arc<str>> {
+    fn read(&self, path: &str) -> Result<Arc<str>, String> {
+        self.get(path).cloned().ok_or_else(|| "no such file in the pack".to_string())
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SourceLine {
+    /// Index into [`Preprocessed::files`].
+    pub file: u32,
+    /// 1-based line in that file.
+    pub line: u32,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VersionDirective {
+    pub number: u32,
+    /// `core`, `compatibility` or `es`, as written.
+    pub profile: Option<String>,
+}
+
+/// Which outputs of a fragment shader go to which colour buffers.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RenderTargets {
+    /// `true` for `RENDERTARGETS` (outputs `outColor<i>`), `false` for `DRAWBUFFERS`.
+    pub modern: bool,
+    /// Buffer numbers in output order.
+    pub buffers: Vec<u8>,
+    pub line: SourceLine,
+}
+
+#[derive(Clone, Debug)]
+pub struct Preprocessed {
+    pub text: String,
+    /// One entry per line of `text`.
+    pub lines: Vec<SourceLine>,
+    /// Pack-relative paths, indexed by [`SourceLine::file`].
+    pub files: Vec<String>,
+    pub version: Option<VersionDirective>,
+    pub render_targets: Option<RenderTargets>,
+    /// Macro names that decided a conditional or were expanded into the text. Tests of
+    /// conditionals with nothing inside (the pattern OptiFine needs to show an option) do not
+    /// count: they cannot change the text.
+    pub consulted_macros: BTreeSet<String>,
+    pub warnings: Vec<Diagnostic>,
+}
+
+impl Preprocessed {
+    /// Where output line `line` (1-based) came from.
+    pub fn location(&self, line: u32) -> Option<Location> {
+        let src = self.lines.get(line.checked_sub(1)? as usize)?;
+        Some(Location::line(self.files[src.file as usize].clone(), src.line))
+    }
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct PreprocessOptions {
+    /// Macros defined before the first line, in order (OptiFine's standard macros).
+    pub predefined: Vec<(String, String)>,
+}
+
+/// Preprocesses `entry` and everything it includes.
+pub fn preprocess(
+    provider: &dyn FileProvider,
+    entry: &str,
+    options: &PreprocessOptions,
+) -> Result<Preprocessed, Diagnostic> {
+    let mut pp = Preprocessor {
+        provider,
+        macros: HashMap::new(),
+        out: Preprocessed {
+            text: String::new(),
+            lines: Vec::new(),
+            files: Vec::new(),
+            version: None,
+            render_targets: None,
+            consulted_macros: BTreeSet::new(),
+            warnings: Vec::new(),
+        },
+        include_stack: Vec::new(),
+    };
+    for (name, value) in &options.predefined {
+        let body = owned_tokens(&tokenize(value).map_err(|e| {
+            Diagnostic::error(format!("predefined macro {name}: {}", e.message), None)
+        })?);
+        pp.macros.insert(name.clone(), Macro { params: None, body });
+    }
+    let text = provider.read(entry).map_err(|e| Diagnostic::error(format!("cannot read {entry}: {e}"), None))?;
+    pp.process_file(entry, &text)?;
+    Ok(pp.out)
+}
+
+#[derive(Clone, Debug)]
+struct Macro {
+    /// `Some` for function-like macros.
+    params: Option<Vec<String>>,
+    body: Vec<OwnedToken>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct OwnedToken {
+    kind: TokenKind,
+    text: String,
+}
+
+fn owned_tokens(tokens: &[Token<'_>]) -> Vec<OwnedToken> {
+    tokens
+        .iter()
+        .filter(|t| !matches!(t.kind, TokenKind::LineComment | TokenKind::BlockComment | TokenKind::Newline))
+        .map(|t| OwnedToken { kind: t.kind, text: t.text.to_string() })
+        .collect()
+}
+
+struct Conditional {
+    /// Lines in this branch are emitted.
+    active: bool,
+    /// Some branch of this group was taken already.
+    taken: bool,
+    /// The enclosing group is active.
+    parent_active: bool,
+    seen_else: bool,
+    line: u32,
+}
+
+struct Preprocessor<'p> {
+    provider: &'p dyn FileProvider,
+    macros: HashMap<String, Macro>,
+    out: Preprocessed,
+    /// Paths of the files being processed, outermost first, with the including line.
+    include_stack: Vec<(String, u32)>,
+}
+
+/// A logical line: tokens up to a line break, continuations included.
+struct LogicalLine<'t, 'a> {
+    tokens: &'t [Token<'a>],
+    first_line: u32,
+    /// Physical lines it covers (block comments and continuations add lines).
+    span: u32,
+}
+
+fn logical_lines<'t, 'a>(tokens: &'t [Token<'a>]) -> Vec<LogicalLine<'t, 'a>> {
+    let mut lines = Vec::new();
+    let mut start = 0;
+    let mut line = 1;
+    for (i, t) in tokens.iter().enumerate() {
+        if t.kind == TokenKind::Newline {
+            let tokens = &tokens[start..i];
+            let span = 1 + tokens.iter().map(Token::newlines).sum::<u32>();
+            lines.push(LogicalLine { tokens, first_line: line, span });
+            line += span;
+            start = i + 1;
+        }
+    }
+    let tokens = &tokens[start..];
+    if !tokens.is_empty() {
+        let span = 1 + tokens.iter().map(Token::newlines).sum::<u32>();
+        lines.push(LogicalLine { tokens, first_line: line, span });
+    }
+    lines
+}
+
+fn first_significant<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(usize, &'t Token<'a>)> {
+    tokens.iter().enumerate().find(|(_, t)| !t.is_trivia())
+}
+
+impl Preprocessor<'_> {
+    fn file_id(&mut self, path: &str) -> u32 {
+        match self.out.files.iter().position(|p| p == path) {
+            Some(i) => i as u32,
+            None => {
+                self.out.files.push(path.to_string());
+                (self.out.files.len() - 1) as u32
+            }
+        }
+    }
+
+    fn blank_lines(&mut self, file: u32, first_line: u32, count: u32) {
+        for k in 0..count {
+            self.out.text.push('\n');
+            self.out.lines.push(SourceLine { file, line: first_line + k });
+        }
+    }
+
+    fn process_file(&mut self, path: &str, text: &str) -> Result<(), Diagnostic> {
+        let file = self.file_id(path);
+        let err_at = |line: u32, msg: String| Diagnostic::error(msg, Some(Location::line(path, line)));
+        let tokens = tokenize(text).map_err(|e| err_at(e.line, e.message))?;
+        let lines = logical_lines(&tokens);
+        let mut conds: Vec<Conditional> = Vec::new();
+        let mut index = 0;
+        while index < lines.len() {
+            let line = &lines[index];
+            let active = conds.last().is_none_or(|c| c.active);
+            let Some((hash_pos, first)) = first_significant(line.tokens) else {
+                if active {
+                    for comment in line.tokens.iter().filter(|t| t.kind == TokenKind::BlockComment) {
+                        self.record_comment_directive(comment.text, path, comment.line)
+                            .map_err(|m| err_at(comment.line, m))?;
+                    }
+                }
+                self.blank_lines(file, line.first_line, line.span);
+                index += 1;
+                continue;
+            };
+            if !first.is_punct("#") {
+                if active {
+                    // A function-like macro call may continue on the following lines.
+                    let mut end = index;
+                    while self.has_open_macro_call(&lines[index..=end]) && end + 1 < lines.len() {
+                        if lines[end + 1].tokens.iter().any(|t| t.is_punct("#")) {
+                            break;
+                        }
+                        end += 1;
+                    }
+                    let mut joined: Vec<Token<'_>> = Vec::new();
+                    for l in &lines[index..=end] {
+                        if !joined.is_empty() {
+                            joined.push(Token { kind: TokenKind::Whitespace, text: " ", offset: 0, line: l.first_line });
+                        }
+                        joined.extend_from_slice(l.tokens);
+                    }
+                    let span: u32 = lines[index..=end].iter().map(|l| l.span).sum();
+                    self.emit_text_line(&joined, path, line.first_line)?;
+                    self.out.lines.push(SourceLine { file, line: line.first_line });
+                    self.out.text.push('\n');
+                    // Keep the line count: the lines a comment or call spanned become empty.
+                    let emitted_breaks = joined.iter().filter(|t| t.kind == TokenKind::BlockComment).map(Token::newlines).sum::<u32>();
+                    for k in 1..span {
+                        if k <= emitted_breaks {
+                            self.out.lines.push(SourceLine { file, line: line.first_line + k });
+                        } else {
+                            self.blank_lines(file, line.first_line + k, 1);
+                        }
+                    }
+                    index = end + 1;
+                } else {
+                    self.blank_lines(file, line.first_line, line.span);
+                    index += 1;
+                }
+                continue;
+            }
+            let rest = &line.tokens[hash_pos + 1..];
+            let directive_pos = first_significant(rest);
+            let name = directive_pos.filter(|(_, t)| t.kind == TokenKind::Ident).map(|(_, t)| t.text);
+            let args = directive_pos.map_or(&[][..], |(i, _)| &rest[i + 1..]);
+            let at = line.first_line;
+            match name {
+                Some("if" | "ifdef" | "ifndef") => {
+                    let consult = !group_is_empty(&lines, index);
+                    let value = if active {
+                        match name {
+                            Some("if") => self.eval_condition(args, consult).map_err(|m| err_at(at, m))?,
+                            _ => {
+                                let macro_name = single_ident(args).ok_or_else(|| {
+                                    err_at(at, format!("#{} needs exactly one macro name", name.unwrap_or("")))
+                                })?;
+                                if consult {
+                                    self.out.consulted_macros.insert(macro_name.to_string());
+                                }
+                                self.macros.contains_key(macro_name) == (name == Some("ifdef"))
+                            }
+                        }
+                    } else {
+                        false
+                    };
+                    conds.push(Conditional {
+                        active: active && value,
+                        taken: value,
+                        parent_active: active,
+                        seen_else: false,
+                        line: at,
+                    });
+                }
+                Some("elif") => {
+                    let consult = !group_is_empty(&lines, index);
+                    let Some(top) = conds.last() else {
+                        return Err(err_at(at, "#elif without #if".into()));
+                    };
+                    if top.seen_else {
+                        return Err(err_at(at, "#elif after #else".into()));
+                    }
+                    let (parent_active, taken) = (top.parent_active, top.taken);
+                    let value = parent_active
+                        && !taken
+                        && self.eval_condition(args, consult).map_err(|m| err_at(at, m))?;
+                    let top = conds.last_mut().unwrap();
+                    top.active = value;
+                    top.taken |= value;
+                }
+                Some("else") => {
+                    let Some(top) = conds.last_mut() else {
+                        return Err(err_at(at, "#else without #if".into()));
+                    };
+                    if top.seen_else {
+                        return Err(err_at(at, "second #else for the same #if".into()));
+                    }
+                    top.seen_else = true;
+                    top.active = top.parent_active && !top.taken;
+                    top.taken = true;
+                }
+                Some("endif") => {
+                    if conds.pop().is_none() {
+                        return Err(err_at(at, "#endif without #if".into()));
+                    }
+                }
+                _ if !active => {}
+                Some("define") => self.define(args).map_err(|m| err_at(at, m))?,
+                Some("undef") => {
+                    let macro_name =
+                        single_ident(args).ok_or_else(|| err_at(at, "#undef needs exactly one macro name".into()))?;
+                    self.macros.remove(macro_name);
+                }
+                Some("include") => {
+                    self.blank_lines(file, at, line.span - 1);
+                    self.include(path, at, args)?;
+                    index += 1;
+                    continue;
+                }
+                Some("version") => {
+                    if !self.out.text.trim().is_empty() || !self.include_stack.is_empty() {
+                        return Err(err_at(at, "#version must be the first line of a shader".into()));
+                    }
+                    let version = parse_version(args).map_err(|m| err_at(at, m))?;
+                    let mut text = format!("#version {}", version.number);
+                    if let Some(profile) = &version.profile {
+                        write!(text, " {profile}").unwrap();
+                    }
+                    self.out.version = Some(version);
+                    self.out.text.push_str(&text);
+                }
+                Some("extension") => {
+                    let text: String = line.tokens.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect::<Vec<_>>().join(" ");
+                    self.out.text.push_str(&text);
+                }
+                Some("error") => {
+                    let message: String = args.iter().map(|t| t.text).collect();
+                    return Err(err_at(at, format!("#error {}", message.trim())));
+                }
+                Some("pragma" | "line") => {}
+                Some(other) => return Err(err_at(at, format!("unknown preprocessor directive #{other}"))),
+                None if directive_pos.is_none() => {}
+                None => return Err(err_at(at, "expected a directive name after #".into())),
+            }
+            self.out.text.push('\n');
+            self.out.lines.push(SourceLine { file, line: at });
+            self.blank_lines(file, at + 1, line.span - 1);
+            index += 1;
+        }
+        if let Some(open) = conds.last() {
+            return Err(err_at(open.line, "this #if has no matching #endif in the same file".into()));
+        }
+        Ok(())
+    }
+
+    fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
+        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
+        let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+        let target = raw
+            .strip_prefix('"')
+            .and_then(|s| s.strip_suffix('"'))
+            .ok_or_else(|| err_at(format!("#include expects a \"quoted\" path, found `{raw}`")))?;
+        let resolved = resolve_include(path, target).map_err(err_at)?;
+        if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(err_at(format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)")));
+        }
+        if resolved == path || self.include_stack.iter().any(|(p, _)| *p == resolved) {
+            let mut chain: Vec<String> = self.include_stack.iter().map(|(p, _)| p.clone()).collect();
+            chain.push(path.to_string());
+            chain.push(resolved.clone());
+            return Err(err_at(format!("include cycle: {}", chain.join(" -> "))));
+        }
+        let text = self.provider.read(&resolved).map_err(|e| err_at(format!("cannot include `{resolved}`: {e}")))?;
+        self.include_stack.push((path.to_string(), at));
+        let result = self.process_file(&resolved, &text);
+        self.include_stack.pop();
+        result
+    }
+
+    fn define(&mut self, args: &[Token<'_>]) -> Result<(), String> {
+        let Some((name_pos, name)) = first_significant(args).filter(|(_, t)| t.kind == TokenKind::Ident) else {
+            return Err("#define needs a macro name".into());
+        };
+        let after = &args[name_pos + 1..];
+        let (params, body) = if after.first().is_some_and(|t| t.is_punct("(")) {
+            let close = after.iter().position(|t| t.is_punct(")")).ok_or("unclosed parameter list in #define")?;
+            let mut params = Vec::new();
+            for part in after[1..close].split(|t| t.is_punct(",")) {
+                let idents: Vec<_> = part.iter().filter(|t| !t.is_trivia()).collect();
+                match idents.as_slice() {
+                    [] if params.is_empty() && close == 1 => {}
+                    [t] if t.kind == TokenKind::Ident => params.push(t.text.to_string()),
+                    _ => return Err(format!("malformed parameter list in #define {}", name.text)),
+                }
+            }
+            (Some(params), &after[close + 1..])
+        } else {
+            (None, after)
+        };
+        let mut body = owned_tokens(body);
+        trim_whitespace(&mut body);
+        if body.iter().any(|t| t.text == "##") {
+            return Err(format!("token pasting (##) in #define {} is not supported by GLSL drivers", name.text));
+        }
+        self.macros.insert(name.text.to_string(), Macro { params, body });
+        Ok(())
+    }
+
+    /// True when the lines end inside the argument list of a function-like macro call.
+    fn has_open_macro_call(&self, lines: &[LogicalLine<'_, '_>]) -> bool {
+        let mut depth = 0i32;
+        let mut in_call = false;
+        let mut pending_macro = false;
+        for t in lines.iter().flat_map(|l| l.tokens.iter()).filter(|t| !t.is_trivia()) {
+            if in_call {
+                if t.is_punct("(") {
+                    depth += 1;
+                } else if t.is_punct(")") {
+                    depth -= 1;
+                    if depth == 0 {
+                        in_call = false;
+                    }
+                }
+            } else if pending_macro && t.is_punct("(") {
+                in_call = true;
+                depth = 1;
+            } else {
+                pending_macro = t.kind == TokenKind::Ident
+                    && self.macros.get(t.text).is_some_and(|m| m.params.is_some());
+            }
+        }
+        in_call
+    }
+
+    fn emit_text_line(&mut self, tokens: &[Token<'_>], path: &str, line: u32) -> Result<(), Diagnostic> {
+        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, line)));
+        let mut i = 0;
+        while i < tokens.len() {
+            let t = &tokens[i];
+            match t.kind {
+                TokenKind::LineComment => {}
+                TokenKind::BlockComment => {
+                    self.record_comment_directive(t.text, path, line).map_err(err_at)?;
+                    // Keep the line breaks the comment spanned so line numbers stay put.
+                    let breaks = t.newlines();
+                    if breaks == 0 {
+                        self.out.text.push(' ');
+                    }
+                    for _ in 0..breaks {
+                        self.out.text.push('\n');
+                    }
+                }
+                // A continuation's line break is accounted for by the caller.
+                TokenKind::Whitespace if t.text.contains('\n') => self.out.text.push(' '),
+                TokenKind::Newline => self.out.text.push(' '),
+                TokenKind::Unknown => {
+                    return Err(err_at(format!("unexpected character `{}`", t.text.escape_debug())));
+                }
+                TokenKind::Ident if self.macros.contains_key(t.text) => {
+                    let (expansion, consumed) = self.expand_at(tokens, i).map_err(err_at)?;
+                    self.out.text.push_str(&expansion);
+                    i += consumed;
+                    continue;
+                }
+                _ => self.out.text.push_str(t.text),
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
+    /// Expands the macro invocation starting at `tokens[start]`; returns the text and the number
+    /// of tokens it consumed.
+    fn expand_at(&mut self, tokens: &[Token<'_>], start: usize) -> Result<(String, usize), String> {
+        let owned: Vec<OwnedToken> =
+            tokens[start..].iter().map(|t| OwnedToken { kind: t.kind, text: t.text.to_string() }).collect();
+        let mut disabled = Vec::new();
+        let (expanded, consumed) = self.expand_one(&owned, 0, &mut disabled, 0)?;
+        let text = expanded.iter().map(|t| t.text.as_str()).collect();
+        Ok((text, consumed))
+    }
+
+    /// Expands the invocation at `tokens[at]` (a macro name), recursively.
+    fn expand_one(
+        &mut self,
+        tokens: &[OwnedToken],
+        at: usize,
+        disabled: &mut Vec<String>,
+        depth: usize,
+    ) -> Result<(Vec<OwnedToken>, usize), String> {
+        if depth > 64 {
+            return Err("macro expansion nests too deeply".into());
+        }
+        let name = tokens[at].text.clone();
+        self.out.consulted_macros.insert(name.clone());
+        let mac = self.macros[&name].clone();
+        let (body, consumed) = match &mac.params {
+            None => (mac.body.clone(), 1),
+            Some(params) => {
+                let Some(open) = (at + 1..tokens.len()).find(|&i| !is_trivia_kind(tokens[i].kind)) else {
+                    return Ok((vec![tokens[at].clone()], 1));
+                };
+                if tokens[open].text != "(" {
+                    return Ok((vec![tokens[at].clone()], 1));
+                }
+                let (args, close) = split_arguments(tokens, open).ok_or_else(|| format!("unclosed call of macro {name}"))?;
+                let args = if params.is_empty() && args.len() == 1 && args[0].iter().all(|t| is_trivia_kind(t.kind)) {
+                    Vec::new()
+                } else {
+                    args
+                };
+                if args.len() != params.len() {
+                    return Err(format!("macro {name} takes {} arguments, {} given", params.len(), args.len()));
+                }
+                let mut expanded_args = Vec::with_capacity(args.len());
+                for arg in args {
+                    let mut arg = arg.to_vec();
+                    trim_whitespace(&mut arg);
+                    expanded_args.push(self.expand_all(&arg, disabled, depth + 1)?);
+                }
+                let mut body = Vec::with_capacity(mac.body.len());
+                for t in &mac.body {
+                    match params.iter().position(|p| t.kind == TokenKind::Ident && *p == t.text) {
+                        Some(p) => body.extend(expanded_args[p].iter().cloned()),
+                        None => body.push(t.clone()),
+                    }
+                }
+                (body, close + 1 - at)
+            }
+        };
+        disabled.push(name);
+        let result = self.expand_all(&body, disabled, depth + 1);
+        disabled.pop();
+        Ok((result?, consumed))
+    }
+
+    fn expand_all(
+        &mut self,
+        tokens: &[OwnedToken],
+        disabled: &mut Vec<String>,
+        depth: usize,
+    ) -> Result<Vec<OwnedToken>, String> {
+        let mut out = Vec::with_capacity(tokens.len());
+        let mut i = 0;
+        while i < tokens.len() {
+            let t = &tokens[i];
+            if t.kind == TokenKind::Ident && self.macros.contains_key(&t.text) && !disabled.contains(&t.text) {
+                let (expanded, consumed) = self.expand_one(tokens, i, disabled, depth)?;
+                out.extend(expanded);
+                i += consumed;
+            } else {
+                out.push(t.clone());
+                i += 1;
+            }
+        }
+        Ok(out)
+    }
+
+    fn eval_condition(&mut self, args: &[Token<'_>], consult: bool) -> Result<bool, String> {
+        // `defined X` is resolved before macro expansion, as in C.
+        let mut resolved = Vec::new();
+        let sig: Vec<&Token<'_>> = args.iter().filter(|t| !t.is_trivia()).collect();
+        let mut i = 0;
+        while i < sig.len() {
+            if sig[i].is_ident("defined") {
+                let (name, used) = match (sig.get(i + 1), sig.get(i + 2), sig.get(i + 3)) {
+                    (Some(o), Some(n), Some(c)) if o.is_punct("(") && c.is_punct(")") => (n, 4),
+                    (Some(n), _, _) => (n, 2),
+                    _ => return Err("`defined` needs a macro name".into()),
+                };
+                if name.kind != TokenKind::Ident {
+                    return Err("`defined` needs a macro name".into());
+                }
+                if consult {
+                    self.out.consulted_macros.insert(name.text.to_string());
+                }
+                let value = if self.macros.contains_key(name.text) { "1" } else { "0" };
+                resolved.push(OwnedToken { kind: TokenKind::Number, text: value.into() });
+                i += used;
+            } else {
+                resolved.push(OwnedToken { kind: sig[i].kind, text: sig[i].text.to_string() });
+                i += 1;
+            }
+        }
+        let before = self.out.consulted_macros.clone();
+        let expanded = self.expand_all(&resolved, &mut Vec::new(), 0)?;
+        if !consult {
+            self.out.consulted_macros = before;
+        }
+        let mut undefined = Vec::new();
+        let values: Vec<ExprToken> = expanded
+            .iter()
+            .filter(|t| !is_trivia_kind(t.kind))
+            .map(|t| match t.kind {
+                TokenKind::Number => parse_int(&t.text).map(ExprToken::Num),
+                TokenKind::Ident => {
+                    if consult {
+                        self.out.consulted_macros.insert(t.text.clone());
+                    }
+                    undefined.push(t.text.clone());
+                    Ok(ExprToken::Num(0))
+                }
+                _ => Ok(ExprToken::Op(t.text.clone())),
+            })
+            .collect::<Result<_, _>>()?;
+        if values.is_empty() {
+            return Err("#if with no expression".into());
+        }
+        let mut parser = ExprParser { tokens: &values, pos: 0 };
+        let value = parser.ternary()?;
+        if parser.pos != values.len() {
+            return Err("unexpected tokens at the end of the #if expression".into());
+        }
+        Ok(value != 0)
+    }
+
+    fn record_comment_directive(&mut self, comment: &str, path: &str, line: u32) -> Result<(), String> {
+        let inner = comment.trim_start_matches("/*").trim_end_matches("*/").trim();
+        let (modern, list) = if let Some(rest) = inner.strip_prefix("DRAWBUFFERS:") {
+            (false, rest.trim())
+        } else if let Some(rest) = inner.strip_prefix("RENDERTARGETS:") {
+            (true, rest.trim())
+        } else {
+            return Ok(());
+        };
+        let buffers: Vec<u8> = if modern {
+            list.split(',').map(|s| s.trim().parse::<u8>().ok().filter(|&b| b < 16)).collect::<Option<_>>()
+        } else {
+            list.chars().map(|c| c.to_digit(10).map(|d| d as u8)).collect::<Option<_>>()
+        }
+        .ok_or_else(|| format!("malformed render-target list `{list}` (buffers are 0-15)"))?;
+        if buffers.is_empty() || buffers.len() > 8 {
+            return Err(format!("a program writes 1 to 8 buffers; `{list}` lists {}", buffers.len()));
+        }
+        let file = self.file_id(path);
+        self.out.render_targets = Some(RenderTargets { modern, buffers, line: SourceLine { file, line } });
+        Ok(())
+    }
+}
+
+fn is_trivia_kind(kind: TokenKind) -> bool {
+    matches!(kind, TokenKind::Whitespace | TokenKind::Newline | TokenKind::LineComment | TokenKind::BlockComment)
+}
+
+fn trim_whitespace(tokens: &mut Vec<OwnedToken>) {
+    while tokens.last().is_some_and(|t| is_trivia_kind(t.kind)) {
+        tokens.pop();
+    }
+    let lead = tokens.iter().take_while(|t| is_trivia_kind(t.kind)).count();
+    tokens.drain(..lead);
+}
+
+/// Splits the arguments of a call whose `(` is at `open`; returns them and the index of `)`.
+fn split_arguments(tokens: &[OwnedToken], open: usize) -> Option<(Vec<&[OwnedToken]>, usize)> {
+    let mut depth = 0;
+    let mut args = Vec::new();
+    let mut start = open + 1;
+    for (i, t) in tokens.iter().enumerate().skip(open) {
+        match t.text.as_str() {
+            "(" => depth += 1,
+            ")" => {
+                depth -= 1;
+                if depth == 0 {
+                    args.push(&tokens[start..i]);
+                    return Some((args, i));
+                }
+            }
+            "," if depth == 1 => {
+                args.push(&tokens[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+fn single_ident<'a>(args: &[Token<'a>]) -> Option<&'a str> {
+    let sig: Vec<_> = args.iter().filter(|t| !t.is_trivia()).collect();
+    match sig.as_slice() {
+        [t] if t.kind == TokenKind::Ident => Some(t.text),
+        _ => None,
+    }
+}
+
+/// True when the conditional opened at `lines[index]` closes with nothing inside it.
+fn group_is_empty(lines: &[LogicalLine<'_, '_>], index: usize) -> bool {
+    for line in &lines[index + 1..] {
+        if let Some((pos, first)) = first_significant(line.tokens) {
+            return first.is_punct("#")
+                && first_significant(&line.tokens[pos + 1..]).is_some_and(|(_, t)| t.is_ident("endif"));
+        }
+    }
+    false
+}
+
+fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
+    let sig: Vec<_> = args.iter().filter(|t| !t.is_trivia()).collect();
+    let number = sig
+        .first()
+        .filter(|t| t.kind == TokenKind::Number)
+        .and_then(|t| t.text.parse().ok())
+        .ok_or("#version needs a version number")?;
+    let profile = match sig.get(1..) {
+        Some([]) | None => None,
+        Some([p]) if matches!(p.text, "core" | "compatibility" | "es") => Some(p.text.to_string()),
+        Some(_) => return Err("#version profile must be core, compatibility or es".into()),
+    };
+    Ok(VersionDirective { number, profile })
+}
+
+/// Resolves an `#include` target: `/x` from the pack's shader root, `x` beside `from`.
+/// Refuses paths that climb out of the pack.
+pub fn resolve_include(from: &str, target: &str) -> Result<String, String> {
+    let mut parts: Vec<&str> = if target.starts_with('/') {
+        Vec::new()
+    } else {
+        let mut dir: Vec<&str> = from.split('/').collect();
+        dir.pop();
+        dir
+    };
+    for part in target.split('/') {
+        match part {
+            "" | "." => {}
+            ".." => {
+                if parts.pop().is_none() {
+                    return Err(format!("include path `{target}` climbs out of the shader pack"));
+                }
+            }
+            p if p.contains('\\') || p.contains(':') => {
+                return Err(format!("include path `{target}` must use `/` separators and no drive letters"));
+            }
+            p => parts.push(p),
+        }
+    }
+    if parts.is_empty() {
+        return Err(format!("include path `{target}` names no file"));
+    }
+    Ok(parts.join("/"))
+}
+
+fn parse_int(text: &str) -> Result<i64, String> {
+    let t = text.trim_end_matches(['u', 'U']);
+    let parsed = if let Some(hex) = t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+        i64::from_str_radix(hex, 16)
+    } else if t.len() > 1 && t.starts_with('0') {
+        i64::from_str_radix(&t[1..], 8)
+    } else {
+        t.parse()
+    };
+    parsed.map_err(|_| format!("`{text}` is not an integer; #if works on integers only"))
+}
+
+enum ExprToken {
+    Num(i64),
+    Op(String),
+}
+
+/// Precedence-climbing evaluator for `#if` expressions (C preprocessor semantics on i64).
+struct ExprParser<'t> {
+    tokens: &'t [ExprToken],
+    pos: usize,
+}
+
+impl ExprParser<'_> {
+    fn peek_op(&self) -> Option<&str> {
+        match self.tokens.get(self.pos) {
+            Some(ExprToken::Op(op)) => Some(op),
+            _ => None,
+        }
+    }
+
+    fn ternary(&mut self) -> Result<i64, String> {
+        let cond = self.binary(0)?;
+        if self.peek_op() == Some("?") {
+            self.pos += 1;
+            let a = self.ternary()?;
+            if self.peek_op() != Some(":") {
+                return Err("expected `:` in #if expression".into());
+            }
+            self.pos += 1;
+            let b = self.ternary()?;
+            return Ok(if cond != 0 { a } else { b });
+        }
+        Ok(cond)
+    }
+
+    fn binary(&mut self, min_prec: u8) -> Result<i64, String> {
+        let mut lhs = self.unary()?;
+        while let Some(op) = self.peek_op() {
+            let prec = match op {
+                "||" => 1,
+                "&&" => 2,
+                "|" => 3,
+                "^" => 4,
+                "&" => 5,
+                "==" | "!=" => 6,
+                "<" | ">" | "<=" | ">=" => 7,
+                "<<" | ">>" => 8,
+                "+" | "-" => 9,
+                "*" | "/" | "%" => 10,
+                _ => break,
+            };
+            if prec < min_prec {
+                break;
+            }
+            let op = op.to_string();
+            self.pos += 1;
+            let rhs = self.binary(prec + 1)?;
+            lhs = match op.as_str() {
+                "||" => ((lhs != 0) || (rhs != 0)) as i64,
+                "&&" => ((lhs != 0) && (rhs != 0)) as i64,
+                "|" => lhs | rhs,
+                "^" => lhs ^ rhs,
+                "&" => lhs & rhs,
+                "==" => (lhs == rhs) as i64,
+                "!=" => (lhs != rhs) as i64,
+                "<" => (lhs < rhs) as i64,
+                ">" => (lhs > rhs) as i64,
+                "<=" => (lhs <= rhs) as i64,
+                ">=" => (lhs >= rhs) as i64,
+                "<<" => lhs.wrapping_shl(rhs as u32),
+                ">>" => lhs.wrapping_shr(rhs as u32),
+                "+" => lhs.wrapping_add(rhs),
+                "-" => lhs.wrapping_sub(rhs),
+                "*" => lhs.wrapping_mul(rhs),
+                "/" | "%" if rhs == 0 => return Err("division by zero in #if expression".into()),
+                "/" => lhs.wrapping_div(rhs),
+                _ => lhs.wrapping_rem(rhs),
+            };
+        }
+        Ok(lhs)
+    }
+
+    fn unary(&mut self) -> Result<i64, String> {
+        match self.tokens.get(self.pos) {
+            Some(ExprToken::Num(n)) => {
+                self.pos += 1;
+                Ok(*n)
+            }
+            Some(ExprToken::Op(op)) => {
+                let op = op.clone();
+                self.pos += 1;
+                match op.as_str() {
+                    "(" => {
+                        let v = self.ternary()?;
+                        if self.peek_op() != Some(")") {
+                            return Err("missing `)` in #if expression".into());
+                        }
+                        self.pos += 1;
+                        Ok(v)
+                    }
+                    "-" => Ok(self.unary()?.wrapping_neg()),
+                    "+" => self.unary(),
+                    "!" => Ok((self.unary()? == 0) as i64),
+                    "~" => Ok(!self.unary()?),
+                    other => Err(format!("unexpected `{other}` in #if expression")),
+                }
+            }
+            None => Err("#if expression ends early".into()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn files(list: &[(&str, &str)]) -> HashMap<String, Arc<str>> {
+        list.iter().map(|(p, t)| (p.to_string(), Arc::from(*t))).collect()
+    }
+
+    fn run(list: &[(&str, &str)]) -> Result<Preprocessed, Diagnostic> {
+        preprocess(&files(list), list[0].0, &PreprocessOptions::default())
+    }
+
+    #[test]
+    fn keeps_one_output_line_per_source_line() {
+        let out = run(&[(
+            "a.fsh",
+            "#version 120\n#define X 2\n#ifdef X\nfloat a = X;\n#else\nfloat a = 0;\n#endif\n/* two\nlines */ float b;\n",
+        )])
+        .unwrap();
+        let lines: Vec<&str> = out.text.lines().collect();
+        assert_eq!(lines.len(), out.lines.len());
+        assert_eq!(lines[0], "#version 120");
+        assert_eq!(lines[3], "float a = 2;");
+        assert_eq!(lines[5], "");
+        assert_eq!(lines[8].trim(), "float b;");
+        assert_eq!(out.lines[8].line, 9);
+    }
+
+    #[test]
+    fn includes_map_back_to_their_files() {
+        let out = run(&[
+            ("prog/a.fsh", "#version 120\n#include \"/lib/x.glsl\"\nvoid main() {}\n"),
+            ("lib/x.glsl", "#include \"y.glsl\"\nfloat x;\n"),
+            ("lib/y.glsl", "float y;\n"),
+        ])
+        .unwrap();
+        let located: Vec<String> =
+            (1..=out.lines.len() as u32).map(|l| out.location(l).unwrap().to_string()).collect();
+        assert_eq!(located, ["prog/a.fsh:1", "lib/y.glsl:1", "lib/x.glsl:2", "prog/a.fsh:3"]);
+        assert!(out.text.contains("float y;\nfloat x;\nvoid main"));
+    }
+
+    #[test]
+    fn include_cycle_is_reported_at_the_including_line() {
+        let err = run(&[
+            ("a.fsh", "#version 120\n#include \"/lib/x.glsl\"\n"),
+            ("lib/x.glsl", "\n\n#include \"/lib/x.glsl\"\n"),
+        ])
+        .unwrap_err();
+        assert_eq!(err.location, Some(Location::line("lib/x.glsl", 3)));
+        assert!(err.message.contains("include cycle"), "{}", err.message);
+    }
+
+    #[test]
+    fn missing_include_and_escape_are_errors() {
+        let err = run(&[("a.fsh", "#version 120\n\n#include \"/lib/none.glsl\"\n")]).unwrap_err();
+        assert_eq!(err.location, Some(Location::line("a.fsh", 3)));
+        let err = run(&[("a.fsh", "#include \"../../etc/passwd\"\n")]).unwrap_err();
+        assert!(err.message.contains("climbs out"), "{}", err.message);
+    }
+
+    #[test]
+    fn function_macros_and_nested_expansion() {
+        let out = run(&[(
+            "a.fsh",
+            "#define SQ(x) ((x) * (x))\n#define TWO 2\n#define F(a, b) SQ(a) + b\nfloat v = F(TWO, SQ(3));\nfloat w = F(1,\n 2);\n",
+        )])
+        .unwrap();
+        let lines: Vec<&str> = out.text.lines().collect();
+        assert_eq!(lines[3], "float v = ((2) * (2)) + ((3) * (3));");
+        assert!(lines[4].starts_with("float w = ((1) * (1)) + 2;"), "{:?}", lines[4]);
+        assert_eq!(out.text.lines().count(), 6);
+    }
+
+    #[test]
+    fn if_expressions_follow_c_rules() {
+        let src = "#define A 3\n#if defined(A) && A * 2 == 6 && !defined B && (UNDEF == 0) && (A > 2 ? 1 : 0)\nyes\n#endif\n#if 0x10 >> 2 != 4\nno\n#elif 1\nelif\n#else\nno\n#endif\n";
+        let out = run(&[("a.fsh", src)]).unwrap();
+        let words: Vec<&str> = out.text.split_whitespace().collect();
+        assert_eq!(words, ["yes", "elif"]);
+    }
+
+    #[test]
+    fn empty_conditionals_do_not_count_as_consulted() {
+        let out = run(&[("a.fsh", "#define OPT\n#ifdef OPT\n#endif\n#ifdef USED\nx\n#endif\n")]).unwrap();
+        assert!(!out.consulted_macros.contains("OPT"));
+        assert!(out.consulted_macros.contains("USED"));
+    }
+
+    #[test]
+    fn records_active_render_targets_only() {
+        let src = "#ifdef NEVER\n/* DRAWBUFFERS:0123 */\n#else\n/* RENDERTARGETS: 0,4 */\n#endif\n";
+        let out = run(&[("a.fsh", src)]).unwrap();
+        let targets = out.render_targets.unwrap();
+        assert_eq!((targets.modern, targets.buffers), (true, vec![0, 4]));
+        assert_eq!(targets.line.line, 4);
+    }
+
+    #[test]
+    fn structural_errors_name_the_line() {
+        for (src, line, needle) in [
+            ("a\n#if 1\nb\n", 2, "no matching #endif"),
+            ("#endif\n", 1, "#endif without #if"),
+            ("\n#if 1 +\n#endif\n", 2, "ends early"),
+            ("\n\n#error stop here\n", 3, "#error stop here"),
+            ("x\n#bogus\n", 2, "unknown preprocessor directive"),
+            ("#if 1 / 0\n#endif\n", 1, "division by zero"),
+            ("float a;\nfloat b @;\n", 2, "unexpected character"),
+            ("\nfloat a; /* open\n", 2, "unterminated block comment"),
+        ] {
+            let err = run(&[("a.fsh", src)]).unwrap_err();
+            assert_eq!(err.location.as_ref().unwrap().line, line, "{src:?}: {err}");
+            assert!(err.message.contains(needle), "{src:?}: {err}");
+        }
+    }
+
+    #[test]
+    fn include_depth_is_limited() {
+        let mut list = vec![("a.fsh".to_string(), "#include \"/l0.glsl\"\n".to_string())];
+        for i in 0..12 {
+            list.push((format!("l{i}.glsl"), format!("#include \"/l{}.glsl\"\n", i + 1)));
+        }
+        list.push(("l12.glsl".into(), "float x;\n".into()));
+        let map: HashMap<String, Arc<str>> = list.into_iter().map(|(p, t)| (p, Arc::from(t))).collect();
+        let err = preprocess(&map, "a.fsh", &PreprocessOptions::default()).unwrap_err();
+        assert!(err.message.contains("deeper than 10"), "{err}");
+    }
+
+    #[test]
+    fn self_referential_macro_stops() {
+        let out = run(&[("a.fsh", "#define X X + 1\nfloat v = X;\n")]).unwrap();
+        assert_eq!(out.text.lines().nth(1).unwrap(), "float v = X + 1;");
+    }
+}

@@ -1,0 +1,258 @@
+//! A lossless GLSL tokenizer.
+//!
+//! Concatenating the text of every token gives back the input exactly, so rewriting passes
+//! (dialect generation, lowering) can replace single tokens and keep everything else, line
+//! breaks included. Line continuations (`\` before a line break) are kept inside the
+//! whitespace token they appear in; every token records the 1-based line it starts on.
+
+use std::fmt;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TokenKind {
+    Ident,
+    /// Integer or floating-point literal, suffixes included (`1.0f`, `0x1Fu`, `1e-3`).
+    Number,
+    /// An operator or punctuation mark, possibly several characters (`<<=`, `##`).
+    Punct,
+    /// Spaces, tabs and line continuations; never a line break.
+    Whitespace,
+    Newline,
+    LineComment,
+    BlockComment,
+    /// A character that has no place in GLSL outside comments.
+    Unknown,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Token<'a> {
+    pub kind: TokenKind,
+    pub text: &'a str,
+    /// Byte offset of the token in the tokenized text.
+    pub offset: usize,
+    /// 1-based line the token starts on.
+    pub line: u32,
+}
+
+impl Token<'_> {
+    /// Whitespace, line breaks and comments: tokens that only separate others.
+    pub fn is_trivia(&self) -> bool {
+        matches!(
+            self.kind,
+            TokenKind::Whitespace | TokenKind::Newline | TokenKind::LineComment | TokenKind::BlockComment
+        )
+    }
+
+    pub fn is_punct(&self, p: &str) -> bool {
+        self.kind == TokenKind::Punct && self.text == p
+    }
+
+    pub fn is_ident(&self, name: &str) -> bool {
+        self.kind == TokenKind::Ident && self.text == name
+    }
+
+    /// Line breaks inside the token (block comments and continuations span lines).
+    pub fn newlines(&self) -> u32 {
+        self.text.bytes().filter(|&b| b == b'\n').count() as u32
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TokenizeError {
+    pub line: u32,
+    pub message: String,
+}
+
+impl fmt::Display for TokenizeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+impl std::error::Error for TokenizeError {}
+
+/// Single characters GLSL uses as operators or punctuation (`"` for `#include` paths).
+const GLSL_PUNCTUATION: &[u8] = b"+-*/%<>=!&|^~?:;,.()[]{}#\"";
+
+const PUNCTUATORS: [&str; 25] = [
+    "<<=", ">>=", "++", "--", "<<", ">>", "<=", ">=", "==", "!=", "&&", "||", "^^", "+=", "-=", "*=", "/=",
+    "%=", "&=", "^=", "|=", "##", "::", "->", "..",
+];
+
+/// Splits `src` into tokens. Fails only on an unterminated block comment; a stray character
+/// becomes an [`TokenKind::Unknown`] token so the caller can report it where it matters.
+pub fn tokenize(src: &str) -> Result<Vec<Token<'_>>, TokenizeError> {
+    let bytes = src.as_bytes();
+    let mut tokens = Vec::with_capacity(src.len() / 3);
+    let mut pos = 0;
+    let mut line = 1u32;
+    while pos < bytes.len() {
+        let start = pos;
+        let c = bytes[pos];
+        let kind = match c {
+            b'\n' => {
+                pos += 1;
+                TokenKind::Newline
+            }
+            b'\r' if bytes.get(pos + 1) == Some(&b'\n') => {
+                pos += 2;
+                TokenKind::Newline
+            }
+            b' ' | b'\t' | b'\r' | b'\x0b' | b'\x0c' | b'\\' => {
+                if c == b'\\' && !is_continuation(bytes, pos) {
+                    pos += 1;
+                    TokenKind::Unknown
+                } else {
+                    while pos < bytes.len() {
+                        match bytes[pos] {
+                            b' ' | b'\t' | b'\x0b' | b'\x0c' => pos += 1,
+                            b'\r' if bytes.get(pos + 1) != Some(&b'\n') => pos += 1,
+                            b'\\' if is_continuation(bytes, pos) => {
+                                pos += 1;
+                                if bytes[pos] == b'\r' {
+                                    pos += 1;
+                                }
+                                pos += 1;
+                            }
+                            _ => break,
+                        }
+                    }
+                    TokenKind::Whitespace
+                }
+            }
+            b'/' if bytes.get(pos + 1) == Some(&b'/') => {
+                while pos < bytes.len() && bytes[pos] != b'\n' {
+                    // A continuation extends a line comment onto the next line, as in C.
+                    if bytes[pos] == b'\\' && is_continuation(bytes, pos) {
+                        pos += 1;
+                    }
+                    pos += 1;
+                }
+                if src[start..pos].ends_with('\r') {
+                    pos -= 1;
+                }
+                TokenKind::LineComment
+            }
+            b'/' if bytes.get(pos + 1) == Some(&b'*') => match src[pos + 2..].find("*/") {
+                Some(end) => {
+                    pos += 2 + end + 2;
+                    TokenKind::BlockComment
+                }
+                None => {
+                    return Err(TokenizeError { line, message: "unterminated block comment".into() });
+                }
+            },
+            b'0'..=b'9' => {
+                pos = scan_number(bytes, pos);
+                TokenKind::Number
+            }
+            b'.' if bytes.get(pos + 1).is_some_and(u8::is_ascii_digit) => {
+                pos = scan_number(bytes, pos);
+                TokenKind::Number
+            }
+            b'a'..=b'z' | b'A'..=b'Z' | b'_' => {
+                while pos < bytes.len() && (bytes[pos].is_ascii_alphanumeric() || bytes[pos] == b'_') {
+                    pos += 1;
+                }
+                TokenKind::Ident
+            }
+            _ if GLSL_PUNCTUATION.contains(&c) => {
+                let rest = &src[pos..];
+                pos += PUNCTUATORS.iter().find(|p| rest.starts_with(**p)).map_or(1, |p| p.len());
+                TokenKind::Punct
+            }
+            _ => {
+                // One whole UTF-8 character, so the token text stays valid UTF-8.
+                pos += src[pos..].chars().next().map_or(1, char::len_utf8);
+                TokenKind::Unknown
+            }
+        };
+        let token = Token { kind, text: &src[start..pos], offset: start, line };
+        line += token.newlines();
+        tokens.push(token);
+    }
+    Ok(tokens)
+}
+
+fn is_continuation(bytes: &[u8], pos: usize) -> bool {
+    match bytes.get(pos + 1) {
+        Some(b'\n') => true,
+        Some(b'\r') => bytes.get(pos + 2) == Some(&b'\n'),
+        _ => false,
+    }
+}
+
+fn scan_number(bytes: &[u8], mut pos: usize) -> usize {
+    let hex = bytes[pos] == b'0' && matches!(bytes.get(pos + 1), Some(b'x' | b'X'));
+    while pos < bytes.len() {
+        let c = bytes[pos];
+        let exponent_sign = !hex
+            && matches!(c, b'+' | b'-')
+            && matches!(bytes[pos - 1], b'e' | b'E')
+            && bytes.get(pos + 1).is_some_and(u8::is_ascii_digit);
+        if c.is_ascii_alphanumeric() || c == b'.' || c == b'_' || exponent_sign {
+            pos += 1;
+        } else {
+            break;
+        }
+    }
+    pos
+}
+
+/// Indices of the tokens that are not trivia, in order.
+pub fn significant(tokens: &[Token<'_>]) -> Vec<usize> {
+    (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kinds(src: &str) -> Vec<(TokenKind, &str)> {
+        tokenize(src).unwrap().into_iter().map(|t| (t.kind, t.text)).collect()
+    }
+
+    #[test]
+    fn round_trips_exactly() {
+        let src = "#version 120\r\nuniform sampler2D tex; // atlas\n/* a\n b */ float x = .5e-3f + 0x1Fu;\\\n y <<= 2;\n";
+        let joined: String = tokenize(src).unwrap().iter().map(|t| t.text).collect();
+        assert_eq!(joined, src);
+    }
+
+    #[test]
+    fn numbers_keep_suffixes_and_exponents() {
+        let nums: Vec<_> = kinds("1.0f .5 1e-3 2E+4 0x1F 10u 3.lf a-1")
+            .into_iter()
+            .filter(|(k, _)| *k == TokenKind::Number)
+            .map(|(_, t)| t)
+            .collect();
+        assert_eq!(nums, ["1.0f", ".5", "1e-3", "2E+4", "0x1F", "10u", "3.lf", "1"]);
+    }
+
+    #[test]
+    fn longest_punctuator_wins() {
+        let puncts: Vec<_> =
+            kinds("a<<=b>>c++&&d^^e##f").into_iter().filter(|(k, _)| *k == TokenKind::Punct).map(|(_, t)| t).collect();
+        assert_eq!(puncts, ["<<=", ">>", "++", "&&", "^^", "##"]);
+    }
+
+    #[test]
+    fn lines_count_through_comments_and_continuations() {
+        let toks = tokenize("a /* x\ny */ b \\\n c\n// d\ne").unwrap();
+        let line_of = |name: &str| toks.iter().find(|t| t.text == name).unwrap().line;
+        assert_eq!((line_of("a"), line_of("b"), line_of("c"), line_of("e")), (1, 2, 3, 5));
+    }
+
+    #[test]
+    fn unterminated_comment_names_its_line() {
+        let err = tokenize("a\nb /* open\n").unwrap_err();
+        assert_eq!(err.line, 2);
+    }
+
+    #[test]
+    fn stray_characters_are_unknown_tokens() {
+        let toks = kinds("a @ é \\ b");
+        assert!(toks.contains(&(TokenKind::Unknown, "@")));
+        assert!(toks.contains(&(TokenKind::Unknown, "é")));
+        assert!(toks.contains(&(TokenKind::Unknown, "\\")));
+    }
+}
