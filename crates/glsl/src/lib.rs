@@ -1,9 +1,17 @@
 //! GLSL for OptiFine shader packs: tokenizer, OptiFine's preprocessor with a source map, option
 //! declarations, the lowering of shipped GLSL 120/330 to the Vulkan GLSL 450 that naga reads, and
 //! validation through naga with errors mapped back to the pack's files.
+//!
+//! Data flow: [`preprocess`] (includes, macros, conditionals; one output line per source line)
+//! → [`lower`] (line-preserving token rewrites to GLSL 450) → [`validate`] (naga parse and
+//! validation, errors mapped through the preprocessor's line map).
 
 pub mod diagnostic;
+pub mod lower;
+pub mod options;
 pub mod preprocess;
 pub mod token;
+pub mod validate;
 
 pub use diagnostic::{Diagnostic, Location, Severity};
+pub use lower::Stage;

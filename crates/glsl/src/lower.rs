@@ -1,0 +1,903 @@
+//! Lowering of OptiFine GLSL (`#version 120`, `330 compatibility`, …) to the Vulkan GLSL 450
+//! that naga reads.
+//!
+//! The lowering works on the preprocessed text, token by token, and never adds or removes a
+//! line break: declarations it must add go on the `#version` line, declarations it replaces are
+//! rewritten on their own lines. Lowered line N is therefore preprocessed line N, and the
+//! preprocessor's source map locates every naga error in the pack's files.
+//!
+//! The rewrites (each pinned by a snapshot in tests/lowering):
+//! - `#version …` becomes `#version 450`; `#extension` lines are dropped.
+//! - `attribute` and vertex `in` get `layout(location = 8 + k)` in declaration order; the legacy
+//!   vertex inputs (`gl_Vertex`, `gl_Normal`, `gl_Color`, `gl_MultiTexCoordN`) become reserved
+//!   inputs at locations 0-7.
+//! - `varying` and stage `in`/`out` get the program-wide location of their name (see
+//!   [`VaryingLayout`]), so both stages agree; `gl_FrontColor`/`gl_Color` and `gl_TexCoord[i]`
+//!   become reserved varyings.
+//! - Fragment outputs: `gl_FragData[i]` and `gl_FragColor` become `layout(location = i) out vec4`;
+//!   330 `out vec4 outColorN` gets location N, other outputs their declaration order.
+//! - `texture2D`, `texture2DLod`, `shadow2D`, … become `texture`, `textureLod`, and
+//!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms.
+//! - A combined `uniform sampler2D s` becomes `texture2D s` plus `sampler tp_sampler_s`, and
+//!   every use of `s` becomes `sampler2D(s, tp_sampler_s)`; a function taking a sampler takes
+//!   both halves, and its call sites pass both. The old atlas name `texture` becomes `gtexture`.
+//! - Loose uniforms move into one uniform block (members are visible without an instance name,
+//!   so their uses do not change); legacy matrices (`gl_ModelViewMatrix`, …) join it as reserved
+//!   members and `ftransform()` becomes their product with the vertex.
+//!
+//! Reserved names all start with `tp_`.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+
+use crate::token::{Token, TokenKind, tokenize};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Stage {
+    Vertex,
+    Fragment,
+}
+
+impl Stage {
+    /// The stage of an OptiFine shader file, by extension.
+    pub fn from_path(path: &str) -> Option<Stage> {
+        if path.ends_with(".vsh") {
+            Some(Stage::Vertex)
+        } else if path.ends_with(".fsh") {
+            Some(Stage::Fragment)
+        } else {
+            None
+        }
+    }
+
+    /// Descriptor set of the stage's resources; the stages of a program use different sets so
+    /// their uniform blocks never collide.
+    pub fn descriptor_set(self) -> u32 {
+        match self {
+            Stage::Vertex => 0,
+            Stage::Fragment => 1,
+        }
+    }
+}
+
+/// Prefix of every name the lowering adds.
+pub const RESERVED_PREFIX: &str = "tp_";
+/// First location of user vertex attributes; 0-7 are the legacy built-in inputs.
+pub const FIRST_ATTRIBUTE_LOCATION: u32 = 8;
+
+/// Legacy vertex inputs and their reserved names and locations.
+const LEGACY_INPUTS: [(&str, &str, &str, u32); 6] = [
+    ("gl_Vertex", "tp_Vertex", "vec4", 0),
+    ("gl_Color", "tp_Color", "vec4", 1),
+    ("gl_Normal", "tp_Normal", "vec3", 2),
+    ("gl_MultiTexCoord0", "tp_MultiTexCoord0", "vec4", 3),
+    ("gl_MultiTexCoord1", "tp_MultiTexCoord1", "vec4", 4),
+    ("gl_MultiTexCoord2", "tp_MultiTexCoord2", "vec4", 5),
+];
+
+/// Legacy matrices and the uniform-block members that replace them.
+const LEGACY_MATRICES: [(&str, &str, &str); 9] = [
+    ("gl_ModelViewMatrix", "tp_ModelViewMatrix", "mat4"),
+    ("gl_ProjectionMatrix", "tp_ProjectionMatrix", "mat4"),
+    ("gl_ModelViewProjectionMatrix", "tp_ModelViewProjectionMatrix", "mat4"),
+    ("gl_NormalMatrix", "tp_NormalMatrix", "mat3"),
+    ("gl_TextureMatrix", "tp_TextureMatrix", "mat4[8]"),
+    ("gl_ModelViewMatrixInverse", "tp_ModelViewMatrixInverse", "mat4"),
+    ("gl_ProjectionMatrixInverse", "tp_ProjectionMatrixInverse", "mat4"),
+    ("gl_ModelViewProjectionMatrixInverse", "tp_ModelViewProjectionMatrixInverse", "mat4"),
+    ("gl_TextureMatrixInverse", "tp_TextureMatrixInverse", "mat4[8]"),
+];
+
+/// Sampling built-ins of old GLSL and their 450 names; `true` for the shadow forms, which
+/// returned a `vec4` and now return a `float`.
+const LEGACY_SAMPLING: [(&str, &str, bool); 14] = [
+    ("texture1D", "texture", false),
+    ("texture2D", "texture", false),
+    ("texture3D", "texture", false),
+    ("textureCube", "texture", false),
+    ("texture2DLod", "textureLod", false),
+    ("texture3DLod", "textureLod", false),
+    ("textureCubeLod", "textureLod", false),
+    ("texture2DProj", "textureProj", false),
+    ("texture2DProjLod", "textureProjLod", false),
+    ("texture2DGrad", "textureGrad", false),
+    ("texture2DGradARB", "textureGrad", false),
+    ("texture2DLodEXT", "textureLod", false),
+    ("shadow2D", "texture", true),
+    ("shadow2DLod", "textureLod", true),
+];
+
+/// Combined sampler types and their separate texture type and sampler type.
+fn split_sampler_type(ty: &str) -> Option<(&'static str, &'static str)> {
+    Some(match ty {
+        "sampler1D" => ("texture1D", "sampler"),
+        "sampler2D" => ("texture2D", "sampler"),
+        "sampler3D" => ("texture3D", "sampler"),
+        "samplerCube" => ("textureCube", "sampler"),
+        "sampler2DShadow" => ("texture2D", "samplerShadow"),
+        "sampler2DArray" => ("texture2DArray", "sampler"),
+        "isampler2D" => ("itexture2D", "sampler"),
+        "usampler2D" => ("utexture2D", "sampler"),
+        "isampler3D" => ("itexture3D", "sampler"),
+        "usampler3D" => ("utexture3D", "sampler"),
+        _ => return None,
+    })
+}
+
+fn is_varying_qualifier(word: &str) -> bool {
+    matches!(word, "flat" | "smooth" | "noperspective" | "centroid" | "invariant")
+}
+
+fn is_precision(word: &str) -> bool {
+    matches!(word, "highp" | "mediump" | "lowp")
+}
+
+/// Program-wide varying locations: every varying name of both stages, sorted, numbered.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VaryingLayout {
+    pub locations: BTreeMap<String, u32>,
+}
+
+impl VaryingLayout {
+    /// Builds the layout from the preprocessed texts of a program's stages.
+    pub fn for_program(stages: &[(Stage, &str, u32)]) -> Result<VaryingLayout, LowerError> {
+        let mut names = std::collections::BTreeSet::new();
+        for &(stage, text, version) in stages {
+            names.extend(varyings_of(text, stage, version)?);
+        }
+        Ok(VaryingLayout { locations: names.into_iter().zip(0..).collect() })
+    }
+}
+
+/// Names of the varyings a stage declares or uses through legacy built-ins.
+pub fn varyings_of(text: &str, stage: Stage, version: u32) -> Result<Vec<String>, LowerError> {
+    let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
+    let mut names = Vec::new();
+    for stmt in top_level_statements(&tokens) {
+        if let Some(decl) = Declaration::parse(&tokens, &stmt)
+            && decl.storage(stage, version) == Storage::Varying
+        {
+            names.extend(decl.names.iter().map(|(n, _)| n.to_string()));
+        }
+    }
+    let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    for (i, t) in sig.iter().enumerate() {
+        match t.text {
+            "gl_FrontColor" => names.push("tp_FrontColor".into()),
+            "gl_Color" if stage == Stage::Fragment => names.push("tp_FrontColor".into()),
+            "gl_TexCoord" => {
+                let index = constant_index(&sig, i).ok_or_else(|| LowerError {
+                    line: t.line,
+                    message: "gl_TexCoord needs a constant index".into(),
+                })?;
+                names.push(format!("tp_TexCoord{index}"));
+            }
+            _ => {}
+        }
+    }
+    names.sort();
+    names.dedup();
+    Ok(names)
+}
+
+/// `[N]` after `sig[i]` with a literal N.
+fn constant_index(sig: &[&Token<'_>], i: usize) -> Option<u32> {
+    match (sig.get(i + 1), sig.get(i + 2), sig.get(i + 3)) {
+        (Some(o), Some(n), Some(c)) if o.is_punct("[") && n.kind == TokenKind::Number && c.is_punct("]") => {
+            n.text.trim_end_matches(['u', 'U']).parse().ok()
+        }
+        _ => None,
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LowerError {
+    /// 1-based line in the preprocessed (and lowered) text.
+    pub line: u32,
+    pub message: String,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ResourceKind {
+    /// A member of the stage's uniform block, with its GLSL type.
+    Uniform { ty: String },
+    /// The texture half of a split combined sampler; `binding + 1` holds the sampler.
+    Texture { ty: String, comparison: bool, binding: u32 },
+}
+
+/// What the lowered stage expects from whoever runs it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Interface {
+    /// Uniforms and textures by their names in the shipped text.
+    pub resources: BTreeMap<String, ResourceKind>,
+    /// Vertex inputs (shipped names, legacy ones as `gl_*`) and their locations.
+    pub inputs: BTreeMap<String, u32>,
+    /// Fragment outputs by location: the shipped output name (`gl_FragData[1]`, `outColor1`).
+    pub outputs: BTreeMap<u32, String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub text: String,
+    pub interface: Interface,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Storage {
+    Uniform,
+    Attribute,
+    Varying,
+    FragmentOutput,
+    Other,
+}
+
+/// A top-level statement: significant-token indices from its first token to its `;` or `{`.
+struct Statement {
+    sig: Vec<usize>,
+}
+
+/// Splits the top level into statements, skipping directive lines and function bodies.
+fn top_level_statements(tokens: &[Token<'_>]) -> Vec<Statement> {
+    let mut out = Vec::new();
+    let mut current = Vec::new();
+    let mut depth = 0i32;
+    let mut at_line_start = true;
+    let mut in_directive = false;
+    for (i, t) in tokens.iter().enumerate() {
+        if t.kind == TokenKind::Newline {
+            at_line_start = true;
+            in_directive = false;
+            continue;
+        }
+        if t.is_trivia() {
+            continue;
+        }
+        if at_line_start && t.is_punct("#") {
+            in_directive = true;
+        }
+        at_line_start = false;
+        if in_directive {
+            continue;
+        }
+        if depth > 0 {
+            if t.is_punct("{") {
+                depth += 1;
+            } else if t.is_punct("}") {
+                depth -= 1;
+            }
+            continue;
+        }
+        current.push(i);
+        if t.is_punct(";") {
+            out.push(Statement { sig: std::mem::take(&mut current) });
+        } else if t.is_punct("{") {
+            let is_function = current.iter().any(|&j| tokens[j].is_punct("("));
+            if is_function {
+                out.push(Statement { sig: std::mem::take(&mut current) });
+                depth = 1;
+            }
+            // Struct and interface-block braces stay inside the statement up to its `;`.
+        }
+    }
+    out
+}
+
+/// A top-level variable declaration: qualifiers, a type and declarators.
+struct Declaration<'a> {
+    qualifiers: Vec<&'a str>,
+    /// Index (into `tokens`) of `layout`, if present, and of its closing `)`.
+    layout: Option<(usize, usize)>,
+    ty: &'a str,
+    /// Declarator names with the text after the name up to the next `,`/`;` (array sizes).
+    names: Vec<(&'a str, String)>,
+    has_initializer: bool,
+}
+
+impl<'a> Declaration<'a> {
+    fn parse(tokens: &[Token<'a>], stmt: &Statement) -> Option<Declaration<'a>> {
+        let sig = &stmt.sig;
+        if !tokens[*sig.last()?].is_punct(";") {
+            return None;
+        }
+        let mut qualifiers = Vec::new();
+        let mut layout = None;
+        let mut k = 0;
+        loop {
+            let t = &tokens[*sig.get(k)?];
+            if t.is_ident("layout") {
+                let open = k + 1;
+                let close = (open..sig.len()).find(|&j| tokens[sig[j]].is_punct(")"))?;
+                layout = Some((sig[k], sig[close]));
+                k = close + 1;
+            } else if matches!(t.text, "attribute" | "varying" | "uniform" | "in" | "out" | "const")
+                || is_varying_qualifier(t.text)
+                || is_precision(t.text)
+            {
+                qualifiers.push(t.text);
+                k += 1;
+            } else {
+                break;
+            }
+        }
+        let ty = &tokens[*sig.get(k)?];
+        if ty.kind != TokenKind::Ident || ty.text == "struct" || tokens[*sig.get(k + 1)?].is_punct("{") {
+            return None;
+        }
+        // Function prototypes are not declarations of variables.
+        if sig.iter().any(|&j| tokens[j].is_punct("(")) && !qualifiers.contains(&"const") {
+            let first_paren = sig.iter().position(|&j| tokens[j].is_punct("("))?;
+            if first_paren == k + 2 {
+                return None;
+            }
+        }
+        let mut names = Vec::new();
+        let mut has_initializer = false;
+        let mut j = k + 1;
+        while j < sig.len() {
+            let name = &tokens[sig[j]];
+            if name.kind != TokenKind::Ident {
+                // `float[2] x` and other forms the lowering leaves alone.
+                return None;
+            }
+            let mut suffix = String::new();
+            let mut depth = 0;
+            j += 1;
+            while j < sig.len() {
+                let t = &tokens[sig[j]];
+                if depth == 0 && (t.is_punct(",") || t.is_punct(";")) {
+                    j += 1;
+                    break;
+                }
+                if t.is_punct("=") && depth == 0 {
+                    has_initializer = true;
+                }
+                if t.is_punct("(") || t.is_punct("[") {
+                    depth += 1;
+                } else if t.is_punct(")") || t.is_punct("]") {
+                    depth -= 1;
+                }
+                if !has_initializer {
+                    suffix.push_str(t.text);
+                }
+                j += 1;
+            }
+            names.push((name.text, suffix));
+        }
+        Some(Declaration { qualifiers, layout, ty: ty.text, names, has_initializer })
+    }
+
+    fn storage(&self, stage: Stage, version: u32) -> Storage {
+        let has = |q: &str| self.qualifiers.contains(&q);
+        if has("uniform") {
+            Storage::Uniform
+        } else if has("attribute") || (has("in") && stage == Stage::Vertex) {
+            Storage::Attribute
+        } else if has("varying") || (has("out") && stage == Stage::Vertex) || (has("in") && stage == Stage::Fragment)
+        {
+            Storage::Varying
+        } else if has("out") && stage == Stage::Fragment && version >= 130 {
+            Storage::FragmentOutput
+        } else {
+            Storage::Other
+        }
+    }
+
+    /// Interpolation qualifiers to keep (`flat`, `centroid`, …).
+    fn interpolation(&self) -> String {
+        self.qualifiers.iter().filter(|q| is_varying_qualifier(q)).map(|q| format!("{q} ")).collect()
+    }
+
+    /// `N` of an explicit `layout(location = N)`.
+    fn explicit_location(&self, tokens: &[Token<'_>]) -> Option<u32> {
+        let (start, end) = self.layout?;
+        let sig: Vec<&Token<'_>> = tokens[start..=end].iter().filter(|t| !t.is_trivia()).collect();
+        sig.windows(3)
+            .find(|w| w[0].is_ident("location") && w[1].is_punct("="))
+            .and_then(|w| w[2].text.parse().ok())
+    }
+}
+
+/// Which global names are samplers, and what functions take samplers where.
+#[derive(Default)]
+struct Symbols {
+    /// Shipped sampler name → (lowered texture name, combined type).
+    samplers: HashMap<String, (String, String)>,
+    /// Function name → for each parameter, whether it is a sampler.
+    sampler_functions: HashMap<String, Vec<bool>>,
+}
+
+/// Lowers one preprocessed stage.
+pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
+    let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
+    let mut lowering = Lowering {
+        tokens: &tokens,
+        stage,
+        version: 0,
+        replacements: BTreeMap::new(),
+        header: String::new(),
+        block: Vec::new(),
+        symbols: Symbols::default(),
+        interface: Interface::default(),
+        next_binding: 1,
+        varyings,
+    };
+    lowering.run()?;
+    Ok(Lowered { text: lowering.render(), interface: lowering.interface })
+}
+
+struct Lowering<'t, 'a> {
+    tokens: &'t [Token<'a>],
+    stage: Stage,
+    version: u32,
+    /// Token index → (end index exclusive, replacement text).
+    replacements: BTreeMap<usize, (usize, String)>,
+    /// Declarations added to the `#version` line.
+    header: String,
+    /// Members of the uniform block.
+    block: Vec<String>,
+    symbols: Symbols,
+    interface: Interface,
+    next_binding: u32,
+    varyings: &'t VaryingLayout,
+}
+
+impl<'a> Lowering<'_, 'a> {
+    fn err(&self, index: usize, message: impl Into<String>) -> LowerError {
+        LowerError { line: self.tokens[index].line, message: message.into() }
+    }
+
+    fn replace(&mut self, start: usize, end: usize, text: String) {
+        self.replacements.insert(start, (end, text));
+    }
+
+    fn run(&mut self) -> Result<(), LowerError> {
+        let version_index = self.find_version()?;
+        let statements = top_level_statements(self.tokens);
+        for stmt in &statements {
+            self.collect_function_signature(stmt);
+        }
+        let mut attribute_count = 0;
+        let mut output_order = 0;
+        for stmt in &statements {
+            let Some(decl) = Declaration::parse(self.tokens, stmt) else {
+                self.lower_function_header(stmt);
+                continue;
+            };
+            let start = stmt.sig[0];
+            let end = *stmt.sig.last().unwrap() + 1;
+            match decl.storage(self.stage, self.version) {
+                Storage::Uniform => self.lower_uniform(&decl, start, end)?,
+                Storage::Attribute => {
+                    let mut text = String::new();
+                    for (name, suffix) in &decl.names {
+                        let location = FIRST_ATTRIBUTE_LOCATION + attribute_count;
+                        attribute_count += 1;
+                        self.interface.inputs.insert(name.to_string(), location);
+                        write!(text, "layout(location = {location}) in {} {name}{suffix}; ", decl.ty).unwrap();
+                    }
+                    self.replace(start, end, text.trim_end().to_string());
+                }
+                Storage::Varying => {
+                    let direction = if self.stage == Stage::Vertex { "out" } else { "in" };
+                    let mut text = String::new();
+                    for (name, suffix) in &decl.names {
+                        let location = self.varyings.locations.get(*name).copied().ok_or_else(|| {
+                            self.err(start, format!("varying `{name}` is missing from the program's varying layout"))
+                        })?;
+                        write!(
+                            text,
+                            "layout(location = {location}) {}{direction} {} {name}{suffix}; ",
+                            decl.interpolation(),
+                            decl.ty
+                        )
+                        .unwrap();
+                    }
+                    self.replace(start, end, text.trim_end().to_string());
+                }
+                Storage::FragmentOutput => {
+                    let mut text = String::new();
+                    for (name, suffix) in &decl.names {
+                        let location = name
+                            .strip_prefix("outColor")
+                            .and_then(|n| n.parse().ok())
+                            .or_else(|| decl.explicit_location(self.tokens))
+                            .unwrap_or(output_order);
+                        output_order += 1;
+                        if let Some(previous) = self.interface.outputs.insert(location, name.to_string()) {
+                            return Err(self.err(start, format!("`{name}` and `{previous}` both write output {location}")));
+                        }
+                        write!(text, "layout(location = {location}) out {} {name}{suffix}; ", decl.ty).unwrap();
+                    }
+                    self.replace(start, end, text.trim_end().to_string());
+                }
+                Storage::Other => {}
+            }
+        }
+        self.rewrite_bodies()?;
+        self.finish_header(version_index);
+        Ok(())
+    }
+
+    fn find_version(&mut self) -> Result<usize, LowerError> {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).take(3).collect();
+        match sig.as_slice() {
+            [hash, word, number, ..]
+                if self.tokens[*hash].is_punct("#") && self.tokens[*word].is_ident("version") =>
+            {
+                self.version = self.tokens[*number]
+                    .text
+                    .parse()
+                    .map_err(|_| self.err(*number, "#version needs a number"))?;
+                Ok(*hash)
+            }
+            _ => Err(LowerError { line: 1, message: "a shader must start with #version".into() }),
+        }
+    }
+
+    fn collect_function_signature(&mut self, stmt: &Statement) {
+        let Some(open) = stmt.sig.iter().position(|&i| self.tokens[i].is_punct("(")) else { return };
+        if open == 0 || !self.tokens[stmt.sig[open - 1]].kind.eq(&TokenKind::Ident) {
+            return;
+        }
+        let name = self.tokens[stmt.sig[open - 1]].text;
+        let params = self.parameters(&stmt.sig[open..]);
+        if params.iter().any(|p| p.sampler.is_some()) {
+            self.symbols.sampler_functions.insert(name.to_string(), params.iter().map(|p| p.sampler.is_some()).collect());
+        }
+    }
+
+    /// Parameters of a parameter list starting at `(`.
+    fn parameters(&self, sig: &[usize]) -> Vec<Parameter> {
+        let mut params = Vec::new();
+        let mut depth = 0;
+        let mut current: Vec<usize> = Vec::new();
+        for &i in sig {
+            let t = &self.tokens[i];
+            if t.is_punct("(") {
+                depth += 1;
+                if depth == 1 {
+                    continue;
+                }
+            } else if t.is_punct(")") {
+                depth -= 1;
+                if depth == 0 {
+                    params.push(self.parameter(&current));
+                    break;
+                }
+            } else if t.is_punct(",") && depth == 1 {
+                params.push(self.parameter(&current));
+                current.clear();
+                continue;
+            }
+            current.push(i);
+        }
+        params.retain(|p| !p.tokens.is_empty() && !(p.tokens.len() == 1 && self.tokens[p.tokens[0]].is_ident("void")));
+        params
+    }
+
+    fn parameter(&self, tokens: &[usize]) -> Parameter {
+        let ty = tokens.iter().map(|&i| &self.tokens[i]).find(|t| split_sampler_type(t.text).is_some());
+        let name = tokens.last().map(|&i| self.tokens[i].text.to_string()).unwrap_or_default();
+        Parameter { tokens: tokens.to_vec(), sampler: ty.map(|t| (t.text.to_string(), name)) }
+    }
+
+    /// Splits the sampler parameters of a function definition or prototype.
+    fn lower_function_header(&mut self, stmt: &Statement) {
+        let Some(open) = stmt.sig.iter().position(|&i| self.tokens[i].is_punct("(")) else { return };
+        for param in self.parameters(&stmt.sig[open..]) {
+            let Some((ty, name)) = &param.sampler else { continue };
+            let (texture_ty, sampler_ty) = split_sampler_type(ty).unwrap();
+            let start = param.tokens[0];
+            let end = *param.tokens.last().unwrap() + 1;
+            self.replace(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
+        }
+    }
+
+    fn lower_uniform(&mut self, decl: &Declaration<'a>, start: usize, end: usize) -> Result<(), LowerError> {
+        if decl.has_initializer {
+            return Err(self.err(start, "uniforms with initializers are not supported"));
+        }
+        let set = self.stage.descriptor_set();
+        if let Some((texture_ty, sampler_ty)) = split_sampler_type(decl.ty) {
+            let mut text = String::new();
+            for (name, suffix) in &decl.names {
+                if !suffix.is_empty() {
+                    return Err(self.err(start, format!("sampler arrays (`{name}{suffix}`) are not supported")));
+                }
+                // `texture` names the atlas in old packs but hides texture() in GLSL 450.
+                let lowered = if *name == "texture" { "gtexture" } else { name };
+                let binding = self.next_binding;
+                self.next_binding += 2;
+                write!(
+                    text,
+                    "layout(set = {set}, binding = {binding}) uniform {texture_ty} {lowered}; \
+                     layout(set = {set}, binding = {}) uniform {sampler_ty} {RESERVED_PREFIX}sampler_{lowered}; ",
+                    binding + 1
+                )
+                .unwrap();
+                self.symbols.samplers.insert(name.to_string(), (lowered.to_string(), decl.ty.to_string()));
+                self.interface.resources.insert(
+                    name.to_string(),
+                    ResourceKind::Texture {
+                        ty: texture_ty.to_string(),
+                        comparison: sampler_ty == "samplerShadow",
+                        binding,
+                    },
+                );
+            }
+            self.replace(start, end, text.trim_end().to_string());
+            return Ok(());
+        }
+        if decl.ty == "bool" {
+            return Err(self.err(start, "bool uniforms cannot live in a uniform buffer; declare them int"));
+        }
+        for (name, suffix) in &decl.names {
+            self.block.push(format!("{} {name}{suffix};", decl.ty));
+            self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
+        }
+        let breaks = (start..end).map(|i| self.tokens[i].newlines()).sum::<u32>();
+        self.replace(start, end, "\n".repeat(breaks as usize));
+        Ok(())
+    }
+
+    /// Rewrites uses inside every statement and function body.
+    fn rewrite_bodies(&mut self) -> Result<(), LowerError> {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        // Sampler parameters in scope: name → combined type; reset at each function's end.
+        let mut local_samplers: HashMap<String, String> = HashMap::new();
+        let mut brace_depth = 0;
+        let mut paren_depth = 0;
+        // Calls of sampler-taking functions: (function, paren depth inside the call, argument index).
+        let mut calls: Vec<(String, i32, usize)> = Vec::new();
+        // Paren depth at which a shadow lookup's extra closing text goes.
+        let mut closers: Vec<(i32, &'static str)> = Vec::new();
+        let mut k = 0;
+        while k < sig.len() {
+            let i = sig[k];
+            let t = self.tokens[i];
+            if self.covered(i) {
+                // Inside a declaration already rewritten; track parameter samplers of headers.
+                k += 1;
+                continue;
+            }
+            match t.text {
+                "{" => brace_depth += 1,
+                "}" => {
+                    brace_depth -= 1;
+                    if brace_depth == 0 {
+                        local_samplers.clear();
+                    }
+                }
+                "(" => paren_depth += 1,
+                ")" => {
+                    if let Some(&(depth, closer)) = closers.last()
+                        && depth == paren_depth
+                    {
+                        self.replace(i, i + 1, format!("){closer}"));
+                        closers.pop();
+                    }
+                    if calls.last().is_some_and(|c| c.1 == paren_depth) {
+                        calls.pop();
+                    }
+                    paren_depth -= 1;
+                }
+                "," => {
+                    if let Some(call) = calls.last_mut()
+                        && call.1 == paren_depth
+                    {
+                        call.2 += 1;
+                    }
+                }
+                _ => {}
+            }
+            if t.kind != TokenKind::Ident {
+                k += 1;
+                continue;
+            }
+            let next = sig.get(k + 1).map(|&j| self.tokens[j]);
+            let followed_by_call = next.is_some_and(|n| n.is_punct("("));
+            if brace_depth == 0 && followed_by_call {
+                // A function header: remember its sampler parameters for the body.
+                let open = k + 1;
+                let close = (open..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(")")).unwrap_or(open);
+                for p in self.parameters(&sig[open..=close]) {
+                    if let Some((ty, name)) = p.sampler {
+                        local_samplers.insert(name, ty);
+                    }
+                }
+                k = close + 1;
+                continue;
+            }
+            if let Some((_, new_name, shadow)) = LEGACY_SAMPLING.iter().find(|(old, ..)| *old == t.text)
+                && followed_by_call
+            {
+                if *shadow {
+                    self.replace(i, i + 1, format!("vec4(vec3({new_name}"));
+                    closers.push((paren_depth + 1, "), 1.0)"));
+                } else {
+                    self.replace(i, i + 1, new_name.to_string());
+                }
+            } else if followed_by_call && self.symbols.sampler_functions.contains_key(t.text) {
+                calls.push((t.text.to_string(), paren_depth + 1, 0));
+            } else if let Some(ty) = local_samplers.get(t.text).cloned() {
+                let passes_both = self.passes_sampler_halves(&calls, paren_depth);
+                self.replace(i, i + 1, combined_use(t.text, &ty, passes_both));
+            } else if let Some((lowered, ty)) = self.symbols.samplers.get(t.text).cloned()
+                && !(t.text == "texture" && followed_by_call)
+            {
+                let passes_both = self.passes_sampler_halves(&calls, paren_depth);
+                self.replace(i, i + 1, combined_use(&lowered, &ty, passes_both));
+            } else {
+                self.rewrite_builtin(&sig, k)?;
+            }
+            k += 1;
+        }
+        Ok(())
+    }
+
+    /// Whether the current argument of the innermost call goes to a sampler parameter.
+    fn passes_sampler_halves(&self, calls: &[(String, i32, usize)], paren_depth: i32) -> bool {
+        calls.last().is_some_and(|(f, depth, arg)| {
+            *depth == paren_depth && self.symbols.sampler_functions[f].get(*arg).copied().unwrap_or(false)
+        })
+    }
+
+    fn covered(&self, index: usize) -> bool {
+        self.replacements.range(..=index).next_back().is_some_and(|(&start, &(end, _))| start <= index && index < end)
+    }
+
+    fn rewrite_builtin(&mut self, sig: &[usize], k: usize) -> Result<(), LowerError> {
+        let i = sig[k];
+        let name = self.tokens[i].text;
+        let stage = self.stage;
+        if let Some(&(_, new, ty, location)) = LEGACY_INPUTS.iter().find(|(old, ..)| *old == name)
+            && !(name == "gl_Color" && stage == Stage::Fragment)
+        {
+            if stage != Stage::Vertex {
+                return Err(self.err(i, format!("{name} is a vertex-shader input")));
+            }
+            self.interface.inputs.insert(name.to_string(), location);
+            self.add_header(format!("layout(location = {location}) in {ty} {new};"));
+            self.replace(i, i + 1, new.to_string());
+            return Ok(());
+        }
+        if let Some(&(_, new, ty)) = LEGACY_MATRICES.iter().find(|(old, ..)| *old == name) {
+            let (base, array) = ty.split_once('[').map_or((ty, String::new()), |(b, a)| (b, format!("[{a}")));
+            let member = format!("{base} {new}{array};");
+            if !self.block.contains(&member) {
+                self.block.push(member);
+                self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: ty.to_string() });
+            }
+            self.replace(i, i + 1, new.to_string());
+            return Ok(());
+        }
+        match name {
+            "ftransform" => {
+                let close = (k + 1..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(")"));
+                let Some(close) = close.filter(|_| self.tokens[sig[k + 1]].is_punct("(")) else {
+                    return Err(self.err(i, "ftransform must be called as ftransform()"));
+                };
+                for member in ["mat4 tp_ModelViewProjectionMatrix;"] {
+                    if !self.block.iter().any(|m| m == member) {
+                        self.block.push(member.to_string());
+                        self.interface
+                            .resources
+                            .insert("gl_ModelViewProjectionMatrix".into(), ResourceKind::Uniform { ty: "mat4".into() });
+                    }
+                }
+                self.interface.inputs.insert("gl_Vertex".into(), 0);
+                self.add_header("layout(location = 0) in vec4 tp_Vertex;".into());
+                self.replace(i, sig[close] + 1, "(tp_ModelViewProjectionMatrix * tp_Vertex)".into());
+            }
+            "gl_FragData" | "gl_FragColor" => {
+                let sig_tokens: Vec<&Token<'_>> = sig.iter().map(|&j| &self.tokens[j]).collect();
+                let (location, end) = if name == "gl_FragColor" {
+                    (0, i + 1)
+                } else {
+                    let index = constant_index(&sig_tokens, k)
+                        .ok_or_else(|| self.err(i, "gl_FragData needs a constant index"))?;
+                    (index, sig[k + 3] + 1)
+                };
+                let shipped = if name == "gl_FragColor" { name.to_string() } else { format!("gl_FragData[{location}]") };
+                self.interface.outputs.insert(location, shipped);
+                self.add_header(format!("layout(location = {location}) out vec4 tp_FragData{location};"));
+                self.replace(i, end, format!("tp_FragData{location}"));
+            }
+            "gl_FrontColor" | "gl_Color" => {
+                let location = self.varyings.locations["tp_FrontColor"];
+                let direction = if stage == Stage::Vertex { "out" } else { "in" };
+                self.add_header(format!("layout(location = {location}) {direction} vec4 tp_FrontColor;"));
+                self.replace(i, i + 1, "tp_FrontColor".into());
+            }
+            "gl_TexCoord" => {
+                let sig_tokens: Vec<&Token<'_>> = sig.iter().map(|&j| &self.tokens[j]).collect();
+                let index =
+                    constant_index(&sig_tokens, k).ok_or_else(|| self.err(i, "gl_TexCoord needs a constant index"))?;
+                let varying = format!("tp_TexCoord{index}");
+                let location = self.varyings.locations[&varying];
+                let direction = if stage == Stage::Vertex { "out" } else { "in" };
+                self.add_header(format!("layout(location = {location}) {direction} vec4 {varying};"));
+                self.replace(i, sig[k + 3] + 1, varying);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn add_header(&mut self, decl: String) {
+        if !self.header.contains(&decl) {
+            self.header.push(' ');
+            self.header.push_str(&decl);
+        }
+    }
+
+    fn finish_header(&mut self, version_index: usize) {
+        // naga reads the rest of the `#version` line as part of the directive, so the added
+        // declarations open line 2 instead, which after preprocessing is ordinary top-level code.
+        let mut line = String::new();
+        if !self.block.is_empty() {
+            write!(
+                line,
+                " layout(std140, set = {}, binding = 0) uniform {RESERVED_PREFIX}Uniforms {{ {} }};",
+                self.stage.descriptor_set(),
+                self.block.join(" ")
+            )
+            .unwrap();
+        }
+        line.push_str(&self.header);
+        let line = line.trim_start();
+        let end = (version_index..self.tokens.len()).find(|&i| self.tokens[i].kind == TokenKind::Newline).unwrap_or(self.tokens.len());
+        match self.tokens.get(end) {
+            Some(newline) => self.replace(version_index, end + 1, format!("#version 450{}{line} ", newline.text)),
+            None => self.replace(version_index, end, format!("#version 450\n{line}")),
+        }
+        // `#extension` lines mean nothing to naga.
+        let mut at_line_start = true;
+        for i in 0..self.tokens.len() {
+            let t = &self.tokens[i];
+            if t.kind == TokenKind::Newline {
+                at_line_start = true;
+                continue;
+            }
+            if t.is_trivia() {
+                continue;
+            }
+            if at_line_start && t.is_punct("#") && i != version_index {
+                let end = (i..self.tokens.len()).find(|&j| self.tokens[j].kind == TokenKind::Newline).unwrap_or(self.tokens.len());
+                self.replace(i, end, String::new());
+            }
+            at_line_start = false;
+        }
+    }
+
+    fn render(&self) -> String {
+        let mut out = String::with_capacity(self.tokens.iter().map(|t| t.text.len()).sum::<usize>() + self.header.len() + 256);
+        let mut i = 0;
+        while i < self.tokens.len() {
+            if let Some((end, text)) = self.replacements.get(&i) {
+                out.push_str(text);
+                i = *end;
+            } else {
+                out.push_str(self.tokens[i].text);
+                i += 1;
+            }
+        }
+        out
+    }
+}
+
+struct Parameter {
+    tokens: Vec<usize>,
+    /// Combined sampler type and parameter name, for sampler parameters.
+    sampler: Option<(String, String)>,
+}
+
+/// The text that replaces a use of a combined sampler: the constructed combined sampler, or both
+/// halves when the use is an argument for a sampler parameter.
+fn combined_use(lowered: &str, ty: &str, pass_both: bool) -> String {
+    if pass_both {
+        format!("{lowered}, {RESERVED_PREFIX}sampler_{lowered}")
+    } else {
+        format!("{ty}({lowered}, {RESERVED_PREFIX}sampler_{lowered})")
+    }
+}

@@ -1,0 +1,113 @@
+//! A whole program through the toolchain: preprocess each stage, lower it, parse and validate
+//! the lowered text with naga, and report every error at the pack file and line it came from.
+
+use std::error::Error as _;
+use std::sync::Arc;
+
+use naga::front::glsl::{Frontend, Options};
+use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+
+use crate::diagnostic::{Diagnostic, Location};
+use crate::lower::{self, Lowered, Stage, VaryingLayout};
+use crate::preprocess::{FileProvider, Preprocessed};
+
+/// One stage after lowering, ready for naga.
+#[derive(Clone, Debug)]
+pub struct LoweredStage {
+    pub stage: Stage,
+    pub preprocessed: Arc<Preprocessed>,
+    pub lowered: Lowered,
+}
+
+/// A stage naga accepted.
+#[derive(Debug)]
+pub struct ValidStage {
+    pub module: naga::Module,
+    pub info: ModuleInfo,
+}
+
+/// Lowers the stages of one program with a shared varying layout.
+pub fn lower_program(stages: &[(Stage, Arc<Preprocessed>)]) -> Result<Vec<LoweredStage>, Diagnostic> {
+    let version_of = |pre: &Preprocessed| pre.version.as_ref().map_or(110, |v| v.number);
+    let texts: Vec<(Stage, &str, u32)> =
+        stages.iter().map(|(stage, pre)| (*stage, pre.text.as_str(), version_of(pre))).collect();
+    let layout = VaryingLayout::for_program(&texts).map_err(|e| {
+        let pre = &stages.iter().find(|(_, p)| p.location(e.line).is_some()).expect("a stage").1;
+        Diagnostic::error(e.message, pre.location(e.line))
+    })?;
+    stages
+        .iter()
+        .map(|(stage, pre)| {
+            let lowered = lower::lower(&pre.text, *stage, &layout)
+                .map_err(|e| Diagnostic::error(e.message, pre.location(e.line)))?;
+            Ok(LoweredStage { stage: *stage, preprocessed: pre.clone(), lowered })
+        })
+        .collect()
+}
+
+/// Parses and validates a lowered stage; errors point into the pack's files.
+pub fn validate_stage(
+    frontend: &mut Frontend,
+    stage: &LoweredStage,
+    provider: &dyn FileProvider,
+) -> Result<ValidStage, Vec<Diagnostic>> {
+    let text = &stage.lowered.text;
+    let naga_stage = match stage.stage {
+        Stage::Vertex => naga::ShaderStage::Vertex,
+        Stage::Fragment => naga::ShaderStage::Fragment,
+    };
+    let module = frontend.parse(&Options::from(naga_stage), text).map_err(|errors| {
+        errors
+            .errors
+            .iter()
+            .map(|e| {
+                let at = e.meta.to_range().map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
+                diagnostic_at(stage, provider, e.kind.to_string(), at)
+            })
+            .collect::<Vec<_>>()
+    })?;
+    let mut validator = Validator::new(ValidationFlags::all(), Capabilities::all());
+    let info = validator.validate(&module).map_err(|e| {
+        let mut message = e.as_inner().to_string();
+        let mut source = e.as_inner().source();
+        while let Some(inner) = source {
+            message.push_str(": ");
+            message.push_str(&inner.to_string());
+            source = inner.source();
+        }
+        let at = e.spans().find(|(span, _)| span.is_defined()).map(|(span, _)| span.location(text));
+        vec![diagnostic_at(stage, provider, message, at)]
+    })?;
+    Ok(ValidStage { module, info })
+}
+
+/// Maps a naga location in the lowered text back to the pack file and line, narrowing it to
+/// the offending token when that token appears once on the original line.
+fn diagnostic_at(
+    stage: &LoweredStage,
+    provider: &dyn FileProvider,
+    message: String,
+    at: Option<naga::SourceLocation>,
+) -> Diagnostic {
+    let Some(at) = at else {
+        return Diagnostic::error(message, None);
+    };
+    let mut location = stage.preprocessed.location(at.line_number);
+    if let Some(loc) = &mut location {
+        let text = &stage.lowered.text;
+        let start = at.offset as usize;
+        let token = text.get(start..start + at.length as usize).unwrap_or("");
+        if !token.is_empty() && !token.contains('\n') {
+            loc.columns = unique_columns(provider, loc, token);
+        }
+    }
+    Diagnostic::error(message, location)
+}
+
+fn unique_columns(provider: &dyn FileProvider, loc: &Location, token: &str) -> Option<std::ops::Range<usize>> {
+    let file = provider.read(&loc.path).ok()?;
+    let line = file.lines().nth(loc.line as usize - 1)?;
+    let mut found = line.match_indices(token);
+    let (first, _) = found.next()?;
+    found.next().is_none().then_some(first..first + token.len())
+}
