@@ -66,6 +66,9 @@ pub struct Preprocessed {
     /// conditionals with nothing inside (the pattern OptiFine needs to show an option) do not
     /// count: they cannot change the text.
     pub consulted_macros: BTreeSet<String>,
+    /// The subset of `consulted_macros` that decided a conditional (rather than only being
+    /// substituted into the text).
+    pub tested_macros: BTreeSet<String>,
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -99,6 +102,7 @@ pub fn preprocess(
             version: None,
             render_targets: None,
             consulted_macros: BTreeSet::new(),
+            tested_macros: BTreeSet::new(),
             warnings: Vec::new(),
         },
         include_stack: Vec::new(),
@@ -273,13 +277,14 @@ impl Preprocessor<'_> {
                     let consult = !group_is_empty(&lines, index);
                     let value = if active {
                         match name {
-                            Some("if") => self.eval_condition(args, consult).map_err(|m| err_at(at, m))?,
+                            Some("if") => self.condition(args, consult, path, at)?,
                             _ => {
                                 let macro_name = single_ident(args).ok_or_else(|| {
                                     err_at(at, format!("#{} needs exactly one macro name", name.unwrap_or("")))
                                 })?;
                                 if consult {
                                     self.out.consulted_macros.insert(macro_name.to_string());
+                                    self.out.tested_macros.insert(macro_name.to_string());
                                 }
                                 self.macros.contains_key(macro_name) == (name == Some("ifdef"))
                             }
@@ -306,7 +311,7 @@ impl Preprocessor<'_> {
                     let (parent_active, taken) = (top.parent_active, top.taken);
                     let value = parent_active
                         && !taken
-                        && self.eval_condition(args, consult).map_err(|m| err_at(at, m))?;
+                        && self.condition(args, consult, path, at)?;
                     let top = conds.last_mut().unwrap();
                     top.active = value;
                     top.taken |= value;
@@ -374,6 +379,20 @@ impl Preprocessor<'_> {
             return Err(err_at(open.line, "this #if has no matching #endif in the same file".into()));
         }
         Ok(())
+    }
+
+    /// Evaluates a condition, warning about undefined names (OptiFine reads them as 0, which
+    /// hides typos).
+    fn condition(&mut self, args: &[Token<'_>], consult: bool, path: &str, line: u32) -> Result<bool, Diagnostic> {
+        let (value, undefined) =
+            self.eval_condition(args, consult).map_err(|m| Diagnostic::error(m, Some(Location::line(path, line))))?;
+        for name in undefined {
+            self.out.warnings.push(Diagnostic::warning(
+                format!("`{name}` is not defined here and reads as 0 in #if"),
+                Some(Location::line(path, line)),
+            ));
+        }
+        Ok(value)
     }
 
     fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
@@ -579,7 +598,8 @@ impl Preprocessor<'_> {
         Ok(out)
     }
 
-    fn eval_condition(&mut self, args: &[Token<'_>], consult: bool) -> Result<bool, String> {
+    /// Evaluates an `#if`/`#elif` expression; also returns the undefined names it read as 0.
+    fn eval_condition(&mut self, args: &[Token<'_>], consult: bool) -> Result<(bool, Vec<String>), String> {
         // `defined X` is resolved before macro expansion, as in C.
         let mut resolved = Vec::new();
         let sig: Vec<&Token<'_>> = args.iter().filter(|t| !t.is_trivia()).collect();
@@ -596,6 +616,7 @@ impl Preprocessor<'_> {
                 }
                 if consult {
                     self.out.consulted_macros.insert(name.text.to_string());
+                    self.out.tested_macros.insert(name.text.to_string());
                 }
                 let value = if self.macros.contains_key(name.text) { "1" } else { "0" };
                 resolved.push(OwnedToken { kind: TokenKind::Number, text: value.into() });
@@ -605,10 +626,13 @@ impl Preprocessor<'_> {
                 i += 1;
             }
         }
-        let before = self.out.consulted_macros.clone();
-        let expanded = self.expand_all(&resolved, &mut Vec::new(), 0)?;
-        if !consult {
-            self.out.consulted_macros = before;
+        let outer = std::mem::take(&mut self.out.consulted_macros);
+        let expanded = self.expand_all(&resolved, &mut Vec::new(), 0);
+        let in_expression = std::mem::replace(&mut self.out.consulted_macros, outer);
+        let expanded = expanded?;
+        if consult {
+            self.out.tested_macros.extend(in_expression.iter().cloned());
+            self.out.consulted_macros.extend(in_expression);
         }
         let mut undefined = Vec::new();
         let values: Vec<ExprToken> = expanded
@@ -619,6 +643,7 @@ impl Preprocessor<'_> {
                 TokenKind::Ident => {
                     if consult {
                         self.out.consulted_macros.insert(t.text.clone());
+                        self.out.tested_macros.insert(t.text.clone());
                     }
                     undefined.push(t.text.clone());
                     Ok(ExprToken::Num(0))
@@ -634,7 +659,7 @@ impl Preprocessor<'_> {
         if parser.pos != values.len() {
             return Err("unexpected tokens at the end of the #if expression".into());
         }
-        Ok(value != 0)
+        Ok((value != 0, undefined))
     }
 
     fn record_comment_directive(&mut self, comment: &str, path: &str, line: u32) -> Result<(), String> {

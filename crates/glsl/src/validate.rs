@@ -4,7 +4,8 @@
 use std::error::Error as _;
 use std::sync::Arc;
 
-use naga::front::glsl::{Frontend, Options};
+pub use naga::front::glsl::Frontend;
+use naga::front::glsl::Options;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use crate::diagnostic::{Diagnostic, Location};
@@ -90,7 +91,8 @@ fn diagnostic_at(
     at: Option<naga::SourceLocation>,
 ) -> Diagnostic {
     let Some(at) = at else {
-        return Diagnostic::error(message, None);
+        let entry = stage.preprocessed.files.first().map_or("the shader", String::as_str);
+        return Diagnostic::error(message, None).with_note(format!("naga gives no line; the error is in {entry}"));
     };
     let mut location = stage.preprocessed.location(at.line_number);
     if let Some(loc) = &mut location {

@@ -1,0 +1,130 @@
+//! `build`: templates → shipped pack per dialect → validation of every option set → zips.
+//! Nothing is written unless every dialect validates.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use tidepack_glsl::Diagnostic;
+use tidepack_glsl::options::OptionSet;
+
+use crate::archive;
+use crate::dialect::Dialect;
+use crate::pack_options::{self, PackOptions};
+use crate::shipped::ShippedPack;
+use crate::source::PackSource;
+use crate::validation::{self, ValidationReport};
+
+#[derive(Clone, Debug)]
+pub struct BuildOptions {
+    /// The folder holding pack.toml and shaders/ (`shaderpack`).
+    pub source_dir: PathBuf,
+    pub out_dir: PathBuf,
+    pub dialects: Vec<Dialect>,
+    /// Profile whose values become the defaults in the shipped GLSL.
+    pub profile: Option<String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct DialectOutcome {
+    pub dialect: Dialect,
+    pub validation: ValidationReport,
+    pub zip: PathBuf,
+    pub zip_bytes: u64,
+}
+
+#[derive(Clone, Debug)]
+pub struct BuildReport {
+    pub pack_name: String,
+    pub version: String,
+    pub profile: String,
+    pub options: usize,
+    pub outcomes: Vec<DialectOutcome>,
+    pub elapsed: Duration,
+}
+
+/// Why a build failed, with the texts the diagnostics point into.
+#[derive(Debug)]
+pub struct BuildFailure {
+    pub diagnostics: Vec<Diagnostic>,
+    sources: HashMap<String, String>,
+}
+
+impl BuildFailure {
+    fn new(diagnostics: Vec<Diagnostic>) -> Self {
+        BuildFailure { diagnostics, sources: HashMap::new() }
+    }
+
+    /// Text of a file a diagnostic names, for the snippet.
+    pub fn source_of(&self, path: &str) -> Option<String> {
+        self.sources.get(path).cloned().or_else(|| std::fs::read_to_string(path).ok())
+    }
+}
+
+/// The zip path of a dialect: `<out>/<Name>-<version>-<dialect>.zip`.
+pub fn zip_path(out_dir: &Path, name: &str, version: &str, dialect: Dialect) -> PathBuf {
+    out_dir.join(format!("{name}-{version}-{}.zip", dialect.slug()))
+}
+
+/// Generates and validates the pack in each dialect (see the crate docs).
+pub fn generate_validated(
+    source: &PackSource,
+    options: &PackOptions,
+    dialects: &[Dialect],
+    defaults: &OptionSet,
+) -> Result<Vec<(ShippedPack, ValidationReport)>, BuildFailure> {
+    let mut packs = Vec::new();
+    let mut diagnostics = Vec::new();
+    let mut sources = HashMap::new();
+    for &dialect in dialects {
+        let pack = ShippedPack::generate(source, options, dialect, defaults).map_err(BuildFailure::new)?;
+        match validation::validate_pack(&pack, options) {
+            Ok(report) => packs.push((pack, report)),
+            Err(errors) => {
+                for diag in errors {
+                    let location = diag.location.as_ref().map(|l| pack.to_template(l, source));
+                    if let Some(loc) = &location
+                        && let Some(text) = pack.diagnostic_source(&loc.path, source)
+                    {
+                        sources.insert(loc.path.clone(), text);
+                    }
+                    let note = format!("in the {dialect} dialect");
+                    diagnostics.push(Diagnostic { location, ..diag }.with_note(note));
+                }
+            }
+        }
+    }
+    if diagnostics.is_empty() { Ok(packs) } else { Err(BuildFailure { diagnostics, sources }) }
+}
+
+pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
+    let started = Instant::now();
+    let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure::new(vec![d]))?;
+    let options = pack_options::collect(&source).map_err(BuildFailure::new)?;
+    let problems = pack_options::check_manifest(&source, &options);
+    if !problems.is_empty() {
+        return Err(BuildFailure::new(problems));
+    }
+    let profile = opts.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
+    let defaults = pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure::new(vec![d]))?;
+    let packs = generate_validated(&source, &options, &opts.dialects, &defaults)?;
+    let info = &source.manifest.pack;
+    let mut outcomes = Vec::new();
+    for (pack, validation) in packs {
+        let entries: Vec<(String, &[u8])> =
+            pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes())).collect();
+        let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect);
+        let zip_bytes = archive::write_zip(&zip, &entries).map_err(|e| {
+            BuildFailure::new(vec![Diagnostic::error(format!("cannot write {}: {e}", zip.display()), None)])
+        })?;
+        outcomes.push(DialectOutcome { dialect: pack.dialect, validation, zip, zip_bytes });
+    }
+    Ok(BuildReport {
+        pack_name: info.name.clone(),
+        version: info.version.clone(),
+        profile,
+        options: options.len(),
+        outcomes,
+        elapsed: started.elapsed(),
+    })
+}

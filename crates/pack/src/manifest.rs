@@ -1,0 +1,119 @@
+//! `shaderpack/pack.toml`: what the pack is, beyond its GLSL.
+//!
+//! The GLSL templates declare the options (OptiFine reads them from the `#define` lines); the
+//! manifest says how players meet them: labels and comments for the lang file, the menu screens,
+//! sliders, profiles, the block ids shared between block.properties and the shaders, and the
+//! pipeline settings of shaders.properties.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use tidepack_glsl::{Diagnostic, Location};
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub pack: PackInfo,
+    /// Block ids: each becomes a `block.<id>=` line and a `#define` in lib/blocks.glsl.
+    #[serde(default, rename = "block")]
+    pub blocks: Vec<BlockId>,
+    /// Pipeline settings written as they are to shaders.properties (`blend.gbuffers_water.colortex4`).
+    #[serde(default)]
+    pub properties: BTreeMap<String, String>,
+    pub screen: Screen,
+    /// Option labels and comments for the lang file, by option name.
+    #[serde(default)]
+    pub options: BTreeMap<String, OptionText>,
+    /// Profiles in menu order, low to high.
+    #[serde(default, rename = "profile")]
+    pub profiles: Vec<Profile>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PackInfo {
+    pub name: String,
+    pub version: String,
+    /// The profile whose values are the defaults written in the GLSL.
+    pub default_profile: String,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockId {
+    pub id: i16,
+    /// Macro name in lib/blocks.glsl.
+    #[serde(rename = "macro")]
+    pub macro_name: String,
+    pub names: Vec<String>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Screen {
+    /// Items of the main screen: option names, `[SUB]` links, `<profile>`, `<empty>`.
+    pub main: Vec<String>,
+    #[serde(default = "default_columns")]
+    pub columns: u32,
+    #[serde(default)]
+    pub sliders: Vec<String>,
+    #[serde(default, rename = "sub")]
+    pub subs: BTreeMap<String, SubScreen>,
+}
+
+fn default_columns() -> u32 {
+    2
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubScreen {
+    pub label: String,
+    pub comment: String,
+    pub items: Vec<String>,
+    #[serde(default)]
+    pub columns: Option<u32>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OptionText {
+    pub label: String,
+    pub comment: String,
+    /// Labels for individual values, keyed by the value exactly as written in the GLSL.
+    #[serde(default)]
+    pub values: BTreeMap<String, String>,
+    /// Text shown after the value (`suffix.NAME`), e.g. a unit.
+    #[serde(default)]
+    pub suffix: Option<String>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    pub name: String,
+    pub label: String,
+    pub comment: String,
+    /// Every option's value in this profile: `true`/`false` for switches, the value as written
+    /// in the GLSL (a string) for value options.
+    pub settings: BTreeMap<String, toml::Value>,
+}
+
+impl Manifest {
+    /// Parses the manifest; errors name `path` and the line.
+    pub fn parse(path: &str, text: &str) -> Result<Manifest, Diagnostic> {
+        toml::from_str(text).map_err(|e| {
+            let line = e.span().map(|s| text[..s.start].matches('\n').count() as u32 + 1);
+            let message = e.message().to_string();
+            Diagnostic::error(format!("invalid pack manifest: {message}"), line.map(|l| Location::line(path, l)))
+        })
+    }
+}
+
+/// The line of the first occurrence of `needle` in `text` (for pointing errors at the manifest),
+/// searched after `after` when that is found.
+pub fn line_of(text: &str, after: &str, needle: &str) -> Option<u32> {
+    let start = text.find(after).unwrap_or(0);
+    let at = start + text[start..].find(needle)?;
+    Some(text[..at].matches('\n').count() as u32 + 1)
+}

@@ -1,0 +1,47 @@
+#version 330 compatibility
+// Translucent terrain (water, stained glass, ice, ...): classifies blocks by their id from
+// block.properties and, for water, moves the surface in a slow swell.
+#include "/lib/settings.glsl"
+#include "/lib/common.glsl"
+#include "/lib/space.glsl"
+#include "/lib/water.glsl"
+#include "/lib/blocks.glsl"
+
+in vec4 mc_Entity;
+
+uniform mat4 gbufferModelView;
+uniform mat4 gbufferModelViewInverse;
+uniform vec3 cameraPosition;
+uniform float frameTimeCounter;
+
+out vec2 texUv;
+out vec2 lightUv;
+out vec4 tint;
+out vec3 viewNormal;
+out float material;
+
+void main() {
+    // Ids arrive as floats; unmapped blocks are -1.
+    int blockId = int(floor(mc_Entity.x + 0.5));
+    bool isWater = blockId == BLOCK_WATER;
+    vec4 viewPos = gl_ModelViewMatrix * gl_Vertex;
+#ifdef WATER_WAVES
+    if (isWater) {
+        vec3 playerPos = (gbufferModelViewInverse * viewPos).xyz;
+        vec3 worldPos = playerPos + wrappedCamera(cameraPosition, SWELL_PERIOD);
+        // Only the surface moves: vertices on block boundaries (the bottom of side faces)
+        // stay, so the water never parts from the blocks around it.
+        float heightInBlock = fract(playerPos.y + cameraPosition.y);
+        if (heightInBlock > 0.01 && heightInBlock < 0.99) {
+            playerPos.y += swellOffset(worldPos.z, frameTimeCounter, WAVE_AMPLITUDE);
+            viewPos = gbufferModelView * vec4(playerPos, 1.0);
+        }
+    }
+#endif
+    gl_Position = gl_ProjectionMatrix * viewPos;
+    texUv = (gl_TextureMatrix[0] * gl_MultiTexCoord0).xy;
+    lightUv = (gl_TextureMatrix[1] * gl_MultiTexCoord1).xy;
+    tint = gl_Color;
+    viewNormal = safeNormalize(gl_NormalMatrix * gl_Normal, vec3(0.0, 0.0, 1.0));
+    material = isWater ? MATERIAL_WATER : MATERIAL_TRANSLUCENT;
+}
