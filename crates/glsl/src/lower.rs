@@ -450,6 +450,14 @@ impl<'a> Lowering<'_, 'a> {
         self.replacements.insert(start, (end, text));
     }
 
+    /// Replaces tokens `start..end` and keeps the line breaks they spanned (at the end), so a
+    /// declaration written over several lines still covers as many lines.
+    fn replace_lines(&mut self, start: usize, end: usize, mut text: String) {
+        let breaks = (start..end).map(|i| self.tokens[i].newlines()).sum::<u32>();
+        text.extend(std::iter::repeat_n('\n', breaks as usize));
+        self.replace(start, end, text);
+    }
+
     fn run(&mut self) -> Result<(), LowerError> {
         let version_index = self.find_version()?;
         let statements = top_level_statements(self.tokens);
@@ -475,7 +483,7 @@ impl<'a> Lowering<'_, 'a> {
                         self.interface.inputs.insert(name.to_string(), location);
                         write!(text, "layout(location = {location}) in {} {name}{suffix}; ", decl.ty).unwrap();
                     }
-                    self.replace(start, end, text.trim_end().to_string());
+                    self.replace_lines(start, end, text.trim_end().to_string());
                 }
                 Storage::Varying => {
                     let direction = if self.stage == Stage::Vertex { "out" } else { "in" };
@@ -492,7 +500,7 @@ impl<'a> Lowering<'_, 'a> {
                         )
                         .unwrap();
                     }
-                    self.replace(start, end, text.trim_end().to_string());
+                    self.replace_lines(start, end, text.trim_end().to_string());
                 }
                 Storage::FragmentOutput => {
                     let mut text = String::new();
@@ -508,7 +516,7 @@ impl<'a> Lowering<'_, 'a> {
                         }
                         write!(text, "layout(location = {location}) out {} {name}{suffix}; ", decl.ty).unwrap();
                     }
-                    self.replace(start, end, text.trim_end().to_string());
+                    self.replace_lines(start, end, text.trim_end().to_string());
                 }
                 Storage::Other => {}
             }
@@ -589,7 +597,7 @@ impl<'a> Lowering<'_, 'a> {
             let (texture_ty, sampler_ty) = split_sampler_type(ty).unwrap();
             let start = param.tokens[0];
             let end = *param.tokens.last().unwrap() + 1;
-            self.replace(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
+            self.replace_lines(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
         }
     }
 
@@ -625,7 +633,7 @@ impl<'a> Lowering<'_, 'a> {
                     },
                 );
             }
-            self.replace(start, end, text.trim_end().to_string());
+            self.replace_lines(start, end, text.trim_end().to_string());
             return Ok(());
         }
         if decl.ty == "bool" {
@@ -635,8 +643,7 @@ impl<'a> Lowering<'_, 'a> {
             self.block.push(format!("{} {name}{suffix};", decl.ty));
             self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
         }
-        let breaks = (start..end).map(|i| self.tokens[i].newlines()).sum::<u32>();
-        self.replace(start, end, "\n".repeat(breaks as usize));
+        self.replace_lines(start, end, String::new());
         Ok(())
     }
 

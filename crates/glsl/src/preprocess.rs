@@ -757,6 +757,54 @@ fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
     Ok(VersionDirective { number, profile })
 }
 
+/// Expands every `#include` textually, as OptiFine does before handing a shader to the driver
+/// (includes inside inactive conditionals are expanded too), and inserts `after_version` after
+/// the `#version` line. The result is what a GL driver or glslangValidator compiles.
+pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: &str) -> Result<String, Diagnostic> {
+    fn expand(
+        provider: &dyn FileProvider,
+        path: &str,
+        stack: &mut Vec<String>,
+        out: &mut String,
+    ) -> Result<(), Diagnostic> {
+        let text = provider.read(path).map_err(|e| Diagnostic::error(format!("cannot read {path}: {e}"), None))?;
+        stack.push(path.to_string());
+        for (index, line) in text.lines().enumerate() {
+            let at = || Some(Location::line(path, index as u32 + 1));
+            let trimmed = line.trim_start();
+            let Some(rest) = trimmed.strip_prefix('#').map(str::trim_start).and_then(|r| r.strip_prefix("include")) else {
+                out.push_str(line);
+                out.push('\n');
+                continue;
+            };
+            let target = rest.trim().strip_prefix('"').and_then(|r| r.split('"').next()).ok_or_else(|| {
+                Diagnostic::error(format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at())
+            })?;
+            let resolved = resolve_include(path, target).map_err(|m| Diagnostic::error(m, at()))?;
+            if stack.contains(&resolved) {
+                let chain = format!("{} -> {resolved}", stack.join(" -> "));
+                return Err(Diagnostic::error(format!("include cycle: {chain}"), at()));
+            }
+            if stack.len() > MAX_INCLUDE_DEPTH {
+                return Err(Diagnostic::error(
+                    format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)"),
+                    at(),
+                ));
+            }
+            expand(provider, &resolved, stack, out)
+                .map_err(|e| if e.location.is_none() { Diagnostic { location: at(), ..e } } else { e })?;
+        }
+        stack.pop();
+        Ok(())
+    }
+    let mut body = String::new();
+    expand(provider, entry, &mut Vec::new(), &mut body)?;
+    match body.split_once('\n').filter(|(first, _)| first.trim_start().starts_with("#version")) {
+        Some((version, rest)) => Ok(format!("{version}\n{after_version}{rest}")),
+        None => Ok(format!("{after_version}{body}")),
+    }
+}
+
 /// Resolves an `#include` target: `/x` from the pack's shader root, `x` beside `from`.
 /// Refuses paths that climb out of the pack.
 pub fn resolve_include(from: &str, target: &str) -> Result<String, String> {
@@ -1036,6 +1084,19 @@ mod tests {
         let map: HashMap<String, Arc<str>> = list.into_iter().map(|(p, t)| (p, Arc::from(t))).collect();
         let err = preprocess(&map, "a.fsh", &PreprocessOptions::default()).unwrap_err();
         assert!(err.message.contains("deeper than 10"), "{err}");
+    }
+
+    #[test]
+    fn expand_includes_is_textual_and_checks_cycles() {
+        let map = files(&[
+            ("a.fsh", "#version 120\n#ifdef NEVER\n#include \"/lib/x.glsl\"\n#endif\nvoid main() {}\n"),
+            ("lib/x.glsl", "float x;\n"),
+        ]);
+        let out = expand_includes(&map, "a.fsh", "#define MC_VERSION 12104\n").unwrap();
+        assert_eq!(out, "#version 120\n#define MC_VERSION 12104\n#ifdef NEVER\nfloat x;\n#endif\nvoid main() {}\n");
+        let cyclic = files(&[("a.fsh", "#include \"b.glsl\"\n"), ("b.glsl", "\n#include \"a.fsh\"\n")]);
+        let err = expand_includes(&cyclic, "a.fsh", "").unwrap_err();
+        assert_eq!(err.location, Some(Location::line("b.glsl", 2)));
     }
 
     #[test]

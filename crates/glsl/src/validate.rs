@@ -76,7 +76,8 @@ pub fn validate_stage(
             message.push_str(&inner.to_string());
             source = inner.source();
         }
-        let at = e.spans().find(|(span, _)| span.is_defined()).map(|(span, _)| span.location(text));
+        // The spans go from the enclosing function to the offending expression: use the last.
+        let at = e.spans().filter(|(span, _)| span.is_defined()).last().map(|(span, _)| span.location(text));
         vec![diagnostic_at(stage, provider, message, at)]
     })?;
     Ok(ValidStage { module, info })

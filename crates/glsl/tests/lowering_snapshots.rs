@@ -308,7 +308,6 @@ void main() {
 /// A `vec4` assigned to a `vec3`, in a vertex stage with legacy inputs; the program's fragment
 /// stage is valid. naga's frontend accepts the store and its validator rejects it.
 #[test]
-#[ignore = "known failure: validation errors are located at the function header, see tests/lowering/known-failures.md"]
 fn assignment_type_mismatch_is_reported_at_its_source_line() {
     let vsh = "\
 #version 120
