@@ -5,7 +5,7 @@ use std::error::Error as _;
 use std::sync::Arc;
 
 pub use naga::front::glsl::Frontend;
-use naga::front::glsl::Options;
+use naga::front::glsl::{ErrorKind, ExpectedToken, Options, TokenValue};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use crate::diagnostic::{Diagnostic, Location};
@@ -62,7 +62,15 @@ pub fn validate_stage(
             .errors
             .iter()
             .map(|e| {
-                let at = e.meta.to_range().map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
+                let mut span = e.meta.to_range();
+                if let (Some(range), ErrorKind::InvalidToken(_, expected)) = (&mut span, &e.kind)
+                    && expected.contains(&ExpectedToken::Token(TokenValue::Semicolon))
+                {
+                    // A missing `;` belongs after the previous token, not at the next line.
+                    let end = text[..range.start].trim_end().len();
+                    *range = end.saturating_sub(1)..end;
+                }
+                let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
                 diagnostic_at(stage, provider, e.kind.to_string(), at)
             })
             .collect::<Vec<_>>()
