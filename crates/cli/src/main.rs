@@ -1,13 +1,12 @@
 //! `tidepack`: the command line. Parses arguments, calls the library crates, prints results.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
-use tidepack_glsl::diagnostic;
 use tidepack_pack::{BuildOptions, Dialect};
+
+mod commands;
 
 #[derive(Parser)]
 #[command(name = "tidepack", version, about = "Build and check OptiFine shader packs for Minecraft water")]
@@ -61,48 +60,8 @@ fn main() -> ExitCode {
                 DialectArg::V330 => vec![Dialect::Glsl330],
                 DialectArg::All => Dialect::ALL.to_vec(),
             };
-            run_build(&BuildOptions { source_dir: source, out_dir: out, dialects, profile })
+            commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile })
         }
     }
 }
 
-fn run_build(opts: &BuildOptions) -> ExitCode {
-    match tidepack_pack::build(opts) {
-        Ok(report) => {
-            println!(
-                "Built {} {} (profile {}, {} options) in {:.2} s",
-                report.pack_name,
-                report.version,
-                report.profile,
-                report.options,
-                report.elapsed.as_secs_f64()
-            );
-            for o in &report.outcomes {
-                let v = &o.validation;
-                let coverage = if v.exhaustive {
-                    "every combination of the options each program reads"
-                } else {
-                    "every combination of the options each program tests, values one at a time"
-                };
-                println!(
-                    "  {:<22} {} programs, {} option sets ({coverage}); naga validated {} stages, {} skipped as identical",
-                    o.dialect.to_string(),
-                    v.programs,
-                    v.option_sets,
-                    v.stages_validated,
-                    v.stages_identical
-                );
-                println!("  {:<22} {} ({:.1} KiB)", "", o.zip.display(), o.zip_bytes as f64 / 1024.0);
-            }
-            ExitCode::SUCCESS
-        }
-        Err(failure) => {
-            let color = if std::io::stderr().is_terminal() { ColorChoice::Auto } else { ColorChoice::Never };
-            let mut stderr = StandardStream::stderr(color);
-            let _ = diagnostic::emit(&mut stderr, &failure.diagnostics, &|path| failure.source_of(path));
-            let errors = failure.diagnostics.iter().filter(|d| d.is_error()).count();
-            eprintln!("build failed with {errors} error{}; no zip was written", if errors == 1 { "" } else { "s" });
-            ExitCode::FAILURE
-        }
-    }
-}

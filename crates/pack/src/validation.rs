@@ -34,6 +34,8 @@ pub struct ValidationReport {
     pub stages_identical: usize,
     /// False when some program's sets were reduced (see the module docs).
     pub exhaustive: bool,
+    /// The stages naga validated: shipped path and the first option set that gave its text.
+    pub validated: Vec<(String, OptionSet)>,
 }
 
 /// OptiFine's standard macros for a typical modern setup, so packs that test them validate.
@@ -100,6 +102,7 @@ pub fn validate_pack(pack: &ShippedPack, options: &PackOptions) -> Result<Valida
         }
     }
     report.stages_validated = unique.len();
+    report.validated = unique.iter().map(|(stage, set)| (stage.preprocessed.files[0].clone(), set.clone())).collect();
     errors.extend(validate_in_parallel(pack, &unique));
     if errors.is_empty() {
         return Ok(report);
