@@ -1,0 +1,348 @@
+//! A real OpenGL driver, headless: Mesa's OpenGL through EGL with no display (the
+//! `EGL_PLATFORM_SURFACELESS_MESA` platform), a compatibility-profile context, and [`glow`] for
+//! the calls. The shipped GLSL 120/330 compiles here exactly as on a player's Mesa driver.
+//!
+//! libEGL is loaded at run time (khronos-egl's `dynamic` feature), so nothing links at build
+//! time; a machine without it gets a [`DriverError`] naming the Debian packages to install.
+//!
+//! A [`GlContext`] is current on the thread that created it and must stay on that thread
+//! (it is neither `Send` nor `Sync`). Several threads may each create their own.
+
+use std::fmt;
+
+use glow::HasContext;
+use khronos_egl as egl;
+
+pub use glow;
+
+/// Debian packages that provide Mesa's OpenGL through EGL without a display.
+pub const DEBIAN_PACKAGES: &str = "libegl1 libegl-mesa0 libgl1-mesa-dri";
+
+/// `EGL_PLATFORM_SURFACELESS_MESA` (EGL_MESA_platform_surfaceless).
+const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
+
+/// Why no OpenGL context could be had.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DriverError {
+    pub message: String,
+}
+
+impl DriverError {
+    fn new(what: impl fmt::Display) -> Self {
+        DriverError {
+            message: format!(
+                "no headless OpenGL driver: {what} (install the Debian packages {DEBIAN_PACKAGES}: \
+                 `apt-get install --no-install-recommends {DEBIAN_PACKAGES}`)"
+            ),
+        }
+    }
+}
+
+impl fmt::Display for DriverError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for DriverError {}
+
+/// Which step of building a program failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgramStep {
+    CompileVertex,
+    CompileFragment,
+    Link,
+}
+
+impl fmt::Display for ProgramStep {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ProgramStep::CompileVertex => "vertex shader compilation",
+            ProgramStep::CompileFragment => "fragment shader compilation",
+            ProgramStep::Link => "program link",
+        })
+    }
+}
+
+/// The driver's own log of a failed compile or link.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DriverLog {
+    pub step: ProgramStep,
+    /// The info log exactly as the driver wrote it.
+    pub log: String,
+}
+
+impl DriverLog {
+    /// The log's messages with their lines, as Mesa writes them (`0:6(27): error: ...`).
+    pub fn messages(&self) -> Vec<LogMessage> {
+        parse_log(&self.log)
+    }
+}
+
+impl fmt::Display for DriverLog {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} failed:\n{}", self.step, self.log.trim_end())
+    }
+}
+
+impl std::error::Error for DriverLog {}
+
+/// One message of a driver info log.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LogMessage {
+    /// Source-string index (`0` for a single string).
+    pub source: u32,
+    /// 1-based line in the compiled text, as the driver numbers it (after `#line`).
+    pub line: u32,
+    /// 1-based column, when the driver gives one.
+    pub column: Option<u32>,
+    /// `error`, `warning`, …
+    pub severity: String,
+    pub message: String,
+}
+
+/// Parses Mesa's `S:L(C): severity: message` lines; lines in other forms are skipped.
+pub fn parse_log(log: &str) -> Vec<LogMessage> {
+    log.lines().filter_map(parse_log_line).collect()
+}
+
+fn parse_log_line(line: &str) -> Option<LogMessage> {
+    let (source, rest) = line.split_once(':')?;
+    let source: u32 = source.trim().parse().ok()?;
+    let (position, rest) = rest.split_once(": ")?;
+    let (line_no, column) = match position.split_once('(') {
+        Some((l, c)) => (l.parse().ok()?, c.strip_suffix(')')?.parse().ok()),
+        None => (position.parse().ok()?, None),
+    };
+    let (severity, message) = rest.split_once(": ").unwrap_or(("error", rest));
+    Some(LogMessage { source, line: line_no, column, severity: severity.trim().to_string(), message: message.to_string() })
+}
+
+/// A linked program and whatever the driver logged while building it (warnings).
+#[derive(Debug)]
+pub struct GlProgram {
+    pub raw: glow::Program,
+    pub log: String,
+}
+
+/// What the driver says it is.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DriverInfo {
+    pub vendor: String,
+    pub renderer: String,
+    pub version: String,
+    pub glsl_version: String,
+}
+
+impl fmt::Display for DriverInfo {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} / {} / OpenGL {}", self.vendor, self.renderer, self.version)
+    }
+}
+
+/// A current, headless OpenGL compatibility context.
+pub struct GlContext {
+    egl: egl::DynamicInstance<egl::EGL1_5>,
+    display: egl::Display,
+    context: egl::Context,
+    gl: glow::Context,
+    info: DriverInfo,
+    /// Contexts must stay on their thread.
+    _not_send: std::marker::PhantomData<*const ()>,
+}
+
+impl GlContext {
+    /// Loads libEGL, opens the surfaceless display and makes a compatibility context (at
+    /// least OpenGL 3.3) current on this thread.
+    pub fn new() -> Result<GlContext, DriverError> {
+        // SAFETY: libEGL.so.1 is the system's EGL loader; its symbols follow the EGL API.
+        let egl = unsafe { egl::DynamicInstance::<egl::EGL1_5>::load_required() }.map_err(|e| match e {
+            egl::LoadError::Library(e) => DriverError::new(format!("cannot load libEGL.so.1 ({e})")),
+            egl::LoadError::InvalidVersion { provided, .. } => {
+                DriverError::new(format!("libEGL provides EGL {provided:?}, EGL 1.5 is needed"))
+            }
+        })?;
+        // SAFETY: the surfaceless platform takes no native display.
+        let display = unsafe { egl.get_platform_display(PLATFORM_SURFACELESS_MESA, egl::DEFAULT_DISPLAY, &[egl::ATTRIB_NONE]) }
+            .map_err(|e| DriverError::new(format!("EGL has no surfaceless Mesa platform ({e}); libegl-mesa0 is Mesa's EGL")))?;
+        egl.initialize(display).map_err(|e| DriverError::new(format!("eglInitialize on the surfaceless display failed ({e})")))?;
+        let made = Self::make_context(&egl, display);
+        let (context, gl) = match made {
+            Ok(v) => v,
+            Err(e) => {
+                let _ = egl.terminate(display);
+                return Err(e);
+            }
+        };
+        // SAFETY: the context is current on this thread.
+        let info = unsafe {
+            DriverInfo {
+                vendor: gl.get_parameter_string(glow::VENDOR),
+                renderer: gl.get_parameter_string(glow::RENDERER),
+                version: gl.get_parameter_string(glow::VERSION),
+                glsl_version: gl.get_parameter_string(glow::SHADING_LANGUAGE_VERSION),
+            }
+        };
+        Ok(GlContext { egl, display, context, gl, info, _not_send: std::marker::PhantomData })
+    }
+
+    fn make_context(
+        egl: &egl::DynamicInstance<egl::EGL1_5>,
+        display: egl::Display,
+    ) -> Result<(egl::Context, glow::Context), DriverError> {
+        egl.bind_api(egl::OPENGL_API).map_err(|e| DriverError::new(format!("EGL cannot bind the OpenGL API ({e})")))?;
+        let config_attribs = [egl::RENDERABLE_TYPE, egl::OPENGL_BIT, egl::SURFACE_TYPE, 0, egl::NONE];
+        let config = egl
+            .choose_first_config(display, &config_attribs)
+            .map_err(|e| DriverError::new(format!("eglChooseConfig failed ({e})")))?
+            .ok_or_else(|| DriverError::new("EGL offers no OpenGL config without a surface"))?;
+        let context_attribs = [
+            egl::CONTEXT_MAJOR_VERSION,
+            3,
+            egl::CONTEXT_MINOR_VERSION,
+            3,
+            egl::CONTEXT_OPENGL_PROFILE_MASK,
+            egl::CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+            egl::NONE,
+        ];
+        let context = egl.create_context(display, config, None, &context_attribs).map_err(|e| {
+            DriverError::new(format!(
+                "no OpenGL 3.3 compatibility context ({e}); libgl1-mesa-dri holds Mesa's software rasteriser"
+            ))
+        })?;
+        if let Err(e) = egl.make_current(display, None, None, Some(context)) {
+            let _ = egl.destroy_context(display, context);
+            return Err(DriverError::new(format!("eglMakeCurrent without a surface failed ({e})")));
+        }
+        // SAFETY: the context is current; eglGetProcAddress returns its entry points.
+        let gl = unsafe {
+            glow::Context::from_loader_function(|name| {
+                egl.get_proc_address(name).map_or(std::ptr::null(), |f| f as *const std::ffi::c_void)
+            })
+        };
+        Ok((context, gl))
+    }
+
+    pub fn info(&self) -> &DriverInfo {
+        &self.info
+    }
+
+    /// The OpenGL functions. The context is current on this thread.
+    pub fn gl(&self) -> &glow::Context {
+        &self.gl
+    }
+
+    /// Compiles a vertex and a fragment shader exactly as given, binds the named vertex
+    /// attributes (`glBindAttribLocation`) and fragment outputs (`glBindFragDataLocation`) to
+    /// their locations, and links. A failure returns the driver's log.
+    pub fn compile_program(
+        &self,
+        vertex_text: &str,
+        fragment_text: &str,
+        attributes: &[(&str, u32)],
+        frag_data: &[(&str, u32)],
+    ) -> Result<GlProgram, DriverLog> {
+        let gl = &self.gl;
+        // SAFETY: plain GL calls on the current context with objects created here.
+        unsafe {
+            let vs = self.compile_shader(glow::VERTEX_SHADER, vertex_text, ProgramStep::CompileVertex)?;
+            let fs = match self.compile_shader(glow::FRAGMENT_SHADER, fragment_text, ProgramStep::CompileFragment) {
+                Ok(fs) => fs,
+                Err(e) => {
+                    gl.delete_shader(vs);
+                    return Err(e);
+                }
+            };
+            let program = gl.create_program().map_err(|log| DriverLog { step: ProgramStep::Link, log })?;
+            gl.attach_shader(program, vs);
+            gl.attach_shader(program, fs);
+            for (name, location) in attributes {
+                gl.bind_attrib_location(program, *location, name);
+            }
+            for (name, location) in frag_data {
+                gl.bind_frag_data_location(program, *location, name);
+            }
+            gl.link_program(program);
+            let linked = gl.get_program_link_status(program);
+            let log = gl.get_program_info_log(program);
+            let vs_log = gl.get_shader_info_log(vs);
+            let fs_log = gl.get_shader_info_log(fs);
+            gl.detach_shader(program, vs);
+            gl.detach_shader(program, fs);
+            gl.delete_shader(vs);
+            gl.delete_shader(fs);
+            if !linked {
+                gl.delete_program(program);
+                return Err(DriverLog { step: ProgramStep::Link, log });
+            }
+            let log = [vs_log, fs_log, log].into_iter().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("\n");
+            Ok(GlProgram { raw: program, log })
+        }
+    }
+
+    /// Compiles one shader alone (no link), for checking a single stage.
+    pub fn compile_shader_only(&self, vertex: bool, text: &str) -> Result<String, DriverLog> {
+        let (kind, step) =
+            if vertex { (glow::VERTEX_SHADER, ProgramStep::CompileVertex) } else { (glow::FRAGMENT_SHADER, ProgramStep::CompileFragment) };
+        // SAFETY: plain GL calls on the current context.
+        unsafe {
+            let shader = self.compile_shader(kind, text, step)?;
+            let log = self.gl.get_shader_info_log(shader);
+            self.gl.delete_shader(shader);
+            Ok(log)
+        }
+    }
+
+    unsafe fn compile_shader(&self, kind: u32, text: &str, step: ProgramStep) -> Result<glow::Shader, DriverLog> {
+        let gl = &self.gl;
+        // SAFETY: the caller holds the current context.
+        unsafe {
+            let shader = gl.create_shader(kind).map_err(|log| DriverLog { step, log })?;
+            gl.shader_source(shader, text);
+            gl.compile_shader(shader);
+            if !gl.get_shader_compile_status(shader) {
+                let log = gl.get_shader_info_log(shader);
+                gl.delete_shader(shader);
+                return Err(DriverLog { step, log });
+            }
+            Ok(shader)
+        }
+    }
+
+    /// Deletes a program made by [`GlContext::compile_program`].
+    pub fn delete_program(&self, program: GlProgram) {
+        // SAFETY: the program belongs to this context.
+        unsafe { self.gl.delete_program(program.raw) }
+    }
+}
+
+impl Drop for GlContext {
+    fn drop(&mut self) {
+        let _ = self.egl.make_current(self.display, None, None, None);
+        let _ = self.egl.destroy_context(self.display, self.context);
+        // The display is shared by every context of the process (eglGetPlatformDisplay returns
+        // the same handle), so it is not terminated here: another thread may still use it.
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_mesa_log_lines() {
+        let log = "0:6(27): error: `foo' undeclared\n0:7(1): warning: unused\nnot a message\n0:9: error: no column";
+        let messages = parse_log(log);
+        assert_eq!(messages.len(), 3);
+        assert_eq!(messages[0], LogMessage {
+            source: 0,
+            line: 6,
+            column: Some(27),
+            severity: "error".into(),
+            message: "`foo' undeclared".into()
+        });
+        assert_eq!(messages[1].severity, "warning");
+        assert_eq!(messages[2].line, 9);
+        assert_eq!(messages[2].column, None);
+    }
+}
