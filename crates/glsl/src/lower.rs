@@ -25,6 +25,17 @@
 //!   so their uses do not change); legacy matrices (`gl_ModelViewMatrix`, …) join it as reserved
 //!   members and `ftransform()` becomes their product with the vertex.
 //!
+//! - Matrix varyings travel as column vectors (`tp_<name>_<c>`) at consecutive locations; the
+//!   pack's `main` becomes `tp_main` and a `main` appended to the last line copies the columns
+//!   out (vertex) or rebuilds the matrix before calling it (fragment). Array varyings take one
+//!   location per element.
+//! - `gl_FogFragCoord`, `gl_FrontSecondaryColor`/`gl_SecondaryColor` become reserved varyings;
+//!   `gl_Fog` a block member of a reserved struct type; `gl_MultiTexCoord3..7`, `gl_FogCoord`
+//!   and vertex `gl_SecondaryColor` reserved inputs from [`RARE_LEGACY_INPUT_LOCATION`].
+//! - `uniform bool b` becomes the block member `int tp_bool_b`, read as `(tp_bool_b != 0)`;
+//!   uniforms of a struct type get a block of their own on their line; uniform initializers are
+//!   dropped (the loader sets the value).
+//!
 //! Reserved names all start with `tp_`.
 
 use std::collections::{BTreeMap, HashMap};
@@ -66,14 +77,37 @@ pub const RESERVED_PREFIX: &str = "tp_";
 pub const FIRST_ATTRIBUTE_LOCATION: u32 = 8;
 
 /// Legacy vertex inputs and their reserved names and locations.
-const LEGACY_INPUTS: [(&str, &str, &str, u32); 6] = [
+/// The rarely used ones sit above the user attributes (from [`RARE_LEGACY_INPUT_LOCATION`]).
+const LEGACY_INPUTS: [(&str, &str, &str, u32); 13] = [
     ("gl_Vertex", "tp_Vertex", "vec4", 0),
     ("gl_Color", "tp_Color", "vec4", 1),
     ("gl_Normal", "tp_Normal", "vec3", 2),
     ("gl_MultiTexCoord0", "tp_MultiTexCoord0", "vec4", 3),
     ("gl_MultiTexCoord1", "tp_MultiTexCoord1", "vec4", 4),
     ("gl_MultiTexCoord2", "tp_MultiTexCoord2", "vec4", 5),
+    ("gl_MultiTexCoord3", "tp_MultiTexCoord3", "vec4", RARE_LEGACY_INPUT_LOCATION),
+    ("gl_MultiTexCoord4", "tp_MultiTexCoord4", "vec4", RARE_LEGACY_INPUT_LOCATION + 1),
+    ("gl_MultiTexCoord5", "tp_MultiTexCoord5", "vec4", RARE_LEGACY_INPUT_LOCATION + 2),
+    ("gl_MultiTexCoord6", "tp_MultiTexCoord6", "vec4", RARE_LEGACY_INPUT_LOCATION + 3),
+    ("gl_MultiTexCoord7", "tp_MultiTexCoord7", "vec4", RARE_LEGACY_INPUT_LOCATION + 4),
+    ("gl_SecondaryColor", "tp_SecondaryColor", "vec4", RARE_LEGACY_INPUT_LOCATION + 5),
+    ("gl_FogCoord", "tp_FogCoord", "float", RARE_LEGACY_INPUT_LOCATION + 6),
 ];
+
+/// First location of the legacy vertex inputs packs rarely use (`gl_MultiTexCoord3..7`,
+/// `gl_SecondaryColor`, `gl_FogCoord`), above any realistic number of user attributes.
+pub const RARE_LEGACY_INPUT_LOCATION: u32 = 24;
+
+/// Legacy varyings: the built-in name in each stage, the reserved varying and its type.
+/// `gl_Color`/`gl_SecondaryColor` are varyings only in the fragment stage.
+const LEGACY_VARYINGS: [(&str, &str, &str, &str); 3] = [
+    ("gl_FrontColor", "gl_Color", "tp_FrontColor", "vec4"),
+    ("gl_FrontSecondaryColor", "gl_SecondaryColor", "tp_FrontSecondaryColor", "vec4"),
+    ("gl_FogFragCoord", "gl_FogFragCoord", "tp_FogFragCoord", "float"),
+];
+
+/// The legacy `gl_Fog` uniform becomes a block member of this struct type.
+const FOG_STRUCT: &str = "struct tp_FogParameters { vec4 color; float density; float start; float end; float scale; };";
 
 /// Legacy matrices and the uniform-block members that replace them.
 const LEGACY_MATRICES: [(&str, &str, &str); 9] = [
@@ -90,7 +124,7 @@ const LEGACY_MATRICES: [(&str, &str, &str); 9] = [
 
 /// Sampling built-ins of old GLSL and their 450 names; `true` for the shadow forms, which
 /// returned a `vec4` and now return a `float`.
-const LEGACY_SAMPLING: [(&str, &str, bool); 14] = [
+const LEGACY_SAMPLING: &[(&str, &str, bool)] = &[
     ("texture1D", "texture", false),
     ("texture2D", "texture", false),
     ("texture3D", "texture", false),
@@ -103,8 +137,21 @@ const LEGACY_SAMPLING: [(&str, &str, bool); 14] = [
     ("texture2DGrad", "textureGrad", false),
     ("texture2DGradARB", "textureGrad", false),
     ("texture2DLodEXT", "textureLod", false),
+    ("texture1DLod", "textureLod", false),
+    ("texture3DProj", "textureProj", false),
+    ("textureCubeGrad", "textureGrad", false),
+    ("texture2DArray", "texture", false),
+    ("texture2DArrayLod", "textureLod", false),
+    // GL_EXT_gpu_shader4 forms.
+    ("texelFetch2D", "texelFetch", false),
+    ("texelFetch3D", "texelFetch", false),
+    ("textureSize2D", "textureSize", false),
+    ("textureSize3D", "textureSize", false),
+    ("texture2DLodOffset", "textureLodOffset", false),
+    ("texelFetch2DOffset", "texelFetchOffset", false),
     ("shadow2D", "texture", true),
     ("shadow2DLod", "textureLod", true),
+    ("shadow2DProj", "textureProj", true),
 ];
 
 /// Combined sampler types and their separate texture type and sampler type.
@@ -124,6 +171,15 @@ fn split_sampler_type(ty: &str) -> Option<(&'static str, &'static str)> {
     })
 }
 
+/// GLSL's own types (scalars, vectors, matrices); anything else is a struct.
+fn is_builtin_type(ty: &str) -> bool {
+    matches!(ty, "float" | "int" | "uint" | "bool" | "double")
+        || matrix_shape(ty).is_some()
+        || ["vec", "ivec", "uvec", "bvec", "dvec"]
+            .iter()
+            .any(|p| ty.strip_prefix(p).is_some_and(|n| matches!(n, "2" | "3" | "4")))
+}
+
 fn is_varying_qualifier(word: &str) -> bool {
     matches!(word, "flat" | "smooth" | "noperspective" | "centroid" | "invariant")
 }
@@ -132,7 +188,9 @@ fn is_precision(word: &str) -> bool {
     matches!(word, "highp" | "mediump" | "lowp")
 }
 
-/// Program-wide varying locations: every varying name of both stages, sorted, numbered.
+/// Program-wide varying locations: every varying name of both stages, sorted, each starting
+/// after the locations the previous one takes (an array takes one per element, a matrix one
+/// per column).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct VaryingLayout {
     pub locations: BTreeMap<String, u32>,
@@ -141,43 +199,111 @@ pub struct VaryingLayout {
 impl VaryingLayout {
     /// Builds the layout from the preprocessed texts of a program's stages.
     pub fn for_program(stages: &[(Stage, &str, u32)]) -> Result<VaryingLayout, LowerError> {
-        let mut names = std::collections::BTreeSet::new();
+        let mut sizes: BTreeMap<String, u32> = BTreeMap::new();
         for &(stage, text, version) in stages {
-            names.extend(varyings_of(text, stage, version)?);
+            for (name, size) in varyings_of(text, stage, version)? {
+                let slot = sizes.entry(name).or_insert(size);
+                *slot = (*slot).max(size);
+            }
         }
-        Ok(VaryingLayout { locations: names.into_iter().zip(0..).collect() })
+        let mut next = 0;
+        let mut locations = BTreeMap::new();
+        for (name, size) in sizes {
+            locations.insert(name, next);
+            next += size;
+        }
+        Ok(VaryingLayout { locations })
     }
 }
 
-/// Names of the varyings a stage declares or uses through legacy built-ins.
-pub fn varyings_of(text: &str, stage: Stage, version: u32) -> Result<Vec<String>, LowerError> {
+/// A varying as a stage declares it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VaryingDecl {
+    pub name: String,
+    /// The GLSL type, without array size.
+    pub ty: String,
+    /// Array size when declared as an array (`0` for an unsized or non-literal size).
+    pub array: Option<u32>,
+    /// Interpolation qualifiers as written (`flat `, `centroid `, …).
+    pub interpolation: String,
+    /// 1-based line of the declaration in the preprocessed text.
+    pub line: u32,
+}
+
+impl VaryingDecl {
+    /// Locations the varying takes: one per array element, times one per matrix column.
+    pub fn locations(&self) -> u32 {
+        self.array.unwrap_or(1).max(1) * matrix_shape(&self.ty).map_or(1, |(columns, _)| columns)
+    }
+}
+
+/// Columns and rows of a float matrix type (`mat3` → 3×3, `mat2x4` → 2 columns of 4).
+fn matrix_shape(ty: &str) -> Option<(u32, u32)> {
+    let dims = ty.strip_prefix("mat")?;
+    let digit = |c: &str| c.parse::<u32>().ok().filter(|n| (2..=4).contains(n));
+    match dims.split_once('x') {
+        Some((c, r)) => Some((digit(c)?, digit(r)?)),
+        None => digit(dims).map(|n| (n, n)),
+    }
+}
+
+/// `[N]` with a literal N: `Some(N)`; any other array suffix: `Some(0)`; none: `None`.
+fn array_size(suffix: &str) -> Option<u32> {
+    let inner = suffix.trim().strip_prefix('[')?.strip_suffix(']')?;
+    Some(inner.trim().trim_end_matches(['u', 'U']).parse().unwrap_or(0))
+}
+
+/// The varyings a stage declares, in declaration order.
+pub fn varying_declarations(text: &str, stage: Stage, version: u32) -> Result<Vec<VaryingDecl>, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
-    let mut names = Vec::new();
+    let mut found = Vec::new();
     for stmt in top_level_statements(&tokens) {
         if let Some(decl) = Declaration::parse(&tokens, &stmt)
             && decl.storage(stage, version) == Storage::Varying
         {
-            names.extend(decl.names.iter().map(|(n, _)| n.to_string()));
+            for (name, suffix) in &decl.names {
+                found.push(VaryingDecl {
+                    name: name.to_string(),
+                    ty: decl.ty.to_string(),
+                    array: array_size(suffix),
+                    interpolation: decl.interpolation(),
+                    line: tokens[stmt.sig[0]].line,
+                });
+            }
         }
     }
+    Ok(found)
+}
+
+/// Names of the varyings a stage declares or uses through legacy built-ins, with the number
+/// of locations each takes.
+pub fn varyings_of(text: &str, stage: Stage, version: u32) -> Result<Vec<(String, u32)>, LowerError> {
+    let mut names: Vec<(String, u32)> =
+        varying_declarations(text, stage, version)?.iter().map(|d| (d.name.clone(), d.locations())).collect();
+    let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     for (i, t) in sig.iter().enumerate() {
-        match t.text {
-            "gl_FrontColor" => names.push("tp_FrontColor".into()),
-            "gl_Color" if stage == Stage::Fragment => names.push("tp_FrontColor".into()),
-            "gl_TexCoord" => {
-                let index = constant_index(&sig, i).ok_or_else(|| LowerError {
-                    line: t.line,
-                    message: "gl_TexCoord needs a constant index".into(),
-                })?;
-                names.push(format!("tp_TexCoord{index}"));
-            }
-            _ => {}
+        if let Some(reserved) = legacy_varying(t.text, stage) {
+            names.push((reserved.to_string(), 1));
+        } else if t.text == "gl_TexCoord" {
+            let index = constant_index(&sig, i).ok_or_else(|| LowerError {
+                line: t.line,
+                message: "gl_TexCoord needs a constant index".into(),
+            })?;
+            names.push((format!("tp_TexCoord{index}"), 1));
         }
     }
     names.sort();
     names.dedup();
     Ok(names)
+}
+
+/// The reserved varying a legacy built-in stands for in `stage`, if it is one.
+fn legacy_varying(name: &str, stage: Stage) -> Option<&'static str> {
+    LEGACY_VARYINGS.iter().find_map(|&(vertex, fragment, reserved, _)| {
+        let builtin = if stage == Stage::Vertex { vertex } else { fragment };
+        (builtin == name).then_some(reserved)
+    })
 }
 
 /// `[N]` after `sig[i]` with a literal N.
@@ -290,7 +416,6 @@ struct Declaration<'a> {
     ty: &'a str,
     /// Declarator names with the text after the name up to the next `,`/`;` (array sizes).
     names: Vec<(&'a str, String)>,
-    has_initializer: bool,
 }
 
 impl<'a> Declaration<'a> {
@@ -331,7 +456,6 @@ impl<'a> Declaration<'a> {
             }
         }
         let mut names = Vec::new();
-        let mut has_initializer = false;
         let mut j = k + 1;
         while j < sig.len() {
             let name = &tokens[sig[j]];
@@ -341,6 +465,7 @@ impl<'a> Declaration<'a> {
             }
             let mut suffix = String::new();
             let mut depth = 0;
+            let mut has_initializer = false;
             j += 1;
             while j < sig.len() {
                 let t = &tokens[sig[j]];
@@ -363,7 +488,7 @@ impl<'a> Declaration<'a> {
             }
             names.push((name.text, suffix));
         }
-        Some(Declaration { qualifiers, layout, ty: ty.text, names, has_initializer })
+        Some(Declaration { qualifiers, layout, ty: ty.text, names })
     }
 
     fn storage(&self, stage: Stage, version: u32) -> Storage {
@@ -404,6 +529,8 @@ struct Symbols {
     samplers: HashMap<String, (String, String)>,
     /// Function name → for each parameter, whether it is a sampler.
     sampler_functions: HashMap<String, Vec<bool>>,
+    /// `uniform bool` names; they live in the block as `int tp_bool_<name>`.
+    bool_uniforms: std::collections::HashSet<String>,
 }
 
 /// Lowers one preprocessed stage.
@@ -420,6 +547,8 @@ pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout) -> Result<Lower
         interface: Interface::default(),
         next_binding: 1,
         varyings,
+        prelude: String::new(),
+        matrix_varyings: Vec::new(),
     };
     lowering.run()?;
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
@@ -439,6 +568,10 @@ struct Lowering<'t, 'a> {
     interface: Interface,
     next_binding: u32,
     varyings: &'t VaryingLayout,
+    /// Type definitions the uniform block needs, put before it.
+    prelude: String,
+    /// Matrix varyings, passed as column vectors: (name, column type, columns).
+    matrix_varyings: Vec<(String, String, u32)>,
 }
 
 impl<'a> Lowering<'_, 'a> {
@@ -492,6 +625,25 @@ impl<'a> Lowering<'_, 'a> {
                         let location = self.varyings.locations.get(*name).copied().ok_or_else(|| {
                             self.err(start, format!("varying `{name}` is missing from the program's varying layout"))
                         })?;
+                        if let Some((columns, rows)) = matrix_shape(decl.ty) {
+                            // naga takes no matrices as stage inputs or outputs: pass the columns.
+                            if !suffix.is_empty() {
+                                return Err(self.err(start, format!("arrays of matrices as varyings (`{name}{suffix}`) are not supported")));
+                            }
+                            let column_ty = format!("vec{rows}");
+                            write!(text, "{} {name}; ", decl.ty).unwrap();
+                            for c in 0..columns {
+                                write!(
+                                    text,
+                                    "layout(location = {}) {}{direction} {column_ty} {RESERVED_PREFIX}{name}_{c}; ",
+                                    location + c,
+                                    decl.interpolation()
+                                )
+                                .unwrap();
+                            }
+                            self.matrix_varyings.push((name.to_string(), column_ty, columns));
+                            continue;
+                        }
                         write!(
                             text,
                             "layout(location = {location}) {}{direction} {} {name}{suffix}; ",
@@ -602,9 +754,8 @@ impl<'a> Lowering<'_, 'a> {
     }
 
     fn lower_uniform(&mut self, decl: &Declaration<'a>, start: usize, end: usize) -> Result<(), LowerError> {
-        if decl.has_initializer {
-            return Err(self.err(start, "uniforms with initializers are not supported"));
-        }
+        // A uniform's initializer only sets its value before the loader does: drop it (the
+        // declarator suffix stops before `=`).
         let set = self.stage.descriptor_set();
         if let Some((texture_ty, sampler_ty)) = split_sampler_type(decl.ty) {
             let mut text = String::new();
@@ -637,7 +788,34 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         if decl.ty == "bool" {
-            return Err(self.err(start, "bool uniforms cannot live in a uniform buffer; declare them int"));
+            // A bool cannot live in a uniform buffer: store an int and read it as a bool.
+            for (name, suffix) in &decl.names {
+                if !suffix.is_empty() {
+                    return Err(self.err(start, format!("bool uniform arrays (`{name}{suffix}`) are not supported")));
+                }
+                self.block.push(format!("int {RESERVED_PREFIX}bool_{name};"));
+                self.symbols.bool_uniforms.insert(name.to_string());
+                self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: "bool".into() });
+            }
+            self.replace_lines(start, end, String::new());
+            return Ok(());
+        }
+        if !is_builtin_type(decl.ty) {
+            // A struct type is defined in the pack's text, after the shared block's line: give
+            // these uniforms a block of their own on their declaration's line.
+            let binding = self.next_binding;
+            self.next_binding += 1;
+            let mut members = String::new();
+            for (name, suffix) in &decl.names {
+                write!(members, "{} {name}{suffix}; ", decl.ty).unwrap();
+                self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
+            }
+            let text = format!(
+                "layout(std140, set = {set}, binding = {binding}) uniform {RESERVED_PREFIX}Uniforms{binding} {{ {}}};",
+                members
+            );
+            self.replace_lines(start, end, text);
+            return Ok(());
         }
         for (name, suffix) in &decl.names {
             self.block.push(format!("{} {name}{suffix};", decl.ty));
@@ -704,6 +882,10 @@ impl<'a> Lowering<'_, 'a> {
             let next = sig.get(k + 1).map(|&j| self.tokens[j]);
             let followed_by_call = next.is_some_and(|n| n.is_punct("("));
             if brace_depth == 0 && followed_by_call {
+                if t.text == "main" && !self.matrix_varyings.is_empty() {
+                    // The real `main` (added at the end) copies the matrix varyings' columns.
+                    self.replace(i, i + 1, format!("{RESERVED_PREFIX}main"));
+                }
                 // A function header: remember its sampler parameters for the body.
                 let open = k + 1;
                 let close = (open..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(")")).unwrap_or(open);
@@ -734,6 +916,10 @@ impl<'a> Lowering<'_, 'a> {
             {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);
                 self.replace(i, i + 1, combined_use(&lowered, &ty, passes_both));
+            } else if self.symbols.bool_uniforms.contains(t.text)
+                && !(k > 0 && self.tokens[sig[k - 1]].is_punct("."))
+            {
+                self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
             } else {
                 self.rewrite_builtin(&sig, k)?;
             }
@@ -757,9 +943,15 @@ impl<'a> Lowering<'_, 'a> {
         let i = sig[k];
         let name = self.tokens[i].text;
         let stage = self.stage;
-        if let Some(&(_, new, ty, location)) = LEGACY_INPUTS.iter().find(|(old, ..)| *old == name)
-            && !(name == "gl_Color" && stage == Stage::Fragment)
-        {
+        if let Some(varying) = legacy_varying(name, stage) {
+            let ty = LEGACY_VARYINGS.iter().find(|v| v.2 == varying).map_or("vec4", |v| v.3);
+            let location = self.varyings.locations[varying];
+            let direction = if stage == Stage::Vertex { "out" } else { "in" };
+            self.add_header(format!("layout(location = {location}) {direction} {ty} {varying};"));
+            self.replace(i, i + 1, varying.into());
+            return Ok(());
+        }
+        if let Some(&(_, new, ty, location)) = LEGACY_INPUTS.iter().find(|(old, ..)| *old == name) {
             if stage != Stage::Vertex {
                 return Err(self.err(i, format!("{name} is a vertex-shader input")));
             }
@@ -810,11 +1002,13 @@ impl<'a> Lowering<'_, 'a> {
                 self.add_header(format!("layout(location = {location}) out vec4 tp_FragData{location};"));
                 self.replace(i, end, format!("tp_FragData{location}"));
             }
-            "gl_FrontColor" | "gl_Color" => {
-                let location = self.varyings.locations["tp_FrontColor"];
-                let direction = if stage == Stage::Vertex { "out" } else { "in" };
-                self.add_header(format!("layout(location = {location}) {direction} vec4 tp_FrontColor;"));
-                self.replace(i, i + 1, "tp_FrontColor".into());
+            "gl_Fog" => {
+                if self.prelude.is_empty() {
+                    self.prelude.push_str(FOG_STRUCT);
+                    self.block.push(format!("tp_FogParameters {RESERVED_PREFIX}Fog;"));
+                    self.interface.resources.insert("gl_Fog".into(), ResourceKind::Uniform { ty: "gl_FogParameters".into() });
+                }
+                self.replace(i, i + 1, format!("{RESERVED_PREFIX}Fog"));
             }
             "gl_TexCoord" => {
                 let sig_tokens: Vec<&Token<'_>> = sig.iter().map(|&j| &self.tokens[j]).collect();
@@ -841,7 +1035,7 @@ impl<'a> Lowering<'_, 'a> {
     fn finish_header(&mut self, version_index: usize) {
         // naga reads the rest of the `#version` line as part of the directive, so the added
         // declarations open line 2 instead, which after preprocessing is ordinary top-level code.
-        let mut line = String::new();
+        let mut line = self.prelude.clone();
         if !self.block.is_empty() {
             write!(
                 line,
@@ -889,7 +1083,40 @@ impl<'a> Lowering<'_, 'a> {
                 i += 1;
             }
         }
+        let trailer = self.main_wrapper();
+        if !trailer.is_empty() {
+            // On the last line, so no line break is added.
+            let at = if out.ends_with('\n') { out.trim_end_matches(['\n', '\r']).len() } else { out.len() };
+            out.insert_str(at, &trailer);
+        }
         out
+    }
+
+    /// The `main` that wraps the pack's (renamed) one to copy matrix varyings from or to their
+    /// column vectors; empty when the stage has no matrix varyings.
+    fn main_wrapper(&self) -> String {
+        if self.matrix_varyings.is_empty() {
+            return String::new();
+        }
+        let mut copies = String::new();
+        for (name, column_ty, columns) in &self.matrix_varyings {
+            let cols: Vec<String> = (0..*columns).map(|c| format!("{RESERVED_PREFIX}{name}_{c}")).collect();
+            match self.stage {
+                Stage::Vertex => {
+                    for (c, col) in cols.iter().enumerate() {
+                        write!(copies, " {col} = {column_ty}({name}[{c}]);").unwrap();
+                    }
+                }
+                Stage::Fragment => {
+                    let ty = format!("mat{columns}x{}", &column_ty[3..]);
+                    write!(copies, " {name} = {ty}({});", cols.join(", ")).unwrap();
+                }
+            }
+        }
+        match self.stage {
+            Stage::Vertex => format!(" void main() {{ {RESERVED_PREFIX}main();{copies} }}"),
+            Stage::Fragment => format!(" void main() {{{copies} {RESERVED_PREFIX}main(); }}"),
+        }
     }
 }
 
