@@ -8,6 +8,7 @@
 
 pub mod diagnostic;
 pub mod lower;
+pub mod macros;
 pub mod options;
 pub mod preprocess;
 pub mod token;

@@ -16,6 +16,13 @@ use crate::token::{Token, TokenKind, tokenize};
 
 /// OptiFine's limit on `#include` nesting.
 pub const MAX_INCLUDE_DEPTH: usize = 10;
+/// Largest preprocessed text of one stage, in bytes: includes repeated many times over, or
+/// macros that expand exponentially, stop here with an error instead of exhausting memory.
+pub const MAX_OUTPUT_BYTES: usize = 8 << 20;
+/// Largest number of tokens one macro invocation may expand to.
+pub const MAX_EXPANSION_TOKENS: usize = 1 << 18;
+/// Deepest nesting of parentheses and operators in an `#if` expression.
+pub const MAX_EXPRESSION_DEPTH: usize = 256;
 
 /// Reads pack files by their pack-relative path (`lib/water.glsl`, `world-1/composite.fsh`).
 pub trait FileProvider {
@@ -139,6 +146,14 @@ fn owned_tokens(tokens: &[Token<'_>]) -> Vec<OwnedToken> {
         .collect()
 }
 
+/// State of [`Preprocessor::scan_macro_call`] across lines.
+#[derive(Default)]
+struct MacroCallScan {
+    depth: i32,
+    in_call: bool,
+    pending_macro: bool,
+}
+
 struct Conditional {
     /// Lines in this branch are emitted.
     active: bool,
@@ -234,11 +249,14 @@ impl Preprocessor<'_> {
                 if active {
                     // A function-like macro call may continue on the following lines.
                     let mut end = index;
-                    while self.has_open_macro_call(&lines[index..=end]) && end + 1 < lines.len() {
+                    let mut call = MacroCallScan::default();
+                    self.scan_macro_call(&mut call, &lines[index]);
+                    while call.in_call && end + 1 < lines.len() {
                         if lines[end + 1].tokens.iter().any(|t| t.is_punct("#")) {
                             break;
                         }
                         end += 1;
+                        self.scan_macro_call(&mut call, &lines[end]);
                     }
                     let mut joined: Vec<Token<'_>> = Vec::new();
                     for l in &lines[index..=end] {
@@ -413,6 +431,9 @@ impl Preprocessor<'_> {
             return Err(err_at(format!("include cycle: {}", chain.join(" -> "))));
         }
         let text = self.provider.read(&resolved).map_err(|e| err_at(format!("cannot include `{resolved}`: {e}")))?;
+        if self.out.text.len() + text.len() > MAX_OUTPUT_BYTES {
+            return Err(err_at(format!("the preprocessed shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20)));
+        }
         self.include_stack.push((path.to_string(), at));
         let result = self.process_file(&resolved, &text);
         self.include_stack.pop();
@@ -448,30 +469,27 @@ impl Preprocessor<'_> {
         Ok(())
     }
 
-    /// True when the lines end inside the argument list of a function-like macro call.
-    fn has_open_macro_call(&self, lines: &[LogicalLine<'_, '_>]) -> bool {
-        let mut depth = 0i32;
-        let mut in_call = false;
-        let mut pending_macro = false;
-        for t in lines.iter().flat_map(|l| l.tokens.iter()).filter(|t| !t.is_trivia()) {
-            if in_call {
+    /// Advances `scan` over one more line; `scan.in_call` then tells whether the lines so far
+    /// end inside the argument list of a function-like macro call.
+    fn scan_macro_call(&self, scan: &mut MacroCallScan, line: &LogicalLine<'_, '_>) {
+        for t in line.tokens.iter().filter(|t| !t.is_trivia()) {
+            if scan.in_call {
                 if t.is_punct("(") {
-                    depth += 1;
+                    scan.depth += 1;
                 } else if t.is_punct(")") {
-                    depth -= 1;
-                    if depth == 0 {
-                        in_call = false;
+                    scan.depth -= 1;
+                    if scan.depth == 0 {
+                        scan.in_call = false;
                     }
                 }
-            } else if pending_macro && t.is_punct("(") {
-                in_call = true;
-                depth = 1;
+            } else if scan.pending_macro && t.is_punct("(") {
+                scan.in_call = true;
+                scan.depth = 1;
             } else {
-                pending_macro = t.kind == TokenKind::Ident
+                scan.pending_macro = t.kind == TokenKind::Ident
                     && self.macros.get(t.text).is_some_and(|m| m.params.is_some());
             }
         }
-        in_call
     }
 
     fn emit_text_line(&mut self, tokens: &[Token<'_>], path: &str, line: u32) -> Result<(), Diagnostic> {
@@ -500,6 +518,9 @@ impl Preprocessor<'_> {
                 }
                 TokenKind::Ident if self.macros.contains_key(t.text) => {
                     let (expansion, consumed) = self.expand_at(tokens, i).map_err(err_at)?;
+                    if self.out.text.len() + expansion.len() > MAX_OUTPUT_BYTES {
+                        return Err(err_at(format!("the preprocessed shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20)));
+                    }
                     self.out.text.push_str(&expansion);
                     i += consumed;
                     continue;
@@ -589,6 +610,9 @@ impl Preprocessor<'_> {
             if t.kind == TokenKind::Ident && self.macros.contains_key(&t.text) && !disabled.contains(&t.text) {
                 let (expanded, consumed) = self.expand_one(tokens, i, disabled, depth)?;
                 out.extend(expanded);
+                if out.len() > MAX_EXPANSION_TOKENS {
+                    return Err(format!("macro expansion produces more than {MAX_EXPANSION_TOKENS} tokens"));
+                }
                 i += consumed;
             } else {
                 out.push(t.clone());
@@ -654,7 +678,7 @@ impl Preprocessor<'_> {
         if values.is_empty() {
             return Err("#if with no expression".into());
         }
-        let mut parser = ExprParser { tokens: &values, pos: 0 };
+        let mut parser = ExprParser { tokens: &values, pos: 0, depth: 0 };
         let value = parser.ternary()?;
         if parser.pos != values.len() {
             return Err("unexpected tokens at the end of the #if expression".into());
@@ -791,6 +815,12 @@ pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: 
                     at(),
                 ));
             }
+            if out.len() > MAX_OUTPUT_BYTES {
+                return Err(Diagnostic::error(
+                    format!("the expanded shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20),
+                    at(),
+                ));
+            }
             expand(provider, &resolved, stack, out)
                 .map_err(|e| if e.location.is_none() { Diagnostic { location: at(), ..e } } else { e })?;
         }
@@ -856,6 +886,8 @@ enum ExprToken {
 struct ExprParser<'t> {
     tokens: &'t [ExprToken],
     pos: usize,
+    /// Recursion depth, bounded by [`MAX_EXPRESSION_DEPTH`].
+    depth: usize,
 }
 
 impl ExprParser<'_> {
@@ -929,6 +961,16 @@ impl ExprParser<'_> {
     }
 
     fn unary(&mut self) -> Result<i64, String> {
+        self.depth += 1;
+        let result = self.unary_inner();
+        self.depth -= 1;
+        result
+    }
+
+    fn unary_inner(&mut self) -> Result<i64, String> {
+        if self.depth > MAX_EXPRESSION_DEPTH {
+            return Err(format!("#if expression nests deeper than {MAX_EXPRESSION_DEPTH} levels"));
+        }
         match self.tokens.get(self.pos) {
             Some(ExprToken::Num(n)) => {
                 self.pos += 1;
@@ -1097,6 +1139,35 @@ mod tests {
         let cyclic = files(&[("a.fsh", "#include \"b.glsl\"\n"), ("b.glsl", "\n#include \"a.fsh\"\n")]);
         let err = expand_includes(&cyclic, "a.fsh", "").unwrap_err();
         assert_eq!(err.location, Some(Location::line("b.glsl", 2)));
+    }
+
+    #[test]
+    fn hostile_inputs_stop_with_errors() {
+        // Exponential macro expansion.
+        let mut src = String::from("#define A0 x x\n");
+        for i in 1..40 {
+            src.push_str(&format!("#define A{i} A{} A{}\n", i - 1, i - 1));
+        }
+        src.push_str("float v = A39;\n");
+        let err = run(&[("a.fsh", &src)]).unwrap_err();
+        assert!(err.message.contains("more than"), "{err}");
+        // An include repeated until the output is too large.
+        let big = "float x; ".repeat(300_000);
+        let mut list = vec![("a.fsh".to_string(), "#include \"/b.glsl\"\n".repeat(8))];
+        list.push(("b.glsl".into(), big));
+        let map: HashMap<String, Arc<str>> = list.into_iter().map(|(p, t)| (p, Arc::from(t))).collect();
+        let err = preprocess(&map, "a.fsh", &PreprocessOptions::default()).unwrap_err();
+        assert!(err.message.contains("grows past"), "{err}");
+        assert_eq!(err.location.unwrap().path, "a.fsh");
+        // Deeply nested #if expression.
+        let src = format!("#if {}1{}\n#endif\n", "(".repeat(100_000), ")".repeat(100_000));
+        let err = run(&[("a.fsh", &src)]).unwrap_err();
+        assert!(err.message.contains("nests deeper"), "{err}");
+        // An unclosed macro call over many lines is linear, not quadratic.
+        let src = format!("#define F(x) x\nF(\n{}", "a,\n".repeat(50_000));
+        let started = std::time::Instant::now();
+        let _ = run(&[("a.fsh", &src)]);
+        assert!(started.elapsed().as_secs() < 10);
     }
 
     #[test]

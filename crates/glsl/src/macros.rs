@@ -1,0 +1,200 @@
+//! OptiFine's standard macros: what the loader defines right after each stage's `#version`
+//! line, for a configurable machine (Minecraft version, GL versions, OS, GPU vendor, settings).
+
+use crate::preprocess::PreprocessOptions;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Os {
+    Windows,
+    Mac,
+    Linux,
+    Other,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Vendor {
+    Amd,
+    Intel,
+    Mesa,
+    Nvidia,
+    Other,
+}
+
+/// The machine and settings the macros describe; [`Default`] is a current Linux/Mesa setup.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StandardMacros {
+    /// `1.21.4` → 12104.
+    pub mc_version: u32,
+    /// `4.6` → 460.
+    pub gl_version: u32,
+    /// Highest GLSL version of the driver (not the shader's `#version`).
+    pub glsl_version: u32,
+    pub os: Os,
+    pub vendor: Vendor,
+    pub render_quality: f32,
+    pub shadow_quality: f32,
+    pub hand_depth: f32,
+    /// `MC_NORMAL_MAP`, `MC_SPECULAR_MAP` (the resource pack has them).
+    pub normal_and_specular_maps: bool,
+    /// `MC_GL_<extension>` for each extension the driver has (OptiFine defines only those a
+    /// shader mentions; defining all is equivalent for the preprocessor).
+    pub extensions: Vec<String>,
+}
+
+impl Default for StandardMacros {
+    fn default() -> Self {
+        StandardMacros {
+            mc_version: 12104,
+            gl_version: 460,
+            glsl_version: 460,
+            os: Os::Linux,
+            vendor: Vendor::Mesa,
+            render_quality: 1.0,
+            shadow_quality: 1.0,
+            hand_depth: 0.125,
+            normal_and_specular_maps: true,
+            extensions: COMMON_EXTENSIONS.iter().map(|e| e.to_string()).collect(),
+        }
+    }
+}
+
+/// Extensions a current desktop driver (Mesa 22 and later, NVIDIA, AMD) exposes that packs test.
+pub const COMMON_EXTENSIONS: [&str; 14] = [
+    "GL_ARB_shader_texture_lod",
+    "GL_EXT_gpu_shader4",
+    "GL_ARB_gpu_shader5",
+    "GL_ARB_texture_gather",
+    "GL_ARB_texture_query_lod",
+    "GL_ARB_shading_language_packing",
+    "GL_ARB_shader_bit_encoding",
+    "GL_ARB_shader_image_load_store",
+    "GL_ARB_shader_storage_buffer_object",
+    "GL_ARB_compute_shader",
+    "GL_ARB_derivative_control",
+    "GL_ARB_conservative_depth",
+    "GL_ARB_explicit_attrib_location",
+    "GL_EXT_texture_array",
+];
+
+/// `MC_RENDER_STAGE_*` constants, in value order (0 = NONE).
+pub const RENDER_STAGES: [&str; 24] = [
+    "NONE",
+    "SKY",
+    "SUNSET",
+    "CUSTOM_SKY",
+    "SUN",
+    "MOON",
+    "STARS",
+    "VOID",
+    "TERRAIN_SOLID",
+    "TERRAIN_CUTOUT_MIPPED",
+    "TERRAIN_CUTOUT",
+    "ENTITIES",
+    "BLOCK_ENTITIES",
+    "DESTROY",
+    "OUTLINE",
+    "DEBUG",
+    "HAND_SOLID",
+    "TERRAIN_TRANSLUCENT",
+    "TRIPWIRE",
+    "PARTICLES",
+    "CLOUDS",
+    "RAIN_SNOW",
+    "WORLD_BORDER",
+    "HAND_TRANSLUCENT",
+];
+
+impl StandardMacros {
+    /// The macros in the order OptiFine defines them.
+    pub fn definitions(&self) -> Vec<(String, String)> {
+        let mut out: Vec<(String, String)> = vec![
+            ("MC_VERSION".into(), self.mc_version.to_string()),
+            ("MC_GL_VERSION".into(), self.gl_version.to_string()),
+            ("MC_GLSL_VERSION".into(), self.glsl_version.to_string()),
+        ];
+        let os = match self.os {
+            Os::Windows => "MC_OS_WINDOWS",
+            Os::Mac => "MC_OS_MAC",
+            Os::Linux => "MC_OS_LINUX",
+            Os::Other => "MC_OS_OTHER",
+        };
+        let (vendor, renderer) = match self.vendor {
+            Vendor::Amd => ("MC_GL_VENDOR_AMD", "MC_GL_RENDERER_RADEON"),
+            Vendor::Intel => ("MC_GL_VENDOR_INTEL", "MC_GL_RENDERER_INTEL"),
+            Vendor::Mesa => ("MC_GL_VENDOR_MESA", "MC_GL_RENDERER_MESA"),
+            Vendor::Nvidia => ("MC_GL_VENDOR_NVIDIA", "MC_GL_RENDERER_GEFORCE"),
+            Vendor::Other => ("MC_GL_VENDOR_OTHER", "MC_GL_RENDERER_OTHER"),
+        };
+        for name in [os, vendor, renderer] {
+            out.push((name.into(), String::new()));
+        }
+        for ext in &self.extensions {
+            out.push((format!("MC_{ext}"), String::new()));
+        }
+        out.push(("MC_FXAA_LEVEL".into(), "0".into()));
+        if self.normal_and_specular_maps {
+            out.push(("MC_NORMAL_MAP".into(), String::new()));
+            out.push(("MC_SPECULAR_MAP".into(), String::new()));
+        }
+        out.push(("MC_RENDER_QUALITY".into(), float(self.render_quality)));
+        out.push(("MC_SHADOW_QUALITY".into(), float(self.shadow_quality)));
+        out.push(("MC_HAND_DEPTH".into(), float(self.hand_depth)));
+        for (value, stage) in RENDER_STAGES.iter().enumerate() {
+            out.push((format!("MC_RENDER_STAGE_{stage}"), value.to_string()));
+        }
+        out
+    }
+
+    pub fn preprocess_options(&self) -> PreprocessOptions {
+        PreprocessOptions { predefined: self.definitions() }
+    }
+
+    /// The macros as `#define` lines, for text handed to a GL driver or glslangValidator.
+    pub fn define_lines(&self) -> String {
+        self.definitions().iter().map(|(k, v)| format!("#define {k} {v}\n")).collect()
+    }
+}
+
+/// A float literal that always has a decimal point (`1` → `1.0`).
+fn float(value: f32) -> String {
+    let text = value.to_string();
+    if text.contains(['.', 'e', 'E']) { text } else { format!("{text}.0") }
+}
+
+/// Parses `1.21.4` (or `1.8.9`, `1.21`) into OptiFine's number (12104, 10809, 12100).
+pub fn parse_mc_version(text: &str) -> Option<u32> {
+    let mut parts = text.trim().split('.').map(|p| p.parse::<u32>().ok());
+    let major = parts.next()??;
+    let minor = parts.next()??;
+    let patch = parts.next().unwrap_or(Some(0))?;
+    if parts.next().is_some() || minor > 99 || patch > 99 {
+        return None;
+    }
+    Some(major * 10000 + minor * 100 + patch)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_define_one_os_vendor_and_renderer() {
+        let defs = StandardMacros::default().definitions();
+        let has = |name: &str| defs.iter().any(|(k, _)| k == name);
+        assert!(has("MC_OS_LINUX") && !has("MC_OS_WINDOWS"));
+        assert!(has("MC_GL_VENDOR_MESA") && has("MC_GL_RENDERER_MESA"));
+        assert!(has("MC_GL_EXT_gpu_shader4"));
+        let value = |name: &str| defs.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_str());
+        assert_eq!(value("MC_VERSION"), Some("12104"));
+        assert_eq!(value("MC_RENDER_QUALITY"), Some("1.0"));
+        assert_eq!(value("MC_RENDER_STAGE_HAND_TRANSLUCENT"), Some("23"));
+    }
+
+    #[test]
+    fn minecraft_versions_parse_like_optifine() {
+        assert_eq!(parse_mc_version("1.21.4"), Some(12104));
+        assert_eq!(parse_mc_version("1.8.9"), Some(10809));
+        assert_eq!(parse_mc_version("1.21"), Some(12100));
+        assert_eq!(parse_mc_version("1.x"), None);
+    }
+}
