@@ -140,12 +140,63 @@ impl fmt::Display for DriverInfo {
     }
 }
 
+/// Compatibility-profile entry points glow does not wrap: the fixed-function matrix stacks and
+/// client-state arrays that feed `gl_ModelViewMatrix`, `gl_Vertex`, `gl_Color`, … in legacy GLSL.
+#[allow(clippy::type_complexity)]
+pub struct LegacyGl {
+    pub matrix_mode: extern "system" fn(u32),
+    pub load_matrix_f: extern "system" fn(*const f32),
+    pub enable_client_state: extern "system" fn(u32),
+    pub disable_client_state: extern "system" fn(u32),
+    pub vertex_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub color_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub normal_pointer: extern "system" fn(u32, i32, *const std::ffi::c_void),
+    pub tex_coord_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub client_active_texture: extern "system" fn(u32),
+}
+
+/// Enums of the compatibility API that glow does not define.
+pub mod legacy {
+    pub const MODELVIEW: u32 = 0x1700;
+    pub const PROJECTION: u32 = 0x1701;
+    pub const TEXTURE: u32 = 0x1702;
+    pub const VERTEX_ARRAY: u32 = 0x8074;
+    pub const NORMAL_ARRAY: u32 = 0x8075;
+    pub const COLOR_ARRAY: u32 = 0x8076;
+    pub const TEXTURE_COORD_ARRAY: u32 = 0x8078;
+}
+
+impl LegacyGl {
+    fn load(egl: &egl::DynamicInstance<egl::EGL1_5>) -> Result<LegacyGl, DriverError> {
+        fn get<T: Copy>(egl: &egl::DynamicInstance<egl::EGL1_5>, name: &str) -> Result<T, DriverError> {
+            let f = egl
+                .get_proc_address(name)
+                .ok_or_else(|| DriverError::new(format!("the OpenGL driver has no {name} (not a compatibility profile)")))?;
+            debug_assert_eq!(std::mem::size_of::<T>(), std::mem::size_of::<extern "system" fn()>());
+            // SAFETY: T is the extern "system" fn type of this GL entry point; both are one pointer.
+            Ok(unsafe { std::mem::transmute_copy::<extern "system" fn(), T>(&f) })
+        }
+        Ok(LegacyGl {
+            matrix_mode: get(egl, "glMatrixMode")?,
+            load_matrix_f: get(egl, "glLoadMatrixf")?,
+            enable_client_state: get(egl, "glEnableClientState")?,
+            disable_client_state: get(egl, "glDisableClientState")?,
+            vertex_pointer: get(egl, "glVertexPointer")?,
+            color_pointer: get(egl, "glColorPointer")?,
+            normal_pointer: get(egl, "glNormalPointer")?,
+            tex_coord_pointer: get(egl, "glTexCoordPointer")?,
+            client_active_texture: get(egl, "glClientActiveTexture")?,
+        })
+    }
+}
+
 /// A current, headless OpenGL compatibility context.
 pub struct GlContext {
     egl: egl::DynamicInstance<egl::EGL1_5>,
     display: egl::Display,
     context: egl::Context,
     gl: glow::Context,
+    legacy: LegacyGl,
     info: DriverInfo,
     /// Contexts must stay on their thread.
     _not_send: std::marker::PhantomData<*const ()>,
@@ -183,7 +234,15 @@ impl GlContext {
                 glsl_version: gl.get_parameter_string(glow::SHADING_LANGUAGE_VERSION),
             }
         };
-        Ok(GlContext { egl, display, context, gl, info, _not_send: std::marker::PhantomData })
+        let legacy = match LegacyGl::load(&egl) {
+            Ok(l) => l,
+            Err(e) => {
+                let _ = egl.make_current(display, None, None, None);
+                let _ = egl.destroy_context(display, context);
+                return Err(e);
+            }
+        };
+        Ok(GlContext { egl, display, context, gl, legacy, info, _not_send: std::marker::PhantomData })
     }
 
     fn make_context(
@@ -221,6 +280,11 @@ impl GlContext {
             })
         };
         Ok((context, gl))
+    }
+
+    /// The fixed-function entry points of the compatibility profile.
+    pub fn legacy(&self) -> &LegacyGl {
+        &self.legacy
     }
 
     pub fn info(&self) -> &DriverInfo {
