@@ -37,6 +37,11 @@ enum Command {
         #[arg(long)]
         profile: Option<String>,
     },
+    /// Check any OptiFine shader pack (folder or zip) the way OptiFine loads it, headless: every
+    /// program of every world folder through OptiFine's preprocessor and naga, plus the links
+    /// between stages, render targets, uniforms and samplers. Exit 0: clean; 1: shader
+    /// errors; 2: unreadable input.
+    Validate(commands::validate::ValidateArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -62,6 +67,7 @@ fn main() -> ExitCode {
             };
             commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile })
         }
+        Command::Validate(args) => commands::validate::run(&args),
     }
 }
 

@@ -6,6 +6,7 @@ use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_glsl::{Diagnostic, diagnostic};
 
 pub mod build;
+pub mod validate;
 
 /// Prints diagnostics to stderr like a compiler, coloured on a terminal.
 pub fn print_diagnostics(diagnostics: &[Diagnostic], source_of: &dyn Fn(&str) -> Option<String>) {

@@ -1,0 +1,128 @@
+//! `tidepack validate PATH`: checks any OptiFine pack (folder or zip) as OptiFine would load it.
+//! Exit code 0: no errors (warnings allowed); 1: shader errors; 2: the input cannot be read.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
+use tidepack_glsl::macros::{Os, StandardMacros, Vendor, parse_mc_version};
+use tidepack_validate::{Options, Profiles, output};
+
+use super::print_diagnostics;
+
+#[derive(Args)]
+pub struct ValidateArgs {
+    /// Pack folder or zip (`shaders/` at its root or inside one wrapper folder), or a `shaders`
+    /// folder itself.
+    pub path: PathBuf,
+    /// How to print the diagnostics.
+    #[arg(long, value_enum, default_value_t = Format::Human)]
+    pub format: Format,
+    /// Validate under this profile of shaders.properties instead of the defaults.
+    #[arg(long, conflicts_with = "all_profiles")]
+    pub profile: Option<String>,
+    /// Validate under the defaults and every profile.
+    #[arg(long)]
+    pub all_profiles: bool,
+    /// Minecraft version for MC_VERSION.
+    #[arg(long, default_value = "1.21.4")]
+    pub mc_version: String,
+    /// MC_GL_VERSION (4.6 = 460).
+    #[arg(long, default_value_t = 460)]
+    pub gl_version: u32,
+    /// MC_GLSL_VERSION: the driver's highest GLSL version.
+    #[arg(long, default_value_t = 460)]
+    pub glsl_version: u32,
+    /// Operating system for MC_OS_*.
+    #[arg(long, value_enum, default_value_t = OsArg::Linux)]
+    pub os: OsArg,
+    /// GPU vendor for MC_GL_VENDOR_* and MC_GL_RENDERER_*.
+    #[arg(long, value_enum, default_value_t = VendorArg::Mesa)]
+    pub vendor: VendorArg,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Format {
+    /// Compiler-style diagnostics with snippets.
+    Human,
+    /// One JSON object on stdout.
+    Json,
+    /// GitHub Actions annotations on stdout.
+    Github,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum OsArg {
+    Windows,
+    Mac,
+    Linux,
+    Other,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum VendorArg {
+    Amd,
+    Intel,
+    Mesa,
+    Nvidia,
+    Other,
+}
+
+pub fn run(args: &ValidateArgs) -> ExitCode {
+    let Some(mc_version) = parse_mc_version(&args.mc_version) else {
+        eprintln!("error: --mc-version `{}` is not a version like 1.21.4", args.mc_version);
+        return ExitCode::from(2);
+    };
+    let macros = StandardMacros {
+        mc_version,
+        gl_version: args.gl_version,
+        glsl_version: args.glsl_version,
+        os: match args.os {
+            OsArg::Windows => Os::Windows,
+            OsArg::Mac => Os::Mac,
+            OsArg::Linux => Os::Linux,
+            OsArg::Other => Os::Other,
+        },
+        vendor: match args.vendor {
+            VendorArg::Amd => Vendor::Amd,
+            VendorArg::Intel => Vendor::Intel,
+            VendorArg::Mesa => Vendor::Mesa,
+            VendorArg::Nvidia => Vendor::Nvidia,
+            VendorArg::Other => Vendor::Other,
+        },
+        ..StandardMacros::default()
+    };
+    let profiles = match (&args.profile, args.all_profiles) {
+        (Some(name), _) => Profiles::Named(name.clone()),
+        (None, true) => Profiles::All,
+        (None, false) => Profiles::Defaults,
+    };
+    let options = Options { macros, profiles, ..Options::default() };
+    let report = match tidepack_validate::validate_path(&args.path, &options) {
+        Ok(report) => report,
+        Err(diag) => {
+            match args.format {
+                Format::Human => print_diagnostics(&[diag], &|_| None),
+                Format::Json => println!("{{\"input_error\": \"{}\"}}", diag.message.replace('\\', "\\\\").replace('"', "\\\"")),
+                Format::Github => println!("::error title=tidepack validate::{}", diag.message.replace('%', "%25").replace('\n', "%0A")),
+            }
+            return ExitCode::from(2);
+        }
+    };
+    let mut stdout = std::io::stdout().lock();
+    let written = match args.format {
+        Format::Human => {
+            let color = if std::io::stderr().is_terminal() { ColorChoice::Auto } else { ColorChoice::Never };
+            let mut stderr = StandardStream::stderr(color);
+            output::human(&report, &mut stderr).and_then(|summary| stdout.write_all(summary.as_bytes()))
+        }
+        Format::Json => stdout.write_all(output::json(&report).as_bytes()),
+        Format::Github => stdout.write_all(output::github(&report).as_bytes()),
+    };
+    if written.is_err() {
+        return ExitCode::from(2);
+    }
+    if report.errors() > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS }
+}

@@ -1,0 +1,368 @@
+//! Reading a pack (folder or zip) into memory, hostile input included.
+//!
+//! Nothing is ever written: zip entries are read into memory, so entry names with `..` or an
+//! absolute path can do no harm; they are reported and skipped like the other suspicious
+//! entries (zip bombs by size or compression ratio, symbolic links, unreadable entries).
+
+use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::Path;
+use std::sync::Arc;
+
+use tidepack_glsl::{Diagnostic, Location};
+
+/// Limits on what is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest single file, uncompressed.
+    pub max_file_bytes: u64,
+    /// Largest sum of all files read.
+    pub max_total_bytes: u64,
+    /// Largest compression ratio of an entry bigger than [`Limits::ratio_floor_bytes`].
+    pub max_ratio: u64,
+    pub ratio_floor_bytes: u64,
+    /// Most entries (files and folders) a pack may have.
+    pub max_entries: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_file_bytes: 16 << 20,
+            max_total_bytes: 512 << 20,
+            max_ratio: 200,
+            ratio_floor_bytes: 1 << 20,
+            max_entries: 100_000,
+        }
+    }
+}
+
+/// The files of a pack's `shaders/` folder, in memory.
+#[derive(Clone, Debug, Default)]
+pub struct PackFiles {
+    /// What the `shaders/` folder is called in messages (`pack/shaders/`, `pack.zip/shaders/`).
+    pub display_root: String,
+    /// Files by path relative to `shaders/` (`/` separators).
+    pub files: BTreeMap<String, Arc<[u8]>>,
+    /// Decoded text of the text files (shaders, includes, properties).
+    pub texts: BTreeMap<String, Arc<str>>,
+    /// Entries skipped or read with a caveat.
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Extensions read as text.
+const TEXT_EXTENSIONS: [&str; 13] =
+    ["vsh", "fsh", "gsh", "csh", "tcs", "tes", "glsl", "inc", "h", "hlsl", "properties", "lang", "txt"];
+
+fn is_text(path: &str) -> bool {
+    path.rsplit_once('.').is_some_and(|(_, ext)| TEXT_EXTENSIONS.contains(&ext.to_ascii_lowercase().as_str()))
+}
+
+/// Reads a pack folder or zip. An error means the input cannot be read at all (exit code 2).
+pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> {
+    let meta = std::fs::metadata(path)
+        .map_err(|e| Diagnostic::error(format!("cannot read {}: {e}", path.display()), None))?;
+    let mut raw = RawEntries::default();
+    let shown = path.display().to_string();
+    if meta.is_dir() {
+        read_folder(path, "", limits, &mut raw, 0)?;
+    } else {
+        let file = std::fs::File::open(path)
+            .map_err(|e| Diagnostic::error(format!("cannot open {}: {e}", path.display()), None))?;
+        read_zip(file, &shown, limits, &mut raw)?;
+    }
+    let root = find_shaders_root(&raw.files).ok_or_else(|| {
+        Diagnostic::error(
+            format!("{shown} holds no shader pack: no `shaders/` folder at its root or inside one wrapper folder"),
+            None,
+        )
+    })?;
+    let mut pack = PackFiles {
+        display_root: format!("{}/{root}", shown.trim_end_matches('/')),
+        warnings: raw.warnings,
+        ..Default::default()
+    };
+    for (name, bytes) in raw.files {
+        let Some(rel) = name.strip_prefix(&root) else { continue };
+        if rel.is_empty() {
+            continue;
+        }
+        if is_text(rel) {
+            let (text, warning) = decode(rel, &bytes);
+            pack.warnings.extend(warning);
+            pack.texts.insert(rel.to_string(), text);
+        }
+        pack.files.insert(rel.to_string(), bytes);
+    }
+    Ok(pack)
+}
+
+/// Builds a pack from in-memory files already relative to `shaders/` (tests, fuzzing).
+pub fn pack_from_memory(display_root: &str, files: impl IntoIterator<Item = (String, Vec<u8>)>) -> PackFiles {
+    let mut pack = PackFiles { display_root: display_root.to_string(), ..Default::default() };
+    for (name, bytes) in files {
+        if is_text(&name) {
+            let (text, warning) = decode(&name, &bytes);
+            pack.warnings.extend(warning);
+            pack.texts.insert(name.clone(), text);
+        }
+        pack.files.insert(name, Arc::from(bytes));
+    }
+    pack
+}
+
+/// UTF-8 text without a byte-order mark; other bytes are replaced, with a warning at the line
+/// of the first one.
+fn decode(path: &str, bytes: &[u8]) -> (Arc<str>, Option<Diagnostic>) {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(text) => (Arc::from(text), None),
+        Err(e) => {
+            let at = e.valid_up_to();
+            let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() as u32 + 1;
+            let warning = Diagnostic::warning(
+                format!("not valid UTF-8 (byte {at}); the bad bytes are read as U+FFFD"),
+                Some(Location::line(path, line)),
+            )
+            .with_note("outside comments such bytes are errors for every GLSL compiler; save the file as UTF-8");
+            (Arc::from(String::from_utf8_lossy(bytes).as_ref()), Some(warning))
+        }
+    }
+}
+
+#[derive(Default)]
+struct RawEntries {
+    /// Paths relative to the input root.
+    files: BTreeMap<String, Arc<[u8]>>,
+    warnings: Vec<Diagnostic>,
+    total: u64,
+    entries: usize,
+}
+
+impl RawEntries {
+    fn skip(&mut self, name: &str, why: String) {
+        self.warnings.push(Diagnostic::warning(format!("skipped `{}`: {why}", name.escape_debug()), None));
+    }
+}
+
+fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, depth: usize) -> Result<(), Diagnostic> {
+    if depth > 32 {
+        raw.skip(rel, "folders nest deeper than 32 levels".into());
+        return Ok(());
+    }
+    let entries = std::fs::read_dir(dir).map_err(|e| Diagnostic::error(format!("cannot list {}: {e}", dir.display()), None))?;
+    let mut names: Vec<_> = entries.filter_map(Result::ok).collect();
+    names.sort_by_key(|e| e.file_name());
+    for entry in names {
+        raw.entries += 1;
+        if raw.entries > limits.max_entries {
+            return Err(Diagnostic::error(format!("more than {} files and folders: not read", limits.max_entries), None));
+        }
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let path = if rel.is_empty() { name.clone() } else { format!("{rel}/{name}") };
+        let Ok(kind) = entry.file_type() else { continue };
+        if kind.is_symlink() {
+            raw.skip(&path, "symbolic links are not followed".into());
+        } else if kind.is_dir() {
+            read_folder(&entry.path(), &path, limits, raw, depth + 1)?;
+        } else if kind.is_file() {
+            let size = entry.metadata().map_or(0, |m| m.len());
+            if size > limits.max_file_bytes {
+                raw.skip(&path, format!("{size} bytes, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
+                continue;
+            }
+            if raw.total + size > limits.max_total_bytes {
+                raw.skip(&path, format!("the pack exceeds {} MiB in all", limits.max_total_bytes >> 20));
+                continue;
+            }
+            match std::fs::read(entry.path()) {
+                Ok(bytes) => {
+                    raw.total += bytes.len() as u64;
+                    raw.files.insert(path, Arc::from(bytes));
+                }
+                Err(e) => raw.skip(&path, format!("cannot read: {e}")),
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A zip entry name as a safe relative path, or why it is not one.
+fn safe_entry_name(name: &str) -> Result<String, &'static str> {
+    let name = name.replace('\\', "/");
+    if name.starts_with('/') || name.chars().nth(1) == Some(':') {
+        return Err("absolute path");
+    }
+    let mut parts = Vec::new();
+    for part in name.split('/') {
+        match part {
+            "" | "." => {}
+            ".." => return Err("path climbs out with `..`"),
+            p if p.chars().any(char::is_control) => return Err("control character in the name"),
+            p => parts.push(p),
+        }
+    }
+    if parts.is_empty() {
+        return Err("empty name");
+    }
+    Ok(parts.join("/"))
+}
+
+fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, raw: &mut RawEntries) -> Result<(), Diagnostic> {
+    let mut archive = zip::ZipArchive::new(reader)
+        .map_err(|e| Diagnostic::error(format!("{shown} is neither a folder nor a readable zip: {e}"), None))?;
+    if archive.len() > limits.max_entries {
+        return Err(Diagnostic::error(format!("{shown} has {} entries, more than {}: not read", archive.len(), limits.max_entries), None));
+    }
+    for index in 0..archive.len() {
+        let mut entry = match archive.by_index(index) {
+            Ok(entry) => entry,
+            Err(e) => {
+                raw.skip(&format!("entry #{index}"), format!("unreadable: {e}"));
+                continue;
+            }
+        };
+        let name = match entry.name() {
+            Ok(name) => name.to_string(),
+            Err(e) => {
+                raw.skip(&format!("entry #{index}"), format!("unreadable name: {e}"));
+                continue;
+            }
+        };
+        if entry.is_dir() {
+            continue;
+        }
+        let path = match safe_entry_name(&name) {
+            Ok(path) => path,
+            Err(why) => {
+                raw.skip(&name, format!("unsafe entry name ({why}); never extracted"));
+                continue;
+            }
+        };
+        if entry.is_symlink() {
+            raw.skip(&name, "symbolic link".into());
+            continue;
+        }
+        let (size, compressed) = (entry.size(), entry.compressed_size());
+        if size > limits.max_file_bytes {
+            raw.skip(&name, format!("{size} bytes uncompressed, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
+            continue;
+        }
+        if size > limits.ratio_floor_bytes && size / compressed.max(1) > limits.max_ratio {
+            raw.skip(&name, format!("compression ratio {}:1 looks like a zip bomb", size / compressed.max(1)));
+            continue;
+        }
+        if raw.total + size > limits.max_total_bytes {
+            raw.skip(&name, format!("the pack exceeds {} MiB uncompressed in all", limits.max_total_bytes >> 20));
+            continue;
+        }
+        // The header's size may lie: never read more than the limit.
+        let mut bytes = Vec::with_capacity(size.min(1 << 20) as usize);
+        match (&mut entry).take(limits.max_file_bytes + 1).read_to_end(&mut bytes) {
+            Ok(_) if bytes.len() as u64 > limits.max_file_bytes || bytes.len() as u64 != size => {
+                raw.skip(&name, format!("its data ({}+ bytes) does not match the size its header claims ({size})", bytes.len()));
+            }
+            Ok(_) => {
+                raw.total += bytes.len() as u64;
+                if raw.files.insert(path.clone(), Arc::from(bytes)).is_some() {
+                    raw.warnings.push(Diagnostic::warning(format!("`{path}` appears twice in the zip; the last copy is used"), None));
+                }
+            }
+            Err(e) => raw.skip(&name, format!("cannot decompress: {e}")),
+        }
+    }
+    Ok(())
+}
+
+/// `shaders/` at the root, inside exactly one wrapper folder, or the input is the `shaders`
+/// folder itself. Returns the prefix (`shaders/`, `Wrapper/shaders/` or ``).
+fn find_shaders_root(files: &BTreeMap<String, Arc<[u8]>>) -> Option<String> {
+    if files.keys().any(|p| p.starts_with("shaders/")) {
+        return Some("shaders/".into());
+    }
+    let tops: std::collections::BTreeSet<&str> = files.keys().filter_map(|p| p.split_once('/').map(|(t, _)| t)).collect();
+    let wrapped: Vec<&&str> = tops.iter().filter(|t| files.keys().any(|p| p.starts_with(&format!("{t}/shaders/")))).collect();
+    if let [wrapper] = wrapped.as_slice() {
+        return Some(format!("{wrapper}/shaders/"));
+    }
+    let looks_like_shaders = files.keys().any(|p| {
+        p == "shaders.properties" || (!p.contains('/') && (p.ends_with(".vsh") || p.ends_with(".fsh")))
+            || (p.starts_with("world") && (p.ends_with(".vsh") || p.ends_with(".fsh")))
+    });
+    looks_like_shaders.then(String::new)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    fn zip_of(entries: &[(&str, &[u8])]) -> Vec<u8> {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        let mut zip = zip::ZipWriter::new(&mut buf);
+        for (name, data) in entries {
+            zip.start_file(*name, zip::write::SimpleFileOptions::default()).unwrap();
+            zip.write_all(data).unwrap();
+        }
+        zip.finish().unwrap();
+        buf.into_inner()
+    }
+
+    #[test]
+    fn unsafe_zip_names_are_skipped_not_written() {
+        let data = zip_of(&[
+            ("shaders/final.fsh", b"#version 120\nvoid main() {}\n"),
+            ("shaders/../../evil.fsh", b"x"),
+            ("/etc/passwd", b"x"),
+            ("C:\\\\windows\\\\x.fsh", b"x"),
+        ]);
+        let mut raw = RawEntries::default();
+        read_zip(std::io::Cursor::new(data), "t.zip", &Limits::default(), &mut raw).unwrap();
+        assert_eq!(raw.files.keys().collect::<Vec<_>>(), ["shaders/final.fsh"]);
+        assert_eq!(raw.warnings.len(), 3, "{:?}", raw.warnings);
+        assert!(raw.warnings.iter().all(|w| w.message.contains("unsafe entry name")));
+    }
+
+    #[test]
+    fn zip_bombs_are_refused_by_ratio_and_size() {
+        let zeros = vec![0u8; 4 << 20];
+        let data = zip_of(&[("shaders/bomb.glsl", &zeros), ("shaders/final.fsh", b"void main() {}\n")]);
+        let mut raw = RawEntries::default();
+        read_zip(std::io::Cursor::new(data.clone()), "t.zip", &Limits::default(), &mut raw).unwrap();
+        assert!(!raw.files.contains_key("shaders/bomb.glsl"));
+        assert!(raw.warnings[0].message.contains("zip bomb"), "{:?}", raw.warnings);
+        let small = Limits { max_file_bytes: 1 << 20, ..Limits::default() };
+        let mut raw = RawEntries::default();
+        read_zip(std::io::Cursor::new(data), "t.zip", &small, &mut raw).unwrap();
+        assert!(raw.warnings[0].message.contains("limit for one file"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn garbage_is_unreadable_input() {
+        let mut raw = RawEntries::default();
+        let err = read_zip(std::io::Cursor::new(b"not a zip".to_vec()), "t.zip", &Limits::default(), &mut raw).unwrap_err();
+        assert!(err.message.contains("neither a folder nor a readable zip"), "{err}");
+    }
+
+    #[test]
+    fn finds_the_shaders_folder() {
+        let files = |names: &[&str]| -> BTreeMap<String, Arc<[u8]>> {
+            names.iter().map(|n| (n.to_string(), Arc::from(&b""[..]))).collect()
+        };
+        assert_eq!(find_shaders_root(&files(&["shaders/final.fsh"])), Some("shaders/".into()));
+        assert_eq!(find_shaders_root(&files(&["Pack v1/shaders/final.fsh", "Pack v1/readme.txt"])), Some("Pack v1/shaders/".into()));
+        assert_eq!(find_shaders_root(&files(&["final.fsh", "lib/a.glsl"])), Some(String::new()));
+        assert_eq!(find_shaders_root(&files(&["a/shaders/x.fsh", "b/shaders/y.fsh"])), None);
+        assert_eq!(find_shaders_root(&files(&["readme.txt"])), None);
+    }
+
+    #[test]
+    fn non_utf8_and_bom_decode_with_a_warning() {
+        let (text, warning) = decode("a.fsh", b"\xEF\xBB\xBF// caf\xE9\nvoid main() {}\n");
+        assert!(text.starts_with("// caf\u{FFFD}"));
+        assert_eq!(warning.unwrap().location.unwrap().line, 1);
+        let (text, warning) = decode("a.fsh", b"\xEF\xBB\xBFvoid main() {}\n");
+        assert_eq!(&*text, "void main() {}\n");
+        assert!(warning.is_none());
+    }
+}

@@ -1,0 +1,200 @@
+//! Checks across a program's stages and against the loader: vertex outputs against fragment
+//! inputs, the render-target directive against the outputs written, and uniform and sampler
+//! names against what OptiFine sets.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
+use tidepack_glsl::preprocess::Preprocessed;
+use tidepack_glsl::token::{TokenKind, tokenize};
+use tidepack_glsl::validate::LoweredStage;
+use tidepack_glsl::{Diagnostic, Location, Stage};
+
+use crate::known;
+use crate::properties::Properties;
+
+fn version_of(pre: &Preprocessed) -> u32 {
+    pre.version.as_ref().map_or(110, |v| v.number)
+}
+
+/// Identifier uses in a text: name → (count, first line).
+fn identifier_uses(text: &str) -> HashMap<&str, (usize, u32)> {
+    let mut uses: HashMap<&str, (usize, u32)> = HashMap::new();
+    for t in tokenize(text).unwrap_or_default() {
+        if t.kind == TokenKind::Ident {
+            uses.entry(t.text).or_insert((0, t.line)).0 += 1;
+        }
+    }
+    uses
+}
+
+fn describe(decl: &VaryingDecl) -> String {
+    match decl.array {
+        Some(n) => format!("{}{} {}[{n}]", decl.interpolation, decl.ty, decl.name),
+        None => format!("{}{} {}", decl.interpolation, decl.ty, decl.name),
+    }
+}
+
+/// Fragment inputs the vertex stage does not write, or writes with another type.
+pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Diagnostic> {
+    let (Ok(outputs), Ok(inputs)) = (
+        lower::varying_declarations(&vertex.text, Stage::Vertex, version_of(vertex)),
+        lower::varying_declarations(&fragment.text, Stage::Fragment, version_of(fragment)),
+    ) else {
+        return Vec::new();
+    };
+    let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
+    let uses = identifier_uses(&fragment.text);
+    let vertex_path = vertex.files.first().cloned().unwrap_or_default();
+    let mut found = Vec::new();
+    for input in &inputs {
+        let at = fragment.location(input.line);
+        match outputs.get(input.name.as_str()) {
+            None => {
+                // Only a statically used input must be written (GLSL 1.20 §4.3.6).
+                if uses.get(input.name.as_str()).is_some_and(|(n, _)| *n > 1) {
+                    found.push(
+                        Diagnostic::error(
+                            format!("fragment input `{}` is not an output of {vertex_path}: the program fails to link", input.name),
+                            at,
+                        )
+                        .with_note(format!("declare `varying {} {};` (or `out`) in the vertex shader and write it", input.ty, input.name)),
+                    );
+                }
+            }
+            Some(output) => {
+                let flat = |d: &VaryingDecl| d.interpolation.contains("flat");
+                if output.ty != input.ty || output.array != input.array || flat(output) != flat(input) {
+                    let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
+                    found.push(Diagnostic::error(
+                        format!(
+                            "`{}` here does not match `{}` at {out_at}: the program fails to link",
+                            describe(input),
+                            describe(output)
+                        ),
+                        at,
+                    ));
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The first line of `pre` where `needle` (a token sequence such as `gl_FragData [ 1 ]`) occurs.
+fn first_line_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
+    let tokens = tokenize(&pre.text).ok()?;
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    sig.windows(needle.len()).find(|w| w.iter().zip(needle).all(|(t, n)| t.text == *n)).map(|w| w[0].line)
+}
+
+/// `DRAWBUFFERS`/`RENDERTARGETS` against the outputs the fragment stage writes.
+pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> Vec<Diagnostic> {
+    let Some(targets) = &fragment.render_targets else { return Vec::new() };
+    let directive_at = Location::line(fragment.files[targets.line.file as usize].clone(), targets.line.line);
+    let name = if targets.modern { "RENDERTARGETS" } else { "DRAWBUFFERS" };
+    let listed: Vec<String> = targets.buffers.iter().map(u8::to_string).collect();
+    let shown = if targets.modern { format!("/* RENDERTARGETS: {} */", listed.join(",")) } else { format!("/* DRAWBUFFERS:{} */", listed.join("")) };
+    let mut found = Vec::new();
+    let mut seen = BTreeSet::new();
+    for b in &targets.buffers {
+        if !seen.insert(b) {
+            found.push(Diagnostic::error(
+                format!("{shown} lists buffer {b} twice: glDrawBuffers refuses the list and the program draws nothing"),
+                Some(directive_at.clone()),
+            ));
+        }
+    }
+    let outputs = &lowered.lowered.interface.outputs;
+    let count = targets.buffers.len() as u32;
+    for (location, shipped) in outputs {
+        if *location >= count {
+            let needle: Vec<&str> = if let Some(index) = shipped.strip_prefix("gl_FragData[") {
+                vec!["gl_FragData", "[", index.trim_end_matches(']'), "]"]
+            } else {
+                vec![shipped.as_str()]
+            };
+            let at = first_line_of(fragment, &needle).and_then(|l| fragment.location(l)).or(Some(directive_at.clone()));
+            found.push(
+                Diagnostic::error(
+                    format!("`{shipped}` is written but {shown} lists {count} buffer{}: the value goes nowhere", if count == 1 { "" } else { "s" }),
+                    at,
+                )
+                .with_note(format!("the {name} directive is at {directive_at}")),
+            );
+        }
+    }
+    let broadcast = outputs.values().any(|s| s == "gl_FragColor");
+    if !broadcast {
+        for (i, buffer) in targets.buffers.iter().enumerate() {
+            if !outputs.contains_key(&(i as u32)) {
+                let output = if targets.modern { format!("outColor{i}") } else { format!("gl_FragData[{i}]") };
+                found.push(Diagnostic::warning(
+                    format!("{shown} lists buffer {buffer} as output {i}, but `{output}` is never written: the buffer gets undefined values"),
+                    Some(directive_at.clone()),
+                ));
+            }
+        }
+    }
+    found
+}
+
+/// Line of the `uniform` declaration of `name` in `pre`.
+fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
+    let tokens = tokenize(&pre.text).ok()?;
+    let mut line_has_uniform = 0;
+    for t in &tokens {
+        if t.is_ident("uniform") {
+            line_has_uniform = t.line;
+        } else if t.kind == TokenKind::Ident && t.text == name && t.line == line_has_uniform {
+            return Some(t.line);
+        }
+    }
+    None
+}
+
+/// Uniforms and samplers OptiFine does not set, and known uniforms declared with another type.
+pub fn check_resources(stage: &LoweredStage, props: &Properties) -> Vec<Diagnostic> {
+    let pre = &stage.preprocessed;
+    let mut found = Vec::new();
+    for (name, kind) in &stage.lowered.interface.resources {
+        if name.starts_with("gl_") {
+            continue;
+        }
+        let at = || uniform_line(pre, name).and_then(|l| pre.location(l));
+        match kind {
+            ResourceKind::Texture { .. } => {
+                if !known::is_sampler(name) && !props.custom_samplers.contains(name) {
+                    found.push(Diagnostic::warning(
+                        format!("`{name}` is not a sampler OptiFine binds: it silently reads texture unit 0"),
+                        at(),
+                    ));
+                }
+            }
+            ResourceKind::Uniform { ty } => {
+                if let Some(custom) = props.custom_uniforms.get(name) {
+                    if custom != ty {
+                        found.push(Diagnostic::warning(
+                            format!("`{name}` is declared `{ty}` but shaders.properties defines it as `{custom}`"),
+                            at(),
+                        ));
+                    }
+                } else if let Some(expected) = known::uniform_type(name) {
+                    // glUniform1i sets a bool uniform too.
+                    if expected != ty && !(expected == "int" && ty == "bool") {
+                        found.push(Diagnostic::warning(
+                            format!("`{name}` is declared `{ty}` but OptiFine sets it as `{expected}`: it is never set"),
+                            at(),
+                        ));
+                    }
+                } else {
+                    found.push(Diagnostic::warning(
+                        format!("`{name}` is not a uniform OptiFine sets: it silently reads 0"),
+                        at(),
+                    ));
+                }
+            }
+        }
+    }
+    found
+}

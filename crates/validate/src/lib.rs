@@ -1,0 +1,402 @@
+//! `tidepack validate`: checks any OptiFine shader pack (folder or zip) the way OptiFine loads
+//! it, without a game or a GPU.
+//!
+//! Data flow: [`input::read_pack`] (in memory, hostile input refused entry by entry) →
+//! [`programs::find_programs`] (world folders, program names, other loaders' programs) →
+//! option sets (defaults, `shaders.properties` profiles) → per program and set:
+//! `tidepack_glsl::preprocess` with OptiFine's standard macros → `validate::lower_program` →
+//! naga (each distinct lowered text once, in parallel, panics caught) and the checks of
+//! [`interface`] → diagnostics located in the pack's files.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+use std::panic::AssertUnwindSafe;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use tidepack_glsl::macros::StandardMacros;
+use tidepack_glsl::options::{self, OptionKind, OptionSet};
+use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed};
+use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::{Diagnostic, Location, Stage};
+
+pub mod input;
+pub mod interface;
+pub mod known;
+pub mod output;
+pub mod programs;
+pub mod properties;
+
+pub use input::{Limits, PackFiles};
+pub use programs::{Loader, Program};
+
+/// Which option values to validate under.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Profiles {
+    /// The defaults written in the pack's sources.
+    #[default]
+    Defaults,
+    /// One profile of `shaders.properties`.
+    Named(String),
+    /// The defaults and every profile.
+    All,
+}
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub macros: StandardMacros,
+    pub profiles: Profiles,
+    pub limits: Limits,
+    /// Worker threads for naga (at least 1).
+    pub threads: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            macros: StandardMacros::default(),
+            profiles: Profiles::Defaults,
+            limits: Limits::default(),
+            threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Status {
+    Valid,
+    Invalid,
+    /// Run by another loader (or none): recognised, not validated.
+    Skipped(String),
+}
+
+#[derive(Clone, Debug)]
+pub struct ProgramReport {
+    pub id: String,
+    pub stages: Vec<String>,
+    pub status: Status,
+}
+
+#[derive(Debug)]
+pub struct Report {
+    pub pack: PackFiles,
+    pub programs: Vec<ProgramReport>,
+    /// Errors and warnings, deduplicated, located in the pack's files (paths relative to
+    /// `shaders/`; [`PackFiles::display_root`] says where that is).
+    pub diagnostics: Vec<Diagnostic>,
+    /// Labels of the option sets validated (`defaults`, `profile LOW`).
+    pub option_sets: Vec<String>,
+    /// Distinct lowered stages naga validated.
+    pub stages_validated: usize,
+    pub elapsed: Duration,
+}
+
+impl Report {
+    pub fn errors(&self) -> usize {
+        self.diagnostics.iter().filter(|d| d.is_error()).count()
+    }
+
+    pub fn warnings(&self) -> usize {
+        self.diagnostics.len() - self.errors()
+    }
+
+    /// Text of a pack file, for snippets.
+    pub fn source_of(&self, path: &str) -> Option<String> {
+        self.pack.texts.get(path).map(|t| t.to_string())
+    }
+}
+
+/// Reads and validates a pack folder or zip. `Err` means the input could not be read, or the
+/// options name a profile the pack lacks.
+pub fn validate_path(path: &std::path::Path, options: &Options) -> Result<Report, Diagnostic> {
+    let started = Instant::now();
+    let pack = input::read_pack(path, &options.limits)?;
+    let mut report = validate_pack(pack, options)?;
+    report.elapsed = started.elapsed();
+    Ok(report)
+}
+
+/// A pack's files with one option set applied, as OptiFine rewrites the option lines.
+pub struct SetProvider<'a> {
+    pack: &'a PackFiles,
+    set: &'a OptionSet,
+    cache: Mutex<HashMap<String, Arc<str>>>,
+}
+
+impl<'a> SetProvider<'a> {
+    pub fn new(pack: &'a PackFiles, set: &'a OptionSet) -> Self {
+        SetProvider { pack, set, cache: Mutex::new(HashMap::new()) }
+    }
+}
+
+impl FileProvider for SetProvider<'_> {
+    fn read(&self, path: &str) -> Result<Arc<str>, String> {
+        if let Some(text) = self.cache.lock().unwrap_or_else(|e| e.into_inner()).get(path) {
+            return Ok(text.clone());
+        }
+        let Some(text) = self.pack.texts.get(path) else {
+            if self.pack.files.contains_key(path) {
+                return Err("not a text file".into());
+            }
+            let lower = path.to_lowercase();
+            return Err(match self.pack.files.keys().find(|p| p.to_lowercase() == lower) {
+                Some(p) => format!("no such file in the pack; `{p}` differs only in case (Iris and Linux are case-sensitive)"),
+                None => "no such file in the pack".into(),
+            });
+        };
+        let text: Arc<str> = match options::apply(text, self.set) {
+            std::borrow::Cow::Borrowed(_) => text.clone(),
+            std::borrow::Cow::Owned(t) => Arc::from(t),
+        };
+        self.cache.lock().unwrap_or_else(|e| e.into_inner()).insert(path.to_string(), text.clone());
+        Ok(text)
+    }
+}
+
+/// Options declared in the pack's shader sources (first declaration wins).
+pub fn declared_options(pack: &PackFiles) -> BTreeMap<String, OptionKind> {
+    let mut found = BTreeMap::new();
+    for (path, text) in &pack.texts {
+        if path.ends_with(".properties") || path.ends_with(".lang") || path.ends_with(".txt") {
+            continue;
+        }
+        for decl in options::scan(text) {
+            found.entry(decl.name).or_insert(decl.kind);
+        }
+    }
+    found
+}
+
+/// One distinct lowered stage for naga, with the program and option set that produced it.
+struct Job {
+    stage: LoweredStage,
+    set: usize,
+    program: usize,
+}
+
+/// Validates a pack already in memory.
+pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagnostic> {
+    let started = Instant::now();
+    let props = pack.texts.get(properties::PATH).map(|t| properties::parse(t)).unwrap_or_default();
+    let declared = declared_options(&pack);
+    let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
+    let mut sets: Vec<(String, OptionSet)> = Vec::new();
+    let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
+        let (set, warnings) = properties::profile_set(&props, name, &declared)?;
+        diagnostics.extend(warnings);
+        sets.push((format!("profile {name}"), set));
+        Ok(())
+    };
+    match &options.profiles {
+        Profiles::Defaults => sets.push(("defaults".into(), OptionSet::new())),
+        Profiles::Named(name) => profile(name, &mut sets, &mut diagnostics)?,
+        Profiles::All => {
+            sets.push(("defaults".into(), OptionSet::new()));
+            for name in props.profiles.keys() {
+                if let Err(e) = profile(name, &mut sets, &mut diagnostics) {
+                    diagnostics.push(e);
+                }
+            }
+        }
+    }
+    let programs = programs::find_programs(pack.files.keys());
+    let macros = options.macros.preprocess_options();
+    let mut reports: Vec<ProgramReport> = programs
+        .iter()
+        .map(|p| ProgramReport {
+            id: p.id(),
+            stages: p.stages.iter().map(|(_, s)| s.clone()).chain(p.other_stages.iter().cloned()).collect(),
+            status: match &p.loader {
+                Loader::OptiFine => Status::Valid,
+                Loader::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
+                Loader::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
+            },
+        })
+        .collect();
+    // (program index, diagnostic) for everything found before naga.
+    let mut found: Vec<(usize, usize, Diagnostic)> = Vec::new();
+    let mut jobs: Vec<Job> = Vec::new();
+    let mut seen: HashSet<(String, String)> = HashSet::new();
+    for (set_index, (_, set)) in sets.iter().enumerate() {
+        let provider = SetProvider::new(&pack, set);
+        for (index, program) in programs.iter().enumerate() {
+            if program.loader != Loader::OptiFine || program.stages.is_empty() {
+                continue;
+            }
+            for other in &program.other_stages {
+                let note = Diagnostic::warning(
+                    format!("{other} is not checked: the lowering handles vertex and fragment stages only"),
+                    None,
+                );
+                found.push((index, set_index, note));
+            }
+            match check_program(program, &provider, &macros, &props) {
+                Ok((lowered, diags)) => {
+                    found.extend(diags.into_iter().map(|d| (index, set_index, d)));
+                    for stage in lowered {
+                        let path = stage.preprocessed.files[0].clone();
+                        if seen.insert((path, stage.lowered.text.clone())) {
+                            jobs.push(Job { stage, set: set_index, program: index });
+                        }
+                    }
+                }
+                Err(diags) => found.extend(diags.into_iter().map(|d| (index, set_index, d))),
+            }
+        }
+    }
+    let stages_validated = jobs.len();
+    for (program, set, diag) in run_naga(&jobs, &pack, &sets, options.threads) {
+        found.push((program, set, diag));
+    }
+    // One diagnostic per distinct message and place, noting where it was seen first.
+    let mut distinct: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
+    for (program, set, diag) in found {
+        if diag.is_error() {
+            reports[program].status = Status::Invalid;
+        }
+        if distinct.insert(diag.to_string()) {
+            let mut context = format!("in program {}", programs[program].id());
+            if sets.len() > 1 || !sets[set].1.is_empty() {
+                context.push_str(&format!(" with {}", sets[set].0));
+            }
+            diagnostics.push(diag.with_note(context));
+        }
+    }
+    diagnostics.sort_by(|a, b| {
+        let key = |d: &Diagnostic| (d.location.as_ref().map(|l| (l.path.clone(), l.line)), std::cmp::Reverse(d.severity));
+        key(a).cmp(&key(b))
+    });
+    Ok(Report {
+        pack,
+        programs: reports,
+        diagnostics,
+        option_sets: sets.into_iter().map(|(label, _)| label).collect(),
+        stages_validated,
+        elapsed: started.elapsed(),
+    })
+}
+
+/// Preprocesses and lowers a program's stages and runs the checks that need no naga.
+fn check_program(
+    program: &Program,
+    provider: &dyn FileProvider,
+    macros: &PreprocessOptions,
+    props: &properties::Properties,
+) -> Result<(Vec<LoweredStage>, Vec<Diagnostic>), Vec<Diagnostic>> {
+    let mut diags = Vec::new();
+    let mut preprocessed = Vec::new();
+    for (stage, path) in &program.stages {
+        match preprocess::preprocess(provider, path, macros) {
+            Ok(pre) => {
+                diags.extend(pre.warnings.iter().cloned());
+                preprocessed.push((*stage, Arc::new(pre)));
+            }
+            Err(e) => {
+                diags.push(e);
+                return Err(diags);
+            }
+        }
+    }
+    // With a geometry stage between them, vertex and fragment do not talk directly.
+    let linked = program.other_stages.iter().all(|s| !s.ends_with(".gsh"));
+    let groups: Vec<Vec<(Stage, Arc<Preprocessed>)>> =
+        if linked { vec![preprocessed.clone()] } else { preprocessed.iter().map(|s| vec![s.clone()]).collect() };
+    let mut lowered = Vec::new();
+    for group in groups {
+        match validate::lower_program(&group) {
+            Ok(stages) => lowered.extend(stages),
+            Err(e) => {
+                diags.push(e);
+                return Err(diags);
+            }
+        }
+    }
+    let vertex = preprocessed.iter().find(|(s, _)| *s == Stage::Vertex);
+    let fragment = preprocessed.iter().find(|(s, _)| *s == Stage::Fragment);
+    if let (Some((_, vs)), Some((_, fs)), true) = (vertex, fragment, linked) {
+        diags.extend(interface::check_varyings(vs, fs));
+    }
+    for stage in &lowered {
+        if stage.stage == Stage::Fragment {
+            diags.extend(interface::check_render_targets(&stage.preprocessed, stage));
+        }
+        diags.extend(interface::check_resources(stage, props));
+    }
+    Ok((lowered, diags))
+}
+
+/// Deepest bracket nesting naga is given; deeper text is refused before it can exhaust the
+/// parser's stack.
+pub const MAX_NESTING: usize = 256;
+
+/// The line where `text` first nests brackets deeper than [`MAX_NESTING`].
+fn too_deep(text: &str) -> Option<u32> {
+    let (mut depth, mut line) = (0usize, 1u32);
+    for b in text.bytes() {
+        match b {
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(line);
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            b'\n' => line += 1,
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Validates the jobs with naga on `threads` workers; a panic inside naga becomes an error.
+fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<(usize, usize, Diagnostic)> {
+    let next = AtomicUsize::new(0);
+    let workers = threads.max(1).min(jobs.len().max(1));
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                std::thread::Builder::new()
+                    .stack_size(64 << 20)
+                    .spawn_scoped(scope, || {
+                        let mut frontend = validate::Frontend::default();
+                        let mut found = Vec::new();
+                        loop {
+                            let i = next.fetch_add(1, Ordering::Relaxed);
+                            let Some(job) = jobs.get(i) else { break };
+                            let provider = SetProvider::new(pack, &sets[job.set].1);
+                            let entry = &job.stage.preprocessed.files[0];
+                            if let Some(line) = too_deep(&job.stage.lowered.text) {
+                                let at = job.stage.preprocessed.location(line);
+                                let diag = Diagnostic::error(format!("brackets nest deeper than {MAX_NESTING} levels"), at);
+                                found.push((job.program, job.set, diag));
+                                continue;
+                            }
+                            let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                                validate::validate_stage(&mut frontend, &job.stage, &provider)
+                            }));
+                            match result {
+                                Ok(Ok(_)) => {}
+                                Ok(Err(diags)) => found.extend(diags.into_iter().map(|d| (job.program, job.set, d))),
+                                Err(panic) => {
+                                    frontend = validate::Frontend::default();
+                                    let what = panic
+                                        .downcast_ref::<String>()
+                                        .cloned()
+                                        .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                                        .unwrap_or_default();
+                                    let diag = Diagnostic::error(
+                                        format!("naga crashed on this stage ({what}); a bug in naga, not necessarily in the shader"),
+                                        Some(Location::line(entry.clone(), 1)),
+                                    );
+                                    found.push((job.program, job.set, diag));
+                                }
+                            }
+                        }
+                        found
+                    })
+                    .expect("spawn a validation thread")
+            })
+            .collect();
+        handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
+    })
+}

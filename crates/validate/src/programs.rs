@@ -1,0 +1,201 @@
+//! Which files of a pack are programs, for which loader, in which world folder.
+
+use std::collections::BTreeMap;
+
+use tidepack_glsl::Stage;
+
+/// OptiFine's gbuffers programs and the program each falls back to when its files are absent
+/// (`None`: no fallback, fixed-function rendering).
+pub const GBUFFERS: [(&str, Option<&str>); 22] = [
+    ("gbuffers_basic", None),
+    ("gbuffers_line", Some("gbuffers_basic")),
+    ("gbuffers_textured", Some("gbuffers_basic")),
+    ("gbuffers_textured_lit", Some("gbuffers_textured")),
+    ("gbuffers_skybasic", Some("gbuffers_basic")),
+    ("gbuffers_skytextured", Some("gbuffers_textured")),
+    ("gbuffers_clouds", Some("gbuffers_textured")),
+    ("gbuffers_terrain", Some("gbuffers_textured_lit")),
+    ("gbuffers_damagedblock", Some("gbuffers_terrain")),
+    ("gbuffers_block", Some("gbuffers_terrain")),
+    ("gbuffers_beaconbeam", Some("gbuffers_textured")),
+    ("gbuffers_item", Some("gbuffers_textured_lit")),
+    ("gbuffers_entities", Some("gbuffers_textured_lit")),
+    ("gbuffers_entities_glowing", Some("gbuffers_entities")),
+    ("gbuffers_armor_glint", Some("gbuffers_textured")),
+    ("gbuffers_spidereyes", Some("gbuffers_textured")),
+    ("gbuffers_hand", Some("gbuffers_textured_lit")),
+    ("gbuffers_weather", Some("gbuffers_textured_lit")),
+    ("gbuffers_water", Some("gbuffers_terrain")),
+    ("gbuffers_hand_water", Some("gbuffers_hand")),
+    ("shadow", None),
+    ("final", None),
+];
+
+/// Fullscreen passes with numbered variants `name`, `name1` … `name99`.
+const NUMBERED: [&str; 4] = ["shadowcomp", "prepare", "deferred", "composite"];
+
+/// Programs only Iris runs (with why), and OptiFine names it never runs.
+const IRIS_ONLY: [&str; 9] = [
+    "gbuffers_terrain_solid",
+    "gbuffers_terrain_cutout",
+    "gbuffers_particles",
+    "gbuffers_particles_translucent",
+    "gbuffers_entities_translucent",
+    "gbuffers_block_translucent",
+    "gbuffers_lightning",
+    "shadow_entities_translucent",
+    "gbuffers_line_translucent",
+];
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Loader {
+    /// OptiFine runs it.
+    OptiFine,
+    /// Another loader runs it; OptiFine ignores the files. The text says which and why.
+    Other(String),
+    /// No loader runs a program of this name.
+    Unknown,
+}
+
+/// Who runs a program of this name.
+pub fn loader_of(name: &str) -> Loader {
+    if GBUFFERS.iter().any(|(n, _)| *n == name) {
+        return Loader::OptiFine;
+    }
+    let numbered = |base: &str| {
+        name.strip_prefix(base).is_some_and(|n| n.is_empty() || (n.len() <= 2 && n.parse::<u32>().is_ok_and(|v| v >= 1 && !n.starts_with('0'))))
+    };
+    if NUMBERED.iter().any(|b| numbered(b)) {
+        return Loader::OptiFine;
+    }
+    if name.starts_with("dh_") {
+        return Loader::Other("Distant Horizons (through Iris)".into());
+    }
+    if name.starts_with("voxy") {
+        return Loader::Other("Voxy (through Iris)".into());
+    }
+    if numbered("begin") || numbered("setup") || IRIS_ONLY.contains(&name) {
+        return Loader::Other("Iris".into());
+    }
+    if matches!(name, "shadow_solid" | "shadow_cutout") {
+        return Loader::Other("nobody: OptiFine reserves the name but never runs it".into());
+    }
+    Loader::Unknown
+}
+
+/// The program OptiFine runs for `name` in a world whose programs are `present`, following
+/// the fallbacks; `None` when it runs none.
+pub fn effective_program<'a>(name: &'a str, present: &dyn Fn(&str) -> bool) -> Option<&'a str> {
+    let mut current = name;
+    for _ in 0..GBUFFERS.len() {
+        if present(current) {
+            return Some(current);
+        }
+        current = GBUFFERS.iter().find(|(n, _)| *n == current)?.1?;
+    }
+    None
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Program {
+    /// `""` for the shaders folder itself, else `world0`, `world-1`, …
+    pub world: String,
+    pub name: String,
+    /// Stage files (paths relative to `shaders/`), vertex first.
+    pub stages: Vec<(Stage, String)>,
+    /// Other stage files (geometry, compute, tessellation) the lowering does not handle.
+    pub other_stages: Vec<String>,
+    pub loader: Loader,
+}
+
+impl Program {
+    /// `world-1/gbuffers_water` or `composite`.
+    pub fn id(&self) -> String {
+        if self.world.is_empty() { self.name.clone() } else { format!("{}/{}", self.world, self.name) }
+    }
+}
+
+/// World folders: `world0`, `world-1`, `world1`, `world7`, …
+fn is_world_folder(name: &str) -> bool {
+    name.strip_prefix("world").is_some_and(|n| n.strip_prefix('-').unwrap_or(n).parse::<u32>().is_ok())
+}
+
+/// Every program file of the pack's world folders (the root counts as one), grouped.
+pub fn find_programs<'a>(paths: impl Iterator<Item = &'a String>) -> Vec<Program> {
+    let mut found: BTreeMap<(String, String), Program> = BTreeMap::new();
+    for path in paths {
+        let (world, file) = match path.split_once('/') {
+            None => ("", path.as_str()),
+            Some((w, f)) if is_world_folder(w) && !f.contains('/') => (w, f),
+            _ => continue,
+        };
+        let Some((name, ext)) = file.rsplit_once('.') else { continue };
+        let stage = match ext {
+            "vsh" => Some(Stage::Vertex),
+            "fsh" => Some(Stage::Fragment),
+            "gsh" | "csh" | "tcs" | "tes" => None,
+            _ => continue,
+        };
+        // Compute shaders may have suffixes `_a` … `_z`: the program is the base name.
+        let base = if ext == "csh" { name.split_once('_').filter(|(_, s)| s.len() == 1).map_or(name, |(b, _)| b) } else { name };
+        let program = found.entry((world.to_string(), base.to_string())).or_insert_with(|| Program {
+            world: world.to_string(),
+            name: base.to_string(),
+            stages: Vec::new(),
+            other_stages: Vec::new(),
+            loader: loader_of(base),
+        });
+        match stage {
+            Some(stage) if base == name => program.stages.push((stage, path.clone())),
+            _ => program.other_stages.push(path.clone()),
+        }
+    }
+    let mut programs: Vec<Program> = found.into_values().collect();
+    for p in &mut programs {
+        p.stages.sort();
+    }
+    programs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classifies_program_names() {
+        for name in ["gbuffers_water", "composite", "composite15", "deferred99", "shadowcomp1", "prepare", "final", "shadow"] {
+            assert_eq!(loader_of(name), Loader::OptiFine, "{name}");
+        }
+        assert!(matches!(loader_of("dh_terrain"), Loader::Other(l) if l.contains("Distant Horizons")));
+        assert!(matches!(loader_of("begin1"), Loader::Other(l) if l == "Iris"));
+        assert!(matches!(loader_of("gbuffers_particles"), Loader::Other(_)));
+        for name in ["composite100", "composite01", "gbuffers_wtaer", "common"] {
+            assert_eq!(loader_of(name), Loader::Unknown, "{name}");
+        }
+    }
+
+    #[test]
+    fn fallbacks_follow_optifine() {
+        let present = |p: &str| p == "gbuffers_textured" || p == "gbuffers_terrain";
+        assert_eq!(effective_program("gbuffers_water", &present), Some("gbuffers_terrain"));
+        assert_eq!(effective_program("gbuffers_hand", &present), Some("gbuffers_textured"));
+        assert_eq!(effective_program("gbuffers_skybasic", &present), None);
+        assert_eq!(effective_program("composite", &present), None);
+    }
+
+    #[test]
+    fn groups_stages_by_world() {
+        let paths: Vec<String> = [
+            "gbuffers_water.vsh", "gbuffers_water.fsh", "world-1/gbuffers_water.fsh", "world-1/composite.gsh",
+            "lib/water.glsl", "program/gbuffers_water.fsh", "world0/deep/x.fsh", "composite_a.csh",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let programs = find_programs(paths.iter());
+        let ids: Vec<String> = programs.iter().map(Program::id).collect();
+        assert_eq!(ids, ["composite", "gbuffers_water", "world-1/composite", "world-1/gbuffers_water"]);
+        assert_eq!(programs[1].stages.len(), 2);
+        assert_eq!(programs[0].other_stages, ["composite_a.csh"]);
+    }
+}

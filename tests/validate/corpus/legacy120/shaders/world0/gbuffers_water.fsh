@@ -1,0 +1,4 @@
+#version 120
+#define OVERWORLD
+#define FSH
+#include "/program/gbuffers_water.glsl"

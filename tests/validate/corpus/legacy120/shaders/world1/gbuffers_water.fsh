@@ -1,0 +1,4 @@
+#version 120
+#define END
+#define FSH
+#include "/program/gbuffers_water.glsl"
