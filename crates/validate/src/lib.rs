@@ -62,6 +62,23 @@ impl Default for Options {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reserved_names_read_as_the_packs() {
+        assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
+        assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
+    }
+
+    #[test]
+    fn deep_brackets_are_refused_before_naga() {
+        assert_eq!(too_deep(&format!("a\n{}", "(".repeat(MAX_NESTING + 1))), Some(2));
+        assert_eq!(too_deep("f((a)[b]{c})"), None);
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Status {
     Valid,
@@ -325,6 +342,55 @@ fn check_program(
     Ok((lowered, diags))
 }
 
+/// Speaks of the pack's names instead of the lowering's reserved ones in naga's messages, and
+/// explains the messages that the lowering makes obscure.
+fn clarify(mut diag: Diagnostic) -> Diagnostic {
+    diag.message = unlower_names(&diag.message);
+    let sampling = ["texture", "textureLod", "textureProj", "textureGrad", "texelFetch", "textureSize", "textureOffset"];
+    let unknown = diag.message.strip_prefix("Unknown function '").and_then(|r| r.strip_suffix('\'')).map(str::to_string);
+    if let Some(name) = unknown
+        && sampling.contains(&name.as_str())
+    {
+        diag = diag.with_note(format!(
+            "no form of {name}() (texture2D, shadow2D, … in old GLSL) takes these arguments: check the sampler's type \
+             (sampler2D, sampler2DShadow, sampler3D, …) against the coordinates"
+        ));
+    }
+    diag
+}
+
+/// `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
+pub fn unlower_names(message: &str) -> String {
+    let prefix = tidepack_glsl::lower::RESERVED_PREFIX;
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find(prefix) {
+        let word_start = at == 0 || !rest.as_bytes()[at - 1].is_ascii_alphanumeric() && rest.as_bytes()[at - 1] != b'_';
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + prefix.len()..];
+        let len = tail.find(|c: char| !c.is_ascii_alphanumeric() && c != '_').unwrap_or(tail.len());
+        let name = &tail[..len];
+        if !word_start {
+            out.push_str(prefix);
+            out.push_str(name);
+        } else if let Some(n) = name.strip_prefix("FragData") {
+            out.push_str(&format!("gl_FragData[{n}]"));
+        } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
+            out.push_str(&format!("gl_TexCoord[{n}]"));
+        } else if let Some(x) = name.strip_prefix("sampler_").or_else(|| name.strip_prefix("bool_")) {
+            out.push_str(x);
+        } else if name == "main" {
+            out.push_str("main");
+        } else {
+            out.push_str("gl_");
+            out.push_str(name);
+        }
+        rest = &tail[len..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Deepest bracket nesting naga is given; deeper text is refused before it can exhaust the
 /// parser's stack.
 pub const MAX_NESTING: usize = 256;
@@ -376,7 +442,9 @@ fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], thread
                             }));
                             match result {
                                 Ok(Ok(_)) => {}
-                                Ok(Err(diags)) => found.extend(diags.into_iter().map(|d| (job.program, job.set, d))),
+                                Ok(Err(diags)) => {
+                                    found.extend(diags.into_iter().map(|d| (job.program, job.set, clarify(d))))
+                                }
                                 Err(panic) => {
                                     frontend = validate::Frontend::default();
                                     let what = panic

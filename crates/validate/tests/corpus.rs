@@ -1,0 +1,168 @@
+//! The validator against the corpus of tests/validate:
+//! - every pack in `corpus/` validates under the defaults and every profile with no error and
+//!   no warning (false errors on valid programs: goal 0);
+//! - every case in `planted/` reports each mistake listed in its `expect.txt`
+//!   (`severity path:line message-substring`) at that file and line; `args.txt` may name a
+//!   profile (`--profile NAME`);
+//! - a corpus pack zipped inside a wrapper folder, together with hostile entries, gives the same
+//!   verdict plus one warning per hostile entry.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use tidepack_validate::{Options, Profiles, Report, validate_path};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/validate")
+}
+
+fn dirs(under: &Path) -> Vec<PathBuf> {
+    let mut found: Vec<PathBuf> = std::fs::read_dir(under)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", under.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
+    found.sort();
+    found
+}
+
+fn show(report: &Report) -> String {
+    report.diagnostics.iter().map(|d| format!("\n    {d}")).collect()
+}
+
+fn options(profiles: Profiles) -> Options {
+    Options { profiles, threads: 2, ..Options::default() }
+}
+
+#[test]
+fn corpus_packs_validate_without_false_errors() {
+    let packs = dirs(&root().join("corpus"));
+    assert!(packs.len() >= 3, "corpus packs missing");
+    let mut programs = 0;
+    for pack in packs {
+        let report = validate_path(&pack, &options(Profiles::All)).unwrap_or_else(|e| panic!("{}: {e}", pack.display()));
+        assert!(report.diagnostics.is_empty(), "{}: {}", pack.display(), show(&report));
+        let validated = report.programs.iter().filter(|p| p.status == tidepack_validate::Status::Valid).count();
+        assert!(validated >= 2, "{}: only {validated} programs validated", pack.display());
+        programs += validated;
+    }
+    assert!(programs >= 20, "{programs} programs");
+}
+
+struct Expected {
+    error: bool,
+    path: String,
+    line: u32,
+    needle: String,
+}
+
+fn expectations(case: &Path) -> Vec<Expected> {
+    let text = std::fs::read_to_string(case.join("expect.txt")).unwrap();
+    text.lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| {
+            let mut parts = l.splitn(3, ' ');
+            let severity = parts.next().unwrap();
+            let (path, line) = parts.next().unwrap().rsplit_once(':').unwrap();
+            Expected {
+                error: severity == "error",
+                path: path.to_string(),
+                line: line.parse().unwrap(),
+                needle: parts.next().unwrap_or("").to_string(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn planted_mistakes_are_reported_where_they_were_planted() {
+    let cases = dirs(&root().join("planted"));
+    assert!(cases.len() >= 10, "planted cases missing");
+    let mut problems = Vec::new();
+    for case in &cases {
+        let args = std::fs::read_to_string(case.join("args.txt")).unwrap_or_default();
+        let profiles = match args.split_whitespace().collect::<Vec<_>>().as_slice() {
+            ["--profile", name] => Profiles::Named(name.to_string()),
+            [] => Profiles::Defaults,
+            other => panic!("{}: unsupported args {other:?}", case.display()),
+        };
+        let report = validate_path(case, &options(profiles)).unwrap();
+        let expected = expectations(case);
+        assert!(!expected.is_empty());
+        for e in &expected {
+            let hit = report.diagnostics.iter().any(|d| {
+                d.is_error() == e.error
+                    && d.location.as_ref().is_some_and(|l| l.path == e.path && l.line == e.line)
+                    && d.message.contains(&e.needle)
+            });
+            if !hit {
+                problems.push(format!(
+                    "{}: expected {} at {}:{} containing {:?}; got:{}",
+                    case.display(),
+                    if e.error { "an error" } else { "a warning" },
+                    e.path,
+                    e.line,
+                    e.needle,
+                    show(&report)
+                ));
+            }
+        }
+        let wants_error = expected.iter().any(|e| e.error);
+        assert_eq!(report.errors() > 0, wants_error, "{}: {}", case.display(), show(&report));
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn hostile_zip_entries_are_skipped_and_the_pack_still_validates() {
+    let pack = root().join("corpus/core330/shaders");
+    let dir = tempfile::tempdir().unwrap();
+    let zip_path = dir.path().join("pack.zip");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&zip_path).unwrap());
+    let opts = zip::write::SimpleFileOptions::default();
+    let mut stack = vec![pack.clone()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let p = entry.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p.strip_prefix(&pack).unwrap().to_string_lossy().replace('\\', "/");
+                zip.start_file(format!("Wrapper/shaders/{rel}"), opts).unwrap();
+                zip.write_all(&std::fs::read(&p).unwrap()).unwrap();
+            }
+        }
+    }
+    for name in ["../../escape.fsh", "/abs/final.fsh", "Wrapper/shaders/../../../x.glsl"] {
+        zip.start_file(name, opts).unwrap();
+        zip.write_all(b"#version 120\nvoid main() {}\n").unwrap();
+    }
+    zip.start_file("Wrapper/shaders/lib/bomb.glsl", opts).unwrap();
+    zip.write_all(&vec![b' '; 8 << 20]).unwrap();
+    zip.start_file("Wrapper/shaders/lib/latin1.glsl", opts).unwrap();
+    zip.write_all(b"// caf\xE9\n").unwrap();
+    zip.finish().unwrap();
+
+    let report = validate_path(&zip_path, &options(Profiles::Defaults)).unwrap();
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    let skipped = report.diagnostics.iter().filter(|d| d.message.starts_with("skipped")).count();
+    assert_eq!(skipped, 4, "{}", show(&report));
+    assert!(report.diagnostics.iter().any(|d| d.message.contains("not valid UTF-8")), "{}", show(&report));
+    assert!(report.pack.display_root.ends_with("pack.zip/Wrapper/shaders/"), "{}", report.pack.display_root);
+    assert!(!dir.path().join("escape.fsh").exists() && !dir.path().parent().unwrap().join("escape.fsh").exists());
+}
+
+#[test]
+fn unreadable_inputs_are_errors_not_panics() {
+    let dir = tempfile::tempdir().unwrap();
+    let garbage = dir.path().join("garbage.zip");
+    std::fs::write(&garbage, b"PK\x03\x04 this is not a zip").unwrap();
+    assert!(validate_path(&garbage, &options(Profiles::Defaults)).is_err());
+    assert!(validate_path(&dir.path().join("missing"), &options(Profiles::Defaults)).is_err());
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let err = validate_path(&empty, &options(Profiles::Defaults)).unwrap_err();
+    assert!(err.message.contains("no shader pack"), "{err}");
+    let err = validate_path(&root().join("corpus/core330"), &options(Profiles::Named("NOPE".into()))).unwrap_err();
+    assert!(err.message.contains("no profile `NOPE`"), "{err}");
+}

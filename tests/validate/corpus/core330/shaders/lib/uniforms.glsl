@@ -1,0 +1,12 @@
+uniform mat4 gbufferModelView;
+uniform mat4 gbufferModelViewInverse;
+uniform mat4 gbufferProjection;
+uniform mat4 gbufferProjectionInverse;
+uniform vec3 sunPosition;
+uniform vec3 skyColor;
+uniform float viewWidth;
+uniform float viewHeight;
+uniform float near;
+uniform float far;
+uniform int frameCounter;
+uniform ivec2 eyeBrightnessSmooth;

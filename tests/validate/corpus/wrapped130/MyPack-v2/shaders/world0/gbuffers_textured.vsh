@@ -1,0 +1,6 @@
+#version 130
+
+#define VERTEX_SHADER
+#define OVERWORLD
+
+#include "/program/gbuffers_textured.glsl"

@@ -1,0 +1,6 @@
+#version 130
+
+#define FRAGMENT_SHADER
+#define END
+
+#include "/program/gbuffers_entities.glsl"

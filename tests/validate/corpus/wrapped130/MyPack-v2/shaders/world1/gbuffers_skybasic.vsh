@@ -1,0 +1,6 @@
+#version 130
+
+#define VERTEX_SHADER
+#define END
+
+#include "/program/gbuffers_skybasic.glsl"

@@ -1,0 +1,2 @@
+float b = 1.0;
+#include "/lib/a.glsl"
