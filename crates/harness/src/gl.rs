@@ -1,0 +1,443 @@
+//! The same frame through a real OpenGL driver: the shipped GLSL 120/330 text (includes
+//! expanded, as OptiFine hands it to the driver) compiled by Mesa's compatibility context,
+//! legacy built-ins fed through the fixed-function API (matrix stacks, client-state arrays),
+//! `mc_Entity` bound with glBindAttribLocation, `outColorN` with glBindFragDataLocation.
+//! Inputs are identical to the wgpu path: the same mesh, textures, uniform values, blend
+//! modes and buffer formats. Buffers are in OpenGL's own orientation (row 0 at the bottom).
+
+use std::collections::BTreeMap;
+
+use tidepack_gldriver::glow::{self, HasContext as _};
+use tidepack_gldriver::{GlContext, GlProgram, legacy};
+
+use crate::HarnessError;
+use crate::gpu::{Source, fullscreen_quad, resolve_in_pack, terrain_mvp};
+use crate::images::FloatImage;
+use crate::mesh::{self, PackVertex, SceneMesh, TerrainVertex, offsets};
+use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram};
+use crate::scene::Scene;
+use crate::uniforms::{self, Pass, Value};
+
+/// A frame from the OpenGL driver.
+#[derive(Clone, Debug)]
+pub struct GlFrame {
+    pub image: FloatImage,
+    pub buffers: BTreeMap<u8, FloatImage>,
+    pub depth0: FloatImage,
+    pub depth1: FloatImage,
+}
+
+/// Opens the headless OpenGL context, or says which Debian packages are missing.
+pub fn context() -> Result<GlContext, HarnessError> {
+    GlContext::new().map_err(|e| HarnessError::NoGlDriver(e.to_string()))
+}
+
+const TERRAIN_VS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
+void main() { gl_Position = mvp * position; vColor = color; }\n";
+const TERRAIN_FS: &str = "#version 330 compatibility\nin vec4 vColor;\nout vec4 outColor;\nvoid main() { outColor = vColor; }\n";
+
+fn gl_err(what: &str) -> impl Fn(String) -> HarnessError + '_ {
+    move |e| HarnessError::Gl(format!("{what}: {e}"))
+}
+
+fn internal_format(format: BufferFormat) -> u32 {
+    match format {
+        BufferFormat::Rgba8 => glow::RGBA8,
+        BufferFormat::Rgba16 => glow::RGBA16,
+        BufferFormat::Rgba16F => glow::RGBA16F,
+        BufferFormat::Rgba32F => glow::RGBA32F,
+    }
+}
+
+fn gl_factor(f: BlendFactor) -> u32 {
+    match f {
+        BlendFactor::Zero => glow::ZERO,
+        BlendFactor::One => glow::ONE,
+        BlendFactor::SrcColor => glow::SRC_COLOR,
+        BlendFactor::OneMinusSrcColor => glow::ONE_MINUS_SRC_COLOR,
+        BlendFactor::DstColor => glow::DST_COLOR,
+        BlendFactor::OneMinusDstColor => glow::ONE_MINUS_DST_COLOR,
+        BlendFactor::SrcAlpha => glow::SRC_ALPHA,
+        BlendFactor::OneMinusSrcAlpha => glow::ONE_MINUS_SRC_ALPHA,
+        BlendFactor::DstAlpha => glow::DST_ALPHA,
+        BlendFactor::OneMinusDstAlpha => glow::ONE_MINUS_DST_ALPHA,
+    }
+}
+
+struct Textures {
+    atlas: glow::Texture,
+    lightmap: glow::Texture,
+    noise: glow::Texture,
+    custom: Vec<glow::Texture>,
+    colors: BTreeMap<u8, (glow::Texture, BufferFormat)>,
+    depth0: glow::Texture,
+    depth1: glow::Texture,
+    out: glow::Texture,
+}
+
+/// Renders `scene` with the shipped text through OpenGL.
+pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlFrame, HarnessError> {
+    let gl = ctx.gl();
+    let (w, h) = (scene.width() as i32, scene.height() as i32);
+    // SAFETY: every call below is on the context current on this thread, with objects it made.
+    unsafe {
+        let make_texture = |internal: u32, format: u32, ty: u32, width: i32, height: i32, data: Option<&[u8]>, linear: bool, repeat: bool| {
+            let t = gl.create_texture().map_err(gl_err("texture"))?;
+            gl.bind_texture(glow::TEXTURE_2D, Some(t));
+            gl.tex_image_2d(glow::TEXTURE_2D, 0, internal as i32, width, height, 0, format, ty, glow::PixelUnpackData::Slice(data));
+            let filter = if linear { glow::LINEAR } else { glow::NEAREST } as i32;
+            let wrap = if repeat { glow::REPEAT } else { glow::CLAMP_TO_EDGE } as i32;
+            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter);
+            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAG_FILTER, filter);
+            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_S, wrap);
+            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
+            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
+            Ok::<_, HarnessError>(t)
+        };
+        let rgba8 = |(tw, th, data): (u32, u32, Vec<u8>), linear: bool, repeat: bool| {
+            make_texture(glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE, tw as i32, th as i32, Some(&data), linear, repeat)
+        };
+        // Buffers, as in the wgpu path.
+        let mut buffers: std::collections::BTreeSet<u8> = [0].into();
+        buffers.extend(pack.water.render_targets.iter().copied());
+        for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface) {
+            if let Ok(Source::Color(n)) = resolve_in_pack(pack, &name, false) {
+                buffers.insert(n);
+            }
+        }
+        let mut colors = BTreeMap::new();
+        for b in buffers {
+            let format = pack.format_of(b);
+            colors.insert(b, (make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false)?, format));
+        }
+        let depth = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
+        let textures = Textures {
+            atlas: rgba8(mesh::atlas(), false, true)?,
+            lightmap: rgba8(mesh::lightmap(), true, false)?,
+            noise: rgba8(mesh::noise(256), true, true)?,
+            custom: pack
+                .custom_textures
+                .iter()
+                .map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp))
+                .collect::<Result<_, _>>()?,
+            colors,
+            depth0: depth()?,
+            depth1: depth()?,
+            out: make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
+        };
+
+        let fbo = gl.create_framebuffer().map_err(gl_err("framebuffer"))?;
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+        gl.viewport(0, 0, w, h);
+        let attach = |attachments: &[glow::Texture], depth: Option<glow::Texture>| -> Result<(), HarnessError> {
+            for i in 0..8 {
+                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i, glow::TEXTURE_2D, None, 0);
+            }
+            for (i, t) in attachments.iter().enumerate() {
+                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i as u32, glow::TEXTURE_2D, Some(*t), 0);
+            }
+            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::DEPTH_ATTACHMENT, glow::TEXTURE_2D, depth, 0);
+            let draw: Vec<u32> = (0..attachments.len() as u32).map(|i| glow::COLOR_ATTACHMENT0 + i).collect();
+            gl.draw_buffers(&draw);
+            let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+            if status != glow::FRAMEBUFFER_COMPLETE {
+                return Err(HarnessError::Gl(format!("framebuffer incomplete (0x{status:x})")));
+            }
+            Ok(())
+        };
+
+        // 1. clear
+        for (b, (t, _)) in &textures.colors {
+            attach(&[*t], Some(textures.depth0))?;
+            let c = match b {
+                0 => [scene.sky.fog_color[0] as f32, scene.sky.fog_color[1] as f32, scene.sky.fog_color[2] as f32, 1.0],
+                1 => [1.0; 4],
+                _ => [0.0; 4],
+            };
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
+        }
+        gl.depth_mask(true);
+        gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+        gl.enable(glow::DEPTH_TEST);
+        gl.depth_func(glow::LEQUAL);
+        gl.disable(glow::CULL_FACE);
+
+        // 2. terrain
+        let terrain = ctx
+            .compile_program(TERRAIN_VS, TERRAIN_FS, &[("position", 0), ("color", 1)], &[("outColor", 0)])
+            .map_err(|e| HarnessError::Gl(format!("terrain shader: {e}")))?;
+        attach(&[textures.colors[&0].0], Some(textures.depth0))?;
+        gl.use_program(Some(terrain.raw));
+        gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(terrain.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
+        let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(&mesh.terrain), glow::STATIC_DRAW);
+        let stride = std::mem::size_of::<TerrainVertex>() as i32;
+        gl.enable_vertex_attrib_array(0);
+        gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, 0);
+        gl.enable_vertex_attrib_array(1);
+        gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, 16);
+        gl.draw_arrays(glow::TRIANGLES, 0, mesh.terrain.len() as i32);
+        gl.disable_vertex_attrib_array(0);
+        gl.disable_vertex_attrib_array(1);
+        ctx.delete_program(terrain);
+
+        // 3. depth copy
+        gl.copy_image_sub_data(textures.depth0, glow::TEXTURE_2D, 0, 0, 0, 0, textures.depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+
+        // 4. gbuffers_water
+        let water = compile(ctx, &pack.water)?;
+        let targets: Vec<glow::Texture> = pack.water.render_targets.iter().map(|b| textures.colors[b].0).collect();
+        attach(&targets, Some(textures.depth0))?;
+        for (i, b) in pack.water.render_targets.iter().enumerate() {
+            match pack.blend_of(*b) {
+                Blend::Off => gl.disable_draw_buffer(glow::BLEND, i as u32),
+                Blend::Factors([s, d, sa, da]) => {
+                    gl.enable_draw_buffer(glow::BLEND, i as u32);
+                    gl.blend_func_separate_draw_buffer(i as u32, gl_factor(s), gl_factor(d), gl_factor(sa), gl_factor(da));
+                }
+            }
+        }
+        draw_program(ctx, pack, &pack.water, &water, scene, Pass::Gbuffers, &textures, &mesh.translucent)?;
+        for i in 0..8 {
+            gl.disable_draw_buffer(glow::BLEND, i);
+        }
+        ctx.delete_program(water);
+
+        // 5. composite, into the RGBA32F output for colortex0
+        let composite = compile(ctx, &pack.composite)?;
+        let mut outs = Vec::new();
+        for b in &pack.composite.render_targets {
+            outs.push(if *b == 0 {
+                textures.out
+            } else {
+                let format = textures.colors.get(b).map_or(BufferFormat::Rgba8, |c| c.1);
+                make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, false, false)?
+            });
+        }
+        attach(&outs, None)?;
+        gl.disable(glow::DEPTH_TEST);
+        gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
+        draw_program(ctx, pack, &pack.composite, &composite, scene, Pass::Fullscreen, &textures, &fullscreen_quad())?;
+        ctx.delete_program(composite);
+        gl.finish();
+
+        let read = |t: glow::Texture, is_depth: bool| -> Result<FloatImage, HarnessError> {
+            if is_depth {
+                attach(&[textures.out], Some(t))?;
+            } else {
+                attach(&[t], None)?;
+                gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            }
+            let mut image = FloatImage::new(w as u32, h as u32);
+            let channels = if is_depth { 1 } else { 4 };
+            let mut bytes = vec![0u8; (w * h) as usize * channels * 4];
+            let format = if is_depth { glow::DEPTH_COMPONENT } else { glow::RGBA };
+            gl.read_pixels(0, 0, w, h, format, glow::FLOAT, glow::PixelPackData::Slice(Some(&mut bytes)));
+            for (i, px) in image.pixels.iter_mut().enumerate() {
+                let f = |c: usize| f32::from_le_bytes(bytes[(i * channels + c) * 4..(i * channels + c) * 4 + 4].try_into().expect("4 bytes"));
+                *px = if is_depth { [f(0), f(0), f(0), 1.0] } else { [f(0), f(1), f(2), f(3)] };
+            }
+            Ok(image)
+        };
+        let image = read(textures.out, false)?;
+        let mut images = BTreeMap::new();
+        for (b, (t, _)) in &textures.colors {
+            images.insert(*b, read(*t, false)?);
+        }
+        let depth0 = read(textures.depth0, true)?;
+        let depth1 = read(textures.depth1, true)?;
+        let error = gl.get_error();
+        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        gl.delete_framebuffer(fbo);
+        gl.delete_buffer(vbo);
+        for t in [textures.atlas, textures.lightmap, textures.noise, textures.depth0, textures.depth1, textures.out]
+            .into_iter()
+            .chain(textures.custom.iter().copied())
+            .chain(textures.colors.values().map(|c| c.0))
+        {
+            gl.delete_texture(t);
+        }
+        if error != glow::NO_ERROR {
+            return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
+        }
+        Ok(GlFrame { image, buffers: images, depth0, depth1 })
+    }
+}
+
+/// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
+/// locations the lowering gave them (so both renderers feed and read the same slots).
+fn compile(ctx: &GlContext, program: &LoadedProgram) -> Result<GlProgram, HarnessError> {
+    let attributes: Vec<(&str, u32)> = program
+        .vertex
+        .interface
+        .inputs
+        .iter()
+        .filter(|(name, _)| !name.starts_with("gl_"))
+        .map(|(name, location)| (name.as_str(), *location))
+        .collect();
+    let outputs: Vec<(&str, u32)> = program
+        .fragment
+        .interface
+        .outputs
+        .iter()
+        .filter(|(_, name)| !name.starts_with("gl_"))
+        .map(|(location, name)| (name.as_str(), *location))
+        .collect();
+    ctx.compile_program(&program.vertex.gl_text, &program.fragment.gl_text, &attributes, &outputs)
+        .map_err(|e| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info())))
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn draw_program(
+    ctx: &GlContext,
+    pack: &LoadedPack,
+    program: &LoadedProgram,
+    compiled: &GlProgram,
+    scene: &Scene,
+    pass: Pass,
+    textures: &Textures,
+    vertices: &[PackVertex],
+) -> Result<(), HarnessError> {
+    let gl = ctx.gl();
+    let lg = ctx.legacy();
+    let values = uniforms::values(scene, pass);
+    let gbuffers = pass == Pass::Gbuffers;
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        gl.use_program(Some(compiled.raw));
+        // Uniforms and samplers by name.
+        let mut unit = 0u32;
+        let mut missing = Vec::new();
+        for index in 0..gl.get_active_uniforms(compiled.raw) {
+            let Some(active) = gl.get_active_uniform(compiled.raw, index) else { continue };
+            if active.name.starts_with("gl_") {
+                continue;
+            }
+            let name = active.name.trim_end_matches("[0]").to_string();
+            let location = gl.get_uniform_location(compiled.raw, &active.name);
+            if matches!(active.utype, glow::SAMPLER_2D) {
+                let texture = match resolve_in_pack(pack, &name, gbuffers) {
+                    Ok(Source::Atlas) => textures.atlas,
+                    Ok(Source::Lightmap) => textures.lightmap,
+                    Ok(Source::Noise) => textures.noise,
+                    Ok(Source::Custom(i)) => textures.custom[i],
+                    Ok(Source::Depth0) => textures.depth0,
+                    Ok(Source::Depth1) => textures.depth1,
+                    Ok(Source::Color(n)) => match textures.colors.get(&n) {
+                        Some(c) => c.0,
+                        None => {
+                            missing.push(format!("{name} (colortex{n} was never allocated)"));
+                            continue;
+                        }
+                    },
+                    Err(m) => {
+                        missing.push(m);
+                        continue;
+                    }
+                };
+                gl.active_texture(glow::TEXTURE0 + unit);
+                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                gl.uniform_1_i32(location.as_ref(), unit as i32);
+                unit += 1;
+                continue;
+            }
+            let Some(value) = values.get(&name) else {
+                missing.push(name);
+                continue;
+            };
+            set_uniform(gl, location.as_ref(), active.utype, value)
+                .map_err(|m| HarnessError::Uniform(format!("{} (OpenGL): uniform {name}: {m}", program.name)))?;
+        }
+        if !missing.is_empty() {
+            return Err(HarnessError::Uniform(format!("{} (OpenGL) declares what the harness cannot fill: {}", program.name, missing.join(", "))));
+        }
+        // Legacy matrices through the fixed-function stacks.
+        let m = uniforms::legacy_matrices(scene, pass);
+        let load = |mode: u32, matrix: glam::DMat4| {
+            (lg.matrix_mode)(mode);
+            let cols = matrix.to_cols_array().map(|v| v as f32);
+            (lg.load_matrix_f)(cols.as_ptr());
+        };
+        load(legacy::MODELVIEW, m.model_view);
+        load(legacy::PROJECTION, m.projection);
+        for (i, t) in m.texture.iter().enumerate() {
+            gl.active_texture(glow::TEXTURE0 + i as u32);
+            load(legacy::TEXTURE, *t);
+        }
+        (lg.matrix_mode)(legacy::MODELVIEW);
+        gl.active_texture(glow::TEXTURE0);
+
+        // Vertex arrays: legacy inputs through client state, user attributes generic.
+        let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(vertices), glow::STATIC_DRAW);
+        let stride = offsets::STRIDE as i32;
+        let at = |offset: u64| offset as usize as *const std::ffi::c_void;
+        (lg.enable_client_state)(legacy::VERTEX_ARRAY);
+        (lg.vertex_pointer)(4, glow::FLOAT, stride, at(offsets::POSITION));
+        (lg.enable_client_state)(legacy::COLOR_ARRAY);
+        (lg.color_pointer)(4, glow::FLOAT, stride, at(offsets::COLOR));
+        (lg.enable_client_state)(legacy::NORMAL_ARRAY);
+        (lg.normal_pointer)(glow::FLOAT, stride, at(offsets::NORMAL));
+        for (i, offset) in [offsets::UV0, offsets::UV1].into_iter().enumerate() {
+            (lg.client_active_texture)(glow::TEXTURE0 + i as u32);
+            (lg.enable_client_state)(legacy::TEXTURE_COORD_ARRAY);
+            (lg.tex_coord_pointer)(4, glow::FLOAT, stride, at(offset));
+        }
+        let mut generic = Vec::new();
+        for (name, location) in &program.vertex.interface.inputs {
+            if name.starts_with("gl_") {
+                continue;
+            }
+            let offset = match name.as_str() {
+                "mc_Entity" => offsets::ENTITY,
+                other => return Err(HarnessError::Unsupported(format!("vertex input {other}"))),
+            };
+            gl.enable_vertex_attrib_array(*location);
+            gl.vertex_attrib_pointer_f32(*location, 4, glow::FLOAT, false, stride, offset as i32);
+            generic.push(*location);
+        }
+        if !vertices.is_empty() {
+            gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
+        }
+        for location in generic {
+            gl.disable_vertex_attrib_array(location);
+        }
+        for i in 0..2 {
+            (lg.client_active_texture)(glow::TEXTURE0 + i);
+            (lg.disable_client_state)(legacy::TEXTURE_COORD_ARRAY);
+        }
+        (lg.client_active_texture)(glow::TEXTURE0);
+        for state in [legacy::VERTEX_ARRAY, legacy::COLOR_ARRAY, legacy::NORMAL_ARRAY] {
+            (lg.disable_client_state)(state);
+        }
+        gl.delete_buffer(vbo);
+        gl.use_program(None);
+    }
+    Ok(())
+}
+
+unsafe fn set_uniform(gl: &glow::Context, location: Option<&glow::UniformLocation>, ty: u32, value: &Value) -> Result<(), String> {
+    let expect = |glsl: &str| -> Result<(), String> {
+        if value.glsl_type().split('[').next() == Some(glsl) { Ok(()) } else { Err(format!("declared {glsl}, the harness provides {}", value.glsl_type())) }
+    };
+    let f = value.as_f32();
+    let i = value.as_i32();
+    // SAFETY: the caller holds the current context and the program is in use.
+    unsafe {
+        match ty {
+            glow::FLOAT => expect("float").map(|_| gl.uniform_1_f32_slice(location, &f)),
+            glow::FLOAT_VEC2 => expect("vec2").map(|_| gl.uniform_2_f32_slice(location, &f)),
+            glow::FLOAT_VEC3 => expect("vec3").map(|_| gl.uniform_3_f32_slice(location, &f)),
+            glow::FLOAT_VEC4 => expect("vec4").map(|_| gl.uniform_4_f32_slice(location, &f)),
+            glow::INT => expect("int").map(|_| gl.uniform_1_i32_slice(location, &i)),
+            glow::INT_VEC2 => expect("ivec2").map(|_| gl.uniform_2_i32_slice(location, &i)),
+            glow::INT_VEC3 => expect("ivec3").map(|_| gl.uniform_3_i32_slice(location, &i)),
+            glow::INT_VEC4 => expect("ivec4").map(|_| gl.uniform_4_i32_slice(location, &i)),
+            glow::FLOAT_MAT3 => expect("mat3").map(|_| gl.uniform_matrix_3_f32_slice(location, false, &f)),
+            glow::FLOAT_MAT4 => expect("mat4").map(|_| gl.uniform_matrix_4_f32_slice(location, false, &f)),
+            other => Err(format!("GL type 0x{other:x} is not supported by the harness")),
+        }
+    }
+}

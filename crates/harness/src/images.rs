@@ -1,0 +1,144 @@
+//! Float images in OpenGL orientation (row 0 is the bottom of the screen), PNG output (flipped
+//! back to top-first), and the comparisons the tests and the GL check use.
+
+use std::path::Path;
+
+use crate::HarnessError;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloatImage {
+    pub width: u32,
+    pub height: u32,
+    /// Bottom row first.
+    pub pixels: Vec<[f32; 4]>,
+}
+
+impl FloatImage {
+    pub fn new(width: u32, height: u32) -> FloatImage {
+        FloatImage { width, height, pixels: vec![[0.0; 4]; (width * height) as usize] }
+    }
+
+    /// The pixel at column x of row y counted from the bottom.
+    pub fn at(&self, x: u32, y: u32) -> [f32; 4] {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Pixels that are NaN or infinite in any channel.
+    pub fn non_finite(&self) -> usize {
+        self.pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count()
+    }
+
+    /// 8-bit RGBA, top row first, each channel clamped and rounded as a UNORM8 target would.
+    pub fn to_rgba8_top_first(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.pixels.len() * 4);
+        for y in (0..self.height).rev() {
+            for x in 0..self.width {
+                out.extend(self.at(x, y).map(to_unorm8));
+            }
+        }
+        out
+    }
+
+    /// Writes a PNG (opaque: alpha is forced to 255 unless `keep_alpha`).
+    pub fn write_png(&self, path: &Path, keep_alpha: bool) -> Result<(), HarnessError> {
+        let mut bytes = self.to_rgba8_top_first();
+        if !keep_alpha {
+            bytes.chunks_exact_mut(4).for_each(|p| p[3] = 255);
+        }
+        write_rgba8_png(path, self.width, self.height, &bytes)
+    }
+
+    /// A depth image as grey levels stretched over the non-sky range (for viewing only).
+    pub fn depth_for_viewing(&self) -> FloatImage {
+        let (lo, hi) = self
+            .pixels
+            .iter()
+            .map(|p| p[0])
+            .filter(|d| *d < 1.0)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
+        let range = if hi > lo { hi - lo } else { 1.0 };
+        FloatImage {
+            width: self.width,
+            height: self.height,
+            pixels: self
+                .pixels
+                .iter()
+                .map(|p| {
+                    let v = if p[0] >= 1.0 { 1.0 } else { (p[0] - lo) / range * 0.9 };
+                    [v, v, v, 1.0]
+                })
+                .collect(),
+        }
+    }
+}
+
+pub fn to_unorm8(c: f32) -> u8 {
+    if c.is_nan() { 0 } else { (c.clamp(0.0, 1.0) * 255.0).round() as u8 }
+}
+
+pub fn write_rgba8_png(path: &Path, width: u32, height: u32, rgba_top_first: &[u8]) -> Result<(), HarnessError> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", dir.display())))?;
+    }
+    image::save_buffer(path, rgba_top_first, width, height, image::ColorType::Rgba8)
+        .map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", path.display())))
+}
+
+/// Reads a PNG as 8-bit RGBA, top row first.
+pub fn read_rgba8_png(path: &Path) -> Result<(u32, u32, Vec<u8>), HarnessError> {
+    let img = image::open(path).map_err(|e| HarnessError::Io(format!("cannot read {}: {e}", path.display())))?;
+    let rgba = img.to_rgba8();
+    Ok((rgba.width(), rgba.height(), rgba.into_raw()))
+}
+
+/// Largest absolute difference per channel (RGBA) of two float images, after clamping both to
+/// 0..1 as the displayed 8-bit image does; NaN anywhere counts as a difference of 1.
+pub fn max_channel_difference(a: &FloatImage, b: &FloatImage) -> [f32; 4] {
+    assert_eq!((a.width, a.height), (b.width, b.height), "images of different sizes");
+    let mut max = [0.0f32; 4];
+    for (p, q) in a.pixels.iter().zip(&b.pixels) {
+        for c in 0..4 {
+            let d = if p[c].is_nan() || q[c].is_nan() { 1.0 } else { (p[c].clamp(0.0, 1.0) - q[c].clamp(0.0, 1.0)).abs() };
+            max[c] = max[c].max(d);
+        }
+    }
+    max
+}
+
+/// Pixels whose RGB differ by more than `threshold` in some channel.
+pub fn count_differing(a: &FloatImage, b: &FloatImage, threshold: f32) -> usize {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| (0..3).any(|c| (p[c].clamp(0.0, 1.0) - q[c].clamp(0.0, 1.0)).abs() > threshold || p[c].is_nan() != q[c].is_nan()))
+        .count()
+}
+
+/// PSNR in dB over the RGB channels of two 8-bit RGBA images (infinite when identical).
+pub fn psnr_rgb8(a: &[u8], b: &[u8]) -> f64 {
+    assert_eq!(a.len(), b.len(), "images of different sizes");
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (p, q) in a.chunks_exact(4).zip(b.chunks_exact(4)) {
+        for c in 0..3 {
+            let d = p[c] as f64 - q[c] as f64;
+            sum += d * d;
+            n += 1;
+        }
+    }
+    if sum == 0.0 {
+        return f64::INFINITY;
+    }
+    let mse = sum / n as f64;
+    10.0 * (255.0 * 255.0 / mse).log10()
+}
+
+/// A difference image of two 8-bit RGBA images: |a - b| per channel, amplified 8×, opaque.
+pub fn difference_rgb8(a: &[u8], b: &[u8]) -> Vec<u8> {
+    a.chunks_exact(4)
+        .zip(b.chunks_exact(4))
+        .flat_map(|(p, q)| {
+            let d = |c: usize| ((p[c] as i32 - q[c] as i32).unsigned_abs() * 8).min(255) as u8;
+            [d(0), d(1), d(2), 255]
+        })
+        .collect()
+}

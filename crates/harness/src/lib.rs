@@ -1,0 +1,66 @@
+//! The mock-uniform harness: renders the pack's gbuffers_water and composite programs headless
+//! through a small imitation of OptiFine's pipeline in wgpu ([`gpu`]), with uniforms filled
+//! by their OptiFine names through naga's reflection ([`uniforms`]), for scenes described in
+//! TOML ([`scene`]). The same scene can be drawn with the shipped GLSL 120/330 through a real
+//! OpenGL compatibility context ([`gl`]) to prove the lowering changes nothing.
+//!
+//! What is rendered is the lowered form of exactly the shipped text ([`program`]); the only
+//! change is a wrapper `main` on the vertex stage's last line that maps OpenGL's clip space to
+//! wgpu's.
+
+use std::fmt;
+
+pub mod gl;
+pub mod gpu;
+pub mod images;
+pub mod mesh;
+pub mod program;
+pub mod scene;
+pub mod uniforms;
+
+pub use gpu::{Frame, Gpu, PassTiming};
+pub use images::FloatImage;
+pub use program::{LoadedPack, PackSelection};
+pub use scene::Scene;
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum HarnessError {
+    /// No Vulkan adapter (names the Debian package).
+    NoAdapter(String),
+    /// No headless OpenGL (names the Debian packages).
+    NoGlDriver(String),
+    Scene(String),
+    /// The pack does not generate, preprocess, lower or validate.
+    Pack(String),
+    /// A uniform, sampler or input the shaders declare that the harness cannot fill.
+    Uniform(String),
+    /// Something the pack asks for that the harness's pipeline does not imitate.
+    Unsupported(String),
+    Wgpu(String),
+    /// The OpenGL driver refused the shipped text, or a GL call failed.
+    Gl(String),
+    Io(String),
+}
+
+impl fmt::Display for HarnessError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            HarnessError::NoAdapter(m) | HarnessError::NoGlDriver(m) => f.write_str(m),
+            HarnessError::Scene(m) => write!(f, "scene: {m}"),
+            HarnessError::Pack(m) => write!(f, "pack: {m}"),
+            HarnessError::Uniform(m) => write!(f, "{m}"),
+            HarnessError::Unsupported(m) => write!(f, "not supported by the harness: {m}"),
+            HarnessError::Wgpu(m) => write!(f, "wgpu: {m}"),
+            HarnessError::Gl(m) => write!(f, "OpenGL: {m}"),
+            HarnessError::Io(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for HarnessError {}
+
+/// Renders a scene with wgpu: builds the mesh with the pack's block ids and runs the frame.
+pub fn render_wgpu(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, passthrough: bool) -> Result<Frame, HarnessError> {
+    let mesh = mesh::build(scene, pack);
+    gpu::render(gpu, pack, scene, &mesh, passthrough)
+}

@@ -1,0 +1,238 @@
+//! Geometry of a scene: opaque terrain for the harness's own terrain shader, and the
+//! translucent quads (water surface, glass panes) for the pack's gbuffers_water, sorted back to
+//! front as Minecraft sorts translucent terrain. Positions are relative to the camera (computed
+//! in f64), so scenes far from the origin lose no precision before the shaders see them;
+//! gl_ModelViewMatrix is then gbufferModelView, as with OptiFine's chunk offsets.
+
+use glam::DVec3;
+
+use crate::scene::Scene;
+
+/// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
+/// can ask for is here (the pipeline binds those the shader declares).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct PackVertex {
+    /// gl_Vertex (w = 1).
+    pub position: [f32; 4],
+    /// gl_Color.
+    pub color: [f32; 4],
+    /// gl_Normal.
+    pub normal: [f32; 3],
+    /// gl_MultiTexCoord0: atlas uv.
+    pub uv0: [f32; 4],
+    /// gl_MultiTexCoord1: lightmap coordinates, raw 0..240 (block, sky).
+    pub uv1: [f32; 4],
+    /// mc_Entity: x = block id from block.properties (-1 unmapped), y = render type (1 fluid, -1 other).
+    pub entity: [f32; 4],
+}
+
+/// Byte offsets of the attributes of [`PackVertex`].
+pub mod offsets {
+    pub const POSITION: u64 = 0;
+    pub const COLOR: u64 = 16;
+    pub const NORMAL: u64 = 32;
+    pub const UV0: u64 = 44;
+    pub const UV1: u64 = 60;
+    pub const ENTITY: u64 = 76;
+    pub const STRIDE: u64 = 92;
+}
+
+/// The vertex of the harness's terrain shader: position and a lit colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
+pub struct TerrainVertex {
+    pub position: [f32; 4],
+    pub color: [f32; 4],
+}
+
+/// Sprites of the mock block atlas (`gtexture`): uv rectangles inset from the sprite edges so
+/// nearest sampling never reaches a neighbour.
+pub const WATER_SPRITE: [f32; 4] = [0.0625, 0.125, 0.4375, 0.875];
+pub const GLASS_SPRITE: [f32; 4] = [0.5625, 0.125, 0.9375, 0.875];
+
+/// Lightmap coordinates of everything in the scenes: no block light, full sky light.
+const LIGHT: [f32; 4] = [0.0, 240.0, 0.0, 1.0];
+
+#[derive(Clone, Debug, Default)]
+pub struct SceneMesh {
+    pub terrain: Vec<TerrainVertex>,
+    /// Triangles, back to front.
+    pub translucent: Vec<PackVertex>,
+}
+
+/// Block ids the translucent geometry carries in `mc_Entity.x`.
+pub trait BlockIds {
+    /// The id of a block name (`minecraft:water`) in block.properties, -1 when unmapped.
+    fn id_of(&self, block: &str) -> i32;
+}
+
+struct Quad {
+    corners: [DVec3; 4],
+    normal: DVec3,
+    color: [f64; 4],
+    sprite: [f32; 4],
+    entity: [f32; 4],
+}
+
+pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
+    let camera = scene.camera_position();
+    let origin = DVec3::from(scene.origin);
+    let sun = scene.sun_direction();
+    let rel = |p: DVec3| -> [f32; 4] {
+        let r = p + origin - camera;
+        [r.x as f32, r.y as f32, r.z as f32, 1.0]
+    };
+    let mut mesh = SceneMesh::default();
+
+    // Opaque terrain, lit once here (ambient + sun) so both renderers get identical colours.
+    let mut terrain_quad = |corners: [DVec3; 4], normal: DVec3, color: [f64; 3]| {
+        let light = 0.45 + 0.55 * normal.dot(sun).max(0.0);
+        let c = [(color[0] * light) as f32, (color[1] * light) as f32, (color[2] * light) as f32, 1.0];
+        for i in [0, 1, 2, 0, 2, 3] {
+            mesh.terrain.push(TerrainVertex { position: rel(corners[i]), color: c });
+        }
+    };
+    for g in &scene.terrain.ground {
+        let height = |x: f64, z: f64| g.height + g.slope[0] * (x - g.min[0]) + g.slope[1] * (z - g.min[1]);
+        let (nx, nz) = ((g.max[0] - g.min[0]).ceil() as i64, (g.max[1] - g.min[1]).ceil() as i64);
+        let normal = DVec3::new(-g.slope[0], 1.0, -g.slope[1]).normalize();
+        for i in 0..nx {
+            for k in 0..nz {
+                let x0 = g.min[0] + i as f64;
+                let z0 = g.min[1] + k as f64;
+                let x1 = (x0 + 1.0).min(g.max[0]);
+                let z1 = (z0 + 1.0).min(g.max[1]);
+                let shade = if (i + k) % 2 == 0 { 1.0 } else { 0.86 };
+                let color = [g.color[0] * shade, g.color[1] * shade, g.color[2] * shade];
+                let p = |x: f64, z: f64| DVec3::new(x, height(x, z), z);
+                terrain_quad([p(x0, z0), p(x0, z1), p(x1, z1), p(x1, z0)], normal, color);
+            }
+        }
+    }
+    for b in &scene.terrain.boxes {
+        for (corners, normal) in box_faces(DVec3::from(b.min), DVec3::from(b.max)) {
+            terrain_quad(corners, normal, b.color);
+        }
+    }
+
+    // Translucent quads: the water surface per block, glass pane faces.
+    let mut quads = Vec::new();
+    if let Some(w) = &scene.water {
+        let id = ids.id_of("minecraft:water") as f32;
+        let (nx, nz) = (((w.max[0] - w.min[0]) / w.cell).ceil() as i64, ((w.max[1] - w.min[1]) / w.cell).ceil() as i64);
+        for i in 0..nx {
+            for k in 0..nz {
+                let x0 = w.min[0] + i as f64 * w.cell;
+                let z0 = w.min[1] + k as f64 * w.cell;
+                let x1 = (x0 + w.cell).min(w.max[0]);
+                let z1 = (z0 + w.cell).min(w.max[1]);
+                let y = w.level;
+                quads.push(Quad {
+                    corners: [DVec3::new(x0, y, z0), DVec3::new(x0, y, z1), DVec3::new(x1, y, z1), DVec3::new(x1, y, z0)],
+                    normal: DVec3::Y,
+                    color: [w.tint[0], w.tint[1], w.tint[2], 1.0],
+                    sprite: WATER_SPRITE,
+                    entity: [id, 1.0, 0.0, 0.0],
+                });
+            }
+        }
+    }
+    for pane in &scene.glass {
+        let id = ids.id_of(&pane.block) as f32;
+        for (corners, normal) in box_faces(DVec3::from(pane.min), DVec3::from(pane.max)) {
+            quads.push(Quad { corners, normal, color: pane.color, sprite: GLASS_SPRITE, entity: [id, -1.0, 0.0, 0.0] });
+        }
+    }
+    // Back to front by centre distance; ties keep their order (the sort is stable).
+    let local_camera = camera - origin;
+    let distance = |q: &Quad| ((q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25 - local_camera).length_squared();
+    quads.sort_by(|a, b| distance(b).total_cmp(&distance(a)));
+    for q in &quads {
+        let [u0, v0, u1, v1] = q.sprite;
+        let uvs = [[u0, v0], [u0, v1], [u1, v1], [u1, v0]];
+        let color = q.color.map(|c| c as f32);
+        let normal = [q.normal.x as f32, q.normal.y as f32, q.normal.z as f32];
+        for i in [0, 1, 2, 0, 2, 3] {
+            mesh.translucent.push(PackVertex {
+                position: rel(q.corners[i]),
+                color,
+                normal,
+                uv0: [uvs[i][0], uvs[i][1], 0.0, 1.0],
+                uv1: LIGHT,
+                entity: q.entity,
+            });
+        }
+    }
+    mesh
+}
+
+/// The six faces of a box with outward normals.
+fn box_faces(min: DVec3, max: DVec3) -> Vec<([DVec3; 4], DVec3)> {
+    let p = |x: bool, y: bool, z: bool| {
+        DVec3::new(if x { max.x } else { min.x }, if y { max.y } else { min.y }, if z { max.z } else { min.z })
+    };
+    vec![
+        ([p(false, true, false), p(false, true, true), p(true, true, true), p(true, true, false)], DVec3::Y),
+        ([p(false, false, false), p(true, false, false), p(true, false, true), p(false, false, true)], DVec3::NEG_Y),
+        ([p(false, false, false), p(false, false, true), p(false, true, true), p(false, true, false)], DVec3::NEG_X),
+        ([p(true, false, false), p(true, true, false), p(true, true, true), p(true, false, true)], DVec3::X),
+        ([p(false, false, false), p(false, true, false), p(true, true, false), p(true, false, false)], DVec3::NEG_Z),
+        ([p(false, false, true), p(true, false, true), p(true, true, true), p(false, true, true)], DVec3::Z),
+    ]
+}
+
+/// Bytes of a slice of plain-old-data vertices.
+pub fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
+    // SAFETY: the vertex types are #[repr(C)] structs of f32 arrays: no padding, no pointers.
+    unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
+}
+
+/// The mock block atlas: 32×16 RGBA8, a water sprite (left) and a glass sprite (right), each
+/// one uniform colour (nearest sampling of a pattern would make the two renderers' texel
+/// choices at sprite edges matter).
+pub fn atlas() -> (u32, u32, Vec<u8>) {
+    let (w, h) = (32u32, 16u32);
+    let mut data = Vec::with_capacity((w * h * 4) as usize);
+    for _y in 0..h {
+        for x in 0..w {
+            data.extend_from_slice(if x < 16 { &[204, 204, 204, 184] } else { &[255, 255, 255, 255] });
+        }
+    }
+    (w, h, data)
+}
+
+/// The mock lightmap: 16×16 RGBA8, u = block light (warm), v = sky light.
+pub fn lightmap() -> (u32, u32, Vec<u8>) {
+    let mut data = Vec::with_capacity(16 * 16 * 4);
+    for v in 0..16 {
+        for u in 0..16 {
+            let sky = 0.05 + 0.95 * (v as f64 / 15.0);
+            let block = u as f64 / 15.0;
+            let r = (sky + block * 0.9).min(1.0);
+            let g = (sky + block * 0.7).min(1.0);
+            let b = (sky + block * 0.4).min(1.0);
+            data.extend([r, g, b].map(|c| (c * 255.0).round() as u8));
+            data.push(255);
+        }
+    }
+    (16, 16, data)
+}
+
+/// OptiFine's `noisetex`: RGB white noise, 256×256, opaque; a fixed-seed generator so every
+/// run and both renderers see the same texture.
+pub fn noise(size: u32) -> (u32, u32, Vec<u8>) {
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = || {
+        // xorshift64*
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 56) as u8
+    };
+    let mut data = Vec::with_capacity((size * size * 4) as usize);
+    for _ in 0..size * size {
+        data.extend([next(), next(), next(), 255]);
+    }
+    (size, size, data)
+}

@@ -1,0 +1,532 @@
+//! The pack's programs as the harness renders them: the shipped text of one dialect, under a
+//! profile and option overrides, preprocessed, lowered and validated by naga (the wgpu path),
+//! and the same shipped text with its includes expanded (the OpenGL path). Also what OptiFine
+//! reads from the pack around the GLSL: render targets, buffer formats, blend modes from
+//! shaders.properties, block ids from block.properties.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use tidepack_glsl::lower::{Interface, ResourceKind};
+use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
+use tidepack_glsl::preprocess::{self, FileProvider};
+use tidepack_glsl::token::{TokenKind, tokenize};
+use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::{Diagnostic, Stage};
+use tidepack_pack::dialect::Dialect;
+use tidepack_pack::pack_options;
+use tidepack_pack::shipped::{ShippedPack, WithOptions};
+use tidepack_pack::source::PackSource;
+use tidepack_pack::validation::standard_macros;
+
+use crate::HarnessError;
+use crate::mesh::BlockIds;
+
+/// Which pack text to render.
+#[derive(Clone, Debug)]
+pub struct PackSelection {
+    /// The folder with pack.toml and shaders/ (`shaderpack`).
+    pub source_dir: PathBuf,
+    pub dialect: Dialect,
+    /// Profile whose values are the shipped defaults (default: the manifest's default).
+    pub profile: Option<String>,
+    /// Option overrides, `NAME` → value as written (`on`/`off` for switches).
+    pub options: Vec<(String, String)>,
+}
+
+/// One stage ready for both renderers.
+#[derive(Debug)]
+pub struct LoadedStage {
+    pub stage: Stage,
+    /// Path inside `shaders/`.
+    pub path: String,
+    /// What a GL driver compiles: the shipped text, options applied, includes expanded, and
+    /// OptiFine's standard macros defined after `#version`.
+    pub gl_text: String,
+    /// The lowered GLSL 450 exactly as the toolchain produces it.
+    pub lowered_text: String,
+    /// The text naga parsed for wgpu: the lowered text, plus (vertex stage only) a wrapper
+    /// `main` on the last line that converts OpenGL clip space to wgpu's (see [`adapt_vertex`]).
+    pub harness_text: String,
+    pub interface: Interface,
+    pub module: naga::Module,
+    pub info: naga::valid::ModuleInfo,
+}
+
+#[derive(Debug)]
+pub struct LoadedProgram {
+    pub name: String,
+    pub vertex: LoadedStage,
+    pub fragment: LoadedStage,
+    /// Buffer numbers the fragment outputs go to, in output order (RENDERTARGETS/DRAWBUFFERS).
+    pub render_targets: Vec<u8>,
+}
+
+/// A colour buffer format OptiFine accepts and the harness renders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BufferFormat {
+    Rgba8,
+    Rgba16,
+    Rgba16F,
+    Rgba32F,
+}
+
+impl BufferFormat {
+    fn parse(name: &str) -> Option<BufferFormat> {
+        Some(match name {
+            "RGBA" | "RGBA8" | "RGB8" | "RGB" => BufferFormat::Rgba8,
+            "RGBA16" | "RGB16" => BufferFormat::Rgba16,
+            "RGBA16F" | "RGB16F" => BufferFormat::Rgba16F,
+            "RGBA32F" | "RGB32F" => BufferFormat::Rgba32F,
+            _ => return None,
+        })
+    }
+}
+
+/// A blend mode from shaders.properties: `off` or four factors.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Blend {
+    Off,
+    Factors([BlendFactor; 4]),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BlendFactor {
+    Zero,
+    One,
+    SrcColor,
+    OneMinusSrcColor,
+    DstColor,
+    OneMinusDstColor,
+    SrcAlpha,
+    OneMinusSrcAlpha,
+    DstAlpha,
+    OneMinusDstAlpha,
+}
+
+impl BlendFactor {
+    fn parse(name: &str) -> Option<BlendFactor> {
+        use BlendFactor::*;
+        Some(match name {
+            "ZERO" => Zero,
+            "ONE" => One,
+            "SRC_COLOR" => SrcColor,
+            "ONE_MINUS_SRC_COLOR" => OneMinusSrcColor,
+            "DST_COLOR" => DstColor,
+            "ONE_MINUS_DST_COLOR" => OneMinusDstColor,
+            "SRC_ALPHA" => SrcAlpha,
+            "ONE_MINUS_SRC_ALPHA" => OneMinusSrcAlpha,
+            "DST_ALPHA" => DstAlpha,
+            "ONE_MINUS_DST_ALPHA" => OneMinusDstAlpha,
+            _ => return None,
+        })
+    }
+}
+
+/// OptiFine's default blending of translucent gbuffers programs.
+pub const DEFAULT_TRANSLUCENT_BLEND: Blend = Blend::Factors([
+    BlendFactor::SrcAlpha,
+    BlendFactor::OneMinusSrcAlpha,
+    BlendFactor::One,
+    BlendFactor::OneMinusSrcAlpha,
+]);
+
+#[derive(Debug)]
+pub struct LoadedPack {
+    pub dialect: Dialect,
+    pub profile: String,
+    /// The option values in force (profile, then overrides).
+    pub options: OptionSet,
+    pub water: LoadedProgram,
+    pub composite: LoadedProgram,
+    /// Declared colour buffer formats (`const int colortexNFormat = ...;`).
+    pub formats: BTreeMap<u8, BufferFormat>,
+    /// Blend mode of gbuffers_water per colour buffer.
+    pub water_blend: BTreeMap<u8, Blend>,
+    /// block.properties: block name → id.
+    pub block_ids: HashMap<String, i32>,
+    /// Custom textures from shaders.properties (`texture.<stage>.<unit>=<path>`).
+    pub custom_textures: Vec<CustomTexture>,
+}
+
+/// A texture the pack binds itself to a sampler unit.
+#[derive(Clone, Debug)]
+pub struct CustomTexture {
+    /// `gbuffers` or `composite` (composite also covers deferred and final in this harness).
+    pub stage: String,
+    /// The sampler name it replaces (`colortex7`, `noisetex`, …).
+    pub unit: String,
+    pub path: String,
+    pub width: u32,
+    pub height: u32,
+    /// RGBA8, first row of the file first (as OptiFine uploads it: row 0 at texture coordinate 0).
+    pub rgba: Vec<u8>,
+    /// From `<path>.mcmeta`: linear filtering.
+    pub blur: bool,
+    /// From `<path>.mcmeta`: clamp instead of repeat.
+    pub clamp: bool,
+}
+
+impl LoadedPack {
+    pub fn format_of(&self, buffer: u8) -> BufferFormat {
+        self.formats.get(&buffer).copied().unwrap_or(BufferFormat::Rgba8)
+    }
+
+    pub fn blend_of(&self, buffer: u8) -> Blend {
+        self.water_blend.get(&buffer).cloned().unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
+    }
+
+    /// The custom texture bound to a sampler name in a gbuffers or full-screen program.
+    pub fn custom_texture(&self, name: &str, gbuffers: bool) -> Option<&CustomTexture> {
+        let stage = if gbuffers { "gbuffers" } else { "composite" };
+        self.custom_textures.iter().find(|t| t.stage == stage && t.unit == name)
+    }
+}
+
+impl BlockIds for LoadedPack {
+    fn id_of(&self, block: &str) -> i32 {
+        self.block_ids.get(block).copied().unwrap_or(-1)
+    }
+}
+
+fn diag_error(context: &str, diagnostics: &[Diagnostic]) -> HarnessError {
+    let list: Vec<String> = diagnostics.iter().map(|d| d.to_string()).collect();
+    HarnessError::Pack(format!("{context}:\n{}", list.join("\n")))
+}
+
+/// Generates the pack in the selected dialect and loads gbuffers_water and composite.
+pub fn load(selection: &PackSelection) -> Result<LoadedPack, HarnessError> {
+    let source = PackSource::load(&selection.source_dir).map_err(|d| diag_error("cannot read the pack", &[d]))?;
+    let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
+    let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
+    let defaults =
+        pack_options::profile_set(&source, &options, &profile).map_err(|d| diag_error("unknown profile", &[d]))?;
+    let pack = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
+        .map_err(|d| diag_error("the pack does not generate", &d))?;
+    let mut overrides = OptionSet::new();
+    for (name, value) in &selection.options {
+        let Some(option) = options.get(name) else {
+            let known: Vec<&str> = options.keys().map(String::as_str).collect();
+            return Err(HarnessError::Pack(format!("no option named {name}; the pack has {}", known.join(", "))));
+        };
+        let parsed = match &option.kind {
+            OptionKind::Switch { .. } => match value.as_str() {
+                "on" | "true" | "1" => OptionValue::Switch(true),
+                "off" | "false" | "0" => OptionValue::Switch(false),
+                _ => return Err(HarnessError::Pack(format!("{name} is a switch: set it to on or off, not {value}"))),
+            },
+            OptionKind::Value { values, .. } if values.contains(value) => OptionValue::Value(value.clone()),
+            OptionKind::Value { values, .. } => {
+                return Err(HarnessError::Pack(format!("{name} takes one of {}, not {value}", values.join(", "))));
+            }
+        };
+        overrides.insert(name.clone(), parsed);
+    }
+    let mut in_force = defaults.clone();
+    in_force.extend(overrides.clone());
+    let provider = WithOptions::new(&pack, &overrides);
+    let glsl_version = match selection.dialect {
+        Dialect::Glsl120 => 120,
+        Dialect::Glsl330 => 330,
+    };
+    let water = load_program(&provider, "gbuffers_water", glsl_version)?;
+    let composite = load_program(&provider, "composite", glsl_version)?;
+
+    let mut formats = BTreeMap::new();
+    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment] {
+        for (buffer, format) in declared_formats(&stage.gl_text)? {
+            formats.insert(buffer, format);
+        }
+    }
+    let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
+    let water_blend = blend_modes(&properties, "gbuffers_water")?;
+    let block_ids = provider.read("block.properties").map(|t| block_ids(&t)).unwrap_or_default();
+    let custom_textures = custom_textures(&pack, &provider, &properties, &selection.source_dir)?;
+    Ok(LoadedPack {
+        dialect: selection.dialect,
+        profile,
+        options: in_force,
+        water,
+        composite,
+        formats,
+        water_blend,
+        block_ids,
+        custom_textures,
+    })
+}
+
+fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> Result<LoadedProgram, HarnessError> {
+    let macros = standard_macros(glsl_version);
+    let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+    let mut pre = Vec::new();
+    for (stage, ext) in [(Stage::Vertex, "vsh"), (Stage::Fragment, "fsh")] {
+        let path = format!("{name}.{ext}");
+        provider.read(&path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
+        let p = preprocess::preprocess(provider, &path, &macros).map_err(|d| diag_error(&format!("{path}"), &[d]))?;
+        pre.push((stage, Arc::new(p)));
+    }
+    let render_targets = match &pre[1].1.render_targets {
+        Some(rt) => rt.buffers.clone(),
+        None => {
+            return Err(HarnessError::Pack(format!(
+                "{name}.fsh declares no RENDERTARGETS or DRAWBUFFERS; OptiFine and Iris disagree on the default"
+            )));
+        }
+    };
+    let lowered = validate::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
+    let mut frontend = validate::Frontend::default();
+    let mut stages = Vec::new();
+    for stage in lowered {
+        let path = stage.preprocessed.files[0].clone();
+        let lowered_text = stage.lowered.text.clone();
+        let harness_text = match stage.stage {
+            Stage::Vertex => adapt_vertex(&lowered_text)?,
+            Stage::Fragment => lowered_text.clone(),
+        };
+        let adapted = LoweredStage {
+            stage: stage.stage,
+            preprocessed: stage.preprocessed.clone(),
+            lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: stage.lowered.interface.clone() },
+        };
+        let valid = validate::validate_stage(&mut frontend, &adapted, provider)
+            .map_err(|d| diag_error(&format!("{path} does not validate"), &d))?;
+        let gl_text = preprocess::expand_includes(provider, &path, &defines)
+            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        stages.push(LoadedStage {
+            stage: stage.stage,
+            path,
+            gl_text,
+            lowered_text,
+            harness_text,
+            interface: stage.lowered.interface,
+            module: valid.module,
+            info: valid.info,
+        });
+    }
+    let fragment = stages.pop().expect("two stages");
+    let vertex = stages.pop().expect("two stages");
+    for (location, _) in &fragment.interface.outputs {
+        if *location as usize >= render_targets.len() {
+            return Err(HarnessError::Pack(format!(
+                "{name}.fsh writes output {location} but its render targets list only {} buffers",
+                render_targets.len()
+            )));
+        }
+    }
+    Ok(LoadedProgram { name: name.to_string(), vertex, fragment, render_targets })
+}
+
+/// The one change the harness makes to a lowered vertex shader: the shipped `main` becomes
+/// `tp_shipped_main`, and a new `main` on the last line calls it and then maps OpenGL's clip
+/// space to wgpu's: y flipped (buffers are stored bottom row first, as in OpenGL) and z from
+/// -w..w to 0..w (the depth buffer then holds OpenGL's window depth). No line is added, so
+/// naga's line numbers still map to the pack's files.
+pub fn adapt_vertex(lowered: &str) -> Result<String, HarnessError> {
+    let tokens = tokenize(lowered).map_err(|e| HarnessError::Pack(format!("lowered vertex shader: {}", e.message)))?;
+    let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let mut depth = 0i32;
+    let mut main_at = None;
+    for (k, &i) in sig.iter().enumerate() {
+        let t = &tokens[i];
+        if t.is_punct("{") {
+            depth += 1;
+        } else if t.is_punct("}") {
+            depth -= 1;
+        } else if depth == 0
+            && t.kind == TokenKind::Ident
+            && t.text == "main"
+            && k > 0
+            && tokens[sig[k - 1]].text == "void"
+            && sig.get(k + 1).is_some_and(|&j| tokens[j].is_punct("("))
+        {
+            // The definition, not a prototype: the next `)` is followed by `{`.
+            let close = (k + 1..sig.len()).find(|&j| tokens[sig[j]].is_punct(")"));
+            if close.and_then(|c| sig.get(c + 1)).is_some_and(|&j| tokens[j].is_punct("{")) {
+                main_at = Some(i);
+            }
+        }
+    }
+    let main_at = main_at.ok_or_else(|| HarnessError::Pack("the vertex shader has no `void main() { ... }`".into()))?;
+    let mut out = String::with_capacity(lowered.len() + 160);
+    for (i, t) in tokens.iter().enumerate() {
+        out.push_str(if i == main_at { "tp_shipped_main" } else { t.text });
+    }
+    if out.ends_with('\n') {
+        out.pop();
+    }
+    out.push_str(
+        " void main() { tp_shipped_main(); gl_Position.y = -gl_Position.y; \
+         gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w); }\n",
+    );
+    Ok(out)
+}
+
+/// `const int colortexNFormat = FORMAT;` (also inside comments, as OptiFine reads them) and
+/// the legacy `/* GAUXnFORMAT:FORMAT */`.
+fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
+    let aliases = [("gcolor", 0), ("gdepth", 1), ("gnormal", 2), ("composite", 3), ("gaux1", 4), ("gaux2", 5), ("gaux3", 6), ("gaux4", 7)];
+    let mut found = Vec::new();
+    for line in text.lines() {
+        let line = line.trim();
+        let Some(rest) = line.strip_prefix("const int ") else { continue };
+        let Some((name, value)) = rest.split_once('=') else { continue };
+        let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
+        let buffer = match buffer_name.strip_prefix("colortex").and_then(|n| n.parse::<u8>().ok()) {
+            Some(n) => n,
+            None => match aliases.iter().find(|(a, _)| *a == buffer_name) {
+                Some((_, n)) => *n,
+                None => continue,
+            },
+        };
+        let value = value.trim().trim_end_matches(';').trim();
+        let format = BufferFormat::parse(value).ok_or_else(|| {
+            HarnessError::Unsupported(format!("colortex{buffer}Format = {value}: the harness renders RGBA8, RGBA16, RGBA16F and RGBA32F buffers"))
+        })?;
+        found.push((buffer, format));
+    }
+    Ok(found)
+}
+
+/// `blend.<program>=` and `blend.<program>.<buffer>=` lines for one program.
+fn blend_modes(properties: &str, program: &str) -> Result<BTreeMap<u8, Blend>, HarnessError> {
+    let mut program_wide = None;
+    let mut per_buffer = BTreeMap::new();
+    for line in properties.lines() {
+        let line = line.trim();
+        if line.starts_with('#') {
+            continue;
+        }
+        let Some((key, value)) = line.split_once('=') else { continue };
+        let Some(rest) = key.trim().strip_prefix("blend.").and_then(|r| r.strip_prefix(program)) else { continue };
+        let value = value.trim();
+        let blend = if value == "off" {
+            Blend::Off
+        } else {
+            let factors: Vec<BlendFactor> = value.split_whitespace().filter_map(BlendFactor::parse).collect();
+            let factors: [BlendFactor; 4] = factors
+                .try_into()
+                .map_err(|_| HarnessError::Unsupported(format!("{key}={value}: expected off or four blend factors")))?;
+            Blend::Factors(factors)
+        };
+        if rest.is_empty() {
+            program_wide = Some(blend);
+        } else if let Some(buffer) = rest.strip_prefix(".colortex").and_then(|n| n.parse::<u8>().ok()) {
+            per_buffer.insert(buffer, blend);
+        } else {
+            return Err(HarnessError::Unsupported(format!("{key}: the harness reads blend.{program}.colortexN only")));
+        }
+    }
+    let mut modes = BTreeMap::new();
+    for buffer in 0..16u8 {
+        if let Some(b) = per_buffer.get(&buffer).cloned().or_else(|| program_wide.clone()) {
+            modes.insert(buffer, b);
+        }
+    }
+    Ok(modes)
+}
+
+/// `texture.<stage>.<unit>=<path>` lines: the PNG from the generated pack, or from the pack's
+/// source folder, with the filter and wrap of its `.mcmeta`.
+fn custom_textures(
+    pack: &ShippedPack,
+    provider: &dyn FileProvider,
+    properties: &str,
+    source_dir: &std::path::Path,
+) -> Result<Vec<CustomTexture>, HarnessError> {
+    let mut found = Vec::new();
+    for line in properties.lines() {
+        let Some((key, path)) = line.trim().split_once('=') else { continue };
+        let Some((stage, unit)) = key.trim().strip_prefix("texture.").and_then(|k| k.split_once('.')) else { continue };
+        let path = path.trim().trim_start_matches('/').to_string();
+        if !matches!(stage, "gbuffers" | "composite") {
+            return Err(HarnessError::Unsupported(format!("{key}: the harness runs gbuffers and composite programs only")));
+        }
+        if path.ends_with(".dat") || path.contains(':') {
+            return Err(HarnessError::Unsupported(format!("{key}={path}: only PNG textures inside the pack are read")));
+        }
+        let bytes: Vec<u8> = match pack.binaries.get(&path) {
+            Some(b) => b.to_vec(),
+            None => {
+                let on_disk = source_dir.join("shaders").join(&path);
+                std::fs::read(&on_disk).map_err(|e| {
+                    HarnessError::Pack(format!("{key}: {path} is neither generated nor at {} ({e})", on_disk.display()))
+                })?
+            }
+        };
+        let decoded = image::load_from_memory(&bytes)
+            .map_err(|e| HarnessError::Pack(format!("{key}: {path} is not a readable image: {e}")))?
+            .to_rgba8();
+        let meta = provider.read(&format!("{path}.mcmeta")).map(|t| t.to_string()).unwrap_or_default();
+        let flag = |name: &str| {
+            meta.split(&format!("\"{name}\"")).nth(1).is_some_and(|rest| rest.trim_start_matches([' ', ':']).starts_with("true"))
+        };
+        found.push(CustomTexture {
+            stage: stage.to_string(),
+            unit: unit.to_string(),
+            path: path.clone(),
+            width: decoded.width(),
+            height: decoded.height(),
+            blur: flag("blur"),
+            clamp: flag("clamp"),
+            rgba: decoded.into_raw(),
+        });
+    }
+    Ok(found)
+}
+
+/// `block.<id>=<names>` lines.
+fn block_ids(properties: &str) -> HashMap<String, i32> {
+    let mut ids = HashMap::new();
+    for line in properties.lines() {
+        let Some((key, names)) = line.trim().split_once('=') else { continue };
+        let Some(id) = key.trim().strip_prefix("block.").and_then(|n| n.parse::<i32>().ok()) else { continue };
+        for name in names.split_whitespace() {
+            let full = if name.contains(':') { name.to_string() } else { format!("minecraft:{name}") };
+            ids.entry(full).or_insert(id);
+        }
+    }
+    ids
+}
+
+/// The shipped name of a lowered resource: the interface maps shipped names to resource kinds;
+/// textures lowered from the atlas name `texture` are called `gtexture`.
+pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
+    interface
+        .resources
+        .iter()
+        .filter_map(|(name, kind)| match kind {
+            ResourceKind::Texture { binding, .. } => Some((name.clone(), *binding)),
+            ResourceKind::Uniform { .. } => None,
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn adapt_vertex_keeps_every_line() {
+        let text = "#version 450\nvoid helper() {}\nvoid main() {\n    gl_Position = vec4(1.0);\n}\n";
+        let adapted = adapt_vertex(text).unwrap();
+        assert_eq!(adapted.lines().count(), text.lines().count());
+        assert!(adapted.contains("void tp_shipped_main() {"));
+        assert!(adapted.lines().last().unwrap().starts_with("} void main() { tp_shipped_main();"));
+        assert!(adapt_vertex("#version 450\nvoid main();\n").is_err());
+    }
+
+    #[test]
+    fn formats_blend_and_ids_are_read() {
+        let formats = declared_formats("/*\nconst int colortex4Format = RGBA16;\nconst int gaux2Format = RGBA32F;\n*/").unwrap();
+        assert_eq!(formats, vec![(4, BufferFormat::Rgba16), (5, BufferFormat::Rgba32F)]);
+        assert!(declared_formats("const int colortex1Format = R11F_G11F_B10F;").is_err());
+        let modes = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO\nblend.composite=off", "gbuffers_water").unwrap();
+        assert_eq!(modes[&4], Blend::Off);
+        assert_eq!(modes[&0], Blend::Factors([BlendFactor::One, BlendFactor::Zero, BlendFactor::One, BlendFactor::Zero]));
+        let ids = block_ids("block.10008=minecraft:water flowing_water\nblock.10095=minecraft:white_stained_glass");
+        assert_eq!(ids["minecraft:water"], 10008);
+        assert_eq!(ids["minecraft:flowing_water"], 10008);
+        assert_eq!(ids["minecraft:white_stained_glass"], 10095);
+    }
+}

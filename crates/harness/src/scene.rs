@@ -1,0 +1,230 @@
+//! Scenes: TOML files describing a camera, the time, the sky, a body of water, opaque terrain
+//! and stained-glass panes. Everything derived from a scene (matrices, `isEyeInWater`) is
+//! computed here in f64.
+
+use std::path::Path;
+
+use glam::{DMat4, DVec3};
+use serde::Deserialize;
+
+use crate::HarnessError;
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Defaults to the file name.
+    #[serde(default)]
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    /// Width and height in pixels.
+    pub resolution: [u32; 2],
+    /// World offset added to every position in the file (camera, water, terrain, glass):
+    /// the same scene far from the origin.
+    #[serde(default)]
+    pub origin: [f64; 3],
+    pub camera: Camera,
+    pub time: Time,
+    pub sky: Sky,
+    pub water: Option<Water>,
+    #[serde(default)]
+    pub terrain: Terrain,
+    #[serde(default)]
+    pub glass: Vec<GlassPane>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    pub position: [f64; 3],
+    /// Degrees, Minecraft's convention: 0 looks towards +z, 90 towards -x.
+    pub yaw: f64,
+    /// Degrees, positive looks down.
+    pub pitch: f64,
+    /// Vertical field of view in degrees.
+    pub fov: f64,
+    /// The `near` uniform and the near plane (Minecraft: 0.05).
+    #[serde(default = "default_near")]
+    pub near: f64,
+    /// The `far` uniform: render distance in blocks. The projection's far plane is 4 × far,
+    /// as in Minecraft 1.18+.
+    pub far: f64,
+}
+
+fn default_near() -> f64 {
+    0.05
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Time {
+    /// Ticks, 0..24000.
+    pub world_time: i32,
+    /// Seconds, 0..3600.
+    pub frame_time_counter: f64,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sky {
+    /// World-space direction towards the sun (normalised by the harness).
+    pub sun_direction: [f64; 3],
+    pub sky_color: [f64; 3],
+    pub fog_color: [f64; 3],
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Water {
+    /// Height of the flat surface (Minecraft's still water top is block y + 0.875).
+    pub level: f64,
+    /// x, z corners of the water surface.
+    pub min: [f64; 2],
+    pub max: [f64; 2],
+    /// The water volume's bottom, for `isEyeInWater` (default: far below).
+    #[serde(default = "default_bottom")]
+    pub bottom: f64,
+    /// Biome tint of the water (vertex colour).
+    #[serde(default = "default_water_tint")]
+    pub tint: [f64; 3],
+    /// Side of the surface's quads in blocks (1 as in Minecraft; larger for huge far water).
+    #[serde(default = "default_cell")]
+    pub cell: f64,
+}
+
+fn default_cell() -> f64 {
+    1.0
+}
+
+fn default_bottom() -> f64 {
+    -64.0
+}
+
+fn default_water_tint() -> [f64; 3] {
+    // Minecraft's default water colour, 0x3F76E4.
+    [63.0 / 255.0, 118.0 / 255.0, 228.0 / 255.0]
+}
+
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Terrain {
+    #[serde(default)]
+    pub ground: Vec<Ground>,
+    #[serde(default, rename = "box")]
+    pub boxes: Vec<BoxShape>,
+}
+
+/// A (possibly sloped) ground surface over a rectangle, one quad per block, checkered.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ground {
+    pub min: [f64; 2],
+    pub max: [f64; 2],
+    /// Height at `min`.
+    pub height: f64,
+    /// Rise per block along x and z (a beach).
+    #[serde(default)]
+    pub slope: [f64; 2],
+    pub color: [f64; 3],
+}
+
+/// An axis-aligned opaque box (walls, pool sides, pillars).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxShape {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+    pub color: [f64; 3],
+}
+
+/// A stained-glass pane: a thin box drawn with gbuffers_water.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GlassPane {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+    /// Tint and opacity.
+    pub color: [f64; 4],
+    /// Block name looked up in the pack's block.properties for `mc_Entity.x`.
+    #[serde(default = "default_glass_block")]
+    pub block: String,
+}
+
+fn default_glass_block() -> String {
+    "minecraft:white_stained_glass".into()
+}
+
+impl Scene {
+    pub fn load(path: &Path) -> Result<Scene, HarnessError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| HarnessError::Scene(format!("cannot read scene {}: {e}", path.display())))?;
+        let mut scene: Scene =
+            toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        if scene.name.is_empty() {
+            scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        }
+        scene.check().map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        Ok(scene)
+    }
+
+    fn check(&self) -> Result<(), String> {
+        let [w, h] = self.resolution;
+        if w == 0 || h == 0 || w > 8192 || h > 8192 {
+            return Err(format!("resolution {w}x{h} is out of range (1..8192)"));
+        }
+        let c = &self.camera;
+        if !(c.fov > 1.0 && c.fov < 179.0) || c.near <= 0.0 || c.far <= c.near {
+            return Err("camera needs 1 < fov < 179, near > 0 and far > near".into());
+        }
+        if self.water.as_ref().is_some_and(|w| !(w.cell >= 1.0)) {
+            return Err("water.cell must be at least 1 block".into());
+        }
+        if DVec3::from(self.sky.sun_direction).length() < 1e-9 {
+            return Err("sky.sun_direction must not be zero".into());
+        }
+        Ok(())
+    }
+
+    /// Same scene at another resolution.
+    pub fn with_resolution(mut self, width: u32, height: u32) -> Scene {
+        self.resolution = [width, height];
+        self
+    }
+
+    pub fn width(&self) -> u32 {
+        self.resolution[0]
+    }
+
+    pub fn height(&self) -> u32 {
+        self.resolution[1]
+    }
+
+    /// The camera's world position (origin applied).
+    pub fn camera_position(&self) -> DVec3 {
+        DVec3::from(self.camera.position) + DVec3::from(self.origin)
+    }
+
+    /// Whether the camera is inside the water volume: OptiFine's `isEyeInWater == 1`.
+    pub fn eye_in_water(&self) -> bool {
+        let Some(w) = &self.water else { return false };
+        let p = DVec3::from(self.camera.position);
+        p.x >= w.min[0] && p.x <= w.max[0] && p.z >= w.min[1] && p.z <= w.max[1] && p.y < w.level && p.y > w.bottom
+    }
+
+    /// gbufferModelView: rotation only (positions reach the shaders relative to the camera).
+    pub fn model_view(&self) -> DMat4 {
+        let c = &self.camera;
+        DMat4::from_rotation_x(c.pitch.to_radians()) * DMat4::from_rotation_y((c.yaw + 180.0).to_radians())
+    }
+
+    /// gbufferProjection: OpenGL perspective (clip z from -w to w), far plane 4 × far.
+    pub fn projection(&self) -> DMat4 {
+        let c = &self.camera;
+        let aspect = self.width() as f64 / self.height() as f64;
+        DMat4::perspective_rh_gl(c.fov.to_radians(), aspect, c.near, c.far * 4.0)
+    }
+
+    pub fn sun_direction(&self) -> DVec3 {
+        DVec3::from(self.sky.sun_direction).normalize()
+    }
+}

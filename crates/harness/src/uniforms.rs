@@ -1,0 +1,318 @@
+//! Uniform values by their OptiFine names, and filling a lowered stage's `tp_Uniforms` block
+//! by member name through naga's reflection of the module (offsets, strides and the block
+//! size come from naga's layouter, never from a hand-written std140 table).
+//!
+//! A member the harness has no value for is an error naming it, never a silent zero.
+
+use std::collections::BTreeMap;
+
+use glam::{DMat3, DMat4, DVec3, DVec4};
+use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
+
+use crate::HarnessError;
+use crate::scene::Scene;
+
+/// A uniform value: scalars, vectors, matrices (column-major) and arrays of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Value {
+    pub kind: Kind,
+    /// Columns (1 for scalars and vectors).
+    pub columns: u8,
+    /// Rows: vector size (1 for scalars).
+    pub rows: u8,
+    /// Array length, when an array.
+    pub array: Option<u32>,
+    /// Components, column-major, element after element; ints stored as their f64 value.
+    pub data: Vec<f64>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Float,
+    Int,
+}
+
+impl Value {
+    pub fn float(v: f64) -> Value {
+        Value { kind: Kind::Float, columns: 1, rows: 1, array: None, data: vec![v] }
+    }
+    pub fn int(v: i64) -> Value {
+        Value { kind: Kind::Int, columns: 1, rows: 1, array: None, data: vec![v as f64] }
+    }
+    pub fn vec3(v: DVec3) -> Value {
+        Value { kind: Kind::Float, columns: 1, rows: 3, array: None, data: v.to_array().to_vec() }
+    }
+    pub fn vec4(v: DVec4) -> Value {
+        Value { kind: Kind::Float, columns: 1, rows: 4, array: None, data: v.to_array().to_vec() }
+    }
+    pub fn ivec2(x: i64, y: i64) -> Value {
+        Value { kind: Kind::Int, columns: 1, rows: 2, array: None, data: vec![x as f64, y as f64] }
+    }
+    pub fn mat4(m: DMat4) -> Value {
+        Value { kind: Kind::Float, columns: 4, rows: 4, array: None, data: m.to_cols_array().to_vec() }
+    }
+    pub fn mat3(m: DMat3) -> Value {
+        Value { kind: Kind::Float, columns: 3, rows: 3, array: None, data: m.to_cols_array().to_vec() }
+    }
+    pub fn mat4_array(ms: &[DMat4]) -> Value {
+        Value {
+            kind: Kind::Float,
+            columns: 4,
+            rows: 4,
+            array: Some(ms.len() as u32),
+            data: ms.iter().flat_map(|m| m.to_cols_array()).collect(),
+        }
+    }
+
+    /// The GLSL type this value fills.
+    pub fn glsl_type(&self) -> String {
+        let base = match (self.kind, self.columns, self.rows) {
+            (Kind::Float, 1, 1) => "float".to_string(),
+            (Kind::Int, 1, 1) => "int".to_string(),
+            (Kind::Float, 1, n) => format!("vec{n}"),
+            (Kind::Int, 1, n) => format!("ivec{n}"),
+            (_, c, r) if c == r => format!("mat{c}"),
+            (_, c, r) => format!("mat{c}x{r}"),
+        };
+        match self.array {
+            Some(n) => format!("{base}[{n}]"),
+            None => base,
+        }
+    }
+
+    /// Components as f32 (for OpenGL's glUniform*fv).
+    pub fn as_f32(&self) -> Vec<f32> {
+        self.data.iter().map(|&v| v as f32).collect()
+    }
+
+    pub fn as_i32(&self) -> Vec<i32> {
+        self.data.iter().map(|&v| v as i32).collect()
+    }
+}
+
+/// Which pass the values are for: the legacy matrices differ.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// gbuffers: gl_ModelViewMatrix = gbufferModelView (positions relative to the camera).
+    Gbuffers,
+    /// Full-screen: a unit quad under an orthographic projection.
+    Fullscreen,
+}
+
+/// Legacy matrices as the OpenGL compatibility API holds them for a pass.
+#[derive(Clone, Copy, Debug)]
+pub struct LegacyMatrices {
+    pub model_view: DMat4,
+    pub projection: DMat4,
+    /// gl_TextureMatrix[0] and [1].
+    pub texture: [DMat4; 2],
+}
+
+/// The lightmap texture matrix of vanilla Minecraft: raw 0..240 → 1/32..31/32.
+pub fn lightmap_matrix() -> DMat4 {
+    DMat4::from_translation(DVec3::splat(8.0 / 256.0)) * DMat4::from_scale(DVec3::new(1.0 / 256.0, 1.0 / 256.0, 1.0 / 256.0))
+}
+
+pub fn legacy_matrices(scene: &Scene, pass: Pass) -> LegacyMatrices {
+    let (model_view, projection) = match pass {
+        Pass::Gbuffers => (scene.model_view(), scene.projection()),
+        Pass::Fullscreen => (DMat4::IDENTITY, DMat4::orthographic_rh_gl(0.0, 1.0, 0.0, 1.0, -1.0, 1.0)),
+    };
+    let texture = match pass {
+        Pass::Gbuffers => [DMat4::IDENTITY, lightmap_matrix()],
+        Pass::Fullscreen => [DMat4::IDENTITY, DMat4::IDENTITY],
+    };
+    LegacyMatrices { model_view, projection, texture }
+}
+
+/// Every uniform the harness can fill for a scene and pass, by its OptiFine name; the legacy
+/// matrices under their lowered names (`tp_ModelViewMatrix`, …).
+pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
+    let mut v = BTreeMap::new();
+    let mut put = |name: &str, value: Value| {
+        v.insert(name.to_string(), value);
+    };
+    let model_view = scene.model_view();
+    let projection = scene.projection();
+    let camera = scene.camera_position();
+    let sun_world = scene.sun_direction() * 100.0;
+    let to_view = |d: DVec3| model_view.transform_vector3(d);
+    let sun = to_view(sun_world);
+    let moon = -sun;
+    put("gbufferModelView", Value::mat4(model_view));
+    put("gbufferModelViewInverse", Value::mat4(model_view.inverse()));
+    put("gbufferProjection", Value::mat4(projection));
+    put("gbufferProjectionInverse", Value::mat4(projection.inverse()));
+    put("gbufferPreviousModelView", Value::mat4(model_view));
+    put("gbufferPreviousProjection", Value::mat4(projection));
+    put("cameraPosition", Value::vec3(camera));
+    put("previousCameraPosition", Value::vec3(camera));
+    put("eyeAltitude", Value::float(camera.y));
+    put("near", Value::float(scene.camera.near));
+    put("far", Value::float(scene.camera.far));
+    put("viewWidth", Value::float(scene.width() as f64));
+    put("viewHeight", Value::float(scene.height() as f64));
+    put("aspectRatio", Value::float(scene.width() as f64 / scene.height() as f64));
+    let ticks = scene.time.world_time.rem_euclid(24000);
+    put("worldTime", Value::int(ticks as i64));
+    put("worldDay", Value::int((scene.time.world_time / 24000) as i64));
+    put("moonPhase", Value::int(0));
+    put("frameTimeCounter", Value::float(scene.time.frame_time_counter));
+    put("frameTime", Value::float(1.0 / 60.0));
+    put("frameCounter", Value::int(0));
+    put("isEyeInWater", Value::int(if scene.eye_in_water() { 1 } else { 0 }));
+    put("sunPosition", Value::vec3(sun));
+    put("moonPosition", Value::vec3(moon));
+    put("shadowLightPosition", Value::vec3(if sun_world.y >= 0.0 { sun } else { moon }));
+    put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
+    put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
+    put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
+    put("rainStrength", Value::float(0.0));
+    put("wetness", Value::float(0.0));
+    put("nightVision", Value::float(0.0));
+    put("blindness", Value::float(0.0));
+    put("darknessFactor", Value::float(0.0));
+    put("screenBrightness", Value::float(1.0));
+    put("eyeBrightness", Value::ivec2(0, 240));
+    put("eyeBrightnessSmooth", Value::ivec2(0, 240));
+    put("hideGUI", Value::int(1));
+    let legacy = legacy_matrices(scene, pass);
+    let mvp = legacy.projection * legacy.model_view;
+    let normal = DMat3::from_mat4(legacy.model_view).inverse().transpose();
+    let mut textures = [DMat4::IDENTITY; 8];
+    textures[..2].copy_from_slice(&legacy.texture);
+    put("tp_ModelViewMatrix", Value::mat4(legacy.model_view));
+    put("tp_ProjectionMatrix", Value::mat4(legacy.projection));
+    put("tp_ModelViewProjectionMatrix", Value::mat4(mvp));
+    put("tp_NormalMatrix", Value::mat3(normal));
+    put("tp_TextureMatrix", Value::mat4_array(&textures));
+    put("tp_ModelViewMatrixInverse", Value::mat4(legacy.model_view.inverse()));
+    put("tp_ProjectionMatrixInverse", Value::mat4(legacy.projection.inverse()));
+    put("tp_ModelViewProjectionMatrixInverse", Value::mat4(mvp.inverse()));
+    put("tp_TextureMatrixInverse", Value::mat4_array(&textures.map(|m| m.inverse())));
+    v
+}
+
+/// The uniform block of a module, filled: (set, binding, bytes).
+pub struct FilledBlock {
+    pub group: u32,
+    pub binding: u32,
+    pub bytes: Vec<u8>,
+    /// Member names in declaration order.
+    pub members: Vec<String>,
+}
+
+/// Finds the module's uniform block and writes every member from `values`. `stage_name`
+/// names the stage in errors.
+pub fn fill_block(
+    module: &naga::Module,
+    values: &BTreeMap<String, Value>,
+    stage_name: &str,
+) -> Result<Option<FilledBlock>, HarnessError> {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .map_err(|e| HarnessError::Pack(format!("{stage_name}: naga cannot lay out the uniform block: {e}")))?;
+    let mut found = None;
+    for (_, global) in module.global_variables.iter() {
+        if global.space != AddressSpace::Uniform {
+            continue;
+        }
+        let Some(binding) = &global.binding else { continue };
+        let TypeInner::Struct { members, span } = &module.types[global.ty].inner else {
+            return Err(HarnessError::Unsupported(format!(
+                "{stage_name}: uniform {} is not a block; the lowering puts loose uniforms in tp_Uniforms",
+                global.name.as_deref().unwrap_or("?")
+            )));
+        };
+        if found.is_some() {
+            return Err(HarnessError::Unsupported(format!("{stage_name}: more than one uniform block")));
+        }
+        let size = (*span as usize).next_multiple_of(16);
+        let mut bytes = vec![0u8; size];
+        let mut names = Vec::new();
+        let mut missing = Vec::new();
+        for member in members {
+            let name = member.name.clone().unwrap_or_default();
+            names.push(name.clone());
+            let Some(value) = values.get(&name) else {
+                missing.push(shipped_name(&name));
+                continue;
+            };
+            write_member(module, &layouter, member.ty, member.offset as usize, value, &mut bytes)
+                .map_err(|m| HarnessError::Uniform(format!("{stage_name}: uniform {}: {m}", shipped_name(&name))))?;
+        }
+        if !missing.is_empty() {
+            return Err(HarnessError::Uniform(format!(
+                "{stage_name} declares uniform{} the harness cannot fill: {}",
+                if missing.len() == 1 { "" } else { "s" },
+                missing.join(", ")
+            )));
+        }
+        found = Some(FilledBlock { group: binding.group, binding: binding.binding, bytes, members: names });
+    }
+    Ok(found)
+}
+
+/// The shipped name of a block member (`tp_ModelViewMatrix` → `gl_ModelViewMatrix`).
+pub fn shipped_name(member: &str) -> String {
+    match member.strip_prefix("tp_") {
+        Some(rest) => format!("gl_{rest}"),
+        None => member.to_string(),
+    }
+}
+
+fn vector_len(size: VectorSize) -> u8 {
+    size as u8
+}
+
+fn write_member(
+    module: &naga::Module,
+    layouter: &naga::proc::Layouter,
+    ty: naga::Handle<naga::Type>,
+    offset: usize,
+    value: &Value,
+    bytes: &mut [u8],
+) -> Result<(), String> {
+    let inner = &module.types[ty].inner;
+    let (element_ty, count, stride) = match inner {
+        TypeInner::Array { base, size: naga::ArraySize::Constant(n), stride } => (*base, Some(n.get()), *stride as usize),
+        _ => (ty, None, 0),
+    };
+    let element = &module.types[element_ty].inner;
+    let (kind, columns, rows, width, column_stride) = match *element {
+        TypeInner::Scalar(s) => (s.kind, 1u8, 1u8, s.width, 0usize),
+        TypeInner::Vector { size, scalar } => (scalar.kind, 1, vector_len(size), scalar.width, 0),
+        TypeInner::Matrix { columns, rows, scalar } => {
+            let c = vector_len(columns);
+            let size = layouter[element_ty].size as usize;
+            (scalar.kind, c, vector_len(rows), scalar.width, size / c as usize)
+        }
+        _ => return Err(format!("type {:?} is not supported by the harness", element)),
+    };
+    let declared_kind = match kind {
+        ScalarKind::Float => Kind::Float,
+        ScalarKind::Sint | ScalarKind::Uint => Kind::Int,
+        _ => return Err("bool uniforms are not supported".into()),
+    };
+    let declared = Value { kind: declared_kind, columns, rows, array: count, data: Vec::new() };
+    if declared_kind != value.kind || columns != value.columns || rows != value.rows || count != value.array || width != 4 {
+        return Err(format!("declared {}, the harness provides {}", declared.glsl_type(), value.glsl_type()));
+    }
+    let per_element = columns as usize * rows as usize;
+    for e in 0..count.unwrap_or(1) as usize {
+        for c in 0..columns as usize {
+            for r in 0..rows as usize {
+                let v = value.data[e * per_element + c * rows as usize + r];
+                let at = offset + e * stride + c * column_stride + r * 4;
+                let word = match kind {
+                    ScalarKind::Float => (v as f32).to_bits(),
+                    ScalarKind::Sint => (v as i32) as u32,
+                    _ => v as u32,
+                };
+                bytes[at..at + 4].copy_from_slice(&word.to_le_bytes());
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,284 @@
+//! Rendering tests. They need lavapipe (Debian mesa-vulkan-drivers) and Mesa's EGL/OpenGL
+//! (libegl1 libegl-mesa0 libgl1-mesa-dri); tools/test installs them. Without them every test
+//! here fails with an error naming the missing package: they never skip.
+//!
+//! The five-case scenes assert properties of the water model, not colours of the current
+//! shaders; only the golden images pin colours (regenerate with TIDEPACK_BLESS=1).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use tidepack_harness::images::{self, FloatImage};
+use tidepack_harness::{Frame, Gpu, LoadedPack, PackSelection, Scene, gl, mesh, program, render_wgpu};
+use tidepack_pack::Dialect;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn scene(name: &str) -> Scene {
+    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn scene_names() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(root().join("tests/scenes"))
+        .expect("tests/scenes")
+        .filter_map(|e| e.ok()?.path().file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .collect();
+    names.sort();
+    names
+}
+
+fn pack(dialect: Dialect) -> &'static LoadedPack {
+    static P120: OnceLock<LoadedPack> = OnceLock::new();
+    static P330: OnceLock<LoadedPack> = OnceLock::new();
+    let cell = if dialect == Dialect::Glsl120 { &P120 } else { &P330 };
+    cell.get_or_init(|| {
+        program::load(&PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] })
+            .unwrap_or_else(|e| panic!("{e}"))
+    })
+}
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// Every scene rendered once (GLSL 330, default profile), shared by the tests.
+fn frames() -> &'static BTreeMap<String, Frame> {
+    static FRAMES: OnceLock<BTreeMap<String, Frame>> = OnceLock::new();
+    FRAMES.get_or_init(|| {
+        scene_names()
+            .into_iter()
+            .map(|name| {
+                let frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &scene(&name), false)
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                (name, frame)
+            })
+            .collect()
+    })
+}
+
+fn mask(frame: &Frame, i: usize) -> f32 {
+    frame.buffers.get(&4).expect("gbuffers_water writes colortex4").pixels[i][3]
+}
+
+/// Equal in the 8-bit image OptiFine's RGBA8 colortex0 holds (the float output of a
+/// pass-through can differ from its RGBA8 input in the last bit through filtering).
+fn same(a: [f32; 4], b: [f32; 4]) -> bool {
+    (0..3).all(|c| images::to_unorm8(a[c]) == images::to_unorm8(b[c]))
+}
+
+fn failure_dir() -> PathBuf {
+    root().join("target/harness-failures")
+}
+
+#[test]
+fn the_scenes_cover_the_issue() {
+    let names = scene_names();
+    for required in [
+        "case1_above_dry",
+        "case2_under_down",
+        "case3_under_up",
+        "case4_above_near",
+        "case5_above_far",
+        "no_water",
+        "glass",
+        "far_from_origin",
+    ] {
+        assert!(names.iter().any(|n| n == required), "tests/scenes/{required}.toml is missing");
+    }
+    assert!(scene("case2_under_down").eye_in_water() && scene("case3_under_up").eye_in_water());
+    assert!(!scene("case4_above_near").eye_in_water() && !scene("case5_above_far").eye_in_water());
+    assert!(scene("far_from_origin").camera_position().x > 1e6);
+}
+
+#[test]
+fn every_scene_renders_finite() {
+    for (name, frame) in frames() {
+        let bad = frame.image.non_finite();
+        assert_eq!(bad, 0, "{name}: {bad} pixels of the RGBA32F composite output are NaN or Inf");
+        assert!(frame.timings.iter().any(|t| t.pass == "composite"), "{name}: no composite timing");
+    }
+}
+
+#[test]
+fn no_water_scene_equals_its_input_exactly() {
+    let frame = &frames()["no_water"];
+    let input = &frame.buffers[&0];
+    let differing = frame.image.pixels.iter().zip(&input.pixels).filter(|(a, b)| !same(**a, **b)).count();
+    assert_eq!(differing, 0, "composite changed {differing} pixels of a scene without water");
+    let max = images::max_channel_difference(&frame.image, input);
+    assert!(max.iter().all(|d| *d < 1e-6), "the float output strays from the input by {max:?}");
+    assert!(frame.buffers[&4].pixels.iter().all(|p| p[3] == 0.0), "no water, no glass: colortex4 stays clear");
+}
+
+#[test]
+fn case1_pixels_not_behind_water_pass_through() {
+    let frame = &frames()["case1_above_dry"];
+    let input = &frame.buffers[&0];
+    let dry: Vec<usize> = (0..input.pixels.len()).filter(|&i| mask(frame, i) == 0.0).collect();
+    assert!(dry.len() > input.pixels.len() / 2, "case 1 should show mostly dry land, got {} dry pixels", dry.len());
+    let changed = dry.iter().filter(|&&i| !same(frame.image.pixels[i], input.pixels[i])).count();
+    assert_eq!(changed, 0, "{changed} pixels with nothing translucent in front changed");
+}
+
+#[test]
+fn under_water_every_opaque_pixel_is_shaded() {
+    for name in ["case2_under_down", "case3_under_up"] {
+        let frame = &frames()[name];
+        let input = &frame.buffers[&0];
+        let n = input.pixels.len();
+        let changed = (0..n).filter(|&i| !same(frame.image.pixels[i], input.pixels[i])).count();
+        assert!(changed * 100 >= n * 95, "{name}: with the camera under water only {changed} of {n} pixels changed");
+    }
+    // Looking up, the surface is seen from below.
+    let up = &frames()["case3_under_up"];
+    let surface = (0..up.image.pixels.len()).filter(|&i| mask(up, i) > 0.75).count();
+    assert!(surface > 1000, "case 3 should see the water surface from below, got {surface} pixels");
+}
+
+#[test]
+fn water_seen_from_above_is_shaded_near_and_far() {
+    for name in ["case4_above_near", "case5_above_far", "far_from_origin"] {
+        let frame = &frames()[name];
+        let input = &frame.buffers[&0];
+        let water: Vec<usize> = (0..input.pixels.len()).filter(|&i| mask(frame, i) > 0.75).collect();
+        assert!(water.len() * 10 > input.pixels.len() * 3, "{name}: only {} water pixels", water.len());
+        let changed = water.iter().filter(|&&i| !same(frame.image.pixels[i], input.pixels[i])).count();
+        assert!(changed * 10 >= water.len() * 9, "{name}: only {changed} of {} water pixels got water shading", water.len());
+        let dry: Vec<usize> = (0..input.pixels.len()).filter(|&i| mask(frame, i) == 0.0).collect();
+        let dry_changed = dry.iter().filter(|&&i| !same(frame.image.pixels[i], input.pixels[i])).count();
+        assert_eq!(dry_changed, 0, "{name}: {dry_changed} pixels with no water in front changed");
+    }
+    // Case 5 reaches far water: some water pixels lie beyond 200 blocks.
+    let far = &frames()["case5_above_far"];
+    let s = scene("case5_above_far");
+    let inverse = s.projection().inverse();
+    let (w, h) = (s.width(), s.height());
+    let distant = (0..far.image.pixels.len())
+        .filter(|&i| mask(far, i) > 0.75)
+        .filter(|&i| {
+            let (x, y) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
+            let d = far.depth0.pixels[i][0] as f64;
+            let ndc = glam::DVec4::new(x / w as f64 * 2.0 - 1.0, y / h as f64 * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+            let v = inverse * ndc;
+            (v.truncate() / v.w).length() > 200.0
+        })
+        .count();
+    assert!(distant > 500, "case 5 should show water beyond 200 blocks, got {distant} pixels");
+}
+
+#[test]
+fn far_from_origin_looks_like_the_same_view_at_the_origin() {
+    let near = frames()["case4_above_near"].image.to_rgba8_top_first();
+    let far = frames()["far_from_origin"].image.to_rgba8_top_first();
+    let psnr = images::psnr_rgb8(&near, &far);
+    assert!(psnr > 30.0, "a million blocks out, the view differs from the origin's: PSNR {psnr:.1} dB");
+}
+
+#[test]
+fn glass_pixels_carry_no_water_effects() {
+    let is_glass = |frame: &Frame, i: usize| {
+        let m = mask(frame, i);
+        m > 0.25 && m <= 0.75
+    };
+    // The same scene without water: no glass pixel may change.
+    let mut dry_scene = scene("glass");
+    dry_scene.water = None;
+    let dry = render_wgpu(gpu(), pack(Dialect::Glsl330), &dry_scene, false).unwrap_or_else(|e| panic!("{e}"));
+    let glass: Vec<usize> = (0..dry.image.pixels.len()).filter(|&i| is_glass(&dry, i)).collect();
+    assert!(glass.len() > 5000, "the dry glass scene should show the panes, got {} pixels", glass.len());
+    let changed = glass.iter().filter(|&&i| !same(dry.image.pixels[i], dry.buffers[&0].pixels[i])).count();
+    assert_eq!(changed, 0, "{changed} glass pixels changed in a scene without water");
+}
+
+#[test]
+fn the_same_scene_twice_gives_the_same_bytes() {
+    let s = scene("case4_above_near");
+    let a = render_wgpu(gpu(), pack(Dialect::Glsl330), &s, false).unwrap_or_else(|e| panic!("{e}"));
+    let b = render_wgpu(gpu(), pack(Dialect::Glsl330), &s, false).unwrap_or_else(|e| panic!("{e}"));
+    let bits = |f: &FloatImage| f.pixels.iter().flat_map(|p| p.map(f32::to_bits)).collect::<Vec<u32>>();
+    assert!(bits(&a.image) == bits(&b.image), "two renders of one scene differ");
+    assert_eq!(a.image.to_rgba8_top_first(), b.image.to_rgba8_top_first());
+}
+
+#[test]
+fn a_uniform_the_harness_cannot_fill_is_an_error_naming_it() {
+    let mut values = tidepack_harness::uniforms::values(&scene("case4_above_near"), tidepack_harness::uniforms::Pass::Fullscreen);
+    values.remove("gbufferProjectionInverse");
+    let module = &pack(Dialect::Glsl330).composite.fragment.module;
+    let err = tidepack_harness::uniforms::fill_block(module, &values, "composite.fsh").err().expect("must fail");
+    assert!(err.to_string().contains("gbufferProjectionInverse"), "{err}");
+}
+
+#[test]
+fn golden_images_match() {
+    let bless = std::env::var("TIDEPACK_BLESS").is_ok_and(|v| !v.is_empty() && v != "0");
+    let mut failures = Vec::new();
+    for (name, frame) in frames() {
+        let actual = frame.image.to_rgba8_top_first();
+        let golden = root().join(format!("tests/golden/{name}.png"));
+        if bless {
+            images::write_rgba8_png(&golden, frame.image.width, frame.image.height, &opaque(&actual)).unwrap();
+            continue;
+        }
+        let (w, h, expected) = images::read_rgba8_png(&golden)
+            .unwrap_or_else(|e| panic!("{e}; render the golden images with TIDEPACK_BLESS=1 cargo test -p tidepack-harness"));
+        let actual = opaque(&actual);
+        let psnr = if (w, h) == (frame.image.width, frame.image.height) { images::psnr_rgb8(&actual, &expected) } else { 0.0 };
+        if psnr < 40.0 {
+            let dir = failure_dir();
+            images::write_rgba8_png(&dir.join(format!("{name}.actual.png")), frame.image.width, frame.image.height, &actual).unwrap();
+            if (w, h) == (frame.image.width, frame.image.height) {
+                let diff = images::difference_rgb8(&actual, &expected);
+                images::write_rgba8_png(&dir.join(format!("{name}.diff.png")), w, h, &diff).unwrap();
+            }
+            failures.push(format!("{name}: PSNR {psnr:.1} dB < 40 dB (actual and difference in {})", dir.display()));
+        }
+    }
+    assert!(failures.is_empty(), "golden images differ (TIDEPACK_BLESS=1 regenerates them):\n{}", failures.join("\n"));
+}
+
+fn opaque(rgba: &[u8]) -> Vec<u8> {
+    let mut v = rgba.to_vec();
+    v.chunks_exact_mut(4).for_each(|p| p[3] = 255);
+    v
+}
+
+/// The proof that the lowering changes nothing: the shipped text through Mesa's OpenGL gives
+/// the same image as its lowered form through wgpu, for every scene and both dialects.
+#[test]
+fn opengl_and_wgpu_agree_on_every_scene() {
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    let mut report = Vec::new();
+    let mut failures = Vec::new();
+    for dialect in [Dialect::Glsl330, Dialect::Glsl120] {
+        for name in scene_names() {
+            let s = scene(&name);
+            let wgpu_frame = if dialect == Dialect::Glsl330 {
+                frames()[&name].clone()
+            } else {
+                render_wgpu(gpu(), pack(dialect), &s, false).unwrap_or_else(|e| panic!("{name}: {e}"))
+            };
+            let gl_frame = gl::render(&ctx, pack(dialect), &s, &mesh::build(&s, pack(dialect)))
+                .unwrap_or_else(|e| panic!("{name} ({dialect}): {e}"));
+            assert_eq!(gl_frame.image.non_finite(), 0, "{name}: NaN/Inf from OpenGL");
+            let max = images::max_channel_difference(&wgpu_frame.image, &gl_frame.image);
+            let over = images::count_differing(&wgpu_frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
+            let n = wgpu_frame.image.pixels.len();
+            report.push(format!("{dialect:>24} {name:<18} max diff (x/255) {:?}, {over} pixels over 1/255", max.map(|d| (d * 255.0 * 100.0).round() / 100.0)));
+            // Target: every pixel within 1/255. A few pixels on triangle edges may be covered by
+            // different triangles (wgpu flips y, so ties of the fill rule break the other way):
+            // allow at most 0.05% of the pixels over 1/255.
+            if over * 2000 > n {
+                gl_frame.image.write_png(&failure_dir().join(format!("{name}.{}.gl.png", dialect.slug())), false).unwrap();
+                wgpu_frame.image.write_png(&failure_dir().join(format!("{name}.{}.wgpu.png", dialect.slug())), false).unwrap();
+                failures.push(format!("{name} ({dialect}): max {max:?}, {over} pixels over 1/255"));
+            }
+        }
+    }
+    println!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "OpenGL and wgpu disagree:\n{}", failures.join("\n"));
+}
