@@ -972,10 +972,11 @@ impl<'a> Lowering<'_, 'a> {
         }
         match name {
             "ftransform" => {
-                let close = (k + 1..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(")"));
-                let Some(close) = close.filter(|_| self.tokens[sig[k + 1]].is_punct("(")) else {
-                    return Err(self.err(i, "ftransform must be called as ftransform()"));
-                };
+                let called = |j: usize, p: &str| sig.get(j).is_some_and(|&t| self.tokens[t].is_punct(p));
+                if !(called(k + 1, "(") && called(k + 2, ")")) {
+                    return Err(self.err(i, "ftransform takes no arguments: call it as ftransform()"));
+                }
+                let close = k + 2;
                 for member in ["mat4 tp_ModelViewProjectionMatrix;"] {
                     if !self.block.iter().any(|m| m == member) {
                         self.block.push(member.to_string());
@@ -986,7 +987,7 @@ impl<'a> Lowering<'_, 'a> {
                 }
                 self.interface.inputs.insert("gl_Vertex".into(), 0);
                 self.add_header("layout(location = 0) in vec4 tp_Vertex;".into());
-                self.replace(i, sig[close] + 1, "(tp_ModelViewProjectionMatrix * tp_Vertex)".into());
+                self.replace_lines(i, sig[close] + 1, "(tp_ModelViewProjectionMatrix * tp_Vertex)".into());
             }
             "gl_FragData" | "gl_FragColor" => {
                 let sig_tokens: Vec<&Token<'_>> = sig.iter().map(|&j| &self.tokens[j]).collect();
@@ -1000,7 +1001,7 @@ impl<'a> Lowering<'_, 'a> {
                 let shipped = if name == "gl_FragColor" { name.to_string() } else { format!("gl_FragData[{location}]") };
                 self.interface.outputs.insert(location, shipped);
                 self.add_header(format!("layout(location = {location}) out vec4 tp_FragData{location};"));
-                self.replace(i, end, format!("tp_FragData{location}"));
+                self.replace_lines(i, end, format!("tp_FragData{location}"));
             }
             "gl_Fog" => {
                 if self.prelude.is_empty() {
@@ -1018,7 +1019,7 @@ impl<'a> Lowering<'_, 'a> {
                 let location = self.varyings.locations[&varying];
                 let direction = if stage == Stage::Vertex { "out" } else { "in" };
                 self.add_header(format!("layout(location = {location}) {direction} vec4 {varying};"));
-                self.replace(i, sig[k + 3] + 1, varying);
+                self.replace_lines(i, sig[k + 3] + 1, varying);
             }
             _ => {}
         }

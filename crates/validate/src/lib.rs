@@ -22,6 +22,7 @@ use tidepack_glsl::{Diagnostic, Location, Stage};
 
 pub mod input;
 pub mod interface;
+pub mod fuzz;
 pub mod known;
 pub mod output;
 pub mod programs;

@@ -1,0 +1,215 @@
+//! A small, dependency-free mutation fuzzer for the tokenizer, the preprocessor, the lowering
+//! and the whole validator, seeded with real pack files. Deterministic for a given seed.
+//!
+//! Each execution mutates one file of a seed pack (byte flips, inserted GLSL and preprocessor
+//! fragments, deleted or duplicated ranges, splices from other files, invalid UTF-8) and then
+//! checks, with panics caught:
+//! - the tokenizer gives back its input exactly;
+//! - the preprocessor and the lowering return a result or a diagnostic, and the lowering keeps
+//!   the preprocessed line count;
+//! - the whole validator returns a report.
+//!
+//! A panic inside naga is counted apart (`naga_panics`): the validator turns it into an error
+//! diagnostic, so it is not a crash of the toolchain, but it is worth reporting upstream.
+
+use std::collections::BTreeMap;
+use std::panic::AssertUnwindSafe;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use tidepack_glsl::preprocess::{self, PreprocessOptions};
+use tidepack_glsl::token::tokenize;
+use tidepack_glsl::validate;
+use tidepack_glsl::Stage;
+
+use crate::input::pack_from_memory;
+use crate::{Options, Profiles};
+
+/// Fragments that reach the interesting paths quickly.
+const DICTIONARY: &[&str] = &[
+    "(", ")", "{", "}", "[", "]", ";", ",", "#", "\n", "\\\n", "/*", "*/", "//", "\"", "##", "\u{FEFF}", "é",
+    "#include \"/lib/a.glsl\"\n", "#include \"../../x\"\n", "#include \"", "#define F(x) F(x) x\n", "#define X X X\n",
+    "#if ", "#ifdef X\n", "#else\n", "#elif 1\n", "#endif\n", "#if defined(", "#version 120\n", "#version 330 compatibility\n",
+    "#extension GL_EXT_gpu_shader4 : enable\n", "/* DRAWBUFFERS:0123456789 */\n", "/* RENDERTARGETS: 0,15,16 */\n",
+    "varying mat3 m;\n", "varying vec3 a[2];\n", "flat varying int i;\n", "in vec4 ", "out vec4 outColor3;\n",
+    "uniform sampler2D s;\n", "uniform bool b;\n", "uniform Light l;\n", "struct Light { vec3 c; };\n",
+    "uniform float u = 1.0;\n", "gl_FragData[", "gl_FragData[9] = vec4(1.0);", "gl_TexCoord[", "gl_TexCoord[i]",
+    "gl_FrontColor", "gl_Color", "gl_Fog.color", "gl_FogFragCoord", "ftransform()", "ftransform", "texture2D(",
+    "shadow2D(s, vec3(0.0))", "texelFetch2D(", "texture2DLod(s, vec2(0.0), 0.0)", "sampler2D t", "void main() {",
+    "main", "return;", "0x", "1e", "1.0e+", "99999999999999999999", "-", "defined", "tp_", "layout(location = 99)",
+];
+
+/// What a run did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FuzzStats {
+    pub executions: u64,
+    /// Panics in tidepack's own code (tokenizer, preprocessor, lowering, validator).
+    pub crashes: u64,
+    /// Broken invariants (round trip, line count) without a panic.
+    pub invariant_failures: u64,
+    /// Panics inside naga, caught and reported as diagnostics by the validator.
+    pub naga_panics: u64,
+    /// Inputs that crashed or broke an invariant (first few), with what happened.
+    pub findings: Vec<(String, Vec<u8>)>,
+}
+
+/// xorshift64*: small, fast, deterministic.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545F4914F6CDD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        if n == 0 { 0 } else { (self.next() % n as u64) as usize }
+    }
+}
+
+fn mutate(rng: &mut Rng, input: &[u8], others: &[&[u8]]) -> Vec<u8> {
+    let mut data = input.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        let at = rng.below(data.len() + 1);
+        match rng.below(7) {
+            0 if !data.is_empty() => {
+                let i = rng.below(data.len());
+                data[i] ^= 1 << rng.below(8);
+            }
+            1 | 2 => {
+                let word = DICTIONARY[rng.below(DICTIONARY.len())].as_bytes();
+                data.splice(at..at, word.iter().copied());
+            }
+            3 if !data.is_empty() => {
+                let len = rng.below(64.min(data.len() - at.min(data.len())) + 1);
+                let end = (at + len).min(data.len());
+                data.drain(at.min(end)..end);
+            }
+            4 if !data.is_empty() => {
+                let start = rng.below(data.len());
+                let end = (start + rng.below(256)).min(data.len());
+                let copy = data[start..end].to_vec();
+                let times = 1 + rng.below(3);
+                for _ in 0..times {
+                    data.splice(at..at, copy.iter().copied());
+                }
+            }
+            5 if !others.is_empty() => {
+                let other = others[rng.below(others.len())];
+                let start = rng.below(other.len() + 1);
+                let end = (start + rng.below(512)).min(other.len());
+                data.splice(at..at, other[start..end].iter().copied());
+            }
+            _ => data.insert(at, [0xFF, 0xC3, b'\t', b'\r', 0][rng.below(5)]),
+        }
+    }
+    data.truncate(1 << 16);
+    data
+}
+
+/// One seed pack: files relative to `shaders/`.
+pub type SeedPack = BTreeMap<String, Vec<u8>>;
+
+/// Runs until `executions` inputs were tried or `time` ran out, whichever is first.
+pub fn run(seeds: &[SeedPack], executions: u64, time: Duration, seed: u64) -> FuzzStats {
+    let mut stats = FuzzStats::default();
+    let mut rng = Rng(seed.max(1));
+    let all_files: Vec<&[u8]> = seeds.iter().flat_map(|p| p.values().map(Vec::as_slice)).collect();
+    let started = Instant::now();
+    let previous_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    while stats.executions < executions && started.elapsed() < time {
+        let pack = &seeds[rng.below(seeds.len())];
+        let shaders: Vec<&String> = pack.keys().filter(|p| !p.ends_with(".properties")).collect();
+        if shaders.is_empty() {
+            continue;
+        }
+        let target = shaders[rng.below(shaders.len())].clone();
+        let mutated = mutate(&mut rng, &pack[&target], &all_files);
+        stats.executions += 1;
+        let outcome = std::panic::catch_unwind(AssertUnwindSafe(|| execute(pack, &target, &mutated)));
+        let failure = match outcome {
+            Ok(Ok(naga_panics)) => {
+                stats.naga_panics += naga_panics;
+                None
+            }
+            Ok(Err(broken)) => {
+                stats.invariant_failures += 1;
+                Some(broken)
+            }
+            Err(panic) => {
+                stats.crashes += 1;
+                let what = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
+                Some(format!("panic in {target}: {}", what.unwrap_or_default()))
+            }
+        };
+        if let Some(what) = failure
+            && stats.findings.len() < 20
+        {
+            stats.findings.push((what, mutated));
+        }
+    }
+    std::panic::set_hook(previous_hook);
+    stats
+}
+
+/// Runs one input through every layer. `Err` names a broken invariant; `Ok` the naga panics.
+fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String> {
+    let text = String::from_utf8_lossy(mutated);
+    if let Ok(tokens) = tokenize(&text) {
+        let joined: String = tokens.iter().map(|t| t.text).collect();
+        if joined != text {
+            return Err(format!("tokenizer round trip broken on {target}"));
+        }
+    }
+    let files: std::collections::HashMap<String, Arc<str>> = pack
+        .iter()
+        .map(|(p, b)| (p.clone(), Arc::from(if p == target { text.as_ref().to_string() } else { String::from_utf8_lossy(b).into_owned() })))
+        .collect();
+    if let Some(stage) = Stage::from_path(target)
+        && let Ok(pre) = preprocess::preprocess(&files, target, &PreprocessOptions::default())
+        && let Ok(lowered) = validate::lower_program(&[(stage, Arc::new(pre))])
+    {
+        let (pre_lines, lowered_lines) =
+            (lowered[0].preprocessed.text.matches('\n').count(), lowered[0].lowered.text.matches('\n').count());
+        if pre_lines != lowered_lines {
+            return Err(format!("lowering changed the line count of {target}: {pre_lines} -> {lowered_lines}"));
+        }
+    }
+    let mut memory: Vec<(String, Vec<u8>)> = pack.iter().map(|(p, b)| (p.clone(), b.clone())).collect();
+    for (p, b) in &mut memory {
+        if p == target {
+            *b = mutated.to_vec();
+        }
+    }
+    let options = Options { threads: 1, profiles: Profiles::All, ..Options::default() };
+    match crate::validate_pack(pack_from_memory("fuzz/", memory), &options) {
+        Ok(report) => Ok(report.diagnostics.iter().filter(|d| d.message.starts_with("naga crashed")).count() as u64),
+        Err(_) => Ok(0),
+    }
+}
+
+/// Reads every file of the packs under `dir` (each subfolder holding `shaders/` somewhere).
+pub fn seeds_from(dirs: &[std::path::PathBuf]) -> Vec<SeedPack> {
+    let mut seeds = Vec::new();
+    for dir in dirs {
+        if let Ok(pack) = crate::input::read_pack(dir, &crate::Limits::default()) {
+            seeds.push(pack.files.iter().map(|(p, b)| (p.clone(), b.to_vec())).collect());
+        }
+    }
+    seeds
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mutation_is_deterministic() {
+        let (mut a, mut b) = (Rng(7), Rng(7));
+        let input = b"#version 120\nvoid main() {}\n";
+        assert_eq!(mutate(&mut a, input, &[]), mutate(&mut b, input, &[]));
+    }
+}

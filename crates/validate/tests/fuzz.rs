@@ -1,0 +1,27 @@
+//! A bounded fuzzing run over the corpus packs: every execution must end without a panic in
+//! tidepack's code and without a broken invariant. Longer runs:
+//! `cargo run --release -p tidepack-validate --example fuzz -- SECONDS [SEED]`.
+
+use std::path::Path;
+use std::time::Duration;
+
+use tidepack_validate::fuzz;
+
+#[test]
+fn fuzzing_the_corpus_finds_no_crash() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/validate");
+    let mut dirs: Vec<_> = std::fs::read_dir(root.join("corpus")).unwrap().map(|e| e.unwrap().path()).collect();
+    dirs.extend(std::fs::read_dir(root.join("planted")).unwrap().map(|e| e.unwrap().path()));
+    dirs.sort();
+    let seeds = fuzz::seeds_from(&dirs);
+    assert!(seeds.len() >= 10);
+    let stats = fuzz::run(&seeds, 600, Duration::from_secs(45), 0x7469_6465);
+    eprintln!("fuzz: {stats:?}");
+    assert!(stats.executions >= 100, "{stats:?}");
+    let findings: Vec<String> = stats
+        .findings
+        .iter()
+        .map(|(what, input)| format!("{what}\n--- input ---\n{}", String::from_utf8_lossy(input)))
+        .collect();
+    assert_eq!(stats.crashes + stats.invariant_failures, 0, "{}", findings.join("\n\n"));
+}
