@@ -1,94 +1,251 @@
 #version 330 compatibility
-// Water shading over the finished scene. Pixels with no water in front of them, stained
-// glass included, pass through unchanged; water pixels fade the scene behind them by the
-// depth of water it lies under, gain caustics, and reflect the sky at grazing angles; with
-// the camera under water, everything fades with its distance from the camera.
+// The water model (water-model.md) over the finished scene, one of five cases per pixel:
+//   1. camera above water, pixel not behind water: passed through unchanged;
+//   2. camera under water, pixel under water: absorption over the distance, caustics;
+//   3. camera under water, pixel seen through the surface: refraction, total internal
+//      reflection, absorption up to the surface;
+//   4. camera above water, water pixel nearer than HAZE_DISTANCE: wave surface, refraction,
+//      absorption, caustics, reflections, highlights, foam, haze;
+//   5. camera above water, water pixel farther: haze towards the fog colour only.
+// Stained glass and ice get no water effects of their own.
 #include "/lib/settings.glsl"
 #include "/lib/common.glsl"
 #include "/lib/space.glsl"
-#include "/lib/water.glsl"
+#include "/lib/generated.glsl"
+#include "/lib/waves.glsl"
+#include "/lib/optics.glsl"
+#include "/lib/reflections.glsl"
+#include "/lib/caustics.glsl"
 
 /*
 const int colortex4Format = RGBA16;
+const int colortex5Format = RGBA8;
+const int colortex6Format = RGBA8;
 */
 
-uniform sampler2D colortex0;
-uniform sampler2D colortex4;
+uniform sampler2D colortex0; // the scene behind the water, glass blended in
+uniform sampler2D colortex4; // view normal (rgb) and material (a) of the nearest translucent
+uniform sampler2D colortex5; // water tint (rgb) and sky light (a) of the nearest translucent
+uniform sampler2D colortex6; // plain water colour, kept where glass covers the water
+uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height, slope, foam
 uniform sampler2D depthtex0;
 uniform sampler2D depthtex1;
+#if CAUSTICS_MODE == 1
 uniform sampler2D noisetex;
+#endif
 
+uniform mat4 gbufferProjection;
 uniform mat4 gbufferProjectionInverse;
+uniform mat4 gbufferModelView;
 uniform mat4 gbufferModelViewInverse;
 uniform vec3 cameraPosition;
+uniform vec3 shadowLightPosition;
 uniform vec3 skyColor;
+uniform vec3 fogColor;
 uniform float frameTimeCounter;
 uniform int isEyeInWater;
+uniform ivec2 eyeBrightnessSmooth;
 
 in vec2 screenUv;
 
 /* RENDERTARGETS: 0 */
 out vec4 outColor0;
 
-// Caustic brightening of a surface at a view-space position, weighted by how much of it
-// the water lets through.
-vec3 withCaustics(vec3 color, vec3 viewPos, float visibility) {
+// Beyond this distance water is only haze (case 5).
+const float HAZE_DISTANCE = 2000.0;
+// Vanilla's default water colour, for pixels under water with no surface of their own.
+const vec3 DEFAULT_WATER_TINT = vec3(0.247, 0.463, 0.894);
+const vec3 CAUSTIC_COLOR = vec3(1.0, 0.97, 0.9);
+const vec3 FOAM_COLOR = vec3(0.9, 0.95, 1.0);
+// Below this, a contribution is invisible in an 8-bit image.
+const float INVISIBLE = 1.0 / 255.0;
+
+// Caustics on an opaque surface at a wrapped world position, weighted by how much light the
+// water above lets through.
+vec3 withCaustics(vec3 lit, vec2 worldXZ, float visibility) {
 #ifdef CAUSTICS
-    vec3 playerPos = playerFromView(viewPos, gbufferModelViewInverse);
-    vec2 worldXZ = playerPos.xz + wrappedCamera(cameraPosition, NOISE_TILE).xz;
-    float pattern = causticPattern(noisetex, worldXZ, frameTimeCounter);
-    return color * max(1.0 + CAUSTICS_STRENGTH * pattern * visibility, 0.0);
+    if (visibility < INVISIBLE) {
+        return lit;
+    }
+#if CAUSTICS_MODE == 0
+    float intensity = causticsFromHeight(colortex7, worldXZ, frameTimeCounter) * CAUSTICS_STRENGTH;
+    return lit + CAUSTIC_COLOR * intensity * maxComponent(lit) * visibility;
+#else
+    float pattern = causticsFromNoise(noisetex, worldXZ, frameTimeCounter);
+    return lit * max(1.0 + CAUSTICS_STRENGTH * pattern * visibility, 0.0);
+#endif
+#else
+    return lit;
+#endif
+}
+
+// Light lost and gained along a path through water.
+vec3 throughWater(vec3 color, float pathLength, vec3 scattered) {
+#ifdef DEPTH_FADE
+    vec3 t = transmittance(pathLength);
+    return t * color + (1.0 - t) * scattered;
 #else
     return color;
 #endif
 }
 
+vec3 eyePosition() {
+    return gbufferModelViewInverse[3].xyz;
+}
+
+vec3 lightDirection() {
+    return safeNormalize(mat3(gbufferModelViewInverse) * shadowLightPosition, vec3(0.0, 1.0, 0.0));
+}
+
+// Cases 4 and 5: the camera is above the water and this pixel is its surface.
+vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
+    vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
+    float distance0 = length(view0);
+#ifdef FAR_HAZE
+    float haze = clamp((HAZE_DISTANCE - distance0) * 0.0005, 0.0, 1.0);
+    if (haze <= 0.0) {
+        return fogColor;
+    }
+#endif
+    vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
+    vec3 rayDir = safeNormalize(player0 - eyePosition(), vec3(0.0, -1.0, 0.0));
+    vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
+    float time = frameTimeCounter;
+
+    vec3 surface = refineSurface(colortex7, player0, rayDir, cameraWrap, time, true);
+    vec2 surfaceXZ = surface.xz + cameraWrap.xz;
+    float diffuse;
+    vec3 normal = waveNormal(colortex7, surfaceXZ, time, distance0, diffuse);
+    vec3 normalView = mat3(gbufferModelView) * normal;
+    float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);
+    vec3 scattered = scatteredColor(tint, skyLight, skyColor) * (0.65 + diffuse);
+
+    // The opaque scene under the surface, refracted. The offset grows with the water's
+    // opacity, so it vanishes where water meets a shore (C); a sample whose opaque point
+    // lies in front of the surface would pull above-water objects in, so it is rejected.
+    float depth1 = texture(depthtex1, uv).r;
+    vec2 sceneUv = uv;
+#ifdef REFRACTION
+    float opacity = 1.0 - transmittance(length(viewFromScreen(uv, depth1, gbufferProjectionInverse)) - distance0).b;
+    vec2 candidate = clamp(uv + normalView.xy * REFRACTION_STRENGTH * opacity, 0.0, 1.0);
+    float candidateDepth = texture(depthtex1, candidate).r;
+    if (candidateDepth > depth0) {
+        sceneUv = candidate;
+        depth1 = candidateDepth;
+    }
+#endif
+    vec3 view1 = viewFromScreen(sceneUv, depth1, gbufferProjectionInverse);
+    vec3 player1 = playerFromView(view1, gbufferModelViewInverse);
+    float pathInWater = max(distance(player1, surface), 0.0);
+    bool floorVisible = depth1 < 1.0;
+    vec3 below = texture(colortex0, sceneUv).rgb;
+    if (floorVisible) {
+        below = withCaustics(below, player1.xz + cameraWrap.xz, transmittance(pathInWater).b);
+    }
+    below = throughWater(below, pathInWater, scattered);
+
+    vec3 reflected = reflect(rayDir, normal);
+    vec3 reflection = skyRadiance(reflected, skyColor, fogColor) * (0.2 + 0.8 * skyLight);
+#ifdef REFLECTIONS
+    // March with a flatter normal: the wave detail is too fine for the screen's resolution.
+    vec3 marchNormal = mat3(gbufferModelView) * safeNormalize(vec3(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z), vec3(0.0, 1.0, 0.0));
+    vec3 start = (gbufferModelView * vec4(surface, 1.0)).xyz;
+    vec3 marchDir = reflect(safeNormalize(view0, vec3(0.0, 0.0, -1.0)), marchNormal);
+    vec4 hit = traceReflection(colortex0, depthtex1, start, marchDir, dot(marchDir, marchNormal), gbufferProjection, gbufferProjectionInverse);
+    reflection = mix(reflection, hit.rgb, hit.a);
+#endif
+    float reflectance = fresnel(cosView, true);
+    vec3 color = mix(below, reflection, reflectance);
+
+    float foam = 0.0;
+#ifdef FOAM
+    // Coastal foam where the floor is near the surface, crest foam on the highest waves.
+    float waterDepth = floorVisible ? max(surface.y - player1.y, 0.0) : 1e4;
+    float coastal = max(0.0, 0.8 * (1.0 - waterDepth / 1.5));
+    float crest = smoothstep(0.55, 0.75, diffuse);
+    vec2 foamUv = 0.5 + 4.0 * vec2(surfaceXZ.x + normal.x, -(surfaceXZ.y + normal.z)) / WAVE_TILE;
+    foam = max(coastal, crest) * min(1.0, 32.0 / max(distance0, 1.0)) * texture(colortex7, fract(foamUv)).a;
+    color = mix(color, FOAM_COLOR * (0.2 + 0.8 * skyLight) * (0.3 + 0.7 * luminance(skyColor)), foam);
+#endif
+#ifdef SPECULAR
+    float foamFree = 1.0 - foam;
+    color += specularLight(reflected, lightDirection(), skyColor, skyLight) * reflectance * foamFree * foamFree * foamFree;
+#endif
+#ifdef FAR_HAZE
+    color = mix(fogColor, color, haze);
+#endif
+    return color;
+}
+
+// Case 3: the camera is under water and this pixel is the surface seen from below.
+vec3 shadeFromBelow(vec2 uv, float depth0, vec3 tint, float skyLight, vec3 scattered) {
+    vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
+    float distance0 = length(view0);
+    vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
+    vec3 rayDir = safeNormalize(player0 - eyePosition(), vec3(0.0, 1.0, 0.0));
+    vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
+    vec3 surface = refineSurface(colortex7, player0, rayDir, cameraWrap, frameTimeCounter, false);
+    float diffuse;
+    vec3 normal = waveNormal(colortex7, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, diffuse);
+    float cosView = clamp(dot(rayDir, normal), 0.0, 1.0);
+
+    // What lies above the surface, refracted more the farther it is behind the surface.
+    float depth1 = texture(depthtex1, uv).r;
+    vec2 sceneUv = uv;
+#ifdef REFRACTION
+    float behind = max(length(viewFromScreen(uv, depth1, gbufferProjectionInverse)) - distance0, 0.0);
+    vec3 normalView = mat3(gbufferModelView) * normal;
+    sceneUv = clamp(uv + normalView.xy * REFRACTION_STRENGTH * clamp(behind / 8.0, 0.0, 1.0), 0.0, 1.0);
+#endif
+    vec3 above = texture(colortex0, sceneUv).rgb;
+    // Past the critical angle the surface mirrors the water below.
+    vec3 color = mix(above, scattered, fresnel(cosView, false));
+#ifdef FOAM
+    color = mix(color, FOAM_COLOR * 0.5 * skyLight, smoothstep(0.6, 0.8, diffuse) * 0.5);
+#endif
+    return throughWater(color, distance0, scattered);
+}
+
+// Case 2: the camera is under water and so is this pixel.
+vec3 shadeUnderwater(vec2 uv, float depth0, vec3 color, bool opaque, vec3 scattered) {
+    vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
+    float distance0 = length(view0);
+    if (opaque) {
+        vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
+        vec2 worldXZ = player0.xz + wrappedCamera(cameraPosition, WAVE_TILE).xz;
+        color = withCaustics(color, worldXZ, transmittance(distance0).b);
+    }
+    return throughWater(color, distance0, scattered);
+}
+
 void main() {
     vec4 scene = texture(colortex0, screenUv);
     vec4 surface = texture(colortex4, screenUv);
-    bool eyeInWater = isEyeInWater == 1;
-    bool waterPixel = isWaterMaterial(surface.a);
-    if (!waterPixel && !eyeInWater) {
-        outColor0 = scene;
+    if (isEyeInWater != 1) {
+        if (isWaterMaterial(surface.a)) {
+            vec4 tintAndLight = texture(colortex5, screenUv);
+            float depth0 = texture(depthtex0, screenUv).r;
+            outColor0 = vec4(shadeFromAbove(screenUv, depth0, tintAndLight.rgb, tintAndLight.a), scene.a);
+        } else if (isTranslucentMaterial(surface.a)) {
+            // Glass over water: the g-buffer holds the glass, so the water behind it keeps
+            // the plain colour it left in colortex6.
+            vec4 waterBehind = texture(colortex6, screenUv);
+            outColor0 = vec4(mix(scene.rgb, waterBehind.rgb, 0.6 * waterBehind.a), scene.a);
+        } else {
+            outColor0 = scene;
+        }
         return;
     }
-
+    // Under water: the sky light reaching the eye stands in for the depth below the surface.
+    float eyeSkyLight = clamp(float(eyeBrightnessSmooth.y) / 240.0, 0.0, 1.0);
     float depth0 = texture(depthtex0, screenUv).r;
-    float depth1 = texture(depthtex1, screenUv).r;
-    vec3 viewPos0 = viewFromScreen(screenUv, depth0, gbufferProjectionInverse);
-    vec3 viewPos1 = viewFromScreen(screenUv, depth1, gbufferProjectionInverse);
-    vec3 viewDir = safeNormalize(viewPos0, vec3(0.0, 0.0, -1.0));
-    vec3 color = scene.rgb;
-
-    if (eyeInWater) {
-        // Under water: light fades along the whole way from the camera to the nearest surface.
-        float visibility = 1.0;
-#ifdef DEPTH_FADE
-        visibility = depthFade(length(viewPos0), DEPTH_FADE_DISTANCE);
-#endif
-        // Caustics fall on opaque surfaces only, never on the sky, water or glass.
-        bool opaque = surface.a < 0.25 && depth0 < 1.0;
-        if (opaque) {
-            color = withCaustics(color, viewPos0, visibility);
-        }
-        color = mix(WATER_FOG_COLOR, color, visibility);
+    if (isWaterMaterial(surface.a)) {
+        vec4 tintAndLight = texture(colortex5, screenUv);
+        vec3 scattered = scatteredColor(tintAndLight.rgb, eyeSkyLight, skyColor);
+        outColor0 = vec4(shadeFromBelow(screenUv, depth0, tintAndLight.rgb, tintAndLight.a, scattered), scene.a);
     } else {
-        // Above water, looking into it: the scene behind lies under the water surface.
-        vec3 normal = decodeNormal(surface.rgb);
-        float cosView = clamp(abs(dot(viewDir, normal)), 0.0, 1.0);
-        float visibility = 1.0;
-#ifdef DEPTH_FADE
-        // The path through the water times the cosine approximates the depth below the surface.
-        float pathInWater = max(length(viewPos1) - length(viewPos0), 0.0);
-        visibility = depthFade(pathInWater * cosView, DEPTH_FADE_DISTANCE);
-#endif
-        if (depth1 < 1.0) {
-            color = withCaustics(color, viewPos1, visibility);
-        }
-        color = mix(WATER_FOG_COLOR, color, visibility);
-        // Schlick-like sky reflection, strongest at grazing angles.
-        float reflectance = pow(1.0 - cosView, 4.0);
-        color = mix(color, skyColor, reflectance);
+        vec3 scattered = scatteredColor(DEFAULT_WATER_TINT, eyeSkyLight, skyColor);
+        bool opaque = surface.a < 0.25 && depth0 < 1.0;
+        outColor0 = vec4(shadeUnderwater(screenUv, depth0, scene.rgb, opaque, scattered), scene.a);
     }
-    outColor0 = vec4(color, scene.a);
 }

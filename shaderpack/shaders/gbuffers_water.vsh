@@ -4,8 +4,8 @@
 #include "/lib/settings.glsl"
 #include "/lib/common.glsl"
 #include "/lib/space.glsl"
-#include "/lib/water.glsl"
-#include "/lib/blocks.glsl"
+#include "/lib/generated.glsl"
+#include "/lib/waves.glsl"
 
 in vec4 mc_Entity;
 

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use tidepack_pack::validation::Coverage;
 use tidepack_pack::{BuildOptions, Dialect};
 
 mod commands;
@@ -36,6 +37,11 @@ enum Command {
         /// default_profile).
         #[arg(long)]
         profile: Option<String>,
+        /// Validate every combination of the options each program tests, however many. By
+        /// default, past 256 such combinations per program, every pair of option values and
+        /// every profile are validated.
+        #[arg(long)]
+        exhaustive: bool,
     },
     /// Check any OptiFine shader pack (folder or zip) the way OptiFine loads it, headless: every
     /// program of every world folder through OptiFine's preprocessor and naga, plus the links
@@ -59,13 +65,14 @@ enum DialectArg {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Build { source, out, dialect, profile } => {
+        Command::Build { source, out, dialect, profile, exhaustive } => {
             let dialects = match dialect {
                 DialectArg::V120 => vec![Dialect::Glsl120],
                 DialectArg::V330 => vec![Dialect::Glsl330],
                 DialectArg::All => Dialect::ALL.to_vec(),
             };
-            commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile })
+            let coverage = if exhaustive { Coverage::Exhaustive } else { Coverage::Pairwise };
+            commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile, coverage })
         }
         Command::Validate(args) => commands::validate::run(&args),
     }

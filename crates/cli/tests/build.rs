@@ -31,9 +31,9 @@ fn zip_entries(path: &Path) -> HashMap<String, String> {
     (0..archive.len())
         .map(|i| {
             let mut file = archive.by_index(i).unwrap();
-            let mut text = String::new();
-            file.read_to_string(&mut text).unwrap();
-            (file.name().unwrap().to_string(), text)
+            let mut bytes = Vec::new();
+            file.read_to_end(&mut bytes).unwrap();
+            (file.name().unwrap().to_string(), String::from_utf8_lossy(&bytes).into_owned())
         })
         .collect()
 }
@@ -62,7 +62,9 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
             "shaders/gbuffers_water.fsh",
             "shaders/composite.vsh",
             "shaders/composite.fsh",
-            "shaders/lib/blocks.glsl",
+            "shaders/lib/generated.glsl",
+            "shaders/textures/water.png",
+            "shaders/textures/water.png.mcmeta",
         ] {
             assert!(names.contains(&required), "{dialect}: {required} missing from {names:?}");
         }
@@ -80,8 +82,8 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
         assert!(blocks.contains("block.10008=minecraft:water minecraft:flowing_water"), "{blocks}");
         let fsh = &entries["shaders/gbuffers_water.fsh"];
         match dialect {
-            "glsl120" => assert!(fsh.contains("/* DRAWBUFFERS:04 */") && fsh.contains("gl_FragData[1]"), "{fsh}"),
-            _ => assert!(fsh.contains("/* RENDERTARGETS: 0,4 */") && fsh.contains("out vec4 outColor1;"), "{fsh}"),
+            "glsl120" => assert!(fsh.contains("/* DRAWBUFFERS:0456 */") && fsh.contains("gl_FragData[3]"), "{fsh}"),
+            _ => assert!(fsh.contains("/* RENDERTARGETS: 0,4,5,6 */") && fsh.contains("out vec4 outColor3;"), "{fsh}"),
         }
     }
 }
@@ -105,7 +107,8 @@ fn profile_sets_the_shipped_defaults() {
     let entries = zip_entries(&out.path().join("Tidepack-0.1.0-glsl330.zip"));
     let settings = &entries["shaders/lib/settings.glsl"];
     assert!(settings.contains("//#define CAUSTICS //"), "{settings}");
-    assert!(settings.contains("#define DEPTH_FADE_DISTANCE 8.0 //"), "{settings}");
+    assert!(settings.contains("#define WAVE_REFINE_STEPS 0 //"), "{settings}");
+    assert!(settings.contains("//#define REFLECTIONS //"), "{settings}");
     let output = build_into(&repo_root().join("shaderpack"), out.path(), &["--profile", "NOPE"]);
     assert!(!output.status.success());
     assert!(stderr(&output).contains("no profile named NOPE"), "{}", stderr(&output));
@@ -202,14 +205,14 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
     let mutations = [
         Mutation {
             template: "composite.fsh",
-            anchor: "vec3 color = scene.rgb;",
-            replace: ("vec3 color = scene.rgb;", "vec3 color = scenery.rgb;"),
-            message: "scenery",
+            anchor: "float distance0 = length(view0);",
+            replace: ("float distance0 = length(view0);", "float distance0 = length(viewZero);"),
+            message: "viewZero",
         },
         Mutation {
-            template: "lib/water.glsl",
-            anchor: "vec2 uv = worldXZ / NOISE_TILE;",
-            replace: ("vec2 uv = worldXZ / NOISE_TILE;", "vec2 uv = worldXZ / NOISE_TILE + vec3(1.0);"),
+            template: "lib/caustics.glsl",
+            anchor: "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);",
+            replace: ("float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);"),
             message: "error",
         },
         Mutation {
@@ -226,8 +229,8 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
         },
         Mutation {
             template: "composite.fsh",
-            anchor: "bool opaque =",
-            replace: ("bool opaque =", "int opaque ="),
+            anchor: "float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);",
+            replace: ("float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);", "float cosView = clamp(dot(-rayDir, normal.xy), 0.0, 1.0);"),
             message: "error",
         },
         Mutation {
@@ -255,7 +258,7 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
 #[test]
 fn errors_under_non_default_options_name_the_options() {
     let (output, _work, file) = build_mutated("composite.fsh", |t| {
-        t.replacen("    return color;\n#endif", "    return colour;\n#endif", 1)
+        t.replacen("#else\n    return lit;\n#endif", "#else\n    return unlit;\n#endif", 1)
     });
     let err = stderr(&output);
     assert!(!output.status.success());

@@ -1,7 +1,7 @@
 //! Benchmark: validating the pack with naga (in process) against glslangValidator on the same
 //! stage texts (one process per file, as a CI script would run it).
 //!
-//! `cargo run --release -p tidepack-pack --example validation_bench [runs]`
+//! `cargo run --release -p tidepack-pack --example validation_bench [runs] [--exhaustive]`
 //! Prints medians over `runs` (default 7) and the ratio, measured in the same process.
 use std::time::Instant;
 
@@ -11,6 +11,7 @@ use tidepack_pack::build::generate_validated;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::WithOptions;
 use tidepack_pack::source::PackSource;
+use tidepack_pack::validation::Coverage;
 use tidepack_pack::{pack_options, validation};
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -20,13 +21,14 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let runs: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(7);
+    let coverage = if std::env::args().any(|a| a == "--exhaustive") { Coverage::Exhaustive } else { Coverage::Pairwise };
     let source = PackSource::load("shaderpack".as_ref()).expect("run from the repository root");
     let options = pack_options::collect(&source).unwrap();
     let mut naga_times = Vec::new();
     let mut packs = Vec::new();
     for _ in 0..runs {
         let started = Instant::now();
-        packs = generate_validated(&source, &options, &Dialect::ALL, &Default::default()).map_err(|f| f.diagnostics).unwrap();
+        packs = generate_validated(&source, &options, &Dialect::ALL, &Default::default(), coverage).map_err(|f| f.diagnostics).unwrap();
         naga_times.push(started.elapsed().as_secs_f64());
     }
     let work = std::env::temp_dir().join(format!("tidepack-bench-{}", std::process::id()));

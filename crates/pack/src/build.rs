@@ -13,7 +13,7 @@ use crate::dialect::Dialect;
 use crate::pack_options::{self, PackOptions};
 use crate::shipped::ShippedPack;
 use crate::source::PackSource;
-use crate::validation::{self, ValidationReport};
+use crate::validation::{self, Coverage, ValidationReport};
 
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -23,6 +23,8 @@ pub struct BuildOptions {
     pub dialects: Vec<Dialect>,
     /// Profile whose values become the defaults in the shipped GLSL.
     pub profile: Option<String>,
+    /// How many option combinations to validate.
+    pub coverage: Coverage,
 }
 
 #[derive(Clone, Debug)]
@@ -72,13 +74,22 @@ pub fn generate_validated(
     options: &PackOptions,
     dialects: &[Dialect],
     defaults: &OptionSet,
+    coverage: Coverage,
 ) -> Result<Vec<(ShippedPack, ValidationReport)>, BuildFailure> {
+    let profiles: Vec<OptionSet> = source
+        .manifest
+        .profiles
+        .iter()
+        .filter_map(|p| pack_options::profile_set(source, options, &p.name).ok())
+        .collect();
     let mut packs = Vec::new();
     let mut diagnostics = Vec::new();
     let mut sources = HashMap::new();
+    // Validation enumerates values around what ships, which a profile may have changed.
+    let shipped_options = pack_options::with_defaults(options, defaults);
     for &dialect in dialects {
         let pack = ShippedPack::generate(source, options, dialect, defaults).map_err(BuildFailure::new)?;
-        match validation::validate_pack(&pack, options) {
+        match validation::validate_pack(&pack, &shipped_options, coverage, &profiles) {
             Ok(report) => packs.push((pack, report)),
             Err(errors) => {
                 for diag in errors {
@@ -107,12 +118,13 @@ pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
     }
     let profile = opts.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults = pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure::new(vec![d]))?;
-    let packs = generate_validated(&source, &options, &opts.dialects, &defaults)?;
+    let packs = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage)?;
     let info = &source.manifest.pack;
     let mut outcomes = Vec::new();
     for (pack, validation) in packs {
-        let entries: Vec<(String, &[u8])> =
-            pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes())).collect();
+        let texts = pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes()));
+        let binaries = pack.binaries.iter().map(|(path, bytes)| (format!("shaders/{path}"), &bytes[..]));
+        let entries: Vec<(String, &[u8])> = texts.chain(binaries).collect();
         let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect);
         let zip_bytes = archive::write_zip(&zip, &entries).map_err(|e| {
             BuildFailure::new(vec![Diagnostic::error(format!("cannot write {}: {e}", zip.display()), None)])

@@ -14,7 +14,7 @@ use tidepack_glsl::{Diagnostic, Location};
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
     pub pack: PackInfo,
-    /// Block ids: each becomes a `block.<id>=` line and a `#define` in lib/blocks.glsl.
+    /// Block ids: each becomes a `block.<id>=` line and a `#define` in lib/generated.glsl.
     #[serde(default, rename = "block")]
     pub blocks: Vec<BlockId>,
     /// Pipeline settings written as they are to shaders.properties (`blend.gbuffers_water.colortex4`).
@@ -42,7 +42,7 @@ pub struct PackInfo {
 #[serde(deny_unknown_fields)]
 pub struct BlockId {
     pub id: i16,
-    /// Macro name in lib/blocks.glsl.
+    /// Macro name in lib/generated.glsl.
     #[serde(rename = "macro")]
     pub macro_name: String,
     pub names: Vec<String>,

@@ -50,6 +50,22 @@ pub fn is_glsl(path: &str) -> bool {
     path.ends_with(".vsh") || path.ends_with(".fsh") || path.ends_with(".glsl")
 }
 
+/// The options with `defaults` as their default values (a pack built with a profile).
+pub fn with_defaults(options: &PackOptions, defaults: &OptionSet) -> PackOptions {
+    let mut shipped = options.clone();
+    for (name, value) in defaults {
+        let Some(option) = shipped.get_mut(name) else { continue };
+        option.kind = match (&option.kind, value) {
+            (OptionKind::Switch { .. }, OptionValue::Switch(on)) => OptionKind::Switch { default: *on },
+            (OptionKind::Value { values, .. }, OptionValue::Value(v)) => {
+                OptionKind::Value { default: v.clone(), values: values.clone() }
+            }
+            (kind, _) => kind.clone(),
+        };
+    }
+    shipped
+}
+
 /// Parses a profile's setting for `option`.
 fn profile_value(option: &PackOption, value: &toml::Value) -> Result<OptionValue, String> {
     match (&option.kind, value) {

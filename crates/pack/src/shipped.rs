@@ -11,7 +11,7 @@ use tidepack_glsl::{Diagnostic, Location, Stage};
 use crate::dialect::{self, Dialect};
 use crate::pack_options::{PackOptions, is_glsl};
 use crate::source::PackSource;
-use crate::writers;
+use crate::{textures, writers};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Origin {
@@ -38,12 +38,14 @@ pub struct Program {
 #[derive(Clone, Debug)]
 pub struct ShippedPack {
     pub dialect: Dialect,
-    /// By path inside `shaders/`.
+    /// Text files by path inside `shaders/`.
     pub files: BTreeMap<String, ShippedFile>,
+    /// Binary files (generated textures) by path inside `shaders/`.
+    pub binaries: BTreeMap<String, Arc<[u8]>>,
 }
 
-/// Files generated from the manifest, by path inside `shaders/`.
-pub const BLOCKS_GLSL: &str = "lib/blocks.glsl";
+/// The GLSL file generated from the manifest and the texture generator.
+pub const GENERATED_GLSL: &str = "lib/generated.glsl";
 
 impl ShippedPack {
     /// Generates the pack in `dialect`; `defaults` rewrites option defaults (a profile).
@@ -93,8 +95,10 @@ impl ShippedPack {
             return Err(errors);
         }
         let m = &source.manifest;
+        let water = textures::water_texture();
         for (path, text) in [
-            (BLOCKS_GLSL, writers::blocks_glsl(m, manifest_name)),
+            (GENERATED_GLSL, writers::generated_glsl(m, manifest_name, water.slope_range)),
+            (&format!("{}.mcmeta", textures::WATER_TEXTURE), textures::WATER_TEXTURE_META.to_string()),
             ("shaders.properties", writers::shaders_properties(m, options, manifest_name)),
             ("block.properties", writers::block_properties(m, manifest_name)),
             ("lang/en_us.lang", writers::lang(m, manifest_name)),
@@ -107,7 +111,8 @@ impl ShippedPack {
             }
             files.insert(path.to_string(), ShippedFile { text: Arc::from(text), origin: Origin::Manifest });
         }
-        Ok(ShippedPack { dialect, files })
+        let binaries = [(textures::WATER_TEXTURE.to_string(), Arc::from(water.png))].into();
+        Ok(ShippedPack { dialect, files, binaries })
     }
 
     /// Programs: `.vsh`/`.fsh` files at the top level or in a world folder.
@@ -124,6 +129,21 @@ impl ShippedPack {
             stages.sort();
             Program { name, stages }
         }).collect()
+    }
+
+    /// Custom textures from shaders.properties: (stage, sampler unit, path inside `shaders/`),
+    /// e.g. ("composite", "colortex7", "textures/water.png").
+    pub fn custom_textures(&self) -> Vec<(String, String, String)> {
+        let Some(properties) = self.files.get("shaders.properties") else { return Vec::new() };
+        properties
+            .text
+            .lines()
+            .filter_map(|line| {
+                let (key, path) = line.split_once('=')?;
+                let (stage, unit) = key.trim().strip_prefix("texture.")?.split_once('.')?;
+                Some((stage.to_string(), unit.to_string(), path.trim().to_string()))
+            })
+            .collect()
     }
 
     /// The template location of a location in a shipped file (unchanged for generated files).

@@ -1,11 +1,18 @@
-//! Validation of every program under every option set that changes its text.
+//! Validation of every program under the option sets that change its text.
 //!
 //! Which options matter is discovered, not declared: a program's stages are preprocessed with
-//! the default values, the options the preprocessor consulted become relevant, and the sets are
-//! the combinations of the relevant options' values; options found only under some of those
-//! sets join and the search repeats until it is closed. When the full product grows past
-//! [`MAX_EXHAUSTIVE_SETS`], the sets are every combination of the options the program tests in
-//! conditionals, with each option that is only substituted as a value varied one at a time.
+//! the default values, the options the preprocessor consulted become relevant, and sets are
+//! drawn from the relevant options' values; options found only under some of those sets join
+//! and the search repeats until it is closed. Which sets:
+//! - all combinations of the relevant options, when there are at most
+//!   [`MAX_EXHAUSTIVE_SETS`];
+//! - otherwise, every combination of the options the program tests in conditionals
+//!   ([`Coverage::Exhaustive`], or [`Coverage::Pairwise`] while that product is at most
+//!   [`MAX_PAIRWISE_PRODUCT`]), with options that are only substituted as values varied one
+//!   at a time;
+//! - under [`Coverage::Pairwise`] with more tested combinations: a covering array in which
+//!   every pair of values of any two tested options appears together in some set, plus every
+//!   profile.
 //! Every set is preprocessed and lowered; identical lowered texts are validated by naga once.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -20,8 +27,43 @@ use tidepack_glsl::validate::{self, LoweredStage};
 use crate::pack_options::PackOptions;
 use crate::shipped::{Program, ShippedPack, WithOptions};
 
-/// Largest number of option sets per program validated as a full product.
+/// Largest product of all relevant options validated in full.
 pub const MAX_EXHAUSTIVE_SETS: usize = 4096;
+/// Largest product of the tested options that [`Coverage::Pairwise`] still validates in full.
+pub const MAX_PAIRWISE_PRODUCT: usize = 256;
+
+/// How many option combinations to validate when they are too many for all of them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Coverage {
+    /// Every combination of the options each program tests.
+    Exhaustive,
+    /// Every pair of values of any two tested options, and every profile.
+    #[default]
+    Pairwise,
+}
+
+/// What the validated sets of a program cover, weakest last.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SetsCovered {
+    /// Every combination of every option the program reads.
+    AllCombinations,
+    /// Every combination of the options it tests; substituted values one at a time.
+    TestedCombinations,
+    /// Every pair of tested option values, and the profiles.
+    Pairs,
+}
+
+impl SetsCovered {
+    pub fn describe(self) -> &'static str {
+        match self {
+            SetsCovered::AllCombinations => "every combination of the options each program reads",
+            SetsCovered::TestedCombinations => {
+                "every combination of the options each program tests, substituted values one at a time"
+            }
+            SetsCovered::Pairs => "every pair of values of the options each program tests, and every profile",
+        }
+    }
+}
 
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ValidationReport {
@@ -32,8 +74,8 @@ pub struct ValidationReport {
     pub stages_validated: usize,
     /// Stages skipped because an identical lowered text was validated already.
     pub stages_identical: usize,
-    /// False when some program's sets were reduced (see the module docs).
-    pub exhaustive: bool,
+    /// The weakest coverage over the programs (see the module docs).
+    pub covered: Option<SetsCovered>,
     /// The stages naga validated: shipped path and the first option set that gave its text.
     pub validated: Vec<(String, OptionSet)>,
 }
@@ -56,64 +98,93 @@ pub fn standard_macros(glsl_version: u32) -> PreprocessOptions {
     PreprocessOptions { predefined: predefined.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect() }
 }
 
-struct ProgramSets {
-    /// Each option set with the preprocessed stages it gives.
-    runs: Vec<(OptionSet, Vec<Arc<Preprocessed>>)>,
-    exhaustive: bool,
-}
-
 /// Validates every program of `pack`; diagnostics point at shipped files.
-pub fn validate_pack(pack: &ShippedPack, options: &PackOptions) -> Result<ValidationReport, Vec<Diagnostic>> {
+///
+/// The default option set of every program goes first: most mistakes show there, and a
+/// failing build then stops before enumerating every set.
+/// `profiles` are option sets players can pick, always validated.
+pub fn validate_pack(
+    pack: &ShippedPack,
+    options: &PackOptions,
+    coverage: Coverage,
+    profiles: &[OptionSet],
+) -> Result<ValidationReport, Vec<Diagnostic>> {
     let glsl_version = match pack.dialect {
         crate::dialect::Dialect::Glsl120 => 120,
         crate::dialect::Dialect::Glsl330 => 330,
     };
     let macros = standard_macros(glsl_version);
-    let mut report = ValidationReport { exhaustive: true, ..Default::default() };
-    let mut errors: Vec<(Diagnostic, OptionSet)> = Vec::new();
-    // Unique lowered stages to validate, each with the first option set that produced it.
-    let mut unique: Vec<(LoweredStage, OptionSet)> = Vec::new();
-    let mut seen: HashMap<(String, String), ()> = HashMap::new();
-    for program in pack.programs() {
-        report.programs += 1;
-        let sets = match option_sets(pack, &program, options, &macros) {
-            Ok(sets) => sets,
-            Err((diag, set)) => {
-                errors.push((diag, set));
-                continue;
+    let programs = pack.programs();
+    let defaults: Vec<(&Program, OptionSet)> = programs.iter().map(|p| (p, OptionSet::new())).collect();
+    let mut seen = HashMap::new();
+    let (unique, mut errors, _) = lower_sets(pack, &defaults, &macros, &mut seen);
+    errors.extend(validate_in_parallel(pack, &unique));
+    if !errors.is_empty() {
+        return Err(distinct_errors(errors));
+    }
+    let mut report = ValidationReport { programs: programs.len(), ..Default::default() };
+    let mut all_sets = Vec::new();
+    for program in &programs {
+        match option_sets(pack, program, options, &macros, coverage, profiles) {
+            Ok((sets, covered)) => {
+                report.covered = report.covered.max(Some(covered));
+                report.option_sets += sets.len();
+                all_sets.extend(sets.into_iter().map(|set| (program, set)));
             }
-        };
-        report.exhaustive &= sets.exhaustive;
-        report.option_sets += sets.runs.len();
-        for (set, stages) in sets.runs {
-            let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
-            match validate::lower_program(&with_stage) {
-                Ok(lowered) => {
-                    for (stage, (_, path)) in lowered.into_iter().zip(&program.stages) {
-                        if seen.insert((path.clone(), stage.lowered.text.clone()), ()).is_some() {
-                            report.stages_identical += 1;
-                        } else {
-                            unique.push((stage, set.clone()));
-                        }
-                    }
-                }
-                Err(diag) => errors.push((diag, set)),
-            }
+            Err(error) => errors.push(error),
         }
     }
+    let (mut unique, lowering_errors, identical) = lower_sets(pack, &all_sets, &macros, &mut HashMap::new());
+    errors.extend(lowering_errors);
+    report.stages_identical = identical;
     report.stages_validated = unique.len();
     report.validated = unique.iter().map(|(stage, set)| (stage.preprocessed.files[0].clone(), set.clone())).collect();
     errors.extend(validate_in_parallel(pack, &unique));
-    if errors.is_empty() {
-        return Ok(report);
+    unique.clear();
+    if errors.is_empty() { Ok(report) } else { Err(distinct_errors(errors)) }
+}
+
+/// Preprocesses and lowers each (program, option set); returns the stages whose lowered text
+/// is new (with the set that gave it), the errors, and how many stages were identical.
+fn lower_sets(
+    pack: &ShippedPack,
+    sets: &[(&Program, OptionSet)],
+    macros: &PreprocessOptions,
+    seen: &mut HashMap<(String, String), ()>,
+) -> (Vec<(LoweredStage, OptionSet)>, Vec<(Diagnostic, OptionSet)>, usize) {
+    let lowered = parallel_map(sets, || (), |(), (program, set)| {
+        let stages = run_set(pack, program, set, macros)?;
+        let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
+        validate::lower_program(&with_stage)
+    });
+    let mut unique = Vec::new();
+    let mut errors = Vec::new();
+    let mut identical = 0;
+    for ((program, set), result) in sets.iter().zip(lowered) {
+        match result {
+            Ok(stages) => {
+                for (stage, (_, path)) in stages.into_iter().zip(&program.stages) {
+                    if seen.insert((path.clone(), stage.lowered.text.clone()), ()).is_some() {
+                        identical += 1;
+                    } else {
+                        unique.push((stage, set.clone()));
+                    }
+                }
+            }
+            Err(diag) => errors.push((diag, set.clone())),
+        }
     }
-    // One diagnostic per distinct error, noting the options of the first set that shows it.
+    (unique, errors, identical)
+}
+
+/// One diagnostic per distinct error, noting the options of the first set that shows it.
+fn distinct_errors(errors: Vec<(Diagnostic, OptionSet)>) -> Vec<Diagnostic> {
     let mut distinct: BTreeMap<String, Diagnostic> = BTreeMap::new();
     for (diag, set) in errors {
         let key = diag.to_string();
         distinct.entry(key).or_insert_with(|| diag.with_note(describe_set(&set)));
     }
-    Err(distinct.into_values().collect())
+    distinct.into_values().collect()
 }
 
 fn describe_set(set: &OptionSet) -> String {
@@ -125,29 +196,41 @@ fn describe_set(set: &OptionSet) -> String {
     }
 }
 
-fn validate_in_parallel(pack: &ShippedPack, unique: &[(LoweredStage, OptionSet)]) -> Vec<(Diagnostic, OptionSet)> {
+/// Maps `items` on every core; `init` makes each worker's state (a naga front-end).
+fn parallel_map<T: Sync, S, R: Send>(
+    items: &[T],
+    init: impl Fn() -> S + Sync,
+    f: impl Fn(&mut S, &T) -> R + Sync,
+) -> Vec<R> {
     let next = AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(unique.len().max(1));
-    std::thread::scope(|scope| {
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(items.len().max(1));
+    let mut results: Vec<(usize, R)> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
             .map(|_| {
                 scope.spawn(|| {
-                    let mut frontend = validate::Frontend::default();
-                    let mut found = Vec::new();
+                    let mut state = init();
+                    let mut done = Vec::new();
                     loop {
                         let i = next.fetch_add(1, Ordering::Relaxed);
-                        let Some((stage, set)) = unique.get(i) else { break };
-                        let provider = WithOptions::new(pack, set);
-                        if let Err(diags) = validate::validate_stage(&mut frontend, stage, &provider) {
-                            found.extend(diags.into_iter().map(|d| (d, set.clone())));
-                        }
+                        let Some(item) = items.get(i) else { break };
+                        done.push((i, f(&mut state, item)));
                     }
-                    found
+                    done
                 })
             })
             .collect();
         handles.into_iter().flat_map(|h| h.join().expect("validation worker panicked")).collect()
-    })
+    });
+    results.sort_by_key(|(i, _)| *i);
+    results.into_iter().map(|(_, r)| r).collect()
+}
+
+fn validate_in_parallel(pack: &ShippedPack, unique: &[(LoweredStage, OptionSet)]) -> Vec<(Diagnostic, OptionSet)> {
+    let results = parallel_map(unique, validate::Frontend::default, |frontend, (stage, set)| {
+        let provider = WithOptions::new(pack, set);
+        validate::validate_stage(frontend, stage, &provider).err().map(|diags| (diags, set.clone()))
+    });
+    results.into_iter().flatten().flat_map(|(diags, set)| diags.into_iter().map(move |d| (d, set.clone()))).collect()
 }
 
 /// Preprocesses a program's stages under one option set; returns the stages and the options
@@ -162,78 +245,191 @@ fn run_set(
     program.stages.iter().map(|(_, path)| preprocess::preprocess(&provider, path, macros).map(Arc::new)).collect()
 }
 
+/// The option sets of a program (see the module docs) and whether they are exhaustive.
 fn option_sets(
     pack: &ShippedPack,
     program: &Program,
     options: &PackOptions,
     macros: &PreprocessOptions,
-) -> Result<ProgramSets, (Diagnostic, OptionSet)> {
+    coverage: Coverage,
+    profiles: &[OptionSet],
+) -> Result<(Vec<OptionSet>, SetsCovered), (Diagnostic, OptionSet)> {
     let mut relevant: BTreeSet<String> = BTreeSet::new();
     let mut tested: BTreeSet<String> = BTreeSet::new();
-    let mut cache: BTreeMap<OptionSet, Vec<Arc<Preprocessed>>> = BTreeMap::new();
+    let mut explored: BTreeSet<OptionSet> = BTreeSet::new();
     loop {
-        let (sets, exhaustive) = enumerate(&relevant, &tested, options);
-        let mut grew = false;
-        for set in &sets {
-            if !cache.contains_key(set) {
-                let stages = run_set(pack, program, set, macros).map_err(|d| (d, set.clone()))?;
-                cache.insert(set.clone(), stages);
+        let (sets, covered) = enumerate(&relevant, &tested, options, coverage, profiles);
+        let fresh: Vec<&OptionSet> = sets.iter().filter(|s| !explored.contains(*s)).collect();
+        let consulted = parallel_map(&fresh, || (), |(), set| {
+            let stages = run_set(pack, program, set, macros).map_err(|d| (d, (*set).clone()))?;
+            let mut names = (BTreeSet::new(), BTreeSet::new());
+            for pre in &stages {
+                names.0.extend(pre.consulted_macros.iter().filter(|n| options.contains_key(*n)).cloned());
+                names.1.extend(pre.tested_macros.iter().filter(|n| options.contains_key(*n)).cloned());
             }
-            for pre in &cache[set] {
-                for name in pre.consulted_macros.iter().filter(|n| options.contains_key(*n)) {
-                    grew |= relevant.insert(name.clone());
-                }
-                for name in pre.tested_macros.iter().filter(|n| options.contains_key(*n)) {
-                    grew |= tested.insert(name.clone());
-                }
+            Ok(names)
+        });
+        let mut grew = false;
+        for result in consulted {
+            let (all, in_conditionals) = result?;
+            for name in all {
+                grew |= relevant.insert(name);
+            }
+            for name in in_conditionals {
+                grew |= tested.insert(name);
             }
         }
+        explored.extend(fresh.into_iter().cloned());
         if !grew {
-            let runs = sets.into_iter().map(|set| {
-                let stages = cache[&set].clone();
-                (set, stages)
-            });
-            return Ok(ProgramSets { runs: runs.collect(), exhaustive });
+            return Ok((sets, covered));
         }
     }
 }
 
 /// The option sets for the relevant options. Options at their default are left out of a set,
 /// so a set means the same whichever options are relevant.
-fn enumerate(relevant: &BTreeSet<String>, tested: &BTreeSet<String>, options: &PackOptions) -> (Vec<OptionSet>, bool) {
+fn enumerate(
+    relevant: &BTreeSet<String>,
+    tested: &BTreeSet<String>,
+    options: &PackOptions,
+    coverage: Coverage,
+    profiles: &[OptionSet],
+) -> (Vec<OptionSet>, SetsCovered) {
     let choices = |name: &String| -> Vec<Option<OptionValue>> {
         let kind = &options[name].kind;
         let default = kind.default_value();
         kind.all_values().into_iter().map(|v| (v != default).then_some(v)).collect()
     };
-    let full: usize = relevant.iter().map(|n| choices(n).len()).product();
-    let product_over = |names: &[&String]| {
-        let mut sets = vec![OptionSet::new()];
-        for name in names {
-            let mut next = Vec::with_capacity(sets.len() * 2);
-            for set in &sets {
-                for value in choices(name) {
-                    let mut s = set.clone();
-                    if let Some(v) = value {
-                        s.insert((*name).clone(), v);
-                    }
-                    next.push(s);
-                }
-            }
-            sets = next;
-        }
-        sets
+    let set_of = |names: &[&String], row: &[usize]| -> OptionSet {
+        names
+            .iter()
+            .zip(row)
+            .filter_map(|(name, &i)| Some(((*name).clone(), choices(name)[i].clone()?)))
+            .collect()
     };
-    if full <= MAX_EXHAUSTIVE_SETS {
-        let names: Vec<&String> = relevant.iter().collect();
-        return (product_over(&names), true);
+    let all: Vec<&String> = relevant.iter().collect();
+    let sizes = |names: &[&String]| names.iter().map(|n| choices(n).len()).collect::<Vec<_>>();
+    if sizes(&all).iter().product::<usize>() <= MAX_EXHAUSTIVE_SETS {
+        let sets = product(&sizes(&all)).iter().map(|row| set_of(&all, row)).collect();
+        return (sets, SetsCovered::AllCombinations);
     }
     let structural: Vec<&String> = relevant.iter().filter(|n| tested.contains(*n)).collect();
-    let mut sets = product_over(&structural);
+    let structural_sizes = sizes(&structural);
+    let all_tested = coverage == Coverage::Exhaustive
+        || structural_sizes.iter().product::<usize>() <= MAX_PAIRWISE_PRODUCT;
+    let (rows, covered) = if all_tested {
+        (product(&structural_sizes), SetsCovered::TestedCombinations)
+    } else {
+        (pairwise(&structural_sizes), SetsCovered::Pairs)
+    };
+    let mut sets: Vec<OptionSet> = rows.iter().map(|row| set_of(&structural, row)).collect();
     for name in relevant.iter().filter(|n| !tested.contains(*n)) {
         for value in choices(name).into_iter().flatten() {
             sets.push([(name.clone(), value)].into());
         }
     }
-    (sets, false)
+    if covered == SetsCovered::Pairs {
+        for profile in profiles {
+            let set: OptionSet = profile
+                .iter()
+                .filter(|(name, value)| relevant.contains(*name) && options[*name].kind.default_value() != **value)
+                .map(|(k, v)| (k.clone(), v.clone()))
+                .collect();
+            sets.push(set);
+        }
+    }
+    sets.sort();
+    sets.dedup();
+    (sets, covered)
+}
+
+/// Every combination of indices below `sizes`.
+fn product(sizes: &[usize]) -> Vec<Vec<usize>> {
+    let mut rows = vec![Vec::new()];
+    for &size in sizes {
+        rows = rows.into_iter().flat_map(|row| (0..size).map(move |v| [row.clone(), vec![v]].concat())).collect();
+    }
+    rows
+}
+
+/// A covering array of strength 2: rows of indices below `sizes` such that every pair of
+/// values of any two positions appears in some row. Greedy and deterministic: each row starts
+/// from an uncovered pair and fills the other positions with the value covering most pairs.
+fn pairwise(sizes: &[usize]) -> Vec<Vec<usize>> {
+    let n = sizes.len();
+    let mut uncovered: BTreeSet<(usize, usize, usize, usize)> = BTreeSet::new();
+    for a in 0..n {
+        for b in a + 1..n {
+            for va in 0..sizes[a] {
+                for vb in 0..sizes[b] {
+                    uncovered.insert((a, va, b, vb));
+                }
+            }
+        }
+    }
+    // The all-defaults row first: index 0 is each option's default.
+    let mut rows = vec![vec![0; n]];
+    remove_covered(&mut uncovered, &rows[0]);
+    while let Some(&(a, va, b, vb)) = uncovered.iter().next() {
+        let mut row: Vec<Option<usize>> = vec![None; n];
+        row[a] = Some(va);
+        row[b] = Some(vb);
+        for position in 0..n {
+            if row[position].is_some() {
+                continue;
+            }
+            let gain = |value: usize| {
+                row.iter()
+                    .enumerate()
+                    .filter_map(|(other, v)| Some((other, (*v)?)))
+                    .filter(|&(other, v)| {
+                        let key = if other < position { (other, v, position, value) } else { (position, value, other, v) };
+                        uncovered.contains(&key)
+                    })
+                    .count()
+            };
+            let best = (0..sizes[position]).max_by_key(|&v| (gain(v), std::cmp::Reverse(v))).unwrap_or(0);
+            row[position] = Some(best);
+        }
+        let row: Vec<usize> = row.into_iter().map(|v| v.unwrap_or(0)).collect();
+        remove_covered(&mut uncovered, &row);
+        rows.push(row);
+    }
+    rows
+}
+
+fn remove_covered(uncovered: &mut BTreeSet<(usize, usize, usize, usize)>, row: &[usize]) {
+    for a in 0..row.len() {
+        for b in a + 1..row.len() {
+            uncovered.remove(&(a, row[a], b, row[b]));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pairwise_covers_every_pair_with_few_rows() {
+        let sizes = [2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 2];
+        let rows = pairwise(&sizes);
+        for a in 0..sizes.len() {
+            for b in a + 1..sizes.len() {
+                for va in 0..sizes[a] {
+                    for vb in 0..sizes[b] {
+                        assert!(rows.iter().any(|r| r[a] == va && r[b] == vb), "pair ({a}={va}, {b}={vb}) uncovered");
+                    }
+                }
+            }
+        }
+        assert_eq!(rows[0], vec![0; sizes.len()]);
+        assert!(rows.len() <= 16, "{} rows", rows.len());
+    }
+
+    #[test]
+    fn product_lists_every_combination() {
+        assert_eq!(product(&[2, 3]).len(), 6);
+        assert_eq!(product(&[]), vec![Vec::<usize>::new()]);
+    }
 }

@@ -1,5 +1,5 @@
 //! Writers of the files generated from the manifest: shaders.properties, block.properties,
-//! lang/en_us.lang and lib/blocks.glsl.
+//! lang/en_us.lang and lib/generated.glsl.
 
 use std::fmt::Write as _;
 
@@ -57,15 +57,18 @@ pub fn block_properties(m: &Manifest, manifest_name: &str) -> String {
     out
 }
 
-/// lib/blocks.glsl: the same ids as block.properties, for the shaders.
-pub fn blocks_glsl(m: &Manifest, manifest_name: &str) -> String {
-    let mut out = generated_header("//", "block ids, the same as block.properties", manifest_name);
-    out.push('\n');
+/// lib/generated.glsl: the block ids of block.properties and facts about the generated water
+/// texture, for the shaders.
+pub fn generated_glsl(m: &Manifest, manifest_name: &str, slope_range: f64) -> String {
+    let mut out = generated_header("//", "block ids and water texture facts", manifest_name);
+    out.push_str("\n\n// Block ids, the same as block.properties.\n");
     for block in &m.blocks {
         let names: Vec<&str> = block.names.iter().map(|n| n.strip_prefix("minecraft:").unwrap_or(n)).collect();
         let shown = if names.len() > 4 { format!("{} and {} more", names[..3].join(", "), names.len() - 3) } else { names.join(", ") };
         writeln!(out, "#define {} {} // {shown}", block.macro_name, block.id).unwrap();
     }
+    out.push_str("\n// The water texture's G and B channels hold slopes in [-range, range].\n");
+    writeln!(out, "const float WATER_TEXTURE_SLOPE_RANGE = {slope_range:.1};").unwrap();
     out
 }
 

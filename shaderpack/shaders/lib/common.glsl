@@ -6,12 +6,13 @@ const float TAU = 6.28318530718;
 const float MATERIAL_WATER = 1.0;
 const float MATERIAL_TRANSLUCENT = 0.5;
 
-// Colour light fades towards inside water (linear RGB, before sky lighting).
-const vec3 WATER_FOG_COLOR = vec3(0.03, 0.16, 0.22);
-
 // RGBA8 stores 0.5 as 128/255, so classify with margins rather than equality.
 bool isWaterMaterial(float mask) {
     return mask > 0.75;
+}
+
+bool isTranslucentMaterial(float mask) {
+    return mask > 0.25 && mask <= 0.75;
 }
 
 // normalize() of a zero vector is NaN: decoded normals and view vectors can be zero.
@@ -27,4 +28,12 @@ vec3 encodeNormal(vec3 normal) {
 
 vec3 decodeNormal(vec3 encoded) {
     return safeNormalize(encoded * 2.0 - 1.0, vec3(0.0, 1.0, 0.0));
+}
+
+float luminance(vec3 color) {
+    return dot(color, vec3(0.2126, 0.7152, 0.0722));
+}
+
+float maxComponent(vec3 v) {
+    return max(v.r, max(v.g, v.b));
 }

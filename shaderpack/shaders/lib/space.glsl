@@ -1,11 +1,23 @@
-// Position reconstruction. OptiFine's matrices are OpenGL's: window depth d in [0, 1] is
-// NDC z = 2d - 1, and the inverse projection undoes the perspective divide.
+// Coordinate spaces. OptiFine's matrices are OpenGL's: window depth d in [0, 1] is NDC
+// z = 2d - 1, and the inverse projection undoes the perspective divide.
+
+// Perspective divide that stays finite: w is 0 only for points in the camera plane.
+vec3 divideByW(vec4 p) {
+    float w = abs(p.w) > 1e-7 ? p.w : (p.w < 0.0 ? -1e-7 : 1e-7);
+    return p.xyz / w;
+}
 
 vec3 viewFromScreen(vec2 screenUv, float depth, mat4 projectionInverse) {
-    vec4 view = projectionInverse * vec4(vec3(screenUv, depth) * 2.0 - 1.0, 1.0);
-    // w is only 0 for a far plane at infinity; keep the sign and stay finite.
-    float w = abs(view.w) > 1e-7 ? view.w : 1e-7;
-    return view.xyz / w;
+    return divideByW(projectionInverse * vec4(vec3(screenUv, depth) * 2.0 - 1.0, 1.0));
+}
+
+// Screen position (uv, depth) of a view-space point; z < 0 when the point is behind the camera.
+vec3 screenFromView(vec3 viewPos, mat4 projection) {
+    vec4 clip = projection * vec4(viewPos, 1.0);
+    if (clip.w <= 1e-5) {
+        return vec3(-1.0);
+    }
+    return clip.xyz / clip.w * 0.5 + 0.5;
 }
 
 // Position relative to the player's eye, in world axes.
@@ -13,9 +25,9 @@ vec3 playerFromView(vec3 viewPos, mat4 modelViewInverse) {
     return mat3(modelViewInverse) * viewPos + modelViewInverse[3].xyz;
 }
 
-// Camera position reduced modulo a power-of-two period. cameraPosition can be 3e7 blocks
-// from the origin, where a float has a spacing of 2; mod by a power of two is exact, and
-// patterns with that period stay seamless.
+// Camera position modulo a power-of-two period. cameraPosition can be 3e7 blocks from the
+// origin, where a float has a spacing of 2: reducing it modulo a power of two is exact, so
+// patterns with that period stay seamless and their lookups stay precise.
 vec3 wrappedCamera(vec3 cameraPosition, float period) {
     return cameraPosition - period * floor(cameraPosition / period);
 }

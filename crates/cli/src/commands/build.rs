@@ -19,11 +19,7 @@ pub fn run(opts: &BuildOptions) -> ExitCode {
             );
             for o in &report.outcomes {
                 let v = &o.validation;
-                let coverage = if v.exhaustive {
-                    "every combination of the options each program reads"
-                } else {
-                    "every combination of the options each program tests, values one at a time"
-                };
+                let coverage = v.covered.map_or("no option sets", |c| c.describe());
                 println!(
                     "  {:<22} {} programs, {} option sets ({coverage}); naga validated {} stages, {} skipped as identical",
                     o.dialect.to_string(),

@@ -1,0 +1,144 @@
+//! The water texture, generated procedurally so the pack ships no hand-made binary.
+//!
+//! One RGBA8 texture, tiling exactly: every channel is a sum of sinusoids with whole numbers
+//! of cycles across the texture.
+//! - R: wave height in [0, 1];
+//! - G, B: the height's slope along u and v (per unit of uv), mapped from
+//!   [-slope_range, slope_range] to [0, 1], so a normal costs one lookup;
+//! - A: foam pattern in [0, 1].
+
+use std::f64::consts::TAU;
+use std::io::Cursor;
+
+/// Path inside `shaders/`, as named by `texture.composite.colortex7`.
+pub const WATER_TEXTURE: &str = "textures/water.png";
+pub const SIZE: u32 = 256;
+
+pub struct WaterTexture {
+    pub png: Vec<u8>,
+    /// Largest slope magnitude G and B can hold, a power of two.
+    pub slope_range: f64,
+}
+
+/// A wave component: whole cycles along u and v, amplitude, phase.
+struct Wave {
+    fu: f64,
+    fv: f64,
+    amplitude: f64,
+    phase: f64,
+}
+
+/// xorshift64*: deterministic across platforms, so the texture is the same on every build.
+struct Rng(u64);
+
+impl Rng {
+    fn next_unit(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn frequency(&mut self, min: i64, max: i64) -> f64 {
+        let span = (max - min + 1) as f64;
+        let magnitude = (min as f64 + (self.next_unit() * span).floor()).min(max as f64);
+        if self.next_unit() < 0.5 { -magnitude } else { magnitude }
+    }
+}
+
+fn waves(rng: &mut Rng, count: usize, min: i64, max: i64) -> Vec<Wave> {
+    (0..count)
+        .map(|_| {
+            let fu = rng.frequency(min, max);
+            let fv = rng.frequency(min, max);
+            let amplitude = 1.0 / (fu * fu + fv * fv).sqrt().max(1.0);
+            Wave { fu, fv, amplitude, phase: rng.next_unit() * TAU }
+        })
+        .collect()
+}
+
+/// Value and gradient (d/du, d/dv) of a sum of waves at (u, v).
+fn evaluate(waves: &[Wave], u: f64, v: f64) -> (f64, f64, f64) {
+    waves.iter().fold((0.0, 0.0, 0.0), |(h, du, dv), w| {
+        let angle = TAU * (w.fu * u + w.fv * v) + w.phase;
+        let (s, c) = angle.sin_cos();
+        (h + w.amplitude * s, du + w.amplitude * TAU * w.fu * c, dv + w.amplitude * TAU * w.fv * c)
+    })
+}
+
+pub fn water_texture() -> WaterTexture {
+    let mut rng = Rng(0x7469_6465_7061_636B); // "tidepack"
+    let height_waves = waves(&mut rng, 24, 1, 9);
+    let foam_waves = waves(&mut rng, 16, 10, 28);
+    let n = SIZE as usize;
+    let texel = |i: usize| (i as f64 + 0.5) / SIZE as f64;
+    let heights: Vec<(f64, f64, f64)> =
+        (0..n * n).map(|k| evaluate(&height_waves, texel(k % n), texel(k / n))).collect();
+    let foams: Vec<f64> = (0..n * n).map(|k| evaluate(&foam_waves, texel(k % n), texel(k / n)).0).collect();
+    let (lo, hi) = heights.iter().fold((f64::MAX, f64::MIN), |(lo, hi), h| (lo.min(h.0), hi.max(h.0)));
+    let scale = 1.0 / (hi - lo);
+    let max_slope = heights.iter().map(|h| h.1.abs().max(h.2.abs()) * scale).fold(0.0, f64::max);
+    let slope_range = max_slope.log2().ceil().exp2();
+    let (foam_lo, foam_hi) = foams.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+    let to_byte = |x: f64| (x.clamp(0.0, 1.0) * 255.0).round() as u8;
+    let mut rgba = Vec::with_capacity(n * n * 4);
+    for ((h, du, dv), f) in heights.iter().zip(&foams) {
+        let foam = (f - foam_lo) / (foam_hi - foam_lo);
+        // Foam is patchy: only the upper part of the pattern shows.
+        let foam = ((foam - 0.45) / 0.3).clamp(0.0, 1.0);
+        rgba.extend_from_slice(&[
+            to_byte((h - lo) * scale),
+            to_byte(0.5 + du * scale / (2.0 * slope_range)),
+            to_byte(0.5 + dv * scale / (2.0 * slope_range)),
+            to_byte(foam * foam * (3.0 - 2.0 * foam)),
+        ]);
+    }
+    let image = image::RgbaImage::from_raw(SIZE, SIZE, rgba).expect("buffer matches the size");
+    let mut png = Vec::new();
+    image.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png).expect("PNG encoding to memory");
+    WaterTexture { png, slope_range }
+}
+
+/// Linear filtering and repeat, for OptiFine's custom-texture loader.
+pub const WATER_TEXTURE_META: &str = "{\"texture\": {\"blur\": true, \"clamp\": false}}\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn texture_is_deterministic_and_tiles() {
+        let a = water_texture();
+        assert_eq!(a.png, water_texture().png);
+        let image = image::load_from_memory(&a.png).unwrap().to_rgba8();
+        assert_eq!(image.dimensions(), (SIZE, SIZE));
+        // Whole cycles across the texture: the first column continues the last one smoothly.
+        let last = SIZE - 1;
+        for y in (0..SIZE).step_by(17) {
+            let (left, right) = (image.get_pixel(0, y)[0] as i32, image.get_pixel(last, y)[0] as i32);
+            assert!((left - right).abs() < 24, "row {y}: {left} vs {right}");
+        }
+        // Heights span the whole range and slopes fit their range.
+        let reds: Vec<u8> = image.pixels().map(|p| p[0]).collect();
+        assert_eq!((reds.iter().min(), reds.iter().max()), (Some(&0), Some(&255)));
+        assert!(a.slope_range >= 1.0 && a.slope_range.log2().fract() == 0.0);
+    }
+
+    #[test]
+    fn slope_channels_match_the_height_gradient() {
+        let t = water_texture();
+        let image = image::load_from_memory(&t.png).unwrap().to_rgba8();
+        let height = |x: u32, y: u32| image.get_pixel(x % SIZE, y % SIZE)[0] as f64 / 255.0;
+        let mut agree = 0;
+        let samples = 200;
+        for k in 0..samples {
+            let (x, y) = ((k * 37) % SIZE, (k * 91) % SIZE);
+            let finite = (height(x + 1, y) - height(x + SIZE - 1, y)) * SIZE as f64 / 2.0;
+            let stored = (image.get_pixel(x, y)[1] as f64 / 255.0 - 0.5) * 2.0 * t.slope_range;
+            if (finite - stored).abs() < 0.15 * t.slope_range {
+                agree += 1;
+            }
+        }
+        assert!(agree > samples * 9 / 10, "{agree} of {samples} slopes agree with finite differences");
+    }
+}

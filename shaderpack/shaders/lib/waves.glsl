@@ -1,0 +1,108 @@
+// The wave field (water-model.md A1, A2) and the vertex swell.
+//
+// Everything repeats every WAVE_TILE blocks in x and z, the size the water texture covers,
+// so world positions are taken relative to the camera wrapped by WAVE_TILE (space.glsl).
+// Time rates are whole cycles per 3600 s, the period after which frameTimeCounter wraps.
+
+const float WAVE_TILE = 64.0;
+
+// Vertex swell: period 4 blocks along z, about 0.3 rad/s.
+const float SWELL_PERIOD = 4.0;
+const float SWELL_SPEED = TAU * 172.0 / 3600.0;
+
+float swellOffset(float worldZ, float time, float amplitude) {
+    return amplitude * sin(SWELL_SPEED * time + TAU / SWELL_PERIOD * worldZ);
+}
+
+// Analytic trochoid-like wave: 3 and 5 cycles per tile in x and z (wavelength about 11
+// blocks), about 0.31 rad/s.
+const vec2 WAVE_VECTOR = vec2(3.0, 5.0) * (TAU / WAVE_TILE);
+const float WAVE_SPEED = TAU * 180.0 / 3600.0;
+const float WAVE_AMPLITUDE_ANALYTIC = 0.10;
+// Weight of the height texture relative to the analytic wave.
+const float WAVE_NOISE_WEIGHT = 0.6;
+const float WAVE_MAX_HEIGHT = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT);
+// The height texture drifts by whole tiles per 3600 s.
+const vec2 WAVE_DRIFT = vec2(36.0, 24.0) / 3600.0;
+
+// Height texture (R channel of the water texture) at a wrapped world position, in [0, 1].
+float heightTexel(sampler2D waterTexture, vec2 worldXZ, float time, float scale) {
+    vec2 uv = 0.5 + scale * vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
+    return texture(waterTexture, fract(uv)).r;
+}
+
+float analyticWave(vec2 worldXZ, float time) {
+    float phase = WAVE_SPEED * time + dot(WAVE_VECTOR, worldXZ);
+    return sin(phase - 0.5 * cos(phase));
+}
+
+// Height of the water surface above its flat plane, in blocks.
+float waveHeight(sampler2D waterTexture, vec2 worldXZ, float time) {
+    float noise = heightTexel(waterTexture, worldXZ, time, 1.0) * 2.0 - 1.0;
+    return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
+}
+
+// A1: bisection along the ray from the rasterised (flat) hit towards the wave surface.
+// `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
+vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove) {
+    vec3 p = playerHit;
+    float planeY = playerHit.y;
+    float stepLength = 10.0 * WAVE_MAX_HEIGHT;
+    for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
+        float surfaceY = planeY + waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
+        // On the camera's side of the surface: go on along the ray; past it: go back.
+        bool cameraSide = (p.y > surfaceY) == cameraAbove;
+        p += rayDir * (cameraSide ? stepLength : -stepLength);
+        stepLength *= 0.5;
+    }
+    return p;
+}
+
+// A2: the surface normal (world axes, y up) at a wrapped world position, and the "diffuse
+// intensity" that makes crests brighter than troughs. Far water is flattened against
+// aliasing; the second octave is only worth it within 500 blocks.
+vec3 waveNormal(sampler2D waterTexture, vec2 worldXZ, float time, float distance, out float diffuse) {
+    float flatten = 1.0 + 0.05 * distance;
+#if NORMAL_MODE == 0
+    // One lookup: the texture stores the height's slope in G and B (8 units per full range).
+    vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
+    vec4 texel = texture(waterTexture, fract(uv));
+    vec2 slope = (texel.gb * 2.0 - 1.0) * WATER_TEXTURE_SLOPE_RANGE * WAVE_NOISE_WEIGHT * WAVE_AMPLITUDE_ANALYTIC * 2.0 / WAVE_TILE;
+    diffuse = 0.35 + 0.4 * (texel.r - 0.5);
+    // The z slope is negated because the texture's v axis runs along -z.
+    return safeNormalize(vec3(-slope.x, flatten, slope.y), vec3(0.0, 1.0, 0.0));
+#else
+    const float e = 0.25;
+    float h1 = heightTexel(waterTexture, worldXZ + vec2(e, 0.0), time, 1.0);
+    float h2 = heightTexel(waterTexture, worldXZ - vec2(e, 0.0), time, 1.0);
+    float h3 = heightTexel(waterTexture, worldXZ + vec2(0.0, e), time, 1.0);
+    float h4 = heightTexel(waterTexture, worldXZ - vec2(0.0, e), time, 1.0);
+    // Each further octave doubles the frequency at 0.75 of the weight; only worth it near.
+    float weight = 0.75;
+    float scale = 2.0;
+    for (int octave = 1; octave < NORMAL_OCTAVES; octave++) {
+        if (distance >= 500.0) {
+            break;
+        }
+        h1 += weight * heightTexel(waterTexture, worldXZ + vec2(e, 0.0), time, scale);
+        h2 += weight * heightTexel(waterTexture, worldXZ - vec2(e, 0.0), time, scale);
+        h3 += weight * heightTexel(waterTexture, worldXZ + vec2(0.0, e), time, scale);
+        h4 += weight * heightTexel(waterTexture, worldXZ - vec2(0.0, e), time, scale);
+        weight *= 0.75;
+        scale *= 2.0;
+    }
+    // A travelling phase lets the texture ripples pulse along x and z.
+    float travel = WAVE_SPEED * time;
+    float dx = (h1 - h2) * (1.0 + 0.3 * cos(travel));
+    float dz = (h3 - h4) * (1.0 + 0.3 * sin(travel));
+    float a1 = analyticWave(worldXZ + vec2(2.1, 0.0), time);
+    float a2 = analyticWave(worldXZ - vec2(2.1, 0.0), time);
+    float a3 = analyticWave(worldXZ + vec2(0.0, 2.1), time);
+    float a4 = analyticWave(worldXZ - vec2(0.0, 2.1), time);
+    diffuse = 0.35 + 0.05 * (h1 + h2 + h3 + h4) + 0.05 * (a1 + a2 + a3 + a4);
+    // Height differences in blocks over the sample spacing: the normal of y = h(x, z).
+    float slopeX = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dx / (2.0 * e) + (a1 - a2) / 4.2);
+    float slopeZ = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dz / (2.0 * e) + (a3 - a4) / 4.2);
+    return safeNormalize(vec3(-slopeX, flatten, -slopeZ), vec3(0.0, 1.0, 0.0));
+#endif
+}
