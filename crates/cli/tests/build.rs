@@ -295,3 +295,51 @@ fn bad_manifests_and_missing_sources_are_clear_errors() {
     assert!(err.contains("water.glsl:2") && err.contains("UTF-8"), "{err}");
     assert!(std::fs::read_dir(out.path()).unwrap().next().is_none(), "no zip after failures");
 }
+
+/// Every option in the shipped GLSL appears in shaders.properties (a screen and every profile)
+/// and in the lang file (label and comment), and every option those files name is in the GLSL.
+#[test]
+fn options_properties_and_lang_agree() {
+    use std::collections::BTreeSet;
+    use tidepack_glsl::options::scan;
+
+    let out = tempfile::tempdir().unwrap();
+    assert!(build_into(&repo_root().join("shaderpack"), out.path(), &["--dialect", "330"]).status.success());
+    let entries = zip_entries(&out.path().join("Tidepack-0.1.0-glsl330.zip"));
+    let glsl: BTreeSet<String> = entries
+        .iter()
+        .filter(|(name, _)| name.ends_with(".glsl") || name.ends_with(".vsh") || name.ends_with(".fsh"))
+        .flat_map(|(_, text)| scan(text).into_iter().map(|o| o.name))
+        .collect();
+    assert!(glsl.len() >= 20, "{glsl:?}");
+    let properties = &entries["shaders/shaders.properties"];
+    let value_of = |line: &str| line.split_once('=').map(|(_, v)| v.to_string()).unwrap_or_default();
+    let words = |prefix: &str| -> Vec<Vec<String>> {
+        properties
+            .lines()
+            .filter(|l| l.starts_with(prefix))
+            .map(|l| value_of(l).split_whitespace().map(|w| w.trim_start_matches('!').split(':').next().unwrap().to_string()).collect())
+            .collect()
+    };
+    let on_screens: BTreeSet<String> = words("screen")
+        .into_iter()
+        .flatten()
+        .filter(|w| !w.starts_with('[') && !w.starts_with('<') && w.parse::<u32>().is_err())
+        .collect();
+    assert_eq!(on_screens, glsl, "options on screens vs options in the GLSL");
+    let profiles = words("profile.");
+    assert_eq!(profiles.len(), 4, "LOW, MEDIUM, HIGH, ULTRA");
+    for profile in profiles {
+        assert_eq!(profile.into_iter().collect::<BTreeSet<_>>(), glsl, "a profile sets every option");
+    }
+    let lang = &entries["shaders/lang/en_us.lang"];
+    let labelled: BTreeSet<String> = lang
+        .lines()
+        .filter_map(|l| l.strip_prefix("option.")?.split_once('=').map(|(k, _)| k.to_string()))
+        .filter(|k| !k.ends_with(".comment"))
+        .collect();
+    assert_eq!(labelled, glsl, "lang labels vs options");
+    for option in &glsl {
+        assert!(lang.contains(&format!("option.{option}.comment=")), "{option} has no comment");
+    }
+}
