@@ -785,11 +785,22 @@ fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
 /// (includes inside inactive conditionals are expanded too), and inserts `after_version` after
 /// the `#version` line. The result is what a GL driver or glslangValidator compiles.
 pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: &str) -> Result<String, Diagnostic> {
+    expand_includes_mapped(provider, entry, after_version).map(|(text, _)| text)
+}
+
+/// [`expand_includes`] with a map from each line of the result to the pack file and line it
+/// came from (`None` for the lines of `after_version`), so a driver's messages can be located.
+pub fn expand_includes_mapped(
+    provider: &dyn FileProvider,
+    entry: &str,
+    after_version: &str,
+) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
     fn expand(
         provider: &dyn FileProvider,
         path: &str,
         stack: &mut Vec<String>,
         out: &mut String,
+        map: &mut Vec<Option<Location>>,
     ) -> Result<(), Diagnostic> {
         let text = provider.read(path).map_err(|e| Diagnostic::error(format!("cannot read {path}: {e}"), None))?;
         stack.push(path.to_string());
@@ -799,6 +810,7 @@ pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: 
             let Some(rest) = trimmed.strip_prefix('#').map(str::trim_start).and_then(|r| r.strip_prefix("include")) else {
                 out.push_str(line);
                 out.push('\n');
+                map.push(at());
                 continue;
             };
             let target = rest.trim().strip_prefix('"').and_then(|r| r.split('"').next()).ok_or_else(|| {
@@ -821,17 +833,25 @@ pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: 
                     at(),
                 ));
             }
-            expand(provider, &resolved, stack, out)
+            expand(provider, &resolved, stack, out, map)
                 .map_err(|e| if e.location.is_none() { Diagnostic { location: at(), ..e } } else { e })?;
         }
         stack.pop();
         Ok(())
     }
     let mut body = String::new();
-    expand(provider, entry, &mut Vec::new(), &mut body)?;
+    let mut map = Vec::new();
+    expand(provider, entry, &mut Vec::new(), &mut body, &mut map)?;
+    let inserted = vec![None; after_version.matches('\n').count()];
     match body.split_once('\n').filter(|(first, _)| first.trim_start().starts_with("#version")) {
-        Some((version, rest)) => Ok(format!("{version}\n{after_version}{rest}")),
-        None => Ok(format!("{after_version}{body}")),
+        Some((version, rest)) => {
+            let first = map.remove(0);
+            let mut lines = vec![first];
+            lines.extend(inserted);
+            lines.extend(map);
+            Ok((format!("{version}\n{after_version}{rest}"), lines))
+        }
+        None => Ok((format!("{after_version}{body}"), inserted.into_iter().chain(map).collect())),
     }
 }
 
@@ -1136,6 +1156,9 @@ mod tests {
         ]);
         let out = expand_includes(&map, "a.fsh", "#define MC_VERSION 12104\n").unwrap();
         assert_eq!(out, "#version 120\n#define MC_VERSION 12104\n#ifdef NEVER\nfloat x;\n#endif\nvoid main() {}\n");
+        let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n").unwrap();
+        let shown: Vec<String> = map.iter().map(|l| l.as_ref().map_or("-".into(), |l| l.to_string())).collect();
+        assert_eq!(shown, ["a.fsh:1", "-", "a.fsh:2", "lib/x.glsl:1", "a.fsh:4", "a.fsh:5"]);
         let cyclic = files(&[("a.fsh", "#include \"b.glsl\"\n"), ("b.glsl", "\n#include \"a.fsh\"\n")]);
         let err = expand_includes(&cyclic, "a.fsh", "").unwrap_err();
         assert_eq!(err.location, Some(Location::line("b.glsl", 2)));

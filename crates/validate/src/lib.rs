@@ -22,11 +22,14 @@ use tidepack_glsl::{Diagnostic, Location, Stage};
 
 pub mod input;
 pub mod interface;
+pub mod driver;
 pub mod fuzz;
+pub mod glslang;
 pub mod known;
 pub mod output;
 pub mod programs;
 pub mod properties;
+pub mod version_rules;
 
 pub use input::{Limits, PackFiles};
 pub use programs::{Loader, Program};
@@ -50,6 +53,8 @@ pub struct Options {
     pub limits: Limits,
     /// Worker threads for naga (at least 1).
     pub threads: usize,
+    /// Also compile every program with the real OpenGL driver (see [`driver`]).
+    pub driver: bool,
 }
 
 impl Default for Options {
@@ -59,6 +64,7 @@ impl Default for Options {
             profiles: Profiles::Defaults,
             limits: Limits::default(),
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
+            driver: false,
         }
     }
 }
@@ -93,6 +99,8 @@ pub struct ProgramReport {
     pub id: String,
     pub stages: Vec<String>,
     pub status: Status,
+    /// Some error a compiler or linker would also give (not only the loader's directives).
+    pub compile_error: bool,
 }
 
 #[derive(Debug)]
@@ -107,6 +115,8 @@ pub struct Report {
     /// Distinct lowered stages naga validated.
     pub stages_validated: usize,
     pub elapsed: Duration,
+    /// With [`Options::driver`]: how the driver's verdicts compare with tidepack's.
+    pub driver: Option<driver::DriverSummary>,
 }
 
 impl Report {
@@ -229,6 +239,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 Loader::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
                 Loader::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
             },
+            compile_error: false,
         })
         .collect();
     // (program index, diagnostic) for everything found before naga.
@@ -266,11 +277,13 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     for (program, set, diag) in run_naga(&jobs, &pack, &sets, options.threads) {
         found.push((program, set, diag));
     }
+    let driver_summary = if options.driver { Some(run_driver(&programs, &pack, &sets, options, &mut found)?) } else { None };
     // One diagnostic per distinct message and place, noting where it was seen first.
     let mut distinct: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
     for (program, set, diag) in found {
         if diag.is_error() {
             reports[program].status = Status::Invalid;
+            reports[program].compile_error |= !driver::is_loader_level(&diag);
         }
         if distinct.insert(diag.to_string()) {
             let mut context = format!("in program {}", programs[program].id());
@@ -291,7 +304,52 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         option_sets: sets.into_iter().map(|(label, _)| label).collect(),
         stages_validated,
         elapsed: started.elapsed(),
+        driver: driver_summary,
     })
+}
+
+/// Compiles every validated program with the OpenGL driver, adds its errors to `found` and
+/// compares verdicts.
+fn run_driver(
+    programs: &[Program],
+    pack: &PackFiles,
+    sets: &[(String, OptionSet)],
+    options: &Options,
+    found: &mut Vec<(usize, usize, Diagnostic)>,
+) -> Result<driver::DriverSummary, Diagnostic> {
+    let gl = driver::Driver::new(&options.macros)?;
+    let mut summary = driver::DriverSummary { driver: gl.describe(), ..Default::default() };
+    for (set_index, (label, set)) in sets.iter().enumerate() {
+        let provider = SetProvider::new(pack, set);
+        for (index, program) in programs.iter().enumerate() {
+            if program.loader != Loader::OptiFine || program.stages.is_empty() {
+                continue;
+            }
+            let ours = found
+                .iter()
+                .any(|(p, s, d)| *p == index && *s == set_index && d.is_error() && !driver::is_loader_level(d));
+            let name = if sets.len() > 1 { format!("{} ({label})", program.id()) } else { program.id() };
+            match gl.check(program, &provider) {
+                Ok(()) if ours => {
+                    let entry = program.stages.first().map(|s| Location::line(s.1.clone(), 1));
+                    let diag = Diagnostic::warning(
+                        format!("the OpenGL driver ({}) compiles and links {}: tidepack's errors in it may be false", summary.driver, program.id()),
+                        entry,
+                    );
+                    found.push((index, set_index, diag));
+                    summary.only_tidepack_rejects.push(name);
+                }
+                Ok(()) => summary.both_accept += 1,
+                Err(diags) if diags.is_empty() => {}
+                Err(_) if ours => summary.both_reject += 1,
+                Err(diags) => {
+                    summary.only_driver_rejects.push(name);
+                    found.extend(diags.into_iter().map(|d| (index, set_index, d)));
+                }
+            }
+        }
+    }
+    Ok(summary)
 }
 
 /// Preprocesses and lowers a program's stages and runs the checks that need no naga.
@@ -307,6 +365,7 @@ fn check_program(
         match preprocess::preprocess(provider, path, macros) {
             Ok(pre) => {
                 diags.extend(pre.warnings.iter().cloned());
+                diags.extend(version_rules::check(&pre, *stage));
                 preprocessed.push((*stage, Arc::new(pre)));
             }
             Err(e) => {

@@ -42,6 +42,20 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
             writeln!(summary, "  skipped {}: {why}", p.id).unwrap();
         }
     }
+    if let Some(d) = &report.driver {
+        writeln!(
+            summary,
+            "  driver {}: {} programs both accept, {} both reject, {} only the driver rejects{}, {} only tidepack rejects{}",
+            d.driver,
+            d.both_accept,
+            d.both_reject,
+            d.only_driver_rejects.len(),
+            list(&d.only_driver_rejects),
+            d.only_tidepack_rejects.len(),
+            list(&d.only_tidepack_rejects)
+        )
+        .unwrap();
+    }
     writeln!(
         summary,
         "{root}: {validated} programs under {} ({}), {} distinct stages validated in {:.2} s: {invalid} invalid; {} errors, {} warnings",
@@ -54,6 +68,10 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     )
     .unwrap();
     Ok(summary)
+}
+
+fn list(ids: &[String]) -> String {
+    if ids.is_empty() { String::new() } else { format!(" ({})", ids.join(", ")) }
 }
 
 fn json_string(s: &str) -> String {
@@ -110,9 +128,23 @@ pub fn json(report: &Report) -> String {
         out.push('}');
     }
     let sets: Vec<String> = report.option_sets.iter().map(|s| json_string(s)).collect();
+    let driver = match &report.driver {
+        None => "null".to_string(),
+        Some(d) => {
+            let ids = |v: &[String]| v.iter().map(|s| json_string(s)).collect::<Vec<_>>().join(", ");
+            format!(
+                "{{\"driver\": {}, \"both_accept\": {}, \"both_reject\": {}, \"only_driver_rejects\": [{}], \"only_tidepack_rejects\": [{}]}}",
+                json_string(&d.driver),
+                d.both_accept,
+                d.both_reject,
+                ids(&d.only_driver_rejects),
+                ids(&d.only_tidepack_rejects)
+            )
+        }
+    };
     write!(
         out,
-        "\n  ],\n  \"summary\": {{\"pack\": {}, \"option_sets\": [{}], \"stages_validated\": {}, \"errors\": {}, \"warnings\": {}, \"seconds\": {:.3}}}\n}}\n",
+        "\n  ],\n  \"driver\": {driver},\n  \"summary\": {{\"pack\": {}, \"option_sets\": [{}], \"stages_validated\": {}, \"errors\": {}, \"warnings\": {}, \"seconds\": {:.3}}}\n}}\n",
         json_string(&report.pack.display_root),
         sets.join(", "),
         report.stages_validated,

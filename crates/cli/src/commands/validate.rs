@@ -41,6 +41,10 @@ pub struct ValidateArgs {
     /// GPU vendor for MC_GL_VENDOR_* and MC_GL_RENDERER_*.
     #[arg(long, value_enum, default_value_t = VendorArg::Mesa)]
     pub vendor: VendorArg,
+    /// Also compile and link every program with the real OpenGL driver (Mesa through EGL,
+    /// headless) and report where it disagrees with tidepack.
+    #[arg(long)]
+    pub driver: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -99,7 +103,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         (None, true) => Profiles::All,
         (None, false) => Profiles::Defaults,
     };
-    let options = Options { macros, profiles, ..Options::default() };
+    let options = Options { macros, profiles, driver: args.driver, ..Options::default() };
     let report = match tidepack_validate::validate_path(&args.path, &options) {
         Ok(report) => report,
         Err(diag) => {

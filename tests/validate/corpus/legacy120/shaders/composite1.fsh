@@ -1,4 +1,5 @@
 #version 120
+#extension GL_ARB_shader_texture_lod : enable
 #include "/lib/util/math.glsl"
 uniform sampler2D colortex0;
 uniform float viewWidth;

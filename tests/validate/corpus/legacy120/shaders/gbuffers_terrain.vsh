@@ -1,4 +1,5 @@
 #version 120
+#extension GL_EXT_gpu_shader4 : enable
 #include "/lib/common.glsl"
 attribute vec4 mc_Entity;
 attribute vec2 mc_midTexCoord;

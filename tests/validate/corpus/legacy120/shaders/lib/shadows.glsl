@@ -15,7 +15,7 @@ float sampleShadow(vec3 shadowCoord) {
 	lit = shadowTap(shadowtex0, shadowCoord, vec2(0.0));
 #else
 	for (int i = 0; i < SHADOW_SAMPLES; i++) {
-		vec2 offset = vec2(float(i % 2), float(i / 2)) / float(shadowMapResolution);
+		vec2 offset = vec2(mod(float(i), 2.0), floor(float(i) / 2.0)) / float(shadowMapResolution);
 		lit += shadowTap(shadowtex0, shadowCoord, offset);
 	}
 	lit /= float(SHADOW_SAMPLES);

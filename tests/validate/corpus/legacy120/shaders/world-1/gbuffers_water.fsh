@@ -1,4 +1,5 @@
 #version 120
+#extension GL_ARB_shader_texture_lod : enable
 #define NETHER
 #define FSH
 #include "/program/gbuffers_water.glsl"

@@ -1,0 +1,184 @@
+//! What the shader's own `#version` (and profile, and `#extension`s) allows. naga reads the
+//! lowered text as GLSL 450, where everything is allowed; a real driver compiles the text at
+//! the version it declares, and rejects (Mesa's wording in parentheses):
+//! - in GLSL 1.10/1.20: `%`, bitwise operators and shifts ("operator '%' is reserved"),
+//!   `flat`/`noperspective`, `uint`, `switch`, `in`/`out` globals, and the 1.30 functions
+//!   (`texture`, `textureLod`, `texelFetch`, `textureSize`, …), unless `GL_EXT_gpu_shader4`
+//!   is enabled for the parts it adds; `texture2DLod` & co. in fragment shaders without
+//!   `GL_ARB_shader_texture_lod`;
+//! - in a core profile (`#version 140`+ without `compatibility`): the removed built-ins
+//!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
+//!   `texture2D`, `attribute`, `varying`, …).
+
+use std::collections::BTreeSet;
+
+use tidepack_glsl::preprocess::Preprocessed;
+use tidepack_glsl::token::{TokenKind, tokenize};
+use tidepack_glsl::{Diagnostic, Stage};
+
+const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
+const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
+
+/// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
+/// these names.
+const GLSL130_FUNCTIONS: [&str; 12] = [
+    "texture", "textureLod", "textureProj", "textureGrad", "textureOffset", "texelFetch", "textureSize",
+    "textureLodOffset", "texelFetchOffset", "textureProjLod", "textureGather", "round",
+];
+
+/// Lod sampling that GLSL 1.20 allows only in vertex shaders.
+const VERTEX_ONLY_LOD: [&str; 7] =
+    ["texture2DLod", "texture2DProjLod", "texture3DLod", "textureCubeLod", "shadow2DLod", "texture1DLod", "shadow2DProjLod"];
+
+/// Functions of `GL_EXT_gpu_shader4`.
+const GPU_SHADER4_FUNCTIONS: [&str; 6] = ["texelFetch2D", "texelFetch3D", "textureSize2D", "textureSize3D", "texture2DArray", "texelFetch2DOffset"];
+
+/// Built-ins a core profile removed.
+const REMOVED_IN_CORE: [&str; 22] = [
+    "gl_FragData", "gl_FragColor", "gl_Vertex", "gl_Normal", "gl_Color", "gl_MultiTexCoord0", "gl_MultiTexCoord1",
+    "gl_MultiTexCoord2", "gl_ModelViewMatrix", "gl_ProjectionMatrix", "gl_ModelViewProjectionMatrix", "gl_NormalMatrix",
+    "gl_TextureMatrix", "gl_TexCoord", "gl_FrontColor", "gl_Fog", "gl_FogFragCoord", "ftransform", "texture2D",
+    "texture2DLod", "shadow2D", "texture3D",
+];
+
+fn enabled_extensions(text: &str) -> BTreeSet<String> {
+    let mut found = BTreeSet::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
+        if let ["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..] = words.as_slice()
+            && *behaviour != "disable"
+        {
+            found.insert(name.to_string());
+        }
+    }
+    found
+}
+
+/// Errors a driver gives for constructs the stage's `#version` does not have.
+pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
+    let Some(version) = &pre.version else { return Vec::new() };
+    let number = version.number;
+    let core = number >= 140 && version.profile.as_deref() != Some("compatibility");
+    if number >= 130 && !core {
+        return Vec::new();
+    }
+    let extensions = enabled_extensions(&pre.text);
+    let gpu4 = extensions.contains(GPU_SHADER4);
+    let lod = extensions.contains(TEXTURE_LOD);
+    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut found: Vec<Diagnostic> = Vec::new();
+    let mut reported: BTreeSet<(String, u32)> = BTreeSet::new();
+    let shown_version = match &version.profile {
+        Some(p) => format!("#version {number} {p}"),
+        None => format!("#version {number}"),
+    };
+    let mut depth = 0i32;
+    let mut parens = 0i32;
+    let mut line_start = true;
+    let mut prev_line = 0;
+    for (k, t) in sig.iter().enumerate() {
+        if t.line != prev_line {
+            line_start = true;
+            prev_line = t.line;
+        }
+        let directive = line_start && t.is_punct("#");
+        line_start = false;
+        if directive {
+            // Skip the rest of a directive line (#version, #extension).
+            continue;
+        }
+        if sig[..k].last().is_some_and(|p| p.is_punct("#") && p.line == t.line) {
+            continue;
+        }
+        match t.text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            "(" => parens += 1,
+            ")" => parens -= 1,
+            _ => {}
+        }
+        let next_is_call = sig.get(k + 1).is_some_and(|n| n.is_punct("("));
+        let problem: Option<String> = if core {
+            (REMOVED_IN_CORE.contains(&t.text) || (depth == 0 && matches!(t.text, "attribute" | "varying")))
+                .then(|| {
+                    format!(
+                        "`{}` does not exist in the core profile that `{shown_version}` selects; write `#version {number} compatibility`",
+                        t.text
+                    )
+                })
+        } else {
+            match t.kind {
+                TokenKind::Punct if matches!(t.text, "%" | "%=" | "<<" | ">>" | "<<=" | ">>=" | "~" | "&" | "|" | "^" | "&=" | "|=" | "^=") && !gpu4 => {
+                    Some(format!("operator `{}` is reserved in GLSL {number}; enable {GPU_SHADER4} or use #version 130", t.text))
+                }
+                TokenKind::Ident => match t.text {
+                    "flat" | "noperspective" if !gpu4 => {
+                        Some(format!("`{}` needs GLSL 1.30 or `#extension {GPU_SHADER4} : enable`", t.text))
+                    }
+                    "uint" | "uvec2" | "uvec3" | "uvec4" | "switch" | "usampler2D" | "isampler2D" if !(gpu4 && t.text != "switch") => {
+                        Some(format!("`{}` does not exist in GLSL {number}", t.text))
+                    }
+                    "in" | "out" if depth == 0 && parens == 0 && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident) => {
+                        Some(format!("`{}` variables need GLSL 1.30; GLSL {number} uses `attribute` and `varying`", t.text))
+                    }
+                    f if next_is_call && GLSL130_FUNCTIONS.contains(&f) && !(gpu4 && matches!(f, "round")) => {
+                        Some(format!("{f}() does not exist in GLSL {number} (it came with 1.30); use texture2D & co."))
+                    }
+                    f if next_is_call && GPU_SHADER4_FUNCTIONS.contains(&f) && !gpu4 => {
+                        Some(format!("{f}() needs `#extension {GPU_SHADER4} : enable`"))
+                    }
+                    f if next_is_call && stage == Stage::Fragment && VERTEX_ONLY_LOD.contains(&f) && !lod => Some(format!(
+                        "{f}() exists only in vertex shaders in GLSL {number}; enable {TEXTURE_LOD} (and call {f}ARB where the driver wants it)"
+                    )),
+                    _ => None,
+                },
+                _ => None,
+            }
+        };
+        if let Some(message) = problem
+            && reported.insert((t.text.to_string(), t.line))
+        {
+            found.push(Diagnostic::error(message, pre.location(t.line)));
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+    use std::sync::Arc;
+    use tidepack_glsl::preprocess::{PreprocessOptions, preprocess};
+
+    fn errors(src: &str, stage: Stage) -> Vec<String> {
+        let files: HashMap<String, Arc<str>> = [("a.fsh".to_string(), Arc::from(src))].into();
+        let pre = preprocess(&files, "a.fsh", &PreprocessOptions::default()).unwrap();
+        check(&pre, stage).iter().map(|d| format!("{}: {}", d.location.as_ref().unwrap().line, d.message)).collect()
+    }
+
+    #[test]
+    fn glsl_120_rules() {
+        let src = "#version 120\nflat varying int i;\nvoid main() {\n int a = i % 2;\n vec4 c = texture(s, v);\n c = texture2DLod(s, v, 0.0);\n}\n";
+        let found = errors(src, Stage::Fragment);
+        assert_eq!(found.len(), 4, "{found:?}");
+        assert!(found[0].starts_with("2: `flat`"));
+        assert!(found[1].starts_with("4: operator `%`"));
+        assert!(found[2].starts_with("5: texture()"));
+        assert!(found[3].starts_with("6: texture2DLod()"));
+        let with_extensions = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n#extension GL_ARB_shader_texture_lod : enable\nflat varying int i;\nvoid main() { int a = i % 2; vec4 c = texture2DLod(s, v, 0.0); }\n";
+        assert!(errors(with_extensions, Stage::Fragment).is_empty());
+        assert!(errors("#version 120\nvoid main() { vec4 c = texture2DLod(s, v, 0.0); }\n", Stage::Vertex).is_empty());
+        assert!(errors("#version 120\nfloat f(in float x, out float y) { y = x; return x; }\n", Stage::Vertex).is_empty());
+    }
+
+    #[test]
+    fn core_profile_rules() {
+        let found = errors("#version 330\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(s, uv); }\n", Stage::Fragment);
+        assert_eq!(found.len(), 3, "{found:?}");
+        assert!(found.iter().all(|f| f.contains("core profile")));
+        assert!(errors("#version 330 compatibility\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(s, uv); }\n", Stage::Fragment).is_empty());
+        assert!(errors("#version 130\nin vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(s, uv) + texture(s, uv); }\n", Stage::Fragment).is_empty());
+    }
+}

@@ -1,0 +1,85 @@
+//! tidepack validate against the two references on the packs of tests/validate: Mesa's OpenGL
+//! driver (through `--driver`) and glslangValidator. Both must be installed (tools/test installs
+//! glslang-tools and libegl1 libegl-mesa0 libgl1-mesa-dri); without them these tests fail, they
+//! never skip.
+
+use std::path::{Path, PathBuf};
+
+use tidepack_glsl::options::OptionSet;
+use tidepack_validate::{Options, Profiles, SetProvider, Status, glslang, programs, validate_path};
+
+fn packs() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/validate");
+    let mut dirs = Vec::new();
+    for sub in ["corpus", "planted"] {
+        dirs.extend(std::fs::read_dir(root.join(sub)).unwrap().map(|e| e.unwrap().path()));
+    }
+    dirs.sort();
+    dirs
+}
+
+fn profile_of(dir: &Path) -> Profiles {
+    match std::fs::read_to_string(dir.join("args.txt")).unwrap_or_default().split_whitespace().collect::<Vec<_>>().as_slice() {
+        ["--profile", name] => Profiles::Named(name.to_string()),
+        _ => Profiles::Defaults,
+    }
+}
+
+#[test]
+fn mesa_agrees_with_tidepack_on_every_program() {
+    let mut compared = 0;
+    for dir in packs() {
+        let options = Options { profiles: profile_of(&dir), driver: true, threads: 2, ..Options::default() };
+        let report = validate_path(&dir, &options).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+        let driver = report.driver.as_ref().expect("a driver summary");
+        assert!(
+            driver.only_driver_rejects.is_empty() && driver.only_tidepack_rejects.is_empty(),
+            "{}: {driver:?}",
+            dir.display()
+        );
+        compared += driver.both_accept + driver.both_reject;
+    }
+    assert!(compared >= 35, "{compared} programs compared");
+}
+
+#[test]
+fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
+    let defines = tidepack_glsl::macros::StandardMacros::default().define_lines();
+    let scratch = tempfile::tempdir().unwrap();
+    let (mut agree, mut total) = (0, 0);
+    let mut unexplained = Vec::new();
+    for dir in packs() {
+        let report = validate_path(&dir, &Options { profiles: profile_of(&dir), threads: 2, ..Options::default() }).unwrap();
+        let set = match profile_of(&dir) {
+            Profiles::Named(name) => {
+                let props = tidepack_validate::properties::parse(report.pack.texts.get("shaders.properties").map_or("", |t| t));
+                tidepack_validate::properties::profile_set(&props, &name, &tidepack_validate::declared_options(&report.pack)).unwrap().0
+            }
+            _ => OptionSet::new(),
+        };
+        let provider = SetProvider::new(&report.pack, &set);
+        for program in programs::find_programs(report.pack.files.keys()) {
+            let Some(ours) = report.programs.iter().find(|p| p.id == program.id() && !matches!(p.status, Status::Skipped(_))) else {
+                continue;
+            };
+            let Some(verdict) = glslang::check(&program, &provider, &defines, scratch.path()).unwrap_or_else(|e| panic!("{e}")) else {
+                continue;
+            };
+            total += 1;
+            if verdict.rejects == ours.compile_error {
+                agree += 1;
+                continue;
+            }
+            // glslang enforces GLSL 4.20 for line continuations (drivers accept them), and
+            // compiles stages alone, so it cannot see a vertex/fragment mismatch.
+            let stricter = verdict.rejects && verdict.errors.iter().all(|e| e.contains("line continuation") || e.contains("missing #endif"));
+            let link_only = !verdict.rejects && report.diagnostics.iter().any(|d| d.message.contains("fails to link"));
+            if !(stricter || link_only) {
+                unexplained.push(format!("{}: {} glslang={} tidepack={} {:?}", dir.display(), program.id(), verdict.rejects, ours.compile_error, verdict.errors));
+            }
+        }
+    }
+    assert!(total >= 35, "{total} programs compared");
+    assert!(agree * 10 >= total * 7, "agreement {agree}/{total}");
+    assert!(unexplained.is_empty(), "{}", unexplained.join("\n"));
+}
