@@ -842,14 +842,16 @@ pub fn expand_includes_mapped(
     let mut body = String::new();
     let mut map = Vec::new();
     expand(provider, entry, &mut Vec::new(), &mut body, &mut map)?;
+    // After the `#version` line, wherever it is (comments may come first), as OptiFine does.
     let inserted = vec![None; after_version.matches('\n').count()];
-    match body.split_once('\n').filter(|(first, _)| first.trim_start().starts_with("#version")) {
-        Some((version, rest)) => {
-            let first = map.remove(0);
-            let mut lines = vec![first];
-            lines.extend(inserted);
-            lines.extend(map);
-            Ok((format!("{version}\n{after_version}{rest}"), lines))
+    let version_line = body.split_inclusive('\n').position(|line| line.trim_start().starts_with("#version"));
+    match version_line {
+        Some(index) => {
+            let split = body.split_inclusive('\n').take(index + 1).map(str::len).sum::<usize>();
+            let tail = map.split_off(index + 1);
+            map.extend(inserted);
+            map.extend(tail);
+            Ok((format!("{}{after_version}{}", &body[..split], &body[split..]), map))
         }
         None => Ok((format!("{after_version}{body}"), inserted.into_iter().chain(map).collect())),
     }
@@ -1159,6 +1161,11 @@ mod tests {
         let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n").unwrap();
         let shown: Vec<String> = map.iter().map(|l| l.as_ref().map_or("-".into(), |l| l.to_string())).collect();
         assert_eq!(shown, ["a.fsh:1", "-", "a.fsh:2", "lib/x.glsl:1", "a.fsh:4", "a.fsh:5"]);
+        let late = files(&[("a.fsh", "// banner\n\n#version 150 compatibility\nvoid main() {}\n")]);
+        let (text, map) = expand_includes_mapped(&late, "a.fsh", "#define A\n").unwrap();
+        assert_eq!(text, "// banner\n\n#version 150 compatibility\n#define A\nvoid main() {}\n");
+        assert_eq!(map[3], None);
+        assert_eq!(map[4], Some(Location::line("a.fsh", 4)));
         let cyclic = files(&[("a.fsh", "#include \"b.glsl\"\n"), ("b.glsl", "\n#include \"a.fsh\"\n")]);
         let err = expand_includes(&cyclic, "a.fsh", "").unwrap_err();
         assert_eq!(err.location, Some(Location::line("b.glsl", 2)));

@@ -73,7 +73,7 @@ impl Driver {
         let mut diags: Vec<Diagnostic> = log
             .messages()
             .into_iter()
-            .filter(|m| m.severity == "error")
+            .filter(|m| m.severity.contains("error"))
             .map(|m| {
                 let at = stage_text.and_then(|(_, _, _, map)| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
                 let entry = stage_text.map(|t| t.1.clone()).or_else(|| program.stages.first().map(|s| s.1.clone()));

@@ -18,6 +18,7 @@ use tidepack_glsl::{Diagnostic, Stage};
 
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
+const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 
 /// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
 /// these names.
@@ -59,10 +60,10 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
     let core = number >= 140 && version.profile.as_deref() != Some("compatibility");
-    if number >= 130 && !core {
-        return Vec::new();
-    }
     let extensions = enabled_extensions(&pre.text);
+    // Before 3.30, `layout(location = N)` on inputs and outputs needs an extension.
+    let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
+    let legacy_rules = number < 130 || core;
     let gpu4 = extensions.contains(GPU_SHADER4);
     let lod = extensions.contains(TEXTURE_LOD);
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
@@ -99,7 +100,15 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
             _ => {}
         }
         let next_is_call = sig.get(k + 1).is_some_and(|n| n.is_punct("("));
-        let problem: Option<String> = if core {
+        let explicit_location =
+            t.is_ident("layout") && sig.get(k + 1).is_some_and(|n| n.is_punct("(")) && sig.get(k + 2).is_some_and(|n| n.is_ident("location"));
+        let problem: Option<String> = if explicit_location && location_needs_extension {
+            Some(format!(
+                "`layout(location = …)` needs GLSL 3.30 or `#extension {EXPLICIT_LOCATION} : enable` (Mesa, AMD and Intel refuse it in `{shown_version}`)"
+            ))
+        } else if !legacy_rules {
+            None
+        } else if core {
             (REMOVED_IN_CORE.contains(&t.text) || (depth == 0 && matches!(t.text, "attribute" | "varying")))
                 .then(|| {
                     format!(
@@ -180,5 +189,9 @@ mod tests {
         assert!(found.iter().all(|f| f.contains("core profile")));
         assert!(errors("#version 330 compatibility\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(s, uv); }\n", Stage::Fragment).is_empty());
         assert!(errors("#version 130\nin vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(s, uv) + texture(s, uv); }\n", Stage::Fragment).is_empty());
+        let found = errors("#version 150 compatibility\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n", Stage::Fragment);
+        assert!(found.len() == 1 && found[0].starts_with("2: `layout(location"), "{found:?}");
+        assert!(errors("#version 150\n#extension GL_ARB_explicit_attrib_location : enable\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n", Stage::Fragment).is_empty());
+        assert!(errors("#version 330\nlayout(location = 0) out vec4 c;\nvoid main() { c = vec4(1.0); }\n", Stage::Fragment).is_empty());
     }
 }

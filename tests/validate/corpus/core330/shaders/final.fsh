@@ -1,3 +1,6 @@
+// Final pass: gamma.
+// (A banner before #version, as many packs have.)
+
 #version 330 compatibility
 uniform sampler2D colortex0;
 in vec2 uv;
