@@ -153,7 +153,8 @@ fn glslang_accepts_every_shipped_stage() {
             }
         }
     }
-    assert_eq!(checked, source.manifest.profiles.len() * 2 * 4);
+    // gbuffers_water, composite and the Nether's composite, two stages each.
+    assert_eq!(checked, source.manifest.profiles.len() * Dialect::ALL.len() * 6);
 }
 
 fn which(program: &str) -> Option<PathBuf> {
@@ -341,5 +342,23 @@ fn options_properties_and_lang_agree() {
     assert_eq!(labelled, glsl, "lang labels vs options");
     for option in &glsl {
         assert!(lang.contains(&format!("option.{option}.comment=")), "{option} has no comment");
+    }
+}
+
+/// The Nether (world-1) has no water: its programs carry none of the water model's code.
+#[test]
+fn the_nether_gets_no_water_code() {
+    let out = tempfile::tempdir().unwrap();
+    assert!(build_into(&repo_root().join("shaderpack"), out.path(), &["--dialect", "120"]).status.success());
+    let entries = zip_entries(&out.path().join("Tidepack-0.1.0-glsl120.zip"));
+    let nether: Vec<(&String, &String)> = entries.iter().filter(|(name, _)| name.starts_with("shaders/world-1/")).collect();
+    let mut names: Vec<&str> = nether.iter().map(|(n, _)| n.as_str()).collect();
+    names.sort();
+    assert_eq!(names, ["shaders/world-1/composite.fsh", "shaders/world-1/composite.vsh"]);
+    for (name, text) in nether {
+        assert!(!text.contains("#include"), "{name} includes shared water code");
+        for water_word in ["colortex4", "colortex5", "colortex6", "colortex7", "depthtex", "isEyeInWater", "wave"] {
+            assert!(!text.contains(water_word), "{name} mentions {water_word}");
+        }
     }
 }

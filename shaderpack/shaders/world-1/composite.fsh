@@ -1,0 +1,15 @@
+#version 330 compatibility
+// The Nether has no water. OptiFine loads only the programs in world-1/ there, so this
+// composite passes the scene through with none of the water model's code, and translucent
+// blocks (no gbuffers_water here) are drawn as in vanilla.
+
+uniform sampler2D colortex0;
+
+in vec2 screenUv;
+
+/* RENDERTARGETS: 0 */
+out vec4 outColor0;
+
+void main() {
+    outColor0 = texture(colortex0, screenUv);
+}
