@@ -154,7 +154,7 @@ fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
 }
 
 /// Uniforms and samplers OptiFine does not set, and known uniforms declared with another type.
-pub fn check_resources(stage: &LoweredStage, props: &Properties) -> Vec<Diagnostic> {
+pub fn check_resources(stage: &LoweredStage, program: &str, props: &Properties) -> Vec<Diagnostic> {
     let pre = &stage.preprocessed;
     let mut found = Vec::new();
     for (name, kind) in &stage.lowered.interface.resources {
@@ -169,6 +169,8 @@ pub fn check_resources(stage: &LoweredStage, props: &Properties) -> Vec<Diagnost
                         format!("`{name}` is not a sampler OptiFine binds: it silently reads texture unit 0"),
                         at(),
                     ));
+                } else if let Some(why) = known::sampler_unavailable(program, name) {
+                    found.push(Diagnostic::warning(format!("`{name}` in {program}: {why}"), at()));
                 }
             }
             ResourceKind::Uniform { ty } => {

@@ -42,3 +42,33 @@ pub fn uniform_type(name: &str) -> Option<&'static str> {
 pub fn is_sampler(name: &str) -> bool {
     SAMPLERS.contains(&name)
 }
+
+/// Why `sampler` reads something else than its name says in `program` (OptiFine binds units by
+/// program group), or `None` when it is available there.
+pub fn sampler_unavailable(program: &str, sampler: &str) -> Option<&'static str> {
+    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow";
+    let low_colortex = matches!(sampler, "colortex0" | "colortex1" | "colortex2" | "colortex3" | "gcolor" | "gdepth" | "gnormal" | "composite");
+    let atlas_units = matches!(sampler, "texture" | "gtexture" | "tex" | "lightmap" | "normals" | "specular");
+    if gbuffers_style && low_colortex {
+        Some("gbuffers and shadow programs cannot read colortex0-3: units 0-3 hold the atlas, lightmap, normals and specular maps there")
+    } else if !gbuffers_style && atlas_units {
+        Some("only gbuffers and shadow programs have the atlas, lightmap, normals and specular maps; here that unit holds a colortex buffer")
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samplers_by_program_group() {
+        assert!(sampler_unavailable("gbuffers_water", "colortex1").is_some());
+        assert!(sampler_unavailable("gbuffers_water", "colortex4").is_none());
+        assert!(sampler_unavailable("gbuffers_water", "gtexture").is_none());
+        assert!(sampler_unavailable("composite2", "lightmap").is_some());
+        assert!(sampler_unavailable("composite2", "colortex1").is_none());
+        assert!(sampler_unavailable("shadow", "tex").is_none());
+    }
+}

@@ -397,7 +397,7 @@ fn check_program(
         if stage.stage == Stage::Fragment {
             diags.extend(interface::check_render_targets(&stage.preprocessed, stage));
         }
-        diags.extend(interface::check_resources(stage, props));
+        diags.extend(interface::check_resources(stage, &program.name, props));
     }
     Ok((lowered, diags))
 }
