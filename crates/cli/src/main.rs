@@ -48,6 +48,10 @@ enum Command {
     /// between stages, render targets, uniforms and samplers. Exit 0: clean; 1: shader
     /// errors; 2: unreadable input.
     Validate(commands::validate::ValidateArgs),
+    /// Render one scene (tests/scenes/*.toml) headless through the harness: writes
+    /// OUT/<scene>.png and OUT/<scene>.json (pass times, adapter, resolution, dialect, options).
+    #[cfg(feature = "render")]
+    Render(commands::render::RenderArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -75,6 +79,8 @@ fn main() -> ExitCode {
             commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile, coverage })
         }
         Command::Validate(args) => commands::validate::run(&args),
+        #[cfg(feature = "render")]
+        Command::Render(args) => commands::render::run(&args),
     }
 }
 

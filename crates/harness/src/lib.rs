@@ -13,6 +13,7 @@ use std::fmt;
 pub mod gl;
 pub mod gpu;
 pub mod images;
+pub mod job;
 pub mod mesh;
 pub mod program;
 pub mod scene;

@@ -6,6 +6,8 @@ use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_glsl::{Diagnostic, diagnostic};
 
 pub mod build;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod validate;
 
 /// Prints diagnostics to stderr like a compiler, coloured on a terminal.

@@ -1,0 +1,119 @@
+//! `tidepack render SCENE.toml`: renders one scene headless through the harness (wgpu on
+//! lavapipe, optionally also Mesa's OpenGL) and writes the image and a JSON report.
+//! Exit code 0: written; 1: the pack or scene does not render; 2: no driver (the message
+//! names the Debian package) or the input cannot be read.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+use tidepack_harness::HarnessError;
+use tidepack_harness::job::{self, RenderJob};
+use tidepack_pack::Dialect;
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Scene file (see tests/scenes/*.toml).
+    pub scene: PathBuf,
+    /// GLSL dialect of the shipped text to render.
+    #[arg(long, value_enum, default_value_t = RenderDialect::V330)]
+    pub dialect: RenderDialect,
+    /// Profile whose values are the option defaults (default: the manifest's default_profile).
+    #[arg(long)]
+    pub profile: Option<String>,
+    /// Override an option (repeatable): `--set SSR_STEPS=24`, `--set FOAM=off`.
+    #[arg(long = "set", value_name = "OPTION=VALUE")]
+    pub set: Vec<String>,
+    /// Folder the PNG and JSON files are written to.
+    #[arg(long, default_value = "render")]
+    pub out: PathBuf,
+    /// Also write colortex0, colortex4, depthtex0 and depthtex1 as PNG.
+    #[arg(long)]
+    pub buffers: bool,
+    /// Also render through Mesa's OpenGL (the shipped text, unlowered) and report the
+    /// largest difference per channel.
+    #[arg(long)]
+    pub gl: bool,
+    /// Folder with pack.toml and the shader templates.
+    #[arg(long, default_value = "shaderpack")]
+    pub source: PathBuf,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum RenderDialect {
+    /// `#version 120`
+    #[value(name = "120")]
+    V120,
+    /// `#version 330 compatibility`
+    #[value(name = "330")]
+    V330,
+}
+
+pub fn run(args: &RenderArgs) -> ExitCode {
+    let mut options = Vec::new();
+    for assignment in &args.set {
+        match assignment.split_once('=') {
+            Some((name, value)) if !name.trim().is_empty() => options.push((name.trim().to_string(), value.trim().to_string())),
+            _ => {
+                eprintln!("error: --set takes OPTION=VALUE, not `{assignment}`");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let job = RenderJob {
+        scene: args.scene.clone(),
+        source_dir: args.source.clone(),
+        dialect: match args.dialect {
+            RenderDialect::V120 => Dialect::Glsl120,
+            RenderDialect::V330 => Dialect::Glsl330,
+        },
+        profile: args.profile.clone(),
+        options,
+        out_dir: args.out.clone(),
+        buffers: args.buffers,
+        gl: args.gl,
+    };
+    let report = match job::run(&job) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return match e {
+                HarnessError::NoAdapter(_) | HarnessError::NoGlDriver(_) | HarnessError::Io(_) | HarnessError::Scene(_) => {
+                    ExitCode::from(2)
+                }
+                _ => ExitCode::FAILURE,
+            };
+        }
+    };
+    println!(
+        "Rendered {} at {}x{} ({}, profile {}) on {} ({}, {})",
+        report.scene,
+        report.resolution[0],
+        report.resolution[1],
+        report.dialect,
+        report.profile,
+        report.adapter.name,
+        report.adapter.backend,
+        report.adapter.device_type
+    );
+    for p in &report.passes {
+        println!("  {:<24} {:>9.3} ms ({})", p.pass, p.ms, if p.gpu_ms.is_some() { "GPU" } else { "wall" });
+    }
+    if let Some(r) = report.composite_over_passthrough {
+        println!("  composite / pass-through {r:.1}x");
+    }
+    if report.non_finite_pixels > 0 {
+        println!("  warning: {} pixels of the composite output are NaN or Inf", report.non_finite_pixels);
+    }
+    if let Some(gl) = &report.gl {
+        let d = gl.max_difference.map(|c| c * 255.0);
+        println!(
+            "  OpenGL ({}): max difference per channel (x/255) R {:.2} G {:.2} B {:.2} A {:.2}, {} pixels over 1/255",
+            gl.renderer, d[0], d[1], d[2], d[3], gl.pixels_over_1_255
+        );
+    }
+    for f in &report.files {
+        println!("  wrote {}", args.out.join(f).display());
+    }
+    ExitCode::SUCCESS
+}

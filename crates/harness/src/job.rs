@@ -1,0 +1,187 @@
+//! One scene rendered to files: what `tidepack render` runs. The final image (and optionally
+//! the buffers composite reads) as PNG, and a JSON report with the time of every pass, the
+//! adapter, the resolution, the dialect and the options in force; optionally the same frame
+//! through the OpenGL driver and the comparison of the two.
+
+use std::path::PathBuf;
+
+use serde::Serialize;
+use tidepack_pack::Dialect;
+
+use crate::gpu::PassTiming;
+use crate::images::{self, FloatImage};
+use crate::program::{self, PackSelection};
+use crate::scene::Scene;
+use crate::{Gpu, HarnessError, gl, mesh};
+
+/// What to render and where to put it.
+#[derive(Clone, Debug)]
+pub struct RenderJob {
+    pub scene: PathBuf,
+    /// The folder with pack.toml and shaders/.
+    pub source_dir: PathBuf,
+    pub dialect: Dialect,
+    pub profile: Option<String>,
+    /// `NAME` → value as written (`on`/`off` for switches).
+    pub options: Vec<(String, String)>,
+    pub out_dir: PathBuf,
+    /// Also write colortex0, colortex4, depthtex0 and depthtex1.
+    pub buffers: bool,
+    /// Also render through the OpenGL driver and compare.
+    pub gl: bool,
+}
+
+/// The JSON report (`<scene>.json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct RenderReport {
+    pub scene: String,
+    pub scene_file: String,
+    pub resolution: [u32; 2],
+    /// `120` or `330`, as `--dialect` takes it.
+    pub dialect: String,
+    pub profile: String,
+    /// Every option value in force (profile, then `--set`).
+    pub options: std::collections::BTreeMap<String, String>,
+    pub adapter: AdapterReport,
+    /// `gpu` when the adapter has timestamp queries, else `wall`.
+    pub timing_source: String,
+    pub passes: Vec<PassReport>,
+    /// Composite time over the one-tap pass-through composite's, from the same frame.
+    pub composite_over_passthrough: Option<f64>,
+    /// Pixels of the composite output (RGBA32F) that are NaN or infinite.
+    pub non_finite_pixels: usize,
+    pub gl: Option<GlComparison>,
+    /// Files written, relative to the output folder.
+    pub files: Vec<String>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct AdapterReport {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PassReport {
+    pub pass: String,
+    /// GPU time when available, else wall time.
+    pub ms: f64,
+    pub gpu_ms: Option<f64>,
+    pub wall_ms: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct GlComparison {
+    pub renderer: String,
+    /// Largest difference per channel (RGBA, 0..1 after clamping) between the OpenGL and wgpu
+    /// images.
+    pub max_difference: [f32; 4],
+    /// Pixels differing by more than 1/255 in some colour channel.
+    pub pixels_over_1_255: usize,
+}
+
+/// Renders the job's scene and writes the files; returns the report (also written as JSON).
+pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
+    let scene = Scene::load(&job.scene)?;
+    let pack = program::load(&PackSelection {
+        source_dir: job.source_dir.clone(),
+        dialect: job.dialect,
+        profile: job.profile.clone(),
+        options: job.options.clone(),
+    })?;
+    let gpu = Gpu::new()?;
+    let frame = crate::render_wgpu(&gpu, &pack, &scene, true)?;
+
+    let stem = file_stem(&scene.name);
+    std::fs::create_dir_all(&job.out_dir)
+        .map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", job.out_dir.display())))?;
+    let mut files = Vec::new();
+    let mut write = |suffix: &str, image: &FloatImage| -> Result<(), HarnessError> {
+        let name = format!("{stem}{suffix}.png");
+        image.write_png(&job.out_dir.join(&name), false)?;
+        files.push(name);
+        Ok(())
+    };
+    write("", &frame.image)?;
+    if job.buffers {
+        for b in [0u8, 4] {
+            if let Some(image) = frame.buffers.get(&b) {
+                write(&format!(".colortex{b}"), image)?;
+            }
+        }
+        write(".depthtex0", &frame.depth0.depth_for_viewing())?;
+        write(".depthtex1", &frame.depth1.depth_for_viewing())?;
+    }
+    let gl = if job.gl {
+        let ctx = gl::context()?;
+        let gl_frame = gl::render(&ctx, &pack, &scene, &mesh::build(&scene, &pack))?;
+        write(".gl", &gl_frame.image)?;
+        Some(GlComparison {
+            renderer: ctx.info().to_string(),
+            max_difference: images::max_channel_difference(&frame.image, &gl_frame.image),
+            pixels_over_1_255: images::count_differing(&frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6),
+        })
+    } else {
+        None
+    };
+
+    let passes: Vec<PassReport> = frame.timings.iter().map(pass_report).collect();
+    let time_of = |name: &str| passes.iter().find(|p| p.pass == name).map(|p| p.ms);
+    let ratio = match (time_of("composite"), time_of("pass-through composite")) {
+        (Some(c), Some(p)) if p > 0.0 => Some(c / p),
+        _ => None,
+    };
+    let a = &gpu.adapter;
+    let json_name = format!("{stem}.json");
+    files.push(json_name.clone());
+    let report = RenderReport {
+        scene: scene.name.clone(),
+        scene_file: job.scene.display().to_string(),
+        resolution: scene.resolution,
+        dialect: match job.dialect {
+            Dialect::Glsl120 => "120",
+            Dialect::Glsl330 => "330",
+        }
+        .to_string(),
+        profile: pack.profile.clone(),
+        options: pack.options.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
+        adapter: AdapterReport {
+            name: a.name.clone(),
+            backend: format!("{:?}", a.backend),
+            device_type: format!("{:?}", a.device_type),
+            driver: format!("{} {}", a.driver, a.driver_info).trim().to_string(),
+        },
+        timing_source: if gpu.timestamps { "gpu" } else { "wall" }.to_string(),
+        passes,
+        composite_over_passthrough: ratio,
+        non_finite_pixels: frame.image.non_finite(),
+        gl,
+        files,
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(|e| HarnessError::Io(format!("report: {e}")))?;
+    let json_path = job.out_dir.join(&json_name);
+    std::fs::write(&json_path, json + "\n").map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", json_path.display())))?;
+    Ok(report)
+}
+
+fn pass_report(t: &PassTiming) -> PassReport {
+    PassReport { pass: t.pass.clone(), ms: t.gpu_ms.unwrap_or(t.wall_ms), gpu_ms: t.gpu_ms, wall_ms: t.wall_ms }
+}
+
+/// A scene name made safe as a file name.
+fn file_stem(name: &str) -> String {
+    let s: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') { c } else { '_' }).collect();
+    if s.is_empty() || s.starts_with('.') { format!("scene{s}") } else { s }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn scene_names_become_safe_file_names() {
+        assert_eq!(super::file_stem("case1_above_dry"), "case1_above_dry");
+        assert_eq!(super::file_stem("../x y"), "scene.._x_y");
+        assert_eq!(super::file_stem(""), "scene");
+    }
+}
