@@ -166,3 +166,29 @@ fn unreadable_inputs_are_errors_not_panics() {
     let err = validate_path(&root().join("corpus/core330"), &options(Profiles::Named("NOPE".into()))).unwrap_err();
     assert!(err.message.contains("no profile `NOPE`"), "{err}");
 }
+
+#[test]
+fn hostile_sources_get_diagnostics_not_panics_or_hangs() {
+    let long: String = (0..45_000).map(|i| format!("float f{i} = 1.0;\n")).collect();
+    let files: Vec<(String, Vec<u8>)> = vec![
+        ("composite.fsh".into(), format!("#version 120\nvoid main() {{ float x = {}1.0{}; }}\n", "(".repeat(100_000), ")".repeat(100_000)).into_bytes()),
+        ("composite1.fsh".into(), format!("#version 120\n{long}void main() {{ gl_FragColor = vec4(f1); }}\n").into_bytes()),
+        ("composite2.fsh".into(), format!("#version 120\n#if {}1{}\n#endif\nvoid main() {{}}\n", "(".repeat(50_000), ")".repeat(50_000)).into_bytes()),
+        ("composite3.fsh".into(), b"#version 120\n\xff\xfe void main() { gl_FragColor = vec4(1.0); }\n".to_vec()),
+        ("composite4.fsh".into(), "#version 120\n#include \"/lib/a.glsl\"\n".repeat(1).into_bytes()),
+        ("lib/a.glsl".into(), "#include \"/lib/b.glsl\"\n".repeat(40).into_bytes()),
+        ("lib/b.glsl".into(), "float zz;\n".repeat(30_000).into_bytes()),
+        ("composite5.fsh".into(), b"#version 120\n#define A A A\n#define B(x) B(x) x\nvoid main() { float f = B(A); }\n".to_vec()),
+    ];
+    let started = std::time::Instant::now();
+    let pack = tidepack_validate::input::pack_from_memory("hostile/shaders/", files);
+    let report = tidepack_validate::validate_pack(pack, &options(Profiles::Defaults)).unwrap();
+    let at = |program: &str| report.diagnostics.iter().filter(|d| d.location.as_ref().is_some_and(|l| l.path.starts_with(program))).count();
+    for program in ["composite.fsh", "composite1.fsh", "composite2.fsh", "composite3.fsh", "composite4.fsh", "composite5.fsh"] {
+        assert!(at(program) + at("lib/") >= 1, "{program}: {}", show(&report));
+    }
+    assert!(report.diagnostics.iter().any(|d| d.message.contains("nest deeper")), "{}", show(&report));
+    assert!(report.diagnostics.iter().any(|d| d.message.contains("grows past")), "{}", show(&report));
+    assert!(report.diagnostics.iter().any(|d| d.message.contains("not validated")), "{}", show(&report));
+    assert!(started.elapsed().as_secs() < 120, "took {:?}", started.elapsed());
+}
