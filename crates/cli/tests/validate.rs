@@ -45,19 +45,26 @@ fn exit_codes_follow_the_verdict() {
 
 #[test]
 fn json_and_github_formats() {
-    let planted = tests_dir().join("planted/wrong_drawbuffers");
+    let planted = tests_dir().join("planted/varying_type_mismatch");
     let out = validate(&[planted.to_str().unwrap(), "--format", "json"]);
     assert_eq!(out.status.code(), Some(1));
     let json = text(&out.stdout);
     assert!(json.trim_start().starts_with('{') && json.trim_end().ends_with('}'), "{json}");
     assert!(json.contains("\"severity\": \"error\""), "{json}");
-    assert!(json.contains("wrong_drawbuffers/shaders/gbuffers_terrain.fsh\", \"line\": 8"), "{json}");
-    assert!(json.contains("\"program\": \"gbuffers_terrain\", \"status\": \"invalid\""), "{json}");
+    assert!(json.contains("varying_type_mismatch/shaders/gbuffers_basic.fsh\", \"line\": 2"), "{json}");
+    assert!(json.contains("\"program\": \"gbuffers_basic\", \"status\": \"invalid\""), "{json}");
 
     let out = validate(&[planted.to_str().unwrap(), "--format", "github"]);
     assert_eq!(out.status.code(), Some(1));
     let annotations = text(&out.stdout);
     let line = annotations.lines().find(|l| l.starts_with("::error ")).unwrap_or_else(|| panic!("{annotations}"));
-    assert!(line.contains("file=") && line.contains("gbuffers_terrain.fsh,line=8"), "{line}");
-    assert!(!line.contains('\n'));
+    assert!(line.contains("file=") && line.contains("gbuffers_basic.fsh,line=2"), "{line}");
+
+    // A warning (an output the render-target list drops) fails only with --deny-warnings.
+    let drawbuffers = tests_dir().join("planted/wrong_drawbuffers");
+    let out = validate(&[drawbuffers.to_str().unwrap(), "--format", "github"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(text(&out.stdout).lines().any(|l| l.starts_with("::warning ") && l.contains("gbuffers_terrain.fsh,line=8")), "{}", text(&out.stdout));
+    let out = validate(&[drawbuffers.to_str().unwrap(), "--deny-warnings"]);
+    assert_eq!(out.status.code(), Some(1));
 }

@@ -81,11 +81,34 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
     found
 }
 
-/// The first line of `pre` where `needle` (a token sequence such as `gl_FragData [ 1 ]`) occurs.
-fn first_line_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
+/// The first line of `pre` where `needle` (a token sequence such as `gl_FragData [ 1 ]`) is
+/// assigned to (`=`, `+=`, …, possibly through a swizzle or index), if any.
+fn first_write_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
     let tokens = tokenize(&pre.text).ok()?;
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    sig.windows(needle.len()).find(|w| w.iter().zip(needle).all(|(t, n)| t.text == *n)).map(|w| w[0].line)
+    (0..sig.len().saturating_sub(needle.len() - 1)).find_map(|k| {
+        if !sig[k..k + needle.len()].iter().zip(needle).all(|(t, n)| t.text == *n) {
+            return None;
+        }
+        let mut j = k + needle.len();
+        // A swizzle (`.rgb`) or index (`[0]`) between the output and the operator.
+        loop {
+            match sig.get(j).map(|t| t.text) {
+                Some(".") => j += 2,
+                Some("[") => j = (j..sig.len()).find(|&m| sig[m].is_punct("]"))? + 1,
+                _ => break,
+            }
+        }
+        let op = sig.get(j)?.text;
+        matches!(op, "=" | "+=" | "-=" | "*=" | "/=" | "++" | "--").then_some(sig[k].line)
+    })
+}
+
+fn output_tokens(shipped: &str) -> Vec<&str> {
+    match shipped.strip_prefix("gl_FragData[") {
+        Some(index) => vec!["gl_FragData", "[", index.trim_end_matches(']'), "]"],
+        None => vec![shipped],
+    }
 }
 
 /// `DRAWBUFFERS`/`RENDERTARGETS` against the outputs the fragment stage writes.
@@ -107,16 +130,19 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
     }
     let outputs = &lowered.lowered.interface.outputs;
     let count = targets.buffers.len() as u32;
-    for (location, shipped) in outputs {
+    // Outputs the shader assigns to (reading one is not writing it), with the line.
+    let written: BTreeMap<u32, u32> = outputs
+        .iter()
+        .filter_map(|(location, shipped)| Some((*location, first_write_of(fragment, &output_tokens(shipped))?)))
+        .collect();
+    for (location, line) in &written {
         if *location >= count {
-            let needle: Vec<&str> = if let Some(index) = shipped.strip_prefix("gl_FragData[") {
-                vec!["gl_FragData", "[", index.trim_end_matches(']'), "]"]
-            } else {
-                vec![shipped.as_str()]
-            };
-            let at = first_line_of(fragment, &needle).and_then(|l| fragment.location(l)).or(Some(directive_at.clone()));
+            let shipped = &outputs[location];
+            let at = fragment.location(*line).or(Some(directive_at.clone()));
+            // OptiFine runs the program; the driver drops the value. Almost always a mistake
+            // (a buffer missing from the list), but not a failure: a warning.
             found.push(
-                Diagnostic::error(
+                Diagnostic::warning(
                     format!("`{shipped}` is written but {shown} lists {count} buffer{}: the value goes nowhere", if count == 1 { "" } else { "s" }),
                     at,
                 )
@@ -127,7 +153,7 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
     let broadcast = outputs.values().any(|s| s == "gl_FragColor");
     if !broadcast {
         for (i, buffer) in targets.buffers.iter().enumerate() {
-            if !outputs.contains_key(&(i as u32)) {
+            if !written.contains_key(&(i as u32)) {
                 let output = if targets.modern { format!("outColor{i}") } else { format!("gl_FragData[{i}]") };
                 found.push(Diagnostic::warning(
                     format!("{shown} lists buffer {buffer} as output {i}, but `{output}` is never written: the buffer gets undefined values"),

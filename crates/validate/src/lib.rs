@@ -80,6 +80,17 @@ mod tests {
     }
 
     #[test]
+    fn a_stage_without_version_is_glsl_110() {
+        let files: HashMap<String, Arc<str>> =
+            [("final.fsh".to_string(), Arc::from("uniform sampler2D composite;\nvoid main() {}\n"))].into();
+        let mut pre = preprocess::preprocess(&files, "final.fsh", &PreprocessOptions::default()).unwrap();
+        assume_glsl_110(&mut pre);
+        assert!(pre.text.starts_with("#version 110\nuniform sampler2D composite;\n"), "{}", pre.text);
+        assert_eq!(pre.text.lines().count(), pre.lines.len());
+        assert_eq!(pre.location(2), Some(Location::line("final.fsh", 1)));
+    }
+
+    #[test]
     fn deep_brackets_are_refused_before_naga() {
         assert_eq!(too_deep(&format!("a\n{}", "(".repeat(MAX_NESTING + 1))), Some(2));
         assert_eq!(too_deep("f((a)[b]{c})"), None);
@@ -363,7 +374,8 @@ fn check_program(
     let mut preprocessed = Vec::new();
     for (stage, path) in &program.stages {
         match preprocess::preprocess(provider, path, macros) {
-            Ok(pre) => {
+            Ok(mut pre) => {
+                assume_glsl_110(&mut pre);
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(version_rules::check(&pre, *stage));
                 preprocessed.push((*stage, Arc::new(pre)));
@@ -449,6 +461,16 @@ pub fn unlower_names(message: &str) -> String {
     }
     out.push_str(rest);
     out
+}
+
+/// A stage without `#version` is GLSL 1.10 to the driver: say so on an added first line, which
+/// the line map attributes to the entry's first line.
+pub fn assume_glsl_110(pre: &mut Preprocessed) {
+    if pre.version.is_none() && !pre.lines.is_empty() {
+        pre.text.insert_str(0, "#version 110\n");
+        pre.lines.insert(0, pre.lines[0]);
+        pre.version = Some(tidepack_glsl::preprocess::VersionDirective { number: 110, profile: None });
+    }
 }
 
 /// Longest stage (in lines, after preprocessing) naga is given: its parse time grows

@@ -1,5 +1,6 @@
 //! `tidepack validate PATH`: checks any OptiFine pack (folder or zip) as OptiFine would load it.
-//! Exit code 0: no errors (warnings allowed); 1: shader errors; 2: the input cannot be read.
+//! Exit code 0: no errors (warnings allowed unless `--deny-warnings`); 1: shader errors; 2: the
+//! input cannot be read.
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -45,6 +46,9 @@ pub struct ValidateArgs {
     /// headless) and report where it disagrees with tidepack.
     #[arg(long)]
     pub driver: bool,
+    /// Exit 1 on warnings too (unknown uniforms, unlisted outputs, …), not only on errors.
+    #[arg(long)]
+    pub deny_warnings: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -128,5 +132,5 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
     if written.is_err() {
         return ExitCode::from(2);
     }
-    if report.errors() > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS }
+    if report.errors() > 0 || (args.deny_warnings && report.warnings() > 0) { ExitCode::from(1) } else { ExitCode::SUCCESS }
 }
