@@ -225,10 +225,32 @@ fn clear_color(buffer: u8, scene: &Scene) -> wgpu::Color {
 /// Renders one frame of `scene` with the pack's programs. Every wgpu validation error becomes
 /// a [`HarnessError::Wgpu`].
 pub fn render(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, passthrough: bool) -> Result<Frame, HarnessError> {
-    gpu.checked("frame", || render_frame(gpu, pack, scene, mesh, passthrough))?
+    Ok(render_repeated(gpu, pack, scene, mesh, passthrough, 1)?.0)
 }
 
-fn render_frame(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, passthrough: bool) -> Result<Frame, HarnessError> {
+/// Renders `frames` frames of `scene` with pipelines, buffers and textures made once, for
+/// timing: returns the last frame and the pass times of every frame. The first frame's times
+/// include the driver's lazy shader compilation (llvmpipe compiles fragment shader variants at
+/// the first draw); later frames time the passes alone.
+pub fn render_repeated(
+    gpu: &Gpu,
+    pack: &LoadedPack,
+    scene: &Scene,
+    mesh: &SceneMesh,
+    passthrough: bool,
+    frames: usize,
+) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
+    gpu.checked("frame", || render_frame(gpu, pack, scene, mesh, passthrough, frames.max(1)))?
+}
+
+fn render_frame(
+    gpu: &Gpu,
+    pack: &LoadedPack,
+    scene: &Scene,
+    mesh: &SceneMesh,
+    passthrough: bool,
+    frames: usize,
+) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
     let device = &gpu.device;
     let (w, h) = (scene.width(), scene.height());
     let size = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
@@ -335,7 +357,6 @@ fn render_frame(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, p
             end_of_pass_write_index: Some(2 * i + 1),
         })
     };
-    let mut wall = Vec::new();
     let submit = |encoder: wgpu::CommandEncoder| -> Result<f64, HarnessError> {
         let started = Instant::now();
         gpu.queue.submit([encoder.finish()]);
@@ -346,157 +367,164 @@ fn render_frame(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, p
     };
     let new_encoder = || device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
 
-    gpu.checked("rendering", || -> Result<(), HarnessError> {
-        let depth0_view = view(&targets.depth0);
-        // 1. clear
-        let mut encoder = new_encoder();
-        {
-            let views: Vec<(u8, wgpu::TextureView)> = targets.colors.iter().map(|(b, (t, _))| (*b, view(t))).collect();
-            let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
-                .iter()
-                .map(|(b, v)| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view: v,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear_color(*b, scene)), store: wgpu::StoreOp::Store },
-                    })
-                })
-                .collect();
-            for chunk in attachments.chunks(8) {
-                encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("clear"),
-                    color_attachments: chunk,
-                    depth_stencil_attachment: Some(depth_attachment(&depth0_view, true)),
-                    ..Default::default()
-                });
-            }
-        }
-        submit(encoder)?;
-        // 2. terrain
-        let mut encoder = new_encoder();
-        {
-            let c0 = view(&targets.colors[&0].0);
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("terrain"),
-                color_attachments: &[Some(load_attachment(&c0))],
-                depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
-                timestamp_writes: stamps(0),
-                ..Default::default()
-            });
-            pass.set_pipeline(&terrain.pipeline);
-            pass.set_bind_group(0, &terrain.bind_group, &[]);
-            pass.set_vertex_buffer(0, terrain_vertices.slice(..));
-            pass.draw(0..mesh.terrain.len() as u32, 0..1);
-        }
-        wall.push(("terrain", submit(encoder)?));
-        // 3. depth copy
-        let mut encoder = new_encoder();
-        encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size);
-        wall.push(("depth copy", submit(encoder)?));
-        // 4. gbuffers_water
-        let mut encoder = new_encoder();
-        {
-            let views: Vec<wgpu::TextureView> = pack.water.render_targets.iter().map(|b| view(&targets.colors[b].0)).collect();
-            let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("gbuffers_water"),
-                color_attachments: &attachments,
-                depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
-                timestamp_writes: stamps(1),
-                ..Default::default()
-            });
-            pass.set_pipeline(&water.pipeline);
-            for (i, g) in water.bind_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-            pass.set_vertex_buffer(0, water_vertices.slice(..));
-            if !mesh.translucent.is_empty() {
-                pass.draw(0..mesh.translucent.len() as u32, 0..1);
-            }
-        }
-        wall.push(("gbuffers_water", submit(encoder)?));
-        // 5. composite
-        let mut encoder = new_encoder();
-        {
-            let alternates: Vec<wgpu::TextureView> = pack
-                .composite
-                .render_targets
-                .iter()
-                .map(|b| if *b == 0 { view(&targets.out) } else { view(&composite.alternates[b]) })
-                .collect();
-            let attachments: Vec<_> = alternates.iter().map(|v| Some(clear_attachment(v))).collect();
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("composite"),
-                color_attachments: &attachments,
-                depth_stencil_attachment: None,
-                timestamp_writes: stamps(2),
-                ..Default::default()
-            });
-            pass.set_pipeline(&composite.pipeline);
-            for (i, g) in composite.bind_groups.iter().enumerate() {
-                pass.set_bind_group(i as u32, g, &[]);
-            }
-            pass.set_vertex_buffer(0, quad_vertices.slice(..));
-            pass.draw(0..quad.len() as u32, 0..1);
-        }
-        wall.push(("composite", submit(encoder)?));
-        // 6. pass-through
-        if let Some(p) = &copy_pipeline {
+    let mut runs: Vec<Vec<PassTiming>> = Vec::new();
+    for _ in 0..frames {
+        let mut wall = Vec::new();
+        gpu.checked("rendering", || -> Result<(), HarnessError> {
+            let depth0_view = view(&targets.depth0);
+            // 1. clear
             let mut encoder = new_encoder();
             {
-                let v = view(&targets.passthrough);
+                let views: Vec<(u8, wgpu::TextureView)> = targets.colors.iter().map(|(b, (t, _))| (*b, view(t))).collect();
+                let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
+                    .iter()
+                    .map(|(b, v)| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view: v,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear_color(*b, scene)), store: wgpu::StoreOp::Store },
+                        })
+                    })
+                    .collect();
+                for chunk in attachments.chunks(8) {
+                    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("clear"),
+                        color_attachments: chunk,
+                        depth_stencil_attachment: Some(depth_attachment(&depth0_view, true)),
+                        ..Default::default()
+                    });
+                }
+            }
+            submit(encoder)?;
+            // 2. terrain
+            let mut encoder = new_encoder();
+            {
+                let c0 = view(&targets.colors[&0].0);
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("pass-through composite"),
-                    color_attachments: &[Some(clear_attachment(&v))],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: stamps(3),
+                    label: Some("terrain"),
+                    color_attachments: &[Some(load_attachment(&c0))],
+                    depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
+                    timestamp_writes: stamps(0),
                     ..Default::default()
                 });
-                pass.set_pipeline(&p.pipeline);
-                pass.set_bind_group(0, &p.bind_group, &[]);
-                pass.draw(0..3, 0..1);
+                pass.set_pipeline(&terrain.pipeline);
+                pass.set_bind_group(0, &terrain.bind_group, &[]);
+                pass.set_vertex_buffer(0, terrain_vertices.slice(..));
+                pass.draw(0..mesh.terrain.len() as u32, 0..1);
             }
-            wall.push(("pass-through composite", submit(encoder)?));
-        }
-        Ok(())
-    })??;
+            wall.push(("terrain", submit(encoder)?));
+            // 3. depth copy
+            let mut encoder = new_encoder();
+            encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size);
+            wall.push(("depth copy", submit(encoder)?));
+            // 4. gbuffers_water
+            let mut encoder = new_encoder();
+            {
+                let views: Vec<wgpu::TextureView> = pack.water.render_targets.iter().map(|b| view(&targets.colors[b].0)).collect();
+                let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("gbuffers_water"),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
+                    timestamp_writes: stamps(1),
+                    ..Default::default()
+                });
+                pass.set_pipeline(&water.pipeline);
+                for (i, g) in water.bind_groups.iter().enumerate() {
+                    pass.set_bind_group(i as u32, g, &[]);
+                }
+                pass.set_vertex_buffer(0, water_vertices.slice(..));
+                if !mesh.translucent.is_empty() {
+                    pass.draw(0..mesh.translucent.len() as u32, 0..1);
+                }
+            }
+            wall.push(("gbuffers_water", submit(encoder)?));
+            // 5. composite
+            let mut encoder = new_encoder();
+            {
+                let alternates: Vec<wgpu::TextureView> = pack
+                    .composite
+                    .render_targets
+                    .iter()
+                    .map(|b| if *b == 0 { view(&targets.out) } else { view(&composite.alternates[b]) })
+                    .collect();
+                let attachments: Vec<_> = alternates.iter().map(|v| Some(clear_attachment(v))).collect();
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("composite"),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: None,
+                    timestamp_writes: stamps(2),
+                    ..Default::default()
+                });
+                pass.set_pipeline(&composite.pipeline);
+                for (i, g) in composite.bind_groups.iter().enumerate() {
+                    pass.set_bind_group(i as u32, g, &[]);
+                }
+                pass.set_vertex_buffer(0, quad_vertices.slice(..));
+                pass.draw(0..quad.len() as u32, 0..1);
+            }
+            wall.push(("composite", submit(encoder)?));
+            // 6. pass-through
+            if let Some(p) = &copy_pipeline {
+                let mut encoder = new_encoder();
+                {
+                    let v = view(&targets.passthrough);
+                    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("pass-through composite"),
+                        color_attachments: &[Some(clear_attachment(&v))],
+                        depth_stencil_attachment: None,
+                        timestamp_writes: stamps(3),
+                        ..Default::default()
+                    });
+                    pass.set_pipeline(&p.pipeline);
+                    pass.set_bind_group(0, &p.bind_group, &[]);
+                    pass.draw(0..3, 0..1);
+                }
+                wall.push(("pass-through composite", submit(encoder)?));
+            }
+            Ok(())
+        })??;
 
-    // Timestamps.
-    let gpu_ms: Vec<Option<f64>> = match &queries {
-        Some(q) => {
-            let ticks = read_timestamps(gpu, q, passes)?;
-            let period = gpu.queue.get_timestamp_period() as f64;
-            (0..passes as usize)
-                .map(|i| Some(ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6))
-                .collect()
-        }
-        None => vec![None; passes as usize],
-    };
-    let mut timings = Vec::new();
-    let mut timed = 0;
-    for (name, ms) in wall {
-        let gpu_time = if name == "depth copy" {
-            None
-        } else {
-            timed += 1;
-            gpu_ms[timed - 1]
+        // Timestamps.
+        let gpu_ms: Vec<Option<f64>> = match &queries {
+            Some(q) => {
+                let ticks = read_timestamps(gpu, q, passes)?;
+                let period = gpu.queue.get_timestamp_period() as f64;
+                (0..passes as usize)
+                    .map(|i| Some(ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6))
+                    .collect()
+            }
+            None => vec![None; passes as usize],
         };
-        timings.push(PassTiming { pass: name.to_string(), gpu_ms: gpu_time, wall_ms: ms });
+        let mut timings = Vec::new();
+        let mut timed = 0;
+        for (name, ms) in wall {
+            let gpu_time = if name == "depth copy" {
+                None
+            } else {
+                timed += 1;
+                gpu_ms[timed - 1]
+            };
+            timings.push(PassTiming { pass: name.to_string(), gpu_ms: gpu_time, wall_ms: ms });
+        }
+        runs.push(timings);
     }
+    let timings = runs.last().cloned().unwrap_or_default();
 
     let mut images = BTreeMap::new();
     for (b, (t, format)) in &targets.colors {
         images.insert(*b, read_texture(gpu, t, *format)?);
     }
-    Ok(Frame {
+    let frame = Frame {
         image: read_texture(gpu, &targets.out, OUT)?,
         buffers: images,
         depth0: read_texture(gpu, &targets.depth0, DEPTH)?,
         depth1: read_texture(gpu, &targets.depth1, DEPTH)?,
         passthrough: if passthrough { Some(read_texture(gpu, &targets.passthrough, OUT)?) } else { None },
         timings,
-    })
+    };
+    Ok((frame, runs))
 }
 
 fn load_attachment(v: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {

@@ -1,0 +1,106 @@
+//! Pass times of every scene (reported, never asserted).
+//!
+//! `cargo run --release -p tidepack-harness --example pass_times -- [--frames N] [--size WxH]
+//! [--dialect 120|330] [--profile NAME]`
+//!
+//! Renders every tests/scenes/*.toml at 640x360 (default) on the first Vulkan adapter
+//! (lavapipe without a GPU), pipelines made once per scene: one warm-up frame (llvmpipe
+//! compiles shader variants at the first draw), then N frames (default 9). Prints, per scene,
+//! the median time of terrain, gbuffers_water, composite and the one-tap pass-through composite
+//! measured in the same frames, and composite / pass-through. GPU timestamps when the adapter
+//! has them, else wall time (the table says which).
+//!
+//! Leave Mesa's shader cache on: llvmpipe compiles fragment shader variants lazily inside the
+//! timed passes, and with MESA_SHADER_CACHE_DISABLE=true that compilation lands in every
+//! frame's composite time (measured: 6-9 s instead of about 0.5 s per frame at 640x360).
+
+use std::path::{Path, PathBuf};
+
+use tidepack_harness::{Gpu, PackSelection, Scene, gpu, mesh, program};
+use tidepack_pack::Dialect;
+
+const PASSES: [&str; 4] = ["terrain", "gbuffers_water", "composite", "pass-through composite"];
+
+fn main() {
+    let mut frames = 9usize;
+    let (mut width, mut height) = (640u32, 360u32);
+    let mut dialect = Dialect::Glsl330;
+    let mut profile = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        let mut value = || args.next().unwrap_or_else(|| fail(&format!("{arg} needs a value")));
+        match arg.as_str() {
+            "--frames" => frames = value().parse().ok().filter(|n| *n > 0).unwrap_or_else(|| fail("--frames takes a positive number")),
+            "--size" => {
+                let v = value();
+                let parsed = v.split_once('x').and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)));
+                (width, height) = parsed.unwrap_or_else(|| fail("--size takes WxH"));
+            }
+            "--dialect" => {
+                dialect = match value().as_str() {
+                    "120" => Dialect::Glsl120,
+                    "330" => Dialect::Glsl330,
+                    _ => fail("--dialect takes 120 or 330"),
+                }
+            }
+            "--profile" => profile = Some(value()),
+            _ => fail(&format!("unknown argument {arg}")),
+        }
+    }
+
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let pack = program::load(&PackSelection { source_dir: root.join("shaderpack"), dialect, profile, options: vec![] })
+        .unwrap_or_else(|e| fail(&e.to_string()));
+    let gpu = Gpu::new().unwrap_or_else(|e| fail(&e.to_string()));
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("tests/scenes"))
+        .unwrap_or_else(|e| fail(&format!("tests/scenes: {e}")))
+        .filter_map(|e| Some(e.ok()?.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    scenes.sort();
+
+    let clock = if gpu.timestamps { "GPU timestamps" } else { "wall time (no timestamp queries)" };
+    println!(
+        "{} at {width}x{height}, {dialect}, profile {}, median of {frames} frames after 1 warm-up, {clock}, ms",
+        gpu.describe(),
+        pack.profile
+    );
+    println!();
+    println!("| scene | terrain | gbuffers_water | composite | pass-through | composite / pass-through |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for path in scenes {
+        let scene = Scene::load(&path).unwrap_or_else(|e| fail(&e.to_string())).with_resolution(width, height);
+        let mesh = mesh::build(&scene, &pack);
+        // Pipelines are made once; frame 0 (with llvmpipe's lazy shader compilation) is the warm-up.
+        let (_, runs) = gpu::render_repeated(&gpu, &pack, &scene, &mesh, true, frames + 1)
+            .unwrap_or_else(|e| fail(&format!("{}: {e}", scene.name)));
+        let mut samples: Vec<Vec<f64>> = vec![Vec::new(); PASSES.len()];
+        for timings in &runs[1..] {
+            for (k, pass) in PASSES.iter().enumerate() {
+                let t = timings.iter().find(|t| t.pass == *pass).unwrap_or_else(|| fail(&format!("no {pass} timing")));
+                samples[k].push(t.gpu_ms.unwrap_or(t.wall_ms));
+            }
+        }
+        let m: Vec<f64> = samples.into_iter().map(median).collect();
+        println!(
+            "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} |",
+            scene.name,
+            m[0],
+            m[1],
+            m[2],
+            m[3],
+            if m[3] > 0.0 { m[2] / m[3] } else { f64::NAN }
+        );
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
+}
+
+fn fail(message: &str) -> ! {
+    eprintln!("error: {message}");
+    std::process::exit(1)
+}
