@@ -1,0 +1,326 @@
+//! `tidepack bench` (issue 5, step 2): for every scene and every option set (the profiles, and
+//! single-knob sweeps around the default profile), the composite's GPU time on the harness
+//! (median of N frames, with the one-tap pass-through composite of the same frames as the
+//! floor) and its error against the f64 reference at converged settings (max abs, RMSE, PSNR,
+//! mean FLIP). Writes a table, CSV, JSON, a Pareto plot of time against error, FLIP heat-maps
+//! and a Markdown report. See docs/accuracy.md.
+
+pub mod metrics;
+pub mod output;
+pub mod reference_inputs;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use tidepack_glsl::options::{OptionKind, OptionValue};
+use tidepack_harness::{Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
+use tidepack_pack::Dialect;
+use tidepack_pack::source::PackSource;
+use tidepack_reference::ReferenceImage;
+
+pub use metrics::Error;
+
+/// The knobs swept one at a time around the base profile, with every value settings.glsl lists.
+pub const SWEPT_KNOBS: [&str; 7] =
+    ["WAVE_REFINE_STEPS", "SSR_STEPS", "SSR_REFINE_STEPS", "NORMAL_OCTAVES", "CAUSTIC_SAMPLES", "FRESNEL_EXACT", "ABSORPTION_MODEL"];
+
+#[derive(Clone, Debug)]
+pub struct BenchConfig {
+    /// Folder with pack.toml and shaders/.
+    pub source_dir: PathBuf,
+    /// Folder of scene files (*.toml).
+    pub scenes_dir: PathBuf,
+    /// Only these scenes (file stems); all when empty.
+    pub scene_filter: Vec<String>,
+    /// Frames per option set and scene; the median time is reported.
+    pub frames: usize,
+    /// Render every scene at this resolution instead of its own.
+    pub resolution: Option<[u32; 2]>,
+    /// Reference pixel stride (1: every pixel).
+    pub reference_stride: usize,
+    pub out_dir: PathBuf,
+    /// Only these runs; the profiles and sweeps when None.
+    pub runs: Option<Vec<RunSpec>>,
+    /// Also write the Markdown report here, with the plot beside it as `<stem>-pareto.png`.
+    pub report: Option<PathBuf>,
+    /// The command line that produced this run, quoted in the report.
+    pub command: String,
+    pub progress: bool,
+}
+
+/// One option set: a profile, or the base profile with one option overridden.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct RunSpec {
+    /// `LOW`, or `HIGH+SSR_STEPS=24`.
+    pub name: String,
+    /// `profile` or `sweep`.
+    pub kind: String,
+    pub profile: String,
+    /// The overridden option (sweeps).
+    pub knob: Option<String>,
+    pub value: Option<String>,
+}
+
+impl RunSpec {
+    pub fn profile(name: &str) -> RunSpec {
+        RunSpec { name: name.to_string(), kind: "profile".into(), profile: name.to_string(), knob: None, value: None }
+    }
+    pub fn sweep(profile: &str, knob: &str, value: &str) -> RunSpec {
+        RunSpec {
+            name: format!("{profile}+{knob}={value}"),
+            kind: "sweep".into(),
+            profile: profile.to_string(),
+            knob: Some(knob.to_string()),
+            value: Some(value.to_string()),
+        }
+    }
+}
+
+/// One run on one scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub scene: String,
+    pub run: RunSpec,
+    /// Median composite time over the frames (GPU timestamps, else wall).
+    pub composite_ms: f64,
+    /// Median one-tap pass-through composite time over the same frames.
+    pub passthrough_ms: f64,
+    /// composite_ms / passthrough_ms.
+    pub ratio: f64,
+    pub error: Error,
+    /// Sum of squared rgb differences over the pixels / (3 pixels): to aggregate PSNR.
+    pub mse: f64,
+}
+
+/// One run over all scenes.
+#[derive(Clone, Debug, Serialize)]
+pub struct Aggregate {
+    pub run: RunSpec,
+    /// Mean over scenes of the composite / pass-through ratio.
+    pub ratio: f64,
+    pub composite_ms: f64,
+    pub passthrough_ms: f64,
+    /// Largest max abs of any scene.
+    pub max_abs: f64,
+    /// Over all scenes' pixels.
+    pub rmse: f64,
+    pub psnr: f64,
+    /// Mean over scenes of the mean FLIP.
+    pub mean_flip: f64,
+    /// Not dominated in (ratio, mean FLIP) by any other run.
+    pub on_front: bool,
+    /// Runs that dominate it, with the smaller of their two relative improvements.
+    pub dominated_by: Vec<(String, f64)>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchResult {
+    pub adapter: String,
+    /// `gpu` (timestamps) or `wall`.
+    pub timing_source: String,
+    pub frames: usize,
+    pub resolution: Option<[u32; 2]>,
+    pub reference_stride: usize,
+    pub reference_settings: String,
+    pub base_profile: String,
+    pub scenes: Vec<String>,
+    pub rows: Vec<Row>,
+    pub aggregates: Vec<Aggregate>,
+    /// Files written, relative to the output folder.
+    pub files: Vec<String>,
+    pub command: String,
+}
+
+/// A run is "near" the front when no run beats it by more than this in both time and error.
+pub const NEAR_FRONT: f64 = 0.05;
+
+fn err(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// The profiles of the manifest, then the sweeps of [`SWEPT_KNOBS`] around the default profile.
+pub fn default_runs(source_dir: &Path) -> Result<(String, Vec<RunSpec>), String> {
+    let source = PackSource::load(source_dir).map_err(|d| d.message.clone())?;
+    let options = tidepack_pack::pack_options::collect(&source).map_err(|d| format!("{} option errors", d.len()))?;
+    let base = source.manifest.pack.default_profile.clone();
+    let mut runs: Vec<RunSpec> = source.manifest.profiles.iter().map(|p| RunSpec::profile(&p.name)).collect();
+    for knob in SWEPT_KNOBS {
+        let option = options.get(knob).ok_or_else(|| format!("settings.glsl has no option {knob}"))?;
+        let values: Vec<String> = match &option.kind {
+            OptionKind::Switch { .. } => vec!["off".into(), "on".into()],
+            OptionKind::Value { values, .. } => values.clone(),
+        };
+        runs.extend(values.iter().map(|v| RunSpec::sweep(&base, knob, v)));
+    }
+    Ok((base, runs))
+}
+
+fn option_key(pack: &LoadedPack) -> String {
+    pack.options
+        .iter()
+        .map(|(k, v)| match v {
+            OptionValue::Switch(b) => format!("{k}={}", if *b { "on" } else { "off" }),
+            OptionValue::Value(s) => format!("{k}={s}"),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn load_pack(source_dir: &Path, run: &RunSpec) -> Result<LoadedPack, String> {
+    let options = match (&run.knob, &run.value) {
+        (Some(k), Some(v)) => vec![(k.clone(), v.clone())],
+        _ => vec![],
+    };
+    program::load(&PackSelection { source_dir: source_dir.to_path_buf(), dialect: Dialect::Glsl330, profile: Some(run.profile.clone()), options })
+        .map_err(|e| format!("{}: {e}", run.name))
+}
+
+pub fn scene_files(config: &BenchConfig) -> Result<Vec<(String, PathBuf)>, String> {
+    let mut files: Vec<(String, PathBuf)> = std::fs::read_dir(&config.scenes_dir)
+        .map_err(|e| format!("cannot read {}: {e}", config.scenes_dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), p))
+        .filter(|(n, _)| config.scene_filter.is_empty() || config.scene_filter.contains(n))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(format!("no scenes in {}", config.scenes_dir.display()));
+    }
+    Ok(files)
+}
+
+/// Runs the benchmark and writes every output file.
+pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
+    let (base, default) = default_runs(&config.source_dir)?;
+    let runs = config.runs.clone().unwrap_or(default);
+    let scenes: Vec<(String, Scene)> = scene_files(config)?
+        .into_iter()
+        .map(|(name, path)| {
+            let scene = Scene::load(&path).map_err(err)?;
+            let scene = match config.resolution {
+                Some([w, h]) => scene.with_resolution(w, h),
+                None => scene,
+            };
+            Ok((name, scene))
+        })
+        .collect::<Result<_, String>>()?;
+    let gpu = Gpu::new().map_err(err)?;
+    let frames = config.frames.max(1);
+
+    let bar = if config.progress {
+        indicatif::ProgressBar::new((scenes.len() * (runs.len() + 1)) as u64)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}").map_err(err)?.progress_chars("=> "),
+    );
+
+    // The reference: converged settings, fed the G-buffers of the base profile's frame (every
+    // profile but LOW has the same gbuffers_water options; LOW's flat surface counts as error).
+    let base_pack = load_pack(&config.source_dir, &RunSpec::profile(&base))?;
+    let settings = reference_inputs::converged_settings();
+    let mut references: BTreeMap<String, ReferenceImage> = BTreeMap::new();
+    for (name, scene) in &scenes {
+        bar.set_message(format!("reference {name}"));
+        let frame = render_wgpu(&gpu, &base_pack, scene, false).map_err(err)?;
+        let inputs = reference_inputs::inputs(&base_pack, scene, &frame)?;
+        let mut image = tidepack_reference::render(&inputs, &settings, config.reference_stride)?;
+        fill_strided(&mut image, config.reference_stride);
+        references.insert(name.clone(), image);
+        bar.inc(1);
+    }
+
+    std::fs::create_dir_all(config.out_dir.join("heatmaps")).map_err(|e| format!("cannot create {}: {e}", config.out_dir.display()))?;
+    let mut files = Vec::new();
+    let mut rows = Vec::new();
+    // Option sets that come out equal (a sweep value that is the base's own) are measured once.
+    let mut measured: BTreeMap<String, Vec<Row>> = BTreeMap::new();
+    let mut timing_gpu = true;
+    for run in &runs {
+        let pack = load_pack(&config.source_dir, run)?;
+        let key = option_key(&pack);
+        if let Some(done) = measured.get(&key) {
+            // The profiles come first, so a repeated option set is a sweep value equal to the
+            // base profile's: its rows are the base's.
+            rows.extend(done.iter().map(|r| Row { run: run.clone(), ..r.clone() }));
+            bar.inc(scenes.len() as u64);
+            continue;
+        }
+        let mut these = Vec::new();
+        for (name, scene) in &scenes {
+            bar.set_message(format!("{} {name}", run.name));
+            let (mut composite, mut floor) = (Vec::new(), Vec::new());
+            let mut first = None;
+            for _ in 0..frames {
+                let frame = render_wgpu(&gpu, &pack, scene, true).map_err(err)?;
+                let time = |pass: &str| frame.timings.iter().find(|t| t.pass == pass).map(|t| (t.gpu_ms, t.wall_ms));
+                let (c, p) = match (time("composite"), time("pass-through composite")) {
+                    (Some(c), Some(p)) => (c, p),
+                    _ => return Err("the harness reported no composite or pass-through time".into()),
+                };
+                timing_gpu &= c.0.is_some() && p.0.is_some();
+                composite.push(c.0.unwrap_or(c.1));
+                floor.push(p.0.unwrap_or(p.1));
+                if first.is_none() {
+                    first = Some(frame);
+                }
+            }
+            let frame = first.expect("at least one frame");
+            let (error, map) = metrics::error(&frame.image, &references[name]);
+            if run.kind == "profile" {
+                let file = format!("heatmaps/{name}-{}.png", run.name);
+                metrics::write_heatmap(&map, &config.out_dir.join(&file))?;
+                files.push(file);
+            }
+            let (c, p) = (metrics::median(&composite), metrics::median(&floor));
+            these.push(Row {
+                scene: name.clone(),
+                run: run.clone(),
+                composite_ms: c,
+                passthrough_ms: p,
+                ratio: c / p,
+                error,
+                mse: error.rmse * error.rmse,
+            });
+            bar.inc(1);
+        }
+        rows.extend(these.iter().cloned());
+        measured.insert(key, these);
+    }
+    bar.finish_and_clear();
+
+    let aggregates = output::aggregate(&runs, &rows);
+    let a = &gpu.adapter;
+    let mut result = BenchResult {
+        adapter: format!("{} ({:?}, {} {})", a.name, a.backend, a.driver, a.driver_info).trim().to_string(),
+        timing_source: if timing_gpu { "gpu" } else { "wall" }.into(),
+        frames,
+        resolution: config.resolution,
+        reference_stride: config.reference_stride,
+        reference_settings: format!("{settings:?}"),
+        base_profile: base,
+        scenes: scenes.iter().map(|(n, _)| n.clone()).collect(),
+        rows,
+        aggregates,
+        files,
+        command: config.command.clone(),
+    };
+    output::write_all(config, &mut result)?;
+    Ok(result)
+}
+
+/// With a stride above 1, each evaluated pixel stands for its stride × stride block.
+fn fill_strided(image: &mut ReferenceImage, stride: usize) {
+    if stride <= 1 {
+        return;
+    }
+    let (w, h) = (image.width, image.height);
+    for y in 0..h {
+        for x in 0..w {
+            image.pixels[y * w + x] = image.pixels[(y / stride * stride) * w + x / stride * stride];
+        }
+    }
+}

@@ -1,0 +1,66 @@
+//! The bench end to end at a tiny resolution: one scene, two option sets. Checks that every
+//! output exists and parses, that the errors are finite and that ULTRA (the profile closest to
+//! the converged reference) scores better than LOW. Timings are never asserted.
+//!
+//! Needs lavapipe (Debian mesa-vulkan-drivers; tools/test installs it): without it this test
+//! fails with an error naming the package. It never skips.
+
+use std::path::Path;
+
+use tidepack_bench::{BenchConfig, RunSpec};
+
+#[test]
+fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = tempfile::tempdir().unwrap();
+    let report = out.path().join("docs/accuracy.md");
+    std::fs::create_dir_all(report.parent().unwrap()).unwrap();
+    let config = BenchConfig {
+        source_dir: root.join("shaderpack"),
+        scenes_dir: root.join("tests/scenes"),
+        scene_filter: vec!["case4_above_near".into()],
+        frames: 2,
+        resolution: Some([96, 54]),
+        reference_stride: 1,
+        out_dir: out.path().join("bench"),
+        runs: Some(vec![RunSpec::profile("LOW"), RunSpec::profile("ULTRA")]),
+        report: Some(report.clone()),
+        command: "test".into(),
+        progress: false,
+    };
+    let result = tidepack_bench::run(&config).unwrap_or_else(|e| panic!("{e}"));
+    let dir = out.path().join("bench");
+
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("bench.json")).unwrap()).unwrap();
+    assert_eq!(json["rows"].as_array().unwrap().len(), 2);
+    assert_eq!(json["aggregates"].as_array().unwrap().len(), 2);
+
+    let csv = std::fs::read_to_string(dir.join("bench.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    let columns = lines[0].split(',').count();
+    assert_eq!(lines.len(), 1 + 2 + 2, "{csv}");
+    for line in &lines[1..] {
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(fields.len(), columns, "{line}");
+        for f in &fields[6..13] {
+            let v: f64 = f.parse().unwrap_or_else(|_| panic!("{f} in {line}"));
+            assert!(v.is_finite(), "{line}");
+        }
+    }
+    for png in ["pareto.png", "heatmaps/case4_above_near-LOW.png", "heatmaps/case4_above_near-ULTRA.png"] {
+        let image = image::open(dir.join(png)).unwrap_or_else(|e| panic!("{png}: {e}"));
+        assert!(image.width() > 0, "{png}");
+    }
+    let md = std::fs::read_to_string(&report).unwrap();
+    assert!(md.contains("| LOW |") && md.contains("| ULTRA |"), "{md}");
+    assert!(out.path().join("docs/accuracy-pareto.png").exists());
+
+    let low = &result.rows.iter().find(|r| r.run.name == "LOW").unwrap().error;
+    let ultra = &result.rows.iter().find(|r| r.run.name == "ULTRA").unwrap().error;
+    for e in [low, ultra] {
+        assert!(e.max_abs.is_finite() && e.rmse.is_finite() && e.mean_flip.is_finite() && !e.psnr.is_nan(), "{e:?}");
+    }
+    println!("LOW {low:?}\nULTRA {ultra:?}");
+    assert!(ultra.rmse < low.rmse, "ULTRA {ultra:?} LOW {low:?}");
+    assert!(ultra.mean_flip < low.mean_flip, "ULTRA {ultra:?} LOW {low:?}");
+}
