@@ -52,6 +52,11 @@ enum Command {
     /// OUT/<scene>.png and OUT/<scene>.json (pass times, adapter, resolution, dialect, options).
     #[cfg(feature = "render")]
     Render(commands::render::RenderArgs),
+    /// Sweep adversarial and random uniform sets and G-buffers through the composite on the
+    /// harness against the f64 reference: NaN/Inf counts, error per category and against
+    /// |cameraPosition| (docs/stress.md).
+    #[cfg(feature = "render")]
+    Stress(commands::stress::StressArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -81,6 +86,8 @@ fn main() -> ExitCode {
         Command::Validate(args) => commands::validate::run(&args),
         #[cfg(feature = "render")]
         Command::Render(args) => commands::render::run(&args),
+        #[cfg(feature = "render")]
+        Command::Stress(args) => commands::stress::run(&args),
     }
 }
 

@@ -10,6 +10,7 @@
 
 use std::fmt;
 
+pub mod composite_only;
 pub mod gl;
 pub mod gpu;
 pub mod images;

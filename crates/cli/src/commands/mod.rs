@@ -8,6 +8,8 @@ use tidepack_glsl::{Diagnostic, diagnostic};
 pub mod build;
 #[cfg(feature = "render")]
 pub mod render;
+#[cfg(feature = "render")]
+pub mod stress;
 pub mod validate;
 
 /// Prints diagnostics to stderr like a compiler, coloured on a terminal.
