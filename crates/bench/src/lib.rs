@@ -33,7 +33,7 @@ pub struct BenchConfig {
     pub scenes_dir: PathBuf,
     /// Only these scenes (file stems); all when empty.
     pub scene_filter: Vec<String>,
-    /// Frames per option set and scene; the median time is reported.
+    /// Timed frames per option set and scene (after one warm-up frame); the median is reported.
     pub frames: usize,
     /// Render every scene at this resolution instead of its own.
     pub resolution: Option<[u32; 2]>,
@@ -253,10 +253,12 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         for (name, scene) in &scenes {
             bar.set_message(format!("{} {name}", run.name));
             let (mut composite, mut floor) = (Vec::new(), Vec::new());
-            let mut first = None;
-            for _ in 0..frames {
-                let frame = render_wgpu(&gpu, &pack, scene, true).map_err(err)?;
-                let time = |pass: &str| frame.timings.iter().find(|t| t.pass == pass).map(|t| (t.gpu_ms, t.wall_ms));
+            // Pipelines made once; one warm-up frame (llvmpipe compiles shader variants at the
+            // first draw), then `frames` timed frames.
+            let mesh = tidepack_harness::mesh::build(scene, &pack);
+            let (frame, times) = tidepack_harness::gpu::render_repeated(&gpu, &pack, scene, &mesh, true, frames + 1).map_err(err)?;
+            for timings in times.iter().skip(1) {
+                let time = |pass: &str| timings.iter().find(|t| t.pass == pass).map(|t| (t.gpu_ms, t.wall_ms));
                 let (c, p) = match (time("composite"), time("pass-through composite")) {
                     (Some(c), Some(p)) => (c, p),
                     _ => return Err("the harness reported no composite or pass-through time".into()),
@@ -264,11 +266,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 timing_gpu &= c.0.is_some() && p.0.is_some();
                 composite.push(c.0.unwrap_or(c.1));
                 floor.push(p.0.unwrap_or(p.1));
-                if first.is_none() {
-                    first = Some(frame);
-                }
             }
-            let frame = first.expect("at least one frame");
             let (error, map) = metrics::error(&frame.image, &references[name]);
             if run.kind == "profile" {
                 let file = format!("heatmaps/{name}-{}.png", run.name);
