@@ -57,6 +57,10 @@ enum Command {
     /// |cameraPosition| (docs/stress.md).
     #[cfg(feature = "render")]
     Stress(commands::stress::StressArgs),
+    /// Composite time against error for every scene, profile and single-knob sweep: table,
+    /// CSV, JSON, Pareto plot, FLIP heat-maps (docs/accuracy.md).
+    #[cfg(feature = "bench")]
+    Bench(commands::bench::BenchArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -88,6 +92,8 @@ fn main() -> ExitCode {
         Command::Render(args) => commands::render::run(&args),
         #[cfg(feature = "render")]
         Command::Stress(args) => commands::stress::run(&args),
+        #[cfg(feature = "bench")]
+        Command::Bench(args) => commands::bench::run(&args),
     }
 }
 

@@ -5,6 +5,8 @@ use std::io::IsTerminal;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_glsl::{Diagnostic, diagnostic};
 
+#[cfg(feature = "bench")]
+pub mod bench;
 pub mod build;
 #[cfg(feature = "render")]
 pub mod render;
