@@ -296,10 +296,10 @@ pub fn markdown(result: &BenchResult, image: &str) -> String {
     let _ = writeln!(
         s,
         "- Reference: `tidepack-reference` at `ReferenceSettings::converged()` (64 wave bisection steps, 48 SSR steps, \
-         32 SSR refinement steps, exact Fresnel, Beer–Lambert, 2 normal octaves, 3 caustic sample pairs), every {} pixel, \
+         32 SSR refinement steps, exact Fresnel, Beer–Lambert, 2 normal octaves, 3 caustic sample pairs), {}, \
          fed the G-buffers of the {} profile's frame. LOW's flat (unswelled) surface therefore counts as error, as do \
          look differences (fewer octaves or caustic pairs, Schlick, the ramp).",
-        if result.reference_stride <= 1 { "".to_string() } else { format!("{}th", result.reference_stride) },
+        if result.reference_stride <= 1 { "every pixel".to_string() } else { format!("every {}th pixel", result.reference_stride) },
         result.base_profile
     );
     let _ = writeln!(
