@@ -42,6 +42,11 @@ enum Command {
         /// every profile are validated.
         #[arg(long)]
         exhaustive: bool,
+        /// Specialise the pack for one scene (tests/scenes/*.toml): the uniforms the scene
+        /// fixes become constants before validation, the zip is named after the scene, and the
+        /// composite's speedup against the general pack is measured on the harness.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
     },
     /// Check any OptiFine shader pack (folder or zip) the way OptiFine loads it, headless: every
     /// program of every world folder through OptiFine's preprocessor and naga, plus the links
@@ -78,14 +83,15 @@ enum DialectArg {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Build { source, out, dialect, profile, exhaustive } => {
+        Command::Build { source, out, dialect, profile, exhaustive, scene } => {
             let dialects = match dialect {
                 DialectArg::V120 => vec![Dialect::Glsl120],
                 DialectArg::V330 => vec![Dialect::Glsl330],
                 DialectArg::All => Dialect::ALL.to_vec(),
             };
             let coverage = if exhaustive { Coverage::Exhaustive } else { Coverage::Pairwise };
-            commands::build::run(&BuildOptions { source_dir: source, out_dir: out, dialects, profile, coverage })
+            let opts = BuildOptions { source_dir: source, out_dir: out, dialects, profile, coverage, specialisation: None };
+            commands::build::run(opts, scene.as_deref())
         }
         Command::Validate(args) => commands::validate::run(&args),
         #[cfg(feature = "render")]

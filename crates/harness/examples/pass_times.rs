@@ -1,7 +1,7 @@
 //! Pass times of every scene (reported, never asserted).
 //!
 //! `cargo run --release -p tidepack-harness --example pass_times -- [--frames N] [--size WxH]
-//! [--dialect 120|330] [--profile NAME]`
+//! [--dialect 120|330] [--profile NAME] [--option NAME=VALUE]... [--scene NAME]`
 //!
 //! Renders every tests/scenes/*.toml at 640x360 (default) on the first Vulkan adapter
 //! (lavapipe without a GPU), pipelines made once per scene: one warm-up frame (llvmpipe
@@ -26,6 +26,8 @@ fn main() {
     let (mut width, mut height) = (640u32, 360u32);
     let mut dialect = Dialect::Glsl330;
     let mut profile = None;
+    let mut options = Vec::new();
+    let mut only_scene = None;
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         let mut value = || args.next().unwrap_or_else(|| fail(&format!("{arg} needs a value")));
@@ -44,18 +46,25 @@ fn main() {
                 }
             }
             "--profile" => profile = Some(value()),
+            "--option" => {
+                let v = value();
+                let (name, setting) = v.split_once('=').unwrap_or_else(|| fail("--option takes NAME=VALUE"));
+                options.push((name.to_string(), setting.to_string()));
+            }
+            "--scene" => only_scene = Some(value()),
             _ => fail(&format!("unknown argument {arg}")),
         }
     }
 
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let pack = program::load(&PackSelection { source_dir: root.join("shaderpack"), dialect, profile, options: vec![] })
+    let pack = program::load(&PackSelection { source_dir: root.join("shaderpack"), dialect, profile, options })
         .unwrap_or_else(|e| fail(&e.to_string()));
     let gpu = Gpu::new().unwrap_or_else(|e| fail(&e.to_string()));
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("tests/scenes"))
         .unwrap_or_else(|e| fail(&format!("tests/scenes: {e}")))
         .filter_map(|e| Some(e.ok()?.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| only_scene.as_ref().is_none_or(|name| p.file_stem().is_some_and(|s| s == name.as_str())))
         .collect();
     scenes.sort();
 

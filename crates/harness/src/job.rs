@@ -8,11 +8,11 @@ use std::path::PathBuf;
 use serde::Serialize;
 use tidepack_pack::Dialect;
 
-use crate::gpu::PassTiming;
+use crate::gpu::{self, PassTiming};
 use crate::images::{self, FloatImage};
 use crate::program::{self, PackSelection};
 use crate::scene::Scene;
-use crate::{Gpu, HarnessError, gl, mesh};
+use crate::{Gpu, HarnessError, gl, mesh, uniforms};
 
 /// What to render and where to put it.
 #[derive(Clone, Debug)]
@@ -29,6 +29,9 @@ pub struct RenderJob {
     pub buffers: bool,
     /// Also render through the OpenGL driver and compare.
     pub gl: bool,
+    /// Also render the pack specialised for the scene (`build --scene`) and report its
+    /// composite time against the general pack's.
+    pub specialise: bool,
 }
 
 /// The JSON report (`<scene>.json`).
@@ -51,6 +54,7 @@ pub struct RenderReport {
     /// Pixels of the composite output (RGBA32F) that are NaN or infinite.
     pub non_finite_pixels: usize,
     pub gl: Option<GlComparison>,
+    pub specialisation: Option<SpecialisationReport>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
 }
@@ -82,15 +86,96 @@ pub struct GlComparison {
     pub pixels_over_1_255: usize,
 }
 
+/// The pack specialised for a scene against the general pack, on the same scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct SpecialisationReport {
+    /// Uniforms folded into constants.
+    pub folded: Vec<String>,
+    /// Timed frames per pack (after one warm-up frame each), alternating between the packs.
+    pub frames: usize,
+    /// Median composite time of each pack, and of the pass-through composite, in ms.
+    pub general_ms: f64,
+    pub specialised_ms: f64,
+    pub passthrough_ms: f64,
+    /// general_ms / specialised_ms.
+    pub speedup: f64,
+    /// Largest difference per channel between the two final images: folding must not change
+    /// the picture.
+    pub max_difference: [f32; 4],
+}
+
+/// Renders `scene` with the general pack and with the pack specialised for it, `frames` timed
+/// frames each in alternating rounds (so a change in machine load hits both), and compares
+/// composite time and images.
+pub fn specialisation_speedup(
+    gpu: &Gpu,
+    selection: &PackSelection,
+    scene: &Scene,
+    scene_label: &str,
+    frames: usize,
+) -> Result<SpecialisationReport, HarnessError> {
+    let spec = uniforms::scene_specialisation(scene, scene_label);
+    let general = program::load(selection)?;
+    let specialised = program::load_specialised(selection, Some(&spec))?;
+    let (general_mesh, specialised_mesh) = (mesh::build(scene, &general), mesh::build(scene, &specialised));
+    const ROUNDS: usize = 3;
+    let per_round = frames.div_ceil(ROUNDS).max(1);
+    let (mut general_ms, mut specialised_ms, mut passthrough_ms) = (Vec::new(), Vec::new(), Vec::new());
+    let mut images = (None, None);
+    for _ in 0..ROUNDS {
+        for (pack, mesh, samples, image) in [
+            (&general, &general_mesh, &mut general_ms, &mut images.0),
+            (&specialised, &specialised_mesh, &mut specialised_ms, &mut images.1),
+        ] {
+            let (frame, runs) = gpu::render_repeated(gpu, pack, scene, mesh, true, per_round + 1)?;
+            for timings in &runs[1..] {
+                for t in timings {
+                    let ms = t.gpu_ms.unwrap_or(t.wall_ms);
+                    match t.pass.as_str() {
+                        "composite" => samples.push(ms),
+                        "pass-through composite" => passthrough_ms.push(ms),
+                        _ => {}
+                    }
+                }
+            }
+            *image = Some(frame.image);
+        }
+    }
+    let (Some(general_image), Some(specialised_image)) = images else {
+        return Err(HarnessError::Wgpu("no frame was rendered".into()));
+    };
+    let (general_ms, specialised_ms) = (median(general_ms), median(specialised_ms));
+    Ok(SpecialisationReport {
+        folded: specialised.folded_uniforms.clone(),
+        frames: per_round * ROUNDS,
+        general_ms,
+        specialised_ms,
+        passthrough_ms: median(passthrough_ms),
+        speedup: general_ms / specialised_ms,
+        max_difference: images::max_channel_difference(&general_image, &specialised_image),
+    })
+}
+
+fn median(mut samples: Vec<f64>) -> f64 {
+    samples.sort_by(f64::total_cmp);
+    let n = samples.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => samples[n / 2],
+        _ => (samples[n / 2 - 1] + samples[n / 2]) / 2.0,
+    }
+}
+
 /// Renders the job's scene and writes the files; returns the report (also written as JSON).
 pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     let scene = Scene::load(&job.scene)?;
-    let pack = program::load(&PackSelection {
+    let selection = PackSelection {
         source_dir: job.source_dir.clone(),
         dialect: job.dialect,
         profile: job.profile.clone(),
         options: job.options.clone(),
-    })?;
+    };
+    let pack = program::load(&selection)?;
     let gpu = Gpu::new()?;
     let frame = crate::render_wgpu(&gpu, &pack, &scene, true)?;
 
@@ -127,6 +212,12 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         None
     };
 
+    let specialisation = if job.specialise {
+        Some(specialisation_speedup(&gpu, &selection, &scene, &job.scene.display().to_string(), SPECIALISATION_FRAMES)?)
+    } else {
+        None
+    };
+
     let passes: Vec<PassReport> = frame.timings.iter().map(pass_report).collect();
     let time_of = |name: &str| passes.iter().find(|p| p.pass == name).map(|p| p.ms);
     let ratio = match (time_of("composite"), time_of("pass-through composite")) {
@@ -158,6 +249,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         composite_over_passthrough: ratio,
         non_finite_pixels: frame.image.non_finite(),
         gl,
+        specialisation,
         files,
     };
     let json = serde_json::to_string_pretty(&report).map_err(|e| HarnessError::Io(format!("report: {e}")))?;
@@ -169,6 +261,9 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
 fn pass_report(t: &PassTiming) -> PassReport {
     PassReport { pass: t.pass.clone(), ms: t.gpu_ms.unwrap_or(t.wall_ms), gpu_ms: t.gpu_ms, wall_ms: t.wall_ms }
 }
+
+/// Timed frames per pack behind `render --specialise`.
+const SPECIALISATION_FRAMES: usize = 9;
 
 /// A scene name made safe as a file name.
 fn file_stem(name: &str) -> String {

@@ -18,6 +18,7 @@ use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
 use tidepack_pack::shipped::{ShippedPack, WithOptions};
 use tidepack_pack::source::PackSource;
+use tidepack_pack::specialise::{Specialisation, specialise};
 use tidepack_pack::validation::standard_macros;
 
 use crate::HarnessError;
@@ -148,6 +149,8 @@ pub struct LoadedPack {
     pub block_ids: HashMap<String, i32>,
     /// Custom textures from shaders.properties (`texture.<stage>.<unit>=<path>`).
     pub custom_textures: Vec<CustomTexture>,
+    /// Uniforms folded into constants ([`load_specialised`]); empty for the general pack.
+    pub folded_uniforms: Vec<String>,
 }
 
 /// A texture the pack binds itself to a sampler unit.
@@ -197,13 +200,22 @@ fn diag_error(context: &str, diagnostics: &[Diagnostic]) -> HarnessError {
 
 /// Generates the pack in the selected dialect and loads gbuffers_water and composite.
 pub fn load(selection: &PackSelection) -> Result<LoadedPack, HarnessError> {
+    load_specialised(selection, None)
+}
+
+/// [`load`], with the uniforms `specialisation` fixes folded into constants first (as
+/// `tidepack build --scene` ships them).
+pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Specialisation>) -> Result<LoadedPack, HarnessError> {
     let source = PackSource::load(&selection.source_dir).map_err(|d| diag_error("cannot read the pack", &[d]))?;
     let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
     let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults =
         pack_options::profile_set(&source, &options, &profile).map_err(|d| diag_error("unknown profile", &[d]))?;
-    let pack = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
+    let mut pack = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
         .map_err(|d| diag_error("the pack does not generate", &d))?;
+    if let Some(spec) = specialisation {
+        specialise(&mut pack, spec);
+    }
     let mut overrides = OptionSet::new();
     for (name, value) in &selection.options {
         let Some(option) = options.get(name) else {
@@ -253,6 +265,7 @@ pub fn load(selection: &PackSelection) -> Result<LoadedPack, HarnessError> {
         water_blend,
         block_ids,
         custom_textures,
+        folded_uniforms: pack.folded_uniforms.clone(),
     })
 }
 

@@ -11,6 +11,7 @@ use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
 use crate::scene::Scene;
+use tidepack_pack::specialise::Specialisation;
 
 /// A uniform value: scalars, vectors, matrices (column-major) and arrays of them.
 #[derive(Clone, Debug, PartialEq)]
@@ -81,6 +82,20 @@ impl Value {
     }
 
     /// Components as f32 (for OpenGL's glUniform*fv).
+    /// The value as a GLSL constructor valid in GLSL 1.20 and later (`0`, `vec3(0.5, 1.0, 2.0)`),
+    /// each float written so that it parses back to the same f32 the uniform buffer holds.
+    /// `None` for arrays, which have no constructor in GLSL 1.20.
+    pub fn glsl_initialiser(&self) -> Option<String> {
+        if self.array.is_some() {
+            return None;
+        }
+        let parts: Vec<String> = match self.kind {
+            Kind::Float => self.as_f32().iter().map(|v| format!("{v:?}")).collect(),
+            Kind::Int => self.as_i32().iter().map(i32::to_string).collect(),
+        };
+        Some(if parts.len() == 1 { parts[0].clone() } else { format!("{}({})", self.glsl_type(), parts.join(", ")) })
+    }
+
     pub fn as_f32(&self) -> Vec<f32> {
         self.data.iter().map(|&v| v as f32).collect()
     }
@@ -191,6 +206,21 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("tp_ModelViewProjectionMatrixInverse", Value::mat4(mvp.inverse()));
     put("tp_TextureMatrixInverse", Value::mat4_array(&textures.map(|m| m.inverse())));
     v
+}
+
+/// Uniforms that change from frame to frame while a scene is shown: never folded.
+const ANIMATION_CLOCK: [&str; 3] = ["frameTimeCounter", "frameTime", "frameCounter"];
+
+/// What `build --scene` folds: every OptiFine uniform the scene fixes (camera, matrices,
+/// sky, `isEyeInWater`, ...), but not the animation clock nor the legacy `gl_` matrices,
+/// which differ between passes. `label` names the scene in the folded lines.
+pub fn scene_specialisation(scene: &Scene, label: &str) -> Specialisation {
+    let constants = values(scene, Pass::Fullscreen)
+        .into_iter()
+        .filter(|(name, _)| !name.starts_with("tp_") && !ANIMATION_CLOCK.contains(&name.as_str()))
+        .filter_map(|(name, value)| Some((name, value.glsl_initialiser()?)))
+        .collect();
+    Specialisation { scene: label.to_string(), constants }
 }
 
 /// The uniform block of a module, filled: (set, binding, bytes).

@@ -12,6 +12,7 @@ use crate::archive;
 use crate::dialect::Dialect;
 use crate::pack_options::{self, PackOptions};
 use crate::shipped::ShippedPack;
+use crate::specialise::{Specialisation, specialise};
 use crate::source::PackSource;
 use crate::validation::{self, Coverage, ValidationReport};
 
@@ -25,6 +26,8 @@ pub struct BuildOptions {
     pub profile: Option<String>,
     /// How many option combinations to validate.
     pub coverage: Coverage,
+    /// Uniforms folded into constants for one scene (`build --scene`); the zip names the scene.
+    pub specialisation: Option<Specialisation>,
 }
 
 #[derive(Clone, Debug)]
@@ -42,6 +45,8 @@ pub struct BuildReport {
     pub profile: String,
     pub options: usize,
     pub outcomes: Vec<DialectOutcome>,
+    /// Uniforms folded into constants, when specialised for a scene.
+    pub folded: Vec<String>,
     pub elapsed: Duration,
 }
 
@@ -63,18 +68,24 @@ impl BuildFailure {
     }
 }
 
-/// The zip path of a dialect: `<out>/<Name>-<version>-<dialect>.zip`.
-pub fn zip_path(out_dir: &Path, name: &str, version: &str, dialect: Dialect) -> PathBuf {
-    out_dir.join(format!("{name}-{version}-{}.zip", dialect.slug()))
+/// The zip path of a dialect: `<out>/<Name>-<version>-<dialect>.zip`, or
+/// `<out>/<Name>-<version>-<dialect>-<variant>.zip` for a specialised pack.
+pub fn zip_path(out_dir: &Path, name: &str, version: &str, dialect: Dialect, variant: Option<&str>) -> PathBuf {
+    match variant {
+        Some(variant) => out_dir.join(format!("{name}-{version}-{}-{variant}.zip", dialect.slug())),
+        None => out_dir.join(format!("{name}-{version}-{}.zip", dialect.slug())),
+    }
 }
 
-/// Generates and validates the pack in each dialect (see the crate docs).
+/// Generates and validates the pack in each dialect (see the crate docs), specialised first
+/// when `specialisation` is given, so what is validated is what ships.
 pub fn generate_validated(
     source: &PackSource,
     options: &PackOptions,
     dialects: &[Dialect],
     defaults: &OptionSet,
     coverage: Coverage,
+    specialisation: Option<&Specialisation>,
 ) -> Result<Vec<(ShippedPack, ValidationReport)>, BuildFailure> {
     let profiles: Vec<OptionSet> = source
         .manifest
@@ -88,7 +99,10 @@ pub fn generate_validated(
     // Validation enumerates values around what ships, which a profile may have changed.
     let shipped_options = pack_options::with_defaults(options, defaults);
     for &dialect in dialects {
-        let pack = ShippedPack::generate(source, options, dialect, defaults).map_err(BuildFailure::new)?;
+        let mut pack = ShippedPack::generate(source, options, dialect, defaults).map_err(BuildFailure::new)?;
+        if let Some(spec) = specialisation {
+            specialise(&mut pack, spec);
+        }
         match validation::validate_pack(&pack, &shipped_options, coverage, &profiles) {
             Ok(report) => packs.push((pack, report)),
             Err(errors) => {
@@ -118,14 +132,17 @@ pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
     }
     let profile = opts.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults = pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure::new(vec![d]))?;
-    let packs = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage)?;
+    let spec = opts.specialisation.as_ref();
+    let packs = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage, spec)?;
+    let folded = packs.first().map(|(pack, _)| pack.folded_uniforms.clone()).unwrap_or_default();
+    let variant = spec.map(|s| s.variant_name());
     let info = &source.manifest.pack;
     let mut outcomes = Vec::new();
     for (pack, validation) in packs {
         let texts = pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes()));
         let binaries = pack.binaries.iter().map(|(path, bytes)| (format!("shaders/{path}"), &bytes[..]));
         let entries: Vec<(String, &[u8])> = texts.chain(binaries).collect();
-        let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect);
+        let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect, variant.as_deref());
         let zip_bytes = archive::write_zip(&zip, &entries).map_err(|e| {
             BuildFailure::new(vec![Diagnostic::error(format!("cannot write {}: {e}", zip.display()), None)])
         })?;
@@ -137,6 +154,7 @@ pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
         profile,
         options: options.len(),
         outcomes,
+        folded,
         elapsed: started.elapsed(),
     })
 }

@@ -7,6 +7,7 @@
 //!   whole pack per dialect in memory, with [`writers`] for the files made from the manifest.
 //! - [`validation`] runs every program under every option set through the preprocessor, the
 //!   lowering and naga.
+//! - [`specialise`] folds the uniforms a scene fixes into constants (`build --scene`).
 //! - [`textures`] generates the water texture the shaders sample.
 //! - [`archive`] writes the deterministic zip; [`build`] ties it together.
 
@@ -17,6 +18,7 @@ pub mod manifest;
 pub mod pack_options;
 pub mod shipped;
 pub mod source;
+pub mod specialise;
 pub mod textures;
 pub mod validation;
 pub mod writers;

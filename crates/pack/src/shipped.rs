@@ -42,6 +42,8 @@ pub struct ShippedPack {
     pub files: BTreeMap<String, ShippedFile>,
     /// Binary files (generated textures) by path inside `shaders/`.
     pub binaries: BTreeMap<String, Arc<[u8]>>,
+    /// Uniforms folded into constants by [`crate::specialise`]; empty for the general pack.
+    pub folded_uniforms: Vec<String>,
 }
 
 /// The GLSL file generated from the manifest and the texture generator.
@@ -112,7 +114,7 @@ impl ShippedPack {
             files.insert(path.to_string(), ShippedFile { text: Arc::from(text), origin: Origin::Manifest });
         }
         let binaries = [(textures::WATER_TEXTURE.to_string(), Arc::from(water.png))].into();
-        Ok(ShippedPack { dialect, files, binaries })
+        Ok(ShippedPack { dialect, files, binaries, folded_uniforms: Vec::new() })
     }
 
     /// Programs: `.vsh`/`.fsh` files at the top level or in a world folder.

@@ -1,13 +1,24 @@
-//! `tidepack build`: prints the build summary or the diagnostics.
+//! `tidepack build`: prints the build summary or the diagnostics; with `--scene`, specialises
+//! the pack for the scene and measures the speedup on the harness.
 
+use std::path::Path;
 use std::process::ExitCode;
 
 use tidepack_pack::BuildOptions;
 
 use super::print_diagnostics;
 
-pub fn run(opts: &BuildOptions) -> ExitCode {
-    match tidepack_pack::build(opts) {
+pub fn run(mut opts: BuildOptions, scene: Option<&Path>) -> ExitCode {
+    if let Some(path) = scene {
+        match scene_specialisation(path) {
+            Ok(spec) => opts.specialisation = Some(spec),
+            Err(message) => {
+                eprintln!("error: {message}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    match tidepack_pack::build(&opts) {
         Ok(report) => {
             println!(
                 "Built {} {} (profile {}, {} options) in {:.2} s",
@@ -30,6 +41,10 @@ pub fn run(opts: &BuildOptions) -> ExitCode {
                 );
                 println!("  {:<22} {} ({:.1} KiB)", "", o.zip.display(), o.zip_bytes as f64 / 1024.0);
             }
+            if let (Some(path), Some(first)) = (scene, report.outcomes.first()) {
+                println!("  specialised for {} ({} uniforms folded into constants)", path.display(), report.folded.len());
+                report_speedup(&opts, first.dialect, path);
+            }
             ExitCode::SUCCESS
         }
         Err(failure) => {
@@ -39,4 +54,40 @@ pub fn run(opts: &BuildOptions) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+#[cfg(feature = "render")]
+fn scene_specialisation(path: &Path) -> Result<tidepack_pack::specialise::Specialisation, String> {
+    let scene = tidepack_harness::Scene::load(path).map_err(|e| e.to_string())?;
+    Ok(tidepack_harness::uniforms::scene_specialisation(&scene, &path.display().to_string()))
+}
+
+#[cfg(not(feature = "render"))]
+fn scene_specialisation(_: &Path) -> Result<tidepack_pack::specialise::Specialisation, String> {
+    Err("build --scene reads scenes through the harness: this tidepack was built without the render feature".into())
+}
+
+/// The pack is built either way; a missing renderer only means no speedup figure.
+#[cfg(feature = "render")]
+fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &Path) {
+    use tidepack_harness::{Gpu, PackSelection, Scene, job};
+    let selection = PackSelection {
+        source_dir: opts.source_dir.clone(),
+        dialect,
+        profile: opts.profile.clone(),
+        options: Vec::new(),
+    };
+    let measured = Scene::load(path).and_then(|scene| {
+        let gpu = Gpu::new()?;
+        job::specialisation_speedup(&gpu, &selection, &scene, &path.display().to_string(), 9)
+    });
+    match measured {
+        Ok(report) => super::print_specialisation(&report),
+        Err(e) => eprintln!("warning: speedup not measured: {e}"),
+    }
+}
+
+#[cfg(not(feature = "render"))]
+fn report_speedup(_: &BuildOptions, _: tidepack_pack::Dialect, _: &Path) {
+    eprintln!("warning: speedup not measured: this tidepack was built without the render feature");
 }

@@ -20,3 +20,18 @@ pub fn print_diagnostics(diagnostics: &[Diagnostic], source_of: &dyn Fn(&str) ->
     let mut stderr = StandardStream::stderr(color);
     let _ = diagnostic::emit(&mut stderr, diagnostics, source_of);
 }
+
+/// The `--specialise` / `--scene` summary: composite time of the general and the specialised
+/// pack, and whether the picture changed.
+#[cfg(feature = "render")]
+pub fn print_specialisation(report: &tidepack_harness::job::SpecialisationReport) {
+    let d = report.max_difference.map(|c| c * 255.0);
+    println!(
+        "  specialised composite {:.2} ms vs general {:.2} ms (pass-through {:.2} ms): {:.2}x faster, median of {} frames each",
+        report.specialised_ms, report.general_ms, report.passthrough_ms, report.speedup, report.frames
+    );
+    println!(
+        "  images differ by at most R {:.2} G {:.2} B {:.2} A {:.2} (x/255); folded {}",
+        d[0], d[1], d[2], d[3], report.folded.join(", ")
+    );
+}

@@ -34,6 +34,11 @@ pub struct RenderArgs {
     /// largest difference per channel.
     #[arg(long)]
     pub gl: bool,
+    /// Also render the pack specialised for this scene (uniforms it fixes folded into
+    /// constants, as `build --scene` ships it) and report its composite time against the
+    /// general pack's.
+    #[arg(long)]
+    pub specialise: bool,
     /// Folder with pack.toml and the shader templates.
     #[arg(long, default_value = "shaderpack")]
     pub source: PathBuf,
@@ -72,6 +77,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,
+        specialise: args.specialise,
     };
     let report = match job::run(&job) {
         Ok(r) => r,
@@ -111,6 +117,9 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             "  OpenGL ({}): max difference per channel (x/255) R {:.2} G {:.2} B {:.2} A {:.2}, {} pixels over 1/255",
             gl.renderer, d[0], d[1], d[2], d[3], gl.pixels_over_1_255
         );
+    }
+    if let Some(spec) = &report.specialisation {
+        super::print_specialisation(spec);
     }
     for f in &report.files {
         println!("  wrote {}", args.out.join(f).display());
