@@ -8,6 +8,15 @@
 //! are R32Float textures (bound unfilterable with a nearest sampler, as gpu.rs binds
 //! Depth32Float), so any depth value can be written. The output is RGBA32F, so NaN and Inf
 //! survive to the readback.
+//!
+//! The uniform blocks are bound as read-only storage buffers by default
+//! ([`UniformBinding::ReadOnlyStorage`]): same bytes, same member offsets, same arithmetic, but
+//! lavapipe (Mesa 22.3) cannot "inline" them. lavapipe recompiles a shader with the current
+//! values of the uniform-buffer members its `if` conditions test (here `isEyeInWater`) at every
+//! draw after a pipeline or descriptor bind, and never frees the compiled shaders: about 3.4 MB
+//! of LLVM JIT memory per draw of composite, even with the pipeline reused (docs/stress.md,
+//! "Memory"). A storage buffer is read with `load_ssbo`, which the inliner ignores, so the
+//! shader is compiled once and the resident memory stays flat over any number of renders.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -39,6 +48,29 @@ impl GBuffers {
 
 const OUT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH_AS: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+
+/// How the programs' uniform blocks are bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum UniformBinding {
+    /// As the program declares them (`uniform` blocks). On lavapipe 22.3 every render leaks the
+    /// shader recompiled with the block's values inlined (see the module doc).
+    Uniform,
+    /// The same blocks as read-only storage buffers: no per-draw recompilation, no growth.
+    #[default]
+    ReadOnlyStorage,
+}
+
+/// `module` with every `uniform` global moved to read-only storage. Types, member offsets and
+/// bindings are unchanged, so the bytes [`uniforms::fill_block`] lays out read the same.
+fn uniforms_as_storage(module: &naga::Module) -> naga::Module {
+    let mut module = module.clone();
+    for (_, global) in module.global_variables.iter_mut() {
+        if global.space == naga::AddressSpace::Uniform {
+            global.space = naga::AddressSpace::Storage { access: naga::StorageAccess::LOAD };
+        }
+    }
+    module
+}
 
 pub struct CompositeOnly {
     width: u32,
@@ -79,8 +111,22 @@ fn checked<T>(gpu: &Gpu, what: &str, f: impl FnOnce() -> T) -> Result<T, Harness
 
 impl CompositeOnly {
     /// Builds the composite pipeline for frames of `width` x `height`. `values` only sizes the
-    /// uniform blocks (every member must have a value); each render writes its own.
+    /// uniform blocks (every member must have a value); each render writes its own. The blocks
+    /// are bound as read-only storage ([`UniformBinding::ReadOnlyStorage`]).
     pub fn new(gpu: &Gpu, pack: &LoadedPack, width: u32, height: u32, values: &BTreeMap<String, Value>) -> Result<CompositeOnly, HarnessError> {
+        CompositeOnly::with_binding(gpu, pack, width, height, values, UniformBinding::default())
+    }
+
+    /// [`CompositeOnly::new`] with a choice of how the uniform blocks are bound.
+    pub fn with_binding(
+        gpu: &Gpu,
+        pack: &LoadedPack,
+        width: u32,
+        height: u32,
+        values: &BTreeMap<String, Value>,
+        binding: UniformBinding,
+    ) -> Result<CompositeOnly, HarnessError> {
+        let storage = binding == UniformBinding::ReadOnlyStorage;
         let device = &gpu.device;
         let program = &pack.composite;
         let size = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
@@ -139,7 +185,7 @@ impl CompositeOnly {
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("{} uniforms", stage.path)),
                     contents: &block.bytes,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 });
                 uniform_buffers.push((index, buffer.clone()));
                 entries.push((block.group, block.binding, Entry::Uniform(buffer)));
@@ -218,7 +264,11 @@ impl CompositeOnly {
                     visibility: *visibility,
                     ty: match entry {
                         Entry::Uniform(_) => wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
+                            ty: if storage {
+                                wgpu::BufferBindingType::Storage { read_only: true }
+                            } else {
+                                wgpu::BufferBindingType::Uniform
+                            },
                             has_dynamic_offset: false,
                             min_binding_size: None,
                         },
@@ -275,7 +325,7 @@ impl CompositeOnly {
             checked(gpu, &stage.path, || {
                 device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(&stage.path),
-                    source: wgpu::ShaderSource::Naga(Cow::Owned(stage.module.clone())),
+                    source: wgpu::ShaderSource::Naga(Cow::Owned(if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() })),
                 })
             })
         };

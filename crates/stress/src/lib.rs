@@ -544,8 +544,8 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
             }
             records.push(CaseRecord { index, category: category.to_string(), description: case.description, non_finite_pixels: bad, max_error: max });
             index += 1;
-            if index % 500 == 0 {
-                progress(&format!("{index} cases, {:.0} s", started.elapsed().as_secs_f64()));
+            if index % 100 == 0 {
+                progress(&format!("{index} cases, {:.0} s, RSS {}", started.elapsed().as_secs_f64(), rss_text()));
             }
         }
     }
@@ -579,6 +579,17 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
         write_files(&report, dir)?;
     }
     Ok(report)
+}
+
+/// This process's resident set size in KiB (Linux `/proc/self/status` VmRSS), if readable.
+pub fn rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+fn rss_text() -> String {
+    rss_kib().map_or_else(|| "unknown".to_string(), |k| format!("{:.1} MiB", k as f64 / 1024.0))
 }
 
 /// summary.json, categories.csv, distance.csv, cases.csv.
