@@ -153,6 +153,10 @@ pub struct LegacyGl {
     pub normal_pointer: extern "system" fn(u32, i32, *const std::ffi::c_void),
     pub tex_coord_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
     pub client_active_texture: extern "system" fn(u32),
+    /// `glProvokingVertex` (OpenGL 3.2).
+    pub provoking_vertex: extern "system" fn(u32),
+    /// `glClipControl` (OpenGL 4.5 or ARB_clip_control), when the driver has it.
+    pub clip_control: Option<extern "system" fn(u32, u32)>,
 }
 
 /// Enums of the compatibility API that glow does not define.
@@ -164,6 +168,14 @@ pub mod legacy {
     pub const NORMAL_ARRAY: u32 = 0x8075;
     pub const COLOR_ARRAY: u32 = 0x8076;
     pub const TEXTURE_COORD_ARRAY: u32 = 0x8078;
+    /// glClipControl origins and depth modes.
+    pub const LOWER_LEFT: u32 = 0x8CA1;
+    pub const UPPER_LEFT: u32 = 0x8CA2;
+    pub const NEGATIVE_ONE_TO_ONE: u32 = 0x935E;
+    pub const ZERO_TO_ONE: u32 = 0x935F;
+    /// glProvokingVertex conventions.
+    pub const FIRST_VERTEX_CONVENTION: u32 = 0x8E4D;
+    pub const LAST_VERTEX_CONVENTION: u32 = 0x8E4E;
 }
 
 impl LegacyGl {
@@ -186,6 +198,8 @@ impl LegacyGl {
             normal_pointer: get(egl, "glNormalPointer")?,
             tex_coord_pointer: get(egl, "glTexCoordPointer")?,
             client_active_texture: get(egl, "glClientActiveTexture")?,
+            provoking_vertex: get(egl, "glProvokingVertex")?,
+            clip_control: get(egl, "glClipControl").ok(),
         })
     }
 }
@@ -306,35 +320,67 @@ impl GlContext {
         attributes: &[(&str, u32)],
         frag_data: &[(&str, u32)],
     ) -> Result<GlProgram, DriverLog> {
+        self.link(vertex_text, Some(fragment_text), attributes, frag_data, &[])
+    }
+
+    /// Compiles a vertex shader exactly as given and links it alone, recording the named outputs
+    /// (`gl_Position` and user outputs) interleaved in that order through transform feedback
+    /// (`glTransformFeedbackVaryings`, `GL_INTERLEAVED_ATTRIBS`). Draw with it under
+    /// `GL_RASTERIZER_DISCARD` to capture exactly what the vertex stage computed.
+    pub fn compile_capture_program(
+        &self,
+        vertex_text: &str,
+        attributes: &[(&str, u32)],
+        captured: &[&str],
+    ) -> Result<GlProgram, DriverLog> {
+        self.link(vertex_text, None, attributes, &[], captured)
+    }
+
+    fn link(
+        &self,
+        vertex_text: &str,
+        fragment_text: Option<&str>,
+        attributes: &[(&str, u32)],
+        frag_data: &[(&str, u32)],
+        captured: &[&str],
+    ) -> Result<GlProgram, DriverLog> {
         let gl = &self.gl;
         // SAFETY: plain GL calls on the current context with objects created here.
         unsafe {
             let vs = self.compile_shader(glow::VERTEX_SHADER, vertex_text, ProgramStep::CompileVertex)?;
-            let fs = match self.compile_shader(glow::FRAGMENT_SHADER, fragment_text, ProgramStep::CompileFragment) {
-                Ok(fs) => fs,
-                Err(e) => {
+            let fs = match fragment_text.map(|t| self.compile_shader(glow::FRAGMENT_SHADER, t, ProgramStep::CompileFragment)) {
+                None => None,
+                Some(Ok(fs)) => Some(fs),
+                Some(Err(e)) => {
                     gl.delete_shader(vs);
                     return Err(e);
                 }
             };
             let program = gl.create_program().map_err(|log| DriverLog { step: ProgramStep::Link, log })?;
             gl.attach_shader(program, vs);
-            gl.attach_shader(program, fs);
+            if let Some(fs) = fs {
+                gl.attach_shader(program, fs);
+            }
             for (name, location) in attributes {
                 gl.bind_attrib_location(program, *location, name);
             }
             for (name, location) in frag_data {
                 gl.bind_frag_data_location(program, *location, name);
             }
+            if !captured.is_empty() {
+                gl.transform_feedback_varyings(program, captured, glow::INTERLEAVED_ATTRIBS);
+            }
             gl.link_program(program);
             let linked = gl.get_program_link_status(program);
             let log = gl.get_program_info_log(program);
             let vs_log = gl.get_shader_info_log(vs);
-            let fs_log = gl.get_shader_info_log(fs);
+            let fs_log = fs.map(|fs| gl.get_shader_info_log(fs)).unwrap_or_default();
             gl.detach_shader(program, vs);
-            gl.detach_shader(program, fs);
             gl.delete_shader(vs);
-            gl.delete_shader(fs);
+            if let Some(fs) = fs {
+                gl.detach_shader(program, fs);
+                gl.delete_shader(fs);
+            }
             if !linked {
                 gl.delete_program(program);
                 return Err(DriverLog { step: ProgramStep::Link, log });

@@ -66,3 +66,58 @@ fn a_link_error_is_reported_as_such() {
     assert_eq!(err.step, ProgramStep::Link);
     assert!(!err.log.trim().is_empty());
 }
+
+/// The harness records what a vertex stage computed with transform feedback and relies on
+/// glClipControl and glProvokingVertex being there.
+#[test]
+fn a_capture_program_records_the_vertex_outputs_bit_for_bit() {
+    use glow::HasContext as _;
+    let ctx = context();
+    assert!(ctx.legacy().clip_control.is_some(), "{} has no glClipControl", ctx.info());
+    let vs = "#version 330 compatibility\nin vec4 p;\nout vec2 uv;\nout float k;\n\
+              void main() { gl_Position = vec4(p.xy, p.z / 3.0, 1.0); uv = p.yx; k = p.w * 0.1; }\n";
+    let program = ctx.compile_capture_program(vs, &[("p", 0)], &["gl_Position", "uv", "k"]).unwrap_or_else(|e| panic!("{e}"));
+    let input: [f32; 12] = [1.0, 2.0, 1.0, 3.0, -4.0, 0.5, 2.0, 7.0, 0.25, -0.75, 5.0, 1.0];
+    let gl = ctx.gl();
+    let mut captured = [0u8; 3 * 7 * 4];
+    // SAFETY: the context is current on this thread; every object is made and deleted here.
+    unsafe {
+        // Surfaceless: draws need a complete framebuffer even with the rasteriser off.
+        let fbo = gl.create_framebuffer().unwrap();
+        let rbo = gl.create_renderbuffer().unwrap();
+        gl.bind_renderbuffer(glow::RENDERBUFFER, Some(rbo));
+        gl.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, 1, 1);
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+        gl.framebuffer_renderbuffer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, glow::RENDERBUFFER, Some(rbo));
+        let vbo = gl.create_buffer().unwrap();
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        let bytes: Vec<u8> = input.iter().flat_map(|v| v.to_le_bytes()).collect();
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STATIC_DRAW);
+        gl.enable_vertex_attrib_array(0);
+        gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, 16, 0);
+        let feedback = gl.create_buffer().unwrap();
+        gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, Some(feedback));
+        gl.buffer_data_size(glow::TRANSFORM_FEEDBACK_BUFFER, captured.len() as i32, glow::STATIC_COPY);
+        gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, Some(feedback));
+        gl.use_program(Some(program.raw));
+        gl.enable(glow::RASTERIZER_DISCARD);
+        gl.begin_transform_feedback(glow::TRIANGLES);
+        gl.draw_arrays(glow::TRIANGLES, 0, 3);
+        gl.end_transform_feedback();
+        gl.disable(glow::RASTERIZER_DISCARD);
+        gl.get_buffer_sub_data(glow::TRANSFORM_FEEDBACK_BUFFER, 0, &mut captured);
+        gl.delete_buffer(vbo);
+        gl.delete_buffer(feedback);
+        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        gl.delete_framebuffer(fbo);
+        gl.delete_renderbuffer(rbo);
+        assert_eq!(gl.get_error(), glow::NO_ERROR);
+    }
+    ctx.delete_program(program);
+    let out: Vec<f32> = captured.chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+    for (v, p) in input.chunks_exact(4).enumerate() {
+        let expected = [p[0], p[1], p[2] / 3.0, 1.0, p[1], p[0], p[3] * 0.1];
+        let got = &out[v * 7..v * 7 + 7];
+        assert_eq!(got.iter().map(|f| f.to_bits()).collect::<Vec<_>>(), expected.map(f32::to_bits).to_vec(), "vertex {v}: {got:?}");
+    }
+}

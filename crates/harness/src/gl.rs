@@ -4,6 +4,16 @@
 //! `mc_Entity` bound with glBindAttribLocation, `outColorN` with glBindFragDataLocation.
 //! Inputs are identical to the wgpu path: the same mesh, textures, uniform values, blend
 //! modes and buffer formats. Buffers are in OpenGL's own orientation (row 0 at the bottom).
+//!
+//! Depth is mapped as the wgpu path maps it ([`DepthMapping::Harness`], the default): every
+//! program's vertex stage runs unchanged and its outputs are recorded bit for bit with transform
+//! feedback; a pass-through vertex shader then hands them to the rasteriser with
+//! `z' = 0.5 * (z + w)` under `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`, which is the
+//! statement the wgpu wrapper `main` adds, with Vulkan's first-vertex provoking convention.
+//! The fragment stage is the shipped one. With OpenGL's own conventions
+//! ([`DepthMapping::OpenGl`]: `z / w * 0.5 + 0.5` in the viewport transform, last provoking
+//! vertex) the window depth differs from wgpu's in the last bits in about half the pixels, and
+//! composite amplifies that at a few pixels (up to 137/255; see docs/harness.md).
 
 use std::collections::BTreeMap;
 
@@ -14,7 +24,7 @@ use crate::HarnessError;
 use crate::gpu::{Source, fullscreen_quad, resolve_in_pack, terrain_mvp};
 use crate::images::FloatImage;
 use crate::mesh::{self, PackVertex, SceneMesh, TerrainVertex, offsets};
-use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram};
+use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
@@ -32,8 +42,35 @@ pub fn context() -> Result<GlContext, HarnessError> {
     GlContext::new().map_err(|e| HarnessError::NoGlDriver(e.to_string()))
 }
 
+/// How clip-space z becomes window depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DepthMapping {
+    /// As the wgpu path does it: `z' = 0.5 * (z + w)` after the vertex stage, then the depth
+    /// range [0, 1] (`glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`), Vulkan's provoking vertex
+    /// (`glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)`: llvmpipe sets up a triangle's plane
+    /// equations from its provoking vertex, so the convention changes the last bit of the
+    /// interpolated depth), and the harness's terrain shader summing the matrix product in
+    /// wgpu's order. Depth buffers then hold the same bits as wgpu's.
+    #[default]
+    Harness,
+    /// OpenGL's own conventions: the vertex stage's output straight to the rasteriser,
+    /// `z / w * 0.5 + 0.5`, last provoking vertex, the terrain shader's `mvp * position`.
+    OpenGl,
+}
+
 const TERRAIN_VS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
 void main() { gl_Position = mvp * position; vColor = color; }\n";
+/// The harness's terrain shader with the wgpu path's arithmetic: the statements of
+/// `TERRAIN_WGSL` in gpu.rs less the y flip, and `mvp * position` summed in the order Mesa gives
+/// the SPIR-V matrix product naga writes for it (last column first, `mvp * position` in GLSL
+/// sums the first column first: the last bits of depth differ in ~4% of the pixels).
+const TERRAIN_VS_HARNESS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
+void main() {\n\
+    vec4 clip = mvp[0] * position.x + (mvp[1] * position.y + (mvp[2] * position.z + mvp[3] * position.w));\n\
+    clip.z = 0.5 * (clip.z + clip.w);\n\
+    gl_Position = clip;\n\
+    vColor = color;\n\
+}\n";
 const TERRAIN_FS: &str = "#version 330 compatibility\nin vec4 vColor;\nout vec4 outColor;\nvoid main() { outColor = vColor; }\n";
 
 fn gl_err(what: &str) -> impl Fn(String) -> HarnessError + '_ {
@@ -75,8 +112,30 @@ struct Textures {
     out: glow::Texture,
 }
 
-/// Renders `scene` with the shipped text through OpenGL.
+/// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
 pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlFrame, HarnessError> {
+    render_with(ctx, pack, scene, mesh, DepthMapping::Harness)
+}
+
+/// Renders `scene` with the shipped text through OpenGL and the given depth mapping.
+pub fn render_with(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, depth: DepthMapping) -> Result<GlFrame, HarnessError> {
+    let clip_control = ctx.legacy().clip_control;
+    if depth == DepthMapping::Harness {
+        let Some(clip_control) = clip_control else {
+            return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
+        };
+        clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
+        (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
+    }
+    let frame = render_frame(ctx, pack, scene, mesh, depth);
+    if let (DepthMapping::Harness, Some(clip_control)) = (depth, clip_control) {
+        clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
+        (ctx.legacy().provoking_vertex)(legacy::LAST_VERTEX_CONVENTION);
+    }
+    frame
+}
+
+fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, depth: DepthMapping) -> Result<GlFrame, HarnessError> {
     let gl = ctx.gl();
     let (w, h) = (scene.width() as i32, scene.height() as i32);
     // SAFETY: every call below is on the context current on this thread, with objects it made.
@@ -110,7 +169,7 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
             let format = pack.format_of(b);
             colors.insert(b, (make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false)?, format));
         }
-        let depth = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
+        let depth_texture = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
         let textures = Textures {
             atlas: rgba8(mesh::atlas(), false, true)?,
             lightmap: rgba8(mesh::lightmap(), true, false)?,
@@ -121,8 +180,8 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
                 .map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp))
                 .collect::<Result<_, _>>()?,
             colors,
-            depth0: depth()?,
-            depth1: depth()?,
+            depth0: depth_texture()?,
+            depth1: depth_texture()?,
             out: make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
         };
 
@@ -164,7 +223,7 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
 
         // 2. terrain
         let terrain = ctx
-            .compile_program(TERRAIN_VS, TERRAIN_FS, &[("position", 0), ("color", 1)], &[("outColor", 0)])
+            .compile_program(if depth == DepthMapping::Harness { TERRAIN_VS_HARNESS } else { TERRAIN_VS }, TERRAIN_FS, &[("position", 0), ("color", 1)], &[("outColor", 0)])
             .map_err(|e| HarnessError::Gl(format!("terrain shader: {e}")))?;
         attach(&[textures.colors[&0].0], Some(textures.depth0))?;
         gl.use_program(Some(terrain.raw));
@@ -186,7 +245,7 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
         gl.copy_image_sub_data(textures.depth0, glow::TEXTURE_2D, 0, 0, 0, 0, textures.depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
 
         // 4. gbuffers_water
-        let water = compile(ctx, &pack.water)?;
+        let water = compile(ctx, &pack.water, depth)?;
         let targets: Vec<glow::Texture> = pack.water.render_targets.iter().map(|b| textures.colors[b].0).collect();
         attach(&targets, Some(textures.depth0))?;
         for (i, b) in pack.water.render_targets.iter().enumerate() {
@@ -202,10 +261,10 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
         for i in 0..8 {
             gl.disable_draw_buffer(glow::BLEND, i);
         }
-        ctx.delete_program(water);
+        water.delete(ctx);
 
         // 5. composite, into the RGBA32F output for colortex0
-        let composite = compile(ctx, &pack.composite)?;
+        let composite = compile(ctx, &pack.composite, depth)?;
         let mut outs = Vec::new();
         for b in &pack.composite.render_targets {
             outs.push(if *b == 0 {
@@ -219,7 +278,7 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
         gl.disable(glow::DEPTH_TEST);
         gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
         draw_program(ctx, pack, &pack.composite, &composite, scene, Pass::Fullscreen, &textures, &fullscreen_quad())?;
-        ctx.delete_program(composite);
+        composite.delete(ctx);
         gl.finish();
 
         let read = |t: glow::Texture, is_depth: bool| -> Result<FloatImage, HarnessError> {
@@ -265,9 +324,88 @@ pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMes
     }
 }
 
+/// A program's shipped text as the driver built it.
+enum Compiled {
+    /// Vertex and fragment stage linked together ([`DepthMapping::OpenGl`]).
+    Direct(GlProgram),
+    /// [`DepthMapping::Harness`]: the shipped vertex stage alone, recording `gl_Position` and
+    /// its outputs by transform feedback, and the shipped fragment stage behind a pass-through
+    /// vertex shader that maps depth as the wgpu wrapper does.
+    Captured { capture: GlProgram, draw: GlProgram, components: Vec<i32> },
+}
+
+impl Compiled {
+    fn delete(self, ctx: &GlContext) {
+        match self {
+            Compiled::Direct(p) => ctx.delete_program(p),
+            Compiled::Captured { capture, draw, .. } => {
+                ctx.delete_program(capture);
+                ctx.delete_program(draw);
+            }
+        }
+    }
+}
+
+/// The vertex stage's outputs (name, components), read from the lowered module's entry point:
+/// the shipped names, all `float`/`vecN` with the default (perspective, centre) interpolation.
+fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessError> {
+    let module = &stage.module;
+    let unsupported = |what: String| HarnessError::Unsupported(format!("{}: {what} (OpenGL depth mapping)", stage.path));
+    let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Vertex).ok_or_else(|| unsupported("no vertex entry point".into()))?;
+    let Some(result) = &entry.function.result else { return Ok(Vec::new()) };
+    let naga::TypeInner::Struct { members, .. } = &module.types[result.ty].inner else {
+        return Err(unsupported("the entry point does not return a struct".into()));
+    };
+    let mut outputs = Vec::new();
+    for member in members {
+        let name = member.name.clone().unwrap_or_default();
+        match &member.binding {
+            Some(naga::Binding::BuiltIn(naga::BuiltIn::Position { .. })) => continue,
+            Some(naga::Binding::Location { interpolation, sampling, .. }) => {
+                if !matches!(interpolation, None | Some(naga::Interpolation::Perspective))
+                    || !matches!(sampling, None | Some(naga::Sampling::Center))
+                {
+                    return Err(unsupported(format!("output {name} is not perspective-interpolated at the centre")));
+                }
+            }
+            other => return Err(unsupported(format!("output {name} ({other:?})"))),
+        }
+        let components = match &module.types[member.ty].inner {
+            naga::TypeInner::Scalar(naga::Scalar::F32) => 1,
+            naga::TypeInner::Vector { size, scalar: naga::Scalar::F32 } => *size as u32,
+            other => return Err(unsupported(format!("output {name} of type {other:?}"))),
+        };
+        if name.is_empty() || name.starts_with("gl_") {
+            return Err(unsupported(format!("output {name:?}")));
+        }
+        outputs.push((name, components));
+    }
+    Ok(outputs)
+}
+
+/// The pass-through vertex shader of [`Compiled::Captured`]: attribute 0 is the captured
+/// `gl_Position`, attribute i + 1 the i-th output; the only arithmetic is the wgpu wrapper's
+/// `z = 0.5 * (z + w)`. Written in the fragment stage's dialect (`varying` for GLSL 120).
+fn pass_through_vertex(fragment_text: &str, outputs: &[(String, u32)]) -> String {
+    let legacy = fragment_text.trim_start().starts_with("#version 120") || fragment_text.trim_start().starts_with("#version 110");
+    let ty = |n: u32| if n == 1 { "float".to_string() } else { format!("vec{n}") };
+    let (input, output) = if legacy { ("attribute", "varying") } else { ("in", "out") };
+    let mut text = String::from(if legacy { "#version 120\n" } else { "#version 330 compatibility\n" });
+    text.push_str(&format!("{input} vec4 tp_position;\n"));
+    for (i, (name, n)) in outputs.iter().enumerate() {
+        text.push_str(&format!("{input} {} tp_output{i};\n{output} {} {name};\n", ty(*n), ty(*n)));
+    }
+    text.push_str("void main() {\n    vec4 clip = tp_position;\n    clip.z = 0.5 * (clip.z + clip.w);\n    gl_Position = clip;\n");
+    for (i, (name, _)) in outputs.iter().enumerate() {
+        text.push_str(&format!("    {name} = tp_output{i};\n"));
+    }
+    text.push_str("}\n");
+    text
+}
+
 /// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
 /// locations the lowering gave them (so both renderers feed and read the same slots).
-fn compile(ctx: &GlContext, program: &LoadedProgram) -> Result<GlProgram, HarnessError> {
+fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
     let attributes: Vec<(&str, u32)> = program
         .vertex
         .interface
@@ -276,7 +414,7 @@ fn compile(ctx: &GlContext, program: &LoadedProgram) -> Result<GlProgram, Harnes
         .filter(|(name, _)| !name.starts_with("gl_"))
         .map(|(name, location)| (name.as_str(), *location))
         .collect();
-    let outputs: Vec<(&str, u32)> = program
+    let frag_data: Vec<(&str, u32)> = program
         .fragment
         .interface
         .outputs
@@ -284,38 +422,56 @@ fn compile(ctx: &GlContext, program: &LoadedProgram) -> Result<GlProgram, Harnes
         .filter(|(_, name)| !name.starts_with("gl_"))
         .map(|(location, name)| (name.as_str(), *location))
         .collect();
-    ctx.compile_program(&program.vertex.gl_text, &program.fragment.gl_text, &attributes, &outputs)
-        .map_err(|e| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info())))
+    let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info()));
+    match depth {
+        DepthMapping::OpenGl => {
+            ctx.compile_program(&program.vertex.gl_text, &program.fragment.gl_text, &attributes, &frag_data).map(Compiled::Direct).map_err(failed)
+        }
+        DepthMapping::Harness => {
+            let outputs = vertex_outputs(&program.vertex)?;
+            let mut captured = vec!["gl_Position"];
+            captured.extend(outputs.iter().map(|(name, _)| name.as_str()));
+            let capture = ctx.compile_capture_program(&program.vertex.gl_text, &attributes, &captured).map_err(failed)?;
+            let vertex = pass_through_vertex(&program.fragment.gl_text, &outputs);
+            let mut locations = vec![("tp_position".to_string(), 0u32)];
+            locations.extend((0..outputs.len()).map(|i| (format!("tp_output{i}"), i as u32 + 1)));
+            let locations: Vec<(&str, u32)> = locations.iter().map(|(n, l)| (n.as_str(), *l)).collect();
+            let draw = match ctx.compile_program(&vertex, &program.fragment.gl_text, &locations, &frag_data) {
+                Ok(d) => d,
+                Err(e) => {
+                    ctx.delete_program(capture);
+                    return Err(failed(e));
+                }
+            };
+            let mut components = vec![4];
+            components.extend(outputs.iter().map(|(_, n)| *n as i32));
+            Ok(Compiled::Captured { capture, draw, components })
+        }
+    }
 }
 
+/// Sets `raw`'s active uniforms by name and binds its samplers to texture units from 0.
 #[allow(clippy::too_many_arguments)]
-unsafe fn draw_program(
-    ctx: &GlContext,
+unsafe fn set_uniforms(
+    gl: &glow::Context,
     pack: &LoadedPack,
     program: &LoadedProgram,
-    compiled: &GlProgram,
-    scene: &Scene,
-    pass: Pass,
+    raw: glow::Program,
+    values: &BTreeMap<String, Value>,
+    gbuffers: bool,
     textures: &Textures,
-    vertices: &[PackVertex],
 ) -> Result<(), HarnessError> {
-    let gl = ctx.gl();
-    let lg = ctx.legacy();
-    let values = uniforms::values(scene, pass);
-    let gbuffers = pass == Pass::Gbuffers;
-    // SAFETY: the caller holds the current context.
+    // SAFETY: the caller holds the current context and `raw` is in use.
     unsafe {
-        gl.use_program(Some(compiled.raw));
-        // Uniforms and samplers by name.
         let mut unit = 0u32;
         let mut missing = Vec::new();
-        for index in 0..gl.get_active_uniforms(compiled.raw) {
-            let Some(active) = gl.get_active_uniform(compiled.raw, index) else { continue };
+        for index in 0..gl.get_active_uniforms(raw) {
+            let Some(active) = gl.get_active_uniform(raw, index) else { continue };
             if active.name.starts_with("gl_") {
                 continue;
             }
             let name = active.name.trim_end_matches("[0]").to_string();
-            let location = gl.get_uniform_location(compiled.raw, &active.name);
+            let location = gl.get_uniform_location(raw, &active.name);
             if matches!(active.utype, glow::SAMPLER_2D) {
                 let texture = match resolve_in_pack(pack, &name, gbuffers) {
                     Ok(Source::Atlas) => textures.atlas,
@@ -349,9 +505,37 @@ unsafe fn draw_program(
             set_uniform(gl, location.as_ref(), active.utype, value)
                 .map_err(|m| HarnessError::Uniform(format!("{} (OpenGL): uniform {name}: {m}", program.name)))?;
         }
+        gl.active_texture(glow::TEXTURE0);
         if !missing.is_empty() {
             return Err(HarnessError::Uniform(format!("{} (OpenGL) declares what the harness cannot fill: {}", program.name, missing.join(", "))));
         }
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+unsafe fn draw_program(
+    ctx: &GlContext,
+    pack: &LoadedPack,
+    program: &LoadedProgram,
+    compiled: &Compiled,
+    scene: &Scene,
+    pass: Pass,
+    textures: &Textures,
+    vertices: &[PackVertex],
+) -> Result<(), HarnessError> {
+    let gl = ctx.gl();
+    let lg = ctx.legacy();
+    let values = uniforms::values(scene, pass);
+    let gbuffers = pass == Pass::Gbuffers;
+    let first = match compiled {
+        Compiled::Direct(p) => p.raw,
+        Compiled::Captured { capture, .. } => capture.raw,
+    };
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        gl.use_program(Some(first));
+        set_uniforms(gl, pack, program, first, &values, gbuffers, textures)?;
         // Legacy matrices through the fixed-function stacks.
         let m = uniforms::legacy_matrices(scene, pass);
         let load = |mode: u32, matrix: glam::DMat4| {
@@ -398,6 +582,20 @@ unsafe fn draw_program(
             gl.vertex_attrib_pointer_f32(*location, 4, glow::FLOAT, false, stride, offset as i32);
             generic.push(*location);
         }
+        // Captured: the vertex stage alone, its outputs recorded, nothing rasterised.
+        let feedback = match compiled {
+            Compiled::Captured { components, .. } if !vertices.is_empty() => {
+                let size = components.iter().sum::<i32>() as usize * 4 * vertices.len();
+                let buffer = gl.create_buffer().map_err(gl_err("buffer"))?;
+                gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, Some(buffer));
+                gl.buffer_data_size(glow::TRANSFORM_FEEDBACK_BUFFER, size as i32, glow::STATIC_COPY);
+                gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, Some(buffer));
+                gl.enable(glow::RASTERIZER_DISCARD);
+                gl.begin_transform_feedback(glow::TRIANGLES);
+                Some(buffer)
+            }
+            _ => None,
+        };
         if !vertices.is_empty() {
             gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
         }
@@ -413,6 +611,27 @@ unsafe fn draw_program(
             (lg.disable_client_state)(state);
         }
         gl.delete_buffer(vbo);
+        if let (Some(buffer), Compiled::Captured { draw, components, .. }) = (feedback, compiled) {
+            gl.end_transform_feedback();
+            gl.disable(glow::RASTERIZER_DISCARD);
+            gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, None);
+            // The shipped fragment stage behind the pass-through vertex shader.
+            gl.use_program(Some(draw.raw));
+            set_uniforms(gl, pack, program, draw.raw, &values, gbuffers, textures)?;
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
+            let stride = components.iter().sum::<i32>() * 4;
+            let mut offset = 0;
+            for (location, n) in components.iter().enumerate() {
+                gl.enable_vertex_attrib_array(location as u32);
+                gl.vertex_attrib_pointer_f32(location as u32, *n, glow::FLOAT, false, stride, offset);
+                offset += n * 4;
+            }
+            gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
+            for location in 0..components.len() {
+                gl.disable_vertex_attrib_array(location as u32);
+            }
+            gl.delete_buffer(buffer);
+        }
         gl.use_program(None);
     }
     Ok(())

@@ -321,7 +321,11 @@ fn opaque(rgba: &[u8]) -> Vec<u8> {
 }
 
 /// The proof that the lowering changes nothing: the shipped text through Mesa's OpenGL gives
-/// the same image as its lowered form through wgpu, for every scene and both dialects.
+/// the same image as its lowered form through wgpu, for every scene and both dialects, every
+/// pixel within 1/255 in every channel. The GL path maps depth as the wgpu path does
+/// (`gl::DepthMapping::Harness`), so both depth buffers hold the same bits; with OpenGL's own
+/// depth mapping the last bits of depth differ and composite amplifies that at a few pixels
+/// (docs/harness.md).
 #[test]
 fn opengl_and_wgpu_agree_on_every_scene() {
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
@@ -340,18 +344,26 @@ fn opengl_and_wgpu_agree_on_every_scene() {
             assert_eq!(gl_frame.image.non_finite(), 0, "{name}: NaN/Inf from OpenGL");
             let max = images::max_channel_difference(&wgpu_frame.image, &gl_frame.image);
             let over = images::count_differing(&wgpu_frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
-            let n = wgpu_frame.image.pixels.len();
-            report.push(format!("{dialect:>24} {name:<18} max diff (x/255) {:?}, {over} pixels over 1/255", max.map(|d| (d * 255.0 * 100.0).round() / 100.0)));
-            // Target: every pixel within 1/255. A few pixels on triangle edges may be covered by
-            // different triangles (wgpu flips y, so ties of the fill rule break the other way):
-            // allow at most 0.05% of the pixels over 1/255.
-            if over * 2000 > n {
-                gl_frame.image.write_png(&failure_dir().join(format!("{name}.{}.gl.png", dialect.slug())), false).unwrap();
-                wgpu_frame.image.write_png(&failure_dir().join(format!("{name}.{}.wgpu.png", dialect.slug())), false).unwrap();
-                failures.push(format!("{name} ({dialect}): max {max:?}, {over} pixels over 1/255"));
+            let depth_bits = |a: &FloatImage, b: &FloatImage| a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p[0].to_bits() != q[0].to_bits()).count();
+            let (d0, d1) = (depth_bits(&wgpu_frame.depth0, &gl_frame.depth0), depth_bits(&wgpu_frame.depth1, &gl_frame.depth1));
+            report.push(format!(
+                "{dialect:>24} {name:<18} max diff (x/255) {:?}, {over} pixels over 1/255, depth0/depth1 differ in {d0}/{d1} pixels",
+                max.map(|d| (d * 255.0 * 100.0).round() / 100.0)
+            ));
+            if over > 0 {
+                let dir = failure_dir();
+                let slug = dialect.slug();
+                gl_frame.image.write_png(&dir.join(format!("{name}.{slug}.gl.png")), false).unwrap();
+                wgpu_frame.image.write_png(&dir.join(format!("{name}.{slug}.wgpu.png")), false).unwrap();
+                let diff = images::difference_rgb8(&gl_frame.image.to_rgba8_top_first(), &wgpu_frame.image.to_rgba8_top_first());
+                images::write_rgba8_png(&dir.join(format!("{name}.{slug}.diff.png")), s.width(), s.height(), &diff).unwrap();
+                failures.push(format!(
+                    "{name} ({dialect}): max {max:?}, {over} pixels over 1/255; depth0/depth1 differ in {d0}/{d1} pixels (images in {})",
+                    dir.display()
+                ));
             }
         }
     }
     println!("{}", report.join("\n"));
-    assert!(failures.is_empty(), "OpenGL and wgpu disagree:\n{}", failures.join("\n"));
+    assert!(failures.is_empty(), "OpenGL and wgpu disagree by more than 1/255:\n{}", failures.join("\n"));
 }
