@@ -4,6 +4,15 @@
 //! floor) and its error against the f64 reference at converged settings (max abs, RMSE, PSNR,
 //! mean FLIP). Writes a table, CSV, JSON, a Pareto plot of time against error, FLIP heat-maps
 //! and a Markdown report. See docs/accuracy.md.
+//!
+//! Each scene is rendered once per option set through the whole harness pipeline
+//! (`render_wgpu`: the image whose error is measured, and the G-buffers). The composite is then
+//! timed alone over those G-buffers with [`tidepack_harness::composite_only`], whose uniform
+//! blocks are bound as read-only storage: bound as uniform buffers, lavapipe 22.3 recompiles
+//! the composite shader at every draw (with `isEyeInWater` and the other members its `if`s test
+//! inlined) inside the timed pass and never frees it, so the times were mostly compile time and
+//! memory grew about 3 MB per frame (docs/stress.md, "Memory"). The timed image is checked
+//! against the harness frame's (`timed_image_difference`).
 
 pub mod metrics;
 pub mod output;
@@ -14,6 +23,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use tidepack_glsl::options::{OptionKind, OptionValue};
+use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
+use tidepack_harness::uniforms::{self, Pass};
 use tidepack_harness::{Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
 use tidepack_pack::source::PackSource;
@@ -91,6 +102,9 @@ pub struct Row {
     pub error: Error,
     /// Sum of squared rgb differences over the pixels / (3 pixels): to aggregate PSNR.
     pub mse: f64,
+    /// Largest |timed composite output − the harness frame's composite output| (rgba): the
+    /// timed pass computes the image whose error is reported (0 when it does).
+    pub timed_image_difference: f64,
 }
 
 /// One run over all scenes.
@@ -130,6 +144,15 @@ pub struct BenchResult {
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
     pub command: String,
+    /// Resident memory of the process at the end of the runs (Linux VmRSS), MiB.
+    pub rss_mib_end: Option<f64>,
+}
+
+/// This process's resident set size in MiB (Linux `/proc/self/status` VmRSS), if readable.
+pub fn rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    line.split_whitespace().nth(1)?.parse::<f64>().ok().map(|kib| kib / 1024.0)
 }
 
 /// A run is "near" the front when no run beats it by more than this in both time and error.
@@ -250,30 +273,37 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
             continue;
         }
         let mut these = Vec::new();
+        // One composite pipeline per option set and frame size.
+        let mut runners: BTreeMap<(u32, u32), CompositeOnly> = BTreeMap::new();
         for (name, scene) in &scenes {
-            bar.set_message(format!("{} {name}", run.name));
-            let (mut composite, mut floor) = (Vec::new(), Vec::new());
-            // Pipelines made once; one warm-up frame (llvmpipe compiles shader variants at the
-            // first draw), then `frames` timed frames.
-            let mesh = tidepack_harness::mesh::build(scene, &pack);
-            let (frame, times) = tidepack_harness::gpu::render_repeated(&gpu, &pack, scene, &mesh, true, frames + 1).map_err(err)?;
-            for timings in times.iter().skip(1) {
-                let time = |pass: &str| timings.iter().find(|t| t.pass == pass).map(|t| (t.gpu_ms, t.wall_ms));
-                let (c, p) = match (time("composite"), time("pass-through composite")) {
-                    (Some(c), Some(p)) => (c, p),
-                    _ => return Err("the harness reported no composite or pass-through time".into()),
-                };
-                timing_gpu &= c.0.is_some() && p.0.is_some();
-                composite.push(c.0.unwrap_or(c.1));
-                floor.push(p.0.unwrap_or(p.1));
+            bar.set_message(format!("{} {name} (RSS {:.0} MiB)", run.name, rss_mib().unwrap_or(f64::NAN)));
+            // The whole frame once: G-buffers and the composite image whose error is measured.
+            let frame = render_wgpu(&gpu, &pack, scene, false).map_err(err)?;
+            let g = GBuffers::from_frame(&frame);
+            let values = uniforms::values(scene, Pass::Fullscreen);
+            let size = (scene.width(), scene.height());
+            if !runners.contains_key(&size) {
+                runners.insert(size, CompositeOnly::new(&gpu, &pack, size.0, size.1, &values).map_err(err)?);
             }
+            // One warm-up frame (llvmpipe compiles the shader variant at the first draw), then
+            // `frames` timed frames of composite and of the pass-through over the same buffers.
+            let timed = runners[&size].time(&gpu, &pack, &g, &values, frames + 1).map_err(err)?;
+            timing_gpu &= timed.gpu_timestamps;
+            let (composite, floor) = (&timed.composite_ms[1..], &timed.passthrough_ms[1..]);
+            let timed_image_difference = timed
+                .image
+                .pixels
+                .iter()
+                .zip(&frame.image.pixels)
+                .flat_map(|(a, b)| (0..4).map(move |c| if a[c] == b[c] { 0.0 } else { (a[c] as f64 - b[c] as f64).abs() }))
+                .fold(0.0, f64::max);
             let (error, map) = metrics::error(&frame.image, &references[name]);
             if run.kind == "profile" {
                 let file = format!("heatmaps/{name}-{}.png", run.name);
                 metrics::write_heatmap(&map, &config.out_dir.join(&file))?;
                 files.push(file);
             }
-            let (c, p) = (metrics::median(&composite), metrics::median(&floor));
+            let (c, p) = (metrics::median(composite), metrics::median(floor));
             these.push(Row {
                 scene: name.clone(),
                 run: run.clone(),
@@ -282,6 +312,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 ratio: c / p,
                 error,
                 mse: error.rmse * error.rmse,
+                timed_image_difference,
             });
             bar.inc(1);
         }
@@ -305,6 +336,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         aggregates,
         files,
         command: config.command.clone(),
+        rss_mib_end: rss_mib(),
     };
     output::write_all(config, &mut result)?;
     Ok(result)

@@ -87,7 +87,40 @@ pub struct CompositeOnly {
     uniform_buffers: Vec<(usize, wgpu::Buffer)>,
     quad: wgpu::Buffer,
     quad_len: u32,
+    /// The one-tap pass-through composite (colortex0 to an RGBA32F target), the floor
+    /// [`CompositeOnly::time`] measures composite against.
+    passthrough: Passthrough,
 }
+
+struct Passthrough {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+    out: wgpu::Texture,
+}
+
+/// Per-frame pass times of [`CompositeOnly::time`] and the composite output of the last frame.
+#[derive(Clone, Debug)]
+pub struct CompositeTimes {
+    pub image: FloatImage,
+    /// Composite pass per frame, ms.
+    pub composite_ms: Vec<f64>,
+    /// One-tap pass-through composite of the same G-buffers per frame, ms.
+    pub passthrough_ms: Vec<f64>,
+    /// True: GPU timestamps around each pass; false: wall clock of each pass's submit and wait.
+    pub gpu_timestamps: bool,
+}
+
+/// The same one-tap pass-through as gpu.rs: colortex0 to the output, nothing else.
+const PASSTHROUGH_WGSL: &str = r#"
+@group(0) @binding(0) var colortex0: texture_2d<f32>;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    return textureLoad(colortex0, vec2<i32>(p.xy), 0);
+}
+"#;
 
 fn wgpu_format(gpu: &Gpu, format: BufferFormat) -> Result<wgpu::TextureFormat, HarnessError> {
     Ok(match format {
@@ -358,6 +391,42 @@ impl CompositeOnly {
                 cache: None,
             })
         })?;
+        let passthrough = {
+            let module = checked(gpu, "pass-through shader", || {
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("pass-through"),
+                    source: wgpu::ShaderSource::Wgsl(PASSTHROUGH_WGSL.into()),
+                })
+            })?;
+            let pipeline = checked(gpu, "pass-through pipeline", || {
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("pass-through"),
+                    layout: None,
+                    vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState { format: OUT, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            })?;
+            let source = colors[&0].0.create_view(&Default::default());
+            let bind_group = checked(gpu, "pass-through bind group", || {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("pass-through"),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) }],
+                })
+            })?;
+            let out = texture("pass-through output (RGBA32F)", OUT, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
+            Passthrough { pipeline, bind_group, out }
+        };
         let quad = gpu::fullscreen_quad();
         let quad_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("full-screen quad"),
@@ -377,6 +446,7 @@ impl CompositeOnly {
             uniform_buffers,
             quad: quad_buffer,
             quad_len: quad.len() as u32,
+            passthrough,
         })
     }
 
@@ -398,6 +468,68 @@ impl CompositeOnly {
     /// Runs composite over `g` with the uniform values `values` (by OptiFine name, as
     /// [`uniforms::values`] gives them); returns the RGBA32F output, bottom row first.
     pub fn render(&self, gpu: &Gpu, pack: &LoadedPack, g: &GBuffers, values: &BTreeMap<String, Value>) -> Result<FloatImage, HarnessError> {
+        self.upload(gpu, pack, g, values)?;
+        checked(gpu, "composite_only", || {
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            self.encode_composite(&mut encoder, pack, None);
+            gpu.queue.submit([encoder.finish()]);
+        })?;
+        gpu::read_texture(gpu, &self.out, OUT)
+    }
+
+    /// Times `frames` frames of composite over `g` and `values` (uploaded once), each followed by
+    /// the one-tap pass-through composite of the same colortex0. Every frame is returned; the
+    /// first includes llvmpipe's lazy compilation of the shader variant at the first draw, so
+    /// callers drop it. Both passes are separate submissions, waited for one by one.
+    pub fn time(&self, gpu: &Gpu, pack: &LoadedPack, g: &GBuffers, values: &BTreeMap<String, Value>, frames: usize) -> Result<CompositeTimes, HarnessError> {
+        self.upload(gpu, pack, g, values)?;
+        let queries = gpu.timestamps.then(|| {
+            gpu.device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("composite_only timestamps"), ty: wgpu::QueryType::Timestamp, count: 4 })
+        });
+        let wait = || {
+            gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))
+        };
+        let (mut composite_ms, mut passthrough_ms) = (Vec::new(), Vec::new());
+        for _ in 0..frames.max(1) {
+            let mut walls = [0.0; 2];
+            for (pass, wall) in walls.iter_mut().enumerate() {
+                let stamps = queries.as_ref().map(|q| wgpu::RenderPassTimestampWrites {
+                    query_set: q,
+                    beginning_of_pass_write_index: Some(2 * pass as u32),
+                    end_of_pass_write_index: Some(2 * pass as u32 + 1),
+                });
+                let started = std::time::Instant::now();
+                checked(gpu, "composite_only timing", || {
+                    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                    if pass == 0 {
+                        self.encode_composite(&mut encoder, pack, stamps);
+                    } else {
+                        self.encode_passthrough(&mut encoder, stamps);
+                    }
+                    gpu.queue.submit([encoder.finish()]);
+                })?;
+                wait()?;
+                *wall = started.elapsed().as_secs_f64() * 1000.0;
+            }
+            match &queries {
+                Some(q) => {
+                    let ticks = read_timestamps(gpu, q)?;
+                    let period = gpu.queue.get_timestamp_period() as f64;
+                    let ms = |i: usize| ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6;
+                    composite_ms.push(ms(0));
+                    passthrough_ms.push(ms(1));
+                }
+                None => {
+                    composite_ms.push(walls[0]);
+                    passthrough_ms.push(walls[1]);
+                }
+            }
+        }
+        Ok(CompositeTimes { image: gpu::read_texture(gpu, &self.out, OUT)?, composite_ms, passthrough_ms, gpu_timestamps: queries.is_some() })
+    }
+
+    /// Writes the G-buffers and the uniform blocks.
+    fn upload(&self, gpu: &Gpu, pack: &LoadedPack, g: &GBuffers, values: &BTreeMap<String, Value>) -> Result<(), HarnessError> {
         let (w, h) = (self.width, self.height);
         let check = |name: &str, image: &FloatImage| {
             if (image.width, image.height) != (w, h) {
@@ -436,42 +568,91 @@ impl CompositeOnly {
             let block = uniforms::fill_block(&stage.module, values, &stage.path)?.expect("the block was found when building");
             gpu.queue.write_buffer(buffer, 0, &block.bytes);
         }
-        checked(gpu, "composite_only", || {
-            let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            {
-                let out_view = self.out.create_view(&Default::default());
-                let alt_views: Vec<wgpu::TextureView> = self.alternates.iter().map(|t| t.create_view(&Default::default())).collect();
-                let mut alt = alt_views.iter();
-                let attachments: Vec<_> = pack
-                    .composite
-                    .render_targets
-                    .iter()
-                    .map(|b| {
-                        let v = if *b == 0 { &out_view } else { alt.next().expect("one alternate per target") };
-                        Some(wgpu::RenderPassColorAttachment {
-                            view: v,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
-                        })
-                    })
-                    .collect();
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("composite_only"),
-                    color_attachments: &attachments,
-                    ..Default::default()
-                });
-                pass.set_pipeline(&self.pipeline);
-                for (i, group) in self.bind_groups.iter().enumerate() {
-                    pass.set_bind_group(i as u32, group, &[]);
-                }
-                pass.set_vertex_buffer(0, self.quad.slice(..));
-                pass.draw(0..self.quad_len, 0..1);
-            }
-            gpu.queue.submit([encoder.finish()]);
-        })?;
-        gpu::read_texture(gpu, &self.out, OUT)
+        Ok(())
     }
+
+    fn encode_composite(&self, encoder: &mut wgpu::CommandEncoder, pack: &LoadedPack, timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>) {
+        let out_view = self.out.create_view(&Default::default());
+        let alt_views: Vec<wgpu::TextureView> = self.alternates.iter().map(|t| t.create_view(&Default::default())).collect();
+        let mut alt = alt_views.iter();
+        let attachments: Vec<_> = pack
+            .composite
+            .render_targets
+            .iter()
+            .map(|b| {
+                let v = if *b == 0 { &out_view } else { alt.next().expect("one alternate per target") };
+                Some(wgpu::RenderPassColorAttachment {
+                    view: v,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                })
+            })
+            .collect();
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("composite_only"),
+            color_attachments: &attachments,
+            timestamp_writes,
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.pipeline);
+        for (i, group) in self.bind_groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, group, &[]);
+        }
+        pass.set_vertex_buffer(0, self.quad.slice(..));
+        pass.draw(0..self.quad_len, 0..1);
+    }
+
+    fn encode_passthrough(&self, encoder: &mut wgpu::CommandEncoder, timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>) {
+        let view = self.passthrough.out.create_view(&Default::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("pass-through composite"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+            })],
+            timestamp_writes,
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.passthrough.pipeline);
+        pass.set_bind_group(0, &self.passthrough.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
+
+/// The 4 timestamps of one timed frame (composite begin/end, pass-through begin/end).
+fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet) -> Result<Vec<u64>, HarnessError> {
+    let bytes = 4 * 8;
+    let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("composite_only timestamp resolve"),
+        size: bytes,
+        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let read = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("composite_only timestamp readback"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    encoder.resolve_query_set(queries, 0..4, &resolve, 0);
+    encoder.copy_buffer_to_buffer(&resolve, 0, &read, 0, bytes);
+    gpu.queue.submit([encoder.finish()]);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    read.map_async(wgpu::MapMode::Read, .., move |r| {
+        let _ = sender.send(r);
+    });
+    gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for timestamps: {e}")))?;
+    receiver
+        .recv()
+        .map_err(|_| HarnessError::Wgpu("timestamp readback callback dropped".into()))?
+        .map_err(|e| HarnessError::Wgpu(format!("mapping the timestamp buffer: {e}")))?;
+    let data = read.get_mapped_range(..).map_err(|e| HarnessError::Wgpu(format!("reading timestamps: {e:?}")))?.to_vec();
+    read.unmap();
+    Ok(data.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect())
 }
 
 fn sampler(gpu: &Gpu, filter: wgpu::FilterMode, address: wgpu::AddressMode) -> wgpu::Sampler {
