@@ -5,7 +5,8 @@
 //!     cargo test -p tidepack-harness --test gl_probe -- --ignored --nocapture
 //!
 //! PROBE_SCENES=a,b (default: all)  PROBE_DIALECT=120|330  PROBE_GL_DEPTH=1 (OpenGL's own depth
-//! conventions, `gl::DepthMapping::OpenGl`)  PROBE_NUDGE=dx,dy,dz (camera offset in blocks).
+//! conventions, `gl::DepthMapping::OpenGl`)  PROBE_NUDGE=dx,dy,dz (camera offset in blocks)
+//! PROBE_IMAGE_BITS=1 (also count output pixels differing at all, and by more than 0.1/255).
 
 use std::path::{Path, PathBuf};
 
@@ -68,6 +69,10 @@ fn probe() {
         let d0 = differing("depth0", &w.depth0, &g.depth0, 0.0);
         for (b, img) in &w.buffers {
             differing(&format!("colortex{b}"), img, &g.buffers[b], 0.0);
+        }
+        if std::env::var("PROBE_IMAGE_BITS").is_ok() {
+            differing("image bits", &w.image, &g.image, 0.0);
+            differing("image 0.1", &w.image, &g.image, 0.1 / 255.0);
         }
         let img = differing("image", &w.image, &g.image, 1.0 / 255.0 + 1e-6);
         let max = images::max_channel_difference(&w.image, &g.image);
