@@ -36,6 +36,15 @@
 //!   uniforms of a struct type get a block of their own on their line; uniform initializers are
 //!   dropped (the loader sets the value).
 //!
+//! - Storage images (`layout(rgba16f) uniform image2D colorimg0;`) get a set and binding; an
+//!   image without a format (allowed for `writeonly`) gets the 32-bit four-component format of
+//!   its type. `memoryBarrier*()`/`groupMemoryBarrier()` and the `int`/`uint` `atomic*()`
+//!   functions, which naga's GLSL front-end lacks, get stand-ins of the same signature on line 2
+//!   when a stage calls them.
+//! - Compute stages ([`lower_compute`]): uniforms, samplers and images as above (descriptor set
+//!   [`COMPUTE_DESCRIPTOR_SET`]); `layout(local_size_…) in;`, `shared` and the `gl_*` compute
+//!   built-ins are left as they are; no varyings or legacy built-ins.
+//!
 //! Reserved names all start with `tp_`.
 
 use std::collections::{BTreeMap, HashMap};
@@ -70,6 +79,10 @@ impl Stage {
         }
     }
 }
+
+/// Descriptor set of a compute stage's lowered resources (the pack's own `layout(binding = N)`
+/// blocks stay in set 0).
+pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
@@ -183,6 +196,47 @@ fn is_builtin_type(ty: &str) -> bool {
 fn is_varying_qualifier(word: &str) -> bool {
     matches!(word, "flat" | "smooth" | "noperspective" | "centroid" | "invariant")
 }
+
+fn is_memory_qualifier(word: &str) -> bool {
+    matches!(word, "readonly" | "writeonly" | "coherent" | "volatile" | "restrict")
+}
+
+/// Storage image types and the format an image of that type gets when it declares none.
+fn image_default_format(ty: &str) -> Option<&'static str> {
+    const DIMS: [&str; 6] = ["1D", "2D", "3D", "Cube", "2DArray", "1DArray"];
+    let (prefix, format) = if let Some(rest) = ty.strip_prefix("iimage") {
+        (rest, "rgba32i")
+    } else if let Some(rest) = ty.strip_prefix("uimage") {
+        (rest, "rgba32ui")
+    } else {
+        (ty.strip_prefix("image")?, "rgba32f")
+    };
+    DIMS.contains(&prefix).then_some(format)
+}
+
+/// Built-in functions naga's GLSL front-end lacks, and stand-ins with their signatures.
+const MISSING_BUILTINS: &[(&str, &str)] = &[
+    ("memoryBarrier", "void memoryBarrier() {}"),
+    ("memoryBarrierShared", "void memoryBarrierShared() {}"),
+    ("memoryBarrierImage", "void memoryBarrierImage() {}"),
+    ("memoryBarrierBuffer", "void memoryBarrierBuffer() {}"),
+    ("memoryBarrierAtomicCounter", "void memoryBarrierAtomicCounter() {}"),
+    ("groupMemoryBarrier", "void groupMemoryBarrier() {}"),
+    ("atomicAdd", "int atomicAdd(inout int m, int v) { return m; } uint atomicAdd(inout uint m, uint v) { return m; }"),
+    ("atomicMin", "int atomicMin(inout int m, int v) { return m; } uint atomicMin(inout uint m, uint v) { return m; }"),
+    ("atomicMax", "int atomicMax(inout int m, int v) { return m; } uint atomicMax(inout uint m, uint v) { return m; }"),
+    ("atomicAnd", "int atomicAnd(inout int m, int v) { return m; } uint atomicAnd(inout uint m, uint v) { return m; }"),
+    ("atomicOr", "int atomicOr(inout int m, int v) { return m; } uint atomicOr(inout uint m, uint v) { return m; }"),
+    ("atomicXor", "int atomicXor(inout int m, int v) { return m; } uint atomicXor(inout uint m, uint v) { return m; }"),
+    (
+        "atomicExchange",
+        "int atomicExchange(inout int m, int v) { return m; } uint atomicExchange(inout uint m, uint v) { return m; }",
+    ),
+    (
+        "atomicCompSwap",
+        "int atomicCompSwap(inout int m, int c, int v) { return m; } uint atomicCompSwap(inout uint m, uint c, uint v) { return m; }",
+    ),
+];
 
 fn is_precision(word: &str) -> bool {
     matches!(word, "highp" | "mediump" | "lowp")
@@ -340,6 +394,8 @@ pub struct Interface {
     pub inputs: BTreeMap<String, u32>,
     /// Fragment outputs by location: the shipped output name (`gl_FragData[1]`, `outColor1`).
     pub outputs: BTreeMap<u32, String>,
+    /// Storage images by their names in the shipped text, with their types (`image2D`).
+    pub images: BTreeMap<String, String>,
 }
 
 #[derive(Clone, Debug)]
@@ -434,7 +490,8 @@ impl<'a> Declaration<'a> {
                 let close = (open..sig.len()).find(|&j| tokens[sig[j]].is_punct(")"))?;
                 layout = Some((sig[k], sig[close]));
                 k = close + 1;
-            } else if matches!(t.text, "attribute" | "varying" | "uniform" | "in" | "out" | "const")
+            } else if matches!(t.text, "attribute" | "varying" | "uniform" | "in" | "out" | "const" | "shared")
+                || is_memory_qualifier(t.text)
                 || is_varying_qualifier(t.text)
                 || is_precision(t.text)
             {
@@ -535,10 +592,21 @@ struct Symbols {
 
 /// Lowers one preprocessed stage.
 pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
+    lower_any(text, stage, false, varyings)
+}
+
+/// Lowers one preprocessed compute stage (`.csh`): uniforms into a block, samplers split,
+/// images given bindings, everything else as written (compute stages have no varyings).
+pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
+    lower_any(text, Stage::Vertex, true, &VaryingLayout::default())
+}
+
+fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let mut lowering = Lowering {
         tokens: &tokens,
         stage,
+        compute,
         version: 0,
         replacements: BTreeMap::new(),
         header: String::new(),
@@ -556,7 +624,10 @@ pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout) -> Result<Lower
 
 struct Lowering<'t, 'a> {
     tokens: &'t [Token<'a>],
+    /// Meaningless when `compute`.
     stage: Stage,
+    /// A compute stage: no varyings, outputs or legacy built-ins.
+    compute: bool,
     version: u32,
     /// Token index → (end index exclusive, replacement text).
     replacements: BTreeMap<usize, (usize, String)>,
@@ -575,6 +646,10 @@ struct Lowering<'t, 'a> {
 }
 
 impl<'a> Lowering<'_, 'a> {
+    fn descriptor_set(&self) -> u32 {
+        if self.compute { COMPUTE_DESCRIPTOR_SET } else { self.stage.descriptor_set() }
+    }
+
     fn err(&self, index: usize, message: impl Into<String>) -> LowerError {
         LowerError { line: self.tokens[index].line, message: message.into() }
     }
@@ -606,7 +681,12 @@ impl<'a> Lowering<'_, 'a> {
             };
             let start = stmt.sig[0];
             let end = *stmt.sig.last().unwrap() + 1;
-            match decl.storage(self.stage, self.version) {
+            let storage = match decl.storage(self.stage, self.version) {
+                Storage::Uniform => Storage::Uniform,
+                _ if self.compute => Storage::Other,
+                other => other,
+            };
+            match storage {
                 Storage::Uniform => self.lower_uniform(&decl, start, end)?,
                 Storage::Attribute => {
                     let mut text = String::new();
@@ -753,10 +833,54 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
+    /// `layout(rgba16f) uniform writeonly image2D img;` → the same with a set and binding (any
+    /// of the pack's own replaced), and a format when it has none.
+    fn lower_image(&mut self, decl: &Declaration<'a>, start: usize, end: usize, default_format: &str) -> Result<(), LowerError> {
+        let mut args: Vec<String> = Vec::new();
+        if let Some((open, close)) = decl.layout {
+            // Tokens from after `layout (` to before `)`, split at top-level commas.
+            let inner: Vec<&Token<'_>> = self.tokens[open + 1..close].iter().filter(|t| !t.is_trivia()).skip(1).collect();
+            for part in inner.split(|t| t.is_punct(",")) {
+                let text: Vec<&str> = part.iter().map(|t| t.text).collect();
+                if !text.is_empty() && !matches!(text[0], "binding" | "set") {
+                    args.push(text.join(" "));
+                }
+            }
+        }
+        let has_format = args.iter().any(|a| !a.contains('=') && a.starts_with(['r', 'R']));
+        if !has_format {
+            args.push(default_format.to_string());
+        }
+        let memory: String =
+            decl.qualifiers.iter().filter(|q| is_memory_qualifier(q)).map(|q| format!("{q} ")).collect();
+        let mut text = String::new();
+        for (name, suffix) in &decl.names {
+            if !suffix.is_empty() {
+                return Err(self.err(start, format!("image arrays (`{name}{suffix}`) are not supported")));
+            }
+            let binding = self.next_binding;
+            self.next_binding += 1;
+            write!(
+                text,
+                "layout({}, set = {}, binding = {binding}) uniform {memory}{} {name}; ",
+                args.join(", "),
+                self.descriptor_set(),
+                decl.ty
+            )
+            .unwrap();
+            self.interface.images.insert(name.to_string(), decl.ty.to_string());
+        }
+        self.replace_lines(start, end, text.trim_end().to_string());
+        Ok(())
+    }
+
     fn lower_uniform(&mut self, decl: &Declaration<'a>, start: usize, end: usize) -> Result<(), LowerError> {
         // A uniform's initializer only sets its value before the loader does: drop it (the
         // declarator suffix stops before `=`).
-        let set = self.stage.descriptor_set();
+        let set = self.descriptor_set();
+        if let Some(default_format) = image_default_format(decl.ty) {
+            return self.lower_image(decl, start, end, default_format);
+        }
         if let Some((texture_ty, sampler_ty)) = split_sampler_type(decl.ty) {
             let mut text = String::new();
             for (name, suffix) in &decl.names {
@@ -943,6 +1067,15 @@ impl<'a> Lowering<'_, 'a> {
         let i = sig[k];
         let name = self.tokens[i].text;
         let stage = self.stage;
+        if let Some((_, stand_in)) = MISSING_BUILTINS.iter().find(|(n, _)| *n == name)
+            && sig.get(k + 1).is_some_and(|&j| self.tokens[j].is_punct("("))
+        {
+            self.add_header((*stand_in).to_string());
+            return Ok(());
+        }
+        if self.compute {
+            return Ok(());
+        }
         if let Some(varying) = legacy_varying(name, stage) {
             let ty = LEGACY_VARYINGS.iter().find(|v| v.2 == varying).map_or("vec4", |v| v.3);
             let location = self.varyings.locations[varying];
@@ -1041,7 +1174,7 @@ impl<'a> Lowering<'_, 'a> {
             write!(
                 line,
                 " layout(std140, set = {}, binding = 0) uniform {RESERVED_PREFIX}Uniforms {{ {} }};",
-                self.stage.descriptor_set(),
+                self.descriptor_set(),
                 self.block.join(" ")
             )
             .unwrap();

@@ -20,6 +20,19 @@ pub struct LoweredStage {
     pub lowered: Lowered,
 }
 
+/// A compute stage (`.csh`) after lowering, ready for naga.
+#[derive(Clone, Debug)]
+pub struct LoweredCompute {
+    pub preprocessed: Arc<Preprocessed>,
+    pub lowered: Lowered,
+}
+
+/// Lowers a preprocessed compute stage.
+pub fn lower_compute(pre: Arc<Preprocessed>) -> Result<LoweredCompute, Diagnostic> {
+    let lowered = lower::lower_compute(&pre.text).map_err(|e| Diagnostic::error(e.message, pre.location(e.line)))?;
+    Ok(LoweredCompute { preprocessed: pre, lowered })
+}
+
 /// A stage naga accepted.
 #[derive(Debug)]
 pub struct ValidStage {
@@ -52,11 +65,31 @@ pub fn validate_stage(
     stage: &LoweredStage,
     provider: &dyn FileProvider,
 ) -> Result<ValidStage, Vec<Diagnostic>> {
-    let text = &stage.lowered.text;
     let naga_stage = match stage.stage {
         Stage::Vertex => naga::ShaderStage::Vertex,
         Stage::Fragment => naga::ShaderStage::Fragment,
     };
+    validate_text(frontend, naga_stage, &stage.preprocessed, &stage.lowered, provider)
+}
+
+/// Parses and validates a lowered compute stage; errors point into the pack's files.
+pub fn validate_compute(
+    frontend: &mut Frontend,
+    stage: &LoweredCompute,
+    provider: &dyn FileProvider,
+) -> Result<ValidStage, Vec<Diagnostic>> {
+    validate_text(frontend, naga::ShaderStage::Compute, &stage.preprocessed, &stage.lowered, provider)
+}
+
+fn validate_text(
+    frontend: &mut Frontend,
+    naga_stage: naga::ShaderStage,
+    pre: &Preprocessed,
+    lowered: &Lowered,
+    provider: &dyn FileProvider,
+) -> Result<ValidStage, Vec<Diagnostic>> {
+    let text = &lowered.text;
+    let stage = (pre, lowered);
     let module = frontend.parse(&Options::from(naga_stage), text).map_err(|errors| {
         errors
             .errors
@@ -94,18 +127,18 @@ pub fn validate_stage(
 /// Maps a naga location in the lowered text back to the pack file and line, narrowing it to
 /// the offending token when that token appears once on the original line.
 fn diagnostic_at(
-    stage: &LoweredStage,
+    (pre, lowered): (&Preprocessed, &Lowered),
     provider: &dyn FileProvider,
     message: String,
     at: Option<naga::SourceLocation>,
 ) -> Diagnostic {
     let Some(at) = at else {
-        let entry = stage.preprocessed.files.first().map_or("the shader", String::as_str);
+        let entry = pre.files.first().map_or("the shader", String::as_str);
         return Diagnostic::error(message, None).with_note(format!("naga gives no line; the error is in {entry}"));
     };
-    let mut location = stage.preprocessed.location(at.line_number);
+    let mut location = pre.location(at.line_number);
     if let Some(loc) = &mut location {
-        let text = &stage.lowered.text;
+        let text = &lowered.text;
         let start = at.offset as usize;
         let token = text.get(start..start + at.length as usize).unwrap_or("");
         if !token.is_empty() && !token.contains('\n') {
@@ -121,4 +154,59 @@ fn unique_columns(provider: &dyn FileProvider, loc: &Location, token: &str) -> O
     let mut found = line.match_indices(token);
     let (first, _) = found.next()?;
     found.next().is_none().then_some(first..first + token.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::HashMap;
+
+    use super::*;
+    use crate::preprocess::{PreprocessOptions, preprocess};
+
+    fn compute(text: &str) -> Result<ValidStage, Vec<Diagnostic>> {
+        let files: HashMap<String, Arc<str>> = [("composite.csh".to_string(), Arc::from(text))].into();
+        let pre = preprocess(&files, "composite.csh", &PreprocessOptions::default()).unwrap();
+        let lowered = lower_compute(Arc::new(pre)).map_err(|e| vec![e])?;
+        assert_eq!(lowered.lowered.text.lines().count(), text.lines().count(), "{}", lowered.lowered.text);
+        validate_compute(&mut Frontend::default(), &lowered, &files)
+    }
+
+    const VALID: &str = "#version 430 compatibility
+layout(local_size_x = 16, local_size_y = 16) in;
+const vec2 workGroupsRender = vec2(1.0, 1.0);
+layout(rgba16f) uniform image2D colorimg0;
+layout(r32ui) uniform readonly uimage2D colorimg1;
+uniform writeonly image2D colorimg2;
+uniform sampler2D colortex3;
+uniform float frameTimeCounter;
+uniform bool hideGUI;
+shared uint tileCount;
+shared vec4 tile[256];
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (gl_LocalInvocationIndex == 0u) tileCount = 0u;
+    barrier();
+    memoryBarrierShared();
+    atomicAdd(tileCount, 1u);
+    vec4 c = imageLoad(colorimg0, p) + texelFetch(colortex3, p, 0) * frameTimeCounter;
+    tile[gl_LocalInvocationIndex] = c;
+    if (hideGUI) c.r += float(imageLoad(colorimg1, p).r);
+    imageStore(colorimg0, p, c);
+    imageStore(colorimg2, p, vec4(imageSize(colorimg0), 0.0, 1.0));
+}
+";
+
+    #[test]
+    fn a_compute_stage_with_images_samplers_uniforms_and_shared_memory_validates() {
+        if let Err(e) = compute(VALID) {
+            panic!("{e:?}");
+        }
+    }
+
+    #[test]
+    fn a_type_error_in_a_compute_stage_is_located() {
+        let text = VALID.replace("    vec4 c = imageLoad", "    float bad = vec3(1.0);\n    vec4 c = imageLoad");
+        let errors = compute(&text).unwrap_err();
+        assert!(errors.iter().any(|e| e.location.as_ref().is_some_and(|l| l.line == 18)), "{errors:?}");
+    }
 }

@@ -4,6 +4,7 @@
 //! are located in the pack's files; its verdict is compared with tidepack's.
 
 use tidepack_gldriver::GlContext;
+use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_glsl::macros::StandardMacros;
 use tidepack_glsl::preprocess::expand_includes_mapped;
 use tidepack_glsl::{Diagnostic, Location, Stage};
@@ -45,10 +46,165 @@ impl Driver {
         self.context.info().to_string()
     }
 
-    /// Compiles and links one program; `Ok(())` when the driver accepts it, else its messages
-    /// located in the pack's files. `Err` with an empty list when the text cannot be expanded
-    /// (tidepack's preprocessor reported that already).
+    /// OpenGL version of the context as (major, minor).
+    fn gl_version(&self) -> (u32, u32) {
+        let version = &self.context.info().version;
+        let mut numbers = version.split(|c: char| !c.is_ascii_digit()).filter(|n| !n.is_empty()).map(|n| n.parse().unwrap_or(0));
+        (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0))
+    }
+
+    /// Whether the context compiles tessellation (OpenGL 4.0) and compute (4.3) stages.
+    fn supports(&self, path: &str) -> bool {
+        let version = self.gl_version();
+        if path.ends_with(".tcs") || path.ends_with(".tes") {
+            version >= (4, 0)
+        } else if path.ends_with(".csh") {
+            version >= (4, 3)
+        } else {
+            version >= (3, 2)
+        }
+    }
+
+    /// Warnings for the stages of `program` this driver cannot compile (left out of
+    /// [`Driver::check`]).
+    pub fn unsupported(&self, program: &Program) -> Vec<Diagnostic> {
+        program
+            .other_stages
+            .iter()
+            .chain(&program.compute)
+            .filter(|p| !self.supports(p))
+            .map(|p| {
+                Diagnostic::warning(
+                    format!("{p} was only preprocessed: the OpenGL driver ({}) cannot compile this kind of stage", self.describe()),
+                    Some(Location::line(p.clone(), 1)),
+                )
+            })
+            .collect()
+    }
+
+    /// Compiles and links one program (vertex, geometry, tessellation and fragment stages
+    /// together; each compute stage alone); `Ok(())` when the driver accepts it, else its
+    /// messages located in the pack's files. `Err` with an empty list when the text cannot be
+    /// expanded (tidepack's preprocessor reported that already).
     pub fn check(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
+        let mut results = Vec::new();
+        let graphics: Vec<&String> = program.other_stages.iter().filter(|p| self.supports(p)).collect();
+        if graphics.is_empty() {
+            if !program.stages.is_empty() {
+                results.push(self.check_vertex_fragment(program, provider));
+            }
+        } else {
+            let mut files: Vec<(u32, &str)> = Vec::new();
+            for (stage, path) in &program.stages {
+                files.push((if *stage == Stage::Vertex { glow::VERTEX_SHADER } else { glow::FRAGMENT_SHADER }, path));
+            }
+            for path in graphics {
+                let kind = match path.rsplit_once('.').map(|(_, e)| e) {
+                    Some("gsh") => glow::GEOMETRY_SHADER,
+                    Some("tcs") => glow::TESS_CONTROL_SHADER,
+                    _ => glow::TESS_EVALUATION_SHADER,
+                };
+                files.push((kind, path));
+            }
+            results.push(self.check_stages(program, &files, provider));
+        }
+        for path in program.compute.iter().filter(|p| self.supports(p)) {
+            results.push(self.check_stages(program, &[(glow::COMPUTE_SHADER, path)], provider));
+        }
+        let mut rejected = Vec::new();
+        let mut unexpanded = false;
+        for result in results {
+            match result {
+                Ok(()) => {}
+                Err(diags) if diags.is_empty() => unexpanded = true,
+                Err(diags) => rejected.extend(diags),
+            }
+        }
+        if !rejected.is_empty() || unexpanded { Err(rejected) } else { Ok(()) }
+    }
+
+    /// Compiles the given stages with glow and links them into one program.
+    fn check_stages(
+        &self,
+        program: &Program,
+        files: &[(u32, &str)],
+        provider: &dyn tidepack_glsl::preprocess::FileProvider,
+    ) -> Result<(), Vec<Diagnostic>> {
+        let mut texts = Vec::new();
+        for (kind, path) in files {
+            match expand_includes_mapped(provider, path, &self.defines) {
+                Ok((text, map)) => texts.push((*kind, *path, text, map)),
+                Err(_) => return Err(Vec::new()),
+            }
+        }
+        let gl = self.context.gl();
+        let info = |what: String| format!("{what} by {}", self.describe());
+        let located = |log: &str, path: &str, map: Option<&Vec<Option<Location>>>, what: String| -> Vec<Diagnostic> {
+            let mut diags: Vec<Diagnostic> = tidepack_gldriver::parse_log(log)
+                .into_iter()
+                .filter(|m| m.severity.contains("error"))
+                .map(|m| {
+                    let at = map.and_then(|map| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
+                    Diagnostic::error(format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
+                        .with_note(info(what.clone()))
+                })
+                .collect();
+            if diags.is_empty() {
+                diags.push(
+                    Diagnostic::error(format!("the OpenGL driver rejects this program: {}", log.trim()), Some(Location::line(path, 1)))
+                        .with_note(info(what)),
+                );
+            }
+            diags
+        };
+        // SAFETY: plain GL calls on the context current on this thread, with objects made here.
+        unsafe {
+            let mut shaders = Vec::new();
+            let mut failed = Vec::new();
+            for (kind, path, text, map) in &texts {
+                let Ok(shader) = gl.create_shader(*kind) else {
+                    failed.extend(located("", path, None, format!("{} creation", stage_name(*kind))));
+                    continue;
+                };
+                gl.shader_source(shader, text);
+                gl.compile_shader(shader);
+                if gl.get_shader_compile_status(shader) {
+                    shaders.push(shader);
+                } else {
+                    let log = gl.get_shader_info_log(shader);
+                    failed.extend(located(&log, path, Some(map), format!("{} compilation", stage_name(*kind))));
+                    gl.delete_shader(shader);
+                }
+            }
+            if failed.is_empty() {
+                match gl.create_program() {
+                    Ok(linked) => {
+                        for &shader in &shaders {
+                            gl.attach_shader(linked, shader);
+                        }
+                        gl.link_program(linked);
+                        if !gl.get_program_link_status(linked) {
+                            let log = gl.get_program_info_log(linked);
+                            let entry = program.entry().unwrap_or(files[0].1);
+                            failed.extend(located(&log, entry, None, "program link".into()));
+                        }
+                        for &shader in &shaders {
+                            gl.detach_shader(linked, shader);
+                        }
+                        gl.delete_program(linked);
+                    }
+                    Err(log) => failed.extend(located(&log, files[0].1, None, "program creation".into())),
+                }
+            }
+            for shader in shaders {
+                gl.delete_shader(shader);
+            }
+            if failed.is_empty() { Ok(()) } else { Err(failed) }
+        }
+    }
+
+    /// The vertex and fragment stages alone, through tidepack-gldriver.
+    fn check_vertex_fragment(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
             match expand_includes_mapped(provider, path, &self.defines) {
@@ -88,5 +244,16 @@ impl Driver {
             );
         }
         Err(diags)
+    }
+}
+
+fn stage_name(kind: u32) -> &'static str {
+    match kind {
+        glow::VERTEX_SHADER => "vertex shader",
+        glow::FRAGMENT_SHADER => "fragment shader",
+        glow::GEOMETRY_SHADER => "geometry shader",
+        glow::TESS_CONTROL_SHADER => "tessellation control shader",
+        glow::TESS_EVALUATION_SHADER => "tessellation evaluation shader",
+        _ => "compute shader",
     }
 }

@@ -180,10 +180,18 @@ fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
 }
 
 /// Uniforms and samplers OptiFine does not set, and known uniforms declared with another type.
-pub fn check_resources(stage: &LoweredStage, program: &str, props: &Properties) -> Vec<Diagnostic> {
-    let pre = &stage.preprocessed;
+pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, props: &Properties) -> Vec<Diagnostic> {
     let mut found = Vec::new();
-    for (name, kind) in &stage.lowered.interface.resources {
+    for name in lowered.interface.images.keys() {
+        if !known::is_image(name) {
+            let at = uniform_line(pre, name).and_then(|l| pre.location(l));
+            found.push(Diagnostic::warning(
+                format!("`{name}` is not an image OptiFine binds (colorimg0-15, shadowcolorimg0-1): nothing is bound to it"),
+                at,
+            ));
+        }
+    }
+    for (name, kind) in &lowered.interface.resources {
         if name.starts_with("gl_") {
             continue;
         }

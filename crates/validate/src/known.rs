@@ -39,6 +39,15 @@ pub fn uniform_type(name: &str) -> Option<&'static str> {
     UNIFORMS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
 
+/// Image names OptiFine and Iris bind for `imageLoad`/`imageStore` (`colorimg0-15`,
+/// `shadowcolorimg0-1`).
+pub fn is_image(name: &str) -> bool {
+    let numbered = |prefix: &str, count: u32| {
+        name.strip_prefix(prefix).and_then(|n| (!n.starts_with('0') || n == "0").then(|| n.parse::<u32>().ok()).flatten()).is_some_and(|n| n < count)
+    };
+    numbered("colorimg", 16) || numbered("shadowcolorimg", 2)
+}
+
 pub fn is_sampler(name: &str) -> bool {
     SAMPLERS.contains(&name)
 }
@@ -70,5 +79,11 @@ mod tests {
         assert!(sampler_unavailable("composite2", "lightmap").is_some());
         assert!(sampler_unavailable("composite2", "colortex1").is_none());
         assert!(sampler_unavailable("shadow", "tex").is_none());
+    }
+
+    #[test]
+    fn images_by_name() {
+        assert!(is_image("colorimg0") && is_image("colorimg15") && is_image("shadowcolorimg1"));
+        assert!(!is_image("colorimg16") && !is_image("colorimg01") && !is_image("shadowcolorimg2") && !is_image("img"));
     }
 }

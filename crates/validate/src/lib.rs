@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use tidepack_glsl::macros::StandardMacros;
 use tidepack_glsl::options::{self, OptionKind, OptionSet};
 use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed};
-use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::validate::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 pub mod input;
@@ -208,9 +208,36 @@ pub fn declared_options(pack: &PackFiles) -> BTreeMap<String, OptionKind> {
 
 /// One distinct lowered stage for naga, with the program and option set that produced it.
 struct Job {
-    stage: LoweredStage,
+    stage: JobStage,
     set: usize,
     program: usize,
+    /// A vertex stage followed by a geometry or tessellation stage need not write
+    /// `gl_Position`, which naga requires of every vertex stage.
+    position_optional: bool,
+}
+
+/// naga's complaint about a vertex stage that does not write `gl_Position`.
+const POSITION_REQUIRED: &str = "must return a `@builtin(position)` output";
+
+enum JobStage {
+    Graphics(LoweredStage),
+    Compute(LoweredCompute),
+}
+
+impl JobStage {
+    fn preprocessed(&self) -> &Preprocessed {
+        match self {
+            JobStage::Graphics(s) => &s.preprocessed,
+            JobStage::Compute(s) => &s.preprocessed,
+        }
+    }
+
+    fn text(&self) -> &str {
+        match self {
+            JobStage::Graphics(s) => &s.lowered.text,
+            JobStage::Compute(s) => &s.lowered.text,
+        }
+    }
 }
 
 /// Validates a pack already in memory.
@@ -244,7 +271,13 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         .iter()
         .map(|p| ProgramReport {
             id: p.id(),
-            stages: p.stages.iter().map(|(_, s)| s.clone()).chain(p.other_stages.iter().cloned()).collect(),
+            stages: p
+                .stages
+                .iter()
+                .map(|(_, s)| s.clone())
+                .chain(p.other_stages.iter().cloned())
+                .chain(p.compute.iter().cloned())
+                .collect(),
             status: match &p.loader {
                 Loader::OptiFine => Status::Valid,
                 Loader::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
@@ -260,27 +293,35 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     for (set_index, (_, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(&pack, set);
         for (index, program) in programs.iter().enumerate() {
-            if program.loader != Loader::OptiFine || program.stages.is_empty() {
+            if program.loader != Loader::OptiFine || !program.has_stages() {
                 continue;
             }
-            for other in &program.other_stages {
-                let note = Diagnostic::warning(
-                    format!("{other} is not checked: the lowering handles vertex and fragment stages only"),
-                    None,
-                );
-                found.push((index, set_index, note));
-            }
-            match check_program(program, &provider, &macros, &props) {
-                Ok((lowered, diags)) => {
-                    found.extend(diags.into_iter().map(|d| (index, set_index, d)));
-                    for stage in lowered {
-                        let path = stage.preprocessed.files[0].clone();
-                        if seen.insert((path, stage.lowered.text.clone())) {
-                            jobs.push(Job { stage, set: set_index, program: index });
+            let diags = preprocess_other_stages(program, &provider, &macros, options.driver);
+            found.extend(diags.into_iter().map(|d| (index, set_index, d)));
+            let position_optional = !program.other_stages.is_empty();
+            let mut push = |stage: JobStage, jobs: &mut Vec<Job>| {
+                let path = stage.preprocessed().files[0].clone();
+                if seen.insert((path, stage.text().to_string())) {
+                    jobs.push(Job { stage, set: set_index, program: index, position_optional });
+                }
+            };
+            if !program.stages.is_empty() {
+                match check_program(program, &provider, &macros, &props) {
+                    Ok((lowered, diags)) => {
+                        found.extend(diags.into_iter().map(|d| (index, set_index, d)));
+                        for stage in lowered {
+                            push(JobStage::Graphics(stage), &mut jobs);
                         }
                     }
+                    Err(diags) => found.extend(diags.into_iter().map(|d| (index, set_index, d))),
                 }
-                Err(diags) => found.extend(diags.into_iter().map(|d| (index, set_index, d))),
+            }
+            for path in &program.compute {
+                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &props);
+                found.extend(diags.into_iter().map(|d| (index, set_index, d)));
+                if let Some(stage) = lowered {
+                    push(JobStage::Compute(stage), &mut jobs);
+                }
             }
         }
     }
@@ -333,16 +374,17 @@ fn run_driver(
     for (set_index, (label, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(pack, set);
         for (index, program) in programs.iter().enumerate() {
-            if program.loader != Loader::OptiFine || program.stages.is_empty() {
+            if program.loader != Loader::OptiFine || !program.has_stages() {
                 continue;
             }
             let ours = found
                 .iter()
                 .any(|(p, s, d)| *p == index && *s == set_index && d.is_error() && !driver::is_loader_level(d));
             let name = if sets.len() > 1 { format!("{} ({label})", program.id()) } else { program.id() };
+            found.extend(gl.unsupported(program).into_iter().map(|d| (index, set_index, d)));
             match gl.check(program, &provider) {
                 Ok(()) if ours => {
-                    let entry = program.stages.first().map(|s| Location::line(s.1.clone(), 1));
+                    let entry = program.entry().map(|s| Location::line(s.to_string(), 1));
                     let diag = Diagnostic::warning(
                         format!("the OpenGL driver ({}) compiles and links {}: tidepack's errors in it may be false", summary.driver, program.id()),
                         entry,
@@ -386,8 +428,9 @@ fn check_program(
             }
         }
     }
-    // With a geometry stage between them, vertex and fragment do not talk directly.
-    let linked = program.other_stages.iter().all(|s| !s.ends_with(".gsh"));
+    // With a geometry or tessellation stage between them, vertex and fragment do not talk
+    // directly.
+    let linked = program.other_stages.is_empty();
     let groups: Vec<Vec<(Stage, Arc<Preprocessed>)>> =
         if linked { vec![preprocessed.clone()] } else { preprocessed.iter().map(|s| vec![s.clone()]).collect() };
     let mut lowered = Vec::new();
@@ -409,9 +452,76 @@ fn check_program(
         if stage.stage == Stage::Fragment {
             diags.extend(interface::check_render_targets(&stage.preprocessed, stage));
         }
-        diags.extend(interface::check_resources(stage, &program.name, props));
+        diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, props));
     }
     Ok((lowered, diags))
+}
+
+/// The kind of stage of a geometry or tessellation file, for messages.
+pub fn other_stage_kind(path: &str) -> &'static str {
+    if path.ends_with(".gsh") {
+        "geometry"
+    } else if path.ends_with(".tcs") {
+        "tessellation control"
+    } else {
+        "tessellation evaluation"
+    }
+}
+
+/// Preprocesses a program's geometry and tessellation stages, which naga cannot read: include
+/// errors, `#error` and macro errors are reported; without `driver`, a warning per file says it
+/// was only preprocessed.
+fn preprocess_other_stages(
+    program: &Program,
+    provider: &dyn FileProvider,
+    macros: &PreprocessOptions,
+    driver: bool,
+) -> Vec<Diagnostic> {
+    let mut diags = Vec::new();
+    for path in &program.other_stages {
+        match preprocess::preprocess(provider, path, macros) {
+            Ok(pre) => {
+                diags.extend(pre.warnings.iter().cloned());
+                if !driver {
+                    diags.push(Diagnostic::warning(
+                        format!(
+                            "{path} was only preprocessed, not compiled: naga has no {} stage; `--driver` compiles it with Mesa",
+                            other_stage_kind(path)
+                        ),
+                        Some(Location::line(path.clone(), 1)),
+                    ));
+                }
+            }
+            Err(e) => diags.push(e),
+        }
+    }
+    diags
+}
+
+/// Preprocesses and lowers one compute stage and runs the checks that need no naga.
+fn check_compute(
+    path: &str,
+    program: &str,
+    provider: &dyn FileProvider,
+    macros: &PreprocessOptions,
+    props: &properties::Properties,
+) -> (Option<LoweredCompute>, Vec<Diagnostic>) {
+    let mut pre = match preprocess::preprocess(provider, path, macros) {
+        Ok(pre) => pre,
+        Err(e) => return (None, vec![e]),
+    };
+    assume_glsl_110(&mut pre);
+    let mut diags: Vec<Diagnostic> = pre.warnings.clone();
+    match validate::lower_compute(Arc::new(pre)) {
+        Ok(stage) => {
+            diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, props));
+            (Some(stage), diags)
+        }
+        Err(e) => {
+            diags.push(e);
+            (None, diags)
+        }
+    }
 }
 
 /// Speaks of the pack's names instead of the lowering's reserved ones in naga's messages, and
@@ -517,8 +627,8 @@ fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], thread
                             let i = next.fetch_add(1, Ordering::Relaxed);
                             let Some(job) = jobs.get(i) else { break };
                             let provider = SetProvider::new(pack, &sets[job.set].1);
-                            let entry = &job.stage.preprocessed.files[0];
-                            let lines = job.stage.lowered.text.lines().count();
+                            let entry = &job.stage.preprocessed().files[0];
+                            let lines = job.stage.text().lines().count();
                             if lines > MAX_NAGA_LINES {
                                 let diag = Diagnostic::warning(
                                     format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
@@ -527,20 +637,26 @@ fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], thread
                                 found.push((job.program, job.set, diag));
                                 continue;
                             }
-                            if let Some(line) = too_deep(&job.stage.lowered.text) {
-                                let at = job.stage.preprocessed.location(line);
+                            if let Some(line) = too_deep(job.stage.text()) {
+                                let at = job.stage.preprocessed().location(line);
                                 let diag = Diagnostic::error(format!("brackets nest deeper than {MAX_NESTING} levels"), at);
                                 found.push((job.program, job.set, diag));
                                 continue;
                             }
                             let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                                validate::validate_stage(&mut frontend, &job.stage, &provider)
+                                match &job.stage {
+                                    JobStage::Graphics(stage) => validate::validate_stage(&mut frontend, stage, &provider).map(|_| ()),
+                                    JobStage::Compute(stage) => validate::validate_compute(&mut frontend, stage, &provider).map(|_| ()),
+                                }
                             }));
                             match result {
                                 Ok(Ok(_)) => {}
-                                Ok(Err(diags)) => {
-                                    found.extend(diags.into_iter().map(|d| (job.program, job.set, clarify(d))))
-                                }
+                                Ok(Err(diags)) => found.extend(
+                                    diags
+                                        .into_iter()
+                                        .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
+                                        .map(|d| (job.program, job.set, clarify(d))),
+                                ),
                                 Err(panic) => {
                                     frontend = validate::Frontend::default();
                                     let what = panic

@@ -103,8 +103,11 @@ pub struct Program {
     pub name: String,
     /// Stage files (paths relative to `shaders/`), vertex first.
     pub stages: Vec<(Stage, String)>,
-    /// Other stage files (geometry, compute, tessellation) the lowering does not handle.
+    /// Geometry and tessellation files (`.gsh`, `.tcs`, `.tes`), which naga cannot read: they
+    /// are preprocessed, and compiled by the driver with `--driver`.
     pub other_stages: Vec<String>,
+    /// Compute files (`name.csh`, `name_a.csh` … `name_z.csh`), in the order OptiFine runs them.
+    pub compute: Vec<String>,
     pub loader: Loader,
 }
 
@@ -112,6 +115,27 @@ impl Program {
     /// `world-1/gbuffers_water` or `composite`.
     pub fn id(&self) -> String {
         if self.world.is_empty() { self.name.clone() } else { format!("{}/{}", self.world, self.name) }
+    }
+
+    /// The first stage file: vertex, else any other.
+    pub fn entry(&self) -> Option<&str> {
+        self.stages.first().map(|s| s.1.as_str()).or(self.other_stages.first().map(String::as_str)).or(self.compute.first().map(String::as_str))
+    }
+
+    /// Whether the program has any stage file at all.
+    pub fn has_stages(&self) -> bool {
+        !self.stages.is_empty() || !self.other_stages.is_empty() || !self.compute.is_empty()
+    }
+
+    /// The geometry, tessellation control and tessellation evaluation files.
+    pub fn geometry(&self) -> Option<&String> {
+        self.other_stages.iter().find(|s| s.ends_with(".gsh"))
+    }
+    pub fn tess_control(&self) -> Option<&String> {
+        self.other_stages.iter().find(|s| s.ends_with(".tcs"))
+    }
+    pub fn tess_evaluation(&self) -> Option<&String> {
+        self.other_stages.iter().find(|s| s.ends_with(".tes"))
     }
 }
 
@@ -137,22 +161,33 @@ pub fn find_programs<'a>(paths: impl Iterator<Item = &'a String>) -> Vec<Program
             _ => continue,
         };
         // Compute shaders may have suffixes `_a` … `_z`: the program is the base name.
-        let base = if ext == "csh" { name.split_once('_').filter(|(_, s)| s.len() == 1).map_or(name, |(b, _)| b) } else { name };
+        let base = if ext == "csh" {
+            name.rsplit_once('_').filter(|(_, s)| s.len() == 1 && s.as_bytes()[0].is_ascii_lowercase()).map_or(name, |(b, _)| b)
+        } else {
+            name
+        };
         let program = found.entry((world.to_string(), base.to_string())).or_insert_with(|| Program {
             world: world.to_string(),
             name: base.to_string(),
             stages: Vec::new(),
             other_stages: Vec::new(),
+            compute: Vec::new(),
             loader: loader_of(base),
         });
         match stage {
             Some(stage) if base == name => program.stages.push((stage, path.clone())),
-            _ => program.other_stages.push(path.clone()),
+            _ if ext == "csh" => program.compute.push(path.clone()),
+            _ if base == name => program.other_stages.push(path.clone()),
+            // `name_a.vsh` and the like are no stage of any program.
+            _ => {}
         }
     }
     let mut programs: Vec<Program> = found.into_values().collect();
     for p in &mut programs {
         p.stages.sort();
+        p.other_stages.sort();
+        // `composite.csh` runs first, then `composite_a.csh` … `composite_z.csh`.
+        p.compute.sort();
     }
     programs
 }
@@ -196,6 +231,7 @@ mod tests {
         let ids: Vec<String> = programs.iter().map(Program::id).collect();
         assert_eq!(ids, ["composite", "gbuffers_water", "world-1/composite", "world-1/gbuffers_water"]);
         assert_eq!(programs[1].stages.len(), 2);
-        assert_eq!(programs[0].other_stages, ["composite_a.csh"]);
+        assert_eq!(programs[0].compute, ["composite_a.csh"]);
+        assert_eq!(programs[2].other_stages, ["world-1/composite.gsh"]);
     }
 }

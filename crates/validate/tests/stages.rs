@@ -1,0 +1,317 @@
+//! Compute, geometry and tessellation stages:
+//! - compute stages (`.csh`) go through the lowering and naga like vertex and fragment stages,
+//!   errors located at their file and line;
+//! - geometry and tessellation stages are preprocessed (include errors, `#error`) and, without
+//!   `--driver`, reported as only preprocessed; with `--driver` Mesa compiles and links them
+//!   with the program's vertex and fragment stages, its errors located at their file and line.
+//!
+//! The `--driver` tests need Mesa's EGL/GL (tools/test installs them); without it they fail,
+//! they never skip.
+
+use tidepack_validate::input::pack_from_memory;
+use tidepack_validate::{Options, Report, Status, validate_pack};
+
+fn validate(files: &[(&str, &str)], driver: bool) -> Report {
+    let pack = pack_from_memory("test/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
+    validate_pack(pack, &Options { threads: 2, driver, ..Options::default() }).unwrap()
+}
+
+fn show(report: &Report) -> String {
+    report.diagnostics.iter().map(|d| format!("\n    {d}")).collect()
+}
+
+fn has(report: &Report, error: bool, path: &str, line: u32, needle: &str) -> bool {
+    report.diagnostics.iter().any(|d| {
+        d.is_error() == error && d.location.as_ref().is_some_and(|l| l.path == path && l.line == line) && d.message.contains(needle)
+    })
+}
+
+fn status(report: &Report, program: &str) -> Status {
+    report.programs.iter().find(|p| p.id == program).unwrap_or_else(|| panic!("no program {program}")).status.clone()
+}
+
+const COMPUTE: &str = "#version 430 compatibility
+layout(local_size_x = 16, local_size_y = 16) in;
+const vec2 workGroupsRender = vec2(1.0, 1.0);
+layout(rgba16f) uniform image2D colorimg0;
+uniform writeonly image2D colorimg1;
+uniform sampler2D colortex2;
+uniform float frameTimeCounter;
+uniform vec2 viewSize;
+shared uint count;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (gl_LocalInvocationIndex == 0u) count = 0u;
+    barrier();
+    memoryBarrierShared();
+    atomicAdd(count, 1u);
+    vec4 c = imageLoad(colorimg0, p) + texelFetch(colortex2, p, 0) * frameTimeCounter;
+    imageStore(colorimg1, p, c);
+}
+";
+
+const COMPUTE_A: &str = "#version 430
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include \"/lib/common.glsl\"
+layout(rgba8) uniform image2D colorimg3;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    imageStore(colorimg3, p, vec4(brighten(imageLoad(colorimg3, p).rgb), 1.0));
+}
+";
+
+const COMMON: &str = "vec3 brighten(vec3 c) {
+    return c * 1.5;
+}
+";
+
+const FINAL: &str = "#version 120
+uniform sampler2D colortex0;
+varying vec2 uv;
+void main() { gl_FragColor = texture2D(colortex0, uv); }
+";
+
+const FINAL_VSH: &str = "#version 120
+varying vec2 uv;
+void main() { gl_Position = ftransform(); uv = gl_MultiTexCoord0.xy; }
+";
+
+fn compute_pack(composite_a: &str) -> Vec<(&'static str, String)> {
+    vec![
+        ("composite.csh", COMPUTE.replace("uniform vec2 viewSize;\n", "\n")),
+        ("composite_a.csh", composite_a.to_string()),
+        ("lib/common.glsl", COMMON.to_string()),
+        ("final.vsh", FINAL_VSH.to_string()),
+        ("final.fsh", FINAL.to_string()),
+    ]
+}
+
+fn as_refs<'a>(files: &'a [(&'static str, String)]) -> Vec<(&'static str, &'a str)> {
+    files.iter().map(|(p, t)| (*p, t.as_str())).collect()
+}
+
+#[test]
+fn valid_compute_stages_validate_through_naga() {
+    let files = compute_pack(COMPUTE_A);
+    let report = validate(&as_refs(&files), false);
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
+    assert_eq!(status(&report, "composite"), Status::Valid);
+    let composite = report.programs.iter().find(|p| p.id == "composite").unwrap();
+    assert_eq!(composite.stages, ["composite.csh", "composite_a.csh"]);
+    // final.vsh, final.fsh and both compute stages.
+    assert_eq!(report.stages_validated, 4);
+}
+
+#[test]
+fn a_type_error_in_a_compute_stage_is_reported_at_its_line() {
+    let broken = COMPUTE_A.replace("    ivec2 p = ivec2(gl_GlobalInvocationID.xy);", "    ivec2 p = gl_GlobalInvocationID.xy;");
+    let files = compute_pack(&broken);
+    let report = validate(&as_refs(&files), false);
+    assert!(has(&report, true, "composite_a.csh", 6, ""), "{}", show(&report));
+    assert_eq!(status(&report, "composite"), Status::Invalid);
+    assert_eq!(status(&report, "final"), Status::Valid);
+    // An error in an included function is reported in the included file.
+    let files = vec![("composite.csh", COMPUTE_A.to_string()), ("lib/common.glsl", COMMON.replace("c * 1.5", "c * vec2(1.5)"))];
+    let report = validate(&as_refs(&files), false);
+    assert!(has(&report, true, "lib/common.glsl", 2, ""), "{}", show(&report));
+}
+
+#[test]
+fn compute_stages_get_the_resource_checks() {
+    let files = [("composite.csh", COMPUTE), ("composite1.csh", &COMPUTE.replace("colorimg1", "outputimg") as &str)];
+    let report = validate(&files, false);
+    assert!(has(&report, false, "composite.csh", 8, "`viewSize` is not a uniform OptiFine sets"), "{}", show(&report));
+    assert!(has(&report, false, "composite1.csh", 5, "`outputimg` is not an image OptiFine binds"), "{}", show(&report));
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+}
+
+const GEOMETRY_VSH: &str = "#version 150 compatibility
+out vec2 texcoord_v;
+void main() {
+    gl_Position = ftransform();
+    texcoord_v = gl_MultiTexCoord0.xy;
+}
+";
+
+const GEOMETRY: &str = "#version 150 compatibility
+#include \"/lib/geometry.glsl\"
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+in vec2 texcoord_v[];
+out vec2 texcoord;
+void main() {
+    for (int i = 0; i < 3; i++) {
+        gl_Position = gl_in[i].gl_Position;
+        texcoord = shift(texcoord_v[i]);
+        EmitVertex();
+    }
+    EndPrimitive();
+}
+";
+
+const GEOMETRY_LIB: &str = "vec2 shift(vec2 v) {
+    return v + vec2(0.5);
+}
+";
+
+const GEOMETRY_FSH: &str = "#version 150 compatibility
+uniform sampler2D gtexture;
+in vec2 texcoord;
+/* RENDERTARGETS: 0 */
+out vec4 outColor0;
+void main() {
+    outColor0 = texture(gtexture, texcoord);
+}
+";
+
+fn geometry_pack(geometry: &str, lib: &str) -> Vec<(&'static str, String)> {
+    vec![
+        ("gbuffers_terrain.vsh", GEOMETRY_VSH.to_string()),
+        ("gbuffers_terrain.gsh", geometry.to_string()),
+        ("gbuffers_terrain.fsh", GEOMETRY_FSH.to_string()),
+        ("lib/geometry.glsl", lib.to_string()),
+    ]
+}
+
+#[test]
+fn a_geometry_stage_without_driver_is_preprocessed_and_says_so() {
+    let files = geometry_pack(GEOMETRY, GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    assert!(has(&report, false, "gbuffers_terrain.gsh", 1, "only preprocessed"), "{}", show(&report));
+    assert_eq!(report.warnings(), 1, "{}", show(&report));
+    // Vertex and fragment stages still go through naga, each alone.
+    assert_eq!(report.stages_validated, 2);
+}
+
+#[test]
+fn an_include_cycle_in_a_geometry_stage_is_reported() {
+    let cyclic = format!("#include \"/lib/geometry.glsl\"\n{GEOMETRY_LIB}");
+    let files = geometry_pack(GEOMETRY, &cyclic);
+    for driver in [false, true] {
+        let report = validate(&as_refs(&files), driver);
+        assert!(has(&report, true, "lib/geometry.glsl", 1, "include cycle"), "driver {driver}: {}", show(&report));
+        assert_eq!(status(&report, "gbuffers_terrain"), Status::Invalid);
+    }
+}
+
+#[test]
+fn an_error_directive_in_a_geometry_stage_is_reported() {
+    let files = geometry_pack(&GEOMETRY.replace("layout(triangles) in;", "#error no geometry today"), GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), false);
+    assert!(has(&report, true, "gbuffers_terrain.gsh", 3, "no geometry today"), "{}", show(&report));
+}
+
+#[test]
+fn a_clean_geometry_program_validates_under_the_driver() {
+    let files = geometry_pack(GEOMETRY, GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), true);
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
+    assert_eq!(status(&report, "gbuffers_terrain"), Status::Valid);
+    let driver = report.driver.as_ref().unwrap();
+    assert_eq!(driver.both_accept, 1, "{driver:?}");
+}
+
+#[test]
+fn a_syntax_error_in_a_geometry_stage_is_reported_by_the_driver_at_its_line() {
+    let broken = GEOMETRY.replace("        EmitVertex();", "        EmitVertex()");
+    let files = geometry_pack(&broken, GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), true);
+    // Mesa reports a missing `;` at the next token, on the following line.
+    assert!(
+        report.diagnostics.iter().any(|d| d.is_error()
+            && d.message.contains("OpenGL driver")
+            && d.location.as_ref().is_some_and(|l| l.path == "gbuffers_terrain.gsh" && (11..=12).contains(&l.line))),
+        "{}",
+        show(&report)
+    );
+    assert_eq!(report.driver.as_ref().unwrap().only_driver_rejects, ["gbuffers_terrain"]);
+    // An error in an included function is located in the included file.
+    let files = geometry_pack(GEOMETRY, &GEOMETRY_LIB.replace("vec2(0.5)", "vec3(0.5)"));
+    let report = validate(&as_refs(&files), true);
+    assert!(has(&report, true, "lib/geometry.glsl", 2, "OpenGL driver"), "{}", show(&report));
+    // Without the driver the same mistake is not an error: the stage was only preprocessed.
+    let files = geometry_pack(&broken, GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    assert!(has(&report, false, "gbuffers_terrain.gsh", 1, "only preprocessed"), "{}", show(&report));
+}
+
+#[test]
+fn geometry_outputs_that_do_not_link_with_the_fragment_stage_are_reported_by_the_driver() {
+    let geometry = GEOMETRY.replace("out vec2 texcoord;", "out vec3 texcoord;").replace("texcoord = shift(texcoord_v[i]);", "texcoord = vec3(shift(texcoord_v[i]), 0.0);");
+    let files = geometry_pack(&geometry, GEOMETRY_LIB);
+    let report = validate(&as_refs(&files), true);
+    assert!(report.diagnostics.iter().any(|d| d.is_error() && d.message.contains("OpenGL driver") && d.message.contains("texcoord")), "{}", show(&report));
+    assert_eq!(status(&report, "gbuffers_terrain"), Status::Invalid);
+}
+
+const TESS_VSH: &str = "#version 400 compatibility
+out vec3 position_v;
+void main() { position_v = gl_Vertex.xyz; }
+";
+
+const TESS_CONTROL: &str = "#version 400 compatibility
+layout(vertices = 3) out;
+in vec3 position_v[];
+out vec3 position_c[];
+void main() {
+    position_c[gl_InvocationID] = position_v[gl_InvocationID];
+    gl_TessLevelOuter[0] = 2.0; gl_TessLevelOuter[1] = 2.0; gl_TessLevelOuter[2] = 2.0;
+    gl_TessLevelInner[0] = 2.0;
+}
+";
+
+const TESS_EVALUATION: &str = "#version 400 compatibility
+layout(triangles, equal_spacing, ccw) in;
+in vec3 position_c[];
+uniform mat4 gbufferProjection;
+void main() {
+    vec3 p = gl_TessCoord.x * position_c[0] + gl_TessCoord.y * position_c[1] + gl_TessCoord.z * position_c[2];
+    gl_Position = gbufferProjection * vec4(p, 1.0);
+}
+";
+
+const TESS_FSH: &str = "#version 400 compatibility
+/* RENDERTARGETS: 0 */
+out vec4 outColor0;
+void main() { outColor0 = vec4(1.0); }
+";
+
+fn tessellation_pack(evaluation: &str) -> Vec<(&'static str, String)> {
+    vec![
+        ("gbuffers_water.vsh", TESS_VSH.to_string()),
+        ("gbuffers_water.tcs", TESS_CONTROL.to_string()),
+        ("gbuffers_water.tes", evaluation.to_string()),
+        ("gbuffers_water.fsh", TESS_FSH.to_string()),
+    ]
+}
+
+#[test]
+fn tessellation_stages_are_preprocessed_and_compiled_by_the_driver() {
+    let files = tessellation_pack(TESS_EVALUATION);
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    assert!(has(&report, false, "gbuffers_water.tcs", 1, "only preprocessed"), "{}", show(&report));
+    assert!(has(&report, false, "gbuffers_water.tes", 1, "only preprocessed"), "{}", show(&report));
+    let report = validate(&as_refs(&files), true);
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
+    let broken = TESS_EVALUATION.replace("vec4(p, 1.0)", "vec4(p)");
+    let files = tessellation_pack(&broken);
+    let report = validate(&as_refs(&files), true);
+    assert!(has(&report, true, "gbuffers_water.tes", 7, "OpenGL driver"), "{}", show(&report));
+}
+
+#[test]
+fn the_driver_agrees_with_naga_on_compute_stages() {
+    let files = compute_pack(COMPUTE_A);
+    let report = validate(&as_refs(&files), true);
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
+    assert_eq!(report.driver.as_ref().unwrap().both_accept, 2);
+    let broken = COMPUTE_A.replace("    ivec2 p = ivec2(gl_GlobalInvocationID.xy);", "    ivec2 p = gl_GlobalInvocationID.xy;");
+    let files = compute_pack(&broken);
+    let report = validate(&as_refs(&files), true);
+    let driver = report.driver.as_ref().unwrap();
+    assert_eq!(driver.both_reject, 1, "{driver:?}: {}", show(&report));
+    assert!(driver.only_tidepack_rejects.is_empty() && driver.only_driver_rejects.is_empty(), "{driver:?}");
+}
