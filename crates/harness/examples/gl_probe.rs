@@ -1,8 +1,8 @@
-//! Diagnostic, ignored by default: where OpenGL and wgpu differ, stage by stage (depth buffers
+//! Diagnostic: where OpenGL and wgpu differ, stage by stage (depth buffers
 //! bit for bit, colour buffers, composite output), with the worst pixels listed and a difference
 //! image in target/gl-probe/ (red: output over 1/255, green: depth0 differs).
 //!
-//!     cargo test -p tidepack-harness --test gl_probe -- --ignored --nocapture
+//!     cargo run --release -p tidepack-harness --example gl_probe
 //!
 //! PROBE_SCENES=a,b (default: all)  PROBE_DIALECT=120|330  PROBE_GL_DEPTH=1 (OpenGL's own depth
 //! conventions, `gl::DepthMapping::OpenGl`)  PROBE_NUDGE=dx,dy,dz (camera offset in blocks)
@@ -35,9 +35,7 @@ fn differing(name: &str, a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<
     v
 }
 
-#[test]
-#[ignore]
-fn probe() {
+fn main() {
     let names: Vec<String> = match std::env::var("PROBE_SCENES") {
         Ok(s) => s.split(',').map(str::to_string).collect(),
         Err(_) => {
