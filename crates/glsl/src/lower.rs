@@ -17,7 +17,9 @@
 //! - Fragment outputs: `gl_FragData[i]` and `gl_FragColor` become `layout(location = i) out vec4`;
 //!   330 `out vec4 outColorN` gets location N, other outputs their declaration order.
 //! - `texture2D`, `texture2DLod`, `shadow2D`, … become `texture`, `textureLod`, and
-//!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms.
+//!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms. Outside fragment stages, where GLSL
+//!   samples the base level and naga refuses implicit levels, `texture(s, p)` (also from
+//!   `texture2D`, `shadow2D`, …) becomes `textureLod(s, p, 0.0)`.
 //! - A combined `uniform sampler2D s` becomes `texture2D s` plus `sampler tp_sampler_s`, and
 //!   every use of `s` becomes `sampler2D(s, tp_sampler_s)`; a function taking a sampler takes
 //!   both halves, and its call sites pass both. The old atlas name `texture` becomes `gtexture`.
@@ -958,8 +960,11 @@ impl<'a> Lowering<'_, 'a> {
         let mut paren_depth = 0;
         // Calls of sampler-taking functions: (function, paren depth inside the call, argument index).
         let mut calls: Vec<(String, i32, usize)> = Vec::new();
-        // Paren depth at which a shadow lookup's extra closing text goes.
+        // Paren depth at which a lookup's closing `)` is replaced, and its replacement.
         let mut closers: Vec<(i32, &'static str)> = Vec::new();
+        // Outside fragment stages there are no derivatives: naga refuses implicit-level
+        // sampling there, where GLSL samples the base level. Make the level explicit.
+        let implicit_level = !self.compute && self.stage == Stage::Fragment;
         let mut k = 0;
         while k < sig.len() {
             let i = sig[k];
@@ -982,7 +987,7 @@ impl<'a> Lowering<'_, 'a> {
                     if let Some(&(depth, closer)) = closers.last()
                         && depth == paren_depth
                     {
-                        self.replace(i, i + 1, format!("){closer}"));
+                        self.replace(i, i + 1, closer.to_string());
                         closers.pop();
                     }
                     if calls.last().is_some_and(|c| c.1 == paren_depth) {
@@ -1024,12 +1029,20 @@ impl<'a> Lowering<'_, 'a> {
             if let Some((_, new_name, shadow)) = LEGACY_SAMPLING.iter().find(|(old, ..)| *old == t.text)
                 && followed_by_call
             {
+                let base_level = !implicit_level && *new_name == "texture";
+                let new_name = if base_level { "textureLod" } else { new_name };
                 if *shadow {
                     self.replace(i, i + 1, format!("vec4(vec3({new_name}"));
-                    closers.push((paren_depth + 1, "), 1.0)"));
+                    closers.push((paren_depth + 1, if base_level { ", 0.0)), 1.0)" } else { ")), 1.0)" }));
                 } else {
                     self.replace(i, i + 1, new_name.to_string());
+                    if base_level {
+                        closers.push((paren_depth + 1, ", 0.0)"));
+                    }
                 }
+            } else if t.text == "texture" && followed_by_call && !implicit_level {
+                self.replace(i, i + 1, "textureLod".to_string());
+                closers.push((paren_depth + 1, ", 0.0)"));
             } else if followed_by_call && self.symbols.sampler_functions.contains_key(t.text) {
                 calls.push((t.text.to_string(), paren_depth + 1, 0));
             } else if let Some(ty) = local_samplers.get(t.text).cloned() {

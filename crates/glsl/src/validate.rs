@@ -204,6 +204,28 @@ void main() {
     }
 
     #[test]
+    fn sampling_outside_fragment_stages_reads_the_base_level() {
+        let text = "#version 430\nlayout(local_size_x = 8) in;\nuniform sampler2D colortex3;\nuniform sampler2DShadow shadowtex0;\n\
+                    layout(rgba8) uniform image2D colorimg1;\nvoid main() {\n\
+                    vec4 c = texture(colortex3, vec2(0.5)) + texture2D(colortex3, vec2(texture(colortex3, vec2(0.1)).r));\n\
+                    float s = shadow2D(shadowtex0, vec3(0.5)).r + texture(shadowtex0, vec3(0.2));\n\
+                    imageStore(colorimg1, ivec2(0), c * s);\n}\n";
+        if let Err(e) = compute(text) {
+            panic!("{e:?}");
+        }
+        let files: HashMap<String, Arc<str>> = [
+            ("a.vsh".to_string(), Arc::from("#version 120\nuniform sampler2D noisetex;\nvoid main() { gl_Position = ftransform() + texture2D(noisetex, vec2(0.5)); }\n")),
+        ]
+        .into();
+        let pre = preprocess(&files, "a.vsh", &PreprocessOptions::default()).unwrap();
+        let stages = lower_program(&[(Stage::Vertex, Arc::new(pre))]).unwrap();
+        assert!(stages[0].lowered.text.contains("textureLod(sampler2D(noisetex, tp_sampler_noisetex), vec2(0.5), 0.0)"), "{}", stages[0].lowered.text);
+        if let Err(e) = validate_stage(&mut Frontend::default(), &stages[0], &files) {
+            panic!("{e:?}");
+        }
+    }
+
+    #[test]
     fn a_type_error_in_a_compute_stage_is_located() {
         let text = VALID.replace("    vec4 c = imageLoad", "    float bad = vec3(1.0);\n    vec4 c = imageLoad");
         let errors = compute(&text).unwrap_err();

@@ -178,6 +178,16 @@ fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String>
             return Err(format!("lowering changed the line count of {target}: {pre_lines} -> {lowered_lines}"));
         }
     }
+    if target.ends_with(".csh")
+        && let Ok(pre) = preprocess::preprocess(&files, target, &PreprocessOptions::default())
+        && let Ok(lowered) = validate::lower_compute(Arc::new(pre))
+    {
+        let (pre_lines, lowered_lines) =
+            (lowered.preprocessed.text.matches('\n').count(), lowered.lowered.text.matches('\n').count());
+        if pre_lines != lowered_lines {
+            return Err(format!("lowering changed the line count of {target}: {pre_lines} -> {lowered_lines}"));
+        }
+    }
     let mut memory: Vec<(String, Vec<u8>)> = pack.iter().map(|(p, b)| (p.clone(), b.clone())).collect();
     for (p, b) in &mut memory {
         if p == target {

@@ -117,6 +117,20 @@ fn a_type_error_in_a_compute_stage_is_reported_at_its_line() {
 }
 
 #[test]
+fn image_atomics_naga_lacks_are_warnings_not_errors() {
+    let text = COMPUTE_A.replace("layout(rgba8) uniform image2D colorimg3;", "layout(r32ui) uniform uimage2D colorimg3;").replace(
+        "    imageStore(colorimg3, p, vec4(brighten(imageLoad(colorimg3, p).rgb), 1.0));",
+        "    imageAtomicAdd(colorimg3, p, 1u);",
+    );
+    let files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    assert!(has(&report, false, "composite.csh", 7, "imageAtomicAdd() is not checked"), "{}", show(&report));
+    let report = validate(&as_refs(&files), true);
+    assert_eq!(report.driver.as_ref().unwrap().both_accept, 1, "{}", show(&report));
+}
+
+#[test]
 fn compute_stages_get_the_resource_checks() {
     let files = [("composite.csh", COMPUTE), ("composite1.csh", &COMPUTE.replace("colorimg1", "outputimg") as &str)];
     let report = validate(&files, false);
@@ -314,4 +328,16 @@ fn the_driver_agrees_with_naga_on_compute_stages() {
     let driver = report.driver.as_ref().unwrap();
     assert_eq!(driver.both_reject, 1, "{driver:?}: {}", show(&report));
     assert!(driver.only_tidepack_rejects.is_empty() && driver.only_driver_rejects.is_empty(), "{driver:?}");
+}
+
+#[test]
+fn fuzzing_compute_and_geometry_stages_finds_no_crash() {
+    let packs = [compute_pack(COMPUTE_A), geometry_pack(GEOMETRY, GEOMETRY_LIB), tessellation_pack(TESS_EVALUATION)];
+    let seeds: Vec<tidepack_validate::fuzz::SeedPack> =
+        packs.iter().map(|files| files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())).collect()).collect();
+    let stats = tidepack_validate::fuzz::run(&seeds, 3000, std::time::Duration::from_secs(30), 0x6373_6868);
+    assert!(stats.executions >= 50, "{stats:?}");
+    let findings: Vec<String> =
+        stats.findings.iter().map(|(what, input)| format!("{what}\n--- input ---\n{}", String::from_utf8_lossy(input))).collect();
+    assert_eq!(stats.crashes + stats.invariant_failures, 0, "{}", findings.join("\n\n"));
 }
