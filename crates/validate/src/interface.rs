@@ -183,10 +183,12 @@ fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
 pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, props: &Properties) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     for name in lowered.interface.images.keys() {
-        if !known::is_image(name) {
+        if !known::is_image(name) && !props.custom_images.contains(name) {
             let at = uniform_line(pre, name).and_then(|l| pre.location(l));
             found.push(Diagnostic::warning(
-                format!("`{name}` is not an image OptiFine binds (colorimg0-15, shadowcolorimg0-1): nothing is bound to it"),
+                format!(
+                    "`{name}` is not an image OptiFine binds (colorimg0-15, shadowcolorimg0-1) nor an `image.{name}` of shaders.properties: nothing is bound to it"
+                ),
                 at,
             ));
         }

@@ -530,28 +530,42 @@ fn clarify(mut diag: Diagnostic) -> Diagnostic {
     diag.message = unlower_names(&diag.message);
     let sampling = ["texture", "textureLod", "textureProj", "textureGrad", "texelFetch", "textureSize", "textureOffset"];
     let unknown = diag.message.strip_prefix("Unknown function '").and_then(|r| r.strip_suffix('\'')).map(str::to_string);
-    if let Some(name) = unknown.as_deref()
+    let unknown_variable = diag.message.strip_prefix("Unknown variable: ").map(str::to_string);
+    if let Some(name) = unknown.as_deref().or(unknown_variable.as_deref())
         && NAGA_LACKS.iter().any(|prefix| name.starts_with(prefix))
     {
         // Valid GLSL naga's front-end does not implement: not the pack's mistake.
+        let call = if unknown.is_some() { "()" } else { "" };
         diag.severity = tidepack_glsl::Severity::Warning;
-        diag.message = format!("{name}() is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
+        diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
-    if let Some(name) = unknown
-        && sampling.contains(&name.as_str())
+    if let Some(name) = unknown.as_deref()
+        && sampling.contains(&name)
     {
         diag = diag.with_note(format!(
             "no form of {name}() (texture2D, shadow2D, … in old GLSL) takes these arguments: check the sampler's type \
              (sampler2D, sampler2DShadow, sampler3D, …) against the coordinates"
         ));
+    } else if let Some(name) = unknown.as_deref()
+        && matches!(name, "imageLoad" | "imageStore" | "imageSize")
+    {
+        diag = diag.with_note(format!(
+            "no form of {name}() takes these arguments: check the image's type (image2D, uimage2D, image3D, …) against \
+             the coordinates (ivec2 for image2D) and the value (vec4 for image*, uvec4 for uimage*, ivec4 for iimage*)"
+        ));
+    } else if let Some(name) = unknown.as_deref()
+        && name.starts_with("atomic")
+    {
+        diag = diag.with_note(format!("no form of {name}() takes these arguments: atomics take an int or uint variable (shared or in a buffer) and an int or uint value"));
     }
     diag
 }
 
-/// Built-in functions (by prefix) naga's GLSL front-end lacks and the lowering has no stand-in
-/// for: image atomics (images cannot be function parameters in naga) and atomic counters.
-const NAGA_LACKS: [&str; 2] = ["imageAtomic", "atomicCounter"];
+/// Built-in functions and variables (by prefix) naga's GLSL front-end lacks and the lowering has
+/// no stand-in for: image atomics (images cannot be function parameters in naga), atomic
+/// counters, and the subgroup built-ins of `GL_KHR_shader_subgroup_*`.
+const NAGA_LACKS: [&str; 4] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup"];
 
 /// `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
 pub fn unlower_names(message: &str) -> String {

@@ -14,8 +14,11 @@ pub struct Properties {
     pub profiles: BTreeMap<String, (String, u32)>,
     /// `uniform.<type>.<name>` and `variable.<type>.<name>`: name → type.
     pub custom_uniforms: BTreeMap<String, String>,
-    /// Sampler names made available by `customTexture.<name>` (Iris).
+    /// Sampler names made available by `customTexture.<name>` (Iris) and by the sampler
+    /// names of `image.<name>` (Iris custom images).
     pub custom_samplers: BTreeSet<String>,
+    /// Image names made available by `image.<name> = <sampler> <format> …` (Iris).
+    pub custom_images: BTreeSet<String>,
 }
 
 /// Reads the keys the validator needs. Directive lines (`#ifdef …`) are skipped: profiles are
@@ -47,6 +50,11 @@ pub fn parse(text: &str) -> Properties {
             }
         } else if let Some(name) = key.strip_prefix("customTexture.") {
             props.custom_samplers.insert(name.to_string());
+        } else if let Some(name) = key.strip_prefix("image.") {
+            props.custom_images.insert(name.to_string());
+            if let Some(sampler) = value.split_whitespace().next() {
+                props.custom_samplers.insert(sampler.to_string());
+            }
         }
     }
     props
@@ -138,6 +146,8 @@ mod tests {
             "#ifdef X\nuniform.float.fadeIn = smooth(1, 2, 3)\n#endif\nprofile.LOW=!SHADOWS QUALITY:1 \\\n  profile.BASE\nprofile.BASE=WAVES\n",
         );
         assert_eq!(props.custom_uniforms.get("fadeIn").map(String::as_str), Some("float"));
+        let images = parse("image.imgDepthQ = texDepthQ RED R16F HALF_FLOAT false true 0.25 0.25\n");
+        assert!(images.custom_images.contains("imgDepthQ") && images.custom_samplers.contains("texDepthQ"));
         assert_eq!(props.profiles["LOW"], ("!SHADOWS QUALITY:1 profile.BASE".to_string(), 4));
         let options: BTreeMap<String, OptionKind> = [
             ("SHADOWS".to_string(), OptionKind::Switch { default: true }),

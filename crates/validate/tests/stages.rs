@@ -110,6 +110,15 @@ fn a_type_error_in_a_compute_stage_is_reported_at_its_line() {
     assert!(has(&report, true, "composite_a.csh", 6, ""), "{}", show(&report));
     assert_eq!(status(&report, "composite"), Status::Invalid);
     assert_eq!(status(&report, "final"), Status::Valid);
+    // A mismatched imageStore is explained.
+    let broken = COMPUTE_A.replace("vec4(brighten(imageLoad(colorimg3, p).rgb), 1.0)", "brighten(imageLoad(colorimg3, p).rgb)");
+    let files = compute_pack(&broken);
+    let report = validate(&as_refs(&files), false);
+    assert!(
+        report.diagnostics.iter().any(|d| d.location.as_ref().is_some_and(|l| l.line == 7) && d.notes.iter().any(|n| n.contains("no form of imageStore()"))),
+        "{}",
+        show(&report)
+    );
     // An error in an included function is reported in the included file.
     let files = vec![("composite.csh", COMPUTE_A.to_string()), ("lib/common.glsl", COMMON.replace("c * 1.5", "c * vec2(1.5)"))];
     let report = validate(&as_refs(&files), false);
@@ -128,6 +137,29 @@ fn image_atomics_naga_lacks_are_warnings_not_errors() {
     assert!(has(&report, false, "composite.csh", 7, "imageAtomicAdd() is not checked"), "{}", show(&report));
     let report = validate(&as_refs(&files), true);
     assert_eq!(report.driver.as_ref().unwrap().both_accept, 1, "{}", show(&report));
+}
+
+#[test]
+fn subgroup_built_ins_naga_lacks_are_warnings_not_errors() {
+    let text = COMPUTE_A.replace("#version 430\n", "#version 460 compatibility\n#extension GL_KHR_shader_subgroup_basic : enable\n").replace(
+        "    ivec2 p = ivec2(gl_GlobalInvocationID.xy);",
+        "    ivec2 p = ivec2(gl_GlobalInvocationID.xy) + int(gl_SubgroupSize);",
+    );
+    let files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+    assert!(has(&report, false, "composite.csh", 7, "gl_SubgroupSize is not checked"), "{}", show(&report));
+}
+
+#[test]
+fn iris_custom_images_are_known() {
+    let text = COMPUTE_A.replace("colorimg3", "imgDepthQ");
+    let mut files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let report = validate(&as_refs(&files), false);
+    assert!(has(&report, false, "composite.csh", 4, "`imgDepthQ` is not an image"), "{}", show(&report));
+    files.push(("shaders.properties", "image.imgDepthQ = texDepthQ RED R16F HALF_FLOAT false true 0.25 0.25\n".to_string()));
+    let report = validate(&as_refs(&files), false);
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
 }
 
 #[test]
