@@ -112,6 +112,9 @@ pub struct ProgramReport {
     pub status: Status,
     /// Some error a compiler or linker would also give (not only the loader's directives).
     pub compile_error: bool,
+    /// Stage files that were only preprocessed, never compiled (geometry and tessellation
+    /// without `--driver`, or stages the driver cannot compile): `Valid` does not cover them.
+    pub only_preprocessed: Vec<String>,
 }
 
 #[derive(Debug)]
@@ -284,6 +287,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 Loader::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
             },
             compile_error: false,
+            only_preprocessed: if p.loader == Loader::OptiFine && !options.driver { p.other_stages.clone() } else { Vec::new() },
         })
         .collect();
     // (program index, diagnostic) for everything found before naga.
@@ -329,7 +333,18 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     for (program, set, diag) in run_naga(&jobs, &pack, &sets, options.threads) {
         found.push((program, set, diag));
     }
-    let driver_summary = if options.driver { Some(run_driver(&programs, &pack, &sets, options, &mut found)?) } else { None };
+    let driver_summary = if options.driver {
+        let mut unsupported = Vec::new();
+        let summary = run_driver(&programs, &pack, &sets, options, &mut found, &mut unsupported)?;
+        for (program, path) in unsupported {
+            if !reports[program].only_preprocessed.contains(&path) {
+                reports[program].only_preprocessed.push(path);
+            }
+        }
+        Some(summary)
+    } else {
+        None
+    };
     // One diagnostic per distinct message and place, noting where it was seen first.
     let mut distinct: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
     for (program, set, diag) in found {
@@ -368,6 +383,7 @@ fn run_driver(
     sets: &[(String, OptionSet)],
     options: &Options,
     found: &mut Vec<(usize, usize, Diagnostic)>,
+    unsupported: &mut Vec<(usize, String)>,
 ) -> Result<driver::DriverSummary, Diagnostic> {
     let gl = driver::Driver::new(&options.macros)?;
     let mut summary = driver::DriverSummary { driver: gl.describe(), ..Default::default() };
@@ -381,7 +397,12 @@ fn run_driver(
                 .iter()
                 .any(|(p, s, d)| *p == index && *s == set_index && d.is_error() && !driver::is_loader_level(d));
             let name = if sets.len() > 1 { format!("{} ({label})", program.id()) } else { program.id() };
-            found.extend(gl.unsupported(program).into_iter().map(|d| (index, set_index, d)));
+            for diag in gl.unsupported(program) {
+                if let Some(at) = &diag.location {
+                    unsupported.push((index, at.path.clone()));
+                }
+                found.push((index, set_index, diag));
+            }
             match gl.check(program, &provider) {
                 Ok(()) if ours => {
                     let entry = program.entry().map(|s| Location::line(s.to_string(), 1));

@@ -42,6 +42,15 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
             writeln!(summary, "  skipped {}: {why}", p.id).unwrap();
         }
     }
+    let partial: Vec<&str> = report.programs.iter().flat_map(|p| p.only_preprocessed.iter().map(String::as_str)).collect();
+    if !partial.is_empty() {
+        let why = if report.driver.is_some() {
+            "the OpenGL driver cannot compile them"
+        } else {
+            "naga has no geometry or tessellation stage; `--driver` compiles them with Mesa"
+        };
+        writeln!(summary, "  only preprocessed, not compiled ({why}): {}", partial.join(", ")).unwrap();
+    }
     if let Some(d) = &report.driver {
         writeln!(
             summary,
@@ -125,6 +134,8 @@ pub fn json(report: &Report) -> String {
         if let Some(why) = why {
             write!(out, ", \"reason\": {}", json_string(why)).unwrap();
         }
+        let partial: Vec<String> = p.only_preprocessed.iter().map(|s| json_string(s)).collect();
+        write!(out, ", \"only_preprocessed\": [{}]", partial.join(", ")).unwrap();
         out.push('}');
     }
     let sets: Vec<String> = report.option_sets.iter().map(|s| json_string(s)).collect();

@@ -228,6 +228,14 @@ fn a_geometry_stage_without_driver_is_preprocessed_and_says_so() {
     assert_eq!(report.warnings(), 1, "{}", show(&report));
     // Vertex and fragment stages still go through naga, each alone.
     assert_eq!(report.stages_validated, 2);
+    // The program is valid as far as it was checked, and the report says how far.
+    let program = report.programs.iter().find(|p| p.id == "gbuffers_terrain").unwrap();
+    assert_eq!(program.only_preprocessed, ["gbuffers_terrain.gsh"]);
+    let json = tidepack_validate::output::json(&report);
+    assert!(json.contains("\"only_preprocessed\": [\"gbuffers_terrain.gsh\"]"), "{json}");
+    let mut sink = codespan_reporting::term::termcolor::NoColor::new(Vec::new());
+    let summary = tidepack_validate::output::human(&report, &mut sink).unwrap();
+    assert!(summary.contains("only preprocessed, not compiled") && summary.contains("gbuffers_terrain.gsh"), "{summary}");
 }
 
 #[test]
@@ -254,6 +262,7 @@ fn a_clean_geometry_program_validates_under_the_driver() {
     let report = validate(&as_refs(&files), true);
     assert!(report.diagnostics.is_empty(), "{}", show(&report));
     assert_eq!(status(&report, "gbuffers_terrain"), Status::Valid);
+    assert!(report.programs.iter().all(|p| p.only_preprocessed.is_empty()));
     let driver = report.driver.as_ref().unwrap();
     assert_eq!(driver.both_accept, 1, "{driver:?}");
 }
