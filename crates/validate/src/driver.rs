@@ -145,8 +145,13 @@ impl Driver {
                 .filter(|m| m.severity.contains("error"))
                 .map(|m| {
                     let at = map.and_then(|map| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
-                    Diagnostic::error(format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
-                        .with_note(info(what.clone()))
+                    let diag = Diagnostic::error(format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
+                        .with_note(info(what.clone()));
+                    if m.message.contains("geometry_shader4") {
+                        diag.with_note("Mesa does not implement GL_ARB/EXT_geometry_shader4 (NVIDIA's driver does); geometry shaders written for `#version 150` or later compile on Mesa too")
+                    } else {
+                        diag
+                    }
                 })
                 .collect();
             if diags.is_empty() {

@@ -533,6 +533,7 @@ fn check_compute(
     };
     assume_glsl_110(&mut pre);
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
+    diags.extend(version_rules::check_compute(&pre));
     match validate::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
             diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, props));

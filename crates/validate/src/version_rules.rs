@@ -55,6 +55,19 @@ fn enabled_extensions(text: &str) -> BTreeSet<String> {
     found
 }
 
+/// A compute stage needs GLSL 4.30 or `GL_ARB_compute_shader`; the error is at `#version`.
+pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
+    let number = pre.version.as_ref().map_or(110, |v| v.number);
+    if number >= 430 || enabled_extensions(&pre.text).contains("GL_ARB_compute_shader") {
+        return None;
+    }
+    let line = pre.text.lines().position(|l| l.trim_start().starts_with('#') && l.contains("version")).map_or(1, |i| i as u32 + 1);
+    Some(Diagnostic::error(
+        format!("compute shaders need `#version 430` or later (or `#extension GL_ARB_compute_shader : require`); this stage is GLSL {number}"),
+        pre.location(line),
+    ))
+}
+
 /// Errors a driver gives for constructs the stage's `#version` does not have.
 pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };

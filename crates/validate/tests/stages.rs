@@ -163,6 +163,23 @@ fn iris_custom_images_are_known() {
 }
 
 #[test]
+fn a_compute_stage_below_glsl_430_is_an_error_naga_and_mesa_agree_on() {
+    let old = COMPUTE_A.replace("#version 430\n", "#version 330 compatibility\n");
+    let files = vec![("composite.csh", old.clone()), ("lib/common.glsl", COMMON.to_string())];
+    for driver in [false, true] {
+        let report = validate(&as_refs(&files), driver);
+        assert!(has(&report, true, "composite.csh", 1, "compute shaders need `#version 430`"), "{}", show(&report));
+        if driver {
+            assert_eq!(report.driver.as_ref().unwrap().both_reject, 1, "{}", show(&report));
+        }
+    }
+    let with_extension = old.replace("compatibility\n", "compatibility\n#extension GL_ARB_compute_shader : require\n");
+    let files = vec![("composite.csh", with_extension), ("lib/common.glsl", COMMON.to_string())];
+    let report = validate(&as_refs(&files), false);
+    assert_eq!(report.errors(), 0, "{}", show(&report));
+}
+
+#[test]
 fn compute_stages_get_the_resource_checks() {
     let files = [("composite.csh", COMPUTE), ("composite1.csh", &COMPUTE.replace("colorimg1", "outputimg") as &str)];
     let report = validate(&files, false);
