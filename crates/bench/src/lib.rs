@@ -7,11 +7,13 @@
 //!
 //! Each scene is rendered once per option set through the whole harness pipeline
 //! (`render_wgpu`: the image whose error is measured, and the G-buffers). The composite is then
-//! timed alone over those G-buffers with [`tidepack_harness::composite_only`], whose uniform
+//! timed alone over those G-buffers with [`tidepack_harness::composite_only`] (all option sets
+//! taking turns, one frame each per round, so load changes hit them alike), whose uniform
 //! blocks are bound as read-only storage: bound as uniform buffers, lavapipe 22.3 recompiles
 //! the composite shader at every draw (with `isEyeInWater` and the other members its `if`s test
-//! inlined) inside the timed pass and never frees it, so the times were mostly compile time and
-//! memory grew about 3 MB per frame (docs/stress.md, "Memory"). The timed image is checked
+//! inlined) and never frees it: memory grew about 3 MB per frame (docs/stress.md, "Memory"),
+//! and the timed pass carried a few ms of per-draw overhead (HIGH at 160x90: 11.8 ms against
+//! 6.4 ms now; at 640x360 within the noise). The timed image is checked
 //! against the harness frame's (`timed_image_difference`).
 
 pub mod metrics;
@@ -233,7 +235,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     let frames = config.frames.max(1);
 
     let bar = if config.progress {
-        indicatif::ProgressBar::new((scenes.len() * (runs.len() + 1)) as u64)
+        indicatif::ProgressBar::new(scenes.len() as u64)
     } else {
         indicatif::ProgressBar::hidden()
     };
@@ -258,67 +260,106 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
 
     std::fs::create_dir_all(config.out_dir.join("heatmaps")).map_err(|e| format!("cannot create {}: {e}", config.out_dir.display()))?;
     let mut files = Vec::new();
-    let mut rows = Vec::new();
-    // Option sets that come out equal (a sweep value that is the base's own) are measured once.
-    let mut measured: BTreeMap<String, Vec<Row>> = BTreeMap::new();
-    let mut timing_gpu = true;
+    // Option sets that come out equal (a sweep value that is the base's own) are measured once:
+    // `set_of_run[i]` is the index in `sets` of run i's option set.
+    struct OptionSet {
+        pack: LoadedPack,
+        /// The first run with these options (the profiles come first, so a repeated option set
+        /// is a sweep value equal to the base profile's).
+        run: RunSpec,
+        /// One composite pipeline per frame size.
+        runners: BTreeMap<(u32, u32), CompositeOnly>,
+        /// Per scene, in scene order.
+        rows: Vec<Row>,
+    }
+    let mut sets: Vec<OptionSet> = Vec::new();
+    let mut keys: Vec<String> = Vec::new();
+    let mut set_of_run = Vec::new();
     for run in &runs {
         let pack = load_pack(&config.source_dir, run)?;
         let key = option_key(&pack);
-        if let Some(done) = measured.get(&key) {
-            // The profiles come first, so a repeated option set is a sweep value equal to the
-            // base profile's: its rows are the base's.
-            rows.extend(done.iter().map(|r| Row { run: run.clone(), ..r.clone() }));
-            bar.inc(scenes.len() as u64);
-            continue;
-        }
-        let mut these = Vec::new();
-        // One composite pipeline per option set and frame size.
-        let mut runners: BTreeMap<(u32, u32), CompositeOnly> = BTreeMap::new();
-        for (name, scene) in &scenes {
-            bar.set_message(format!("{} {name} (RSS {:.0} MiB)", run.name, rss_mib().unwrap_or(f64::NAN)));
-            // The whole frame once: G-buffers and the composite image whose error is measured.
-            let frame = render_wgpu(&gpu, &pack, scene, false).map_err(err)?;
-            let g = GBuffers::from_frame(&frame);
-            let values = uniforms::values(scene, Pass::Fullscreen);
-            let size = (scene.width(), scene.height());
-            if !runners.contains_key(&size) {
-                runners.insert(size, CompositeOnly::new(&gpu, &pack, size.0, size.1, &values).map_err(err)?);
+        match keys.iter().position(|k| *k == key) {
+            Some(i) => set_of_run.push(i),
+            None => {
+                set_of_run.push(sets.len());
+                keys.push(key);
+                sets.push(OptionSet { pack, run: run.clone(), runners: BTreeMap::new(), rows: Vec::new() });
             }
-            // One warm-up frame (llvmpipe compiles the shader variant at the first draw), then
-            // `frames` timed frames of composite and of the pass-through over the same buffers.
-            let timed = runners[&size].time(&gpu, &pack, &g, &values, frames + 1).map_err(err)?;
-            timing_gpu &= timed.gpu_timestamps;
-            let (composite, floor) = (&timed.composite_ms[1..], &timed.passthrough_ms[1..]);
-            let timed_image_difference = timed
-                .image
-                .pixels
-                .iter()
-                .zip(&frame.image.pixels)
-                .flat_map(|(a, b)| (0..4).map(move |c| if a[c] == b[c] { 0.0 } else { (a[c] as f64 - b[c] as f64).abs() }))
-                .fold(0.0, f64::max);
+        }
+    }
+    bar.set_length((scenes.len() * (1 + sets.len() + frames + 1)) as u64);
+    let mut timing_gpu = true;
+    for (name, scene) in &scenes {
+        let values = uniforms::values(scene, Pass::Fullscreen);
+        let size = (scene.width(), scene.height());
+        // Every option set's whole frame once: the G-buffers composite is timed over, and the
+        // composite image whose error is measured.
+        let mut prepared = Vec::new();
+        for set in &mut sets {
+            bar.set_message(format!("{} {name} (RSS {:.0} MiB)", set.run.name, rss_mib().unwrap_or(f64::NAN)));
+            let frame = render_wgpu(&gpu, &set.pack, scene, false).map_err(err)?;
             let (error, map) = metrics::error(&frame.image, &references[name]);
-            if run.kind == "profile" {
-                let file = format!("heatmaps/{name}-{}.png", run.name);
+            if set.run.kind == "profile" {
+                let file = format!("heatmaps/{name}-{}.png", set.run.name);
                 metrics::write_heatmap(&map, &config.out_dir.join(&file))?;
                 files.push(file);
             }
-            let (c, p) = (metrics::median(composite), metrics::median(floor));
-            these.push(Row {
+            if !set.runners.contains_key(&size) {
+                set.runners.insert(size, CompositeOnly::new(&gpu, &set.pack, size.0, size.1, &values).map_err(err)?);
+            }
+            prepared.push((GBuffers::from_frame(&frame), frame.image, error));
+            bar.inc(1);
+        }
+        // Rounds: every option set renders one frame of composite and of the pass-through per
+        // round, starting with a different set each round, so that load changes on a shared
+        // machine hit all sets alike. Round 0 is the warm-up (llvmpipe compiles the shader
+        // variant at the first draw) and is dropped.
+        let mut times: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); sets.len()];
+        let mut differences = vec![0.0f64; sets.len()];
+        for round in 0..=frames {
+            bar.set_message(format!("{name}: timing round {round}/{frames} (RSS {:.0} MiB)", rss_mib().unwrap_or(f64::NAN)));
+            for k in 0..sets.len() {
+                let i = (k + round) % sets.len();
+                let set = &sets[i];
+                let (g, image, _) = &prepared[i];
+                let timed = set.runners[&size].time(&gpu, &set.pack, g, &values, 1).map_err(err)?;
+                timing_gpu &= timed.gpu_timestamps;
+                if round > 0 {
+                    times[i].0.push(timed.composite_ms[0]);
+                    times[i].1.push(timed.passthrough_ms[0]);
+                }
+                if round == frames {
+                    differences[i] = timed
+                        .image
+                        .pixels
+                        .iter()
+                        .zip(&image.pixels)
+                        .flat_map(|(a, b)| (0..4).map(move |c| if a[c] == b[c] { 0.0 } else { (a[c] as f64 - b[c] as f64).abs() }))
+                        .fold(0.0, f64::max);
+                }
+            }
+            bar.inc(1);
+        }
+        for (i, set) in sets.iter_mut().enumerate() {
+            let (c, p) = (metrics::median(&times[i].0), metrics::median(&times[i].1));
+            let error = prepared[i].2;
+            set.rows.push(Row {
                 scene: name.clone(),
-                run: run.clone(),
+                run: set.run.clone(),
                 composite_ms: c,
                 passthrough_ms: p,
                 ratio: c / p,
                 error,
                 mse: error.rmse * error.rmse,
-                timed_image_difference,
+                timed_image_difference: differences[i],
             });
-            bar.inc(1);
         }
-        rows.extend(these.iter().cloned());
-        measured.insert(key, these);
     }
+    let rows: Vec<Row> = runs
+        .iter()
+        .zip(&set_of_run)
+        .flat_map(|(run, &i)| sets[i].rows.iter().map(move |r| Row { run: run.clone(), ..r.clone() }))
+        .collect();
     bar.finish_and_clear();
 
     let aggregates = output::aggregate(&runs, &rows);
