@@ -60,18 +60,6 @@ pub enum UniformBinding {
     ReadOnlyStorage,
 }
 
-/// `module` with every `uniform` global moved to read-only storage. Types, member offsets and
-/// bindings are unchanged, so the bytes [`uniforms::fill_block`] lays out read the same.
-fn uniforms_as_storage(module: &naga::Module) -> naga::Module {
-    let mut module = module.clone();
-    for (_, global) in module.global_variables.iter_mut() {
-        if global.space == naga::AddressSpace::Uniform {
-            global.space = naga::AddressSpace::Storage { access: naga::StorageAccess::LOAD };
-        }
-    }
-    module
-}
-
 pub struct CompositeOnly {
     width: u32,
     height: u32,
@@ -358,7 +346,7 @@ impl CompositeOnly {
             checked(gpu, &stage.path, || {
                 device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(&stage.path),
-                    source: wgpu::ShaderSource::Naga(Cow::Owned(if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() })),
+                    source: wgpu::ShaderSource::Naga(Cow::Owned(if storage { gpu::uniforms_as_storage(&stage.module) } else { stage.module.clone() })),
                 })
             })
         };

@@ -204,6 +204,23 @@ struct Targets {
     passthrough: wgpu::Texture,
 }
 
+/// `module` with every `uniform` global moved to read-only storage. Types, member offsets and
+/// bindings are unchanged, so the bytes [`uniforms::fill_block`] lays out read the same.
+///
+/// The harness binds uniform blocks this way because lavapipe (Mesa 22.3) recompiles a shader
+/// with the current values of the uniform-buffer members its `if` conditions test
+/// (`isEyeInWater`) at every draw, and never frees the copies (about 3 MB a frame); storage
+/// buffers are never inlined. The image is the same bit for bit (crates/stress/tests/memory.rs).
+pub(crate) fn uniforms_as_storage(module: &naga::Module) -> naga::Module {
+    let mut module = module.clone();
+    for (_, global) in module.global_variables.iter_mut() {
+        if global.space == naga::AddressSpace::Uniform {
+            global.space = naga::AddressSpace::Storage { access: naga::StorageAccess::LOAD };
+        }
+    }
+    module
+}
+
 const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const OUT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
@@ -686,7 +703,7 @@ impl ProgramPipeline {
                     visibility: *visibility,
                     ty: match entry {
                         Entry::Uniform(_) => wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
+                            ty: wgpu::BufferBindingType::Storage { read_only: true },
                             has_dynamic_offset: false,
                             min_binding_size: None,
                         },
@@ -759,13 +776,13 @@ impl ProgramPipeline {
         let vertex_module = gpu.checked(&format!("{} (wgpu shader module)", program.vertex.path), || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(&program.vertex.path),
-                source: wgpu::ShaderSource::Naga(Cow::Owned(program.vertex.module.clone())),
+                source: wgpu::ShaderSource::Naga(Cow::Owned(uniforms_as_storage(&program.vertex.module))),
             })
         })?;
         let fragment_module = gpu.checked(&format!("{} (wgpu shader module)", program.fragment.path), || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(&program.fragment.path),
-                source: wgpu::ShaderSource::Naga(Cow::Owned(program.fragment.module.clone())),
+                source: wgpu::ShaderSource::Naga(Cow::Owned(uniforms_as_storage(&program.fragment.module))),
             })
         })?;
         let pipeline = gpu.checked(&format!("{} (wgpu pipeline)", program.name), || {
@@ -871,7 +888,7 @@ fn stage_entries(
         let buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(&format!("{} uniforms", stage.path)),
             contents: &block.bytes,
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::STORAGE,
         });
         entries.push((block.group, block.binding, Entry::Uniform(buffer)));
     }
