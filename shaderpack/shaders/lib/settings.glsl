@@ -13,7 +13,7 @@
 #define SSR_STEPS 10 // [6 10 16 24] March steps of the screen-space reflection.
 #define SSR_REFINE_STEPS 2 // [0 2 4 6] Bisection steps that sharpen a reflection hit.
 #define SPECULAR // Sun, moon and sky highlights on the water.
-//#define FRESNEL_EXACT // Exact dielectric Fresnel instead of Schlick's approximation.
+#define FRESNEL_EXACT // Exact dielectric Fresnel instead of Schlick's approximation.
 #define REFRACTION // Distort what is seen through the surface.
 #define REFRACTION_STRENGTH 0.04 // [0.02 0.04 0.06 0.10] Screen distance of the refraction offset.
 
