@@ -81,8 +81,7 @@ pub struct CompositeOnly {
 }
 
 struct Passthrough {
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
+    pipeline: gpu::PassthroughPipeline,
     out: wgpu::Texture,
 }
 
@@ -98,18 +97,6 @@ pub struct CompositeTimes {
     pub gpu_timestamps: bool,
 }
 
-/// The same one-tap pass-through as gpu.rs: colortex0 to the output, nothing else.
-const PASSTHROUGH_WGSL: &str = r#"
-@group(0) @binding(0) var colortex0: texture_2d<f32>;
-@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
-}
-@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-    return textureLoad(colortex0, vec2<i32>(p.xy), 0);
-}
-"#;
-
 fn wgpu_format(gpu: &Gpu, format: BufferFormat) -> Result<wgpu::TextureFormat, HarnessError> {
     Ok(match format {
         BufferFormat::Rgba8 => wgpu::TextureFormat::Rgba8Unorm,
@@ -119,15 +106,6 @@ fn wgpu_format(gpu: &Gpu, format: BufferFormat) -> Result<wgpu::TextureFormat, H
         BufferFormat::Rgba32F => wgpu::TextureFormat::Rgba32Float,
         other => return Err(HarnessError::Unsupported(format!("composite_only: uploading a {other:?} buffer"))),
     })
-}
-
-fn checked<T>(gpu: &Gpu, what: &str, f: impl FnOnce() -> T) -> Result<T, HarnessError> {
-    let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = f();
-    match pollster::block_on(scope.pop()) {
-        Some(e) => Err(HarnessError::Wgpu(format!("{what}: {e}"))),
-        None => Ok(value),
-    }
 }
 
 impl CompositeOnly {
@@ -343,7 +321,7 @@ impl CompositeOnly {
             color_targets.push(Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL }));
         }
         let module = |stage: &crate::program::LoadedStage| {
-            checked(gpu, &stage.path, || {
+            gpu.checked(&stage.path, || {
                 device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(&stage.path),
                     source: wgpu::ShaderSource::Naga(Cow::Owned(if storage { gpu::uniforms_as_storage(&stage.module) } else { stage.module.clone() })),
@@ -352,7 +330,7 @@ impl CompositeOnly {
         };
         let vertex_module = module(&program.vertex)?;
         let fragment_module = module(&program.fragment)?;
-        let pipeline = checked(gpu, "composite_only pipeline", || {
+        let pipeline = gpu.checked("composite_only pipeline", || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("composite_only"),
                 layout: Some(&pipeline_layout),
@@ -380,40 +358,9 @@ impl CompositeOnly {
             })
         })?;
         let passthrough = {
-            let module = checked(gpu, "pass-through shader", || {
-                device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("pass-through"),
-                    source: wgpu::ShaderSource::Wgsl(PASSTHROUGH_WGSL.into()),
-                })
-            })?;
-            let pipeline = checked(gpu, "pass-through pipeline", || {
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("pass-through"),
-                    layout: None,
-                    vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
-                    primitive: Default::default(),
-                    depth_stencil: None,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("fs"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(wgpu::ColorTargetState { format: OUT, blend: None, write_mask: wgpu::ColorWrites::ALL })],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-            })?;
-            let source = colors[&0].0.create_view(&Default::default());
-            let bind_group = checked(gpu, "pass-through bind group", || {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("pass-through"),
-                    layout: &pipeline.get_bind_group_layout(0),
-                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) }],
-                })
-            })?;
+            let pipeline = gpu::PassthroughPipeline::new(gpu, &colors[&0].0)?;
             let out = texture("pass-through output (RGBA32F)", OUT, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
-            Passthrough { pipeline, bind_group, out }
+            Passthrough { pipeline, out }
         };
         let quad = gpu::fullscreen_quad();
         let quad_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -457,7 +404,7 @@ impl CompositeOnly {
     /// [`uniforms::values`] gives them); returns the RGBA32F output, bottom row first.
     pub fn render(&self, gpu: &Gpu, pack: &LoadedPack, g: &GBuffers, values: &BTreeMap<String, Value>) -> Result<FloatImage, HarnessError> {
         self.upload(gpu, pack, g, values)?;
-        checked(gpu, "composite_only", || {
+        gpu.checked("composite_only", || {
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             self.encode_composite(&mut encoder, pack, None);
             gpu.queue.submit([encoder.finish()]);
@@ -487,7 +434,7 @@ impl CompositeOnly {
                     end_of_pass_write_index: Some(2 * pass as u32 + 1),
                 });
                 let started = std::time::Instant::now();
-                checked(gpu, "composite_only timing", || {
+                gpu.checked("composite_only timing", || {
                     let mut encoder = gpu.device.create_command_encoder(&Default::default());
                     if pass == 0 {
                         self.encode_composite(&mut encoder, pack, stamps);
@@ -604,8 +551,8 @@ impl CompositeOnly {
             timestamp_writes,
             ..Default::default()
         });
-        pass.set_pipeline(&self.passthrough.pipeline);
-        pass.set_bind_group(0, &self.passthrough.bind_group, &[]);
+        pass.set_pipeline(&self.passthrough.pipeline.pipeline);
+        pass.set_bind_group(0, &self.passthrough.pipeline.bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
 }

@@ -103,7 +103,7 @@ impl Gpu {
     }
 
     /// Runs `f` inside a validation error scope and turns a captured error into a HarnessError.
-    fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, HarnessError> {
+    pub(crate) fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, HarnessError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = f();
         match pollster::block_on(scope.pop()) {
@@ -337,7 +337,7 @@ fn render_frame(
     let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &targets, &textures)?;
     let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &targets, &textures)?;
     let terrain = TerrainPipeline::new(gpu, scene)?;
-    let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets)?) } else { None };
+    let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets.colors[&0].0)?) } else { None };
 
     // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
     let one_terrain = [mesh::TerrainVertex::default()];
@@ -1057,13 +1057,14 @@ impl TerrainPipeline {
     }
 }
 
-struct PassthroughPipeline {
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
+/// The one-tap pass-through composite over `colortex0`, the floor composite is timed against.
+pub(crate) struct PassthroughPipeline {
+    pub(crate) pipeline: wgpu::RenderPipeline,
+    pub(crate) bind_group: wgpu::BindGroup,
 }
 
 impl PassthroughPipeline {
-    fn new(gpu: &Gpu, targets: &Targets) -> Result<PassthroughPipeline, HarnessError> {
+    pub(crate) fn new(gpu: &Gpu, colortex0: &wgpu::Texture) -> Result<PassthroughPipeline, HarnessError> {
         let device = &gpu.device;
         let module = gpu.checked("pass-through shader", || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -1089,14 +1090,13 @@ impl PassthroughPipeline {
                 cache: None,
             })
         })?;
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("pass-through"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(&view(&targets.colors[&0].0)),
-            }],
-        });
+        let bind_group = gpu.checked("pass-through bind group", || {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("pass-through"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(colortex0)) }],
+            })
+        })?;
         Ok(PassthroughPipeline { pipeline, bind_group })
     }
 }
