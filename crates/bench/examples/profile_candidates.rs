@@ -62,6 +62,7 @@ fn main() {
             .collect::<Vec<_>>()
             .join(" "),
         progress: false,
+        specialise: false,
     };
     let result = tidepack_bench::run(&config).unwrap_or_else(|e| panic!("{e}"));
     print!("{}", tidepack_bench::output::table(&result));

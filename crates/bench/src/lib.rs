@@ -30,6 +30,7 @@ use tidepack_harness::uniforms::{self, Pass};
 use tidepack_harness::{Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
 use tidepack_pack::source::PackSource;
+use tidepack_pack::specialise::Specialisation;
 use tidepack_reference::ReferenceImage;
 
 pub use metrics::Error;
@@ -60,6 +61,9 @@ pub struct BenchConfig {
     /// The command line that produced this run, quoted in the report.
     pub command: String,
     pub progress: bool,
+    /// Time each option set specialised for each scene (`build --scene`: the uniforms the
+    /// scene fixes folded into constants) instead of the general pack.
+    pub specialise: bool,
 }
 
 /// One option set: a profile, or the base profile with one option overridden.
@@ -192,13 +196,13 @@ fn option_key(pack: &LoadedPack) -> String {
         .join(" ")
 }
 
-fn load_pack(source_dir: &Path, run: &RunSpec) -> Result<LoadedPack, String> {
+fn load_pack(source_dir: &Path, run: &RunSpec, specialisation: Option<&Specialisation>) -> Result<LoadedPack, String> {
     let options = match (&run.knob, &run.value) {
         (Some(k), Some(v)) => vec![(k.clone(), v.clone())],
         _ => vec![],
     };
-    program::load(&PackSelection { source_dir: source_dir.to_path_buf(), dialect: Dialect::Glsl330, profile: Some(run.profile.clone()), options })
-        .map_err(|e| format!("{}: {e}", run.name))
+    let selection = PackSelection { source_dir: source_dir.to_path_buf(), dialect: Dialect::Glsl330, profile: Some(run.profile.clone()), options };
+    program::load_specialised(&selection, specialisation).map_err(|e| format!("{}: {e}", run.name))
 }
 
 pub fn scene_files(config: &BenchConfig) -> Result<Vec<(String, PathBuf)>, String> {
@@ -245,7 +249,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
 
     // The reference: converged settings, fed the G-buffers of the base profile's frame (every
     // profile but LOW has the same gbuffers_water options; LOW's flat surface counts as error).
-    let base_pack = load_pack(&config.source_dir, &RunSpec::profile(&base))?;
+    let base_pack = load_pack(&config.source_dir, &RunSpec::profile(&base), None)?;
     let settings = reference_inputs::converged_settings();
     let mut references: BTreeMap<String, ReferenceImage> = BTreeMap::new();
     for (name, scene) in &scenes {
@@ -276,7 +280,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     let mut keys: Vec<String> = Vec::new();
     let mut set_of_run = Vec::new();
     for run in &runs {
-        let pack = load_pack(&config.source_dir, run)?;
+        let pack = load_pack(&config.source_dir, run, None)?;
         let key = option_key(&pack);
         match keys.iter().position(|k| *k == key) {
             Some(i) => set_of_run.push(i),
@@ -295,19 +299,35 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         // Every option set's whole frame once: the G-buffers composite is timed over, and the
         // composite image whose error is measured.
         let mut prepared = Vec::new();
+        // With `specialise`, each option set's pack specialised for this scene, with its own
+        // pipeline; otherwise the general pack and its pipeline for this frame size.
+        let specialisation = config.specialise.then(|| uniforms::scene_specialisation(scene, name));
+        let mut specialised: Vec<Option<(LoadedPack, CompositeOnly)>> = Vec::new();
         for set in &mut sets {
             bar.set_message(format!("{} {name} (RSS {:.0} MiB)", set.run.name, rss_mib().unwrap_or(f64::NAN)));
-            let frame = render_wgpu(&gpu, &set.pack, scene, false).map_err(err)?;
+            let own = match &specialisation {
+                Some(spec) => {
+                    let pack = load_pack(&config.source_dir, &set.run, Some(spec))?;
+                    let runner = CompositeOnly::new(&gpu, &pack, size.0, size.1, &values).map_err(err)?;
+                    Some((pack, runner))
+                }
+                None => {
+                    if !set.runners.contains_key(&size) {
+                        set.runners.insert(size, CompositeOnly::new(&gpu, &set.pack, size.0, size.1, &values).map_err(err)?);
+                    }
+                    None
+                }
+            };
+            let pack = own.as_ref().map_or(&set.pack, |(pack, _)| pack);
+            let frame = render_wgpu(&gpu, pack, scene, false).map_err(err)?;
             let (error, map) = metrics::error(&frame.image, &references[name]);
             if set.run.kind == "profile" {
                 let file = format!("heatmaps/{name}-{}.png", set.run.name);
                 metrics::write_heatmap(&map, &config.out_dir.join(&file))?;
                 files.push(file);
             }
-            if !set.runners.contains_key(&size) {
-                set.runners.insert(size, CompositeOnly::new(&gpu, &set.pack, size.0, size.1, &values).map_err(err)?);
-            }
             prepared.push((GBuffers::from_frame(&frame), frame.image, error));
+            specialised.push(own);
             bar.inc(1);
         }
         // Rounds: every option set renders one frame of composite and of the pass-through per
@@ -322,7 +342,11 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 let i = (k + round) % sets.len();
                 let set = &sets[i];
                 let (g, image, _) = &prepared[i];
-                let timed = set.runners[&size].time(&gpu, &set.pack, g, &values, 1).map_err(err)?;
+                let (pack, runner) = match &specialised[i] {
+                    Some((pack, runner)) => (pack, runner),
+                    None => (&set.pack, &set.runners[&size]),
+                };
+                let timed = runner.time(&gpu, pack, g, &values, 1).map_err(err)?;
                 timing_gpu &= timed.gpu_timestamps;
                 if round > 0 {
                     times[i].0.push(timed.composite_ms[0]);

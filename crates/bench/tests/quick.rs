@@ -27,6 +27,7 @@ fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
         report: Some(report.clone()),
         command: "test".into(),
         progress: false,
+        specialise: false,
     };
     let result = tidepack_bench::run(&config).unwrap_or_else(|e| panic!("{e}"));
     let dir = out.path().join("bench");
@@ -63,4 +64,33 @@ fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
     println!("LOW {low:?}\nULTRA {ultra:?}");
     assert!(ultra.rmse < low.rmse, "ULTRA {ultra:?} LOW {low:?}");
     assert!(ultra.mean_flip < low.mean_flip, "ULTRA {ultra:?} LOW {low:?}");
+}
+
+#[test]
+fn specialising_for_the_scene_changes_no_error() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = tempfile::tempdir().unwrap();
+    let config = |specialise: bool| BenchConfig {
+        source_dir: root.join("shaderpack"),
+        scenes_dir: root.join("tests/scenes"),
+        scene_filter: vec!["case2_under_down".into()],
+        frames: 2,
+        resolution: Some([96, 54]),
+        reference_stride: 1,
+        out_dir: out.path().join(if specialise { "specialised" } else { "general" }),
+        runs: Some(vec![RunSpec::profile("MEDIUM")]),
+        report: None,
+        command: "test".into(),
+        progress: false,
+        specialise,
+    };
+    let general = tidepack_bench::run(&config(false)).unwrap_or_else(|e| panic!("{e}"));
+    let specialised = tidepack_bench::run(&config(true)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(general.rows.len(), 1);
+    assert_eq!(specialised.rows.len(), 1);
+    let (g, s) = (&general.rows[0], &specialised.rows[0]);
+    // The folded constants are the values the uniforms held: same image, same error.
+    assert!((g.error.max_abs - s.error.max_abs).abs() <= 1.0 / 255.0, "{:?} vs {:?}", g.error, s.error);
+    assert!((g.error.rmse - s.error.rmse).abs() <= 1e-4, "{:?} vs {:?}", g.error, s.error);
+    assert!(s.composite_ms > 0.0 && s.passthrough_ms > 0.0);
 }

@@ -30,6 +30,10 @@ pub struct BenchArgs {
     /// (docs/accuracy.md is made this way).
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Time each option set specialised for each scene, as `build --scene` ships it (the
+    /// uniforms the scene fixes folded into constants), instead of the general pack.
+    #[arg(long)]
+    pub specialise: bool,
     /// Folder with pack.toml and the shader templates.
     #[arg(long, default_value = "shaderpack")]
     pub source: PathBuf,
@@ -48,6 +52,7 @@ pub fn run(args: &BenchArgs) -> ExitCode {
         report: args.report.clone(),
         command: std::iter::once("cargo run --release --".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" "),
         progress: true,
+        specialise: args.specialise,
     };
     match tidepack_bench::run(&config) {
         Ok(result) => {
