@@ -139,13 +139,16 @@ fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
 }
 
 /// `refineSurface` (A1): bisection along the ray from the flat hit towards the wave surface.
-fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, steps: u32) -> DVec3 {
+fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, s: &ReferenceSettings) -> DVec3 {
     let mut p = player_hit;
     let plane_y = player_hit.y;
     let mut step_length = 10.0 * WAVE_MAX_HEIGHT;
-    for _ in 0..steps {
-        let surface_y = plane_y + wave_height(water, DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z), time);
-        let camera_side = (p.y > surface_y) == camera_above;
+    for _ in 0..s.wave_refine_steps {
+        let gap = p.y - plane_y - wave_height(water, DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z), time);
+        if gap.abs() < s.surface_tolerance {
+            break;
+        }
+        let camera_side = (gap > 0.0) == camera_above;
         p += ray_dir * if camera_side { step_length } else { -step_length };
         step_length *= 0.5;
     }
@@ -439,7 +442,7 @@ impl Frame<'_> {
         let camera_wrap = self.camera_wrap();
         let time = self.time();
 
-        let surface = refine_surface(&self.i.water, player0, ray_dir, camera_wrap, time, true, s.wave_refine_steps);
+        let surface = refine_surface(&self.i.water, player0, ray_dir, camera_wrap, time, true, s);
         let surface_xz = DVec2::new(surface.x + camera_wrap.x, surface.z + camera_wrap.z);
         let (normal, diffuse) = wave_normal(&self.i.water, surface_xz, time, distance0, s);
         let normal_view = rotate(&u.gbuffer_model_view, normal);
@@ -508,7 +511,7 @@ impl Frame<'_> {
         let player0 = self.player_from_view(view0);
         let ray_dir = safe_normalize(player0 - self.eye_position(), UP);
         let camera_wrap = self.camera_wrap();
-        let surface = refine_surface(&self.i.water, player0, ray_dir, camera_wrap, self.time(), false, s.wave_refine_steps);
+        let surface = refine_surface(&self.i.water, player0, ray_dir, camera_wrap, self.time(), false, s);
         let surface_xz = DVec2::new(surface.x + camera_wrap.x, surface.z + camera_wrap.z);
         let (normal, diffuse) = wave_normal(&self.i.water, surface_xz, self.time(), distance0, s);
         let cos_view = ray_dir.dot(normal).clamp(0.0, 1.0);
@@ -596,8 +599,13 @@ mod tests {
         let water = Texture::new(1, 1, vec![DVec4::splat(0.5)], crate::Filter::Linear, crate::Wrap::Repeat);
         let hit = DVec3::new(3.0, -5.0, -4.0);
         let dir = hit.normalize();
-        let p = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, 64);
+        let p = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &ReferenceSettings::converged());
         let expected = hit.y + wave_height(&water, DVec2::new(p.x, p.z), 12.5);
         assert!((p.y - expected).abs() < 1e-12, "{} vs {expected}", p.y);
+        // With the pack's tolerance it stops as soon as it is that close.
+        let pack = ReferenceSettings { surface_tolerance: crate::settings::SURFACE_TOLERANCE, ..ReferenceSettings::converged() };
+        let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &pack);
+        let expected = hit.y + wave_height(&water, DVec2::new(q.x, q.z), 12.5);
+        assert!((q.y - expected).abs() < crate::settings::SURFACE_TOLERANCE, "{} vs {expected}", q.y);
     }
 }

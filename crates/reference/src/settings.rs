@@ -33,6 +33,9 @@ pub enum CausticsMode {
 pub struct ReferenceSettings {
     /// `WAVE_REFINE_STEPS`: bisection steps of `refineSurface`.
     pub wave_refine_steps: u32,
+    /// `SURFACE_TOLERANCE` of waves.glsl: the bisection stops once the height gap is below
+    /// it (0: it never stops early, as in the converged settings).
+    pub surface_tolerance: f64,
     pub normal_mode: NormalMode,
     /// `NORMAL_OCTAVES`.
     pub normal_octaves: u32,
@@ -78,6 +81,9 @@ impl Default for ReferenceSettings {
     }
 }
 
+/// `SURFACE_TOLERANCE` of waves.glsl, in blocks.
+pub const SURFACE_TOLERANCE: f64 = 0.01;
+
 impl ReferenceSettings {
     /// The ULTRA look with converged iteration counts, exact Fresnel and Beer–Lambert: the
     /// ground truth. 64 bisection steps put the wave surface within 1.6 * 2^-63 blocks; 48 march
@@ -87,6 +93,7 @@ impl ReferenceSettings {
     pub fn converged() -> ReferenceSettings {
         ReferenceSettings {
             wave_refine_steps: 64,
+            surface_tolerance: 0.0,
             normal_mode: NormalMode::HeightSamples,
             normal_octaves: 2,
             reflections: true,
@@ -137,6 +144,7 @@ impl ReferenceSettings {
         };
         Ok(ReferenceSettings {
             wave_refine_steps: count("WAVE_REFINE_STEPS")?,
+            surface_tolerance: SURFACE_TOLERANCE,
             normal_mode: if count("NORMAL_MODE")? == 0 { NormalMode::StoredSlope } else { NormalMode::HeightSamples },
             normal_octaves: count("NORMAL_OCTAVES")?,
             reflections: switch("REFLECTIONS"),

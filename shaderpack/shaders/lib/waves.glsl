@@ -42,6 +42,10 @@ float waveHeight(sampler2D waterTexture, vec2 worldXZ, float time) {
     return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
 }
 
+// Height error below which the bisection stops: a hundredth of a block moves the sampled
+// normal by far less than one texel of the water texture.
+const float SURFACE_TOLERANCE = 0.01;
+
 // A1: bisection along the ray from the rasterised (flat) hit towards the wave surface.
 // `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
 vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove) {
@@ -49,9 +53,13 @@ vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cam
     float planeY = playerHit.y;
     float stepLength = 10.0 * WAVE_MAX_HEIGHT;
     for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
-        float surfaceY = planeY + waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
+        float gap = p.y - planeY - waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
+        // On the surface to within SURFACE_TOLERANCE: further halvings cannot show.
+        if (abs(gap) < SURFACE_TOLERANCE) {
+            break;
+        }
         // On the camera's side of the surface: go on along the ray; past it: go back.
-        bool cameraSide = (p.y > surfaceY) == cameraAbove;
+        bool cameraSide = (gap > 0.0) == cameraAbove;
         p += rayDir * (cameraSide ? stepLength : -stepLength);
         stepLength *= 0.5;
     }
