@@ -18,7 +18,6 @@
 
 pub mod metrics;
 pub mod output;
-pub mod reference_inputs;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -250,12 +249,12 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     // The reference: converged settings, fed the G-buffers of the base profile's frame (every
     // profile but LOW has the same gbuffers_water options; LOW's flat surface counts as error).
     let base_pack = load_pack(&config.source_dir, &RunSpec::profile(&base), None)?;
-    let settings = reference_inputs::converged_settings();
+    let settings = tidepack_reference::harness::converged_settings();
     let mut references: BTreeMap<String, ReferenceImage> = BTreeMap::new();
     for (name, scene) in &scenes {
         bar.set_message(format!("reference {name}"));
         let frame = render_wgpu(&gpu, &base_pack, scene, false).map_err(err)?;
-        let inputs = reference_inputs::inputs(&base_pack, scene, &frame)?;
+        let inputs = tidepack_reference::harness::inputs(&base_pack, scene, &frame)?;
         let mut image = tidepack_reference::render(&inputs, &settings, config.reference_stride)?;
         fill_strided(&mut image, config.reference_stride);
         references.insert(name.clone(), image);

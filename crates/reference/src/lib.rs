@@ -3,6 +3,8 @@
 //! iteration counts (by default), fed the same G-buffers, uniforms and textures as the GPU.
 //! It is the ground truth the pack's quality knobs are measured against. See docs/reference.md.
 
+#[cfg(feature = "harness")]
+pub mod harness;
 pub mod inputs;
 pub mod model;
 pub mod sampling;

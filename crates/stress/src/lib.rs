@@ -16,13 +16,12 @@ use std::time::Instant;
 
 use glam::DVec3;
 use serde::Serialize;
-use tidepack_glsl::options::OptionValue;
 use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
-use tidepack_harness::program::BufferFormat;
 use tidepack_harness::uniforms::{self, Pass, Value};
-use tidepack_harness::{FloatImage, Gpu, LoadedPack, PackSelection, Scene, mesh, program, render_wgpu};
+use tidepack_harness::{FloatImage, Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
-use tidepack_reference::{Filter, Inputs, ReferenceSettings, Texture, Uniforms, Wrap};
+use tidepack_reference::Inputs;
+use tidepack_reference::harness::{self as reference, Precision, Textures};
 
 /// The |cameraPosition| magnitudes of the distance table.
 pub const MAGNITUDES: [f64; 6] = [0.0, 1e3, 1e4, 1e5, 1e6, 3e7];
@@ -221,67 +220,12 @@ fn base_scenes(opts: &StressOptions) -> Result<Vec<(String, Scene)>, String> {
     Ok(out)
 }
 
-fn settings_of(pack: &LoadedPack) -> Result<ReferenceSettings, String> {
-    let mut s = ReferenceSettings::from_options(|name| match pack.options.get(name)? {
-        OptionValue::Switch(true) => Some(None),
-        OptionValue::Switch(false) => None,
-        OptionValue::Value(v) => Some(Some(v.clone())),
-    })?;
-    s.slope_range = tidepack_pack::textures::water_texture().slope_range;
-    Ok(s)
-}
-
-fn colour_filter(format: BufferFormat) -> Filter {
-    match format {
-        BufferFormat::Rgba32F => Filter::Nearest,
-        _ => Filter::Linear,
-    }
-}
-
-/// The textures that do not change between cases.
-struct Statics {
-    water: Texture,
-    noise: Texture,
-}
-
-fn statics(pack: &LoadedPack) -> Result<Statics, String> {
-    let custom = pack.custom_texture("colortex7", false).ok_or("the pack binds no colortex7")?;
-    let water = Texture::from_rgba8(
-        custom.width as usize,
-        custom.height as usize,
-        &custom.rgba,
-        if custom.blur { Filter::Linear } else { Filter::Nearest },
-        if custom.clamp { Wrap::ClampToEdge } else { Wrap::Repeat },
-    );
-    let (nw, nh, noise) = mesh::noise(256);
-    Ok(Statics { water, noise: Texture::from_rgba8(nw as usize, nh as usize, &noise, Filter::Linear, Wrap::Repeat) })
-}
-
-fn reference_inputs(pack: &LoadedPack, st: &Statics, g: &GBuffers, values: &BTreeMap<String, Value>, f32_inputs: bool) -> Result<Inputs, String> {
-    let (w, h) = (g.depth0.width as usize, g.depth0.height as usize);
-    let colour = |b: u8| -> Result<Texture, String> {
-        let image = g.colors.get(&b).ok_or_else(|| format!("no colortex{b}"))?;
-        Ok(Texture::from_f32(w, h, &image.pixels, colour_filter(pack.format_of(b)), Wrap::ClampToEdge))
-    };
-    let depth = |image: &FloatImage| Texture::from_f32(w, h, &image.pixels, Filter::Nearest, Wrap::ClampToEdge);
-    let rounded: BTreeMap<String, Vec<f64>> = values
-        .iter()
-        .map(|(k, v)| (k.clone(), if f32_inputs { v.data.iter().map(|&x| x as f32 as f64).collect() } else { v.data.clone() }))
-        .collect();
-    let uniforms = Uniforms::from_named(|name| rounded.get(name).map(|v| v.as_slice()))?;
-    Ok(Inputs {
-        width: w,
-        height: h,
-        colortex0: colour(0)?,
-        colortex4: colour(4)?,
-        colortex5: colour(5)?,
-        colortex6: colour(6)?,
-        depthtex0: depth(&g.depth0),
-        depthtex1: depth(&g.depth1),
-        water: st.water.clone(),
-        noise: st.noise.clone(),
-        uniforms,
-    })
+/// The reference's inputs for a case: its G-buffers with the uniforms the shader got (`f32_inputs`)
+/// or the exact ones. An RGBA32F colour buffer is taken as not filtering (nearest), as this sweep
+/// always assumed; the pack's colour buffers are RGBA8/RGBA16.
+fn reference_inputs(pack: &LoadedPack, textures: &Textures, g: &GBuffers, values: &BTreeMap<String, Value>, f32_inputs: bool) -> Result<Inputs, String> {
+    let uniforms = reference::uniforms_of(values, if f32_inputs { Precision::F32 } else { Precision::Exact })?;
+    reference::from_gbuffers(pack, &g.colors, &g.depth0, &g.depth1, Some(false), textures, uniforms)
 }
 
 /// One case: the uniforms (from a scene variant) and the G-buffers.
@@ -481,8 +425,8 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
     })
     .map_err(|e| e.to_string())?;
     let gpu = Gpu::new().map_err(|e| e.to_string())?;
-    let settings = settings_of(&pack)?;
-    let st = statics(&pack)?;
+    let settings = reference::settings_of(&pack)?;
+    let textures = Textures::of(&pack)?;
 
     let mut bases = Vec::new();
     for (name, scene) in base_scenes(opts)? {
@@ -511,7 +455,7 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
             let bad = non_finite(&image);
             // The reference at the f32 uniforms the shader got (for every case) and, far from
             // the origin, also at the exact ones.
-            let inputs = reference_inputs(&pack, &st, &case.gbuffers, &values, true)?;
+            let inputs = reference_inputs(&pack, &textures, &case.gbuffers, &values, true)?;
             let reference = tidepack_reference::render(&inputs, &settings, 1)?;
             let gpu_rgb = |i: usize| {
                 let p = image.pixels[i];
@@ -530,7 +474,7 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
                 c.worst_case = format!("#{index} {}", case.description);
             }
             if let Some(m) = case.magnitude {
-                let exact = tidepack_reference::render(&reference_inputs(&pack, &st, &case.gbuffers, &values, false)?, &settings, 1)?;
+                let exact = tidepack_reference::render(&reference_inputs(&pack, &textures, &case.gbuffers, &values, false)?, &settings, 1)?;
                 let (max_exact, sq_exact, _) = compare(gpu_rgb, &exact.pixels);
                 let (rounding, _, _) = compare(|i| reference.pixels[i], &exact.pixels);
                 let row = distance.iter_mut().find(|r| r.magnitude == m).expect("a row per magnitude");

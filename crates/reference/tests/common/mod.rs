@@ -1,6 +1,6 @@
-//! The adapter from the harness to the reference: renders a scene with the pack on lavapipe and
-//! hands over exactly what composite read (G-buffers at full precision, uniforms by OptiFine
-//! name, the water and noise textures with the samplers gpu.rs binds them with).
+//! Renders a scene with the pack on lavapipe and hands the reference exactly what composite read,
+//! through the adapter in `tidepack_reference::harness` (this crate's `harness` feature, which
+//! the tests get from the crate's dev-dependency on itself); its errors panic here.
 //!
 //! Rendering needs lavapipe (Debian mesa-vulkan-drivers; tools/test installs it). Without it
 //! these tests fail with an error naming the package: they never skip.
@@ -12,12 +12,9 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, OnceLock};
 
 use glam::DVec3;
-use tidepack_glsl::options::OptionValue;
-use tidepack_harness::program::BufferFormat;
-use tidepack_harness::uniforms::{self, Pass};
-use tidepack_harness::{Frame, Gpu, LoadedPack, PackSelection, Scene, mesh, program, render_wgpu};
+use tidepack_harness::{Frame, Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
-use tidepack_reference::{Filter, Inputs, ReferenceSettings, Texture, Uniforms, Wrap};
+use tidepack_reference::{Inputs, ReferenceSettings, harness};
 
 pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -64,58 +61,12 @@ pub fn frame(scene_name: &str, profile: &str) -> Frame {
 /// The pack's option values as the reference's settings (`WATER_TEXTURE_SLOPE_RANGE` from the
 /// texture generator, as lib/generated.glsl gets it).
 pub fn settings_of(pack: &LoadedPack) -> ReferenceSettings {
-    let mut s = ReferenceSettings::from_options(|name| match pack.options.get(name)? {
-        OptionValue::Switch(true) => Some(None),
-        OptionValue::Switch(false) => None,
-        OptionValue::Value(v) => Some(Some(v.clone())),
-    })
-    .unwrap_or_else(|e| panic!("{e}"));
-    s.slope_range = tidepack_pack::textures::water_texture().slope_range;
-    s
-}
-
-/// The filter gpu.rs binds a colour buffer's sampler with in a full-screen program: linear
-/// and clamp when its format filters, nearest and clamp otherwise.
-fn colour_filter(format: BufferFormat) -> Filter {
-    match format {
-        BufferFormat::Rgba8 | BufferFormat::Rgba16 | BufferFormat::Rgba16F => Filter::Linear,
-        other => panic!("the adapter does not know whether {other:?} filters on this adapter"),
-    }
+    harness::settings_of(pack).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// What composite read when the harness rendered `frame`.
 pub fn inputs(pack: &LoadedPack, scene: &Scene, frame: &Frame) -> Inputs {
-    let (w, h) = (frame.image.width as usize, frame.image.height as usize);
-    let colour = |b: u8| {
-        let image = frame.buffers.get(&b).unwrap_or_else(|| panic!("the frame has no colortex{b}"));
-        Texture::from_f32(w, h, &image.pixels, colour_filter(pack.format_of(b)), Wrap::ClampToEdge)
-    };
-    // Depth is not filterable: gpu.rs binds nearest + clamp.
-    let depth = |image: &tidepack_harness::FloatImage| Texture::from_f32(w, h, &image.pixels, Filter::Nearest, Wrap::ClampToEdge);
-    let custom = pack.custom_texture("colortex7", false).expect("the pack binds its water texture to colortex7");
-    let water = Texture::from_rgba8(
-        custom.width as usize,
-        custom.height as usize,
-        &custom.rgba,
-        if custom.blur { Filter::Linear } else { Filter::Nearest },
-        if custom.clamp { Wrap::ClampToEdge } else { Wrap::Repeat },
-    );
-    let (nw, nh, noise) = mesh::noise(256);
-    let values = uniforms::values(scene, Pass::Fullscreen);
-    let uniforms = Uniforms::from_named(|name| values.get(name).map(|v| v.data.as_slice())).unwrap_or_else(|e| panic!("{e}"));
-    Inputs {
-        width: w,
-        height: h,
-        colortex0: colour(0),
-        colortex4: colour(4),
-        colortex5: colour(5),
-        colortex6: colour(6),
-        depthtex0: depth(&frame.depth0),
-        depthtex1: depth(&frame.depth1),
-        water,
-        noise: Texture::from_rgba8(nw as usize, nh as usize, &noise, Filter::Linear, Wrap::Repeat),
-        uniforms,
-    }
+    harness::inputs(pack, scene, frame).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Differences of two images over a set of pixels, rgb channels.
