@@ -82,7 +82,7 @@ impl Default for ReferenceSettings {
 }
 
 /// `SURFACE_TOLERANCE` of waves.glsl, in blocks.
-pub const SURFACE_TOLERANCE: f64 = 0.01;
+pub const SURFACE_TOLERANCE: f64 = 0.0005;
 
 impl ReferenceSettings {
     /// The ULTRA look with converged iteration counts, exact Fresnel and Beer–Lambert: the

@@ -42,9 +42,9 @@ float waveHeight(sampler2D waterTexture, vec2 worldXZ, float time) {
     return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
 }
 
-// Height error below which the bisection stops: a hundredth of a block moves the sampled
-// normal by far less than one texel of the water texture.
-const float SURFACE_TOLERANCE = 0.01;
+// Height error below which the bisection stops early. Against the converged reference,
+// 0.0005 block leaves every profile's error unchanged; 0.002 already cost ULTRA 6 dB PSNR.
+const float SURFACE_TOLERANCE = 0.0005;
 
 // A1: bisection along the ray from the rasterised (flat) hit towards the wave surface.
 // `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
