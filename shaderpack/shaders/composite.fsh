@@ -146,15 +146,23 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
 
     vec3 reflected = reflect(rayDir, normal);
     vec3 reflection = skyRadiance(reflected, skyColor, fogColor) * (0.2 + 0.8 * skyLight);
-#ifdef REFLECTIONS
-    // March with a flatter normal: the wave detail is too fine for the screen's resolution.
-    vec3 marchNormal = mat3(gbufferModelView) * safeNormalize(vec3(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z), vec3(0.0, 1.0, 0.0));
-    vec3 start = (gbufferModelView * vec4(surface, 1.0)).xyz;
-    vec3 marchDir = reflect(safeNormalize(view0, vec3(0.0, 0.0, -1.0)), marchNormal);
-    vec4 hit = traceReflection(colortex0, depthtex1, start, marchDir, dot(marchDir, marchNormal), gbufferProjection, gbufferProjectionInverse);
-    reflection = mix(reflection, hit.rgb, hit.a);
-#endif
     float reflectance = fresnel(cosView, true);
+#ifdef REFLECTIONS
+    // The scene reflected on screen shows at most through the reflectance and the haze: when
+    // that weight is invisible, the sky stands in and the march is skipped.
+    float reflectionWeight = reflectance;
+#ifdef FAR_HAZE
+    reflectionWeight *= haze;
+#endif
+    if (reflectionWeight >= INVISIBLE) {
+        // March with a flatter normal: the wave detail is too fine for the screen's resolution.
+        vec3 marchNormal = mat3(gbufferModelView) * safeNormalize(vec3(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z), vec3(0.0, 1.0, 0.0));
+        vec3 start = (gbufferModelView * vec4(surface, 1.0)).xyz;
+        vec3 marchDir = reflect(safeNormalize(view0, vec3(0.0, 0.0, -1.0)), marchNormal);
+        vec4 hit = traceReflection(colortex0, depthtex1, start, marchDir, dot(marchDir, marchNormal), gbufferProjection, gbufferProjectionInverse);
+        reflection = mix(reflection, hit.rgb, hit.a);
+    }
+#endif
     vec3 color = mix(below, reflection, reflectance);
 
     float foam = 0.0;

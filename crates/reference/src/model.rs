@@ -473,7 +473,10 @@ impl Frame<'_> {
 
         let reflected = reflect(ray_dir, normal);
         let mut reflection = sky_radiance(reflected, u.sky_color, u.fog_color) * (0.2 + 0.8 * sky_light);
-        if s.reflections {
+        let reflectance = fresnel(cos_view, true, s.fresnel_exact);
+        // As in the pack: the march is skipped when the reflected scene could not show.
+        let reflection_weight = if s.far_haze { reflectance * haze } else { reflectance };
+        if s.reflections && reflection_weight >= INVISIBLE {
             let flatter = DVec3::new(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z);
             let march_normal = rotate(&u.gbuffer_model_view, safe_normalize(flatter, UP));
             let start = (u.gbuffer_model_view * surface.extend(1.0)).xyz();
@@ -481,7 +484,6 @@ impl Frame<'_> {
             let hit = trace_reflection(self, start, march_dir, march_dir.dot(march_normal));
             reflection = mix3(reflection, hit.xyz(), hit.w);
         }
-        let reflectance = fresnel(cos_view, true, s.fresnel_exact);
         let mut color = mix3(below, reflection, reflectance);
 
         let mut foam = 0.0;
