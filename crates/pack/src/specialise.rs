@@ -12,6 +12,7 @@ use std::sync::Arc;
 
 use tidepack_glsl::token::{TokenKind, tokenize};
 
+use crate::pack_options::is_glsl;
 use crate::shipped::{ShippedFile, ShippedPack};
 
 /// What to fold: uniform name → GLSL initialiser valid in both dialects (`0`,
@@ -55,10 +56,6 @@ fn is_plain_type(name: &str) -> bool {
     matches!(name, "float" | "int" | "uint" | "bool")
         || ["vec", "ivec", "uvec", "bvec", "mat"].into_iter().any(vector)
         || name.strip_prefix("mat").is_some_and(|n| matches!(n.as_bytes(), [b'2'..=b'4', b'x', b'2'..=b'4']))
-}
-
-fn is_glsl(path: &str) -> bool {
-    [".vsh", ".fsh", ".gsh", ".glsl"].iter().any(|ext| path.ends_with(ext))
 }
 
 /// The text with its foldable declarations rewritten and the names folded, or `None` when
