@@ -364,7 +364,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
             bar.inc(1);
         }
         for (i, set) in sets.iter_mut().enumerate() {
-            let (c, p) = (metrics::median(&times[i].0), metrics::median(&times[i].1));
+            let (c, p) = (tidepack_harness::median(&times[i].0), tidepack_harness::median(&times[i].1));
             let error = prepared[i].2;
             set.rows.push(Row {
                 scene: name.clone(),

@@ -76,10 +76,3 @@ pub fn write_heatmap(map: &nv_flip::FlipImageFloat, path: &std::path::Path) -> R
     image.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-/// Median of a non-empty list.
-pub fn median(values: &[f64]) -> f64 {
-    let mut v = values.to_vec();
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
-}

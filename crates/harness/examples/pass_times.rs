@@ -90,7 +90,7 @@ fn main() {
                 samples[k].push(t.gpu_ms.unwrap_or(t.wall_ms));
             }
         }
-        let m: Vec<f64> = samples.into_iter().map(median).collect();
+        let m: Vec<f64> = samples.iter().map(|s| tidepack_harness::median(s)).collect();
         println!(
             "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} |",
             scene.name,
@@ -101,12 +101,6 @@ fn main() {
             if m[3] > 0.0 { m[2] / m[3] } else { f64::NAN }
         );
     }
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
 }
 
 fn fail(message: &str) -> ! {

@@ -448,7 +448,8 @@ impl CompositeOnly {
             }
             match &queries {
                 Some(q) => {
-                    let ticks = read_timestamps(gpu, q)?;
+                    // Two timed passes: composite, then the pass-through.
+                    let ticks = gpu::read_timestamps(gpu, q, 2)?;
                     let period = gpu.queue.get_timestamp_period() as f64;
                     let ms = |i: usize| ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6;
                     composite_ms.push(ms(0));
@@ -555,39 +556,6 @@ impl CompositeOnly {
         pass.set_bind_group(0, &self.passthrough.pipeline.bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
-}
-
-/// The 4 timestamps of one timed frame (composite begin/end, pass-through begin/end).
-fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet) -> Result<Vec<u64>, HarnessError> {
-    let bytes = 4 * 8;
-    let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("composite_only timestamp resolve"),
-        size: bytes,
-        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let read = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("composite_only timestamp readback"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    encoder.resolve_query_set(queries, 0..4, &resolve, 0);
-    encoder.copy_buffer_to_buffer(&resolve, 0, &read, 0, bytes);
-    gpu.queue.submit([encoder.finish()]);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    read.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = sender.send(r);
-    });
-    gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for timestamps: {e}")))?;
-    receiver
-        .recv()
-        .map_err(|_| HarnessError::Wgpu("timestamp readback callback dropped".into()))?
-        .map_err(|e| HarnessError::Wgpu(format!("mapping the timestamp buffer: {e}")))?;
-    let data = read.get_mapped_range(..).map_err(|e| HarnessError::Wgpu(format!("reading timestamps: {e:?}")))?.to_vec();
-    read.unmap();
-    Ok(data.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect())
 }
 
 fn sampler(gpu: &Gpu, filter: wgpu::FilterMode, address: wgpu::AddressMode) -> wgpu::Sampler {

@@ -121,6 +121,18 @@ impl Gpu {
     }
 }
 
+/// Median of pass times (NaN for none): what every timing report of the harness quotes.
+pub fn median(samples: &[f64]) -> f64 {
+    let mut sorted = samples.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => sorted[n / 2],
+        _ => (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0,
+    }
+}
+
 /// Time of one pass.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PassTiming {
@@ -1101,7 +1113,8 @@ impl PassthroughPipeline {
     }
 }
 
-fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet, passes: u32) -> Result<Vec<u64>, HarnessError> {
+/// The begin and end timestamps of `passes` timed passes, in query order.
+pub(crate) fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet, passes: u32) -> Result<Vec<u64>, HarnessError> {
     let bytes = (passes * 2) as u64 * 8;
     let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("timestamp resolve"),

@@ -10,7 +10,7 @@ use tidepack_pack::Dialect;
 
 use crate::gpu::{self, PassTiming};
 use crate::images::{self, FloatImage};
-use crate::program::{self, PackSelection};
+use crate::program::{self, LoadedPack, PackSelection};
 use crate::scene::Scene;
 use crate::{Gpu, HarnessError, gl, mesh, uniforms};
 
@@ -104,27 +104,27 @@ pub struct SpecialisationReport {
     pub max_difference: [f32; 4],
 }
 
-/// Renders `scene` with the general pack and with the pack specialised for it, `frames` timed
-/// frames each in alternating rounds (so a change in machine load hits both), and compares
-/// composite time and images.
+/// Renders `scene` with `general` (the pack `selection` loads) and with the pack specialised
+/// for the scene, `frames` timed frames each in alternating rounds (so a change in machine load
+/// hits both), and compares composite time and images.
 pub fn specialisation_speedup(
     gpu: &Gpu,
     selection: &PackSelection,
+    general: &LoadedPack,
     scene: &Scene,
     scene_label: &str,
     frames: usize,
 ) -> Result<SpecialisationReport, HarnessError> {
     let spec = uniforms::scene_specialisation(scene, scene_label);
-    let general = program::load(selection)?;
     let specialised = program::load_specialised(selection, Some(&spec))?;
-    let (general_mesh, specialised_mesh) = (mesh::build(scene, &general), mesh::build(scene, &specialised));
+    let (general_mesh, specialised_mesh) = (mesh::build(scene, general), mesh::build(scene, &specialised));
     const ROUNDS: usize = 3;
     let per_round = frames.div_ceil(ROUNDS).max(1);
     let (mut general_ms, mut specialised_ms, mut passthrough_ms) = (Vec::new(), Vec::new(), Vec::new());
     let mut images = (None, None);
     for _ in 0..ROUNDS {
         for (pack, mesh, samples, image) in [
-            (&general, &general_mesh, &mut general_ms, &mut images.0),
+            (general, &general_mesh, &mut general_ms, &mut images.0),
             (&specialised, &specialised_mesh, &mut specialised_ms, &mut images.1),
         ] {
             let (frame, runs) = gpu::render_repeated(gpu, pack, scene, mesh, true, per_round + 1)?;
@@ -144,26 +144,16 @@ pub fn specialisation_speedup(
     let (Some(general_image), Some(specialised_image)) = images else {
         return Err(HarnessError::Wgpu("no frame was rendered".into()));
     };
-    let (general_ms, specialised_ms) = (median(general_ms), median(specialised_ms));
+    let (general_ms, specialised_ms) = (gpu::median(&general_ms), gpu::median(&specialised_ms));
     Ok(SpecialisationReport {
         folded: specialised.folded_uniforms.clone(),
         frames: per_round * ROUNDS,
         general_ms,
         specialised_ms,
-        passthrough_ms: median(passthrough_ms),
+        passthrough_ms: gpu::median(&passthrough_ms),
         speedup: general_ms / specialised_ms,
         max_difference: images::max_channel_difference(&general_image, &specialised_image),
     })
-}
-
-fn median(mut samples: Vec<f64>) -> f64 {
-    samples.sort_by(f64::total_cmp);
-    let n = samples.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => samples[n / 2],
-        _ => (samples[n / 2 - 1] + samples[n / 2]) / 2.0,
-    }
 }
 
 /// Renders the job's scene and writes the files; returns the report (also written as JSON).
@@ -213,7 +203,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     };
 
     let specialisation = if job.specialise {
-        Some(specialisation_speedup(&gpu, &selection, &scene, &job.scene.display().to_string(), SPECIALISATION_FRAMES)?)
+        Some(specialisation_speedup(&gpu, &selection, &pack, &scene, &job.scene.display().to_string(), SPECIALISATION_FRAMES)?)
     } else {
         None
     };

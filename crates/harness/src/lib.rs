@@ -20,7 +20,7 @@ pub mod program;
 pub mod scene;
 pub mod uniforms;
 
-pub use gpu::{Frame, Gpu, PassTiming};
+pub use gpu::{Frame, Gpu, PassTiming, median};
 pub use images::FloatImage;
 pub use program::{LoadedPack, PackSelection};
 pub use scene::Scene;

@@ -81,7 +81,6 @@ impl Value {
         }
     }
 
-    /// Components as f32 (for OpenGL's glUniform*fv).
     /// The value as a GLSL constructor valid in GLSL 1.20 and later (`0`, `vec3(0.5, 1.0, 2.0)`),
     /// each float written so that it parses back to the same f32 the uniform buffer holds.
     /// `None` for arrays, which have no constructor in GLSL 1.20.
@@ -96,6 +95,7 @@ impl Value {
         Some(if parts.len() == 1 { parts[0].clone() } else { format!("{}({})", self.glsl_type(), parts.join(", ")) })
     }
 
+    /// Components as f32 (for OpenGL's glUniform*fv).
     pub fn as_f32(&self) -> Vec<f32> {
         self.data.iter().map(|&v| v as f32).collect()
     }

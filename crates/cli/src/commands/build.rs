@@ -70,7 +70,7 @@ fn scene_specialisation(_: &Path) -> Result<tidepack_pack::specialise::Specialis
 /// The pack is built either way; a missing renderer only means no speedup figure.
 #[cfg(feature = "render")]
 fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &Path) {
-    use tidepack_harness::{Gpu, PackSelection, Scene, job};
+    use tidepack_harness::{Gpu, PackSelection, Scene, job, program};
     let selection = PackSelection {
         source_dir: opts.source_dir.clone(),
         dialect,
@@ -79,7 +79,8 @@ fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &P
     };
     let measured = Scene::load(path).and_then(|scene| {
         let gpu = Gpu::new()?;
-        job::specialisation_speedup(&gpu, &selection, &scene, &path.display().to_string(), 9)
+        let general = program::load(&selection)?;
+        job::specialisation_speedup(&gpu, &selection, &general, &scene, &path.display().to_string(), 9)
     });
     match measured {
         Ok(report) => super::print_specialisation(&report),
