@@ -35,8 +35,16 @@ use tidepack_reference::ReferenceImage;
 pub use metrics::Error;
 
 /// The knobs swept one at a time around the base profile, with every value settings.glsl lists.
-pub const SWEPT_KNOBS: [&str; 7] =
-    ["WAVE_REFINE_STEPS", "SSR_STEPS", "SSR_REFINE_STEPS", "NORMAL_OCTAVES", "CAUSTIC_SAMPLES", "FRESNEL_EXACT", "ABSORPTION_MODEL"];
+pub const SWEPT_KNOBS: [&str; 8] = [
+    "WAVE_REFINE_STEPS",
+    "SSR_STEPS",
+    "SSR_REFINE_STEPS",
+    "NORMAL_OCTAVES",
+    "CAUSTIC_SAMPLES",
+    "FRESNEL_EXACT",
+    "ABSORPTION_MODEL",
+    "EARLY_OUTS",
+];
 
 #[derive(Clone, Debug)]
 pub struct BenchConfig {

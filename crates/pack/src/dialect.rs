@@ -137,6 +137,7 @@ fn downlevel_to_120(
     let mut paren_depth = 0;
     let mut statement_start = true;
     let mut line_of_directive = 0;
+    let mut version_blocks = VersionBlocks::default();
     for (k, &i) in sig.iter().enumerate() {
         let t = &tokens[i];
         if i < skip_until {
@@ -146,7 +147,15 @@ fn downlevel_to_120(
             line_of_directive = t.line;
         }
         let in_directive = t.line == line_of_directive;
-        if in_directive && k >= 1 && tokens[sig[k - 1]].is_punct("#") && t.is_ident("version") {
+        let directive_name = in_directive && k >= 1 && tokens[sig[k - 1]].is_punct("#");
+        if directive_name {
+            version_blocks.enter(t.text, &tokens, &sig[k + 1..]);
+        }
+        if version_blocks.skipped_in_120() {
+            // Text GLSL 120's preprocessor never reads: it stays as written.
+            continue;
+        }
+        if directive_name && t.is_ident("version") {
             // Replace the whole `#version …` line.
             let end = (i..tokens.len()).find(|&j| tokens[j].kind == TokenKind::Newline).unwrap_or(tokens.len());
             replaced.insert(sig[k - 1], Dialect::Glsl120.version_line().to_string());
@@ -247,6 +256,58 @@ fn downlevel_to_120(
     Ok(out)
 }
 
+/// The conditional blocks of a template that GLSL 120 skips: the branch of `#if __VERSION__ >= N`
+/// (N > 120) or the `#else` of `#if __VERSION__ < N`. A template may use GLSL 130+ words there,
+/// with its GLSL 120 alternative in the other branch.
+#[derive(Default)]
+struct VersionBlocks {
+    /// One entry per open `#if`/`#ifdef`/`#ifndef`: for a version test, whether it holds in
+    /// GLSL 120; None for any other condition (both branches are read as GLSL 120).
+    open: Vec<Option<bool>>,
+}
+
+impl VersionBlocks {
+    /// Follows the directive named `name`; `rest` are the significant tokens after the name.
+    fn enter(&mut self, name: &str, tokens: &[Token], rest: &[usize]) {
+        match name {
+            "if" => self.open.push(Self::version_test(tokens, rest)),
+            "ifdef" | "ifndef" => self.open.push(None),
+            "else" => {
+                if let Some(Some(holds)) = self.open.last_mut() {
+                    *holds = !*holds;
+                }
+            }
+            // A chain of conditions: read the rest as GLSL 120, to be safe.
+            "elif" => {
+                if let Some(last) = self.open.last_mut() {
+                    *last = None;
+                }
+            }
+            "endif" => {
+                self.open.pop();
+            }
+            _ => {}
+        }
+    }
+
+    fn skipped_in_120(&self) -> bool {
+        self.open.contains(&Some(false))
+    }
+
+    /// For `__VERSION__ >= N` or `__VERSION__ < N` alone on the line: whether it holds in GLSL 120.
+    fn version_test(tokens: &[Token], rest: &[usize]) -> Option<bool> {
+        let line = tokens[*rest.first()?].line;
+        let words: Vec<&str> = rest.iter().map(|&j| &tokens[j]).take_while(|t| t.line == line).map(|t| t.text).collect();
+        let [name, op, number] = words.as_slice() else { return None };
+        let version: u32 = number.parse().ok()?;
+        match (*name, *op) {
+            ("__VERSION__", ">=") => Some(120 >= version),
+            ("__VERSION__", "<") => Some(120 < version),
+            _ => None,
+        }
+    }
+}
+
 /// `N` of an output named `outColorN`.
 fn output_index(name: &str) -> Option<u32> {
     name.strip_prefix("outColor").and_then(|n| n.parse().ok())
@@ -316,6 +377,47 @@ void main() {
             let loc = err.location.clone().unwrap();
             assert_eq!((loc.path.as_str(), loc.line), ("t/a.fsh", 3), "{err}");
             assert!(err.message.contains(needle), "{err}");
+        }
+    }
+
+    #[test]
+    fn branches_glsl_120_skips_may_use_newer_glsl() {
+        let src = "#version 330 compatibility
+uniform sampler2D colortex0;
+in vec2 uv;
+vec4 own() {
+#if __VERSION__ >= 130
+    return texelFetch(colortex0, ivec2(gl_FragCoord.xy), 0);
+#else
+    return texture(colortex0, uv);
+#endif
+}
+#if __VERSION__ < 130
+float a = 1.0;
+#else
+uint b = 1u;
+#endif
+";
+        let out = generate("t/a.fsh", "a.fsh", src, Dialect::Glsl120, &sampler_types([src]), "//").unwrap();
+        let lines: Vec<&str> = out.lines().collect();
+        // Kept as written where GLSL 120 never reads it, downlevelled where it does.
+        assert_eq!(lines[6], "    return texelFetch(colortex0, ivec2(gl_FragCoord.xy), 0);");
+        assert_eq!(lines[8], "    return texture2D(colortex0, uv);");
+        assert_eq!(lines[12], "float a = 1.0;");
+        assert_eq!(lines[14], "uint b = 1u;");
+    }
+
+    #[test]
+    fn newer_glsl_outside_a_version_branch_is_still_an_error() {
+        for src in [
+            "#version 330 compatibility\n#ifdef A\nuint a;\n#endif\n",
+            "#version 330 compatibility\n#if __VERSION__ >= 110\nuint a;\n#endif\n",
+            "#version 330 compatibility\n#if __VERSION__ >= 130\n#else\nuint a;\n#endif\n",
+            "#version 330 compatibility\n#if __VERSION__ >= 130\n#elif B\nuint a;\n#endif\n",
+            "#version 330 compatibility\n#if __VERSION__ >= 130\n#endif\nuint a;\n",
+        ] {
+            let err = generate("t/a.fsh", "a.fsh", src, Dialect::Glsl120, &HashMap::new(), "//").unwrap_err();
+            assert!(err.message.contains("`uint`"), "{src}: {err}");
         }
     }
 

@@ -404,7 +404,7 @@ impl Frame<'_> {
 
     /// `withCaustics`.
     fn with_caustics(&self, lit: DVec3, world_xz: DVec2, visibility: f64) -> DVec3 {
-        if !self.s.caustics || visibility < INVISIBLE {
+        if !self.s.caustics || (self.s.early_outs && visibility < INVISIBLE) {
             return lit;
         }
         match self.s.caustics_mode {
@@ -476,7 +476,7 @@ impl Frame<'_> {
         let reflectance = fresnel(cos_view, true, s.fresnel_exact);
         // As in the pack: the march is skipped when the reflected scene could not show.
         let reflection_weight = if s.far_haze { reflectance * haze } else { reflectance };
-        if s.reflections && reflection_weight >= INVISIBLE {
+        if s.reflections && !(s.early_outs && reflection_weight < INVISIBLE) {
             let flatter = DVec3::new(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z);
             let march_normal = rotate(&u.gbuffer_model_view, safe_normalize(flatter, UP));
             let start = (u.gbuffer_model_view * surface.extend(1.0)).xyz();

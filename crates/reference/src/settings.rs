@@ -34,8 +34,11 @@ pub struct ReferenceSettings {
     /// `WAVE_REFINE_STEPS`: bisection steps of `refineSurface`.
     pub wave_refine_steps: u32,
     /// `SURFACE_TOLERANCE` of waves.glsl: the bisection stops once the height gap is below
-    /// it (0: it never stops early, as in the converged settings).
+    /// it (0: it never stops early, as in the converged settings and with `EARLY_OUTS` off).
     pub surface_tolerance: f64,
+    /// `EARLY_OUTS`: caustics and the reflection march are skipped when they would add less
+    /// than 1/255 (off in the converged settings).
+    pub early_outs: bool,
     pub normal_mode: NormalMode,
     /// `NORMAL_OCTAVES`.
     pub normal_octaves: u32,
@@ -94,6 +97,7 @@ impl ReferenceSettings {
         ReferenceSettings {
             wave_refine_steps: 64,
             surface_tolerance: 0.0,
+            early_outs: false,
             normal_mode: NormalMode::HeightSamples,
             normal_octaves: 2,
             reflections: true,
@@ -144,7 +148,8 @@ impl ReferenceSettings {
         };
         Ok(ReferenceSettings {
             wave_refine_steps: count("WAVE_REFINE_STEPS")?,
-            surface_tolerance: SURFACE_TOLERANCE,
+            surface_tolerance: if switch("EARLY_OUTS") { SURFACE_TOLERANCE } else { 0.0 },
+            early_outs: switch("EARLY_OUTS"),
             normal_mode: if count("NORMAL_MODE")? == 0 { NormalMode::StoredSlope } else { NormalMode::HeightSamples },
             normal_octaves: count("NORMAL_OCTAVES")?,
             reflections: switch("REFLECTIONS"),

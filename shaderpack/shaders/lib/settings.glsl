@@ -29,6 +29,9 @@
 #define FOAM // Foam on crests and along shores.
 #define FAR_HAZE // Distant water fades into the fog colour.
 
+// Performance
+#define EARLY_OUTS // Skip work whose result cannot show. Off: the same picture, slower.
+
 // OptiFine shows a switch only when the file that defines it also tests it.
 #ifdef WATER_WAVES
 #endif
@@ -47,4 +50,14 @@
 #ifdef FOAM
 #endif
 #ifdef FAR_HAZE
+#endif
+
+// NEEDED(condition) guards work a pixel can skip when the condition is false: a case of the
+// water model the pixel is not in, or a contribution under 1/255. With EARLY_OUTS off every
+// guard passes and the pixel does all the work, choosing its result afterwards as before: the
+// same picture, which is what the early-outs are timed against (docs/skipping.md).
+#ifdef EARLY_OUTS
+#define NEEDED(condition) (condition)
+#else
+#define NEEDED(condition) true
 #endif

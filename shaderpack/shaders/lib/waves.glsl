@@ -55,7 +55,7 @@ vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cam
     for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
         float gap = p.y - planeY - waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
         // On the surface to within SURFACE_TOLERANCE: further halvings cannot show.
-        if (abs(gap) < SURFACE_TOLERANCE) {
+        if (!NEEDED(abs(gap) >= SURFACE_TOLERANCE)) {
             break;
         }
         // On the camera's side of the surface: go on along the ray; past it: go back.
