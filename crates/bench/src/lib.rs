@@ -213,14 +213,12 @@ fn load_pack(source_dir: &Path, run: &RunSpec, specialisation: Option<&Specialis
 }
 
 pub fn scene_files(config: &BenchConfig) -> Result<Vec<(String, PathBuf)>, String> {
-    let mut files: Vec<(String, PathBuf)> = std::fs::read_dir(&config.scenes_dir)
-        .map_err(|e| format!("cannot read {}: {e}", config.scenes_dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), p))
+    let files: Vec<(String, PathBuf)> = tidepack_harness::scene::scene_files(&config.scenes_dir)
+        .map_err(|e| e.to_string())?
+        .into_iter()
+        .filter_map(|p| Some((p.file_stem()?.to_string_lossy().into_owned(), p)))
         .filter(|(n, _)| config.scene_filter.is_empty() || config.scene_filter.contains(n))
         .collect();
-    files.sort();
     if files.is_empty() {
         return Err(format!("no scenes in {}", config.scenes_dir.display()));
     }

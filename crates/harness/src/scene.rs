@@ -2,7 +2,7 @@
 //! and stained-glass panes. Everything derived from a scene (matrices, `isEyeInWater`) is
 //! computed here in f64.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{DMat4, DVec3};
 use serde::Deserialize;
@@ -152,6 +152,15 @@ pub struct GlassPane {
 
 fn default_glass_block() -> String {
     "minecraft:white_stained_glass".into()
+}
+
+/// The scene files (`*.toml`) of a folder, sorted by name.
+pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, HarnessError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| HarnessError::Scene(format!("cannot read {}: {e}", dir.display())))?;
+    let mut files: Vec<PathBuf> =
+        entries.filter_map(|e| Some(e.ok()?.path())).filter(|p| p.extension().is_some_and(|x| x == "toml")).collect();
+    files.sort();
+    Ok(files)
 }
 
 impl Scene {

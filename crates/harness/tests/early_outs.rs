@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use tidepack_harness::{Gpu, PackSelection, Scene, images, program, render_wgpu};
+use tidepack_harness::{Gpu, PackSelection, Scene, images, program, render_wgpu, scene};
 use tidepack_pack::Dialect;
 
 fn root() -> PathBuf {
@@ -19,12 +19,7 @@ const MAX_SHARE_DIFFERENT: f64 = 0.005;
 #[test]
 fn switching_the_early_outs_off_leaves_the_picture() {
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("tests/scenes"))
-        .unwrap()
-        .filter_map(|e| Some(e.ok()?.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = scene::scene_files(&root().join("tests/scenes")).unwrap_or_else(|e| panic!("{e}"));
     assert!(scenes.len() >= 8, "{scenes:?}");
     let selection = |options: Vec<(String, String)>| PackSelection {
         source_dir: root().join("shaderpack"),

@@ -22,12 +22,8 @@ fn scene(name: &str) -> Scene {
 }
 
 fn scene_names() -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(root().join("tests/scenes"))
-        .expect("tests/scenes")
-        .filter_map(|e| e.ok()?.path().file_stem().map(|s| s.to_string_lossy().into_owned()))
-        .collect();
-    names.sort();
-    names
+    let files = tidepack_harness::scene::scene_files(&root().join("tests/scenes")).unwrap_or_else(|e| panic!("{e}"));
+    files.iter().filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned())).collect()
 }
 
 fn pack(dialect: Dialect) -> &'static LoadedPack {

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use tidepack_harness::{Gpu, PackSelection, Scene, images, program, render_wgpu, uniforms};
+use tidepack_harness::{Gpu, PackSelection, Scene, images, program, render_wgpu, scene, uniforms};
 use tidepack_pack::Dialect;
 
 fn root() -> PathBuf {
@@ -14,12 +14,7 @@ fn root() -> PathBuf {
 #[test]
 fn every_scene_renders_the_same_specialised_as_general() {
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("tests/scenes"))
-        .unwrap()
-        .filter_map(|e| Some(e.ok()?.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = scene::scene_files(&root().join("tests/scenes")).unwrap_or_else(|e| panic!("{e}"));
     assert!(scenes.len() >= 8, "{scenes:?}");
     for dialect in Dialect::ALL {
         let selection = PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };
