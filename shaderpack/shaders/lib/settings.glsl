@@ -24,7 +24,7 @@
 #define ABSORPTION_DENSITY 10.0 // [5.0 10.0 20.0] Beer-Lambert density as a multiple of pure water.
 #define CAUSTICS // Light patterns on surfaces under water.
 #define CAUSTICS_MODE 0 // [0 1] 0: two samples of the water height texture. 1: two samples of the noise texture.
-#define CAUSTIC_SAMPLES 2 // [1 2 3] Sample pairs of the caustic pattern, each at a finer scale.
+#define CAUSTIC_SAMPLES 3 // [1 2 3] Sample pairs of the caustic pattern, each at a finer scale.
 #define CAUSTICS_STRENGTH 0.40 // [0.10 0.25 0.40 0.60] Brightness of the caustic pattern.
 #define FOAM // Foam on crests and along shores.
 #define FAR_HAZE // Distant water fades into the fog colour.
