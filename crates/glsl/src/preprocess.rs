@@ -120,6 +120,8 @@ pub fn preprocess(
         })?);
         pp.macros.insert(name.clone(), Macro { params: None, body });
     }
+    // A shader without `#version` is GLSL 1.10.
+    pp.define_version_macros(&VersionDirective { number: 110, profile: None });
     let text = provider.read(entry).map_err(|e| Diagnostic::error(format!("cannot read {entry}: {e}"), None))?;
     pp.process_file(entry, &text)?;
     Ok(pp.out)
@@ -372,6 +374,7 @@ impl Preprocessor<'_> {
                     if let Some(profile) = &version.profile {
                         write!(text, " {profile}").unwrap();
                     }
+                    self.define_version_macros(&version);
                     self.out.version = Some(version);
                     self.out.text.push_str(&text);
                 }
@@ -438,6 +441,25 @@ impl Preprocessor<'_> {
         let result = self.process_file(&resolved, &text);
         self.include_stack.pop();
         result
+    }
+
+    /// The macros the GLSL specification defines for a version: `__VERSION__`, and from 1.50 on
+    /// `GL_core_profile` or `GL_compatibility_profile`; `GL_ES` for ES.
+    fn define_version_macros(&mut self, version: &VersionDirective) {
+        for name in ["__VERSION__", "GL_core_profile", "GL_compatibility_profile", "GL_ES"] {
+            self.macros.remove(name);
+        }
+        let number = |value: String| Macro { params: None, body: vec![OwnedToken { kind: TokenKind::Number, text: value }] };
+        self.macros.insert("__VERSION__".into(), number(version.number.to_string()));
+        let profile = match version.profile.as_deref() {
+            Some("es") => Some("GL_ES"),
+            Some("compatibility") => Some("GL_compatibility_profile"),
+            _ if version.number >= 150 => Some("GL_core_profile"),
+            _ => None,
+        };
+        if let Some(name) = profile {
+            self.macros.insert(name.into(), number("1".into()));
+        }
     }
 
     fn define(&mut self, args: &[Token<'_>]) -> Result<(), String> {
@@ -1032,6 +1054,21 @@ mod tests {
 
     fn run(list: &[(&str, &str)]) -> Result<Preprocessed, Diagnostic> {
         preprocess(&files(list), list[0].0, &PreprocessOptions::default())
+    }
+
+    #[test]
+    fn the_version_line_defines_the_specifications_macros() {
+        let text = "#if __VERSION__ >= 130\nnew\n#else\nold\n#endif\n#ifdef GL_compatibility_profile\ncompat\n#endif\n#ifdef GL_core_profile\ncore\n#endif\nint v = __VERSION__;\n";
+        let words = |version: &str| {
+            let out = run(&[("a.fsh", &format!("{version}{text}"))]).unwrap();
+            assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+            out.text.split_whitespace().collect::<Vec<_>>().join(" ")
+        };
+        assert!(words("#version 120\n").ends_with("old int v = 120;"), "{}", words("#version 120\n"));
+        assert!(words("#version 330 compatibility\n").ends_with("new compat int v = 330;"));
+        assert!(words("#version 330\n").ends_with("new core int v = 330;"));
+        // No #version: GLSL 1.10.
+        assert!(words("").ends_with("old int v = 110;"), "{}", words(""));
     }
 
     #[test]
