@@ -813,7 +813,7 @@ impl<'a> Lowering<'_, 'a> {
             }
             current.push(i);
         }
-        params.retain(|p| !p.tokens.is_empty() && !(p.tokens.len() == 1 && self.tokens[p.tokens[0]].is_ident("void")));
+        params.retain(|p| !(p.tokens.is_empty() || p.tokens.len() == 1 && self.tokens[p.tokens[0]].is_ident("void")));
         params
     }
 

@@ -246,9 +246,9 @@ impl CompositeOnly {
             }
         }
         // colortex0 is always uploaded (the output replaces it).
-        if !colors.contains_key(&0) {
+        if let std::collections::btree_map::Entry::Vacant(slot) = colors.entry(0) {
             let format = pack.format_of(0);
-            colors.insert(0, (texture("colortex0", wgpu_format(gpu, format)?, input), format));
+            slot.insert((texture("colortex0", wgpu_format(gpu, format)?, input), format));
         }
 
         let max_group = groups.keys().copied().max().map_or(0, |g| g + 1);

@@ -276,7 +276,7 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> R
     for (stage, ext) in [(Stage::Vertex, "vsh"), (Stage::Fragment, "fsh")] {
         let path = format!("{name}.{ext}");
         provider.read(&path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
-        let p = preprocess::preprocess(provider, &path, &macros).map_err(|d| diag_error(&format!("{path}"), &[d]))?;
+        let p = preprocess::preprocess(provider, &path, &macros).map_err(|d| diag_error(&path.to_string(), &[d]))?;
         pre.push((stage, Arc::new(p)));
     }
     let render_targets = match &pre[1].1.render_targets {
@@ -319,7 +319,7 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> R
     }
     let fragment = stages.pop().expect("two stages");
     let vertex = stages.pop().expect("two stages");
-    for (location, _) in &fragment.interface.outputs {
+    for location in fragment.interface.outputs.keys() {
         if *location as usize >= render_targets.len() {
             return Err(HarnessError::Pack(format!(
                 "{name}.fsh writes output {location} but its render targets list only {} buffers",

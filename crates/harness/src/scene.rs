@@ -185,7 +185,7 @@ impl Scene {
         if !(c.fov > 1.0 && c.fov < 179.0) || c.near <= 0.0 || c.far <= c.near {
             return Err("camera needs 1 < fov < 179, near > 0 and far > near".into());
         }
-        if self.water.as_ref().is_some_and(|w| !(w.cell >= 1.0)) {
+        if self.water.as_ref().is_some_and(|w| w.cell.is_nan() || w.cell < 1.0) {
             return Err("water.cell must be at least 1 block".into());
         }
         if DVec3::from(self.sky.sun_direction).length() < 1e-9 {

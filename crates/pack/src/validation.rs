@@ -13,6 +13,7 @@
 //! - under [`Coverage::Pairwise`] with more tested combinations: a covering array in which
 //!   every pair of values of any two tested options appears together in some set, plus every
 //!   profile.
+//!
 //! Every set is preprocessed and lowered; identical lowered texts are validated by naga once.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};

@@ -28,7 +28,7 @@ impl Uniforms {
             let v = value(name).ok_or_else(|| format!("no value for uniform {name}"))?;
             if v.len() == n { Ok(v) } else { Err(format!("uniform {name} has {} components, not {n}", v.len())) }
         };
-        let mat4 = |name: &str| get(name, 16).map(|v| DMat4::from_cols_slice(v));
+        let mat4 = |name: &str| get(name, 16).map(DMat4::from_cols_slice);
         let vec3 = |name: &str| get(name, 3).map(DVec3::from_slice);
         let scalar = |name: &str| get(name, 1).map(|v| v[0]);
         let ivec2 = get("eyeBrightnessSmooth", 2)?;

@@ -8,7 +8,8 @@ use crate::sampling::Texture;
 use crate::settings::{Absorption, CausticsMode, NormalMode, ReferenceSettings};
 
 // lib/common.glsl
-/// `TAU` as the shader writes it.
+/// `TAU` as the shader writes it (its digits, not `std::f64::consts::TAU`'s).
+#[allow(clippy::approx_constant)]
 pub const TAU: f64 = 6.28318530718;
 
 // lib/waves.glsl

@@ -194,7 +194,7 @@ pub fn github(report: &Report) -> String {
         }
         let mut message = d.message.clone();
         for note in &d.notes {
-            message.push_str("\n");
+            message.push('\n');
             message.push_str(note);
         }
         writeln!(out, "::{command} {}::{}", props.join(","), github_escape(&message, false)).unwrap();
