@@ -239,9 +239,15 @@ vec3 shadeUnderwater(vec2 uv, float depth0, vec3 color, bool opaque, vec3 scatte
 
 void main() {
     vec4 scene = ownTexel(colortex0);
+    outColor0 = vec4(scene.rgb, 1.0);
+    // Case 1 on a single read: gbuffers_water leaves colortex0's alpha at 0 wherever it drew
+    // (blend.gbuffers_water.colortex0 in shaders.properties), so alpha 1 means no water or
+    // glass in front.
+    if (isEyeInWater != 1 && !NEEDED(scene.a < 1.0)) {
+        return;
+    }
     vec4 surface = ownTexel(colortex4);
     bool water = isWaterMaterial(surface.a);
-    outColor0 = scene;
     if (isEyeInWater != 1) {
         if (isTranslucentMaterial(surface.a)) {
             // Glass over water: the g-buffer holds the glass, so the water behind it keeps
@@ -249,7 +255,6 @@ void main() {
             vec4 waterBehind = ownTexel(colortex6);
             outColor0.rgb = mix(scene.rgb, waterBehind.rgb, 0.6 * waterBehind.a);
         }
-        // Case 1 ends here: no water in front, so no water math.
         if (NEEDED(water)) {
             vec4 tintAndLight = ownTexel(colortex5);
             float depth0 = ownTexel(depthtex0).r;

@@ -236,8 +236,8 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
         },
         Mutation {
             template: "composite.fsh",
-            anchor: "outColor0 = scene;",
-            replace: ("outColor0 = scene;", "outColor0 = scene.rgb;"),
+            anchor: "outColor0 = vec4(scene.rgb, 1.0);",
+            replace: ("outColor0 = vec4(scene.rgb, 1.0);", "outColor0 = scene.rgb;"),
             message: "error",
         },
     ];

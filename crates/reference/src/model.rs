@@ -554,6 +554,10 @@ impl Frame<'_> {
         let surface = i.colortex4.sample(uv);
         let depth0 = i.depthtex0.sample(uv).x;
         if self.u.is_eye_in_water != 1 {
+            // As in the pack: colortex0's alpha stays 1 where gbuffers_water drew nothing.
+            if self.s.early_outs && scene.w >= 1.0 {
+                return scene.xyz();
+            }
             if is_water_material(surface.w) {
                 let tint_and_light = i.colortex5.sample(uv);
                 return self.shade_from_above(uv, depth0, tint_and_light.xyz(), tint_and_light.w);

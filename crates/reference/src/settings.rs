@@ -36,8 +36,9 @@ pub struct ReferenceSettings {
     /// `SURFACE_TOLERANCE` of waves.glsl: the bisection stops once the height gap is below
     /// it (0: it never stops early, as in the converged settings and with `EARLY_OUTS` off).
     pub surface_tolerance: f64,
-    /// `EARLY_OUTS`: caustics and the reflection march are skipped when they would add less
-    /// than 1/255 (off in the converged settings).
+    /// `EARLY_OUTS`: above water, a pixel whose colortex0 alpha is 1 passes through; caustics
+    /// and the reflection march are skipped when they would add less than 1/255 (off in the
+    /// converged settings).
     pub early_outs: bool,
     pub normal_mode: NormalMode,
     /// `NORMAL_OCTAVES`.

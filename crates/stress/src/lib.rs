@@ -260,6 +260,14 @@ fn map_gbuffers(runner: &CompositeOnly, g: &mut GBuffers, mut f: impl FnMut(usiz
         let mut px: BTreeMap<u8, [f32; 4]> = g.colors.iter().map(|(b, img)| (*b, img.pixels[i])).collect();
         let (mut d0, mut d1) = (g.depth0.pixels[i][0], g.depth1.pixels[i][0]);
         f(i, &mut px, &mut d0, &mut d1);
+        // gbuffers_water's blending leaves colortex0's alpha at 0 wherever it drew a translucent
+        // (shaders.properties), and composite reads the material only there: a translucent
+        // material put into colortex4 here must come with that alpha to be shaded.
+        if px.get(&4).is_some_and(|p| p[3] > 0.25)
+            && let Some(scene) = px.get_mut(&0)
+        {
+            scene[3] = 0.0;
+        }
         for (b, p) in px {
             let img = g.colors.get_mut(&b).expect("same buffers");
             img.pixels[i] = p.map(|c| runner.quantize(b, c));
