@@ -8,10 +8,14 @@ use tidepack_pack::BuildOptions;
 
 use super::print_diagnostics;
 
-pub fn run(mut opts: BuildOptions, scene: Option<&Path>) -> ExitCode {
-    if let Some(path) = scene {
-        match scene_specialisation(path) {
-            Ok(spec) => opts.specialisation = Some(spec),
+pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
+    let mut scene = None;
+    if let Some(path) = scene_path {
+        match load_scene(path) {
+            Ok((loaded, spec)) => {
+                opts.specialisation = Some(spec);
+                scene = Some((path, loaded));
+            }
             Err(message) => {
                 eprintln!("error: {message}");
                 return ExitCode::from(2);
@@ -41,9 +45,9 @@ pub fn run(mut opts: BuildOptions, scene: Option<&Path>) -> ExitCode {
                 );
                 println!("  {:<22} {} ({:.1} KiB)", "", o.zip.display(), o.zip_bytes as f64 / 1024.0);
             }
-            if let (Some(path), Some(first)) = (scene, report.outcomes.first()) {
+            if let (Some((path, scene)), Some(first)) = (&scene, report.outcomes.first()) {
                 println!("  specialised for {} ({} uniforms folded into constants)", path.display(), report.folded.len());
-                report_speedup(&opts, first.dialect, path);
+                report_speedup(&opts, first.dialect, path, scene);
             }
             ExitCode::SUCCESS
         }
@@ -57,30 +61,38 @@ pub fn run(mut opts: BuildOptions, scene: Option<&Path>) -> ExitCode {
 }
 
 #[cfg(feature = "render")]
-fn scene_specialisation(path: &Path) -> Result<tidepack_pack::specialise::Specialisation, String> {
-    let scene = tidepack_harness::Scene::load(path).map_err(|e| e.to_string())?;
-    Ok(tidepack_harness::uniforms::scene_specialisation(&scene, &path.display().to_string()))
+use tidepack_harness::Scene;
+
+/// Without the render feature no scene can be read.
+#[cfg(not(feature = "render"))]
+enum Scene {}
+
+/// The scene file and the specialisation it implies, read once for both the build and the timing.
+#[cfg(feature = "render")]
+fn load_scene(path: &Path) -> Result<(Scene, tidepack_pack::specialise::Specialisation), String> {
+    let scene = Scene::load(path).map_err(|e| e.to_string())?;
+    let spec = tidepack_harness::uniforms::scene_specialisation(&scene, &path.display().to_string());
+    Ok((scene, spec))
 }
 
 #[cfg(not(feature = "render"))]
-fn scene_specialisation(_: &Path) -> Result<tidepack_pack::specialise::Specialisation, String> {
+fn load_scene(_: &Path) -> Result<(Scene, tidepack_pack::specialise::Specialisation), String> {
     Err("build --scene reads scenes through the harness: this tidepack was built without the render feature".into())
 }
 
 /// The pack is built either way; a missing renderer only means no speedup figure.
 #[cfg(feature = "render")]
-fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &Path) {
-    use tidepack_harness::{Gpu, PackSelection, Scene, job, program};
+fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &Path, scene: &Scene) {
+    use tidepack_harness::{Gpu, PackSelection, job, program};
     let selection = PackSelection {
         source_dir: opts.source_dir.clone(),
         dialect,
         profile: opts.profile.clone(),
         options: Vec::new(),
     };
-    let measured = Scene::load(path).and_then(|scene| {
-        let gpu = Gpu::new()?;
+    let measured = Gpu::new().and_then(|gpu| {
         let general = program::load(&selection)?;
-        job::specialisation_speedup(&gpu, &selection, &general, &scene, &path.display().to_string(), 9)
+        job::specialisation_speedup(&gpu, &selection, &general, scene, &path.display().to_string(), 9)
     });
     match measured {
         Ok(report) => super::print_specialisation(&report),
@@ -89,6 +101,6 @@ fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &P
 }
 
 #[cfg(not(feature = "render"))]
-fn report_speedup(_: &BuildOptions, _: tidepack_pack::Dialect, _: &Path) {
-    eprintln!("warning: speedup not measured: this tidepack was built without the render feature");
+fn report_speedup(_: &BuildOptions, _: tidepack_pack::Dialect, _: &Path, scene: &Scene) {
+    match *scene {}
 }
