@@ -161,12 +161,6 @@ pub struct BenchResult {
     pub rss_mib_end: Option<f64>,
 }
 
-/// This process's resident set size in MiB (Linux `/proc/self/status` VmRSS), if readable.
-pub fn rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
-    line.split_whitespace().nth(1)?.parse::<f64>().ok().map(|kib| kib / 1024.0)
-}
 
 /// A run is "near" the front when no run beats it by more than this in both time and error.
 pub const NEAR_FRONT: f64 = 0.05;
@@ -309,7 +303,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         let specialisation = config.specialise.then(|| uniforms::scene_specialisation(scene, name));
         let mut specialised: Vec<Option<(LoadedPack, CompositeOnly)>> = Vec::new();
         for set in &mut sets {
-            bar.set_message(format!("{} {name} (RSS {:.0} MiB)", set.run.name, rss_mib().unwrap_or(f64::NAN)));
+            bar.set_message(format!("{} {name} (RSS {:.0} MiB)", set.run.name, tidepack_harness::resident_mib().unwrap_or(f64::NAN)));
             let own = match &specialisation {
                 Some(spec) => {
                     let pack = load_pack(&config.source_dir, &set.run, Some(spec))?;
@@ -342,7 +336,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         let mut times: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); sets.len()];
         let mut differences = vec![0.0f64; sets.len()];
         for round in 0..=frames {
-            bar.set_message(format!("{name}: timing round {round}/{frames} (RSS {:.0} MiB)", rss_mib().unwrap_or(f64::NAN)));
+            bar.set_message(format!("{name}: timing round {round}/{frames} (RSS {:.0} MiB)", tidepack_harness::resident_mib().unwrap_or(f64::NAN)));
             for k in 0..sets.len() {
                 let i = (k + round) % sets.len();
                 let set = &sets[i];
@@ -406,7 +400,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         aggregates,
         files,
         command: config.command.clone(),
-        rss_mib_end: rss_mib(),
+        rss_mib_end: tidepack_harness::resident_mib(),
     };
     output::write_all(config, &mut result)?;
     Ok(result)

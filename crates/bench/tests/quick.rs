@@ -5,29 +5,38 @@
 //! Needs lavapipe (Debian mesa-vulkan-drivers; tools/test installs it): without it this test
 //! fails with an error naming the package. It never skips.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use tidepack_bench::{BenchConfig, RunSpec};
 
+/// One scene at 96x54, two timed frames, every pixel of the reference, no report.
+fn small_config(scene: &str, out_dir: PathBuf) -> BenchConfig {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    BenchConfig {
+        source_dir: root.join("shaderpack"),
+        scenes_dir: root.join("tests/scenes"),
+        scene_filter: vec![scene.into()],
+        frames: 2,
+        resolution: Some([96, 54]),
+        reference_stride: 1,
+        out_dir,
+        runs: None,
+        report: None,
+        command: "test".into(),
+        progress: false,
+        specialise: false,
+    }
+}
+
 #[test]
 fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let out = tempfile::tempdir().unwrap();
     let report = out.path().join("docs/accuracy.md");
     std::fs::create_dir_all(report.parent().unwrap()).unwrap();
     let config = BenchConfig {
-        source_dir: root.join("shaderpack"),
-        scenes_dir: root.join("tests/scenes"),
-        scene_filter: vec!["case4_above_near".into()],
-        frames: 2,
-        resolution: Some([96, 54]),
-        reference_stride: 1,
-        out_dir: out.path().join("bench"),
         runs: Some(vec![RunSpec::profile("LOW"), RunSpec::profile("ULTRA")]),
         report: Some(report.clone()),
-        command: "test".into(),
-        progress: false,
-        specialise: false,
+        ..small_config("case4_above_near", out.path().join("bench"))
     };
     let result = tidepack_bench::run(&config).unwrap_or_else(|e| panic!("{e}"));
     let dir = out.path().join("bench");
@@ -68,21 +77,11 @@ fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
 
 #[test]
 fn specialising_for_the_scene_changes_no_error() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let out = tempfile::tempdir().unwrap();
     let config = |specialise: bool| BenchConfig {
-        source_dir: root.join("shaderpack"),
-        scenes_dir: root.join("tests/scenes"),
-        scene_filter: vec!["case2_under_down".into()],
-        frames: 2,
-        resolution: Some([96, 54]),
-        reference_stride: 1,
-        out_dir: out.path().join(if specialise { "specialised" } else { "general" }),
         runs: Some(vec![RunSpec::profile("MEDIUM")]),
-        report: None,
-        command: "test".into(),
-        progress: false,
         specialise,
+        ..small_config("case2_under_down", out.path().join(if specialise { "specialised" } else { "general" }))
     };
     let general = tidepack_bench::run(&config(false)).unwrap_or_else(|e| panic!("{e}"));
     let specialised = tidepack_bench::run(&config(true)).unwrap_or_else(|e| panic!("{e}"));

@@ -25,6 +25,14 @@ pub use images::FloatImage;
 pub use program::{LoadedPack, PackSelection};
 pub use scene::Scene;
 
+/// This process's resident set size in MiB (Linux `/proc/self/status` VmRSS), if readable: the
+/// memory figure the bench and the stress sweep report.
+pub fn resident_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    line.split_whitespace().nth(1)?.parse::<f64>().ok().map(|kib| kib / 1024.0)
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum HarnessError {
     /// No Vulkan adapter (names the Debian package).

@@ -62,12 +62,12 @@ fn rotate(m: &DMat4, v: DVec3) -> DVec3 {
 // ---- lib/common.glsl ------------------------------------------------------------------------
 
 /// `isWaterMaterial`.
-fn is_water_material(mask: f64) -> bool {
+pub fn is_water_material(mask: f64) -> bool {
     mask > 0.75
 }
 
 /// `isTranslucentMaterial`.
-fn is_translucent_material(mask: f64) -> bool {
+pub fn is_translucent_material(mask: f64) -> bool {
     mask > 0.25 && mask <= 0.75
 }
 

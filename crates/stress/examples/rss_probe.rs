@@ -12,8 +12,7 @@ use tidepack_harness::composite_only::{CompositeOnly, GBuffers, UniformBinding};
 use tidepack_harness::uniforms::{self, Pass};
 use tidepack_harness::{Gpu, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
-use tidepack_reference::{Filter, Inputs, ReferenceSettings, Texture, Uniforms, Wrap};
-use tidepack_stress::rss_kib;
+use tidepack_reference::harness::{self as reference, Precision, Textures};
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -38,13 +37,9 @@ fn main() {
         _ => UniformBinding::ReadOnlyStorage,
     };
     let runner = CompositeOnly::with_binding(&gpu, &pack, 32, 18, &values, binding).expect("runner");
-    let mut settings = ReferenceSettings::default();
-    settings.slope_range = tidepack_pack::textures::water_texture().slope_range;
-    let custom = pack.custom_texture("colortex7", false).expect("colortex7");
-    let water = Texture::from_rgba8(custom.width as usize, custom.height as usize, &custom.rgba, Filter::Linear, Wrap::Repeat);
-    let (nw, nh, noise) = tidepack_harness::mesh::noise(256);
-    let noise = Texture::from_rgba8(nw as usize, nh as usize, &noise, Filter::Linear, Wrap::Repeat);
-    let rss = || rss_kib().unwrap_or(0) as f64 / 1024.0;
+    let settings = reference::converged_settings();
+    let textures = Textures::of(&pack).expect("textures");
+    let rss = || tidepack_harness::resident_mib().unwrap_or(0.0);
     println!("mode {mode}, start RSS {:.1} MiB", rss());
     if mode == "frames" {
         // Whole harness frames as the bench renders them: pipelines made per call, 8 frames.
@@ -84,21 +79,9 @@ fn main() {
             assert_eq!(image.pixels.len(), 32 * 18);
         }
         if mode == "ref" || mode == "both" {
-            let colour = |b: u8| Texture::from_f32(32, 18, &g.colors[&b].pixels, Filter::Linear, Wrap::ClampToEdge);
-            let depth = |img: &tidepack_harness::FloatImage| Texture::from_f32(32, 18, &img.pixels, Filter::Nearest, Wrap::ClampToEdge);
-            let inputs = Inputs {
-                width: 32,
-                height: 18,
-                colortex0: colour(0),
-                colortex4: colour(4),
-                colortex5: colour(5),
-                colortex6: colour(6),
-                depthtex0: depth(&g.depth0),
-                depthtex1: depth(&g.depth1),
-                water: water.clone(),
-                noise: noise.clone(),
-                uniforms: Uniforms::from_named(|name| values.get(name).map(|v| v.data.as_slice())).expect("uniforms"),
-            };
+            // The reference's inputs for the case, built as `tidepack stress` builds them.
+            let uniforms = reference::uniforms_of(&values, Precision::Exact).expect("uniforms");
+            let inputs = reference::from_gbuffers(&pack, &g.colors, &g.depth0, &g.depth1, Some(false), &textures, uniforms).expect("inputs");
             let image = tidepack_reference::render(&inputs, &settings, 1).expect("reference");
             assert_eq!(image.pixels.len(), 32 * 18);
         }

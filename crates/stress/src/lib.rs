@@ -21,6 +21,7 @@ use tidepack_harness::uniforms::{self, Pass, Value};
 use tidepack_harness::{FloatImage, Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
 use tidepack_reference::Inputs;
+use tidepack_reference::model::{is_translucent_material, is_water_material};
 use tidepack_reference::harness::{self as reference, Precision, Textures};
 
 /// The |cameraPosition| magnitudes of the distance table.
@@ -263,7 +264,7 @@ fn map_gbuffers(runner: &CompositeOnly, g: &mut GBuffers, mut f: impl FnMut(usiz
         // gbuffers_water's blending leaves colortex0's alpha at 0 wherever it drew a translucent
         // (shaders.properties), and composite reads the material only there: a translucent
         // material put into colortex4 here must come with that alpha to be shaded.
-        if px.get(&4).is_some_and(|p| p[3] > 0.25)
+        if px.get(&4).is_some_and(|p| is_water_material(p[3] as f64) || is_translucent_material(p[3] as f64))
             && let Some(scene) = px.get_mut(&0)
         {
             scene[3] = 0.0;
@@ -533,15 +534,8 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
     Ok(report)
 }
 
-/// This process's resident set size in KiB (Linux `/proc/self/status` VmRSS), if readable.
-pub fn rss_kib() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
 fn rss_text() -> String {
-    rss_kib().map_or_else(|| "unknown".to_string(), |k| format!("{:.1} MiB", k as f64 / 1024.0))
+    tidepack_harness::resident_mib().map_or_else(|| "unknown".to_string(), |m| format!("{m:.1} MiB"))
 }
 
 /// summary.json, categories.csv, distance.csv, cases.csv.

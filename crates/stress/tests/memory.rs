@@ -27,7 +27,7 @@ fn setup(width: u32, height: u32) -> (Gpu, LoadedPack, Scene, GBuffers) {
 }
 
 fn rss_mib() -> f64 {
-    tidepack_stress::rss_kib().expect("/proc/self/status VmRSS") as f64 / 1024.0
+    tidepack_harness::resident_mib().expect("/proc/self/status VmRSS")
 }
 
 #[test]

@@ -76,6 +76,11 @@ varying vec2 uv;
 void main() { gl_Position = ftransform(); uv = gl_MultiTexCoord0.xy; }
 ";
 
+/// A pack of one compute stage, `composite.csh`, that includes lib/common.glsl.
+fn with_common(composite: String) -> Vec<(&'static str, String)> {
+    vec![("composite.csh", composite), ("lib/common.glsl", COMMON.to_string())]
+}
+
 fn compute_pack(composite_a: &str) -> Vec<(&'static str, String)> {
     vec![
         ("composite.csh", COMPUTE.replace("uniform vec2 viewSize;\n", "\n")),
@@ -131,7 +136,7 @@ fn image_atomics_naga_lacks_are_warnings_not_errors() {
         "    imageStore(colorimg3, p, vec4(brighten(imageLoad(colorimg3, p).rgb), 1.0));",
         "    imageAtomicAdd(colorimg3, p, 1u);",
     );
-    let files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let files = with_common(text);
     let report = validate(&as_refs(&files), false);
     assert_eq!(report.errors(), 0, "{}", show(&report));
     assert!(has(&report, false, "composite.csh", 7, "imageAtomicAdd() is not checked"), "{}", show(&report));
@@ -145,7 +150,7 @@ fn subgroup_built_ins_naga_lacks_are_warnings_not_errors() {
         "    ivec2 p = ivec2(gl_GlobalInvocationID.xy);",
         "    ivec2 p = ivec2(gl_GlobalInvocationID.xy) + int(gl_SubgroupSize);",
     );
-    let files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let files = with_common(text);
     let report = validate(&as_refs(&files), false);
     assert_eq!(report.errors(), 0, "{}", show(&report));
     assert!(has(&report, false, "composite.csh", 7, "gl_SubgroupSize is not checked"), "{}", show(&report));
@@ -154,7 +159,7 @@ fn subgroup_built_ins_naga_lacks_are_warnings_not_errors() {
 #[test]
 fn iris_custom_images_are_known() {
     let text = COMPUTE_A.replace("colorimg3", "imgDepthQ");
-    let mut files = vec![("composite.csh", text), ("lib/common.glsl", COMMON.to_string())];
+    let mut files = with_common(text);
     let report = validate(&as_refs(&files), false);
     assert!(has(&report, false, "composite.csh", 4, "`imgDepthQ` is not an image"), "{}", show(&report));
     files.push(("shaders.properties", "image.imgDepthQ = texDepthQ RED R16F HALF_FLOAT false true 0.25 0.25\n".to_string()));
@@ -165,7 +170,7 @@ fn iris_custom_images_are_known() {
 #[test]
 fn a_compute_stage_below_glsl_430_is_an_error_naga_and_mesa_agree_on() {
     let old = COMPUTE_A.replace("#version 430\n", "#version 330 compatibility\n");
-    let files = vec![("composite.csh", old.clone()), ("lib/common.glsl", COMMON.to_string())];
+    let files = with_common(old.clone());
     for driver in [false, true] {
         let report = validate(&as_refs(&files), driver);
         assert!(has(&report, true, "composite.csh", 1, "compute shaders need `#version 430`"), "{}", show(&report));
@@ -174,7 +179,7 @@ fn a_compute_stage_below_glsl_430_is_an_error_naga_and_mesa_agree_on() {
         }
     }
     let with_extension = old.replace("compatibility\n", "compatibility\n#extension GL_ARB_compute_shader : require\n");
-    let files = vec![("composite.csh", with_extension), ("lib/common.glsl", COMMON.to_string())];
+    let files = with_common(with_extension);
     let report = validate(&as_refs(&files), false);
     assert_eq!(report.errors(), 0, "{}", show(&report));
 }
