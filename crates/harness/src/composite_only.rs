@@ -449,11 +449,9 @@ impl CompositeOnly {
             match &queries {
                 Some(q) => {
                     // Two timed passes: composite, then the pass-through.
-                    let ticks = gpu::read_timestamps(gpu, q, 2)?;
-                    let period = gpu.queue.get_timestamp_period() as f64;
-                    let ms = |i: usize| ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6;
-                    composite_ms.push(ms(0));
-                    passthrough_ms.push(ms(1));
+                    let ms = gpu::read_pass_ms(gpu, q, 2)?;
+                    composite_ms.push(ms[0]);
+                    passthrough_ms.push(ms[1]);
                 }
                 None => {
                     composite_ms.push(walls[0]);

@@ -517,13 +517,7 @@ fn render_frame(
 
         // Timestamps.
         let gpu_ms: Vec<Option<f64>> = match &queries {
-            Some(q) => {
-                let ticks = read_timestamps(gpu, q, passes)?;
-                let period = gpu.queue.get_timestamp_period() as f64;
-                (0..passes as usize)
-                    .map(|i| Some(ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period / 1e6))
-                    .collect()
-            }
+            Some(q) => read_pass_ms(gpu, q, passes)?.into_iter().map(Some).collect(),
             None => vec![None; passes as usize],
         };
         let mut timings = Vec::new();
@@ -1113,8 +1107,9 @@ impl PassthroughPipeline {
     }
 }
 
-/// The begin and end timestamps of `passes` timed passes, in query order.
-pub(crate) fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet, passes: u32) -> Result<Vec<u64>, HarnessError> {
+/// The GPU time in ms of each of `passes` timed passes, from their begin and end timestamps in
+/// query order.
+pub(crate) fn read_pass_ms(gpu: &Gpu, queries: &wgpu::QuerySet, passes: u32) -> Result<Vec<f64>, HarnessError> {
     let bytes = (passes * 2) as u64 * 8;
     let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("timestamp resolve"),
@@ -1133,7 +1128,9 @@ pub(crate) fn read_timestamps(gpu: &Gpu, queries: &wgpu::QuerySet, passes: u32) 
     encoder.copy_buffer_to_buffer(&resolve, 0, &read, 0, bytes);
     gpu.queue.submit([encoder.finish()]);
     let data = map_read(gpu, &read)?;
-    Ok(data.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect())
+    let ticks: Vec<u64> = data.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect();
+    let period = gpu.queue.get_timestamp_period() as f64;
+    Ok(ticks.chunks_exact(2).map(|t| t[1].saturating_sub(t[0]) as f64 * period / 1e6).collect())
 }
 
 fn map_read(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, HarnessError> {
