@@ -1,5 +1,5 @@
 #version 330 compatibility
-// The water model (water-model.md) over the finished scene, one of five cases per pixel:
+// The water model (docs/water-model.md) over the finished scene, one of five cases per pixel:
 //   1. camera above water, pixel not behind water: passed through unchanged;
 //   2. camera under water, pixel under water: absorption over the distance, caustics;
 //   3. camera under water, pixel seen through the surface: refraction, total internal

@@ -12,7 +12,7 @@ pub enum NormalMode {
 /// `ABSORPTION_MODEL`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Absorption {
-    /// 0: the clamped linear ramp of water-model.md A5.
+    /// 0: the clamped linear ramp of docs/water-model.md A5.
     Ramp,
     /// 1: Beer–Lambert per channel.
     BeerLambert,

@@ -1,4 +1,4 @@
-// Caustics on surfaces under water (water-model.md A6 and D), as a brightness factor.
+// Caustics on surfaces under water (docs/water-model.md A6 and D), as a brightness factor.
 
 // A6: two scrolled samples of the water height texture, the second 1.5x finer and moving
 // the other way; bright where they cancel. Each further sample pair is twice as fine.

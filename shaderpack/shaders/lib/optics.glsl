@@ -1,5 +1,5 @@
 // How light meets the water: Fresnel, absorption, highlights and the sky
-// (water-model.md A4, A5, B).
+// (docs/water-model.md A4, A5, B).
 
 // Reflectance of water at normal incidence, n = 1.333 (exactly 0.0204).
 const float WATER_F0 = 0.02;

@@ -1,4 +1,4 @@
-// Screen-space reflections (water-model.md A3): march the reflected ray through view space
+// Screen-space reflections (docs/water-model.md A3): march the reflected ray through view space
 // against the opaque depth buffer; on a miss the caller falls back to the sky.
 
 // Returns the reflected scene colour in rgb and its weight in a (0 on a miss).

@@ -1,4 +1,4 @@
-// The wave field (water-model.md A1, A2) and the vertex swell.
+// The wave field (docs/water-model.md A1, A2) and the vertex swell.
 //
 // Everything repeats every WAVE_TILE blocks in x and z, the size the water texture covers,
 // so world positions are taken relative to the camera wrapped by WAVE_TILE (space.glsl).
