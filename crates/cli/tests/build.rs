@@ -265,6 +265,44 @@ fn errors_under_non_default_options_name_the_options() {
     assert!(!output.status.success());
     assert!(err.contains(&file.display().to_string()), "{err}");
     assert!(err.contains("CAUSTICS=off"), "the note should name the option set: {err}");
+    // Only the option the error needs, not the rest of the set that first showed it.
+    let notes: Vec<&str> = err.lines().filter(|l| l.contains("= with ")).collect();
+    assert!(!notes.is_empty() && notes.iter().all(|l| l.trim() == "= with options CAUSTICS=off"), "{err}");
+}
+
+/// An error in an included file names the programs that include it, and through what.
+#[test]
+fn errors_in_included_files_name_the_including_program() {
+    let (output, _work, _) = build_mutated("lib/caustics.glsl", |t| {
+        t.replacen("float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);", 1)
+    });
+    let err = stderr(&output);
+    assert!(!output.status.success());
+    assert!(err.contains("included by program composite: composite.fsh includes lib/caustics.glsl"), "{err}");
+}
+
+/// An option no program's text depends on is built with a warning.
+#[test]
+fn an_option_no_program_reads_is_warned_about() {
+    let work = tempfile::tempdir().unwrap();
+    let source = work.path().join("pack");
+    copy_dir(&repo_root().join("shaderpack"), &source);
+    let settings = source.join("shaders/lib/settings.glsl");
+    let text = std::fs::read_to_string(&settings).unwrap();
+    std::fs::write(&settings, format!("{text}#define UNUSED_KNOB 2 // [1 2 3] Reads nowhere.\n")).unwrap();
+    let manifest = source.join("pack.toml");
+    let mut toml = std::fs::read_to_string(&manifest).unwrap();
+    toml = toml.replacen("\"EARLY_OUTS\"]", "\"EARLY_OUTS\", \"UNUSED_KNOB\"]", 1);
+    toml = toml.replace("EARLY_OUTS = true\n", "EARLY_OUTS = true\nUNUSED_KNOB = \"2\"\n");
+    toml.push_str("\n[options.UNUSED_KNOB]\nlabel = \"Unused\"\ncomment = \"Nothing reads it.\"\n");
+    std::fs::write(&manifest, toml).unwrap();
+    let output = build_into(&source, &work.path().join("dist"), &[]);
+    let err = stderr(&output);
+    assert!(output.status.success(), "{err}");
+    let line = text.lines().count() + 1;
+    assert!(err.contains("option UNUSED_KNOB changes no program"), "{err}");
+    assert!(err.contains(&format!("settings.glsl:{line}")), "{err}");
+    assert!(!err.contains("option EARLY_OUTS changes no program"), "{err}");
 }
 
 #[test]
@@ -403,4 +441,118 @@ fn build_for_a_scene_folds_its_uniforms_validates_and_measures_the_speedup() {
         .collect();
     assert_eq!(differences.len(), 4, "{images}");
     assert!(differences.iter().all(|d| *d <= 1.0), "specialising changed the image: {images}");
+}
+
+/// Copies the pack's sources, applies `edit` to pack.toml and builds into `<work>/out/dist`;
+/// returns the build's output, the work folder and the pack.toml path.
+fn build_with_manifest(edit: impl Fn(&str) -> String) -> (Output, tempfile::TempDir, PathBuf) {
+    let work = tempfile::tempdir().unwrap();
+    let source = work.path().join("pack");
+    copy_dir(&repo_root().join("shaderpack"), &source);
+    let manifest = source.join("pack.toml");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    let edited = edit(&text);
+    assert_ne!(edited, text, "the edit must change pack.toml");
+    std::fs::write(&manifest, edited).unwrap();
+    let output = build_into(&source, &work.path().join("out/dist"), &[]);
+    (output, work, manifest)
+}
+
+/// Every file under `dir`, relative to it.
+fn files_under(dir: &Path) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(folder) = pending.pop() {
+        for entry in std::fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else {
+                found.push(path.strip_prefix(dir).unwrap().display().to_string());
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// A pack name or version that is not plain file-name text would put the zips elsewhere.
+#[test]
+fn pack_names_and_versions_that_leave_the_output_folder_are_refused() {
+    for (field, bad) in [("name", "../escaped"), ("name", "a/b"), ("version", "..\\\\x"), ("version", ""), ("name", "tab\\there")] {
+        let (output, work, manifest) = build_with_manifest(|t| {
+            let line = if field == "name" { "name = \"Tidepack\"" } else { "version = \"0.1.0\"" };
+            t.replacen(line, &format!("{field} = \"{bad}\""), 1)
+        });
+        let err = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{field} = {bad:?}: {err}");
+        let line = if field == "name" { 5 } else { 6 };
+        assert!(err.contains(&format!("{}:{line}", manifest.display())), "{field} = {bad:?}: {err}");
+        assert!(err.contains(&format!("[pack] {field}")), "{field} = {bad:?}: {err}");
+        let written: Vec<String> = files_under(work.path()).into_iter().filter(|f| !f.starts_with("pack/")).collect();
+        assert!(written.is_empty(), "{field} = {bad:?} wrote {written:?}");
+    }
+}
+
+/// When one dialect's zip cannot be written, the other is not written either.
+#[test]
+fn a_zip_that_cannot_be_written_leaves_no_zip_at_all() {
+    let out = tempfile::tempdir().unwrap();
+    let blocked = out.path().join("Tidepack-0.1.0-glsl330.zip");
+    std::fs::create_dir(&blocked).unwrap();
+    let output = build_into(&repo_root().join("shaderpack"), out.path(), &[]);
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    assert!(err.contains(&blocked.display().to_string()) && err.contains("no zip was written"), "{err}");
+    assert_eq!(files_under(out.path()), Vec::<String>::new(), "nothing but the folder in the way: {err}");
+    assert!(blocked.is_dir());
+}
+
+/// A default changed in settings.glsl alone says which profile setting to change, and where.
+#[test]
+fn a_default_out_of_step_with_the_default_profile_says_what_to_edit() {
+    let (output, _work, file) =
+        build_mutated("lib/settings.glsl", |t| t.replacen("#define SSR_STEPS 10 ", "#define SSR_STEPS 16 ", 1));
+    let err = stderr(&output);
+    assert!(!output.status.success(), "{err}");
+    let manifest_text = std::fs::read_to_string(repo_root().join("shaderpack/pack.toml")).unwrap();
+    let high = manifest_text.find("name = \"HIGH\"").unwrap();
+    let line = manifest_text[..high].lines().count() + manifest_text[high..].lines().position(|l| l.starts_with("SSR_STEPS =")).unwrap() + 1;
+    let manifest = file.parent().unwrap().parent().unwrap().parent().unwrap().join("pack.toml");
+    assert!(err.contains("SSR_STEPS defaults to 16 in the GLSL but the default profile HIGH sets 10"), "{err}");
+    assert!(err.contains("set SSR_STEPS = \"16\" in [profile.settings] of the profile named HIGH"), "{err}");
+    assert!(err.contains(&format!("{}:{line}", manifest.display())), "expected pack.toml:{line} in {err}");
+    assert!(err.contains("to keep 10, write it back on the #define line"), "{err}");
+}
+
+/// Values pack.toml passes to shaders.properties are checked against what OptiFine reads.
+#[test]
+fn properties_optifine_would_ignore_are_refused() {
+    let cases = [
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_water.colortex4\" = \"of\"", "of is not a blend factor"),
+        (
+            "\"texture.composite.colortex7\" = \"textures/water.png\"",
+            "\"texture.composite.colortex7\" = \"textures/waves.png\"",
+            "no file shaders/textures/waves.png",
+        ),
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_watr.colortex4\" = \"off\"", "no program gbuffers_watr"),
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_water.colortex44\" = \"off\"", "colortex44 is not a colour buffer"),
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"alphaTest.gbuffers_water\" = \"GREATER\"", "an alpha test is"),
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"oldLighting\" = \"yes\"", "takes true or false"),
+        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"sliders\" = \"SSR_STEPS\"", "from [screen]"),
+    ];
+    for (from, to, message) in cases {
+        let (output, work, manifest) = build_with_manifest(|t| t.replacen(from, to, 1));
+        let err = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{to}: {err}");
+        let text = std::fs::read_to_string(&manifest).unwrap();
+        let line = text.lines().position(|l| l.starts_with(to)).unwrap() + 1;
+        assert!(err.contains(&format!("{}:{line}", manifest.display())), "{to}: expected pack.toml:{line} in {err}");
+        assert!(err.contains(message), "{to}: expected `{message}` in {err}");
+        assert!(!work.path().join("out").exists(), "{to}: a failed build wrote output");
+    }
+    let (output, _work, _) =
+        build_with_manifest(|t| t.replacen("[properties]\n", "[properties]\n\"uniform.float.tp_test\" = \"1.0\"\n", 1));
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stderr(&output).contains("\"uniform.float.tp_test\" is not a key tidepack checks"), "{}", stderr(&output));
 }

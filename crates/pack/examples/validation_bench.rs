@@ -28,7 +28,7 @@ fn main() {
     let mut packs = Vec::new();
     for _ in 0..runs {
         let started = Instant::now();
-        packs = generate_validated(&source, &options, &Dialect::ALL, &Default::default(), coverage, None).map_err(|f| f.diagnostics).unwrap();
+        packs = generate_validated(&source, &options, &Dialect::ALL, &Default::default(), coverage, None, None).map_err(|f| f.diagnostics).unwrap().0;
         naga_times.push(started.elapsed().as_secs_f64());
     }
     let work = std::env::temp_dir().join(format!("tidepack-bench-{}", std::process::id()));

@@ -8,13 +8,13 @@ use std::time::{Duration, Instant};
 use tidepack_glsl::Diagnostic;
 use tidepack_glsl::options::OptionSet;
 
-use crate::archive;
+use crate::{archive, properties};
 use crate::dialect::Dialect;
 use crate::pack_options::{self, PackOptions};
 use crate::shipped::ShippedPack;
 use crate::specialise::{Specialisation, specialise};
 use crate::source::PackSource;
-use crate::validation::{self, Coverage, ValidationReport};
+use crate::validation::{self, Coverage, Progress, ValidationReport};
 
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -47,6 +47,8 @@ pub struct BuildReport {
     pub outcomes: Vec<DialectOutcome>,
     /// Uniforms folded into constants, when specialised for a scene.
     pub folded: Vec<String>,
+    /// Problems that do not stop the build (unchecked properties, options no program reads).
+    pub warnings: Vec<Diagnostic>,
     pub elapsed: Duration,
 }
 
@@ -54,12 +56,14 @@ pub struct BuildReport {
 #[derive(Debug)]
 pub struct BuildFailure {
     pub diagnostics: Vec<Diagnostic>,
+    /// Zips renamed into place before a later one failed to (empty in every other failure).
+    pub written: Vec<PathBuf>,
     sources: HashMap<String, String>,
 }
 
 impl BuildFailure {
     fn new(diagnostics: Vec<Diagnostic>) -> Self {
-        BuildFailure { diagnostics, sources: HashMap::new() }
+        BuildFailure { diagnostics, written: Vec::new(), sources: HashMap::new() }
     }
 
     /// Text of a file a diagnostic names, for the snippet.
@@ -77,8 +81,12 @@ pub fn zip_path(out_dir: &Path, name: &str, version: &str, dialect: Dialect, var
     }
 }
 
+/// The validated pack of each dialect, and the warnings found on the way.
+pub type Validated = (Vec<(ShippedPack, ValidationReport)>, Vec<Diagnostic>);
+
 /// Generates and validates the pack in each dialect (see the crate docs), specialised first
-/// when `specialisation` is given, so what is validated is what ships.
+/// when `specialisation` is given, so what is validated is what ships. The manifest's
+/// shaders.properties entries are checked on the first pack generated, before any validation.
 pub fn generate_validated(
     source: &PackSource,
     options: &PackOptions,
@@ -86,7 +94,8 @@ pub fn generate_validated(
     defaults: &OptionSet,
     coverage: Coverage,
     specialisation: Option<&Specialisation>,
-) -> Result<Vec<(ShippedPack, ValidationReport)>, BuildFailure> {
+    progress: Option<&(dyn Fn(Dialect, Progress) + Sync)>,
+) -> Result<Validated, BuildFailure> {
     let profiles: Vec<OptionSet> = source
         .manifest
         .profiles
@@ -96,14 +105,24 @@ pub fn generate_validated(
     let mut packs = Vec::new();
     let mut diagnostics = Vec::new();
     let mut sources = HashMap::new();
+    let mut warnings = Vec::new();
     // Validation enumerates values around what ships, which a profile may have changed.
     let shipped_options = pack_options::with_defaults(options, defaults);
     for &dialect in dialects {
         let mut pack = ShippedPack::generate(source, options, dialect, defaults).map_err(BuildFailure::new)?;
+        if packs.is_empty() && diagnostics.is_empty() {
+            let (errors, found) = properties::check(source, &pack);
+            if !errors.is_empty() {
+                return Err(BuildFailure::new(errors));
+            }
+            warnings.extend(found);
+        }
         if let Some(spec) = specialisation {
             specialise(&mut pack, spec);
         }
-        match validation::validate_pack(&pack, &shipped_options, coverage, &profiles) {
+        let report = progress.map(|p| move |step: Progress| p(dialect, step));
+        let report = report.as_ref().map(|r| r as &(dyn Fn(Progress) + Sync));
+        match validation::validate_pack(&pack, &shipped_options, coverage, &profiles, report) {
             Ok(report) => packs.push((pack, report)),
             Err(errors) => {
                 for diag in errors {
@@ -119,10 +138,11 @@ pub fn generate_validated(
             }
         }
     }
-    if diagnostics.is_empty() { Ok(packs) } else { Err(BuildFailure { diagnostics, sources }) }
+    if diagnostics.is_empty() { Ok((packs, warnings)) } else { Err(BuildFailure { diagnostics, written: Vec::new(), sources }) }
 }
 
-pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
+/// Builds the pack (see the module docs); `progress` hears how far each dialect's validation is.
+pub fn build(opts: &BuildOptions, progress: Option<&(dyn Fn(Dialect, Progress) + Sync)>) -> Result<BuildReport, BuildFailure> {
     let started = Instant::now();
     let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure::new(vec![d]))?;
     let options = pack_options::collect(&source).map_err(BuildFailure::new)?;
@@ -133,21 +153,41 @@ pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
     let profile = opts.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults = pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure::new(vec![d]))?;
     let spec = opts.specialisation.as_ref();
-    let packs = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage, spec)?;
+    let (packs, mut warnings) = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage, spec, progress)?;
+    for option in options.values() {
+        if !packs.iter().any(|(_, report)| report.options_read.contains(&option.name)) {
+            warnings.push(
+                Diagnostic::warning(
+                    format!("option {} changes no program: no shader's text depends on it", option.name),
+                    Some(option.declared_at.clone()),
+                )
+                .with_note("players can set it in the menu to no effect; use it in a program or remove it"),
+            );
+        }
+    }
     let folded = packs.first().map(|(pack, _)| pack.folded_uniforms.clone()).unwrap_or_default();
     let variant = spec.map(|s| s.variant_name());
     let info = &source.manifest.pack;
-    let mut outcomes = Vec::new();
-    for (pack, validation) in packs {
-        let texts = pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes()));
-        let binaries = pack.binaries.iter().map(|(path, bytes)| (format!("shaders/{path}"), &bytes[..]));
-        let entries: Vec<(String, &[u8])> = texts.chain(binaries).collect();
-        let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect, variant.as_deref());
-        let zip_bytes = archive::write_zip(&zip, &entries).map_err(|e| {
-            BuildFailure::new(vec![Diagnostic::error(format!("cannot write {}: {e}", zip.display()), None)])
-        })?;
-        outcomes.push(DialectOutcome { dialect: pack.dialect, validation, zip, zip_bytes });
-    }
+    let zips: Vec<archive::ZipContents> = packs
+        .iter()
+        .map(|(pack, _)| {
+            let texts = pack.files.iter().map(|(path, file)| (format!("shaders/{path}"), file.text.as_bytes()));
+            let binaries = pack.binaries.iter().map(|(path, bytes)| (format!("shaders/{path}"), &bytes[..]));
+            let zip = zip_path(&opts.out_dir, &info.name, &info.version, pack.dialect, variant.as_deref());
+            (zip, texts.chain(binaries).collect())
+        })
+        .collect();
+    let sizes = archive::write_zips(&zips).map_err(|f| BuildFailure {
+        written: f.written,
+        ..BuildFailure::new(vec![Diagnostic::error(f.message, None)])
+    })?;
+    let paths: Vec<PathBuf> = zips.into_iter().map(|(zip, _)| zip).collect();
+    let outcomes = packs
+        .into_iter()
+        .zip(paths)
+        .zip(sizes)
+        .map(|(((pack, validation), zip), zip_bytes)| DialectOutcome { dialect: pack.dialect, validation, zip, zip_bytes })
+        .collect();
     Ok(BuildReport {
         pack_name: info.name.clone(),
         version: info.version.clone(),
@@ -155,6 +195,7 @@ pub fn build(opts: &BuildOptions) -> Result<BuildReport, BuildFailure> {
         options: options.len(),
         outcomes,
         folded,
+        warnings,
         elapsed: started.elapsed(),
     })
 }

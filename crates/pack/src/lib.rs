@@ -4,7 +4,8 @@
 //! - [`source`] reads `shaderpack/` ([`manifest`] is `pack.toml`).
 //! - [`pack_options`] finds the options OptiFine will show and checks them against the manifest.
 //! - [`dialect`] generates GLSL 120 and 330 text from each template; [`shipped`] assembles the
-//!   whole pack per dialect in memory, with [`writers`] for the files made from the manifest.
+//!   whole pack per dialect in memory, with [`writers`] for the files made from the manifest and
+//!   [`properties`] checking what the manifest passes on to shaders.properties.
 //! - [`validation`] runs every program under every option set through the preprocessor, the
 //!   lowering and naga.
 //! - [`specialise`] folds the uniforms a scene fixes into constants (`build --scene`).
@@ -16,6 +17,7 @@ pub mod build;
 pub mod dialect;
 pub mod manifest;
 pub mod pack_options;
+pub mod properties;
 pub mod shipped;
 pub mod source;
 pub mod specialise;

@@ -102,12 +102,41 @@ pub struct Profile {
 impl Manifest {
     /// Parses the manifest; errors name `path` and the line.
     pub fn parse(path: &str, text: &str) -> Result<Manifest, Diagnostic> {
-        toml::from_str(text).map_err(|e| {
+        let manifest: Manifest = toml::from_str(text).map_err(|e| {
             let line = e.span().map(|s| text[..s.start].matches('\n').count() as u32 + 1);
             let message = e.message().to_string();
             Diagnostic::error(format!("invalid pack manifest: {message}"), line.map(|l| Location::line(path, l)))
-        })
+        })?;
+        for (field, value) in [("name", &manifest.pack.name), ("version", &manifest.pack.version)] {
+            if let Err(why) = check_file_name_part(value) {
+                let at = line_of(text, "[pack]", &format!("{field} =")).map(|l| Location::line(path, l));
+                return Err(Diagnostic::error(format!("[pack] {field} {value:?} {why}"), at).with_note(
+                    "the zips are named <name>-<version>-<dialect>.zip inside the output folder, so name and version \
+                     must be plain file-name text",
+                ));
+            }
+        }
+        Ok(manifest)
     }
+}
+
+/// Why `part` cannot be part of a zip's file name: a separator or `..` would put the zip
+/// outside the output folder; control and Windows-reserved characters make names that some
+/// systems cannot create.
+fn check_file_name_part(part: &str) -> Result<(), String> {
+    if part.trim().is_empty() {
+        return Err("is empty".into());
+    }
+    if part == "." || part == ".." || part.contains("..") {
+        return Err("contains `..`".into());
+    }
+    if let Some(c) = part.chars().find(|c| c.is_control() || matches!(c, '/' | '\\' | ':' | '*' | '?' | '"' | '<' | '>' | '|')) {
+        return Err(format!("contains {c:?}, which cannot be in a file name"));
+    }
+    if part.trim() != part {
+        return Err("starts or ends with white space".into());
+    }
+    Ok(())
 }
 
 /// The line of the first occurrence of `needle` in `text` (for pointing errors at the manifest),

@@ -82,6 +82,14 @@ fn profile_value(option: &PackOption, value: &toml::Value) -> Result<OptionValue
     }
 }
 
+/// How a profile in pack.toml writes `value`: switches as booleans, values quoted.
+fn toml_value_of(value: &OptionValue) -> String {
+    match value {
+        OptionValue::Switch(on) => on.to_string(),
+        OptionValue::Value(v) => format!("\"{v}\""),
+    }
+}
+
 /// The option values of a profile.
 pub fn profile_set(source: &PackSource, options: &PackOptions, profile: &str) -> Result<OptionSet, Diagnostic> {
     let Some(p) = source.manifest.profiles.iter().find(|p| p.name == profile) else {
@@ -186,24 +194,34 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
                     at(&section, &section),
                 )),
                 Some(value) => {
-                    if let Err(message) = profile_value(option, value) {
-                        errors.push(Diagnostic::error(message, at(&section, &format!("{} =", option.name))));
-                    } else if profile.name == m.pack.default_profile
-                        && profile_value(option, value).ok() != Some(option.kind.default_value())
-                    {
-                        errors.push(
-                            Diagnostic::error(
-                                format!(
-                                    "{} defaults to {} in the GLSL but the default profile {} sets {}",
-                                    option.name,
-                                    option.kind.default_value(),
+                    let glsl_default = option.kind.default_value();
+                    match profile_value(option, value) {
+                        Err(message) => errors.push(Diagnostic::error(message, at(&section, &format!("{} =", option.name)))),
+                        Ok(set) if profile.name == m.pack.default_profile && set != glsl_default => {
+                            let setting_at = at(&section, &format!("{} =", option.name))
+                                .map_or_else(|| source.manifest_path.clone(), |l| l.to_string());
+                            errors.push(
+                                Diagnostic::error(
+                                    format!(
+                                        "{} defaults to {glsl_default} in the GLSL but the default profile {} sets {set}",
+                                        option.name, profile.name,
+                                    ),
+                                    Some(option.declared_at.clone()),
+                                )
+                                .with_note(format!(
+                                    "the GLSL defaults must equal the default profile (default_profile = \"{}\" in [pack]): \
+                                     to make {glsl_default} the default, set {} = {} in [profile.settings] of the profile named \
+                                     {} at {setting_at}; to keep {set}, write it back on the #define line at {}",
                                     profile.name,
-                                    value
-                                ),
-                                Some(option.declared_at.clone()),
-                            )
-                            .with_note("OptiFine would show the defaults as a custom profile"),
-                        );
+                                    option.name,
+                                    toml_value_of(&glsl_default),
+                                    profile.name,
+                                    option.declared_at,
+                                ))
+                                .with_note("OptiFine would show the defaults as a custom profile"),
+                            );
+                        }
+                        Ok(_) => {}
                     }
                 }
             }

@@ -17,12 +17,13 @@
 //! Every set is preprocessed and lowered; identical lowered texts are validated by naga once.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
-use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 use tidepack_glsl::Diagnostic;
 use tidepack_glsl::options::{OptionSet, OptionValue};
-use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed};
+use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
 use tidepack_glsl::validate::{self, LoweredStage};
 
 use crate::pack_options::PackOptions;
@@ -79,6 +80,44 @@ pub struct ValidationReport {
     pub covered: Option<SetsCovered>,
     /// The stages naga validated: shipped path and the first option set that gave its text.
     pub validated: Vec<(String, OptionSet)>,
+    /// Options some program's text depends on (the rest change nothing when a player sets them).
+    pub options_read: BTreeSet<String>,
+}
+
+/// Where validation is, for a progress display: `done` of `total` items of `phase`.
+#[derive(Clone, Copy, Debug)]
+pub struct Progress<'a> {
+    pub phase: &'a str,
+    pub done: usize,
+    pub total: usize,
+}
+
+/// Receives [`Progress`] at most once a second per phase, and at each phase's end.
+pub type ProgressFn<'a> = &'a (dyn Fn(Progress) + Sync);
+
+/// Counts finished items of a phase across worker threads and reports them, rate limited.
+struct Ticker<'a> {
+    report: Option<ProgressFn<'a>>,
+    phase: &'static str,
+    total: usize,
+    done: AtomicUsize,
+    last: Mutex<Instant>,
+}
+
+impl<'a> Ticker<'a> {
+    fn new(report: Option<ProgressFn<'a>>, phase: &'static str, total: usize) -> Self {
+        Ticker { report, phase, total, done: AtomicUsize::new(0), last: Mutex::new(Instant::now()) }
+    }
+
+    fn tick(&self) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        let Some(report) = self.report else { return };
+        let mut last = self.last.lock().expect("no panics while holding the ticker");
+        if done == self.total || last.elapsed() >= Duration::from_secs(1) {
+            *last = Instant::now();
+            report(Progress { phase: self.phase, done, total: self.total });
+        }
+    }
 }
 
 /// OptiFine's standard macros for a typical modern setup, so packs that test them validate.
@@ -103,12 +142,14 @@ pub fn standard_macros(glsl_version: u32) -> PreprocessOptions {
 ///
 /// The default option set of every program goes first: most mistakes show there, and a
 /// failing build then stops before enumerating every set.
-/// `profiles` are option sets players can pick, always validated.
+/// `profiles` are option sets players can pick, always validated. `progress` hears how far
+/// the option-set search, the lowering and naga are.
 pub fn validate_pack(
     pack: &ShippedPack,
     options: &PackOptions,
     coverage: Coverage,
     profiles: &[OptionSet],
+    progress: Option<ProgressFn>,
 ) -> Result<ValidationReport, Vec<Diagnostic>> {
     let glsl_version = match pack.dialect {
         crate::dialect::Dialect::Glsl120 => 120,
@@ -118,32 +159,40 @@ pub fn validate_pack(
     let programs = pack.programs();
     let defaults: Vec<(&Program, OptionSet)> = programs.iter().map(|p| (p, OptionSet::new())).collect();
     let mut seen = HashMap::new();
-    let (unique, mut errors, _) = lower_sets(pack, &defaults, &macros, &mut seen);
-    errors.extend(validate_in_parallel(pack, &unique));
+    let (unique, mut errors, _) = lower_sets(pack, &defaults, &macros, &mut seen, None);
+    errors.extend(validate_in_parallel(pack, &programs, &unique, None));
     if !errors.is_empty() {
-        return Err(distinct_errors(errors));
+        return Err(distinct_errors(pack, &programs, &macros, errors));
     }
     let mut report = ValidationReport { programs: programs.len(), ..Default::default() };
     let mut all_sets = Vec::new();
+    let searched = Ticker::new(progress, "programs' option sets found", programs.len());
     for program in &programs {
         match option_sets(pack, program, options, &macros, coverage, profiles) {
-            Ok((sets, covered)) => {
+            Ok((sets, covered, read)) => {
                 report.covered = report.covered.max(Some(covered));
                 report.option_sets += sets.len();
+                report.options_read.extend(read);
                 all_sets.extend(sets.into_iter().map(|set| (program, set)));
             }
-            Err(error) => errors.push(error),
+            Err((diag, set)) => errors.push((diag, set, program.name.clone())),
         }
+        searched.tick();
     }
-    let (mut unique, lowering_errors, identical) = lower_sets(pack, &all_sets, &macros, &mut HashMap::new());
+    let lowered = Ticker::new(progress, "option sets lowered", all_sets.len());
+    let (mut unique, lowering_errors, identical) = lower_sets(pack, &all_sets, &macros, &mut HashMap::new(), Some(&lowered));
     errors.extend(lowering_errors);
     report.stages_identical = identical;
     report.stages_validated = unique.len();
     report.validated = unique.iter().map(|(stage, set)| (stage.preprocessed.files[0].clone(), set.clone())).collect();
-    errors.extend(validate_in_parallel(pack, &unique));
+    let validated = Ticker::new(progress, "stages validated by naga", unique.len());
+    errors.extend(validate_in_parallel(pack, &programs, &unique, Some(&validated)));
     unique.clear();
-    if errors.is_empty() { Ok(report) } else { Err(distinct_errors(errors)) }
+    if errors.is_empty() { Ok(report) } else { Err(distinct_errors(pack, &programs, &macros, errors)) }
 }
+
+/// An error, the option set that showed it and the program it was found in.
+type Failure = (Diagnostic, OptionSet, String);
 
 /// Preprocesses and lowers each (program, option set); returns the stages whose lowered text
 /// is new (with the set that gave it), the errors, and how many stages were identical.
@@ -152,11 +201,16 @@ fn lower_sets(
     sets: &[(&Program, OptionSet)],
     macros: &PreprocessOptions,
     seen: &mut HashMap<(String, String), ()>,
-) -> (Vec<(LoweredStage, OptionSet)>, Vec<(Diagnostic, OptionSet)>, usize) {
+    ticker: Option<&Ticker>,
+) -> (Vec<(LoweredStage, OptionSet)>, Vec<Failure>, usize) {
     let lowered = parallel_map(sets, || (), |(), (program, set)| {
         let stages = run_set(pack, program, set, macros)?;
         let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
-        validate::lower_program(&with_stage)
+        let result = validate::lower_program(&with_stage);
+        if let Some(ticker) = ticker {
+            ticker.tick();
+        }
+        result
     });
     let mut unique = Vec::new();
     let mut errors = Vec::new();
@@ -172,20 +226,109 @@ fn lower_sets(
                     }
                 }
             }
-            Err(diag) => errors.push((diag, set.clone())),
+            Err(diag) => errors.push((diag, set.clone(), program.name.clone())),
         }
     }
     (unique, errors, identical)
 }
 
-/// One diagnostic per distinct error, noting the options of the first set that shows it.
-fn distinct_errors(errors: Vec<(Diagnostic, OptionSet)>) -> Vec<Diagnostic> {
-    let mut distinct: BTreeMap<String, Diagnostic> = BTreeMap::new();
-    for (diag, set) in errors {
-        let key = diag.to_string();
-        distinct.entry(key).or_insert_with(|| diag.with_note(describe_set(&set)));
+/// One diagnostic per distinct error. Notes name the option values the error needs (the
+/// failing set reduced to the options whose removal makes the error go away) and, for an
+/// error inside an included file, the programs that include it and through which files.
+fn distinct_errors(pack: &ShippedPack, programs: &[Program], macros: &PreprocessOptions, errors: Vec<Failure>) -> Vec<Diagnostic> {
+    let mut distinct: BTreeMap<String, (Diagnostic, OptionSet, BTreeSet<String>)> = BTreeMap::new();
+    for (diag, set, program) in errors {
+        let entry = distinct.entry(diag.to_string()).or_insert_with(|| (diag, set, BTreeSet::new()));
+        entry.2.insert(program);
     }
-    distinct.into_values().collect()
+    distinct
+        .into_iter()
+        .map(|(key, (diag, set, in_programs))| {
+            let first = programs.iter().find(|p| in_programs.contains(&p.name));
+            let needed = match first {
+                Some(program) => minimal_set(pack, program, macros, &set, &key),
+                None => set,
+            };
+            let mut diag = diag.with_note(describe_set(&needed));
+            let Some(path) = diag.location.as_ref().map(|l| l.path.clone()) else { return diag };
+            for program in programs.iter().filter(|p| in_programs.contains(&p.name)) {
+                if program.stages.iter().any(|(_, stage)| *stage == path) {
+                    continue;
+                }
+                if let Some(chain) = program.stages.iter().find_map(|(_, stage)| include_chain(pack, stage, &path)) {
+                    diag = diag.with_note(format!("included by program {}: {}", program.name, chain.join(" includes ")));
+                }
+            }
+            diag
+        })
+        .collect()
+}
+
+/// `set` without every option that the error `key` does not need: options are dropped one at
+/// a time, keeping a drop when `program` still shows the same error without it.
+fn minimal_set(pack: &ShippedPack, program: &Program, macros: &PreprocessOptions, set: &OptionSet, key: &str) -> OptionSet {
+    let mut needed = set.clone();
+    let mut frontend = validate::Frontend::default();
+    for name in set.keys() {
+        let mut trial = needed.clone();
+        trial.remove(name);
+        if shows_error(pack, program, macros, &trial, key, &mut frontend) {
+            needed = trial;
+        }
+    }
+    needed
+}
+
+/// Whether `program` under `set` gives the error `key` (preprocessing, lowering or naga).
+fn shows_error(
+    pack: &ShippedPack,
+    program: &Program,
+    macros: &PreprocessOptions,
+    set: &OptionSet,
+    key: &str,
+    frontend: &mut validate::Frontend,
+) -> bool {
+    let stages = match run_set(pack, program, set, macros) {
+        Ok(stages) => stages,
+        Err(diag) => return diag.to_string() == key,
+    };
+    let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
+    let lowered = match validate::lower_program(&with_stage) {
+        Ok(lowered) => lowered,
+        Err(diag) => return diag.to_string() == key,
+    };
+    let provider = WithOptions::new(pack, set);
+    lowered.iter().any(|stage| {
+        validate::validate_stage(frontend, stage, &provider).is_err_and(|diags| diags.iter().any(|d| d.to_string() == key))
+    })
+}
+
+/// The files from `from` to `target` along `#include` lines (`["composite.fsh",
+/// "lib/water.glsl", "lib/caustics.glsl"]`), if `from` includes `target` at all.
+fn include_chain(pack: &ShippedPack, from: &str, target: &str) -> Option<Vec<String>> {
+    fn walk(pack: &ShippedPack, path: &str, target: &str, chain: &mut Vec<String>) -> bool {
+        if chain.iter().any(|p| p == path) {
+            return false;
+        }
+        chain.push(path.to_string());
+        if path == target {
+            return true;
+        }
+        let text = pack.files.get(path).map(|f| f.text.clone()).unwrap_or_default();
+        for line in text.lines() {
+            let Some(rest) = line.trim_start().strip_prefix("#include") else { continue };
+            let Some(included) = rest.trim().strip_prefix('"').and_then(|r| r.split('"').next()) else { continue };
+            if let Ok(resolved) = resolve_include(path, included)
+                && walk(pack, &resolved, target, chain)
+            {
+                return true;
+            }
+        }
+        chain.pop();
+        false
+    }
+    let mut chain = Vec::new();
+    walk(pack, from, target, &mut chain).then_some(chain)
 }
 
 fn describe_set(set: &OptionSet) -> String {
@@ -226,12 +369,27 @@ fn parallel_map<T: Sync, S, R: Send>(
     results.into_iter().map(|(_, r)| r).collect()
 }
 
-fn validate_in_parallel(pack: &ShippedPack, unique: &[(LoweredStage, OptionSet)]) -> Vec<(Diagnostic, OptionSet)> {
+fn validate_in_parallel(
+    pack: &ShippedPack,
+    programs: &[Program],
+    unique: &[(LoweredStage, OptionSet)],
+    ticker: Option<&Ticker>,
+) -> Vec<Failure> {
     let results = parallel_map(unique, validate::Frontend::default, |frontend, (stage, set)| {
         let provider = WithOptions::new(pack, set);
-        validate::validate_stage(frontend, stage, &provider).err().map(|diags| (diags, set.clone()))
+        let result = validate::validate_stage(frontend, stage, &provider).err();
+        if let Some(ticker) = ticker {
+            ticker.tick();
+        }
+        let path = &stage.preprocessed.files[0];
+        let program = programs.iter().find(|p| p.stages.iter().any(|(_, s)| s == path)).map_or_else(|| path.clone(), |p| p.name.clone());
+        result.map(|diags| (diags, set.clone(), program))
     });
-    results.into_iter().flatten().flat_map(|(diags, set)| diags.into_iter().map(move |d| (d, set.clone()))).collect()
+    results
+        .into_iter()
+        .flatten()
+        .flat_map(|(diags, set, program)| diags.into_iter().map(move |d| (d, set.clone(), program.clone())))
+        .collect()
 }
 
 /// Preprocesses a program's stages under one option set; returns the stages and the options
@@ -246,7 +404,8 @@ fn run_set(
     program.stages.iter().map(|(_, path)| preprocess::preprocess(&provider, path, macros).map(Arc::new)).collect()
 }
 
-/// The option sets of a program (see the module docs) and whether they are exhaustive.
+/// The option sets of a program (see the module docs), what they cover, and the options its
+/// text depends on.
 fn option_sets(
     pack: &ShippedPack,
     program: &Program,
@@ -254,7 +413,7 @@ fn option_sets(
     macros: &PreprocessOptions,
     coverage: Coverage,
     profiles: &[OptionSet],
-) -> Result<(Vec<OptionSet>, SetsCovered), (Diagnostic, OptionSet)> {
+) -> Result<(Vec<OptionSet>, SetsCovered, BTreeSet<String>), (Diagnostic, OptionSet)> {
     let mut relevant: BTreeSet<String> = BTreeSet::new();
     let mut tested: BTreeSet<String> = BTreeSet::new();
     let mut explored: BTreeSet<OptionSet> = BTreeSet::new();
@@ -282,7 +441,7 @@ fn option_sets(
         }
         explored.extend(fresh.into_iter().cloned());
         if !grew {
-            return Ok((sets, covered));
+            return Ok((sets, covered, relevant));
         }
     }
 }
@@ -426,6 +585,26 @@ mod tests {
         }
         assert_eq!(rows[0], vec![0; sizes.len()]);
         assert!(rows.len() <= 16, "{} rows", rows.len());
+    }
+
+    #[test]
+    fn progress_reports_every_phase_to_its_end() {
+        use crate::dialect::Dialect;
+        use crate::source::PackSource;
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaderpack");
+        let source = PackSource::load(&root).unwrap();
+        let options = crate::pack_options::collect(&source).unwrap();
+        let pack = ShippedPack::generate(&source, &options, Dialect::Glsl330, &OptionSet::new()).unwrap();
+        let seen = Mutex::new(Vec::new());
+        let record = |step: Progress| seen.lock().unwrap().push((step.phase.to_string(), step.done, step.total));
+        let report = validate_pack(&pack, &options, Coverage::Pairwise, &[], Some(&record)).unwrap();
+        let seen = seen.into_inner().unwrap();
+        for phase in ["programs' option sets found", "option sets lowered", "stages validated by naga"] {
+            let last = seen.iter().filter(|(p, _, _)| p == phase).last().unwrap_or_else(|| panic!("no {phase}: {seen:?}"));
+            assert_eq!(last.1, last.2, "{phase} ends at its total: {seen:?}");
+        }
+        assert!(seen.iter().any(|(p, done, _)| p == "stages validated by naga" && *done == report.stages_validated));
+        assert!(report.options_read.contains("CAUSTICS") && report.options_read.contains("SSR_STEPS"), "{:?}", report.options_read);
     }
 
     #[test]

@@ -1,10 +1,14 @@
 //! `tidepack build`: prints the build summary or the diagnostics; with `--scene`, specialises
 //! the pack for the scene and measures the speedup on the harness.
 
+use std::io::IsTerminal;
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
-use tidepack_pack::BuildOptions;
+use tidepack_pack::validation::Progress;
+use tidepack_pack::{BuildOptions, Dialect};
 
 use super::print_diagnostics;
 
@@ -22,8 +26,12 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
             }
         }
     }
-    match tidepack_pack::build(&opts) {
+    let progress = ProgressLine::new();
+    let result = tidepack_pack::build(&opts, Some(&|dialect, step| progress.show(dialect, step)));
+    progress.finish();
+    match result {
         Ok(report) => {
+            print_diagnostics(&report.warnings, &|path| std::fs::read_to_string(path).ok());
             println!(
                 "Built {} {} (profile {}, {} options) in {:.2} s",
                 report.pack_name,
@@ -54,8 +62,49 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
         Err(failure) => {
             print_diagnostics(&failure.diagnostics, &|path| failure.source_of(path));
             let errors = failure.diagnostics.iter().filter(|d| d.is_error()).count();
-            eprintln!("build failed with {errors} error{}; no zip was written", if errors == 1 { "" } else { "s" });
+            let plural = if errors == 1 { "" } else { "s" };
+            if failure.written.is_empty() {
+                eprintln!("build failed with {errors} error{plural}; no zip was written");
+            } else {
+                let written: Vec<String> = failure.written.iter().map(|p| p.display().to_string()).collect();
+                eprintln!("build failed with {errors} error{plural}; only these zips were written: {}", written.join(", "));
+            }
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// Validation progress on stderr: one line rewritten in place on a terminal, otherwise a line
+/// every ten seconds, so a long `--exhaustive` build shows it is moving either way.
+struct ProgressLine {
+    terminal: bool,
+    /// When the last line was printed (or the build started), and whether a terminal line is open.
+    state: Mutex<(Instant, bool)>,
+}
+
+impl ProgressLine {
+    fn new() -> Self {
+        // Off a terminal the first line waits ten seconds too: quick builds print none.
+        ProgressLine { terminal: std::io::stderr().is_terminal(), state: Mutex::new((Instant::now(), false)) }
+    }
+
+    fn show(&self, dialect: Dialect, step: Progress) {
+        let mut state = self.state.lock().expect("no panics while printing");
+        let text = format!("{dialect}: {}/{} {}", step.done, step.total, step.phase);
+        if self.terminal {
+            eprint!("\r\x1b[2K{text}");
+            state.1 = true;
+        } else if state.0.elapsed() >= Duration::from_secs(10) {
+            eprintln!("{text}");
+            state.0 = Instant::now();
+        }
+    }
+
+    /// Ends an open terminal line, so what follows starts on its own line.
+    fn finish(&self) {
+        let state = self.state.lock().expect("no panics while printing");
+        if state.1 {
+            eprint!("\r\x1b[2K");
         }
     }
 }
