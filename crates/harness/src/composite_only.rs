@@ -125,6 +125,7 @@ impl CompositeOnly {
         values: &BTreeMap<String, Value>,
         binding: UniformBinding,
     ) -> Result<CompositeOnly, HarnessError> {
+        gpu.check_resolution(width, height)?;
         let storage = binding == UniformBinding::ReadOnlyStorage;
         let device = &gpu.device;
         let program = &pack.composite;

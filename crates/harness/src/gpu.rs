@@ -77,6 +77,35 @@ impl Gpu {
         })
     }
 
+    /// Whether this device can render at `width` x `height`: every render target is that big,
+    /// and the largest readback, the RGBA32F output (16 bytes a pixel, rows padded to 256
+    /// bytes), is one buffer that must fit the device's `max_buffer_size`.
+    pub fn check_resolution(&self, width: u32, height: u32) -> Result<(), HarnessError> {
+        let limits = self.device.limits();
+        let side = limits.max_texture_dimension_2d;
+        if width > side || height > side {
+            return Err(HarnessError::Scene(format!(
+                "resolution {width}x{height} is too large: this device's textures are at most {side}x{side} pixels"
+            )));
+        }
+        let bytes = readback_bytes(width, height);
+        if bytes > limits.max_buffer_size {
+            let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+            // The largest square that fits, for the message.
+            let mut fits = (limits.max_buffer_size as f64 / 16.0).sqrt() as u32;
+            while fits > 1 && readback_bytes(fits, fits) > limits.max_buffer_size {
+                fits -= 1;
+            }
+            return Err(HarnessError::Scene(format!(
+                "resolution {width}x{height} is too large: reading the RGBA32F output back takes one {:.0} MiB buffer, \
+                 over this device's limit of {:.0} MiB (max_buffer_size); the largest square resolution is {fits}x{fits}",
+                mib(bytes),
+                mib(limits.max_buffer_size)
+            )));
+        }
+        Ok(())
+    }
+
     /// `name (backend, device type, driver)`.
     pub fn describe(&self) -> String {
         let a = &self.adapter;
@@ -269,6 +298,7 @@ pub fn render_repeated(
     passthrough: bool,
     frames: usize,
 ) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
+    gpu.check_resolution(scene.width(), scene.height())?;
     gpu.checked("frame", || render_frame(gpu, pack, scene, mesh, passthrough, frames.max(1)))?
 }
 
@@ -1151,6 +1181,11 @@ fn map_read(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, HarnessError> {
         .to_vec();
     buffer.unmap();
     Ok(data)
+}
+
+/// Bytes of the buffer [`read_texture`] needs for an RGBA32F texture of this size.
+fn readback_bytes(width: u32, height: u32) -> u64 {
+    (width as u64 * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as u64) * height as u64
 }
 
 /// Reads a texture back as floats, bottom row first (memory row 0 is OpenGL's bottom row).

@@ -18,10 +18,11 @@ pub struct Scene {
     #[serde(default)]
     pub description: String,
     /// Width and height in pixels.
+    #[serde(deserialize_with = "exact")]
     pub resolution: [u32; 2],
     /// World offset added to every position in the file (camera, water, terrain, glass):
     /// the same scene far from the origin.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact")]
     pub origin: [f64; 3],
     pub camera: Camera,
     pub time: Time,
@@ -36,6 +37,7 @@ pub struct Scene {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Camera {
+    #[serde(deserialize_with = "exact")]
     pub position: [f64; 3],
     /// Degrees, Minecraft's convention: 0 looks towards +z, 90 towards -x.
     pub yaw: f64,
@@ -68,8 +70,11 @@ pub struct Time {
 #[serde(deny_unknown_fields)]
 pub struct Sky {
     /// World-space direction towards the sun (normalised by the harness).
+    #[serde(deserialize_with = "exact")]
     pub sun_direction: [f64; 3],
+    #[serde(deserialize_with = "exact")]
     pub sky_color: [f64; 3],
+    #[serde(deserialize_with = "exact")]
     pub fog_color: [f64; 3],
 }
 
@@ -79,13 +84,15 @@ pub struct Water {
     /// Height of the flat surface (Minecraft's still water top is block y + 0.875).
     pub level: f64,
     /// x, z corners of the water surface.
+    #[serde(deserialize_with = "exact")]
     pub min: [f64; 2],
+    #[serde(deserialize_with = "exact")]
     pub max: [f64; 2],
     /// The water volume's bottom, for `isEyeInWater` (default: far below).
     #[serde(default = "default_bottom")]
     pub bottom: f64,
     /// Biome tint of the water (vertex colour).
-    #[serde(default = "default_water_tint")]
+    #[serde(default = "default_water_tint", deserialize_with = "exact")]
     pub tint: [f64; 3],
     /// Side of the surface's quads in blocks (1 as in Minecraft; larger for huge far water).
     #[serde(default = "default_cell")]
@@ -118,13 +125,16 @@ pub struct Terrain {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ground {
+    #[serde(deserialize_with = "exact")]
     pub min: [f64; 2],
+    #[serde(deserialize_with = "exact")]
     pub max: [f64; 2],
     /// Height at `min`.
     pub height: f64,
     /// Rise per block along x and z (a beach).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "exact")]
     pub slope: [f64; 2],
+    #[serde(deserialize_with = "exact")]
     pub color: [f64; 3],
 }
 
@@ -132,8 +142,11 @@ pub struct Ground {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoxShape {
+    #[serde(deserialize_with = "exact")]
     pub min: [f64; 3],
+    #[serde(deserialize_with = "exact")]
     pub max: [f64; 3],
+    #[serde(deserialize_with = "exact")]
     pub color: [f64; 3],
 }
 
@@ -141,9 +154,12 @@ pub struct BoxShape {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GlassPane {
+    #[serde(deserialize_with = "exact")]
     pub min: [f64; 3],
+    #[serde(deserialize_with = "exact")]
     pub max: [f64; 3],
     /// Tint and opacity.
+    #[serde(deserialize_with = "exact")]
     pub color: [f64; 4],
     /// Block name looked up in the pack's block.properties for `mc_Entity.x`.
     #[serde(default = "default_glass_block")]
@@ -152,6 +168,33 @@ pub struct GlassPane {
 
 fn default_glass_block() -> String {
     "minecraft:white_stained_glass".into()
+}
+
+/// A fixed-size array that must be written with exactly `N` values (serde's own array
+/// reading stops after `N` and ignores the rest).
+fn exact<'de, D, T, const N: usize>(deserializer: D) -> Result<[T; N], D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    let values = Vec::<T>::deserialize(deserializer)?;
+    let found = values.len();
+    values.try_into().map_err(|_| serde::de::Error::invalid_length(found, &format!("{N} values").as_str()))
+}
+
+/// The first NaN or infinite float of a parsed scene, as a dotted path (`camera.position[1]`).
+fn first_non_finite(value: &toml::Value, path: &str) -> Option<(String, f64)> {
+    match value {
+        toml::Value::Float(f) if !f.is_finite() => Some((path.to_string(), *f)),
+        toml::Value::Array(items) => {
+            items.iter().enumerate().find_map(|(i, item)| first_non_finite(item, &format!("{path}[{i}]")))
+        }
+        toml::Value::Table(table) => table.iter().find_map(|(key, item)| {
+            let inner = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+            first_non_finite(item, &inner)
+        }),
+        _ => None,
+    }
 }
 
 /// The scene files (`*.toml`) of a folder, sorted by name.
@@ -167,6 +210,13 @@ impl Scene {
     pub fn load(path: &Path) -> Result<Scene, HarnessError> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| HarnessError::Scene(format!("cannot read scene {}: {e}", path.display())))?;
+        let parsed: toml::Table =
+            toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        // Every float feeds a matrix, a uniform or a mesh: one NaN or infinity renders a wrong
+        // picture without any error further on.
+        if let Some((field, value)) = first_non_finite(&toml::Value::Table(parsed), "") {
+            return Err(HarnessError::Scene(format!("{}: {field} is {value}; scene values must be finite numbers", path.display())));
+        }
         let mut scene: Scene =
             toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
         if scene.name.is_empty() {
@@ -178,8 +228,9 @@ impl Scene {
 
     fn check(&self) -> Result<(), String> {
         let [w, h] = self.resolution;
-        if w == 0 || h == 0 || w > 8192 || h > 8192 {
-            return Err(format!("resolution {w}x{h} is out of range (1..8192)"));
+        // The upper bound depends on the device (Gpu::check_resolution), checked before rendering.
+        if w == 0 || h == 0 {
+            return Err(format!("resolution {w}x{h}: width and height must be at least 1"));
         }
         let c = &self.camera;
         if !(c.fov > 1.0 && c.fov < 179.0) || c.near <= 0.0 || c.far <= c.near {
@@ -235,5 +286,52 @@ impl Scene {
 
     pub fn sun_direction(&self) -> DVec3 {
         DVec3::from(self.sky.sun_direction).normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case4() -> String {
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap()
+    }
+
+    fn load_text(text: &str) -> Result<Scene, String> {
+        let dir = std::env::temp_dir().join(format!("tidepack-scene-{}-{:x}", std::process::id(), text.len()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("edited.toml");
+        std::fs::write(&path, text).unwrap();
+        let result = Scene::load(&path).map_err(|e| e.to_string());
+        std::fs::remove_dir_all(&dir).unwrap();
+        result
+    }
+
+    #[test]
+    fn non_finite_values_are_refused_with_the_field_and_file() {
+        assert!(load_text(&case4()).is_ok());
+        for (from, to, field) in [
+            ("position = [0.0, 67.0, -2.0]", "position = [0.0, nan, -2.0]", "camera.position[1] is NaN"),
+            ("yaw = 180.0", "yaw = inf", "camera.yaw is inf"),
+            ("far = 96.0", "far = -inf", "camera.far is -inf"),
+            ("frame_time_counter = 12.5", "frame_time_counter = nan", "time.frame_time_counter is NaN"),
+            ("level = 62.875", "level = nan", "water.level is NaN"),
+            ("sun_direction = [0.35, 0.85, -0.40]", "sun_direction = [0.35, inf, -0.40]", "sky.sun_direction[1] is inf"),
+            ("height = 40.0", "height = nan", "terrain.ground[4].height is NaN"),
+        ] {
+            let text = case4().replacen(from, to, 1);
+            let error = load_text(&text).unwrap_err();
+            assert!(error.contains(field) && error.contains("edited.toml"), "{to}: {error}");
+        }
+    }
+
+    #[test]
+    fn arrays_take_exactly_their_number_of_values() {
+        let error = load_text(&case4().replacen("resolution = [640, 360]", "resolution = [640, 360, 2]", 1)).unwrap_err();
+        assert!(error.contains("invalid length 3") && error.contains("2 values") && error.contains("edited.toml"), "{error}");
+        let error = load_text(&case4().replacen("yaw = 180.0", "yaw = 180.0\nposition2 = 1", 1)).unwrap_err();
+        assert!(error.contains("position2"), "{error}");
+        let error = load_text(&case4().replacen("sun_direction = [0.35, 0.85, -0.40]", "sun_direction = [0.35, 0.85]", 1)).unwrap_err();
+        assert!(error.contains("invalid length 2") && error.contains("3 values"), "{error}");
     }
 }
