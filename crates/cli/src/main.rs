@@ -59,7 +59,7 @@ enum Command {
     Render(commands::render::RenderArgs),
     /// Sweep adversarial and random uniform sets and G-buffers through the composite on the
     /// harness against the f64 reference: NaN/Inf counts, error per category and against
-    /// |cameraPosition| (docs/stress.md).
+    /// |cameraPosition| (docs/stress.md). Prints the tables; writes files only with --out.
     #[cfg(feature = "render")]
     Stress(commands::stress::StressArgs),
     /// Composite time against error for every scene, profile and single-knob sweep: table,

@@ -35,7 +35,7 @@ pub struct StressOptions {
     pub scenes_dir: PathBuf,
     pub dialect: Dialect,
     pub profile: Option<String>,
-    /// Total number of cases (split evenly over the categories).
+    /// Total number of cases, split over the categories by [`cases_of_category`].
     pub cases: usize,
     pub width: u32,
     pub height: u32,
@@ -423,8 +423,17 @@ fn compare(gpu: impl Fn(usize) -> DVec3, reference: &[DVec3]) -> (f64, f64, usiz
     (max, sq, visible)
 }
 
-/// Runs the sweep; `progress` is called every few hundred cases.
+/// How many of `cases` category `index` runs: as even a split as there is, earlier
+/// categories taking the remainder (below one per category, the later ones run none).
+pub fn cases_of_category(cases: usize, index: usize) -> usize {
+    cases / CATEGORIES.len() + usize::from(index < cases % CATEGORIES.len())
+}
+
+/// Runs exactly `opts.cases` cases; `progress` is called every few hundred cases.
 pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<StressReport, String> {
+    if opts.cases == 0 {
+        return Err("the sweep needs at least one case (--cases 1 or more)".into());
+    }
     let started = Instant::now();
     let pack = program::load(&PackSelection {
         source_dir: opts.source_dir.clone(),
@@ -451,13 +460,9 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
         CATEGORIES.iter().map(|c| CategoryResult { category: c.to_string(), ..Default::default() }).collect();
     let mut distance: Vec<DistanceRow> = MAGNITUDES.iter().map(|&m| DistanceRow { magnitude: m, ..Default::default() }).collect();
     let mut records = Vec::new();
-    let per_category = opts.cases.div_ceil(CATEGORIES.len()).max(1);
     let mut index = 0;
     for (ci, &category) in CATEGORIES.iter().enumerate() {
-        for k in 0..per_category {
-            if index >= opts.cases.max(CATEGORIES.len()) {
-                break;
-            }
+        for k in 0..cases_of_category(opts.cases, ci) {
             let case = make_case(category, k, &bases, &runner, &mut rng);
             let values = uniforms::values(&case.scene, Pass::Fullscreen);
             let image = runner.render(&gpu, &pack, &case.gbuffers, &values).map_err(|e| format!("{}: {e}", case.description))?;
@@ -501,6 +506,15 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
                 progress(&format!("{index} cases, {:.0} s, RSS {}", started.elapsed().as_secs_f64(), rss_text()));
             }
         }
+    }
+    if opts.cases < CATEGORIES.len() {
+        progress(&format!(
+            "note: {} cases cover only the first {} of the {} categories; --cases {} runs one of each",
+            opts.cases,
+            opts.cases,
+            CATEGORIES.len(),
+            CATEGORIES.len()
+        ));
     }
     for c in &mut categories {
         c.rmse = if c.pixels > 0 { (c.squares / (3 * c.pixels) as f64).sqrt() } else { 0.0 };
@@ -609,4 +623,18 @@ pub fn tables(report: &StressReport) -> String {
         .ok();
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cases_are_split_exactly() {
+        for cases in [1, 5, 13, 20, 260, 10_000] {
+            let split: Vec<usize> = (0..CATEGORIES.len()).map(|i| cases_of_category(cases, i)).collect();
+            assert_eq!(split.iter().sum::<usize>(), cases, "{cases}: {split:?}");
+            assert!(split.iter().max().unwrap() - split.iter().min().unwrap() <= 1, "{cases}: {split:?}");
+        }
+    }
 }

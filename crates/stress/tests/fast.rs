@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use tidepack_stress::{StressOptions, run, tables};
+use tidepack_stress::{CATEGORIES, StressOptions, run, tables};
 
 #[test]
 fn stress_subset_is_finite_and_close_to_the_reference() {
@@ -15,7 +15,7 @@ fn stress_subset_is_finite_and_close_to_the_reference() {
     opts.height = 9;
     let report = run(&opts, &mut |m| eprintln!("{m}")).unwrap_or_else(|e| panic!("{e}"));
     println!("{}", tables(&report));
-    assert!(report.cases >= 260);
+    assert_eq!(report.cases, 260);
     assert_eq!(report.non_finite_pixels, 0, "NaN/Inf pixels in the composite output");
     for c in &report.categories {
         assert!(c.cases > 0, "{} ran no case", c.category);
@@ -32,3 +32,22 @@ fn stress_subset_is_finite_and_close_to_the_reference() {
 }
 
 const RMSE_BOUND: f64 = 0.02;
+
+/// The sweep runs exactly the number of cases asked for, and refuses none.
+#[test]
+fn the_sweep_runs_exactly_the_cases_asked_for() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut opts = StressOptions::new(&root);
+    opts.width = 16;
+    opts.height = 9;
+    opts.cases = 0;
+    let error = run(&opts, &mut |_| {}).unwrap_err();
+    assert!(error.contains("at least one case"), "{error}");
+    opts.cases = 5;
+    let mut messages = Vec::new();
+    let report = run(&opts, &mut |m| messages.push(m.to_string())).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(report.cases, 5);
+    let ran: Vec<&str> = report.categories.iter().filter(|c| c.cases > 0).map(|c| c.category.as_str()).collect();
+    assert_eq!(ran, CATEGORIES[..5]);
+    assert!(messages.iter().any(|m| m.contains("only the first 5 of the 13 categories")), "{messages:?}");
+}

@@ -13,10 +13,12 @@ use super::render::RenderDialect;
 
 #[derive(Args)]
 pub struct StressArgs {
-    /// Number of cases (split evenly over the 13 categories).
-    #[arg(long, default_value_t = 10_000)]
-    pub cases: usize,
-    /// Folder for summary.json, categories.csv, distance.csv and cases.csv.
+    /// Number of cases, run exactly: spread over the 13 categories as evenly as possible (with
+    /// fewer than 13, only the first categories run).
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub cases: u64,
+    /// Folder for summary.json, categories.csv, distance.csv and cases.csv. Without it the
+    /// tables are printed to stdout and no file is written.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// GLSL dialect of the shipped text to run.
@@ -50,7 +52,7 @@ pub fn run(args: &StressArgs) -> ExitCode {
         RenderDialect::V330 => Dialect::Glsl330,
     };
     opts.profile = args.profile.clone();
-    opts.cases = args.cases;
+    opts.cases = args.cases as usize;
     opts.width = args.width;
     opts.height = args.height;
     opts.seed = args.seed;
