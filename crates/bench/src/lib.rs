@@ -206,17 +206,29 @@ fn load_pack(source_dir: &Path, run: &RunSpec, specialisation: Option<&Specialis
     program::load_specialised(&selection, specialisation).map_err(|e| format!("{}: {e}", run.name))
 }
 
+/// The scenes to run (all, or those of `scene_filter`); a filter naming no scene is an error
+/// listing the scenes there are.
 pub fn scene_files(config: &BenchConfig) -> Result<Vec<(String, PathBuf)>, String> {
-    let files: Vec<(String, PathBuf)> = tidepack_harness::scene::scene_files(&config.scenes_dir)
+    let all: Vec<(String, PathBuf)> = tidepack_harness::scene::scene_files(&config.scenes_dir)
         .map_err(|e| e.to_string())?
         .into_iter()
         .filter_map(|p| Some((p.file_stem()?.to_string_lossy().into_owned(), p)))
-        .filter(|(n, _)| config.scene_filter.is_empty() || config.scene_filter.contains(n))
         .collect();
-    if files.is_empty() {
-        return Err(format!("no scenes in {}", config.scenes_dir.display()));
+    if all.is_empty() {
+        return Err(format!("no scenes (*.toml) in {}", config.scenes_dir.display()));
     }
-    Ok(files)
+    let missing: Vec<&str> =
+        config.scene_filter.iter().filter(|n| !all.iter().any(|(name, _)| name == *n)).map(String::as_str).collect();
+    if !missing.is_empty() {
+        let available: Vec<&str> = all.iter().map(|(name, _)| name.as_str()).collect();
+        return Err(format!(
+            "no scene named {} in {}; the scenes there are {}",
+            missing.join(", "),
+            config.scenes_dir.display(),
+            available.join(", ")
+        ));
+    }
+    Ok(all.into_iter().filter(|(n, _)| config.scene_filter.is_empty() || config.scene_filter.contains(n)).collect())
 }
 
 /// Runs the benchmark and writes every output file.

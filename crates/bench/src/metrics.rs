@@ -33,8 +33,11 @@ pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (Error, nv_flip::F
     (Error { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
 }
 
+/// PSNR in dB of a mean squared error over 0..1 values; infinite (identical) when the error is
+/// below f32's resolution, where it is the f64 reference's rounding, not a difference.
 pub fn psnr_of_mse(mse: f64) -> f64 {
-    if mse > 0.0 { 10.0 * (1.0 / mse).log10() } else { f64::INFINITY }
+    let resolution = f64::from(f32::EPSILON);
+    if mse > resolution * resolution { 10.0 * (1.0 / mse).log10() } else { f64::INFINITY }
 }
 
 /// FLIP's error map of `test` against `reference` (8-bit RGB, top row first). The composite
@@ -76,3 +79,16 @@ pub fn write_heatmap(map: &nv_flip::FlipImageFloat, path: &std::path::Path) -> R
     image.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn f32_rounding_is_identical_and_real_errors_are_not() {
+        // 1.6e-15 is the f32-vs-f64 rounding that printed as PSNR 147.9 dB.
+        assert_eq!(psnr_of_mse(1.6e-15), f64::INFINITY);
+        assert_eq!(psnr_of_mse(0.0), f64::INFINITY);
+        assert!((psnr_of_mse(1e-6) - 60.0).abs() < 1e-9);
+    }
+}

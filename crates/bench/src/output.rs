@@ -67,7 +67,7 @@ fn front_label(a: &Aggregate) -> String {
 }
 
 fn db(psnr: f64) -> String {
-    if psnr.is_finite() { format!("{psnr:.1}") } else { "inf".into() }
+    if psnr.is_finite() { format!("{psnr:.1}") } else { "identical".into() }
 }
 
 /// The aggregate table, one line per run (terminal).

@@ -93,3 +93,11 @@ fn specialising_for_the_scene_changes_no_error() {
     assert!((g.error.rmse - s.error.rmse).abs() <= 1e-4, "{:?} vs {:?}", g.error, s.error);
     assert!(s.composite_ms > 0.0 && s.passthrough_ms > 0.0);
 }
+
+/// A scene name that is not there is an error naming it and the scenes there are.
+#[test]
+fn an_unknown_scene_is_named_with_the_available_ones() {
+    let out = tempfile::tempdir().unwrap();
+    let error = tidepack_bench::scene_files(&small_config("nope", out.path().to_path_buf())).unwrap_err();
+    assert!(error.contains("no scene named nope") && error.contains("case4_above_near"), "{error}");
+}

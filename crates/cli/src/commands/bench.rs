@@ -14,9 +14,9 @@ pub struct BenchArgs {
     /// Folder of scene files.
     #[arg(long, default_value = "tests/scenes")]
     pub scenes: PathBuf,
-    /// Frames per option set and scene; the median GPU time is reported.
-    #[arg(long, default_value_t = 7)]
-    pub frames: usize,
+    /// Frames per option set and scene (at least 1); the median GPU time is reported.
+    #[arg(long, default_value_t = 7, value_parser = clap::value_parser!(u64).range(1..))]
+    pub frames: u64,
     /// Output folder.
     #[arg(long, default_value = "target/bench")]
     pub out: PathBuf,
@@ -44,7 +44,7 @@ pub fn run(args: &BenchArgs) -> ExitCode {
         source_dir: args.source.clone(),
         scenes_dir: args.scenes.clone(),
         scene_filter: args.scene.clone(),
-        frames: if args.quick { args.frames.min(3) } else { args.frames },
+        frames: if args.quick { args.frames.min(3) as usize } else { args.frames as usize },
         resolution: args.quick.then_some([160, 90]),
         reference_stride: 1,
         out_dir: args.out.clone(),
@@ -56,7 +56,8 @@ pub fn run(args: &BenchArgs) -> ExitCode {
     };
     match tidepack_bench::run(&config) {
         Ok(result) => {
-            println!("{} on {} ({} timing)", result.scenes.len(), result.adapter, result.timing_source);
+            let scenes = result.scenes.len();
+            println!("{scenes} scene{} on {} ({} timing)", if scenes == 1 { "" } else { "s" }, result.adapter, result.timing_source);
             print!("{}", tidepack_bench::output::table(&result));
             for f in ["bench.csv", "bench.json", "pareto.png", "report.md", "heatmaps/"] {
                 println!("  wrote {}", args.out.join(f).display());
