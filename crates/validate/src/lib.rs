@@ -607,7 +607,9 @@ pub fn unlower_names(message: &str) -> String {
             out.push_str(&format!("gl_FragData[{n}]"));
         } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
             out.push_str(&format!("gl_TexCoord[{n}]"));
-        } else if let Some(x) = name.strip_prefix("sampler_").or_else(|| name.strip_prefix("bool_")) {
+        } else if let Some(x) =
+            ["sampler_", "bool_", "kw_", "init_"].iter().find_map(|p| name.strip_prefix(p))
+        {
             out.push_str(x);
         } else if name == "main" {
             out.push_str("main");
