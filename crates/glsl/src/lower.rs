@@ -1323,7 +1323,7 @@ impl<'a> Lowering<'_, 'a> {
                 && !(k > 0 && self.tokens[sig[k - 1]].is_punct("."))
             {
                 self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
-            } else if !followed_by_call && VULKAN_ONLY_KEYWORDS.contains(&t.text) {
+            } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
                 self.rename_vulkan_keyword(i);
             } else if followed_by_call && RANGE_CHECKED_BUILTINS.contains(&t.text) && self.literal_arguments(&sig, k + 1) {
                 // naga evaluates a built-in of constant arguments while parsing and refuses
@@ -1380,11 +1380,23 @@ impl<'a> Lowering<'_, 'a> {
         self.symbols.samplers.contains_key(name) || self.symbols.bool_uniforms.contains(name)
     }
 
-    /// An identifier that GLSL allows but Vulkan GLSL reserves (`sampler`, `texture2D`, …)
-    /// gets a reserved name.
+    /// Whether `word` is an identifier in the stage's GLSL version but a keyword to naga:
+    /// Vulkan GLSL's type names, and qualifiers later versions added.
+    fn is_keyword_only_to_naga(&self, word: &str) -> bool {
+        let keyword_since = match word {
+            "sample" => 400,
+            "restrict" | "readonly" | "writeonly" => 420,
+            "buffer" | "shared" => 430,
+            _ => return VULKAN_ONLY_KEYWORDS.contains(&word),
+        };
+        self.version < keyword_since
+    }
+
+    /// An identifier that the stage's GLSL allows but naga reads as a keyword (`sampler`,
+    /// `texture2D`, `sample` before GLSL 4.00, …) gets a reserved name.
     fn rename_vulkan_keyword(&mut self, index: usize) {
         let t = self.tokens[index];
-        if t.kind == TokenKind::Ident && VULKAN_ONLY_KEYWORDS.contains(&t.text) && !self.covered(index) {
+        if t.kind == TokenKind::Ident && self.is_keyword_only_to_naga(t.text) && !self.covered(index) {
             self.replace(index, index + 1, format!("{RESERVED_PREFIX}kw_{}", t.text));
         }
     }

@@ -12,5 +12,6 @@ void main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
-	gl_FragData[0] = vec4(fade(specular) * gain + part + whole);
+	float sample = fade(specular);
+	gl_FragData[0] = vec4(sample * gain + part + whole);
 }

@@ -12,5 +12,6 @@ void tp_main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
-	tp_FragData0 = vec4(fade(specular) * gain + part + whole);
+	float tp_kw_sample = fade(specular);
+	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole);
 } void main() { gain = tp_init_gain(); tp_main(); }
