@@ -48,17 +48,28 @@ fn json_and_github_formats() {
     let planted = tests_dir().join("planted/varying_type_mismatch");
     let out = validate(&[planted.to_str().unwrap(), "--format", "json"]);
     assert_eq!(out.status.code(), Some(1));
-    let json = text(&out.stdout);
-    assert!(json.trim_start().starts_with('{') && json.trim_end().ends_with('}'), "{json}");
-    assert!(json.contains("\"severity\": \"error\""), "{json}");
-    assert!(json.contains("varying_type_mismatch/shaders/gbuffers_basic.fsh\", \"line\": 2"), "{json}");
-    assert!(json.contains("\"program\": \"gbuffers_basic\", \"status\": \"invalid\""), "{json}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("valid JSON");
+    let errors: Vec<&serde_json::Value> = json["diagnostics"].as_array().unwrap().iter().filter(|d| d["severity"] == "error").collect();
+    assert!(
+        errors.iter().any(|d| d["file"].as_str().unwrap().ends_with("varying_type_mismatch/shaders/gbuffers_basic.fsh") && d["line"] == 2),
+        "{json}"
+    );
+    let program = json["programs"].as_array().unwrap().iter().find(|p| p["program"] == "gbuffers_basic").unwrap();
+    assert_eq!(program["status"], "invalid");
+    // The program lists the diagnostics found in it.
+    let listed: Vec<usize> = program["diagnostics"].as_array().unwrap().iter().map(|i| i.as_u64().unwrap() as usize).collect();
+    assert!(listed.iter().any(|&i| json["diagnostics"][i]["severity"] == "error"), "{json}");
 
-    let out = validate(&[planted.to_str().unwrap(), "--format", "github"]);
+    // Annotations name files from the working directory, where GitHub resolves them.
+    let out = Command::new(env!("CARGO_BIN_EXE_tidepack"))
+        .current_dir(tests_dir())
+        .args(["validate", "--format", "github", planted.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(1));
     let annotations = text(&out.stdout);
     let line = annotations.lines().find(|l| l.starts_with("::error ")).unwrap_or_else(|| panic!("{annotations}"));
-    assert!(line.contains("file=") && line.contains("gbuffers_basic.fsh,line=2"), "{line}");
+    assert!(line.contains("file=planted/varying_type_mismatch/shaders/gbuffers_basic.fsh,line=2"), "{line}");
 
     // A warning (an output the render-target list drops) fails only with --deny-warnings.
     let drawbuffers = tests_dir().join("planted/wrong_drawbuffers");
@@ -67,4 +78,27 @@ fn json_and_github_formats() {
     assert!(text(&out.stdout).lines().any(|l| l.starts_with("::warning ") && l.contains("gbuffers_terrain.fsh,line=8")), "{}", text(&out.stdout));
     let out = validate(&[drawbuffers.to_str().unwrap(), "--deny-warnings"]);
     assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn json_is_the_same_on_every_run() {
+    // Programs share includes, and naga's results arrive in thread order.
+    let pack = tests_dir().join("corpus/legacy120");
+    let runs: Vec<Vec<u8>> = (0..4).map(|_| validate(&[pack.to_str().unwrap(), "--all-profiles", "--format", "json"]).stdout).collect();
+    assert!(runs.iter().all(|r| r == &runs[0]), "JSON differs between runs");
+    let planted = tests_dir().join("planted/undeclared_identifier");
+    let runs: Vec<Vec<u8>> = (0..4).map(|_| validate(&[planted.to_str().unwrap(), "--format", "json"]).stdout).collect();
+    assert!(runs.iter().all(|r| r == &runs[0]), "JSON differs between runs");
+}
+
+#[test]
+fn control_characters_from_a_pack_do_not_reach_the_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let shaders = dir.path().join("pack/shaders");
+    std::fs::create_dir_all(&shaders).unwrap();
+    std::fs::write(shaders.join("final.vsh"), "#version 120\nvoid main() { gl_Position = ftransform(); }\n").unwrap();
+    std::fs::write(shaders.join("final.fsh"), "#version 120\nvoid main() { gl_FragColor = vec4(\u{1b}[31m); }\n").unwrap();
+    let out = validate(&[dir.path().join("pack").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(!out.stderr.contains(&0x1b) && !out.stdout.contains(&0x1b), "{}", text(&out.stderr));
 }

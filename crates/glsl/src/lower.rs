@@ -49,7 +49,7 @@
 //!
 //! Reserved names all start with `tp_`.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::token::{Token, TokenKind, tokenize};
@@ -235,10 +235,42 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
         "int atomicExchange(inout int m, int v) { return m; } uint atomicExchange(inout uint m, uint v) { return m; }",
     ),
     (
+        "modf",
+        "float modf(float x, out float i) { i = trunc(x); return x - i; } \
+         vec2 modf(vec2 x, out vec2 i) { i = trunc(x); return x - i; } \
+         vec3 modf(vec3 x, out vec3 i) { i = trunc(x); return x - i; } \
+         vec4 modf(vec4 x, out vec4 i) { i = trunc(x); return x - i; }",
+    ),
+    (
         "atomicCompSwap",
         "int atomicCompSwap(inout int m, int c, int v) { return m; } uint atomicCompSwap(inout uint m, uint c, uint v) { return m; }",
     ),
 ];
+
+/// Built-ins whose constant evaluation in naga refuses arguments outside their domain.
+const RANGE_CHECKED_BUILTINS: &[&str] = &["normalize", "sqrt", "inversesqrt", "log", "log2", "pow", "acos", "asin", "acosh", "atanh"];
+
+/// Type names of Vulkan GLSL that are ordinary identifiers in OpenGL GLSL.
+const VULKAN_ONLY_KEYWORDS: &[&str] = &[
+    "sampler",
+    "samplerShadow",
+    "texture1D",
+    "texture2D",
+    "texture3D",
+    "textureCube",
+    "texture2DArray",
+    "texture1DArray",
+    "itexture2D",
+    "utexture2D",
+    "itexture3D",
+    "utexture3D",
+    "subpassInput",
+];
+
+/// Words that can stand before an identifier in a statement without declaring it.
+fn is_statement_keyword(word: &str) -> bool {
+    matches!(word, "return" | "else" | "do" | "case" | "goto")
+}
 
 fn is_precision(word: &str) -> bool {
     matches!(word, "highp" | "mediump" | "lowp")
@@ -474,6 +506,8 @@ struct Declaration<'a> {
     ty: &'a str,
     /// Declarator names with the text after the name up to the next `,`/`;` (array sizes).
     names: Vec<(&'a str, String)>,
+    /// Per declarator: the token indices of its `=` and of the `,` or `;` that ends it.
+    initializers: Vec<Option<(usize, usize)>>,
 }
 
 impl<'a> Declaration<'a> {
@@ -515,6 +549,7 @@ impl<'a> Declaration<'a> {
             }
         }
         let mut names = Vec::new();
+        let mut initializers = Vec::new();
         let mut j = k + 1;
         while j < sig.len() {
             let name = &tokens[sig[j]];
@@ -524,30 +559,33 @@ impl<'a> Declaration<'a> {
             }
             let mut suffix = String::new();
             let mut depth = 0;
-            let mut has_initializer = false;
+            let mut equals = None;
+            let mut end = None;
             j += 1;
             while j < sig.len() {
                 let t = &tokens[sig[j]];
                 if depth == 0 && (t.is_punct(",") || t.is_punct(";")) {
+                    end = Some(sig[j]);
                     j += 1;
                     break;
                 }
-                if t.is_punct("=") && depth == 0 {
-                    has_initializer = true;
+                if t.is_punct("=") && depth == 0 && equals.is_none() {
+                    equals = Some(sig[j]);
                 }
-                if t.is_punct("(") || t.is_punct("[") {
+                if t.is_punct("(") || t.is_punct("[") || t.is_punct("{") {
                     depth += 1;
-                } else if t.is_punct(")") || t.is_punct("]") {
+                } else if t.is_punct(")") || t.is_punct("]") || t.is_punct("}") {
                     depth -= 1;
                 }
-                if !has_initializer {
+                if equals.is_none() {
                     suffix.push_str(t.text);
                 }
                 j += 1;
             }
             names.push((name.text, suffix));
+            initializers.push(equals.zip(end));
         }
-        Some(Declaration { qualifiers, layout, ty: ty.text, names })
+        Some(Declaration { qualifiers, layout, ty: ty.text, names, initializers })
     }
 
     fn storage(&self, stage: Stage, version: u32) -> Storage {
@@ -619,6 +657,8 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
         varyings,
         prelude: String::new(),
         matrix_varyings: Vec::new(),
+        global_initializers: Vec::new(),
+        unconst: HashSet::new(),
     };
     lowering.run()?;
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
@@ -645,6 +685,12 @@ struct Lowering<'t, 'a> {
     prelude: String,
     /// Matrix varyings, passed as column vectors: (name, column type, columns).
     matrix_varyings: Vec<(String, String, u32)>,
+    /// Globals whose initializer runs at the start of `main` (`tp_init_<name>()`), in
+    /// declaration order.
+    global_initializers: Vec<String>,
+    /// `const` declarations initialised with `?:` that become plain variables: naga evaluates
+    /// both branches of a constant `?:` and fails on the one not taken, drivers do not.
+    unconst: HashSet<String>,
 }
 
 impl<'a> Lowering<'_, 'a> {
@@ -670,6 +716,8 @@ impl<'a> Lowering<'_, 'a> {
 
     fn run(&mut self) -> Result<(), LowerError> {
         let version_index = self.find_version()?;
+        self.lower_array_constructor_sizes();
+        self.drop_const_from_conditionals();
         let statements = top_level_statements(self.tokens);
         for stmt in &statements {
             self.collect_function_signature(stmt);
@@ -677,6 +725,13 @@ impl<'a> Lowering<'_, 'a> {
         let mut attribute_count = 0;
         let mut output_order = 0;
         for stmt in &statements {
+            if let [only] = stmt.sig[..]
+                && self.tokens[only].is_punct(";")
+            {
+                // An empty declaration after a function body: drivers accept it, naga does not.
+                self.replace(only, only + 1, String::new());
+                continue;
+            }
             let Some(decl) = Declaration::parse(self.tokens, stmt) else {
                 self.lower_function_header(stmt);
                 continue;
@@ -752,7 +807,7 @@ impl<'a> Lowering<'_, 'a> {
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
-                Storage::Other => {}
+                Storage::Other => self.move_initializers_into_main(&decl),
             }
         }
         self.rewrite_bodies()?;
@@ -773,6 +828,156 @@ impl<'a> Lowering<'_, 'a> {
                 Ok(*hash)
             }
             _ => Err(LowerError { line: 1, message: "a shader must start with #version".into() }),
+        }
+    }
+
+    /// Global variables with initializers: drivers run the initializers at the start of
+    /// `main`, naga wants constant expressions there. Each initializer becomes the body of a
+    /// function `tp_init_<name>()` on its own line (so errors in it keep their line), and the
+    /// `main` wrapper assigns the globals in declaration order.
+    fn move_initializers_into_main(&mut self, decl: &Declaration<'a>) {
+        let is_const = decl.qualifiers.contains(&"const") && !decl.names.iter().any(|(n, _)| self.unconst.contains(*n));
+        if is_const || decl.qualifiers.contains(&"shared") {
+            return;
+        }
+        let qualifiers: String = decl.qualifiers.iter().filter(|q| **q != "const").map(|q| format!("{q} ")).collect();
+        for ((name, suffix), initializer) in decl.names.iter().zip(&decl.initializers) {
+            let Some((equals, end)) = *initializer else { continue };
+            if suffix.contains("[]") {
+                continue;
+            }
+            let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
+            self.replace(equals, equals + 1, format!("; {}{suffix} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty));
+            self.replace(end, end + 1, format!("; }}{after}"));
+            self.global_initializers.push(name.to_string());
+        }
+    }
+
+    /// Drops `const` from declarations initialised with `?:` whose value no constant
+    /// expression needs (no array size, `case` label or other constant's initializer names
+    /// them).
+    fn drop_const_from_conditionals(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        // (index of `const`, declared name, tokens of the initializer)
+        let mut candidates: Vec<(usize, &str, std::ops::Range<usize>)> = Vec::new();
+        let mut const_initializers: Vec<std::ops::Range<usize>> = Vec::new();
+        for (k, &i) in sig.iter().enumerate() {
+            if !self.tokens[i].is_ident("const") {
+                continue;
+            }
+            // The declaration's end: a `;` (a `)` closing a parameter list ends a parameter).
+            let mut depth = 0;
+            let Some(end) = (k..sig.len()).find(|&j| match self.tokens[sig[j]].text {
+                "(" => {
+                    depth += 1;
+                    false
+                }
+                ")" => {
+                    depth -= 1;
+                    depth < 0
+                }
+                ";" | "{" | "}" => true,
+                _ => false,
+            }) else {
+                continue;
+            };
+            if !self.tokens[sig[end]].is_punct(";") {
+                continue;
+            }
+            let Some(equals) = (k..end).find(|&j| self.tokens[sig[j]].is_punct("=")) else { continue };
+            const_initializers.push(equals + 1..end);
+            let one_declarator = !(equals..end).any(|j| self.tokens[sig[j]].is_punct(",")) || self.paren_balanced_commas(&sig[equals..end]);
+            let name = self.tokens[sig[equals - 1]];
+            if one_declarator && name.kind == TokenKind::Ident && (equals + 1..end).any(|j| self.tokens[sig[j]].is_punct("?")) {
+                candidates.push((i, name.text, equals + 1..end));
+            }
+        }
+        for (const_index, name, own) in candidates {
+            let needed_constant = sig.iter().enumerate().any(|(k, &i)| {
+                let t = self.tokens[i];
+                if !t.is_ident(name) {
+                    return false;
+                }
+                let in_other_constant = const_initializers.iter().any(|r| r.contains(&k) && *r != own);
+                let after_case = k > 0 && self.tokens[sig[k - 1]].is_ident("case");
+                in_other_constant || after_case || self.inside_brackets(&sig, k)
+            });
+            if !needed_constant {
+                self.unconst.insert(name.to_string());
+                self.replace(const_index, const_index + 1, String::new());
+            }
+        }
+    }
+
+    /// Whether every `,` of the tokens sits inside parentheses (one declarator).
+    fn paren_balanced_commas(&self, sig: &[usize]) -> bool {
+        let mut depth = 0;
+        for &i in sig {
+            match self.tokens[i].text {
+                "(" | "[" | "{" => depth += 1,
+                ")" | "]" | "}" => depth -= 1,
+                "," if depth == 0 => return false,
+                _ => {}
+            }
+        }
+        true
+    }
+
+    /// Whether significant token `k` stands inside `[...]`.
+    fn inside_brackets(&self, sig: &[usize], k: usize) -> bool {
+        let mut depth = 0i32;
+        for &i in sig[..k].iter().rev() {
+            match self.tokens[i].text {
+                "]" => depth += 1,
+                "[" if depth == 0 => return true,
+                "[" => depth -= 1,
+                ";" | "{" | "}" => return false,
+                _ => {}
+            }
+        }
+        false
+    }
+
+    /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it
+    /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
+    fn lower_array_constructor_sizes(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
+        for k in 1..sig.len() {
+            if !(self.tokens[sig[k - 1]].kind == TokenKind::Ident && punct(k, "[") && punct(k + 1, "]") && punct(k + 2, "(")) {
+                continue;
+            }
+            let mut depth = 0;
+            let mut count = 0;
+            let mut empty = true;
+            for &i in &sig[k + 2..] {
+                match self.tokens[i].text {
+                    "(" | "[" | "{" => depth += 1,
+                    ")" | "]" | "}" => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    "," if depth == 1 => count += 1,
+                    _ => {}
+                }
+                if depth >= 1 && !self.tokens[i].is_punct("(") || depth > 1 {
+                    empty = false;
+                }
+            }
+            let size = if empty { 0 } else { count + 1 };
+            self.replace(sig[k], sig[k + 1] + 1, format!("[{size}]"));
+            // The declaration's own `[]`, between the statement's start and this constructor.
+            for j in (0..k).rev() {
+                let t = self.tokens[sig[j]];
+                if matches!(t.text, ";" | "{" | "}") {
+                    break;
+                }
+                if t.is_punct("[") && punct(j + 1, "]") && !punct(j + 2, "(") {
+                    self.replace(sig[j], sig[j + 1] + 1, format!("[{size}]"));
+                }
+            }
         }
     }
 
@@ -823,10 +1028,24 @@ impl<'a> Lowering<'_, 'a> {
         Parameter { tokens: tokens.to_vec(), sampler: ty.map(|t| (t.text.to_string(), name)) }
     }
 
-    /// Splits the sampler parameters of a function definition or prototype.
+    /// Splits the sampler parameters of a function definition or prototype, and drops `const`
+    /// from parameters (`const in float x`: drivers accept it, naga does not).
     fn lower_function_header(&mut self, stmt: &Statement) {
         let Some(open) = stmt.sig.iter().position(|&i| self.tokens[i].is_punct("(")) else { return };
+        let is_header = open >= 2
+            && self.tokens[stmt.sig[open - 1]].kind == TokenKind::Ident
+            && !stmt.sig[..open].iter().any(|&i| self.tokens[i].is_punct("="));
+        if !is_header {
+            return;
+        }
         for param in self.parameters(&stmt.sig[open..]) {
+            if param.sampler.is_none() {
+                for &i in &param.tokens {
+                    if self.tokens[i].is_ident("const") {
+                        self.replace(i, i + 1, String::new());
+                    }
+                }
+            }
             let Some((ty, name)) = &param.sampler else { continue };
             let (texture_ty, sampler_ty) = split_sampler_type(ty).unwrap();
             let start = param.tokens[0];
@@ -960,6 +1179,12 @@ impl<'a> Lowering<'_, 'a> {
         let mut paren_depth = 0;
         // Calls of sampler-taking functions: (function, paren depth inside the call, argument index).
         let mut calls: Vec<(String, i32, usize)> = Vec::new();
+        // Global samplers and bools hidden by a local or parameter of the same name, with the
+        // brace depth of the scope that declares it.
+        let mut hidden: Vec<(String, i32)> = Vec::new();
+        // A local that will hide a global at the end of its declarator: (name, brace depth,
+        // paren depth of the declaration).
+        let mut pending_local: Option<(String, i32, i32)> = None;
         // Paren depth at which a lookup's closing `)` is replaced, and its replacement.
         let mut closers: Vec<(i32, &'static str)> = Vec::new();
         // Outside fragment stages there are no derivatives: naga refuses implicit-level
@@ -974,12 +1199,23 @@ impl<'a> Lowering<'_, 'a> {
                 k += 1;
                 continue;
             }
+            if matches!(t.text, ";" | ",")
+                && let Some((name, depth, parens)) = pending_local.take()
+            {
+                if parens == paren_depth {
+                    hidden.push((name, depth));
+                } else {
+                    pending_local = Some((name, depth, parens));
+                }
+            }
             match t.text {
                 "{" => brace_depth += 1,
                 "}" => {
                     brace_depth -= 1;
+                    hidden.retain(|(_, depth)| *depth <= brace_depth);
                     if brace_depth == 0 {
                         local_samplers.clear();
+                        hidden.clear();
                     }
                 }
                 "(" => paren_depth += 1,
@@ -1010,20 +1246,50 @@ impl<'a> Lowering<'_, 'a> {
             }
             let next = sig.get(k + 1).map(|&j| self.tokens[j]);
             let followed_by_call = next.is_some_and(|n| n.is_punct("("));
-            if brace_depth == 0 && followed_by_call {
-                if t.text == "main" && !self.matrix_varyings.is_empty() {
-                    // The real `main` (added at the end) copies the matrix varyings' columns.
+            let previous = k.checked_sub(1).map(|j| self.tokens[sig[j]]);
+            let after_type = previous.is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct("]"));
+            if brace_depth == 0 && followed_by_call && after_type {
+                if t.text == "main" && self.needs_main_wrapper() {
+                    // The real `main` (added at the end) runs the global initializers and
+                    // copies the matrix varyings' columns.
                     self.replace(i, i + 1, format!("{RESERVED_PREFIX}main"));
                 }
-                // A function header: remember its sampler parameters for the body.
+                // A function header: remember its sampler parameters for the body; other
+                // parameters named like a global sampler or bool hide it there.
                 let open = k + 1;
                 let close = (open..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(")")).unwrap_or(open);
                 for p in self.parameters(&sig[open..=close]) {
                     if let Some((ty, name)) = p.sampler {
                         local_samplers.insert(name, ty);
+                    } else if let Some(&last) = p.tokens.last() {
+                        let name = self.tokens[last].text;
+                        if self.hides_a_global(name) {
+                            hidden.push((name.to_string(), 1));
+                        }
                     }
                 }
+                for &j in &sig[open..=close] {
+                    self.rename_vulkan_keyword(j);
+                }
                 k = close + 1;
+                continue;
+            }
+            if brace_depth > 0
+                && !followed_by_call
+                && previous.is_some_and(|p| p.kind == TokenKind::Ident && !is_statement_keyword(p.text))
+                && next.is_some_and(|n| matches!(n.text, "=" | ";" | "," | "["))
+                && self.hides_a_global(t.text)
+            {
+                // A local declared with a global's name: it hides the global once its
+                // declarator ends (its own initializer still sees the global).
+                pending_local = Some((t.text.to_string(), brace_depth, paren_depth));
+                self.rename_vulkan_keyword(i);
+                k += 1;
+                continue;
+            }
+            if hidden.iter().any(|(name, _)| name == t.text) {
+                self.rename_vulkan_keyword(i);
+                k += 1;
                 continue;
             }
             if let Some((_, new_name, shadow)) = LEGACY_SAMPLING.iter().find(|(old, ..)| *old == t.text)
@@ -1057,12 +1323,86 @@ impl<'a> Lowering<'_, 'a> {
                 && !(k > 0 && self.tokens[sig[k - 1]].is_punct("."))
             {
                 self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
+            } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
+                self.rename_vulkan_keyword(i);
+            } else if followed_by_call && RANGE_CHECKED_BUILTINS.contains(&t.text) && self.literal_arguments(&sig, k + 1) {
+                // naga evaluates a built-in of constant arguments while parsing and refuses
+                // values outside its domain (`normalize(vec3(0.0))`, often in a branch not
+                // taken); drivers fold them to NaN or leave them to run time. A stand-in that
+                // calls the built-in on its parameter keeps the type check without the folding.
+                let arity = if t.text == "pow" { 2 } else { 1 };
+                let mut stand_in = String::new();
+                for ty in ["float", "vec2", "vec3", "vec4"] {
+                    let params: Vec<String> = (0..arity).map(|n| format!("{ty} a{n}")).collect();
+                    let args: Vec<String> = (0..arity).map(|n| format!("a{n}")).collect();
+                    // naga has no scalar normalize; for a scalar it is the sign.
+                    let builtin = if t.text == "normalize" && ty == "float" { "sign" } else { t.text };
+                    write!(stand_in, "{ty} {RESERVED_PREFIX}rt_{}({}) {{ return {builtin}({}); }} ", t.text, params.join(", "), args.join(", ")).unwrap();
+                }
+                self.add_header(stand_in.trim_end().to_string());
+                self.replace(i, i + 1, format!("{RESERVED_PREFIX}rt_{}", t.text));
             } else {
                 self.rewrite_builtin(&sig, k)?;
             }
             k += 1;
         }
         Ok(())
+    }
+
+    /// Whether the call whose `(` is significant token `open` has only literals, constructors
+    /// and calls as arguments (no variables).
+    fn literal_arguments(&self, sig: &[usize], open: usize) -> bool {
+        let mut depth = 0;
+        for (k, &i) in sig.iter().enumerate().skip(open) {
+            let t = self.tokens[i];
+            match t.text {
+                "(" => depth += 1,
+                ")" => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return true;
+                    }
+                }
+                _ if t.kind == TokenKind::Ident => {
+                    let called = sig.get(k + 1).is_some_and(|&j| self.tokens[j].is_punct("("));
+                    if !called {
+                        return false;
+                    }
+                }
+                _ => {}
+            }
+        }
+        false
+    }
+
+    /// Whether a local or parameter of this name hides a global the lowering rewrites.
+    fn hides_a_global(&self, name: &str) -> bool {
+        self.symbols.samplers.contains_key(name) || self.symbols.bool_uniforms.contains(name)
+    }
+
+    /// Whether `word` is an identifier in the stage's GLSL version but a keyword to naga:
+    /// Vulkan GLSL's type names, and qualifiers later versions added.
+    fn is_keyword_only_to_naga(&self, word: &str) -> bool {
+        let keyword_since = match word {
+            "sample" => 400,
+            "restrict" | "readonly" | "writeonly" => 420,
+            "buffer" | "shared" => 430,
+            _ => return VULKAN_ONLY_KEYWORDS.contains(&word),
+        };
+        self.version < keyword_since
+    }
+
+    /// An identifier that the stage's GLSL allows but naga reads as a keyword (`sampler`,
+    /// `texture2D`, `sample` before GLSL 4.00, …) gets a reserved name.
+    fn rename_vulkan_keyword(&mut self, index: usize) {
+        let t = self.tokens[index];
+        if t.kind == TokenKind::Ident && self.is_keyword_only_to_naga(t.text) && !self.covered(index) {
+            self.replace(index, index + 1, format!("{RESERVED_PREFIX}kw_{}", t.text));
+        }
+    }
+
+    fn needs_main_wrapper(&self) -> bool {
+        !self.matrix_varyings.is_empty() || !self.global_initializers.is_empty()
     }
 
     /// Whether the current argument of the innermost call goes to a sampler parameter.
@@ -1117,6 +1457,11 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         match name {
+            "gl_VertexID" | "gl_InstanceID" if stage == Stage::Vertex => {
+                // Vulkan GLSL's names; both are `int`.
+                let vulkan = if name == "gl_VertexID" { "gl_VertexIndex" } else { "gl_InstanceIndex" };
+                self.replace(i, i + 1, vulkan.to_string());
+            }
             "ftransform" => {
                 let called = |j: usize, p: &str| sig.get(j).is_some_and(|&t| self.tokens[t].is_punct(p));
                 if !(called(k + 1, "(") && called(k + 2, ")")) {
@@ -1242,9 +1587,11 @@ impl<'a> Lowering<'_, 'a> {
     /// The `main` that wraps the pack's (renamed) one to copy matrix varyings from or to their
     /// column vectors; empty when the stage has no matrix varyings.
     fn main_wrapper(&self) -> String {
-        if self.matrix_varyings.is_empty() {
+        if !self.needs_main_wrapper() {
             return String::new();
         }
+        let initializers: String =
+            self.global_initializers.iter().map(|name| format!(" {name} = {RESERVED_PREFIX}init_{name}();")).collect();
         let mut copies = String::new();
         for (name, column_ty, columns) in &self.matrix_varyings {
             let cols: Vec<String> = (0..*columns).map(|c| format!("{RESERVED_PREFIX}{name}_{c}")).collect();
@@ -1261,8 +1608,8 @@ impl<'a> Lowering<'_, 'a> {
             }
         }
         match self.stage {
-            Stage::Vertex => format!(" void main() {{ {RESERVED_PREFIX}main();{copies} }}"),
-            Stage::Fragment => format!(" void main() {{{copies} {RESERVED_PREFIX}main(); }}"),
+            Stage::Vertex => format!(" void main() {{{initializers} {RESERVED_PREFIX}main();{copies} }}"),
+            Stage::Fragment => format!(" void main() {{{initializers}{copies} {RESERVED_PREFIX}main(); }}"),
         }
     }
 }

@@ -113,6 +113,7 @@ pub fn preprocess(
             warnings: Vec::new(),
         },
         include_stack: Vec::new(),
+        seen_code: false,
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
@@ -132,6 +133,24 @@ struct Macro {
     /// `Some` for function-like macros.
     params: Option<Vec<String>>,
     body: Vec<OwnedToken>,
+}
+
+impl Macro {
+    /// The C and GLSL rule for a redefinition that is allowed: the same parameters and the same
+    /// body tokens, any run of white space counting as one.
+    fn same_definition(&self, other: &Macro) -> bool {
+        fn words(body: &[OwnedToken]) -> Vec<&str> {
+            let mut out = Vec::new();
+            for t in body {
+                let text = if t.kind == TokenKind::Whitespace { " " } else { t.text.as_str() };
+                if !(text == " " && out.last() == Some(&" ")) {
+                    out.push(text);
+                }
+            }
+            out
+        }
+        self.params == other.params && words(&self.body) == words(&other.body)
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -173,6 +192,8 @@ struct Preprocessor<'p> {
     out: Preprocessed,
     /// Paths of the files being processed, outermost first, with the including line.
     include_stack: Vec<(String, u32)>,
+    /// A line of code (not a directive) has been emitted.
+    seen_code: bool,
 }
 
 /// A logical line: tokens up to a line break, continuations included.
@@ -268,6 +289,7 @@ impl Preprocessor<'_> {
                         joined.extend_from_slice(l.tokens);
                     }
                     let span: u32 = lines[index..=end].iter().map(|l| l.span).sum();
+                    self.seen_code = true;
                     self.emit_text_line(&joined, path, line.first_line)?;
                     self.out.lines.push(SourceLine { file, line: line.first_line });
                     self.out.text.push('\n');
@@ -352,6 +374,11 @@ impl Preprocessor<'_> {
                         return Err(err_at(at, "#endif without #if".into()));
                     }
                 }
+                Some("include") if !active => {
+                    // OptiFine splices every #include into the text before the driver sees any
+                    // #if, so a missing file fails the program even in a branch not taken.
+                    self.check_inactive_include(path, at, args)?;
+                }
                 _ if !active => {}
                 Some("define") => self.define(args).map_err(|m| err_at(at, m))?,
                 Some("undef") => {
@@ -366,8 +393,10 @@ impl Preprocessor<'_> {
                     continue;
                 }
                 Some("version") => {
-                    if !self.out.text.trim().is_empty() || !self.include_stack.is_empty() {
-                        return Err(err_at(at, "#version must be the first line of a shader".into()));
+                    // Includes are spliced in first (OptiFine), so `#version` may come from an
+                    // included file as long as nothing but comments and blank lines precedes it.
+                    if !self.out.text.trim().is_empty() {
+                        return Err(err_at(at, "#version must come before anything else in a shader".into()));
                     }
                     let version = parse_version(args).map_err(|m| err_at(at, m))?;
                     let mut text = format!("#version {}", version.number);
@@ -379,6 +408,14 @@ impl Preprocessor<'_> {
                     self.out.text.push_str(&text);
                 }
                 Some("extension") => {
+                    if self.seen_code {
+                        return Err(err_at(
+                            at,
+                            "#extension after code: GLSL wants it before the first declaration; Mesa and AMD refuse it \
+                             (NVIDIA accepts it)"
+                                .into(),
+                        ));
+                    }
                     let text: String = line.tokens.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect::<Vec<_>>().join(" ");
                     self.out.text.push_str(&text);
                 }
@@ -487,8 +524,33 @@ impl Preprocessor<'_> {
         if body.iter().any(|t| t.text == "##") {
             return Err(format!("token pasting (##) in #define {} is not supported by GLSL drivers", name.text));
         }
-        self.macros.insert(name.text.to_string(), Macro { params, body });
+        let definition = Macro { params, body };
+        if let Some(previous) = self.macros.get(name.text)
+            && !previous.same_definition(&definition)
+        {
+            return Err(format!(
+                "macro {} is redefined with a different body (drivers refuse this; #undef it first)",
+                name.text
+            ));
+        }
+        self.macros.insert(name.text.to_string(), definition);
         Ok(())
+    }
+
+    /// Resolves an include of an inactive branch and everything it includes in turn, without
+    /// preprocessing: the files must exist, as they must for OptiFine.
+    fn check_inactive_include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
+        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
+        let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+        let Some(target) = raw.strip_prefix('"').and_then(|s| s.strip_suffix('"')) else {
+            return Err(err_at(format!("#include expects a \"quoted\" path, found `{raw}`")));
+        };
+        let resolved = resolve_include(path, target).map_err(err_at)?;
+        expand_includes(self.provider, &resolved, "").map(drop).map_err(|e| {
+            let note = "OptiFine splices includes in before it evaluates #if, so this include is resolved although its branch is not taken";
+            let e = if e.location.is_none() { Diagnostic { location: Some(Location::line(path, at)), ..e } } else { e };
+            e.with_note(note)
+        })
     }
 
     /// Advances `scan` over one more line; `scan.in_call` then tells whether the lines so far

@@ -42,11 +42,14 @@ impl Default for Limits {
 pub struct PackFiles {
     /// What the `shaders/` folder is called in messages (`pack/shaders/`, `pack.zip/shaders/`).
     pub display_root: String,
+    /// Read from a zip (its files are in no folder a tool could open).
+    pub archive: bool,
     /// Files by path relative to `shaders/` (`/` separators).
     pub files: BTreeMap<String, Arc<[u8]>>,
     /// Decoded text of the text files (shaders, includes, properties).
     pub texts: BTreeMap<String, Arc<str>>,
-    /// Entries skipped or read with a caveat.
+    /// What reading the pack found: skipped entries (warnings) and entries that could not be
+    /// read (errors).
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -72,13 +75,17 @@ pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> 
         read_zip(file, &shown, limits, &mut raw)?;
     }
     let root = find_shaders_root(&raw.files).ok_or_else(|| {
-        Diagnostic::error(
-            format!("{shown} holds no shader pack: no `shaders/` folder at its root or inside one wrapper folder"),
-            None,
-        )
+        let unread: Vec<&str> = raw.warnings.iter().filter(|d| d.is_error()).map(|d| d.message.as_str()).collect();
+        let message = if unread.is_empty() {
+            format!("{shown} holds no shader pack: no `shaders/` folder at its root or inside one wrapper folder")
+        } else {
+            format!("{shown}: no readable `shaders/` folder; {} entries could not be read, first: {}", unread.len(), unread[0])
+        };
+        Diagnostic::error(message, None)
     })?;
     let mut pack = PackFiles {
         display_root: format!("{}/{root}", shown.trim_end_matches('/')),
+        archive: !meta.is_dir(),
         warnings: raw.warnings,
         ..Default::default()
     };
@@ -143,6 +150,16 @@ impl RawEntries {
     fn skip(&mut self, name: &str, why: String) {
         self.warnings.push(Diagnostic::warning(format!("skipped `{}`: {why}", name.escape_debug()), None));
     }
+
+    fn unreadable(&mut self, name: &str, why: String) {
+        self.warnings.push(Diagnostic::error(format!("cannot read `{}`: {why}", name.escape_debug()), None));
+    }
+
+    /// Counts what keeping `bytes` of the file at `path` costs: text files are kept twice, as
+    /// bytes and decoded.
+    fn account(&mut self, path: &str, bytes: u64) {
+        self.total += if is_text(path) { 2 * bytes } else { bytes };
+    }
 }
 
 fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, depth: usize) -> Result<(), Diagnostic> {
@@ -171,13 +188,14 @@ fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, dep
                 raw.skip(&path, format!("{size} bytes, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
                 continue;
             }
-            if raw.total + size > limits.max_total_bytes {
+            let cost = if is_text(&path) { 2 * size } else { size };
+            if raw.total + cost > limits.max_total_bytes {
                 raw.skip(&path, format!("the pack exceeds {} MiB in all", limits.max_total_bytes >> 20));
                 continue;
             }
             match std::fs::read(entry.path()) {
                 Ok(bytes) => {
-                    raw.total += bytes.len() as u64;
+                    raw.account(&path, bytes.len() as u64);
                     raw.files.insert(path, Arc::from(bytes));
                 }
                 Err(e) => raw.skip(&path, format!("cannot read: {e}")),
@@ -215,6 +233,24 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
         return Err(Diagnostic::error(format!("{shown} has {} entries, more than {}: not read", archive.len(), limits.max_entries), None));
     }
     for index in 0..archive.len() {
+        // A pack file that cannot be read is a file nobody checked: an error, not a warning.
+        if let Ok(raw_entry) = archive.by_index_raw(index)
+            && !raw_entry.is_dir()
+        {
+            let method = raw_entry.compression();
+            let why = if raw_entry.encrypted() {
+                Some("encrypted (OptiFine cannot read it either)".to_string())
+            } else if !matches!(method, zip::CompressionMethod::Stored | zip::CompressionMethod::Deflated) {
+                Some(format!("compressed with {method:?}, which tidepack does not read (OptiFine reads only stored and deflated entries); re-zip the pack with deflate"))
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                let name = raw_entry.name().map(|n| n.to_string()).unwrap_or_else(|_| format!("entry #{index}"));
+                raw.unreadable(&name, why);
+                continue;
+            }
+        }
         let mut entry = match archive.by_index(index) {
             Ok(entry) => entry,
             Err(e) => {
@@ -252,7 +288,8 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
             raw.skip(&name, format!("compression ratio {}:1 looks like a zip bomb", size / compressed.max(1)));
             continue;
         }
-        if raw.total + size > limits.max_total_bytes {
+        let cost = if is_text(&path) { 2 * size } else { size };
+        if raw.total + cost > limits.max_total_bytes {
             raw.skip(&name, format!("the pack exceeds {} MiB uncompressed in all", limits.max_total_bytes >> 20));
             continue;
         }
@@ -263,7 +300,7 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
                 raw.skip(&name, format!("its data ({}+ bytes) does not match the size its header claims ({size})", bytes.len()));
             }
             Ok(_) => {
-                raw.total += bytes.len() as u64;
+                raw.account(&path, bytes.len() as u64);
                 if raw.files.insert(path.clone(), Arc::from(bytes)).is_some() {
                     raw.warnings.push(Diagnostic::warning(format!("`{path}` appears twice in the zip; the last copy is used"), None));
                 }

@@ -115,6 +115,8 @@ pub struct ProgramReport {
     /// Stage files that were only preprocessed, never compiled (geometry and tessellation
     /// without `--driver`, or stages the driver cannot compile): `Valid` does not cover them.
     pub only_preprocessed: Vec<String>,
+    /// Indices into [`Report::diagnostics`] of what was found in this program.
+    pub diagnostics: Vec<usize>,
 }
 
 #[derive(Debug)]
@@ -288,6 +290,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             },
             compile_error: false,
             only_preprocessed: if p.loader == Loader::OptiFine && !options.driver { p.other_stages.clone() } else { Vec::new() },
+            diagnostics: Vec::new(),
         })
         .collect();
     // (program index, diagnostic) for everything found before naga.
@@ -330,6 +333,15 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         }
     }
     let stages_validated = jobs.len();
+    if !reports.iter().any(|r| r.status == Status::Valid) && !found.iter().any(|(_, _, d)| d.is_error()) {
+        // A CI check that checked nothing must not pass.
+        let skipped: Vec<String> = reports.iter().map(|r| r.id.clone()).collect();
+        let mut diag = Diagnostic::error("no program that OptiFine runs was found, so nothing was validated", None);
+        if !skipped.is_empty() {
+            diag = diag.with_note(format!("found only programs other loaders run: {}", skipped.join(", ")));
+        }
+        diagnostics.push(diag);
+    }
     for (program, set, diag) in run_naga(&jobs, &pack, &sets, options.threads) {
         found.push((program, set, diag));
     }
@@ -345,25 +357,54 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     } else {
         None
     };
-    // One diagnostic per distinct message and place, noting where it was seen first.
-    let mut distinct: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
+    // One diagnostic per distinct message and place, noting every program and option set it
+    // was seen in. naga's results arrive in thread order: everything here is keyed and sorted
+    // so that the report does not depend on it.
+    let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
+    let mut distinct: BTreeMap<String, (Diagnostic, BTreeSet<usize>, BTreeSet<usize>)> = BTreeMap::new();
     for (program, set, diag) in found {
         if diag.is_error() {
             reports[program].status = Status::Invalid;
             reports[program].compile_error |= !driver::is_loader_level(&diag);
         }
-        if distinct.insert(diag.to_string()) {
-            let mut context = format!("in program {}", programs[program].id());
-            if sets.len() > 1 || !sets[set].1.is_empty() {
-                context.push_str(&format!(" with {}", sets[set].0));
-            }
-            diagnostics.push(diag.with_note(context));
+        let key = diag.to_string();
+        if pack_level.contains(&key) {
+            continue;
         }
+        let entry = distinct.entry(key).or_insert_with(|| (diag, BTreeSet::new(), BTreeSet::new()));
+        entry.1.insert(program);
+        entry.2.insert(set);
     }
-    diagnostics.sort_by(|a, b| {
-        let key = |d: &Diagnostic| (d.location.as_ref().map(|l| (l.path.clone(), l.line)), std::cmp::Reverse(d.severity));
+    let mut seen_in: Vec<(Diagnostic, BTreeSet<usize>)> = diagnostics.drain(..).map(|d| (d, BTreeSet::new())).collect();
+    for (diag, in_programs, in_sets) in distinct.into_values() {
+        let ids: Vec<String> = in_programs.iter().map(|&p| programs[p].id()).collect();
+        let mut context = match ids.as_slice() {
+            [one] => format!("in program {one}"),
+            _ => format!("in programs {}", ids.join(", ")),
+        };
+        if sets.len() > 1 || sets.iter().any(|(_, set)| !set.is_empty()) {
+            let labels: Vec<&str> = in_sets.iter().map(|&s| sets[s].0.as_str()).collect();
+            context.push_str(&format!(" with {}", labels.join(", ")));
+        }
+        seen_in.push((diag.with_note(context), in_programs));
+    }
+    seen_in.sort_by(|(a, _), (b, _)| {
+        let key = |d: &Diagnostic| {
+            (
+                d.location.as_ref().map(|l| (l.path.clone(), l.line, l.columns.as_ref().map(|c| (c.start, c.end)))),
+                std::cmp::Reverse(d.severity),
+                d.message.clone(),
+                d.notes.clone(),
+            )
+        };
         key(a).cmp(&key(b))
     });
+    for (index, (diag, in_programs)) in seen_in.into_iter().enumerate() {
+        for program in in_programs {
+            reports[program].diagnostics.push(index);
+        }
+        diagnostics.push(diag);
+    }
     Ok(Report {
         pack,
         programs: reports,
@@ -586,8 +627,8 @@ fn clarify(mut diag: Diagnostic) -> Diagnostic {
 
 /// Built-in functions and variables (by prefix) naga's GLSL front-end lacks and the lowering has
 /// no stand-in for: image atomics (images cannot be function parameters in naga), atomic
-/// counters, and the subgroup built-ins of `GL_KHR_shader_subgroup_*`.
-const NAGA_LACKS: [&str; 4] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup"];
+/// counters, the subgroup built-ins of `GL_KHR_shader_subgroup_*`, and `textureGather*`.
+const NAGA_LACKS: [&str; 5] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup", "textureGather"];
 
 /// `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
 pub fn unlower_names(message: &str) -> String {
@@ -607,7 +648,9 @@ pub fn unlower_names(message: &str) -> String {
             out.push_str(&format!("gl_FragData[{n}]"));
         } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
             out.push_str(&format!("gl_TexCoord[{n}]"));
-        } else if let Some(x) = name.strip_prefix("sampler_").or_else(|| name.strip_prefix("bool_")) {
+        } else if let Some(x) =
+            ["sampler_", "bool_", "kw_", "init_"].iter().find_map(|p| name.strip_prefix(p))
+        {
             out.push_str(x);
         } else if name == "main" {
             out.push_str("main");

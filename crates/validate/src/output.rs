@@ -3,6 +3,8 @@
 
 use std::fmt::Write as _;
 
+use serde::Serialize;
+
 use codespan_reporting::term::termcolor::WriteColor;
 use tidepack_glsl::diagnostic;
 use tidepack_glsl::{Diagnostic, Severity};
@@ -29,11 +31,56 @@ fn displayed(report: &Report) -> Vec<Diagnostic> {
         .collect()
 }
 
+/// Text from the pack made safe for a terminal: control characters (an escape sequence in a
+/// file name or a line) shown as `^[`-style carets instead of acting on the terminal. Tabs and
+/// line breaks stay.
+pub fn terminal_safe(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '\t' | '\n' | '\r' => out.push(c),
+            c if (c as u32) < 0x20 => {
+                out.push('^');
+                out.push(char::from(b'@' + c as u8));
+            }
+            '\u{7f}' => out.push_str("^?"),
+            c if c.is_control() => out.push('\u{fffd}'),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// A snippet's source made safe for a terminal without moving any byte: every byte of a
+/// control character becomes `?`, so the diagnostics' byte columns still point at their text.
+fn snippet_safe(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            '\t' | '\n' | '\r' => c.to_string(),
+            c if c.is_control() => "?".repeat(c.len_utf8()),
+            c => c.to_string(),
+        })
+        .collect()
+}
+
 /// Compiler-style diagnostics with snippets (to `diagnostics_out`) and a summary line.
 pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::Result<String> {
-    let shown = displayed(report);
-    let root = &report.pack.display_root;
-    diagnostic::emit(diagnostics_out, &shown, &|path| report.source_of(path.strip_prefix(root.as_str())?))?;
+    let shown: Vec<Diagnostic> = displayed(report)
+        .into_iter()
+        .map(|mut d| {
+            d.message = terminal_safe(&d.message);
+            d.notes = d.notes.iter().map(|n| terminal_safe(n)).collect();
+            if let Some(loc) = &mut d.location {
+                loc.path = terminal_safe(&loc.path);
+            }
+            d
+        })
+        .collect();
+    let root = terminal_safe(&report.pack.display_root);
+    diagnostic::emit(diagnostics_out, &shown, &|path| {
+        let original = report.pack.texts.keys().find(|p| terminal_safe(p) == path.strip_prefix(root.as_str()).unwrap_or(""))?;
+        report.source_of(original).map(|text| snippet_safe(&text))
+    })?;
     let mut summary = String::new();
     let validated = report.programs.iter().filter(|p| p.status != Status::Skipped(String::new()) && !matches!(p.status, Status::Skipped(_))).count();
     let invalid = report.programs.iter().filter(|p| p.status == Status::Invalid).count();
@@ -76,95 +123,124 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
         report.warnings()
     )
     .unwrap();
-    Ok(summary)
+    Ok(terminal_safe(&summary))
 }
 
 fn list(ids: &[String]) -> String {
     if ids.is_empty() { String::new() } else { format!(" ({})", ids.join(", ")) }
 }
 
-fn json_string(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => write!(out, "\\u{:04x}", c as u32).unwrap(),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
+#[derive(Serialize)]
+struct JsonDiagnostic<'a> {
+    severity: &'static str,
+    message: &'a str,
+    file: Option<&'a str>,
+    line: Option<u32>,
+    /// 1-based.
+    column: Option<usize>,
+    notes: &'a [String],
+}
+
+#[derive(Serialize)]
+struct JsonProgram<'a> {
+    program: &'a str,
+    status: &'static str,
+    stages: &'a [String],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason: Option<&'a str>,
+    only_preprocessed: &'a [String],
+    /// Indices into `diagnostics`.
+    diagnostics: &'a [usize],
+}
+
+#[derive(Serialize)]
+struct JsonDriver<'a> {
+    driver: &'a str,
+    both_accept: usize,
+    both_reject: usize,
+    only_driver_rejects: &'a [String],
+    only_tidepack_rejects: &'a [String],
+}
+
+#[derive(Serialize)]
+struct JsonSummary<'a> {
+    pack: &'a str,
+    option_sets: &'a [String],
+    stages_validated: usize,
+    errors: usize,
+    warnings: usize,
+}
+
+#[derive(Serialize)]
+struct JsonReport<'a> {
+    diagnostics: Vec<JsonDiagnostic<'a>>,
+    programs: Vec<JsonProgram<'a>>,
+    driver: Option<JsonDriver<'a>>,
+    summary: JsonSummary<'a>,
+}
+
+/// One JSON object: `diagnostics`, `programs` (each with the indices of its diagnostics),
+/// `driver` and `summary`. Nothing in it depends on timing, so repeated runs are identical.
+pub fn json(report: &Report) -> String {
+    let shown = displayed(report);
+    let diagnostics = shown
+        .iter()
+        .map(|d| JsonDiagnostic {
+            severity: if d.is_error() { "error" } else { "warning" },
+            message: &d.message,
+            file: d.location.as_ref().map(|l| l.path.as_str()),
+            line: d.location.as_ref().map(|l| l.line),
+            column: d.location.as_ref().and_then(|l| l.columns.as_ref()).map(|c| c.start + 1),
+            notes: &d.notes,
+        })
+        .collect();
+    let programs = report
+        .programs
+        .iter()
+        .map(|p| {
+            let (status, reason) = match &p.status {
+                Status::Valid => ("valid", None),
+                Status::Invalid => ("invalid", None),
+                Status::Skipped(why) => ("skipped", Some(why.as_str())),
+            };
+            JsonProgram {
+                program: &p.id,
+                status,
+                stages: &p.stages,
+                reason,
+                only_preprocessed: &p.only_preprocessed,
+                diagnostics: &p.diagnostics,
+            }
+        })
+        .collect();
+    let driver = report.driver.as_ref().map(|d| JsonDriver {
+        driver: &d.driver,
+        both_accept: d.both_accept,
+        both_reject: d.both_reject,
+        only_driver_rejects: &d.only_driver_rejects,
+        only_tidepack_rejects: &d.only_tidepack_rejects,
+    });
+    let summary = JsonSummary {
+        pack: &report.pack.display_root,
+        option_sets: &report.option_sets,
+        stages_validated: report.stages_validated,
+        errors: report.errors(),
+        warnings: report.warnings(),
+    };
+    let mut out = serde_json::to_string_pretty(&JsonReport { diagnostics, programs, driver, summary })
+        .expect("the report serialises: it holds only strings and numbers");
+    out.push('\n');
     out
 }
 
-/// One JSON object: `diagnostics`, `programs` and `summary`.
-pub fn json(report: &Report) -> String {
-    let mut out = String::from("{\n  \"diagnostics\": [");
-    for (i, d) in displayed(report).iter().enumerate() {
-        out.push_str(if i == 0 { "\n    {" } else { ",\n    {" });
-        let severity = if d.is_error() { "error" } else { "warning" };
-        write!(out, "\"severity\": \"{severity}\", \"message\": {}", json_string(&d.message)).unwrap();
-        match &d.location {
-            Some(loc) => {
-                write!(out, ", \"file\": {}, \"line\": {}", json_string(&loc.path), loc.line).unwrap();
-                match &loc.columns {
-                    Some(c) => write!(out, ", \"column\": {}", c.start + 1).unwrap(),
-                    None => out.push_str(", \"column\": null"),
-                }
-            }
-            None => out.push_str(", \"file\": null, \"line\": null, \"column\": null"),
-        }
-        let notes: Vec<String> = d.notes.iter().map(|n| json_string(n)).collect();
-        write!(out, ", \"notes\": [{}]}}", notes.join(", ")).unwrap();
-    }
-    out.push_str("\n  ],\n  \"programs\": [");
-    for (i, p) in report.programs.iter().enumerate() {
-        out.push_str(if i == 0 { "\n    {" } else { ",\n    {" });
-        let (status, why) = match &p.status {
-            Status::Valid => ("valid", None),
-            Status::Invalid => ("invalid", None),
-            Status::Skipped(why) => ("skipped", Some(why)),
-        };
-        let stages: Vec<String> = p.stages.iter().map(|s| json_string(s)).collect();
-        write!(out, "\"program\": {}, \"status\": \"{status}\", \"stages\": [{}]", json_string(&p.id), stages.join(", ")).unwrap();
-        if let Some(why) = why {
-            write!(out, ", \"reason\": {}", json_string(why)).unwrap();
-        }
-        let partial: Vec<String> = p.only_preprocessed.iter().map(|s| json_string(s)).collect();
-        write!(out, ", \"only_preprocessed\": [{}]", partial.join(", ")).unwrap();
-        out.push('}');
-    }
-    let sets: Vec<String> = report.option_sets.iter().map(|s| json_string(s)).collect();
-    let driver = match &report.driver {
-        None => "null".to_string(),
-        Some(d) => {
-            let ids = |v: &[String]| v.iter().map(|s| json_string(s)).collect::<Vec<_>>().join(", ");
-            format!(
-                "{{\"driver\": {}, \"both_accept\": {}, \"both_reject\": {}, \"only_driver_rejects\": [{}], \"only_tidepack_rejects\": [{}]}}",
-                json_string(&d.driver),
-                d.both_accept,
-                d.both_reject,
-                ids(&d.only_driver_rejects),
-                ids(&d.only_tidepack_rejects)
-            )
-        }
-    };
-    write!(
-        out,
-        "\n  ],\n  \"driver\": {driver},\n  \"summary\": {{\"pack\": {}, \"option_sets\": [{}], \"stages_validated\": {}, \"errors\": {}, \"warnings\": {}, \"seconds\": {:.3}}}\n}}\n",
-        json_string(&report.pack.display_root),
-        sets.join(", "),
-        report.stages_validated,
-        report.errors(),
-        report.warnings(),
-        report.elapsed.as_secs_f64()
-    )
-    .unwrap();
-    out
+/// An input that cannot be read at all, as the chosen format says it.
+pub fn input_error_json(diag: &Diagnostic) -> String {
+    serde_json::json!({ "input_error": diag.message }).to_string() + "\n"
+}
+
+/// [`input_error_json`] as a GitHub Actions annotation.
+pub fn input_error_github(diag: &Diagnostic) -> String {
+    format!("::error title=tidepack validate::{}\n", github_escape(&diag.message, false))
 }
 
 /// GitHub Actions escapes for a message and for a property value.
@@ -176,23 +252,41 @@ fn github_escape(s: &str, property: bool) -> String {
     out
 }
 
-/// `::error file=…,line=…::message` lines, one per diagnostic.
+/// `::error file=…,line=…::message` lines, one per diagnostic. GitHub attaches an annotation to
+/// a file of the repository by its path from the repository root, where workflows run: a pack
+/// folder's files are named from the working directory. Files inside a zip are in no
+/// repository, so their annotations name the zip and the entry in the message.
 pub fn github(report: &Report) -> String {
+    let cwd = std::env::current_dir().ok();
     let mut out = String::new();
-    for d in displayed(report) {
+    for d in &report.diagnostics {
         let command = match d.severity {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
         let mut props = vec!["title=tidepack validate".to_string()];
+        let mut message = String::new();
         if let Some(loc) = &d.location {
-            props.push(format!("file={}", github_escape(&loc.path, true)));
-            props.push(format!("line={}", loc.line));
-            if let Some(c) = &loc.columns {
-                props.push(format!("col={}", c.start + 1));
+            let shown = shown_path(report, &loc.path);
+            if report.pack.archive {
+                message = format!("{shown}:{}: ", loc.line);
+            } else {
+                let path = std::path::Path::new(&shown);
+                let canonical = std::fs::canonicalize(path).ok();
+                let relative = match (cwd.as_deref(), canonical.as_deref()) {
+                    (Some(cwd), Some(canonical)) => canonical.strip_prefix(cwd).unwrap_or(path),
+                    _ => path,
+                };
+                let relative = relative.to_string_lossy();
+                let relative = relative.strip_prefix("./").unwrap_or(&relative);
+                props.push(format!("file={}", github_escape(relative, true)));
+                props.push(format!("line={}", loc.line));
+                if let Some(c) = &loc.columns {
+                    props.push(format!("col={}", c.start + 1));
+                }
             }
         }
-        let mut message = d.message.clone();
+        message.push_str(&d.message);
         for note in &d.notes {
             message.push('\n');
             message.push_str(note);

@@ -6,6 +6,7 @@
 //!   (`texture`, `textureLod`, `texelFetch`, `textureSize`, …), unless `GL_EXT_gpu_shader4`
 //!   is enabled for the parts it adds; `texture2DLod` & co. in fragment shaders without
 //!   `GL_ARB_shader_texture_lod`;
+//! - before GLSL 4.20, `= { … }` initializer lists without `GL_ARB_shading_language_420pack`;
 //! - in a core profile (`#version 140`+ without `compatibility`): the removed built-ins
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
 //!   `texture2D`, `attribute`, `varying`, …).
@@ -19,6 +20,7 @@ use tidepack_glsl::{Diagnostic, Stage};
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
+const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 
 /// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
 /// these names.
@@ -68,7 +70,8 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
     ))
 }
 
-/// Errors a driver gives for constructs the stage's `#version` does not have.
+/// Errors a driver gives for constructs the stage's `#version` does not have, and warnings for
+/// the ones only some drivers accept.
 pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
@@ -82,6 +85,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     let mut found: Vec<Diagnostic> = Vec::new();
+    let mut warnings: Vec<Diagnostic> = Vec::new();
     let mut reported: BTreeSet<(String, u32)> = BTreeSet::new();
     let shown_version = match &version.profile {
         Some(p) => format!("#version {number} {p}"),
@@ -115,7 +119,23 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
         let next_is_call = sig.get(k + 1).is_some_and(|n| n.is_punct("("));
         let explicit_location =
             t.is_ident("layout") && sig.get(k + 1).is_some_and(|n| n.is_punct("(")) && sig.get(k + 2).is_some_and(|n| n.is_ident("location"));
-        let problem: Option<String> = if explicit_location && location_needs_extension {
+        let initializer_list = t.is_punct("=") && sig.get(k + 1).is_some_and(|n| n.is_punct("{"));
+        if t.is_punct(";") && depth == 0 && parens == 0 && number < 460 && k > 0 && sig[k - 1].is_punct("}") && ends_function(&sig[..k]) {
+            warnings.push(Diagnostic::warning(
+                format!(
+                    "`;` after a function body is an empty declaration, which GLSL allows only from 4.60 on: Mesa and \
+                     NVIDIA accept it in `{shown_version}`, glslang and stricter drivers refuse it"
+                ),
+                pre.location(t.line),
+            ));
+            continue;
+        }
+        let problem: Option<String> = if initializer_list && number < 420 && !extensions.contains(SHADING_LANGUAGE_420PACK) {
+            Some(format!(
+                "`= {{ … }}` initializer lists need GLSL 4.20 or `#extension {SHADING_LANGUAGE_420PACK} : enable` (Mesa and \
+                 AMD refuse them in `{shown_version}`); write a constructor such as `float[2](a, b)`"
+            ))
+        } else if explicit_location && location_needs_extension {
             Some(format!(
                 "`layout(location = …)` needs GLSL 3.30 or `#extension {EXPLICIT_LOCATION} : enable` (Mesa, AMD and Intel refuse it in `{shown_version}`)"
             ))
@@ -164,7 +184,27 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
             found.push(Diagnostic::error(message, pre.location(t.line)));
         }
     }
+    found.extend(warnings);
     found
+}
+
+/// Whether the `}` that ends `before` closes a function body (its `{` follows a `)`), not a
+/// struct or block declaration.
+fn ends_function(before: &[&tidepack_glsl::token::Token<'_>]) -> bool {
+    let mut depth = 0;
+    for (k, t) in before.iter().enumerate().rev() {
+        match t.text {
+            "}" => depth += 1,
+            "{" => {
+                depth -= 1;
+                if depth == 0 {
+                    return k > 0 && before[k - 1].is_punct(")");
+                }
+            }
+            _ => {}
+        }
+    }
+    false
 }
 
 #[cfg(test)]

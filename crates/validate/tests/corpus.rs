@@ -1,6 +1,7 @@
 //! The validator against the corpus of tests/validate:
 //! - every pack in `corpus/` validates under the defaults and every profile with no error and
 //!   no warning (false errors on valid programs: goal 0);
+//! - every case in `accepted/` (constructs drivers accept) validates with no diagnostic;
 //! - every case in `planted/` reports each mistake listed in its `expect.txt`
 //!   (`severity path:line message-substring`) at that file and line; `args.txt` may name a
 //!   profile (`--profile NAME`);
@@ -47,6 +48,24 @@ fn corpus_packs_validate_without_false_errors() {
         programs += validated;
     }
     assert!(programs >= 20, "{programs} programs");
+}
+
+/// Minimal reproductions of constructs released packs use that real drivers compile and naga
+/// alone would refuse: each must validate with no error and no warning (references.rs checks
+/// that Mesa compiles them too).
+#[test]
+fn constructs_drivers_accept_are_not_errors() {
+    let cases = dirs(&root().join("accepted"));
+    assert!(cases.len() >= 7, "accepted cases missing");
+    let mut problems = Vec::new();
+    for case in &cases {
+        let report = validate_path(case, &options(Profiles::Defaults)).unwrap_or_else(|e| panic!("{}: {e}", case.display()));
+        let validated = report.programs.iter().filter(|p| p.status == tidepack_validate::Status::Valid).count();
+        if !report.diagnostics.is_empty() || validated == 0 {
+            problems.push(format!("{}: {validated} valid programs;{}", case.display(), show(&report)));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
 struct Expected {

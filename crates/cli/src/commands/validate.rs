@@ -113,8 +113,8 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         Err(diag) => {
             match args.format {
                 Format::Human => print_diagnostics(&[diag], &|_| None),
-                Format::Json => println!("{{\"input_error\": \"{}\"}}", diag.message.replace('\\', "\\\\").replace('"', "\\\"")),
-                Format::Github => println!("::error title=tidepack validate::{}", diag.message.replace('%', "%25").replace('\n', "%0A")),
+                Format::Json => print!("{}", output::input_error_json(&diag)),
+                Format::Github => print!("{}", output::input_error_github(&diag)),
             }
             return ExitCode::from(2);
         }

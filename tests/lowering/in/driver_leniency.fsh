@@ -1,0 +1,17 @@
+#version 330 compatibility
+uniform sampler2D specular;
+in vec2 texcoord;
+in float rain;
+float gain = rain * 2.0;
+
+float fade(float specular) {
+	return specular * 0.5;
+}
+
+void main() {
+	float whole;
+	float part = modf(rain, whole);
+	float specular = texture2D(specular, texcoord).r;
+	float sample = fade(specular);
+	gl_FragData[0] = vec4(sample * gain + part + whole);
+}

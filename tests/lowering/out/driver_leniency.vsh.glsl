@@ -1,0 +1,27 @@
+#version 450
+layout(std140, set = 0, binding = 0) uniform tp_Uniforms { float rainStrength; int tp_bool_isRaining; mat4 tp_ModelViewProjectionMatrix; }; float tp_rt_normalize(float a0) { return sign(a0); } vec2 tp_rt_normalize(vec2 a0) { return normalize(a0); } vec3 tp_rt_normalize(vec3 a0) { return normalize(a0); } vec4 tp_rt_normalize(vec4 a0) { return normalize(a0); } layout(location = 0) in vec4 tp_Vertex; layout(location = 3) in vec4 tp_MultiTexCoord0; 
+
+layout(set = 0, binding = 1) uniform texture2D tex; layout(set = 0, binding = 2) uniform sampler tp_sampler_tex;
+
+float sign_of_rain ; float tp_init_sign_of_rain() { return rainStrength < 0.5 ? 1.0 : -1.0; }
+vec2 offsets[2] ; vec2[2] tp_init_offsets() { return vec2[2](vec2(rainStrength), vec2(0.0)); } vec2 scale ; vec2 tp_init_scale() { return vec2(2.0); }
+const vec3[3] palette = vec3[3](vec3(1.0), vec3(0.5), vec3(0.25));
+ float wet ; float tp_init_wet() { return 1.0 > 0.5 ? 0.75 : length(tp_rt_normalize(vec3(0.0))); }
+layout(location = 1) out vec2 texcoord;
+layout(location = 0) out float rain;
+
+float shade( in float x, vec2 tp_kw_sampler) {
+	return x * tp_kw_sampler.x;
+}
+
+float lookup(vec2 uv) {
+	vec4 tex = textureLod(sampler2D(tex, tp_sampler_tex), uv, 0.0);
+	bool isRaining = tex.a > 0.5;
+	return isRaining ? tex.r : 0.0;
+}
+
+void tp_main() {
+	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
+	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexIndex % 4));
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0);
+} void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); tp_main(); }

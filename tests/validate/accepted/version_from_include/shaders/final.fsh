@@ -1,0 +1,7 @@
+// The version comes from an include, as OptiFine splices includes in first.
+#include "/lib/version.glsl"
+uniform sampler2D colortex0;
+varying vec2 texcoord;
+void main() {
+	gl_FragData[0] = texture2D(colortex0, texcoord);
+}

@@ -1,0 +1,13 @@
+#version 130
+uniform float frameTimeCounter;
+out vec2 texcoord;
+out float cycle;
+float wave(vec2 sampler) {
+	return sampler.x;
+}
+void main() {
+	gl_Position = ftransform();
+	texcoord = gl_MultiTexCoord0.xy;
+	float whole;
+	cycle = modf(frameTimeCounter + float(gl_VertexID), whole) + wave(texcoord);
+}
