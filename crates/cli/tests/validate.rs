@@ -102,3 +102,34 @@ fn control_characters_from_a_pack_do_not_reach_the_terminal() {
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     assert!(!out.stderr.contains(&0x1b) && !out.stdout.contains(&0x1b), "{}", text(&out.stderr));
 }
+
+#[test]
+fn the_template_source_folder_points_at_the_built_zip() {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaderpack");
+    let out = validate(&[source.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("template source") && stderr.contains("tidepack validate dist/"), "{stderr}");
+}
+
+#[test]
+fn expressions_too_long_for_naga_are_errors_not_crashes() {
+    let dir = tempfile::tempdir().unwrap();
+    let shaders = dir.path().join("pack/shaders");
+    std::fs::create_dir_all(&shaders).unwrap();
+    std::fs::write(shaders.join("final.vsh"), "#version 120\nvoid main() { gl_Position = ftransform(); }\n").unwrap();
+    let bodies = [
+        format!("vec4 x = vec4(1.0); gl_FragColor = x{};", ".xyzw".repeat(100_000)),
+        format!("float x = 1.0; gl_FragColor = vec4({});", vec!["x"; 50_000].join(" + ")),
+        format!("float x = 1.0; gl_FragColor = vec4({}x);", "- ".repeat(100_000)),
+    ];
+    for body in bodies {
+        std::fs::write(shaders.join("final.fsh"), format!("#version 120\nvoid main() {{\n{body}\n}}\n")).unwrap();
+        let out = validate(&[dir.path().join("pack").to_str().unwrap(), "--format", "json"]);
+        assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON even for hostile input");
+        let error = json["diagnostics"].as_array().unwrap().iter().find(|d| d["severity"] == "error").unwrap();
+        assert_eq!((error["file"].as_str().unwrap().ends_with("final.fsh"), error["line"].as_u64()), (true, Some(3)), "{error}");
+        assert!(error["message"].as_str().unwrap().contains("operators"), "{error}");
+    }
+}

@@ -11,6 +11,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use crate::diagnostic::{Diagnostic, Location};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed};
+use crate::token::{TokenKind, tokenize};
 
 /// One stage after lowering, ready for naga.
 #[derive(Clone, Debug)]
@@ -81,6 +82,44 @@ pub fn validate_compute(
     validate_text(frontend, naga::ShaderStage::Compute, &stage.preprocessed, &stage.lowered, provider)
 }
 
+/// Deepest bracket nesting naga is given.
+pub const MAX_NESTING: usize = 256;
+/// Most operators one statement may hold. naga's parser and validator recurse once per operand
+/// of a chain (`a + b + …`, `x.xy.xy…`, `- - x`); with [`NAGA_STACK_BYTES`] they handle several
+/// times this, and no real shader comes near it.
+pub const MAX_STATEMENT_OPERATORS: usize = 10_000;
+/// Stack of the thread naga runs on.
+const NAGA_STACK_BYTES: usize = 64 << 20;
+
+/// The line and the reason when `text` is beyond what naga is given: brackets nested past
+/// [`MAX_NESTING`] or a statement past [`MAX_STATEMENT_OPERATORS`] operators. A text the
+/// tokenizer refuses passes: naga reports it.
+pub fn too_complex(text: &str) -> Option<(u32, String)> {
+    let tokens = tokenize(text).ok()?;
+    let (mut depth, mut operators) = (0usize, 0usize);
+    for t in tokens.iter().filter(|t| t.kind == TokenKind::Punct) {
+        match t.text {
+            "(" | "[" | "{" => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some((t.line, format!("brackets nest deeper than {MAX_NESTING} levels")));
+                }
+                if t.text == "{" {
+                    operators = 0;
+                }
+            }
+            ")" | "]" | "}" => depth = depth.saturating_sub(1),
+            ";" => operators = 0,
+            "," => {}
+            _ => operators += 1,
+        }
+        if operators > MAX_STATEMENT_OPERATORS {
+            return Some((t.line, format!("one statement holds more than {MAX_STATEMENT_OPERATORS} operators, more than tidepack validates")));
+        }
+    }
+    None
+}
+
 fn validate_text(
     frontend: &mut Frontend,
     naga_stage: naga::ShaderStage,
@@ -88,9 +127,25 @@ fn validate_text(
     lowered: &Lowered,
     provider: &dyn FileProvider,
 ) -> Result<ValidStage, Vec<Diagnostic>> {
+    if let Some((line, message)) = too_complex(&lowered.text) {
+        return Err(vec![Diagnostic::error(message, pre.location(line))]);
+    }
     let text = &lowered.text;
     let stage = (pre, lowered);
-    let module = frontend.parse(&Options::from(naga_stage), text).map_err(|errors| {
+    // naga runs on a thread of its own, so that the caller's stack size does not matter.
+    let (parsed, validated) = std::thread::scope(|scope| {
+        let worker = std::thread::Builder::new().stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
+            let parsed = frontend.parse(&Options::from(naga_stage), text);
+            let validated =
+                parsed.as_ref().ok().map(|module| Validator::new(ValidationFlags::all(), Capabilities::all()).validate(module));
+            (parsed, validated)
+        });
+        match worker {
+            Ok(handle) => Ok(handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))),
+            Err(e) => Err(vec![Diagnostic::error(format!("cannot start naga's thread: {e}"), None)]),
+        }
+    })?;
+    let module = parsed.map_err(|errors| {
         errors
             .errors
             .iter()
@@ -108,8 +163,7 @@ fn validate_text(
             })
             .collect::<Vec<_>>()
     })?;
-    let mut validator = Validator::new(ValidationFlags::all(), Capabilities::all());
-    let info = validator.validate(&module).map_err(|e| {
+    let info = validated.expect("a parsed module is validated").map_err(|e| {
         let mut message = e.as_inner().to_string();
         let mut source = e.as_inner().source();
         while let Some(inner) = source {
@@ -161,6 +215,18 @@ mod tests {
     use std::collections::HashMap;
 
     use super::*;
+
+    #[test]
+    fn texts_that_would_exhaust_naga_are_refused_at_their_line() {
+        assert_eq!(too_complex(&format!("a\n{}", "(".repeat(MAX_NESTING + 1))).map(|(l, _)| l), Some(2));
+        assert_eq!(too_complex("f((a)[b]{c})"), None);
+        let long = format!("// {}\nfloat x;\nfloat y = x{};", "-".repeat(20_000), " + x".repeat(MAX_STATEMENT_OPERATORS));
+        assert_eq!(too_complex(&long).map(|(l, _)| l), Some(3), "comments do not count");
+        let swizzles = format!("void f() {{ vec4 v; v = v{}; }}", ".xyzw".repeat(MAX_STATEMENT_OPERATORS + 1));
+        assert!(too_complex(&swizzles).is_some_and(|(_, m)| m.contains("operators")));
+        let many_statements = "float a = 1.0 + 2.0;\n".repeat(MAX_STATEMENT_OPERATORS);
+        assert_eq!(too_complex(&many_statements), None);
+    }
     use crate::preprocess::{PreprocessOptions, preprocess};
 
     fn compute(text: &str) -> Result<ValidStage, Vec<Diagnostic>> {

@@ -90,11 +90,6 @@ mod tests {
         assert_eq!(pre.location(2), Some(Location::line("final.fsh", 1)));
     }
 
-    #[test]
-    fn deep_brackets_are_refused_before_naga() {
-        assert_eq!(too_deep(&format!("a\n{}", "(".repeat(MAX_NESTING + 1))), Some(2));
-        assert_eq!(too_deep("f((a)[b]{c})"), None);
-    }
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -679,29 +674,6 @@ pub fn assume_glsl_110(pre: &mut Preprocessed) {
 /// comes near (the largest known stages have a few thousand lines).
 pub const MAX_NAGA_LINES: usize = 40_000;
 
-/// Deepest bracket nesting naga is given; deeper text is refused before it can exhaust the
-/// parser's stack.
-pub const MAX_NESTING: usize = 256;
-
-/// The line where `text` first nests brackets deeper than [`MAX_NESTING`].
-fn too_deep(text: &str) -> Option<u32> {
-    let (mut depth, mut line) = (0usize, 1u32);
-    for b in text.bytes() {
-        match b {
-            b'(' | b'[' | b'{' => {
-                depth += 1;
-                if depth > MAX_NESTING {
-                    return Some(line);
-                }
-            }
-            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-            b'\n' => line += 1,
-            _ => {}
-        }
-    }
-    None
-}
-
 /// Validates the jobs with naga on `threads` workers; a panic inside naga becomes an error.
 fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<(usize, usize, Diagnostic)> {
     let next = AtomicUsize::new(0);
@@ -725,12 +697,6 @@ fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], thread
                                     format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
                                     Some(Location::line(entry.clone(), 1)),
                                 );
-                                found.push((job.program, job.set, diag));
-                                continue;
-                            }
-                            if let Some(line) = too_deep(job.stage.text()) {
-                                let at = job.stage.preprocessed().location(line);
-                                let diag = Diagnostic::error(format!("brackets nest deeper than {MAX_NESTING} levels"), at);
                                 found.push((job.program, job.set, diag));
                                 continue;
                             }

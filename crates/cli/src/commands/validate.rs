@@ -107,6 +107,17 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         (None, true) => Profiles::All,
         (None, false) => Profiles::Defaults,
     };
+    if args.path.join("pack.toml").is_file() && args.path.join("shaders").is_dir() {
+        // tidepack's own template source: the build writes lib/generated.glsl,
+        // shaders.properties and the GLSL 120 dialect, and validates every option set itself.
+        eprintln!(
+            "error: {} is tidepack's template source (pack.toml beside shaders/), not a pack: `tidepack build` \
+             generates the rest of the pack and validates it; to check the result as a player gets it, validate \
+             a zip it writes (tidepack validate dist/<name>-glsl330.zip)",
+            args.path.display()
+        );
+        return ExitCode::from(2);
+    }
     let options = Options { macros, profiles, driver: args.driver, ..Options::default() };
     let report = match tidepack_validate::validate_path(&args.path, &options) {
         Ok(report) => report,
