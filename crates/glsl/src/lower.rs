@@ -247,6 +247,12 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
+/// Built-ins naga cannot evaluate in a constant expression (drivers can).
+const NOT_CONSTANT_FOLDED: &[&str] = &[
+    "mix", "smoothstep", "exp2", "log2", "reflect", "refract", "faceforward", "transpose", "determinant", "inverse",
+    "outerProduct", "matrixCompMult", "ldexp",
+];
+
 /// Built-ins whose constant evaluation in naga refuses arguments outside their domain.
 const RANGE_CHECKED_BUILTINS: &[&str] = &["normalize", "sqrt", "inversesqrt", "log", "log2", "pow", "acos", "asin", "acosh", "atanh"];
 
@@ -688,8 +694,9 @@ struct Lowering<'t, 'a> {
     /// Globals whose initializer runs at the start of `main` (`tp_init_<name>()`), in
     /// declaration order.
     global_initializers: Vec<String>,
-    /// `const` declarations initialised with `?:` that become plain variables: naga evaluates
-    /// both branches of a constant `?:` and fails on the one not taken, drivers do not.
+    /// `const` declarations that become plain variables: naga evaluates both branches of a
+    /// constant `?:` and fails on the one not taken, and cannot fold some built-ins; drivers
+    /// do both.
     unconst: HashSet<String>,
 }
 
@@ -717,7 +724,7 @@ impl<'a> Lowering<'_, 'a> {
     fn run(&mut self) -> Result<(), LowerError> {
         let version_index = self.find_version()?;
         self.lower_array_constructor_sizes();
-        self.drop_const_from_conditionals();
+        self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
         for stmt in &statements {
             self.collect_function_signature(stmt);
@@ -853,10 +860,10 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
-    /// Drops `const` from declarations initialised with `?:` whose value no constant
-    /// expression needs (no array size, `case` label or other constant's initializer names
-    /// them).
-    fn drop_const_from_conditionals(&mut self) {
+    /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, or a
+    /// built-in of [`NOT_CONSTANT_FOLDED`]) when no constant expression needs their value (no
+    /// array size, `case` label or other constant's initializer names them).
+    fn drop_const_naga_cannot_fold(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         // (index of `const`, declared name, tokens of the initializer)
         let mut candidates: Vec<(usize, &str, std::ops::Range<usize>)> = Vec::new();
@@ -888,7 +895,11 @@ impl<'a> Lowering<'_, 'a> {
             const_initializers.push(equals + 1..end);
             let one_declarator = !(equals..end).any(|j| self.tokens[sig[j]].is_punct(",")) || self.paren_balanced_commas(&sig[equals..end]);
             let name = self.tokens[sig[equals - 1]];
-            if one_declarator && name.kind == TokenKind::Ident && (equals + 1..end).any(|j| self.tokens[sig[j]].is_punct("?")) {
+            let unfoldable = (equals + 1..end).any(|j| {
+                let t = self.tokens[sig[j]];
+                t.is_punct("?") || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
+            });
+            if one_declarator && name.kind == TokenKind::Ident && unfoldable {
                 candidates.push((i, name.text, equals + 1..end));
             }
         }

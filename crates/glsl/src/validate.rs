@@ -120,6 +120,9 @@ pub fn too_complex(text: &str) -> Option<(u32, String)> {
     None
 }
 
+/// Most rewrites [`implicit_conversion`] makes to one stage before naga's error stands.
+const MAX_REPAIRS: usize = 64;
+
 fn validate_text(
     frontend: &mut Frontend,
     naga_stage: naga::ShaderStage,
@@ -130,10 +133,54 @@ fn validate_text(
     if let Some((line, message)) = too_complex(&lowered.text) {
         return Err(vec![Diagnostic::error(message, pre.location(line))]);
     }
-    let text = &lowered.text;
-    let stage = (pre, lowered);
-    // naga runs on a thread of its own, so that the caller's stack size does not matter.
-    let (parsed, validated) = std::thread::scope(|scope| {
+    // GLSL converts int to float where naga wants the types to match: each such error is
+    // repaired in the text (line for line) and naga runs again.
+    let mut text = lowered.text.clone();
+    for repairs in 0.. {
+        let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
+        let module = match parsed {
+            Ok(module) => module,
+            Err(errors) => {
+                if repairs < MAX_REPAIRS
+                    && let Some(repaired) = errors.errors.iter().find_map(|e| scalar_dot(&text, e))
+                {
+                    text = repaired;
+                    continue;
+                }
+                return Err(errors.errors.iter().map(|e| parse_diagnostic(pre, &text, provider, e)).collect());
+            }
+        };
+        match validated.expect("a parsed module is validated") {
+            Ok(info) => return Ok(ValidStage { module, info }),
+            Err(e) => {
+                if repairs < MAX_REPAIRS
+                    && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner())
+                {
+                    text = repaired;
+                    continue;
+                }
+                let mut message = e.as_inner().to_string();
+                let mut source = e.as_inner().source();
+                while let Some(inner) = source {
+                    message.push_str(": ");
+                    message.push_str(&inner.to_string());
+                    source = inner.source();
+                }
+                // The spans go from the enclosing function to the offending expression: use the last.
+                let at = e.spans().filter(|(span, _)| span.is_defined()).last().map(|(span, _)| span.location(&text));
+                return Err(vec![diagnostic_at(pre, &text, provider, message, at)]);
+            }
+        }
+    }
+    unreachable!("the loop returns")
+}
+
+type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<Result<ModuleInfo, naga::WithSpan<naga::valid::ValidationError>>>);
+
+/// Parses and validates on a thread of its own, so that the caller's stack size does not
+/// matter.
+fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) -> Result<NagaResult, Vec<Diagnostic>> {
+    std::thread::scope(|scope| {
         let worker = std::thread::Builder::new().stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
             let parsed = frontend.parse(&Options::from(naga_stage), text);
             let validated =
@@ -144,44 +191,143 @@ fn validate_text(
             Ok(handle) => Ok(handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))),
             Err(e) => Err(vec![Diagnostic::error(format!("cannot start naga's thread: {e}"), None)]),
         }
-    })?;
-    let module = parsed.map_err(|errors| {
-        errors
-            .errors
-            .iter()
-            .map(|e| {
-                let mut span = e.meta.to_range();
-                if let (Some(range), ErrorKind::InvalidToken(_, expected)) = (&mut span, &e.kind)
-                    && expected.contains(&ExpectedToken::Token(TokenValue::Semicolon))
-                {
-                    // A missing `;` belongs after the previous token, not at the next line.
-                    let end = text[..range.start].trim_end().len();
-                    *range = end.saturating_sub(1)..end;
-                }
-                let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
-                diagnostic_at(stage, provider, e.kind.to_string(), at)
-            })
-            .collect::<Vec<_>>()
-    })?;
-    let info = validated.expect("a parsed module is validated").map_err(|e| {
-        let mut message = e.as_inner().to_string();
-        let mut source = e.as_inner().source();
-        while let Some(inner) = source {
-            message.push_str(": ");
-            message.push_str(&inner.to_string());
-            source = inner.source();
+    })
+}
+
+/// A parse error in GLSL's words, at the pack file and line.
+fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider, e: &naga::front::glsl::Error) -> Diagnostic {
+    let mut span = e.meta.to_range();
+    let message = match &e.kind {
+        ErrorKind::InvalidToken(_, expected) => {
+            let found = span.as_ref().and_then(|r| text.get(r.clone())).map_or("this".to_string(), |t| format!("`{}`", t.trim()));
+            let words: Vec<String> = expected.iter().map(expected_words).collect();
+            format!("unexpected {found}: expected {}", words.join(" or "))
         }
-        // The spans go from the enclosing function to the offending expression: use the last.
-        let at = e.spans().filter(|(span, _)| span.is_defined()).last().map(|(span, _)| span.location(text));
-        vec![diagnostic_at(stage, provider, message, at)]
-    })?;
-    Ok(ValidStage { module, info })
+        ErrorKind::EndOfFile => "the file ends inside a declaration or block: a `}`, `)` or `;` is missing".to_string(),
+        other => other.to_string(),
+    };
+    if let (Some(range), ErrorKind::InvalidToken(_, expected)) = (&mut span, &e.kind)
+        && expected.contains(&ExpectedToken::Token(TokenValue::Semicolon))
+    {
+        // A missing `;` belongs after the previous token, not at the next line.
+        let end = text[..range.start].trim_end().len();
+        *range = end.saturating_sub(1)..end;
+    }
+    let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
+    diagnostic_at(pre, text, provider, message, at)
+}
+
+/// What naga expected, as GLSL source spells it.
+fn expected_words(expected: &ExpectedToken) -> String {
+    let token = match expected {
+        ExpectedToken::Token(token) => token,
+        ExpectedToken::TypeName => return "a type".into(),
+        ExpectedToken::Identifier => return "a name".into(),
+        ExpectedToken::IntLiteral => return "an integer".into(),
+        ExpectedToken::FloatLiteral => return "a number".into(),
+        ExpectedToken::BoolLiteral => return "true or false".into(),
+        ExpectedToken::Eof => return "the end of the file".into(),
+    };
+    let symbol = match token {
+        TokenValue::Semicolon => ";",
+        TokenValue::Comma => ",",
+        TokenValue::Colon => ":",
+        TokenValue::Dot => ".",
+        TokenValue::Question => "?",
+        TokenValue::Assign => "=",
+        TokenValue::LeftBrace => "{",
+        TokenValue::RightBrace => "}",
+        TokenValue::LeftParen => "(",
+        TokenValue::RightParen => ")",
+        TokenValue::LeftBracket => "[",
+        TokenValue::RightBracket => "]",
+        TokenValue::LeftAngle => "<",
+        TokenValue::RightAngle => ">",
+        TokenValue::Identifier(name) => return format!("`{name}`"),
+        other => return format!("{other:?}").to_lowercase(),
+    };
+    format!("`{symbol}`")
+}
+
+/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) becomes a product,
+/// through a stand-in declared on the lowering's header line.
+fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
+    let ErrorKind::SemanticError(message) = &e.kind else { return None };
+    if !message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
+        return None;
+    }
+    let start = e.meta.to_range()?.start;
+    if !text[start..].starts_with("dot") {
+        return None;
+    }
+    let header = text.find('\n')? + 1;
+    let stand_in = "float tp_scalar_dot(float a, float b) { return a * b; } ";
+    let mut repaired = String::with_capacity(text.len() + stand_in.len() + 16);
+    repaired.push_str(&text[..start]);
+    repaired.push_str("tp_scalar_dot");
+    repaired.push_str(&text[start + 3..]);
+    if !repaired.contains(stand_in) {
+        repaired.insert_str(header, stand_in);
+    }
+    Some(repaired)
+}
+
+/// Wraps a value in a constructor where GLSL converts it implicitly (an `int` or `ivec`
+/// returned or stored where a `float` or `vec` is declared) and naga refuses the mismatch.
+fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError) -> Option<String> {
+    use naga::valid::{EntryPointError, FunctionError, ValidationError};
+    let (function, source) = match error {
+        ValidationError::Function { handle, source, .. } => (&module.functions[*handle], source),
+        ValidationError::EntryPoint { name, source: EntryPointError::Function(source), .. } => {
+            (&module.entry_points.iter().find(|ep| &ep.name == name)?.function, source)
+        }
+        _ => return None,
+    };
+    let resolve = naga::proc::ResolveContext::with_locals(module, &function.local_variables, &function.arguments);
+    let mut typifier = naga::front::Typifier::new();
+    let mut type_of = |expr: naga::Handle<naga::Expression>| -> Option<naga::TypeInner> {
+        typifier.grow(expr, &function.expressions, &resolve).ok()?;
+        Some(typifier.get(expr, &module.types).clone())
+    };
+    let (value, target) = match source {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => (*value, module.types[*ty].inner.clone()),
+        FunctionError::InvalidStoreTypes { pointer, value } => {
+            let target = match type_of(*pointer)? {
+                naga::TypeInner::Pointer { base, .. } => module.types[base].inner.clone(),
+                naga::TypeInner::ValuePointer { size: None, scalar, .. } => naga::TypeInner::Scalar(scalar),
+                naga::TypeInner::ValuePointer { size: Some(size), scalar, .. } => naga::TypeInner::Vector { size, scalar },
+                _ => return None,
+            };
+            (*value, target)
+        }
+        _ => return None,
+    };
+    let constructor = implicit_target(&type_of(value)?, &target)?;
+    let span = function.expressions.get_span(value).to_range()?;
+    let inner = text.get(span.clone())?;
+    Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]))
+}
+
+/// The GLSL constructor of `to` when GLSL converts `from` to it implicitly.
+fn implicit_target(from: &naga::TypeInner, to: &naga::TypeInner) -> Option<String> {
+    use naga::{ScalarKind, TypeInner};
+    let integer = |s: &naga::Scalar| matches!(s.kind, ScalarKind::Sint | ScalarKind::Uint);
+    match (from, to) {
+        (TypeInner::Scalar(a), TypeInner::Scalar(b)) if integer(a) && b.kind == ScalarKind::Float && b.width == 4 => Some("float".into()),
+        (TypeInner::Vector { size: n, scalar: a }, TypeInner::Vector { size: m, scalar: b })
+            if n == m && integer(a) && b.kind == ScalarKind::Float && b.width == 4 =>
+        {
+            Some(format!("vec{}", *m as u8))
+        }
+        _ => None,
+    }
 }
 
 /// Maps a naga location in the lowered text back to the pack file and line, narrowing it to
 /// the offending token when that token appears once on the original line.
 fn diagnostic_at(
-    (pre, lowered): (&Preprocessed, &Lowered),
+    pre: &Preprocessed,
+    text: &str,
     provider: &dyn FileProvider,
     message: String,
     at: Option<naga::SourceLocation>,
@@ -192,7 +338,6 @@ fn diagnostic_at(
     };
     let mut location = pre.location(at.line_number);
     if let Some(loc) = &mut location {
-        let text = &lowered.text;
         let start = at.offset as usize;
         let token = text.get(start..start + at.length as usize).unwrap_or("");
         if !token.is_empty() && !token.contains('\n') {
@@ -215,6 +360,7 @@ mod tests {
     use std::collections::HashMap;
 
     use super::*;
+    use crate::preprocess::{PreprocessOptions, preprocess};
 
     #[test]
     fn texts_that_would_exhaust_naga_are_refused_at_their_line() {
@@ -227,7 +373,6 @@ mod tests {
         let many_statements = "float a = 1.0 + 2.0;\n".repeat(MAX_STATEMENT_OPERATORS);
         assert_eq!(too_complex(&many_statements), None);
     }
-    use crate::preprocess::{PreprocessOptions, preprocess};
 
     fn compute(text: &str) -> Result<ValidStage, Vec<Diagnostic>> {
         let files: HashMap<String, Arc<str>> = [("composite.csh".to_string(), Arc::from(text))].into();

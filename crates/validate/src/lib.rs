@@ -644,7 +644,7 @@ pub fn unlower_names(message: &str) -> String {
         } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
             out.push_str(&format!("gl_TexCoord[{n}]"));
         } else if let Some(x) =
-            ["sampler_", "bool_", "kw_", "init_"].iter().find_map(|p| name.strip_prefix(p))
+            ["sampler_", "bool_", "kw_", "init_", "scalar_"].iter().find_map(|p| name.strip_prefix(p))
         {
             out.push_str(x);
         } else if name == "main" {

@@ -8,10 +8,16 @@ float fade(float specular) {
 	return specular * 0.5;
 }
 
+float ticks(int worldTime) {
+	int day = worldTime % 24000;
+	float hours = day / 1000;
+	return day;
+}
+
 void main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
 	float sample = fade(specular);
-	gl_FragData[0] = vec4(sample * gain + part + whole);
+	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)));
 }

@@ -8,10 +8,16 @@ float fade(float specular) {
 	return specular * 0.5;
 }
 
+float ticks(int worldTime) {
+	int day = worldTime % 24000;
+	float hours = day / 1000;
+	return day;
+}
+
 void tp_main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
 	float tp_kw_sample = fade(specular);
-	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole);
+	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)));
 } void main() { gain = tp_init_gain(); tp_main(); }

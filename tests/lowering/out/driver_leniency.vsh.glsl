@@ -7,6 +7,7 @@ float sign_of_rain ; float tp_init_sign_of_rain() { return rainStrength < 0.5 ? 
 vec2 offsets[2] ; vec2[2] tp_init_offsets() { return vec2[2](vec2(rainStrength), vec2(0.0)); } vec2 scale ; vec2 tp_init_scale() { return vec2(2.0); }
 const vec3[3] palette = vec3[3](vec3(1.0), vec3(0.5), vec3(0.25));
  float wet ; float tp_init_wet() { return 1.0 > 0.5 ? 0.75 : length(tp_rt_normalize(vec3(0.0))); }
+ float blend ; float tp_init_blend() { return mix(0.25, 0.75, 0.5); }
 layout(location = 1) out vec2 texcoord;
 layout(location = 0) out float rain;
 
@@ -23,5 +24,5 @@ float lookup(vec2 uv) {
 void tp_main() {
 	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
 	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexIndex % 4));
-	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0);
-} void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); tp_main(); }
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend;
+} void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); blend = tp_init_blend(); tp_main(); }
