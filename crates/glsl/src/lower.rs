@@ -1196,6 +1196,8 @@ impl<'a> Lowering<'_, 'a> {
         // A local that will hide a global at the end of its declarator: (name, brace depth,
         // paren depth of the declaration).
         let mut pending_local: Option<(String, i32, i32)> = None;
+        // Inside a `const` declaration, whose initializer must stay a constant expression.
+        let mut in_constant = false;
         // Paren depth at which a lookup's closing `)` is replaced, and its replacement.
         let mut closers: Vec<(i32, &'static str)> = Vec::new();
         // Outside fragment stages there are no derivatives: naga refuses implicit-level
@@ -1209,6 +1211,11 @@ impl<'a> Lowering<'_, 'a> {
                 // Inside a declaration already rewritten; track parameter samplers of headers.
                 k += 1;
                 continue;
+            }
+            if t.text == ";" {
+                in_constant = false;
+            } else if t.text == "const" {
+                in_constant = true;
             }
             if matches!(t.text, ";" | ",")
                 && let Some((name, depth, parens)) = pending_local.take()
@@ -1336,7 +1343,11 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
             } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
                 self.rename_vulkan_keyword(i);
-            } else if followed_by_call && RANGE_CHECKED_BUILTINS.contains(&t.text) && self.literal_arguments(&sig, k + 1) {
+            } else if followed_by_call
+                && !in_constant
+                && RANGE_CHECKED_BUILTINS.contains(&t.text)
+                && self.literal_arguments(&sig, k + 1)
+            {
                 // naga evaluates a built-in of constant arguments while parsing and refuses
                 // values outside its domain (`normalize(vec3(0.0))`, often in a branch not
                 // taken); drivers fold them to NaN or leave them to run time. A stand-in that

@@ -951,14 +951,22 @@ pub fn resolve_include(from: &str, target: &str) -> Result<String, String> {
         dir.pop();
         dir
     };
+    // Above the root is the pack folder, so `/../shaders/lib/x.glsl` climbs out of `shaders/`
+    // and straight back in, which OptiFine resolves to `lib/x.glsl`.
+    let mut above_root = false;
     for part in target.split('/') {
         match part {
             "" | "." => {}
             ".." => {
                 if parts.pop().is_none() {
-                    return Err(format!("include path `{target}` climbs out of the shader pack"));
+                    if above_root {
+                        return Err(format!("include path `{target}` climbs out of the shader pack"));
+                    }
+                    above_root = true;
                 }
             }
+            "shaders" if above_root => above_root = false,
+            _ if above_root => return Err(format!("include path `{target}` climbs out of the shader pack")),
             p if p.contains('\\') || p.contains(':') => {
                 return Err(format!("include path `{target}` must use `/` separators and no drive letters"));
             }
@@ -1109,6 +1117,18 @@ impl ExprParser<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn include_paths_resolve_as_optifine_resolves_them() {
+        assert_eq!(resolve_include("world0/composite.fsh", "/lib/a.glsl").unwrap(), "lib/a.glsl");
+        assert_eq!(resolve_include("world0/composite.fsh", "../lib/a.glsl").unwrap(), "lib/a.glsl");
+        assert_eq!(resolve_include("lib/x/b.glsl", "c.glsl").unwrap(), "lib/x/c.glsl");
+        // Out of shaders/ and straight back in.
+        assert_eq!(resolve_include("composite.fsh", "/../shaders/lib/a.glsl").unwrap(), "lib/a.glsl");
+        for outside in ["/../other/a.glsl", "../../a.glsl", "/../../shaders/a.glsl", "/..", "lib\\a.glsl"] {
+            assert!(resolve_include("composite.fsh", outside).is_err(), "{outside}");
+        }
+    }
 
     fn files(list: &[(&str, &str)]) -> HashMap<String, Arc<str>> {
         list.iter().map(|(p, t)| (p.to_string(), Arc::from(*t))).collect()

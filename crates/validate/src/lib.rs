@@ -173,15 +173,24 @@ impl FileProvider for SetProvider<'_> {
         if let Some(text) = self.cache.lock().unwrap_or_else(|e| e.into_inner()).get(path) {
             return Ok(text.clone());
         }
-        let Some(text) = self.pack.texts.get(path) else {
-            if self.pack.files.contains_key(path) {
-                return Err("not a text file".into());
-            }
+        let decoded;
+        let text = match (self.pack.texts.get(path), self.pack.files.get(path)) {
+            (Some(text), _) => text,
+            // OptiFine includes a file of any name (`Common.vert`, `lib.inc`): read it as text.
+            (None, Some(bytes)) => match std::str::from_utf8(bytes) {
+                Ok(text) => {
+                    decoded = Arc::from(text);
+                    &decoded
+                }
+                Err(e) => return Err(format!("not a text file: byte {} is not UTF-8", e.valid_up_to())),
+            },
+            (None, None) => {
             let lower = path.to_lowercase();
             return Err(match self.pack.files.keys().find(|p| p.to_lowercase() == lower) {
                 Some(p) => format!("no such file in the pack; `{p}` differs only in case (Iris and Linux are case-sensitive)"),
                 None => "no such file in the pack".into(),
             });
+            }
         };
         let text: Arc<str> = match options::apply(text, self.set) {
             std::borrow::Cow::Borrowed(_) => text.clone(),

@@ -8,6 +8,7 @@ vec2 offsets[2] = vec2[2](vec2(rainStrength), vec2(0.0)), scale = vec2(2.0);
 const vec3[] palette = vec3[](vec3(1.0), vec3(0.5), vec3(0.25));
 const float wet = 1.0 > 0.5 ? 0.75 : length(normalize(vec3(0.0)));
 const float blend = mix(0.25, 0.75, 0.5);
+const float rcpMax12 = 1.0 / (pow(2.0, 12.0) - 1.0);
 out vec2 texcoord;
 out float rain;
 
@@ -24,5 +25,5 @@ float lookup(vec2 uv) {
 void main() {
 	gl_Position = ftransform();
 	texcoord = gl_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexID % 4));
-	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + (isRaining ? 1.0 : 0.0) + blend;
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + (isRaining ? 1.0 : 0.0) + blend * rcpMax12;
 }

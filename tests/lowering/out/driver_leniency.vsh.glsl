@@ -8,6 +8,7 @@ vec2 offsets[2] ; vec2[2] tp_init_offsets() { return vec2[2](vec2(rainStrength),
 const vec3[3] palette = vec3[3](vec3(1.0), vec3(0.5), vec3(0.25));
  float wet ; float tp_init_wet() { return 1.0 > 0.5 ? 0.75 : length(tp_rt_normalize(vec3(0.0))); }
  float blend ; float tp_init_blend() { return mix(0.25, 0.75, 0.5); }
+const float rcpMax12 = 1.0 / (pow(2.0, 12.0) - 1.0);
 layout(location = 1) out vec2 texcoord;
 layout(location = 0) out float rain;
 
@@ -24,5 +25,5 @@ float lookup(vec2 uv) {
 void tp_main() {
 	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
 	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexIndex % 4));
-	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend;
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend * rcpMax12;
 } void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); blend = tp_init_blend(); tp_main(); }
