@@ -1480,9 +1480,9 @@ impl<'a> Lowering<'_, 'a> {
         }
         match name {
             "gl_VertexID" | "gl_InstanceID" if stage == Stage::Vertex => {
-                // Vulkan GLSL's names; both are `int`.
+                // Vulkan GLSL's names; naga reads them as `uint`, GLSL's are `int`.
                 let vulkan = if name == "gl_VertexID" { "gl_VertexIndex" } else { "gl_InstanceIndex" };
-                self.replace(i, i + 1, vulkan.to_string());
+                self.replace(i, i + 1, format!("int({vulkan})"));
             }
             "ftransform" => {
                 let called = |j: usize, p: &str| sig.get(j).is_some_and(|&t| self.tokens[t].is_punct(p));

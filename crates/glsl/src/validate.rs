@@ -136,6 +136,7 @@ fn validate_text(
     // GLSL converts int to float where naga wants the types to match: each such error is
     // repaired in the text (line for line) and naga runs again.
     let mut text = lowered.text.clone();
+    let version = pre.version.as_ref().map_or(110, |v| v.number);
     for repairs in 0.. {
         let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
         let module = match parsed {
@@ -154,18 +155,21 @@ fn validate_text(
             Ok(info) => return Ok(ValidStage { module, info }),
             Err(e) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner())
+                    && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
                 {
                     text = repaired;
                     continue;
                 }
-                let mut message = e.as_inner().to_string();
-                let mut source = e.as_inner().source();
-                while let Some(inner) = source {
-                    message.push_str(": ");
-                    message.push_str(&inner.to_string());
-                    source = inner.source();
-                }
+                let message = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
+                    let mut message = e.as_inner().to_string();
+                    let mut source = e.as_inner().source();
+                    while let Some(inner) = source {
+                        message.push_str(": ");
+                        message.push_str(&inner.to_string());
+                        source = inner.source();
+                    }
+                    message
+                });
                 // The spans go from the enclosing function to the offending expression: use the last.
                 let at = e.spans().filter(|(span, _)| span.is_defined()).last().map(|(span, _)| span.location(&text));
                 return Err(vec![diagnostic_at(pre, &text, provider, message, at)]);
@@ -260,7 +264,9 @@ fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
     if !text[start..].starts_with("dot") {
         return None;
     }
-    let header = text.find('\n')? + 1;
+    // The lowering's header line follows `#version`, which comments may precede.
+    let version = text.find("#version")?;
+    let header = version + text[version..].find('\n')? + 1;
     let stand_in = "float tp_scalar_dot(float a, float b) { return a * b; } ";
     let mut repaired = String::with_capacity(text.len() + stand_in.len() + 16);
     repaired.push_str(&text[..start]);
@@ -274,38 +280,147 @@ fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
 
 /// Wraps a value in a constructor where GLSL converts it implicitly (an `int` or `ivec`
 /// returned or stored where a `float` or `vec` is declared) and naga refuses the mismatch.
-fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError) -> Option<String> {
-    use naga::valid::{EntryPointError, FunctionError, ValidationError};
-    let (function, source) = match error {
-        ValidationError::Function { handle, source, .. } => (&module.functions[*handle], source),
+/// The function a validation error is in, and the function's error.
+fn failing_function<'m>(
+    module: &'m naga::Module,
+    error: &'m naga::valid::ValidationError,
+) -> Option<(&'m naga::Function, &'m naga::valid::FunctionError)> {
+    use naga::valid::{EntryPointError, ValidationError};
+    match error {
+        ValidationError::Function { handle, source, .. } => Some((&module.functions[*handle], source)),
         ValidationError::EntryPoint { name, source: EntryPointError::Function(source), .. } => {
-            (&module.entry_points.iter().find(|ep| &ep.name == name)?.function, source)
+            Some((&module.entry_points.iter().find(|ep| &ep.name == name)?.function, source))
         }
-        _ => return None,
-    };
+        _ => None,
+    }
+}
+
+/// The types of `function`'s expressions, as naga resolves them.
+fn expression_types<'m>(
+    module: &'m naga::Module,
+    function: &'m naga::Function,
+) -> impl FnMut(naga::Handle<naga::Expression>) -> Option<naga::TypeInner> + 'm {
     let resolve = naga::proc::ResolveContext::with_locals(module, &function.local_variables, &function.arguments);
     let mut typifier = naga::front::Typifier::new();
-    let mut type_of = |expr: naga::Handle<naga::Expression>| -> Option<naga::TypeInner> {
+    move |expr| {
         typifier.grow(expr, &function.expressions, &resolve).ok()?;
         Some(typifier.get(expr, &module.types).clone())
-    };
-    let (value, target) = match source {
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => (*value, module.types[*ty].inner.clone()),
+    }
+}
+
+/// naga's validation errors that name expression handles, said with GLSL's types instead.
+fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> Option<String> {
+    use naga::valid::{ExpressionError, FunctionError};
+    let (function, source) = failing_function(module, error)?;
+    let mut type_of = expression_types(module, function);
+    let mut name = |expr| type_of(expr).and_then(|t| glsl_type_name(&t)).unwrap_or_else(|| "another type".into());
+    let function_name = function.name.as_deref().unwrap_or("main").trim_start_matches("tp_");
+    Some(match source {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => format!(
+            "`return` gives {} in `{function_name}`, which is declared to return {} (GLSL converts return values only \
+             from 4.20 on: write a constructor)",
+            name(*value),
+            glsl_type_name(&module.types[*ty].inner).unwrap_or_else(|| "another type".into())
+        ),
         FunctionError::InvalidStoreTypes { pointer, value } => {
-            let target = match type_of(*pointer)? {
-                naga::TypeInner::Pointer { base, .. } => module.types[base].inner.clone(),
-                naga::TypeInner::ValuePointer { size: None, scalar, .. } => naga::TypeInner::Scalar(scalar),
-                naga::TypeInner::ValuePointer { size: Some(size), scalar, .. } => naga::TypeInner::Vector { size, scalar },
+            let target = match type_of_pointee(module, function, *pointer) {
+                Some(t) => glsl_type_name(&t).unwrap_or_else(|| "another type".into()),
+                None => "another type".into(),
+            };
+            format!("a value of type {} is assigned to a variable of type {target}", name(*value))
+        }
+        FunctionError::Expression { source: ExpressionError::InvalidBinaryOperandTypes { op, lhs_expr, rhs_expr, .. }, .. } => {
+            format!("`{}` cannot combine {} and {}", operator_symbol(*op), name(*lhs_expr), name(*rhs_expr))
+        }
+        _ => return None,
+    })
+}
+
+fn operator_symbol(op: naga::BinaryOperator) -> &'static str {
+    use naga::BinaryOperator as B;
+    match op {
+        B::Add => "+",
+        B::Subtract => "-",
+        B::Multiply => "*",
+        B::Divide => "/",
+        B::Modulo => "%",
+        B::Equal => "==",
+        B::NotEqual => "!=",
+        B::Less => "<",
+        B::LessEqual => "<=",
+        B::Greater => ">",
+        B::GreaterEqual => ">=",
+        B::And => "&",
+        B::ExclusiveOr => "^",
+        B::InclusiveOr => "|",
+        B::LogicalAnd => "&&",
+        B::LogicalOr => "||",
+        B::ShiftLeft => "<<",
+        B::ShiftRight => ">>",
+    }
+}
+
+/// The type a pointer expression points to.
+fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: naga::Handle<naga::Expression>) -> Option<naga::TypeInner> {
+    match expression_types(module, function)(pointer)? {
+        naga::TypeInner::Pointer { base, .. } => Some(module.types[base].inner.clone()),
+        naga::TypeInner::ValuePointer { size: None, scalar, .. } => Some(naga::TypeInner::Scalar(scalar)),
+        naga::TypeInner::ValuePointer { size: Some(size), scalar, .. } => Some(naga::TypeInner::Vector { size, scalar }),
+        _ => None,
+    }
+}
+
+fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32) -> Option<String> {
+    use naga::valid::{ExpressionError, FunctionError};
+    let (function, source) = failing_function(module, error)?;
+    let mut type_of = expression_types(module, function);
+    // GLSL 1.10 converts nothing; 1.20 converts in assignments (the lowering's `tp_init_`
+    // functions return a global's initializer); returns convert from 4.20 on.
+    let is_initializer = function.name.as_deref().is_some_and(|n| n.starts_with("tp_init_"));
+    if version < 120 {
+        return None;
+    }
+    let (value, target) = match source {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
+            (*value, module.types[*ty].inner.clone())
+        }
+        FunctionError::Expression { source: ExpressionError::InvalidBinaryOperandTypes { lhs_expr, rhs_expr, .. }, .. } => {
+            // A vector and a scalar (`ivec2 % int`): GLSL applies the scalar to each component.
+            let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
+            let (scalar, vector) = match (&lhs, &rhs) {
+                (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, lhs),
+                (naga::TypeInner::Scalar(_), naga::TypeInner::Vector { .. }) => (*lhs_expr, rhs),
                 _ => return None,
             };
-            (*value, target)
+            let span = function.expressions.get_span(scalar).to_range()?;
+            let inner = text.get(span.clone())?;
+            let constructor = glsl_type_name(&vector)?;
+            return Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
         }
+        FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?),
         _ => return None,
     };
     let constructor = implicit_target(&type_of(value)?, &target)?;
     let span = function.expressions.get_span(value).to_range()?;
     let inner = text.get(span.clone())?;
     Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]))
+}
+
+/// GLSL's name of a scalar or vector type of 32-bit components (or bools).
+fn glsl_type_name(ty: &naga::TypeInner) -> Option<String> {
+    use naga::{ScalarKind, TypeInner};
+    let names = |s: &naga::Scalar| match (s.kind, s.width) {
+        (ScalarKind::Float, 4) => Some(("", "float")),
+        (ScalarKind::Sint, 4) => Some(("i", "int")),
+        (ScalarKind::Uint, 4) => Some(("u", "uint")),
+        (ScalarKind::Bool, _) => Some(("b", "bool")),
+        _ => None,
+    };
+    match ty {
+        TypeInner::Scalar(s) => names(s).map(|(_, name)| name.to_string()),
+        TypeInner::Vector { size, scalar } => names(scalar).map(|(prefix, _)| format!("{prefix}vec{}", *size as u8)),
+        _ => None,
+    }
 }
 
 /// The GLSL constructor of `to` when GLSL converts `from` to it implicitly.
@@ -317,7 +432,7 @@ fn implicit_target(from: &naga::TypeInner, to: &naga::TypeInner) -> Option<Strin
         (TypeInner::Vector { size: n, scalar: a }, TypeInner::Vector { size: m, scalar: b })
             if n == m && integer(a) && b.kind == ScalarKind::Float && b.width == 4 =>
         {
-            Some(format!("vec{}", *m as u8))
+            glsl_type_name(to)
         }
         _ => None,
     }

@@ -2,7 +2,9 @@
 uniform sampler2D specular;
 in vec2 texcoord;
 in float rain;
+uniform int frameCounter;
 float gain = rain * 2.0;
+float frames = frameCounter;
 
 float fade(float specular) {
 	return specular * 0.5;
@@ -11,7 +13,7 @@ float fade(float specular) {
 float ticks(int worldTime) {
 	int day = worldTime % 24000;
 	float hours = day / 1000;
-	return day;
+	return hours;
 }
 
 void main() {
@@ -19,5 +21,5 @@ void main() {
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
 	float sample = fade(specular);
-	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)));
+	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames);
 }

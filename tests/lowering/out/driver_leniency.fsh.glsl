@@ -1,8 +1,10 @@
 #version 450
-float modf(float x, out float i) { i = trunc(x); return x - i; } vec2 modf(vec2 x, out vec2 i) { i = trunc(x); return x - i; } vec3 modf(vec3 x, out vec3 i) { i = trunc(x); return x - i; } vec4 modf(vec4 x, out vec4 i) { i = trunc(x); return x - i; } layout(location = 0) out vec4 tp_FragData0; layout(set = 1, binding = 1) uniform texture2D specular; layout(set = 1, binding = 2) uniform sampler tp_sampler_specular;
+layout(std140, set = 1, binding = 0) uniform tp_Uniforms { int frameCounter; }; float modf(float x, out float i) { i = trunc(x); return x - i; } vec2 modf(vec2 x, out vec2 i) { i = trunc(x); return x - i; } vec3 modf(vec3 x, out vec3 i) { i = trunc(x); return x - i; } vec4 modf(vec4 x, out vec4 i) { i = trunc(x); return x - i; } layout(location = 0) out vec4 tp_FragData0; layout(set = 1, binding = 1) uniform texture2D specular; layout(set = 1, binding = 2) uniform sampler tp_sampler_specular;
 layout(location = 1) in vec2 texcoord;
 layout(location = 0) in float rain;
+
 float gain ; float tp_init_gain() { return rain * 2.0; }
+float frames ; float tp_init_frames() { return frameCounter; }
 
 float fade(float specular) {
 	return specular * 0.5;
@@ -11,7 +13,7 @@ float fade(float specular) {
 float ticks(int worldTime) {
 	int day = worldTime % 24000;
 	float hours = day / 1000;
-	return day;
+	return hours;
 }
 
 void tp_main() {
@@ -19,5 +21,5 @@ void tp_main() {
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
 	float tp_kw_sample = fade(specular);
-	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)));
-} void main() { gain = tp_init_gain(); tp_main(); }
+	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames);
+} void main() { gain = tp_init_gain(); frames = tp_init_frames(); tp_main(); }

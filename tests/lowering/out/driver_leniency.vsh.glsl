@@ -24,6 +24,6 @@ float lookup(vec2 uv) {
 
 void tp_main() {
 	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
-	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexIndex % 4));
+	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(int(gl_VertexIndex) % 4));
 	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend * rcpMax12;
 } void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); blend = tp_init_blend(); tp_main(); }

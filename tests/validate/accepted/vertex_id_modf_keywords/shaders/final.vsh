@@ -9,5 +9,5 @@ void main() {
 	gl_Position = ftransform();
 	texcoord = gl_MultiTexCoord0.xy;
 	float whole;
-	cycle = modf(frameTimeCounter + float(gl_VertexID), whole) + wave(texcoord);
+	cycle = modf(frameTimeCounter + float(min(gl_VertexID, 1)), whole) + wave(texcoord) + float((ivec2(texcoord) % 4).x);
 }
