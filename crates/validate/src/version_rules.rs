@@ -95,6 +95,9 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let mut parens = 0i32;
     let mut line_start = true;
     let mut prev_line = 0;
+    // Parameters of the function being read, and whether a local `const` declaration is open.
+    let mut parameters: BTreeSet<&str> = BTreeSet::new();
+    let mut local_constant = false;
     for (k, t) in sig.iter().enumerate() {
         if t.line != prev_line {
             line_start = true;
@@ -119,6 +122,26 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
         let next_is_call = sig.get(k + 1).is_some_and(|n| n.is_punct("("));
         let explicit_location =
             t.is_ident("layout") && sig.get(k + 1).is_some_and(|n| n.is_punct("(")) && sig.get(k + 2).is_some_and(|n| n.is_ident("location"));
+        if depth == 0 && parens == 0 && t.kind == TokenKind::Ident && next_is_call && k > 0 && sig[k - 1].kind == TokenKind::Ident {
+            parameters = function_parameters(&sig[k + 1..]);
+        }
+        if depth > 0 && t.is_ident("const") {
+            local_constant = true;
+        } else if t.is_punct(";") {
+            local_constant = false;
+        } else if local_constant && number < 420 && t.kind == TokenKind::Ident && parameters.contains(t.text) {
+            if reported.insert((t.text.to_string(), t.line)) {
+                found.push(Diagnostic::error(
+                    format!(
+                        "a local `const` must be initialised with a constant expression before GLSL 4.20, and the parameter \
+                         `{}` is not one (Mesa refuses it in `{shown_version}`); drop `const` or use #version 420",
+                        t.text
+                    ),
+                    pre.location(t.line),
+                ));
+            }
+            continue;
+        }
         let initializer_list = t.is_punct("=") && sig.get(k + 1).is_some_and(|n| n.is_punct("{"));
         if t.is_punct(";") && depth == 0 && parens == 0 && number < 460 && k > 0 && sig[k - 1].is_punct("}") && ends_function(&sig[..k]) {
             warnings.push(Diagnostic::warning(
@@ -186,6 +209,29 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     }
     found.extend(warnings);
     found
+}
+
+/// The parameter names of the list that opens `from` (`(float a, const in vec3 b)`), or none
+/// when `from` is a call rather than a definition.
+fn function_parameters<'a>(from: &[&tidepack_glsl::token::Token<'a>]) -> BTreeSet<&'a str> {
+    let mut names = BTreeSet::new();
+    let mut depth = 0;
+    let mut previous: Option<&'a str> = None;
+    for (k, t) in from.iter().enumerate() {
+        match t.text {
+            "(" => depth += 1,
+            ")" | "," if depth == 1 => {
+                names.extend(previous.take());
+                if t.text == ")" {
+                    return if from.get(k + 1).is_some_and(|n| n.is_punct("{")) { names } else { BTreeSet::new() };
+                }
+            }
+            ")" => depth -= 1,
+            _ if t.kind == TokenKind::Ident && depth == 1 => previous = Some(t.text),
+            _ => previous = None,
+        }
+    }
+    BTreeSet::new()
 }
 
 /// Whether the `}` that ends `before` closes a function body (its `{` follows a `)`), not a
