@@ -16,8 +16,10 @@
 //! 6.4 ms now; at 640x360 within the noise). The timed image is checked
 //! against the harness frame's (`timed_image_difference`).
 
+pub mod labels;
 pub mod metrics;
 pub mod output;
+pub mod pareto;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -112,6 +114,10 @@ pub struct Row {
     pub passthrough_ms: f64,
     /// composite_ms / passthrough_ms.
     pub ratio: f64,
+    /// Every timed frame's composite and pass-through times, in order: their spread says how
+    /// far apart two runs must be for a Pareto verdict ([`pareto::ratio_spread`]).
+    pub composite_frames_ms: Vec<f64>,
+    pub passthrough_frames_ms: Vec<f64>,
     pub error: Error,
     /// Sum of squared rgb differences over the pixels / (3 pixels): to aggregate PSNR.
     pub mse: f64,
@@ -126,6 +132,9 @@ pub struct Aggregate {
     pub run: RunSpec,
     /// Mean over scenes of the composite / pass-through ratio.
     pub ratio: f64,
+    /// Mean over scenes of the ratio's relative spread (interquartile range of the per-frame
+    /// ratios over their median; NaN with a single frame).
+    pub ratio_spread: f64,
     pub composite_ms: f64,
     pub passthrough_ms: f64,
     /// Largest max abs of any scene.
@@ -135,10 +144,13 @@ pub struct Aggregate {
     pub psnr: f64,
     /// Mean over scenes of the mean FLIP.
     pub mean_flip: f64,
-    /// Not dominated in (ratio, mean FLIP) by any other run.
-    pub on_front: bool,
-    /// Runs that dominate it, with the smaller of their two relative improvements.
+    /// Its place in (ratio, mean FLIP) against the other runs, within the timing noise.
+    pub verdict: pareto::Verdict,
+    /// Runs that dominate it beyond the timing noise, with the smaller of their two relative
+    /// improvements, largest first.
     pub dominated_by: Vec<(String, f64)>,
+    /// Runs at least as accurate whose time is within the combined spread of this one's.
+    pub ties_with: Vec<String>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -164,6 +176,15 @@ pub struct BenchResult {
 
 /// A run is "near" the front when no run beats it by more than this in both time and error.
 pub const NEAR_FRONT: f64 = 0.05;
+
+/// Registers DejaVu Sans as plotters' "sans-serif" (the `dejavu` crate's copy: no system
+/// fonts), for the plot and the heat-map legends.
+fn register_font() {
+    static FONT: std::sync::Once = std::sync::Once::new();
+    FONT.call_once(|| {
+        let _ = plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, dejavu::sans::regular());
+    });
+}
 
 fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
@@ -384,6 +405,8 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 composite_ms: c,
                 passthrough_ms: p,
                 ratio: c / p,
+                composite_frames_ms: times[i].0.clone(),
+                passthrough_frames_ms: times[i].1.clone(),
                 error,
                 mse: error.rmse * error.rmse,
                 timed_image_difference: differences[i],

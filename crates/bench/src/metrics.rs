@@ -72,13 +72,66 @@ pub fn reference_rgb8_top_first(image: &ReferenceImage) -> Vec<u8> {
     out
 }
 
-/// The FLIP map through the magma colour map, as a PNG.
+/// The FLIP map through the magma colour map with its legend, as a PNG.
 pub fn write_heatmap(map: &nv_flip::FlipImageFloat, path: &std::path::Path) -> Result<(), String> {
-    let rgb = map.apply_color_lut(&nv_flip::magma_lut());
-    let image = image::RgbImage::from_raw(rgb.width(), rgb.height(), rgb.to_vec()).ok_or("heat-map size")?;
-    image.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    heatmap_image(map)?.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
+/// Height of the legend strip under a heat map, pixels.
+pub const LEGEND_HEIGHT: u32 = 62;
+/// The legend's bar: horizontal inset, and rows below the map.
+pub const LEGEND_INSET: u32 = 14;
+pub const LEGEND_BAR_ROWS: std::ops::Range<u32> = 6..20;
+
+/// The values the legend labels, at the bar's ends and middle: FLIP's colour map spans 0..1
+/// whatever the map holds, so that heat maps of different runs compare by colour.
+pub const LEGEND_TICKS: [f64; 3] = [0.0, 0.5, 1.0];
+
+/// The FLIP map through the magma colour map, with a strip below it: a bar of the colour map
+/// labelled at [`LEGEND_TICKS`], and the map's mean and max. The image is at least wide enough
+/// for the labels to be legible on small maps.
+pub fn heatmap_image(map: &nv_flip::FlipImageFloat) -> Result<image::RgbImage, String> {
+    use plotters::prelude::*;
+    let lut = nv_flip::magma_lut();
+    let (w, h) = (map.width(), map.height());
+    let (width, height) = (w.max(320), h + LEGEND_HEIGHT);
+    let mut canvas = image::RgbImage::from_pixel(width, height, image::Rgb([255, 255, 255]));
+    let heat = map.apply_color_lut(&lut).to_vec();
+    for (i, p) in heat.chunks_exact(3).enumerate() {
+        canvas.put_pixel(i as u32 % w, i as u32 / w, image::Rgb([p[0], p[1], p[2]]));
+    }
+    // The bar through the same lookup as the map, so its colours are the map's exactly.
+    let bar_width = width - 2 * LEGEND_INSET;
+    let ramp: Vec<f32> = (0..bar_width).map(|x| x as f32 / (bar_width - 1) as f32).collect();
+    let bar = nv_flip::FlipImageFloat::with_data(bar_width, 1, &ramp).apply_color_lut(&lut).to_vec();
+    for (x, p) in bar.chunks_exact(3).enumerate() {
+        for y in LEGEND_BAR_ROWS {
+            canvas.put_pixel(LEGEND_INSET + x as u32, h + y, image::Rgb([p[0], p[1], p[2]]));
+        }
+    }
+    let values = map.to_vec();
+    let (mean, max) = (values.iter().map(|&v| v as f64).sum::<f64>() / values.len().max(1) as f64, values.iter().fold(0.0f32, |m, &v| m.max(v)));
+    crate::register_font();
+    let e = |e: &dyn std::fmt::Display| format!("heat-map legend: {e}");
+    {
+        let root = BitMapBackend::with_buffer(canvas.as_mut(), (width, height)).into_drawing_area();
+        let font: TextStyle = ("sans-serif", 14).into();
+        let bar_bottom = (h + LEGEND_BAR_ROWS.end) as i32;
+        for t in LEGEND_TICKS {
+            let x = LEGEND_INSET as i32 + (t * (bar_width - 1) as f64).round() as i32;
+            root.draw(&PathElement::new(vec![(x, bar_bottom), (x, bar_bottom + 4)], BLACK)).map_err(|x| e(&x))?;
+            let label = format!("{t}");
+            let (tw, _) = root.estimate_text_size(&label, &font).map_err(|x| e(&x))?;
+            // Centred on its tick, but inside the image at the ends.
+            let left = (x - tw as i32 / 2).clamp(2, width as i32 - tw as i32 - 2);
+            root.draw(&Text::new(label, (left, bar_bottom + 6), font.clone())).map_err(|x| e(&x))?;
+        }
+        let caption = format!("FLIP error: mean {mean:.4}, max {max:.3}");
+        root.draw(&Text::new(caption, (LEGEND_INSET as i32, bar_bottom + 24), font.clone())).map_err(|x| e(&x))?;
+        root.present().map_err(|x| e(&x))?;
+    }
+    Ok(canvas)
+}
 
 #[cfg(test)]
 mod tests {
@@ -90,5 +143,32 @@ mod tests {
         assert_eq!(psnr_of_mse(1.6e-15), f64::INFINITY);
         assert_eq!(psnr_of_mse(0.0), f64::INFINITY);
         assert!((psnr_of_mse(1e-6) - 60.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn heat_maps_carry_a_labelled_colour_bar() {
+        // A small map (the bench's --quick maps are 160x90, the tests' 96x54).
+        let (w, h) = (96u32, 54u32);
+        let values: Vec<f32> = (0..w * h).map(|i| (i % w) as f32 / w as f32 * 0.4).collect();
+        let map = nv_flip::FlipImageFloat::with_data(w, h, &values);
+        let image = heatmap_image(&map).unwrap();
+        assert_eq!(image.height(), h + LEGEND_HEIGHT);
+        assert!(image.width() >= 320);
+        // The map is unchanged at the top left.
+        let heat = map.apply_color_lut(&nv_flip::magma_lut()).to_vec();
+        assert_eq!(image.get_pixel(5, 7).0, [heat[(7 * w as usize + 5) * 3], heat[(7 * w as usize + 5) * 3 + 1], heat[(7 * w as usize + 5) * 3 + 2]]);
+        // The bar runs from the colour map's 0 (near black) to its 1 (near white).
+        let row = h + (LEGEND_BAR_ROWS.start + LEGEND_BAR_ROWS.end) / 2;
+        let lut = nv_flip::magma_lut().to_vec();
+        assert_eq!(image.get_pixel(LEGEND_INSET, row).0, [lut[0], lut[1], lut[2]]);
+        assert_eq!(image.get_pixel(image.width() - LEGEND_INSET - 1, row).0, [lut[765], lut[766], lut[767]]);
+        // Text under the bar at both ends and in the middle: dark pixels in each third.
+        let label_rows = h + LEGEND_BAR_ROWS.end + 6..h + LEGEND_BAR_ROWS.end + 20;
+        let third = image.width() / 3;
+        for (i, xs) in [0..third, third..2 * third, 2 * third..image.width()].into_iter().enumerate() {
+            let dark = xs.clone().flat_map(|x| label_rows.clone().map(move |y| (x, y))).filter(|&(x, y)| image.get_pixel(x, y).0[0] < 128).count();
+            assert!(dark > 5, "no label in third {i}");
+        }
+        assert_eq!(LEGEND_TICKS, [0.0, 0.5, 1.0]);
     }
 }

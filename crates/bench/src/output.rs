@@ -7,6 +7,8 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::metrics::psnr_of_mse;
+use crate::labels;
+use crate::pareto::{self, Verdict};
 use crate::{Aggregate, BenchConfig, BenchResult, NEAR_FRONT, Row, RunSpec};
 
 fn mean(v: impl Iterator<Item = f64>) -> f64 {
@@ -14,7 +16,7 @@ fn mean(v: impl Iterator<Item = f64>) -> f64 {
     if n == 0 { f64::NAN } else { s / n as f64 }
 }
 
-/// Per run over all scenes, with the Pareto front in (ratio, mean FLIP).
+/// Per run over all scenes, with the Pareto verdicts in (ratio, mean FLIP).
 pub fn aggregate(runs: &[RunSpec], rows: &[Row]) -> Vec<Aggregate> {
     let mut out: Vec<Aggregate> = runs
         .iter()
@@ -24,46 +26,62 @@ pub fn aggregate(runs: &[RunSpec], rows: &[Row]) -> Vec<Aggregate> {
             Aggregate {
                 run: run.clone(),
                 ratio: mean(r.iter().map(|r| r.ratio)),
+                ratio_spread: mean(r.iter().map(|r| pareto::ratio_spread(&r.composite_frames_ms, &r.passthrough_frames_ms))),
                 composite_ms: mean(r.iter().map(|r| r.composite_ms)),
                 passthrough_ms: mean(r.iter().map(|r| r.passthrough_ms)),
                 max_abs: r.iter().map(|r| r.error.max_abs).fold(0.0, f64::max),
                 rmse: mse.sqrt(),
                 psnr: psnr_of_mse(mse),
                 mean_flip: mean(r.iter().map(|r| r.error.mean_flip)),
-                on_front: true,
+                verdict: Verdict::Front,
                 dominated_by: vec![],
+                ties_with: vec![],
             }
         })
         .collect();
-    let points: Vec<(String, f64, f64)> = out.iter().map(|a| (a.run.name.clone(), a.ratio, a.mean_flip)).collect();
-    for a in &mut out {
-        for (name, t, e) in &points {
-            let dominates = *t <= a.ratio && *e <= a.mean_flip && (*t < a.ratio || *e < a.mean_flip);
-            if dominates {
-                a.on_front = false;
-                // How much better the dominating run is in its weaker coordinate.
-                let margin = (1.0 - t / a.ratio).min(1.0 - e / a.mean_flip.max(f64::MIN_POSITIVE));
-                a.dominated_by.push((name.clone(), margin));
-            }
-        }
-        a.dominated_by.sort_by(|x, y| y.1.total_cmp(&x.1));
+    let points: Vec<pareto::Point> =
+        out.iter().map(|a| pareto::Point { time: a.ratio, time_spread: a.ratio_spread, error: a.mean_flip }).collect();
+    let names: Vec<String> = out.iter().map(|a| a.run.name.clone()).collect();
+    for (a, j) in out.iter_mut().zip(pareto::judge(&points)) {
+        a.verdict = j.verdict;
+        a.dominated_by = j.dominated_by.into_iter().map(|(i, m)| (names[i].clone(), m)).collect();
+        a.ties_with = j.ties_with.into_iter().map(|i| names[i].clone()).collect();
     }
     out
 }
 
-/// On the front, or beaten by no run by more than [`NEAR_FRONT`] in both coordinates.
+/// Not dominated beyond the timing noise, or beaten by no run by more than [`NEAR_FRONT`] in
+/// both coordinates.
 pub fn near_front(a: &Aggregate) -> bool {
-    a.on_front || a.dominated_by.first().is_none_or(|(_, m)| *m <= NEAR_FRONT)
+    a.verdict != Verdict::Dominated || a.dominated_by.first().is_none_or(|(_, m)| *m <= NEAR_FRONT)
+}
+
+/// How many runs' verdicts are ties within the timing noise.
+pub fn tie_count(result: &BenchResult) -> usize {
+    result.aggregates.iter().filter(|a| a.verdict == Verdict::Tie).count()
 }
 
 fn front_label(a: &Aggregate) -> String {
-    if a.on_front {
-        "front".into()
-    } else if near_front(a) {
-        format!("near ({} by {:.1}%)", a.dominated_by[0].0, 100.0 * a.dominated_by[0].1)
-    } else {
-        format!("dominated by {} (by {:.0}%)", a.dominated_by[0].0, 100.0 * a.dominated_by[0].1)
+    match a.verdict {
+        Verdict::Front => "front".into(),
+        Verdict::Tie => {
+            let more = if a.ties_with.len() > 1 { format!(" and {} more", a.ties_with.len() - 1) } else { String::new() };
+            format!("tie within timing noise (with {}{more})", a.ties_with[0])
+        }
+        Verdict::Dominated if near_front(a) => format!("near ({} by {:.1}%)", a.dominated_by[0].0, 100.0 * a.dominated_by[0].1),
+        Verdict::Dominated => format!("dominated by {} (by {:.0}%)", a.dominated_by[0].0, 100.0 * a.dominated_by[0].1),
     }
+}
+
+/// The sentence that counts the ties, for the table and the report.
+fn ties_sentence(result: &BenchResult) -> String {
+    format!(
+        "{} of {} Pareto verdicts are ties within timing noise: a run at least as accurate is closer in time than the two runs' \
+         combined spread (interquartile range of the per-frame composite / pass-through ratios), so which is faster the \
+         times cannot tell; more --frames narrow the spread.",
+        tie_count(result),
+        result.aggregates.len()
+    )
 }
 
 fn db(psnr: f64) -> String {
@@ -75,15 +93,16 @@ pub fn table(result: &BenchResult) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<34} {:>9} {:>10} {:>9} {:>8} {:>9} {:>10}  pareto",
-        "run (mean over scenes)", "comp/pt", "comp ms", "max abs", "RMSE", "PSNR dB", "mean FLIP"
+        "{:<34} {:>9} {:>7} {:>10} {:>9} {:>8} {:>9} {:>10}  pareto",
+        "run (mean over scenes)", "comp/pt", "spread", "comp ms", "max abs", "RMSE", "PSNR dB", "mean FLIP"
     );
     for a in &result.aggregates {
         let _ = writeln!(
             s,
-            "{:<34} {:>8.2}x {:>10.3} {:>9.4} {:>8.5} {:>9} {:>10.5}  {}",
+            "{:<34} {:>8.2}x {:>7} {:>10.3} {:>9.4} {:>8.5} {:>9} {:>10.5}  {}",
             a.run.name,
             a.ratio,
+            spread(a.ratio_spread),
             a.composite_ms,
             a.max_abs,
             a.rmse,
@@ -92,7 +111,13 @@ pub fn table(result: &BenchResult) -> String {
             front_label(a)
         );
     }
+    let _ = writeln!(s, "{}", ties_sentence(result));
     s
+}
+
+/// A relative spread as "±2.1%"; "?" with a single frame.
+fn spread(relative: f64) -> String {
+    if relative.is_finite() { format!("±{:.1}%", 100.0 * relative) } else { "?".into() }
 }
 
 fn csv_field(s: &str) -> String {
@@ -101,12 +126,12 @@ fn csv_field(s: &str) -> String {
 
 pub fn csv(result: &BenchResult) -> String {
     let mut s = String::from(
-        "scene,run,kind,profile,knob,value,composite_ms,passthrough_ms,ratio,max_abs,rmse,psnr_db,mean_flip,pareto\n",
+        "scene,run,kind,profile,knob,value,composite_ms,passthrough_ms,ratio,ratio_spread,max_abs,rmse,psnr_db,mean_flip,pareto\n",
     );
-    let line = |s: &mut String, scene: &str, run: &RunSpec, c: f64, p: f64, r: f64, m: f64, rmse: f64, psnr: f64, f: f64, front: &str| {
+    let line = |s: &mut String, scene: &str, run: &RunSpec, [c, p, r, spread]: [f64; 4], m: f64, rmse: f64, psnr: f64, f: f64, front: &str| {
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{c:.6},{p:.6},{r:.4},{m:.6e},{rmse:.6e},{},{f:.6e},{}",
+            "{},{},{},{},{},{},{c:.6},{p:.6},{r:.4},{spread:.4},{m:.6e},{rmse:.6e},{},{f:.6e},{}",
             csv_field(scene),
             csv_field(&run.name),
             run.kind,
@@ -118,10 +143,11 @@ pub fn csv(result: &BenchResult) -> String {
         );
     };
     for r in &result.rows {
-        line(&mut s, &r.scene, &r.run, r.composite_ms, r.passthrough_ms, r.ratio, r.error.max_abs, r.error.rmse, r.error.psnr, r.error.mean_flip, "");
+        let spread = pareto::ratio_spread(&r.composite_frames_ms, &r.passthrough_frames_ms);
+        line(&mut s, &r.scene, &r.run, [r.composite_ms, r.passthrough_ms, r.ratio, spread], r.error.max_abs, r.error.rmse, r.error.psnr, r.error.mean_flip, "");
     }
     for a in &result.aggregates {
-        line(&mut s, "ALL", &a.run, a.composite_ms, a.passthrough_ms, a.ratio, a.max_abs, a.rmse, a.psnr, a.mean_flip, &front_label(a));
+        line(&mut s, "ALL", &a.run, [a.composite_ms, a.passthrough_ms, a.ratio, a.ratio_spread], a.max_abs, a.rmse, a.psnr, a.mean_flip, &front_label(a));
     }
     s
 }
@@ -141,20 +167,23 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(188, 189, 34),
 ];
 
-/// Time (composite / pass-through) against mean FLIP, log error axis; the front as a red step
-/// line, profiles as labelled black squares, each swept knob in its own colour.
+/// Time (composite / pass-through) against mean FLIP, log error axis: each run with its timing
+/// spread as a horizontal bar (± the spread); the front as a red step line, red rings on front
+/// verdicts and orange rings on ties within the timing noise; profiles as labelled black
+/// squares, each swept knob in its own colour, labelled with its value. Labels are placed by
+/// [`labels::place`], clear of each other, the markers, the bars and the legend.
 pub fn plot(result: &BenchResult, path: &Path) -> Result<(), String> {
-    static FONT: std::sync::Once = std::sync::Once::new();
-    FONT.call_once(|| {
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
-    });
+    crate::register_font();
     let e = |e: &dyn std::fmt::Display| format!("plot: {e}");
     let aggs: Vec<&Aggregate> = result.aggregates.iter().filter(|a| a.ratio.is_finite() && a.mean_flip.is_finite()).collect();
     let floor = 1e-5;
+    let at = |a: &Aggregate| (a.ratio, a.mean_flip.max(floor));
+    // ± the whole spread, so that two bars overlap exactly when the runs' times are a tie.
+    let bar = |a: &Aggregate| if a.ratio_spread.is_finite() { a.ratio * a.ratio_spread } else { 0.0 };
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for a in &aggs {
-        x0 = x0.min(a.ratio);
-        x1 = x1.max(a.ratio);
+        x0 = x0.min(a.ratio - bar(a));
+        x1 = x1.max(a.ratio + bar(a));
         y0 = y0.min(a.mean_flip.max(floor));
         y1 = y1.max(a.mean_flip.max(floor));
     }
@@ -162,71 +191,133 @@ pub fn plot(result: &BenchResult, path: &Path) -> Result<(), String> {
         (x0, x1, y0, y1) = (0.0, 1.0, floor, 1.0);
     }
     let pad = ((x1 - x0) * 0.08).max(0.05);
-    let root = BitMapBackend::new(path, (1100, 720)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1400, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption("tidepack: composite time against error (mean over scenes)", ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(72)
+        .caption("tidepack: composite time against error (mean over scenes)", ("sans-serif", 28))
+        .margin(20)
+        .x_label_area_size(64)
+        .y_label_area_size(96)
         .build_cartesian_2d((x0 - pad)..(x1 + pad), (y0 / 1.6..y1 * 1.6).log_scale())
         .map_err(|x| e(&x))?;
     chart
         .configure_mesh()
-        .x_desc(format!("composite / pass-through composite time ({} timestamps, median of {} frames)", result.timing_source, result.frames))
+        .x_desc(format!(
+            "composite / pass-through composite time ({} timestamps, median of {} frames; bars: ± interquartile range, overlapping bars are ties)",
+            result.timing_source, result.frames
+        ))
         .y_desc("mean FLIP against the f64 reference (log)")
-        .label_style(("sans-serif", 14))
+        .label_style(("sans-serif", 18))
+        .axis_desc_style(("sans-serif", 20))
         .draw()
         .map_err(|x| e(&x))?;
-    let mut front: Vec<(f64, f64)> = aggs.iter().filter(|a| a.on_front).map(|a| (a.ratio, a.mean_flip.max(floor))).collect();
+    chart
+        .draw_series(aggs.iter().filter(|a| bar(a) > 0.0).map(|a| {
+            let (x, y) = at(a);
+            ErrorBar::new_horizontal(y, x - bar(a), x, x + bar(a), RGBColor(120, 120, 120).stroke_width(2), 8)
+        }))
+        .map_err(|x| e(&x))?;
+    // The step line joins the runs no other run beats beyond the noise, keeping, from the
+    // fastest on, only those more accurate than every faster one (ties may cross each other).
+    let mut front: Vec<(f64, f64)> = aggs.iter().filter(|a| a.verdict != Verdict::Dominated).map(|a| at(a)).collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut steps = Vec::new();
-    for (i, p) in front.iter().enumerate() {
-        if i > 0 {
-            steps.push((p.0, front[i - 1].1));
+    let mut steps: Vec<(f64, f64)> = Vec::new();
+    for p in front {
+        match steps.last() {
+            Some(last) if p.1 >= last.1 => {}
+            Some(last) => steps.extend([(p.0, last.1), p]),
+            None => steps.push(p),
         }
-        steps.push(*p);
     }
     chart
         .draw_series(LineSeries::new(steps, RED.stroke_width(2)))
         .map_err(|x| e(&x))?
         .label("Pareto front")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], RED.stroke_width(2)));
-    chart
-        .draw_series(front.iter().map(|p| Circle::new(*p, 9, RED.stroke_width(2))))
-        .map_err(|x| e(&x))?;
-    let mut families: Vec<String> = aggs.iter().map(|a| family(a)).filter(|f| f != "profile").collect();
-    families.dedup();
-    for (i, fam) in families.iter().enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
+    let tie_colour = RGBColor(255, 140, 0);
+    for (verdict, colour, label) in [(Verdict::Front, RED, "front"), (Verdict::Tie, tie_colour, "tie within timing noise")] {
         chart
-            .draw_series(aggs.iter().filter(|a| &family(a) == fam).map(|a| Circle::new((a.ratio, a.mean_flip.max(floor)), 5, colour.filled())))
+            .draw_series(aggs.iter().filter(|a| a.verdict == verdict).map(|a| Circle::new(at(a), 10, colour.stroke_width(3))))
+            .map_err(|x| e(&x))?
+            .label(label)
+            .legend(move |(x, y)| Circle::new((x + 9, y), 6, colour.stroke_width(2)));
+    }
+    let mut families: Vec<String> = Vec::new();
+    for f in aggs.iter().map(|a| family(a)).filter(|f| f != "profile") {
+        if !families.contains(&f) {
+            families.push(f);
+        }
+    }
+    let colour_of = |a: &Aggregate| families.iter().position(|f| *f == family(a)).map_or(BLACK, |i| PALETTE[i % PALETTE.len()]);
+    for fam in &families {
+        let colour = PALETTE[families.iter().position(|f| f == fam).unwrap_or(0) % PALETTE.len()];
+        chart
+            .draw_series(aggs.iter().filter(|a| &family(a) == fam).map(|a| Circle::new(at(a), 6, colour.filled())))
             .map_err(|x| e(&x))?
             .label(format!("{fam} sweep"))
-            .legend(move |(x, y)| Circle::new((x + 9, y), 5, colour.filled()));
-        chart
-            .draw_series(aggs.iter().filter(|a| &family(a) == fam).map(|a| {
-                Text::new(a.run.value.clone().unwrap_or_default(), (a.ratio, a.mean_flip.max(floor)), ("sans-serif", 11).into_font().color(&colour))
-            }))
-            .map_err(|x| e(&x))?;
+            .legend(move |(x, y)| Circle::new((x + 9, y), 6, colour.filled()));
     }
-    let profiles: Vec<&&Aggregate> = aggs.iter().filter(|a| a.run.kind == "profile").collect();
     chart
-        .draw_series(profiles.iter().map(|a| {
-            let p = (a.ratio, a.mean_flip.max(floor));
-            EmptyElement::at(p) + Rectangle::new([(-6, -6), (6, 6)], BLACK.filled()) + Text::new(a.run.name.clone(), (9, -18), ("sans-serif", 16))
-        }))
+        .draw_series(aggs.iter().filter(|a| a.run.kind == "profile").map(|a| EmptyElement::at(at(a)) + Rectangle::new([(-7, -7), (7, 7)], BLACK.filled())))
         .map_err(|x| e(&x))?
         .label("profile")
-        .legend(|(x, y)| Rectangle::new([(x + 3, y - 5), (x + 13, y + 5)], BLACK.filled()));
+        .legend(|(x, y)| Rectangle::new([(x + 3, y - 6), (x + 15, y + 6)], BLACK.filled()));
+    let legend_font = 16;
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .label_font(("sans-serif", 13))
+        .label_font(("sans-serif", legend_font))
         .position(SeriesLabelPosition::UpperRight)
         .draw()
         .map_err(|x| e(&x))?;
+
+    // Labels in pixels: profiles first (they matter most), then the sweep values.
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let bounds = labels::Rect { x0: xs.start, y0: ys.start, x1: xs.end, y1: ys.end };
+    let mut obstacles: Vec<labels::Rect> = aggs.iter().map(|a| labels::Rect::around(chart.backend_coord(&at(a)), 13)).collect();
+    obstacles.extend(aggs.iter().filter(|a| bar(a) > 0.0).map(|a| {
+        let (x, y) = at(a);
+        let (left, right) = (chart.backend_coord(&(x - bar(a), y)), chart.backend_coord(&(x + bar(a), y)));
+        labels::Rect { x0: left.0, y0: left.1 - 5, x1: right.0, y1: right.1 + 5 }
+    }));
+    // The legend box at the upper right, measured generously from its widest entry.
+    let entries: Vec<String> = ["Pareto front", "front", "tie within timing noise", "profile"]
+        .map(String::from)
+        .into_iter()
+        .chain(families.iter().map(|f| format!("{f} sweep")))
+        .collect();
+    let legend_style: TextStyle = ("sans-serif", legend_font).into();
+    let widest = entries.iter().map(|t| root.estimate_text_size(t, &legend_style).map_or(0, |s| s.0 as i32)).max().unwrap_or(0);
+    obstacles.push(labels::Rect { x0: xs.end - widest - 70, y0: ys.start, x1: xs.end, y1: ys.start + 20 + entries.len() as i32 * (legend_font + 8) });
+    let mut ordered: Vec<&&Aggregate> = aggs.iter().filter(|a| a.run.kind == "profile").collect();
+    // A sweep to the base profile's own value is the profile's measurement: its point is the
+    // profile's, and the profile's label names it.
+    let on_profile = |a: &Aggregate| aggs.iter().any(|p| p.run.kind == "profile" && at(p) == at(a));
+    ordered.extend(aggs.iter().filter(|a| a.run.kind != "profile" && !on_profile(a)));
+    let mut texts = Vec::new();
+    for a in &ordered {
+        let (text, style): (String, TextStyle) = if a.run.kind == "profile" {
+            (a.run.name.clone(), ("sans-serif", 24).into_font().color(&BLACK))
+        } else {
+            (a.run.value.clone().unwrap_or_default(), ("sans-serif", 18).into_font().color(&colour_of(a)))
+        };
+        let (w, h) = root.estimate_text_size(&text, &style).map_err(|x| e(&x))?;
+        // A few pixels of margin around the text, so that neighbours do not touch.
+        texts.push((labels::Label { anchor: chart.backend_coord(&at(a)), size: (w as i32 + 2 * PAD, h as i32 + 2 * PAD) }, text, style));
+    }
+    const PAD: i32 = 3;
+    let gap = 16;
+    let boxes = labels::place(&texts.iter().map(|t| t.0).collect::<Vec<_>>(), &obstacles, bounds, gap);
+    for ((label, text, style), b) in texts.into_iter().zip(boxes) {
+        // A label pushed out beyond the first ring gets a leader line to its point.
+        let (x, y) = label.anchor;
+        let nearest = (x.clamp(b.x0, b.x1), y.clamp(b.y0, b.y1));
+        if (nearest.0 - x).abs().max((nearest.1 - y).abs()) > gap + 2 {
+            root.draw(&PathElement::new(vec![(x, y), nearest], RGBColor(150, 150, 150))).map_err(|x| e(&x))?;
+        }
+        root.draw(&Text::new(text, (b.x0 + PAD, b.y0 + PAD), style)).map_err(|x| e(&x))?;
+    }
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
@@ -272,6 +363,21 @@ fn knob_table(result: &BenchResult, knob: &str, labels: &[(&str, &str)]) -> Stri
     s
 }
 
+/// One run of the profile and Pareto tables (Markdown).
+fn aggregate_line(a: &Aggregate) -> String {
+    format!(
+        "| {} | {:.2}× {} | {:.3} | {} | {:.5} | {:.4} | {} |\n",
+        a.run.name,
+        a.ratio,
+        spread(a.ratio_spread),
+        a.composite_ms,
+        db(a.psnr),
+        a.mean_flip,
+        a.max_abs,
+        front_label(a)
+    )
+}
+
 pub fn markdown(result: &BenchResult, image: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Accuracy and cost of the profiles and quality knobs\n");
@@ -280,7 +386,9 @@ pub fn markdown(result: &BenchResult, image: &str) -> String {
         s,
         "- Adapter: {}; times from {} timestamps, median of {} frames per option set and scene after one warm-up frame, the option sets taking turns frame by frame \
          (so load changes on a shared machine hit them alike). Time is the \
-         composite pass over the one-tap pass-through composite of the same frames (\"comp/pt\"), averaged over scenes. Each scene is \
+         composite pass over the one-tap pass-through composite of the same frames (\"comp/pt\"), averaged over scenes; its spread (±) \
+         is the interquartile range of the per-frame ratios over their median, averaged over scenes. Two runs whose times differ \
+         by less than their combined spread are a tie within timing noise, not a Pareto verdict. Each scene is \
          rendered once per option set through the whole harness; composite is then re-run alone over that frame's G-buffers \
          (`tidepack_harness::composite_only`, pipeline made once per option set, uniform blocks bound as read-only storage so that \
          lavapipe does not recompile the shader at every draw; see docs/stress.md, \"Memory\"). The timed pass's image equals the \
@@ -318,52 +426,37 @@ pub fn markdown(result: &BenchResult, image: &str) -> String {
          on the 8-bit images the framebuffer would hold).\n"
     );
     let _ = writeln!(s, "## Profiles\n");
-    let _ = writeln!(s, "| profile | comp/pt | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
+    let _ = writeln!(s, "| profile | comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     for a in result.aggregates.iter().filter(|a| a.run.kind == "profile") {
-        let _ = writeln!(
-            s,
-            "| {} | {:.2}× | {:.3} | {} | {:.5} | {:.4} | {} |",
-            a.run.name,
-            a.ratio,
-            a.composite_ms,
-            db(a.psnr),
-            a.mean_flip,
-            a.max_abs,
-            front_label(a)
-        );
+        s.push_str(&aggregate_line(a));
     }
     let dominated: Vec<&Aggregate> = result.aggregates.iter().filter(|a| a.run.kind == "profile" && !near_front(a)).collect();
     if dominated.is_empty() {
-        let _ = writeln!(s, "\nEvery profile is on the Pareto front or within {:.0}% of it in both time and error.", 100.0 * NEAR_FRONT);
+        let _ = writeln!(
+            s,
+            "\nEvery profile is on the Pareto front, tied with a run on it within timing noise, or within {:.0}% of it in both time and error.",
+            100.0 * NEAR_FRONT
+        );
     } else {
         for a in dominated {
             let others: Vec<String> = a.dominated_by.iter().take(4).map(|(n, m)| format!("{n} ({:.0}%)", 100.0 * m)).collect();
             let _ = writeln!(s, "\n**{} is dominated** by {}: each is both faster and more accurate.", a.run.name, others.join(", "));
         }
     }
+    let _ = writeln!(s, "\n{}", ties_sentence(result));
     let _ = writeln!(s, "\n![time against error]({image})\n");
     let _ = writeln!(s, "## Schlick against exact Fresnel ({} with `FRESNEL_EXACT` off and on)\n", result.base_profile);
     s.push_str(&knob_table(result, "FRESNEL_EXACT", &[("off", "Schlick"), ("on", "exact")]));
     let _ = writeln!(s, "\n## Ramp against Beer–Lambert ({} with `ABSORPTION_MODEL` 0 and 1)\n", result.base_profile);
     s.push_str(&knob_table(result, "ABSORPTION_MODEL", &[("0", "ramp"), ("1", "Beer–Lambert")]));
     let _ = writeln!(s, "\n## Every run (Pareto table, mean over scenes)\n");
-    let _ = writeln!(s, "| run | comp/pt | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
+    let _ = writeln!(s, "| run | comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     let mut sorted: Vec<&Aggregate> = result.aggregates.iter().collect();
     sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
     for a in sorted {
-        let _ = writeln!(
-            s,
-            "| {} | {:.2}× | {:.3} | {} | {:.5} | {:.4} | {} |",
-            a.run.name,
-            a.ratio,
-            a.composite_ms,
-            db(a.psnr),
-            a.mean_flip,
-            a.max_abs,
-            front_label(a)
-        );
+        s.push_str(&aggregate_line(a));
     }
     let _ = writeln!(s, "\n## Profiles per scene\n");
     let _ = writeln!(s, "| scene | profile | comp/pt | PSNR dB | mean FLIP | max abs |");

@@ -14,7 +14,8 @@ pub struct BenchArgs {
     /// Folder of scene files.
     #[arg(long, default_value = "tests/scenes")]
     pub scenes: PathBuf,
-    /// Frames per option set and scene (at least 1); the median GPU time is reported.
+    /// Frames per option set and scene (at least 1); the median GPU time is reported, and the
+    /// frames' spread decides which Pareto verdicts are ties within timing noise.
     #[arg(long, default_value_t = 7, value_parser = clap::value_parser!(u64).range(1..))]
     pub frames: u64,
     /// Output folder.
