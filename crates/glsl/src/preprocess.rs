@@ -125,6 +125,7 @@ pub fn preprocess(
     pp.define_version_macros(&VersionDirective { number: 110, profile: None });
     let text = provider.read(entry).map_err(|e| Diagnostic::error(format!("cannot read {entry}: {e}"), None))?;
     pp.process_file(entry, &text)?;
+    debug_assert_eq!(pp.out.text.matches('\n').count(), pp.out.lines.len(), "one source line per output line");
     Ok(pp.out)
 }
 
@@ -159,11 +160,16 @@ struct OwnedToken {
     text: String,
 }
 
+/// A macro body's tokens: comments dropped, and a line continuation (white space holding a
+/// line break) read as a space, so that an expansion never adds a line.
 fn owned_tokens(tokens: &[Token<'_>]) -> Vec<OwnedToken> {
     tokens
         .iter()
         .filter(|t| !matches!(t.kind, TokenKind::LineComment | TokenKind::BlockComment | TokenKind::Newline))
-        .map(|t| OwnedToken { kind: t.kind, text: t.text.to_string() })
+        .map(|t| {
+            let text = if t.kind == TokenKind::Whitespace && t.text.contains('\n') { " " } else { t.text };
+            OwnedToken { kind: t.kind, text: text.to_string() }
+        })
         .collect()
 }
 
@@ -1117,6 +1123,15 @@ impl ExprParser<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_macro_continued_over_lines_adds_no_line_where_it_expands() {
+        let text = "#version 120\n#define BLEND(a, b) \\\n    mix(a, b, \\\n        0.5)\nfloat x = BLEND(1.0, 2.0);\nfloat y = undeclared;\n";
+        let out = run(&[("a.fsh", text)]).unwrap();
+        assert_eq!(out.text.matches('\n').count(), out.lines.len(), "{:?}", out.text);
+        let y = out.text.lines().position(|l| l.contains("undeclared")).unwrap() as u32 + 1;
+        assert_eq!(out.location(y), Some(Location::line("a.fsh", 6)));
+    }
 
     #[test]
     fn include_paths_resolve_as_optifine_resolves_them() {
