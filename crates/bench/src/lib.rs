@@ -149,7 +149,8 @@ pub struct Aggregate {
     /// Runs that dominate it beyond the timing noise, with the smaller of their two relative
     /// improvements, largest first.
     pub dominated_by: Vec<(String, f64)>,
-    /// Runs at least as accurate whose time is within the combined spread of this one's.
+    /// Runs at least as accurate whose time is within the combined spread of this one's,
+    /// fastest first.
     pub ties_with: Vec<String>,
 }
 

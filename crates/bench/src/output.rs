@@ -203,7 +203,7 @@ pub fn plot(result: &BenchResult, path: &Path) -> Result<(), String> {
     chart
         .configure_mesh()
         .x_desc(format!(
-            "composite / pass-through composite time ({} timestamps, median of {} frames; bars: ± interquartile range, overlapping bars are ties)",
+            "composite / pass-through composite time ({} timestamps, median of {} frames; bars: ± interquartile range, overlapping: no order in time)",
             result.timing_source, result.frames
         ))
         .y_desc("mean FLIP against the f64 reference (log)")

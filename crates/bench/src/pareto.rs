@@ -67,7 +67,8 @@ pub struct Judgement {
     /// Indices of the runs that dominate this one beyond the noise, with the smaller of their
     /// two relative improvements, largest first.
     pub dominated_by: Vec<(usize, f64)>,
-    /// Indices of the runs at least as accurate whose time is within the combined spread.
+    /// Indices of the runs at least as accurate whose time is within the combined spread,
+    /// fastest first.
     pub ties_with: Vec<usize>,
 }
 
@@ -95,6 +96,8 @@ pub fn judge(points: &[Point]) -> Vec<Judgement> {
                 }
             }
             dominated_by.sort_by(|x, y| y.1.total_cmp(&x.1));
+            // The fastest first: the one most likely to beat this run in the next measurement.
+            ties_with.sort_by(|&x, &y| points[x].time.total_cmp(&points[y].time));
             let verdict = if !dominated_by.is_empty() {
                 Verdict::Dominated
             } else if !ties_with.is_empty() {
@@ -149,6 +152,10 @@ mod tests {
         // accurate run: also a tie, since the next run could put it behind.
         let j = judge(&[point(0.98, 0.05, 0.02), point(1.00, 0.05, 0.01)]);
         assert_eq!(j[0].verdict, Verdict::Tie);
+
+        // Tied with two runs: the faster is named first.
+        let j = judge(&[point(1.00, 0.05, 0.03), point(1.04, 0.05, 0.01), point(0.98, 0.05, 0.02)]);
+        assert_eq!(j[0].ties_with, vec![2, 1]);
 
         // Far apart in time: the slower, more accurate run does not touch the faster one.
         let j = judge(&[point(1.0, 0.05, 0.02), point(2.0, 0.05, 0.01)]);

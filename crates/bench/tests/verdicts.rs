@@ -88,3 +88,26 @@ fn a_run_beaten_beyond_the_noise_is_dominated() {
     assert_eq!(result.aggregates[1].verdict, Verdict::Dominated);
     assert_eq!(result.aggregates[1].dominated_by[0].0, "HIGH+SSR_STEPS=16");
 }
+
+/// The plot draws spread bars, tie rings and placed labels for synthetic runs without a GPU.
+#[test]
+fn the_plot_of_synthetic_runs_is_written() {
+    let profiles = ["LOW", "MEDIUM", "HIGH", "ULTRA"].map(RunSpec::profile);
+    let sweeps = ["4", "6", "8", "10"].map(|v| RunSpec::sweep("HIGH", "SSR_STEPS", v));
+    let runs: Vec<RunSpec> = profiles.into_iter().chain(sweeps).collect();
+    // Close together, so that labels must move apart; errors falling run by run.
+    let rows = runs
+        .iter()
+        .enumerate()
+        .map(|(i, run)| {
+            let t = 2.0 + i as f64 * 0.1;
+            row(run, vec![t, t + 0.1, t + 0.3], 1.0, 0.1 / (1 + i) as f64)
+        })
+        .collect();
+    let result = bench_result(&runs, rows);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pareto.png");
+    output::plot(&result, &path).unwrap();
+    let image = image::open(&path).unwrap();
+    assert_eq!((image.width(), image.height()), (1400, 900));
+}
