@@ -384,15 +384,32 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
             (*value, module.types[*ty].inner.clone())
         }
-        FunctionError::Expression { source: ExpressionError::InvalidBinaryOperandTypes { lhs_expr, rhs_expr, .. }, .. } => {
+        FunctionError::Expression {
+            handle,
+            source: ExpressionError::InvalidBinaryOperandTypes { lhs_expr, rhs_expr, .. },
+        } => {
             // A vector and a scalar (`ivec2 % int`): GLSL applies the scalar to each component.
             let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
-            let (scalar, vector) = match (&lhs, &rhs) {
-                (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, lhs),
-                (naga::TypeInner::Scalar(_), naga::TypeInner::Vector { .. }) => (*lhs_expr, rhs),
+            let (scalar, other, vector) = match (&lhs, &rhs) {
+                (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, *lhs_expr, lhs),
+                (naga::TypeInner::Scalar(_), naga::TypeInner::Vector { .. }) => (*lhs_expr, *rhs_expr, rhs),
                 _ => return None,
             };
-            let span = function.expressions.get_span(scalar).to_range()?;
+            let whole = function.expressions.get_span(*handle).to_range()?;
+            let other = function.expressions.get_span(other).to_range()?;
+            // A named constant's span is its declaration's: the operand at this use is the part
+            // of the whole expression beside the other operand (and the operator).
+            let mut span = function.expressions.get_span(scalar).to_range()?;
+            if !(whole.start <= span.start && span.end <= whole.end) {
+                let operator_chars: &[char] = &['%', '*', '/', '+', '-', '&', '|', '^', '<', '>', ' ', '\t'];
+                span = if scalar == *rhs_expr {
+                    let after = other.end + text.get(other.end..whole.end)?.find(|c: char| !operator_chars.contains(&c))?;
+                    after..whole.end
+                } else {
+                    let before = whole.start + text.get(whole.start..other.start)?.trim_end_matches(operator_chars).len();
+                    whole.start..before
+                };
+            }
             let inner = text.get(span.clone())?;
             let constructor = glsl_type_name(&vector)?;
             return Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
