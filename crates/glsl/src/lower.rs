@@ -1061,6 +1061,7 @@ impl<'a> Lowering<'_, 'a> {
             let (texture_ty, sampler_ty) = split_sampler_type(ty).unwrap();
             let start = param.tokens[0];
             let end = *param.tokens.last().unwrap() + 1;
+            let name = self.lowered_name(name);
             self.replace_lines(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
         }
     }
@@ -1331,7 +1332,7 @@ impl<'a> Lowering<'_, 'a> {
                 calls.push((t.text.to_string(), paren_depth + 1, 0));
             } else if let Some(ty) = local_samplers.get(t.text).cloned() {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);
-                self.replace(i, i + 1, combined_use(t.text, &ty, passes_both));
+                self.replace(i, i + 1, combined_use(&self.lowered_name(t.text), &ty, passes_both));
             } else if let Some((lowered, ty)) = self.symbols.samplers.get(t.text).cloned()
                 && !(t.text == "texture" && followed_by_call)
             {
@@ -1412,6 +1413,11 @@ impl<'a> Lowering<'_, 'a> {
             _ => return VULKAN_ONLY_KEYWORDS.contains(&word),
         };
         self.version < keyword_since
+    }
+
+    /// The name a pack's identifier has in the lowered text.
+    fn lowered_name(&self, name: &str) -> String {
+        if self.is_keyword_only_to_naga(name) { format!("{RESERVED_PREFIX}kw_{name}") } else { name.to_string() }
     }
 
     /// An identifier that the stage's GLSL allows but naga reads as a keyword (`sampler`,

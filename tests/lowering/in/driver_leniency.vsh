@@ -16,6 +16,10 @@ float shade(const in float x, vec2 sampler) {
 	return x * sampler.x;
 };
 
+vec4 fetch(sampler2D sampler, vec2 uv) {
+	return texture2D(sampler, uv);
+}
+
 float lookup(vec2 uv) {
 	vec4 tex = texture2D(tex, uv);
 	bool isRaining = tex.a > 0.5;
@@ -25,5 +29,5 @@ float lookup(vec2 uv) {
 void main() {
 	gl_Position = ftransform();
 	texcoord = gl_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexID % 4));
-	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + (isRaining ? 1.0 : 0.0) + blend * rcpMax12;
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + (isRaining ? 1.0 : 0.0) + blend * rcpMax12 + fetch(tex, texcoord).r;
 }

@@ -16,6 +16,10 @@ float shade( in float x, vec2 tp_kw_sampler) {
 	return x * tp_kw_sampler.x;
 }
 
+vec4 fetch(texture2D tp_kw_sampler, sampler tp_sampler_tp_kw_sampler, vec2 uv) {
+	return textureLod(sampler2D(tp_kw_sampler, tp_sampler_tp_kw_sampler), uv, 0.0);
+}
+
 float lookup(vec2 uv) {
 	vec4 tex = textureLod(sampler2D(tex, tp_sampler_tex), uv, 0.0);
 	bool isRaining = tex.a > 0.5;
@@ -25,5 +29,5 @@ float lookup(vec2 uv) {
 void tp_main() {
 	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
 	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(int(gl_VertexIndex) % 4));
-	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend * rcpMax12;
+	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend * rcpMax12 + fetch(tex, tp_sampler_tex, texcoord).r;
 } void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); blend = tp_init_blend(); tp_main(); }
