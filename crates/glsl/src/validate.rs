@@ -218,7 +218,51 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
         *range = end.saturating_sub(1)..end;
     }
     let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
-    diagnostic_at(pre, text, provider, message, at)
+    let mut diagnostic = diagnostic_at(pre, text, provider, message, at);
+    if let ErrorKind::SemanticError(message) = &e.kind
+        && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
+    {
+        // The function exists, only not with these arguments: show what is declared.
+        let declared = declarations_of(pre, name);
+        if !declared.is_empty() {
+            diagnostic.message = format!("no declaration of `{name}` takes these arguments (their number or types differ)");
+            for (signature, location) in declared {
+                let at = location.map_or_else(String::new, |l| format!(" at {}:{}", l.path, l.line));
+                diagnostic = diagnostic.with_note(format!("declared: `{signature}`{at}"));
+            }
+        }
+    }
+    diagnostic
+}
+
+/// The pack's own declarations of function `name`: their signatures as written and where.
+fn declarations_of(pre: &Preprocessed, name: &str) -> Vec<(String, Option<Location>)> {
+    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut depth = 0;
+    let mut found = Vec::new();
+    for k in 0..sig.len() {
+        match sig[k].text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            _ => {}
+        }
+        let declares = depth == 0
+            && sig[k].is_ident(name)
+            && k > 0
+            && sig[k - 1].kind == TokenKind::Ident
+            && sig.get(k + 1).is_some_and(|t| t.is_punct("("));
+        if !declares {
+            continue;
+        }
+        let Some(close) = (k..sig.len()).find(|&j| sig[j].is_punct(")")) else { continue };
+        let parameters: Vec<&str> = sig[k + 2..close].iter().map(|t| t.text).collect();
+        let signature = format!("{} {name}({})", sig[k - 1].text, parameters.join(" ").replace(" ,", ","));
+        if !found.iter().any(|(s, _)| *s == signature) {
+            found.push((signature, pre.location(sig[k].line)));
+        }
+    }
+    found
 }
 
 /// What naga expected, as GLSL source spells it.
