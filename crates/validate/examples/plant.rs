@@ -311,7 +311,9 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
                 },
                 elapsed.as_secs_f64()
             );
-            plants.push(Plant { included: !stages.iter().any(|s| s.path == path), ..plant });
+            // A file OptiFine loads as a stage, or one only reached through `#include`.
+            let stage_file = programs::find_programs(std::iter::once(&path)).iter().any(|p| p.loader == Loader::OptiFine);
+            plants.push(Plant { included: !stage_file, ..plant });
         }
     }
     Ok(plants)
@@ -506,7 +508,8 @@ fn global_declaration(line: &str, out_line: usize, info: &mut StageInfo) {
     };
     if let Some(rest) = line.strip_prefix("uniform ") {
         // One name, no array: `NAME = NAME;` and `NAME + 1.0` then mean what they say.
-        if let Some((ty, name, ";")) = type_and_name(&strip_precision(rest)).as_ref().map(|(t, n, a)| (t.clone(), n.clone(), *a)) {
+        let decl = strip_precision(rest);
+        if let Some((ty, name, ";")) = type_and_name(&decl) {
             let global = Global { out_line, ty: ty.clone(), name };
             if VALUE_TYPES.contains(&ty.as_str()) {
                 info.uniforms.push(global);
@@ -549,9 +552,14 @@ fn choose(
     provider: &SetProvider<'_>,
     macros: &preprocess::PreprocessOptions,
 ) -> Option<Choice> {
+    // A file first, then a line of it: long files would take nearly every plant otherwise.
     let pick = |rng: &mut Rng, fits: &dyn Fn(&Anchor) -> bool| -> Option<&Anchor> {
-        let fitting: Vec<&Anchor> = anchors.iter().filter(|a| fits(a)).collect();
-        (!fitting.is_empty()).then(|| fitting[rng.below(fitting.len())])
+        let mut by_file: BTreeMap<&str, Vec<&Anchor>> = BTreeMap::new();
+        for a in anchors.iter().filter(|a| fits(a)) {
+            by_file.entry(&a.path).or_default().push(a);
+        }
+        let file = by_file.values().nth(rng.below(by_file.len().max(1)))?;
+        Some(file[rng.below(file.len())])
     };
     let before = |globals: &[Global], a: &Anchor| -> Vec<(String, String)> {
         globals.iter().filter(|g| g.out_line < a.out_line).map(|g| (g.ty.clone(), g.name.clone())).collect()
@@ -836,6 +844,14 @@ fn judge(
     }
     let warnings_here = report.diagnostics.iter().filter(|d| !d.is_error()).filter(at);
     plant.reported = new.iter().copied().chain(warnings_here).take(6).map(|d| d.to_string().replace('\n', " ")).collect();
+    if plant.outcome == Outcome::Missed {
+        // A miss is often explained by what the program was warned about (a stage naga never
+        // checked, for instance).
+        let warned = report.programs.iter().filter(|p| p.id == plant.program).flat_map(|p| &p.diagnostics);
+        let warnings: Vec<String> =
+            warned.map(|&i| &report.diagnostics[i]).filter(|d| !d.is_error()).take(3).map(|d| format!("program warning: {d}").replace('\n', " ")).collect();
+        plant.reported.extend(warnings);
+    }
     plant
 }
 
