@@ -731,6 +731,8 @@ impl<'a> Lowering<'_, 'a> {
         }
         let mut attribute_count = 0;
         let mut output_order = 0;
+        // Function headers seen so far, as token text.
+        let mut seen_headers: HashSet<String> = HashSet::new();
         for stmt in &statements {
             if let [only] = stmt.sig[..]
                 && self.tokens[only].is_punct(";")
@@ -740,6 +742,18 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let Some(decl) = Declaration::parse(self.tokens, stmt) else {
+                // GLSL allows a function to be declared again; naga refuses a second prototype.
+                let signature: Vec<&str> = stmt.sig.iter().map(|&i| self.tokens[i].text).collect();
+                let header = &signature[..signature.len() - 1];
+                let is_prototype = signature.last() == Some(&";") && header.contains(&"(");
+                if is_prototype && !seen_headers.insert(header.join(" ")) {
+                    let (start, end) = (stmt.sig[0], *stmt.sig.last().unwrap() + 1);
+                    self.replace_lines(start, end, String::new());
+                    continue;
+                }
+                if signature.last() == Some(&"{") {
+                    seen_headers.insert(header.join(" "));
+                }
                 self.lower_function_header(stmt);
                 continue;
             };

@@ -6,9 +6,13 @@ uniform int frameCounter;
 float gain = rain * 2.0;
 float frames = frameCounter;
 
+float fade(float specular);
+float fade(float specular);
 float fade(float specular) {
 	return specular * 0.5;
 }
+
+float fade(float specular);
 
 float ticks(int worldTime) {
 	int day = worldTime % 24000;

@@ -6,9 +6,13 @@ layout(location = 0) in float rain;
 float gain ; float tp_init_gain() { return rain * 2.0; }
 float frames ; float tp_init_frames() { return frameCounter; }
 
+float fade(float specular);
+
 float fade(float specular) {
 	return specular * 0.5;
 }
+
+
 
 float ticks(int worldTime) {
 	int day = worldTime % 24000;
