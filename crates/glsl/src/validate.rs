@@ -425,6 +425,15 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         return None;
     }
     let (value, target) = match source {
+        FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
+            // Control reaches the end of a function that returns a value: GLSL leaves the value
+            // undefined and drivers compile it; naga wants a `return` there.
+            let naga::valid::ValidationError::Function { handle, .. } = error else { return None };
+            let header = module.functions.get_span(*handle).to_range()?;
+            let body_end = matching_brace(text, header.start + text.get(header.start..)?.find('{')?)?;
+            let zero = glsl_type_name(&module.types[*ty].inner)?;
+            return Some(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
+        }
         FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
             (*value, module.types[*ty].inner.clone())
         }
@@ -465,6 +474,24 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     let span = function.expressions.get_span(value).to_range()?;
     let inner = text.get(span.clone())?;
     Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]))
+}
+
+/// The index of the `}` that closes the `{` at `open`.
+fn matching_brace(text: &str, open: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    for (i, b) in text.bytes().enumerate().skip(open) {
+        match b {
+            b'{' => depth += 1,
+            b'}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(i);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// GLSL's name of a scalar or vector type of 32-bit components (or bools).

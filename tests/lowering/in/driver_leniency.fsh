@@ -14,6 +14,12 @@ float fade(float specular) {
 
 float fade(float specular);
 
+int brightest(vec3 color) {
+	for (int i = 0; i < 2; i++) {
+		if (color[i] >= color[2]) return i;
+	}
+}
+
 float ticks(int worldTime) {
 	int day = worldTime % 24000;
 	float hours = day / 1000;
@@ -25,5 +31,5 @@ void main() {
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
 	float sample = fade(specular);
-	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames);
+	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
 }

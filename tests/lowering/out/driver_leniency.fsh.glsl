@@ -14,6 +14,12 @@ float fade(float specular) {
 
 
 
+int brightest(vec3 color) {
+	for (int i = 0; i < 2; i++) {
+		if (color[i] >= color[2]) return i;
+	}
+}
+
 float ticks(int worldTime) {
 	int day = worldTime % 24000;
 	float hours = day / 1000;
@@ -25,5 +31,5 @@ void tp_main() {
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
 	float tp_kw_sample = fade(specular);
-	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames);
+	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
 } void main() { gain = tp_init_gain(); frames = tp_init_frames(); tp_main(); }
