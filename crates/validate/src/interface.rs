@@ -63,8 +63,10 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                 }
             }
             Some(output) => {
+                // From GLSL 4.30 on only the fragment stage's interpolation qualifier counts.
                 let flat = |d: &VaryingDecl| d.interpolation.contains("flat");
-                if output.ty != input.ty || output.array != input.array || flat(output) != flat(input) {
+                let qualifiers_must_match = version_of(vertex).min(version_of(fragment)) < 430;
+                if output.ty != input.ty || output.array != input.array || (qualifiers_must_match && flat(output) != flat(input)) {
                     let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
                     found.push(Diagnostic::error(
                         format!(
