@@ -33,10 +33,11 @@ fn render_edited(edit: impl Fn(&str) -> String) -> (Output, Duration, PathBuf, t
 
 #[test]
 fn a_resolution_over_the_device_limits_is_refused_up_front() {
-    let (output, took, scene, work) = render_edited(|t| t.replacen("resolution = [640, 360]", "resolution = [8192, 8192]", 1));
+    let (output, took, _, work) = render_edited(|t| t.replacen("resolution = [640, 360]", "resolution = [8192, 8192]", 1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "{stderr}");
     assert!(stderr.contains("resolution 8192x8192 is too large") && stderr.contains("max_buffer_size"), "{stderr}");
+    assert!(stderr.contains("scene case4_above_near:"), "the error does not name the scene: {stderr}");
     assert!(stderr.contains("largest square resolution is 4096x4096"), "{stderr}");
     assert!(took < Duration::from_secs(10), "refused only after {took:?}");
     assert!(!work.path().join("out").exists(), "a refused scene wrote output");

@@ -247,6 +247,21 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
+/// Stand-ins for `textureGather*` on a `sampler2D`, which naga's GLSL front-end lacks: they
+/// check the arguments' types and sample the texture once (their result is never used).
+const GATHER_STAND_INS: [(&str, &str); 2] = [
+    (
+        "textureGather",
+        "vec4 textureGather(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0); } \
+         vec4 textureGather(texture2D t, sampler s, vec2 p, int c) { return textureLod(sampler2D(t, s), p, 0.0); }",
+    ),
+    (
+        "textureGatherOffset",
+        "vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o) { return textureLod(sampler2D(t, s), p, 0.0); } \
+         vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o, int c) { return textureLod(sampler2D(t, s), p, 0.0); }",
+    ),
+];
+
 /// Built-ins naga cannot evaluate in a constant expression (drivers can).
 const NOT_CONSTANT_FOLDED: &[&str] = &[
     "mix", "smoothstep", "exp2", "log2", "reflect", "refract", "faceforward", "transpose", "determinant", "inverse",
@@ -726,6 +741,10 @@ impl<'a> Lowering<'_, 'a> {
         self.lower_array_constructor_sizes();
         self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
+        for (name, _) in GATHER_STAND_INS {
+            // The stand-ins take the sampler's two halves, like the pack's own functions.
+            self.symbols.sampler_functions.insert(name.to_string(), vec![true, false, false, false, false]);
+        }
         for stmt in &statements {
             self.collect_function_signature(stmt);
         }
@@ -1343,6 +1362,9 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace(i, i + 1, "textureLod".to_string());
                 closers.push((paren_depth + 1, ", 0.0)"));
             } else if followed_by_call && self.symbols.sampler_functions.contains_key(t.text) {
+                if let Some((_, stand_in)) = GATHER_STAND_INS.iter().find(|(name, _)| *name == t.text) {
+                    self.add_header((*stand_in).to_string());
+                }
                 calls.push((t.text.to_string(), paren_depth + 1, 0));
             } else if let Some(ty) = local_samplers.get(t.text).cloned() {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);

@@ -160,7 +160,7 @@ fn validate_text(
                     text = repaired;
                     continue;
                 }
-                let message = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
+                let (message, span) = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
                     let mut message = e.as_inner().to_string();
                     let mut source = e.as_inner().source();
                     while let Some(inner) = source {
@@ -168,10 +168,12 @@ fn validate_text(
                         message.push_str(&inner.to_string());
                         source = inner.source();
                     }
-                    message
+                    (message, None)
                 });
-                // The spans go from the enclosing function to the offending expression: use the last.
-                let at = e.spans().filter(|(span, _)| span.is_defined()).last().map(|(span, _)| span.location(&text));
+                // naga's spans go from the enclosing function to the offending expression: use
+                // the last, unless the message knows a better place.
+                let span = span.filter(|s| s.is_defined()).or_else(|| e.spans().map(|(span, _)| *span).filter(|s| s.is_defined()).last());
+                let at = span.map(|span| span.location(&text));
                 return Err(vec![diagnostic_at(pre, &text, provider, message, at)]);
             }
         }
@@ -353,13 +355,32 @@ fn expression_types<'m>(
 }
 
 /// naga's validation errors that name expression handles, said with GLSL's types instead.
-fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> Option<String> {
-    use naga::valid::{ExpressionError, FunctionError};
+/// The message, and the span to point at when naga's own points elsewhere (a store's pointer
+/// spans the variable's declaration, not the assignment).
+fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> Option<(String, Option<naga::Span>)> {
+    use naga::valid::{ExpressionError, FunctionError, LocalVariableError};
     let (function, source) = failing_function(module, error)?;
     let mut type_of = expression_types(module, function);
-    let mut name = |expr| type_of(expr).and_then(|t| glsl_type_name(&t)).unwrap_or_else(|| "another type".into());
+    let mut name = |expr| match type_of(expr) {
+        Some(naga::TypeInner::Image { .. } | naga::TypeInner::Sampler { .. }) => "a sampler".to_string(),
+        Some(t) => glsl_type_name(&t).unwrap_or_else(|| "another type".into()),
+        None => "another type".into(),
+    };
     let function_name = function.name.as_deref().unwrap_or("main").trim_start_matches("tp_");
-    Some(match source {
+    if let FunctionError::InvalidStorePointer(pointer) = source {
+        let variable = pointer_name(module, function, *pointer).map_or("this".to_string(), |n| format!("`{n}`"));
+        let message = format!("{variable} cannot be assigned to: uniforms, inputs and constants are read-only");
+        return Some((message, store_span(&function.body, *pointer)));
+    }
+    let message = match source {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: None } => {
+            format!("`return` gives {} in `{function_name}`, which is declared `void`", name(*value))
+        }
+        FunctionError::LocalVariable { handle, name: local, source: LocalVariableError::InitializerType } => {
+            let declared = glsl_type_name(&module.types[function.local_variables[*handle].ty].inner).unwrap_or_else(|| "another type".into());
+            let init = function.local_variables[*handle].init.map_or_else(|| "another type".into(), &mut name);
+            format!("`{local}` is declared {declared} but initialised with {init} (GLSL converts only int to float implicitly)")
+        }
         FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => format!(
             "`return` gives {} in `{function_name}`, which is declared to return {} (GLSL converts return values only \
              from 4.20 on: write a constructor)",
@@ -377,6 +398,39 @@ fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> 
             format!("`{}` cannot combine {} and {}", operator_symbol(*op), name(*lhs_expr), name(*rhs_expr))
         }
         _ => return None,
+    };
+    Some((message, None))
+}
+
+/// The name of the variable (or uniform block member) a pointer expression designates.
+fn pointer_name(module: &naga::Module, function: &naga::Function, pointer: naga::Handle<naga::Expression>) -> Option<String> {
+    use naga::Expression as E;
+    match function.expressions[pointer] {
+        E::GlobalVariable(g) => module.global_variables[g].name.clone(),
+        E::LocalVariable(l) => function.local_variables[l].name.clone(),
+        E::AccessIndex { base, index } => match function.expressions[base] {
+            E::GlobalVariable(g) => match &module.types[module.global_variables[g].ty].inner {
+                naga::TypeInner::Struct { members, .. } => members.get(index as usize)?.name.clone(),
+                _ => module.global_variables[g].name.clone(),
+            },
+            _ => pointer_name(module, function, base),
+        },
+        E::Access { base, .. } => pointer_name(module, function, base),
+        _ => None,
+    }
+    .map(|n| n.trim_start_matches("tp_").to_string())
+}
+
+/// The span of the statement that stores through `pointer`.
+fn store_span(block: &naga::Block, pointer: naga::Handle<naga::Expression>) -> Option<naga::Span> {
+    use naga::Statement as S;
+    block.span_iter().find_map(|(statement, span)| match statement {
+        S::Store { pointer: p, .. } if *p == pointer => Some(*span),
+        S::Block(inner) => store_span(inner, pointer),
+        S::If { accept, reject, .. } => store_span(accept, pointer).or_else(|| store_span(reject, pointer)),
+        S::Loop { body, continuing, .. } => store_span(body, pointer).or_else(|| store_span(continuing, pointer)),
+        S::Switch { cases, .. } => cases.iter().find_map(|c| store_span(&c.body, pointer)),
+        _ => None,
     })
 }
 

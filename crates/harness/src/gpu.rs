@@ -298,7 +298,10 @@ pub fn render_repeated(
     passthrough: bool,
     frames: usize,
 ) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
-    gpu.check_resolution(scene.width(), scene.height())?;
+    gpu.check_resolution(scene.width(), scene.height()).map_err(|e| match e {
+        HarnessError::Scene(why) => HarnessError::Scene(format!("scene {}: {why}", scene.name)),
+        other => other,
+    })?;
     gpu.checked("frame", || render_frame(gpu, pack, scene, mesh, passthrough, frames.max(1)))?
 }
 

@@ -26,10 +26,14 @@ float ticks(int worldTime) {
 	return hours;
 }
 
+float gathered(vec2 uv) {
+	return textureGather(specular, uv).x + textureGather(specular, uv, 1).y;
+}
+
 void main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
-	float sample = fade(specular);
+	float sample = fade(specular) + gathered(texcoord);
 	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
 }

@@ -1,0 +1,7 @@
+#version 120
+uniform sampler2D colortex0;
+varying vec2 texcoord;
+void main() {
+	vec3 weights = vec2(0.5);
+	gl_FragData[0] = texture2D(colortex0, texcoord) * weights.x;
+}
