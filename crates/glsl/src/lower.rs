@@ -872,9 +872,9 @@ impl<'a> Lowering<'_, 'a> {
     }
 
     /// Global variables with initializers: drivers run the initializers at the start of
-    /// `main`, naga wants constant expressions there. Each initializer becomes the body of a
-    /// function `tp_init_<name>()` on its own line (so errors in it keep their line), and the
-    /// `main` wrapper assigns the globals in declaration order.
+    /// `main`, naga wants constant expressions there. Each initializer moves into a function
+    /// `tp_init_<name>()` on its own line (so errors in it keep their line), and the `main`
+    /// wrapper assigns the globals in declaration order.
     fn move_initializers_into_main(&mut self, decl: &Declaration<'a>) {
         let is_const = decl.qualifiers.contains(&"const") && !decl.names.iter().any(|(n, _)| self.unconst.contains(*n));
         if is_const || decl.qualifiers.contains(&"shared") {
@@ -887,8 +887,11 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
-            self.replace(equals, equals + 1, format!("; {}{suffix} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty));
-            self.replace(end, end + 1, format!("; }}{after}"));
+            // Through a local of the declared type, whose initializer converts as the global's
+            // would (int to float).
+            let ty = decl.ty;
+            self.replace(equals, equals + 1, format!("; {ty}{suffix} {RESERVED_PREFIX}init_{name}() {{ {ty} {RESERVED_PREFIX}value{suffix} ="));
+            self.replace(end, end + 1, format!("; return {RESERVED_PREFIX}value; }}{after}"));
             self.global_initializers.push(name.to_string());
         }
     }

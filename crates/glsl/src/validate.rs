@@ -377,6 +377,8 @@ fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> 
             format!("`return` gives {} in `{function_name}`, which is declared `void`", name(*value))
         }
         FunctionError::LocalVariable { handle, name: local, source: LocalVariableError::InitializerType } => {
+            // The lowering initialises a global `x` through a local in `tp_init_x`.
+            let local = function_name.strip_prefix("init_").unwrap_or(local);
             let declared = glsl_type_name(&module.types[function.local_variables[*handle].ty].inner).unwrap_or_else(|| "another type".into());
             let init = function.local_variables[*handle].init.map_or_else(|| "another type".into(), &mut name);
             format!("`{local}` is declared {declared} but initialised with {init} (GLSL converts only int to float implicitly)")
@@ -472,9 +474,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
     let mut type_of = expression_types(module, function);
-    // GLSL 1.10 converts nothing; 1.20 converts in assignments (the lowering's `tp_init_`
-    // functions return a global's initializer); returns convert from 4.20 on.
-    let is_initializer = function.name.as_deref().is_some_and(|n| n.starts_with("tp_init_"));
+    // GLSL 1.10 converts nothing; 1.20 converts in assignments; returns convert from 4.20 on.
     if version < 120 {
         return None;
     }
@@ -488,7 +488,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let zero = glsl_type_name(&module.types[*ty].inner)?;
             return Some(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
         }
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if version >= 420 => {
             (*value, module.types[*ty].inner.clone())
         }
         FunctionError::Expression {
