@@ -188,7 +188,10 @@ type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<
 fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) -> Result<NagaResult, Vec<Diagnostic>> {
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new().stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
-            let parsed = frontend.parse(&Options::from(naga_stage), text);
+            let parsed = frontend.parse(&Options::from(naga_stage), text).map(|mut module| {
+                callees_first(&mut module);
+                module
+            });
             let validated =
                 parsed.as_ref().ok().map(|module| Validator::new(ValidationFlags::all(), Capabilities::all()).validate(module));
             (parsed, validated)
@@ -198,6 +201,110 @@ fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) 
             Err(e) => Err(vec![Diagnostic::error(format!("cannot start naga's thread: {e}"), None)]),
         }
     })
+}
+
+/// GLSL lets a function call one that a prototype declared and that is defined later; naga's
+/// validator wants every function after the functions it calls. Reorders the function arena,
+/// and the calls' handles with it; nothing else changes.
+fn callees_first(module: &mut naga::Module) {
+    use naga::{Block, Expression, Function, Handle, Statement};
+    fn callees(block: &Block, out: &mut Vec<Handle<Function>>) {
+        for statement in block.iter() {
+            match statement {
+                Statement::Call { function, .. } => out.push(*function),
+                Statement::Block(inner) => callees(inner, out),
+                Statement::If { accept, reject, .. } => {
+                    callees(accept, out);
+                    callees(reject, out);
+                }
+                Statement::Switch { cases, .. } => cases.iter().for_each(|c| callees(&c.body, out)),
+                Statement::Loop { body, continuing, .. } => {
+                    callees(body, out);
+                    callees(continuing, out);
+                }
+                _ => {}
+            }
+        }
+    }
+    fn remap_block(block: &mut Block, map: &[Handle<Function>]) {
+        for statement in block.iter_mut() {
+            match statement {
+                Statement::Call { function, .. } => *function = map[function.index()],
+                Statement::Block(inner) => remap_block(inner, map),
+                Statement::If { accept, reject, .. } => {
+                    remap_block(accept, map);
+                    remap_block(reject, map);
+                }
+                Statement::Switch { cases, .. } => cases.iter_mut().for_each(|c| remap_block(&mut c.body, map)),
+                Statement::Loop { body, continuing, .. } => {
+                    remap_block(body, map);
+                    remap_block(continuing, map);
+                }
+                _ => {}
+            }
+        }
+    }
+    fn remap(function: &mut Function, map: &[Handle<Function>]) {
+        remap_block(&mut function.body, map);
+        for (_, expression) in function.expressions.iter_mut() {
+            if let Expression::CallResult(callee) = expression {
+                *callee = map[callee.index()];
+            }
+        }
+    }
+    let calls: Vec<Vec<Handle<Function>>> = module
+        .functions
+        .iter()
+        .map(|(_, f)| {
+            let mut out = Vec::new();
+            callees(&f.body, &mut out);
+            out
+        })
+        .collect();
+    if calls.iter().enumerate().all(|(caller, callees)| callees.iter().all(|c| c.index() < caller)) {
+        return;
+    }
+    // Depth-first post-order, without recursion (a pack may have thousands of functions); a
+    // call cycle (GLSL forbids recursion) is left for the validator to report.
+    let mut order = Vec::with_capacity(calls.len());
+    let mut placed = vec![false; calls.len()];
+    let mut entered = vec![false; calls.len()];
+    for root in 0..calls.len() {
+        let mut stack = vec![(root, 0usize)];
+        while let Some((node, next)) = stack.pop() {
+            if placed[node] {
+                continue;
+            }
+            entered[node] = true;
+            match calls[node].get(next) {
+                Some(callee) => {
+                    stack.push((node, next + 1));
+                    let callee = callee.index();
+                    if !entered[callee] {
+                        stack.push((callee, 0));
+                    }
+                }
+                None => {
+                    placed[node] = true;
+                    order.push(node);
+                }
+            }
+        }
+    }
+    let mut old: Vec<Option<(Function, naga::Span)>> = module.functions.drain().map(|(_, f, span)| Some((f, span))).collect();
+    let mut map: Vec<Option<Handle<Function>>> = vec![None; old.len()];
+    for index in order {
+        if let Some((function, span)) = old[index].take() {
+            map[index] = Some(module.functions.append(function, span));
+        }
+    }
+    let map: Vec<Handle<Function>> = map.into_iter().map(|h| h.expect("every function is placed")).collect();
+    for (_, function) in module.functions.iter_mut() {
+        remap(function, &map);
+    }
+    for entry in &mut module.entry_points {
+        remap(&mut entry.function, &map);
+    }
 }
 
 /// A parse error in GLSL's words, at the pack file and line.

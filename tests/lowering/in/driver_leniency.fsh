@@ -26,6 +26,19 @@ float ticks(int worldTime) {
 	return hours;
 }
 
+// A function declared first and defined after one it calls: GLSL allows it, naga wants
+// callees first.
+float lift(float x);
+float doubled(float x) {
+	return lift(x) * 2.0;
+}
+float raise(float x) {
+	return x + 1.0;
+}
+float lift(float x) {
+	return raise(x);
+}
+
 float gathered(vec2 uv) {
 	return textureGather(specular, uv).x + textureGather(specular, uv, 1).y;
 }
@@ -34,6 +47,6 @@ void main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
-	float sample = fade(specular) + gathered(texcoord);
+	float sample = fade(specular) + gathered(texcoord) + doubled(rain);
 	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
 }

@@ -26,6 +26,19 @@ float ticks(int worldTime) {
 	return hours;
 }
 
+
+
+float lift(float x);
+float doubled(float x) {
+	return lift(x) * 2.0;
+}
+float raise(float x) {
+	return x + 1.0;
+}
+float lift(float x) {
+	return raise(x);
+}
+
 float gathered(vec2 uv) {
 	return textureGather(specular, tp_sampler_specular, uv).x + textureGather(specular, tp_sampler_specular, uv, 1).y;
 }
@@ -34,6 +47,6 @@ void tp_main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
-	float tp_kw_sample = fade(specular) + gathered(texcoord);
+	float tp_kw_sample = fade(specular) + gathered(texcoord) + doubled(rain);
 	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
 } void main() { gain = tp_init_gain(); frames = tp_init_frames(); tp_main(); }
