@@ -69,6 +69,10 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
             assert!(names.contains(&required), "{dialect}: {required} missing from {names:?}");
         }
         assert!(names.iter().all(|n| n.starts_with("shaders/")), "{names:?}");
+        // OptiFine shows a lang value as written, Iris reads it as Java properties: no escapes.
+        let lang = &entries["shaders/lang/en_us.lang"];
+        assert!(!lang.contains('\\'), "{dialect}: a backslash OptiFine would show: {lang}");
+        assert!(lang.contains("=\u{a0}blocks"), "{dialect}: the unit's leading space must survive Iris: {lang}");
         for (name, text) in &entries {
             if name.ends_with(".vsh") || name.ends_with(".fsh") {
                 assert_eq!(text.lines().next(), Some(version), "{name}");

@@ -116,7 +116,27 @@ impl Manifest {
                 ));
             }
         }
+        for menu in manifest.menu_texts() {
+            if let Some((index, c)) = menu.char_indices().find(|(_, c)| *c == '\\' || c.is_control()) {
+                // The text before the bad character appears in the TOML as written.
+                let at = line_of(text, "", &menu[..index]).map(|l| Location::line(path, l));
+                return Err(Diagnostic::error(format!("menu text {menu:?} contains {c:?}"), at).with_note(
+                    "lang files are read differently by OptiFine (text as written) and Iris (Java properties: \
+                     `\\` escapes, line continuations); write the text without backslashes or line breaks",
+                ));
+            }
+        }
         Ok(manifest)
+    }
+
+    /// Every text that goes into the lang file.
+    fn menu_texts(&self) -> impl Iterator<Item = &str> {
+        let profiles = self.profiles.iter().flat_map(|p| [p.label.as_str(), p.comment.as_str()]);
+        let screens = self.screen.subs.values().flat_map(|s| [s.label.as_str(), s.comment.as_str()]);
+        let options = self.options.values().flat_map(|o| {
+            [o.label.as_str(), o.comment.as_str()].into_iter().chain(o.values.values().map(String::as_str)).chain(o.suffix.as_deref())
+        });
+        profiles.chain(screens).chain(options)
     }
 }
 

@@ -78,40 +78,37 @@ pub fn lang(m: &Manifest, manifest_name: &str) -> String {
     let profile_names: Vec<&str> = m.profiles.iter().map(|p| p.name.as_str()).collect();
     writeln!(out, "profile.comment=Profiles set every option at once: {}.", profile_names.join(", ")).unwrap();
     for p in &m.profiles {
-        writeln!(out, "profile.{}={}", p.name, escape(&p.label)).unwrap();
-        writeln!(out, "profile.{}.comment={}", p.name, escape(&p.comment)).unwrap();
+        writeln!(out, "profile.{}={}", p.name, lang_value(&p.label)).unwrap();
+        writeln!(out, "profile.{}.comment={}", p.name, lang_value(&p.comment)).unwrap();
     }
     out.push_str("\n# Screens\n");
     for (name, sub) in &m.screen.subs {
-        writeln!(out, "screen.{name}={}", escape(&sub.label)).unwrap();
-        writeln!(out, "screen.{name}.comment={}", escape(&sub.comment)).unwrap();
+        writeln!(out, "screen.{name}={}", lang_value(&sub.label)).unwrap();
+        writeln!(out, "screen.{name}.comment={}", lang_value(&sub.comment)).unwrap();
     }
     out.push_str("\n# Options\n");
     for (name, text) in &m.options {
-        writeln!(out, "option.{name}={}", escape(&text.label)).unwrap();
-        writeln!(out, "option.{name}.comment={}", escape(&text.comment)).unwrap();
+        writeln!(out, "option.{name}={}", lang_value(&text.label)).unwrap();
+        writeln!(out, "option.{name}.comment={}", lang_value(&text.comment)).unwrap();
         for (value, label) in &text.values {
-            writeln!(out, "value.{name}.{value}={}", escape(label)).unwrap();
+            writeln!(out, "value.{name}.{value}={}", lang_value(label)).unwrap();
         }
         if let Some(suffix) = &text.suffix {
-            writeln!(out, "suffix.{name}={}", escape(suffix)).unwrap();
+            writeln!(out, "suffix.{name}={}", lang_value(suffix)).unwrap();
         }
     }
     out
 }
 
-/// Escapes a value for a Java properties file (lang files are read as such).
-fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for (i, c) in text.chars().enumerate() {
-        match c {
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            ' ' if i == 0 => out.push_str("\\ "),
-            c => out.push(c),
-        }
+/// A lang value that OptiFine and Iris show alike. OptiFine takes the text after `=` as it
+/// is; Iris reads Java properties, which unescapes `\` and strips leading white space. So a
+/// leading space (a unit after the value: " blocks") becomes a no-break space, which neither
+/// touches; the manifest refuses backslashes and line breaks.
+fn lang_value(text: &str) -> String {
+    match text.strip_prefix(' ') {
+        Some(rest) => format!("\u{a0}{rest}"),
+        None => text.to_string(),
     }
-    out
 }
 
 #[cfg(test)]
@@ -119,7 +116,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn escapes_properties_values() {
-        assert_eq!(escape(" a\\b\nc"), "\\ a\\\\b\\nc");
+    fn lang_values_read_the_same_in_optifine_and_iris() {
+        assert_eq!(lang_value(" blocks"), "\u{a0}blocks");
+        assert_eq!(lang_value("x pure water"), "x pure water");
+        assert!(!lang_value(" blocks").contains('\\'), "OptiFine would show the backslash");
     }
 }
