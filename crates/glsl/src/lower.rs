@@ -887,11 +887,8 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
-            // Through a local of the declared type, whose initializer converts as the global's
-            // would (int to float).
-            let ty = decl.ty;
-            self.replace(equals, equals + 1, format!("; {ty}{suffix} {RESERVED_PREFIX}init_{name}() {{ {ty} {RESERVED_PREFIX}value{suffix} ="));
-            self.replace(end, end + 1, format!("; return {RESERVED_PREFIX}value; }}{after}"));
+            self.replace(equals, equals + 1, format!("; {}{suffix} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty));
+            self.replace(end, end + 1, format!("; }}{after}"));
             self.global_initializers.push(name.to_string());
         }
     }

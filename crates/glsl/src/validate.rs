@@ -484,18 +484,22 @@ fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> 
             format!("`return` gives {} in `{function_name}`, which is declared `void`", name(*value))
         }
         FunctionError::LocalVariable { handle, name: local, source: LocalVariableError::InitializerType } => {
-            // The lowering initialises a global `x` through a local in `tp_init_x`.
-            let local = function_name.strip_prefix("init_").unwrap_or(local);
             let declared = glsl_type_name(&module.types[function.local_variables[*handle].ty].inner).unwrap_or_else(|| "another type".into());
             let init = function.local_variables[*handle].init.map_or_else(|| "another type".into(), &mut name);
             format!("`{local}` is declared {declared} but initialised with {init} (GLSL converts only int to float implicitly)")
         }
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => format!(
-            "`return` gives {} in `{function_name}`, which is declared to return {} (GLSL converts return values only \
-             from 4.20 on: write a constructor)",
-            name(*value),
-            glsl_type_name(&module.types[*ty].inner).unwrap_or_else(|| "another type".into())
-        ),
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => {
+            let declared = glsl_type_name(&module.types[*ty].inner).unwrap_or_else(|| "another type".into());
+            match function_name.strip_prefix("init_") {
+                // The lowering's function that holds a global's initializer.
+                Some(global) => format!("`{global}` is declared {declared} but initialised with {}", name(*value)),
+                None => format!(
+                    "`return` gives {} in `{function_name}`, which is declared to return {declared} (GLSL converts \
+                     return values only from 4.20 on: write a constructor)",
+                    name(*value)
+                ),
+            }
+        }
         FunctionError::InvalidStoreTypes { pointer, value } => {
             let target = match type_of_pointee(module, function, *pointer) {
                 Some(t) => glsl_type_name(&t).unwrap_or_else(|| "another type".into()),
@@ -581,7 +585,9 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
     let mut type_of = expression_types(module, function);
-    // GLSL 1.10 converts nothing; 1.20 converts in assignments; returns convert from 4.20 on.
+    // GLSL 1.10 converts nothing; 1.20 converts in assignments (the lowering's `tp_init_`
+    // functions return a global's initializer); returns convert from 4.20 on.
+    let is_initializer = function.name.as_deref().is_some_and(|n| n.starts_with("tp_init_"));
     if version < 120 {
         return None;
     }
@@ -595,7 +601,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let zero = glsl_type_name(&module.types[*ty].inner)?;
             return Some(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
         }
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if version >= 420 => {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
             (*value, module.types[*ty].inner.clone())
         }
         FunctionError::Expression {

@@ -607,6 +607,16 @@ fn clarify(mut diag: Diagnostic) -> Diagnostic {
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
+    if diag.message.contains("Unable to operate on image class Sampled { kind: Uint")
+        || diag.message.contains("Unable to operate on image class Sampled { kind: Sint")
+    {
+        // GLSL samples integer textures (nearest texel); naga only loads from them.
+        diag.severity = tidepack_glsl::Severity::Warning;
+        diag.message = "sampling an integer texture (isampler*/usampler*) is not checked: naga refuses it, drivers \
+                        accept it (`--driver` compiles it with Mesa)"
+            .into();
+        return diag;
+    }
     if let Some(name) = unknown.as_deref()
         && sampling.contains(&name)
     {

@@ -3,8 +3,8 @@ layout(std140, set = 1, binding = 0) uniform tp_Uniforms { int frameCounter; }; 
 layout(location = 1) in vec2 texcoord;
 layout(location = 0) in float rain;
 
-float gain ; float tp_init_gain() { float tp_value = rain * 2.0; return tp_value; }
-float frames ; float tp_init_frames() { float tp_value = frameCounter; return tp_value; }
+float gain ; float tp_init_gain() { return rain * 2.0; }
+float frames ; float tp_init_frames() { return frameCounter; }
 
 float fade(float specular);
 

@@ -3,11 +3,11 @@ layout(std140, set = 0, binding = 0) uniform tp_Uniforms { float rainStrength; i
 
 layout(set = 0, binding = 1) uniform texture2D tex; layout(set = 0, binding = 2) uniform sampler tp_sampler_tex;
 
-float sign_of_rain ; float tp_init_sign_of_rain() { float tp_value = rainStrength < 0.5 ? 1.0 : -1.0; return tp_value; }
-vec2 offsets[2] ; vec2[2] tp_init_offsets() { vec2 tp_value[2] = vec2[2](vec2(rainStrength), vec2(0.0)); return tp_value; } vec2 scale ; vec2 tp_init_scale() { vec2 tp_value = vec2(2.0); return tp_value; }
+float sign_of_rain ; float tp_init_sign_of_rain() { return rainStrength < 0.5 ? 1.0 : -1.0; }
+vec2 offsets[2] ; vec2[2] tp_init_offsets() { return vec2[2](vec2(rainStrength), vec2(0.0)); } vec2 scale ; vec2 tp_init_scale() { return vec2(2.0); }
 const vec3[3] palette = vec3[3](vec3(1.0), vec3(0.5), vec3(0.25));
- float wet ; float tp_init_wet() { float tp_value = 1.0 > 0.5 ? 0.75 : length(tp_rt_normalize(vec3(0.0))); return tp_value; }
- float blend ; float tp_init_blend() { float tp_value = mix(0.25, 0.75, 0.5); return tp_value; }
+ float wet ; float tp_init_wet() { return 1.0 > 0.5 ? 0.75 : length(tp_rt_normalize(vec3(0.0))); }
+ float blend ; float tp_init_blend() { return mix(0.25, 0.75, 0.5); }
 const float rcpMax12 = 1.0 / (pow(2.0, 12.0) - 1.0);
 layout(location = 1) out vec2 texcoord;
 layout(location = 0) out float rain;
