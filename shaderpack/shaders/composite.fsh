@@ -32,6 +32,8 @@ uniform sampler2D depthtex0;
 uniform sampler2D depthtex1;
 #if CAUSTICS_MODE == 1
 uniform sampler2D noisetex;
+// OptiFine binds noisetex only for a pack that declares its size (or a texture.noise).
+const int noiseTextureResolution = 256;
 #endif
 
 uniform mat4 gbufferProjection;

@@ -7,7 +7,9 @@
 #include "/lib/generated.glsl"
 #include "/lib/waves.glsl"
 
-in vec4 mc_Entity;
+// `attribute`, which GLSL 330 compatibility keeps: OptiFine for Minecraft 1.16.5 and older binds
+// mc_Entity only where a line declares it with that word.
+attribute vec4 mc_Entity;
 
 uniform mat4 gbufferModelView;
 uniform mat4 gbufferModelViewInverse;

@@ -69,6 +69,16 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
             assert!(names.contains(&required), "{dialect}: {required} missing from {names:?}");
         }
         assert!(names.iter().all(|n| n.starts_with("shaders/")), "{names:?}");
+        // What OptiFine needs to draw the water at all (docs/loaders.md): no alpha test on the
+        // translucent layer, whose colortex0 alpha is 0, and noisetex bound where it is read.
+        let properties = &entries["shaders/shaders.properties"];
+        assert!(properties.lines().any(|l| l.trim() == "alphaTest.gbuffers_water=off"), "{dialect}: {properties}");
+        let water_vertex = &entries["shaders/gbuffers_water.vsh"];
+        assert!(water_vertex.lines().any(|l| l.trim() == "attribute vec4 mc_Entity;"), "{dialect}: OptiFine <= 1.16.5 would not bind mc_Entity");
+        let composite = &entries["shaders/composite.fsh"];
+        if composite.contains("uniform sampler2D noisetex;") {
+            assert!(composite.contains("const int noiseTextureResolution"), "{dialect}: noisetex is never bound on OptiFine");
+        }
         // OptiFine shows a lang value as written, Iris reads it as Java properties: no escapes.
         let lang = &entries["shaders/lang/en_us.lang"];
         assert!(!lang.contains('\\'), "{dialect}: a backslash OptiFine would show: {lang}");
@@ -416,6 +426,8 @@ fn build_for_a_scene_folds_its_uniforms_validates_and_measures_the_speedup() {
     for dialect in Dialect::ALL {
         let zip = out.path().join(format!("Tidepack-0.1.0-{}-case2_under_down.zip", dialect.slug()));
         let entries = zip_entries(&zip);
+        let water_vertex = &entries["shaders/gbuffers_water.vsh"];
+        assert!(water_vertex.lines().any(|l| l.trim() == "attribute vec4 mc_Entity;"), "{dialect}: OptiFine <= 1.16.5 would not bind mc_Entity");
         let composite = &entries["shaders/composite.fsh"];
         // The camera of this scene is under water; the animation clock stays a uniform.
         assert!(composite.contains("const int isEyeInWater = 1; // uniform folded for"), "{composite}");
@@ -541,7 +553,7 @@ fn properties_optifine_would_ignore_are_refused() {
         ),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_watr.colortex4\" = \"off\"", "no program gbuffers_watr"),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_water.colortex44\" = \"off\"", "colortex44 is not a colour buffer"),
-        ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"alphaTest.gbuffers_water\" = \"GREATER\"", "an alpha test is"),
+        ("\"alphaTest.gbuffers_water\" = \"off\"", "\"alphaTest.gbuffers_water\" = \"GREATER\"", "an alpha test is"),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"oldLighting\" = \"yes\"", "takes true or false"),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"sliders\" = \"SSR_STEPS\"", "from [screen]"),
     ];
