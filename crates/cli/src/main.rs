@@ -81,6 +81,13 @@ enum DialectArg {
 }
 
 fn main() -> ExitCode {
+    // A panic inside naga becomes a diagnostic; its panic message would only repeat it raw.
+    let report_panic = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if std::thread::current().name() != Some(tidepack_glsl::validate::NAGA_THREAD) {
+            report_panic(info);
+        }
+    }));
     let cli = Cli::parse();
     match cli.command {
         Command::Build { source, out, dialect, profile, exhaustive, scene } => {

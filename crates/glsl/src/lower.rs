@@ -738,6 +738,7 @@ impl<'a> Lowering<'_, 'a> {
 
     fn run(&mut self) -> Result<(), LowerError> {
         let version_index = self.find_version()?;
+        self.lower_initializer_lists();
         self.lower_array_constructor_sizes();
         self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
@@ -980,6 +981,79 @@ impl<'a> Lowering<'_, 'a> {
             }
         }
         false
+    }
+
+    /// `T x[3] = { a, b, c };` (GLSL 4.20's initializer lists, which naga lacks) becomes
+    /// `T x[3] = T[3](a, b, c);`, and `vec3 v = { a, b, c };` becomes `vec3(a, b, c)`; the braces
+    /// of an array's elements become constructors of the element type. A list whose type the
+    /// declaration does not spell out (a struct's members) is left to naga.
+    fn lower_initializer_lists(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
+        for k in 1..sig.len() {
+            if !(text(k) == "=" && text(k + 1) == "{") {
+                continue;
+            }
+            // `T name = {`, `T name[N] = {` or `T[N] name = {`.
+            // (element type, array size as written, the `[` of the size, index of the name)
+            let (element, size, open, name_at) = if text(k - 1) == "]" {
+                let Some(open) = (0..k - 1).rev().find(|&j| text(j) == "[") else { continue };
+                let size: String = (open + 1..k - 1).map(text).collect();
+                (open.checked_sub(2).map(text), Some(size), Some(open), open.saturating_sub(1))
+            } else if text(k - 2) == "]" {
+                let Some(open) = (0..k - 2).rev().find(|&j| text(j) == "[") else { continue };
+                let size: String = (open + 1..k - 2).map(text).collect();
+                (open.checked_sub(1).map(text), Some(size), Some(open), k - 1)
+            } else {
+                (Some(text(k - 2)), None, None, k - 1)
+            };
+            let Some(element) = element.filter(|t| is_builtin_type(t)) else { continue };
+            if self.tokens[sig[name_at]].kind != TokenKind::Ident {
+                continue;
+            }
+            let mut depth = 0;
+            let mut count = 0;
+            let mut close = None;
+            for j in k + 1..sig.len() {
+                match text(j) {
+                    "{" => {
+                        depth += 1;
+                        if depth == 2 && size.is_some() {
+                            self.replace(sig[j], sig[j] + 1, format!("{element}("));
+                        }
+                    }
+                    "}" => {
+                        depth -= 1;
+                        if depth == 0 {
+                            close = Some(j);
+                            break;
+                        }
+                        if depth == 1 && size.is_some() {
+                            self.replace(sig[j], sig[j] + 1, ")".into());
+                        }
+                    }
+                    "," if depth == 1 => count += 1,
+                    _ => {}
+                }
+            }
+            let Some(close) = close else { continue };
+            let elements = count + usize::from(text(close - 1) != ",");
+            let constructor = match (&size, open) {
+                (Some(size), Some(open)) if size.is_empty() => {
+                    // The declaration's `[]` takes the size the list gives it.
+                    self.replace(sig[open], sig[open + 1] + 1, format!("[{elements}]"));
+                    format!("{element}[{elements}](")
+                }
+                (Some(size), _) => format!("{element}[{size}]("),
+                (None, _) => format!("{element}("),
+            };
+            self.replace(sig[k + 1], sig[k + 1] + 1, constructor);
+            // A trailing `,` is allowed in a list, not in a constructor.
+            if text(close - 1) == "," {
+                self.replace(sig[close - 1], sig[close - 1] + 1, String::new());
+            }
+            self.replace(sig[close], sig[close] + 1, ")".into());
+        }
     }
 
     /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it

@@ -90,6 +90,9 @@ pub const MAX_NESTING: usize = 256;
 pub const MAX_STATEMENT_OPERATORS: usize = 10_000;
 /// Stack of the thread naga runs on.
 const NAGA_STACK_BYTES: usize = 64 << 20;
+/// Name of the thread naga runs on: a panic there is naga's, which callers turn into a
+/// diagnostic (and may keep off the terminal).
+pub const NAGA_THREAD: &str = "naga";
 
 /// The line and the reason when `text` is beyond what naga is given: brackets nested past
 /// [`MAX_NESTING`] or a statement past [`MAX_STATEMENT_OPERATORS`] operators. A text the
@@ -187,7 +190,7 @@ type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<
 /// matter.
 fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) -> Result<NagaResult, Vec<Diagnostic>> {
     std::thread::scope(|scope| {
-        let worker = std::thread::Builder::new().stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
+        let worker = std::thread::Builder::new().name(NAGA_THREAD.into()).stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
             let parsed = frontend.parse(&Options::from(naga_stage), text).map(|mut module| {
                 callees_first(&mut module);
                 module

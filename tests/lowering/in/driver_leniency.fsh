@@ -39,8 +39,13 @@ float lift(float x) {
 	return raise(x);
 }
 
+// Initializer lists (GLSL 4.20), which naga lacks.
+float weights[3] = { 0.5, 1.0, 0.5 };
+const vec2 pairs[] = { { 1.0, 2.0 }, { 3.0, 4.0 }, };
+
 float gathered(vec2 uv) {
-	return textureGather(specular, uv).x + textureGather(specular, uv, 1).y;
+	vec3 scale = { 1.0, 2.0, 3.0 };
+	return textureGather(specular, uv).x * weights[1] + textureGather(specular, uv, 1).y * pairs[1].y * scale.z;
 }
 
 void main() {

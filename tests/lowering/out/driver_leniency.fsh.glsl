@@ -39,8 +39,13 @@ float lift(float x) {
 	return raise(x);
 }
 
+
+float weights[3] ; float[3] tp_init_weights() { return float[3]( 0.5, 1.0, 0.5 ); }
+const vec2 pairs[2] = vec2[2]( vec2( 1.0, 2.0 ), vec2( 3.0, 4.0 ) );
+
 float gathered(vec2 uv) {
-	return textureGather(specular, tp_sampler_specular, uv).x + textureGather(specular, tp_sampler_specular, uv, 1).y;
+	vec3 scale = vec3( 1.0, 2.0, 3.0 );
+	return textureGather(specular, tp_sampler_specular, uv).x * weights[1] + textureGather(specular, tp_sampler_specular, uv, 1).y * pairs[1].y * scale.z;
 }
 
 void tp_main() {
@@ -49,4 +54,4 @@ void tp_main() {
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
 	float tp_kw_sample = fade(specular) + gathered(texcoord) + doubled(rain);
 	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
-} void main() { gain = tp_init_gain(); frames = tp_init_frames(); tp_main(); }
+} void main() { gain = tp_init_gain(); frames = tp_init_frames(); weights = tp_init_weights(); tp_main(); }
