@@ -12,6 +12,17 @@ fn validate(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tidepack")).arg("validate").args(args).output().expect("run tidepack")
 }
 
+/// A pack folder with a pass-through `final.vsh` and the given `final.fsh`.
+fn pack_with_fragment(fragment: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let shaders = dir.path().join("pack/shaders");
+    std::fs::create_dir_all(&shaders).unwrap();
+    std::fs::write(shaders.join("final.vsh"), "#version 120\nvoid main() { gl_Position = ftransform(); }\n").unwrap();
+    std::fs::write(shaders.join("final.fsh"), fragment).unwrap();
+    let pack = dir.path().join("pack");
+    (dir, pack)
+}
+
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
@@ -93,12 +104,8 @@ fn json_is_the_same_on_every_run() {
 
 #[test]
 fn control_characters_from_a_pack_do_not_reach_the_terminal() {
-    let dir = tempfile::tempdir().unwrap();
-    let shaders = dir.path().join("pack/shaders");
-    std::fs::create_dir_all(&shaders).unwrap();
-    std::fs::write(shaders.join("final.vsh"), "#version 120\nvoid main() { gl_Position = ftransform(); }\n").unwrap();
-    std::fs::write(shaders.join("final.fsh"), "#version 120\nvoid main() { gl_FragColor = vec4(\u{1b}[31m); }\n").unwrap();
-    let out = validate(&[dir.path().join("pack").to_str().unwrap()]);
+    let (_dir, pack) = pack_with_fragment("#version 120\nvoid main() { gl_FragColor = vec4(\u{1b}[31m); }\n");
+    let out = validate(&[pack.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     assert!(!out.stderr.contains(&0x1b) && !out.stdout.contains(&0x1b), "{}", text(&out.stderr));
 }
@@ -114,18 +121,14 @@ fn the_template_source_folder_points_at_the_built_zip() {
 
 #[test]
 fn expressions_too_long_for_naga_are_errors_not_crashes() {
-    let dir = tempfile::tempdir().unwrap();
-    let shaders = dir.path().join("pack/shaders");
-    std::fs::create_dir_all(&shaders).unwrap();
-    std::fs::write(shaders.join("final.vsh"), "#version 120\nvoid main() { gl_Position = ftransform(); }\n").unwrap();
     let bodies = [
         format!("vec4 x = vec4(1.0); gl_FragColor = x{};", ".xyzw".repeat(100_000)),
         format!("float x = 1.0; gl_FragColor = vec4({});", vec!["x"; 50_000].join(" + ")),
         format!("float x = 1.0; gl_FragColor = vec4({}x);", "- ".repeat(100_000)),
     ];
     for body in bodies {
-        std::fs::write(shaders.join("final.fsh"), format!("#version 120\nvoid main() {{\n{body}\n}}\n")).unwrap();
-        let out = validate(&[dir.path().join("pack").to_str().unwrap(), "--format", "json"]);
+        let (_dir, pack) = pack_with_fragment(&format!("#version 120\nvoid main() {{\n{body}\n}}\n"));
+        let out = validate(&[pack.to_str().unwrap(), "--format", "json"]);
         assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON even for hostile input");
         let error = json["diagnostics"].as_array().unwrap().iter().find(|d| d["severity"] == "error").unwrap();

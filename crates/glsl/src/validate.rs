@@ -416,8 +416,12 @@ fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
     if !message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
         return None;
     }
-    let start = e.meta.to_range()?.start;
-    if !text[start..].starts_with("dot") {
+    scalar_dot_at(text, e.meta.to_range()?.start)
+}
+
+/// [`scalar_dot`] for the call that starts at byte `start`.
+fn scalar_dot_at(text: &str, start: usize) -> Option<String> {
+    if !text.get(start..)?.starts_with("dot") {
         return None;
     }
     // The lowering's header line follows `#version`, which comments may precede.
@@ -434,8 +438,6 @@ fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
     Some(repaired)
 }
 
-/// Wraps a value in a constructor where GLSL converts it implicitly (an `int` or `ivec`
-/// returned or stored where a `float` or `vec` is declared) and naga refuses the mismatch.
 /// The function a validation error is in, and the function's error.
 fn failing_function<'m>(
     module: &'m naga::Module,
@@ -584,6 +586,10 @@ fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: na
     }
 }
 
+/// Repairs what GLSL allows and naga refuses once types are known: a value GLSL converts
+/// implicitly (an `int` or `ivec` returned or stored where a `float` or `vec` is declared) gets
+/// a constructor, a scalar beside a vector a vector constructor, a function whose end is
+/// reachable without a `return` a final one, and `dot` of scalars the stand-in.
 fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32) -> Option<String> {
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
@@ -595,6 +601,18 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         return None;
     }
     let (value, target) = match source {
+        FunctionError::Expression { handle, source: ExpressionError::Type(naga::proc::ResolveError::BuiltinArgumentsInvalid(f)) }
+            if f == "Dot" =>
+        {
+            // The expression's span may be missing or start before the call; then the call is
+            // the first `dot(` from the start of the function.
+            let function_start = match error {
+                naga::valid::ValidationError::Function { handle, .. } => module.functions.get_span(*handle).to_range(),
+                _ => None,
+            };
+            let from = function.expressions.get_span(*handle).to_range().or(function_start)?.start;
+            return scalar_dot_at(text, from + text.get(from..)?.find("dot(")?);
+        }
         FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
             // Control reaches the end of a function that returns a value: GLSL leaves the value
             // undefined and drivers compile it; naga wants a `return` there.

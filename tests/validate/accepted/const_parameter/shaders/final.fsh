@@ -10,6 +10,9 @@ int brightest(vec3 c) {
 		if (c[i] >= c[2]) return i;
 	}
 }
+// dot of two scalars, in a function naga resolves while validating.
+float lengthSquared(float x) { return dot(x, x); }
+float lengthSquared(vec2 x) { return dot(x, x); }
 void main() {
-	gl_FragData[0] = vec4(tonemap(texture2D(colortex0, texcoord).rgb), float(brightest(vec3(0.5))));
+	gl_FragData[0] = vec4(tonemap(texture2D(colortex0, texcoord).rgb), float(brightest(vec3(0.5))) + lengthSquared(0.5) + lengthSquared(texcoord));
 }
