@@ -1014,12 +1014,12 @@ impl<'a> Lowering<'_, 'a> {
             let mut depth = 0;
             let mut count = 0;
             let mut close = None;
-            for j in k + 1..sig.len() {
+            for (j, &at) in sig.iter().enumerate().skip(k + 1) {
                 match text(j) {
                     "{" => {
                         depth += 1;
                         if depth == 2 && size.is_some() {
-                            self.replace(sig[j], sig[j] + 1, format!("{element}("));
+                            self.replace(at, at + 1, format!("{element}("));
                         }
                     }
                     "}" => {
@@ -1029,7 +1029,7 @@ impl<'a> Lowering<'_, 'a> {
                             break;
                         }
                         if depth == 1 && size.is_some() {
-                            self.replace(sig[j], sig[j] + 1, ")".into());
+                            self.replace(at, at + 1, ")".into());
                         }
                     }
                     "," if depth == 1 => count += 1,

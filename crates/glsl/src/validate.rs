@@ -188,13 +188,14 @@ type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<
 
 /// Parses and validates on a thread of its own, so that the caller's stack size does not
 /// matter.
+#[allow(clippy::result_large_err, reason = "naga's own result types, passed on as they are")]
 fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) -> Result<NagaResult, Vec<Diagnostic>> {
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new().name(NAGA_THREAD.into()).stack_size(NAGA_STACK_BYTES).spawn_scoped(scope, || {
-            let parsed = frontend.parse(&Options::from(naga_stage), text).map(|mut module| {
-                callees_first(&mut module);
-                module
-            });
+            let mut parsed = frontend.parse(&Options::from(naga_stage), text);
+            if let Ok(module) = &mut parsed {
+                callees_first(module);
+            }
             let validated =
                 parsed.as_ref().ok().map(|module| Validator::new(ValidationFlags::all(), Capabilities::all()).validate(module));
             (parsed, validated)

@@ -94,7 +94,7 @@ pub fn generate_validated(
     defaults: &OptionSet,
     coverage: Coverage,
     specialisation: Option<&Specialisation>,
-    progress: Option<&(dyn Fn(Dialect, Progress) + Sync)>,
+    progress: Option<&ProgressReport<'_>>,
 ) -> Result<Validated, BuildFailure> {
     let profiles: Vec<OptionSet> = source
         .manifest
@@ -141,8 +141,11 @@ pub fn generate_validated(
     if diagnostics.is_empty() { Ok((packs, warnings)) } else { Err(BuildFailure { diagnostics, written: Vec::new(), sources }) }
 }
 
+/// Hears how far each dialect's validation is.
+pub type ProgressReport<'a> = dyn Fn(Dialect, Progress) + Sync + 'a;
+
 /// Builds the pack (see the module docs); `progress` hears how far each dialect's validation is.
-pub fn build(opts: &BuildOptions, progress: Option<&(dyn Fn(Dialect, Progress) + Sync)>) -> Result<BuildReport, BuildFailure> {
+pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Result<BuildReport, BuildFailure> {
     let started = Instant::now();
     let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure::new(vec![d]))?;
     let options = pack_options::collect(&source).map_err(BuildFailure::new)?;

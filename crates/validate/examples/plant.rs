@@ -517,12 +517,12 @@ fn global_declaration(line: &str, out_line: usize, info: &mut StageInfo) {
                 info.samplers.push(global);
             }
         }
-    } else if let Some(rest) = line.strip_prefix("const ") {
-        if let Some((ty, name, after)) = type_and_name(&strip_precision(rest)) {
-            if VALUE_TYPES.contains(&ty.as_str()) && after.starts_with('=') {
-                info.consts.push(Global { out_line, ty, name });
-            }
-        }
+    } else if let Some(rest) = line.strip_prefix("const ")
+        && let Some((ty, name, after)) = type_and_name(&strip_precision(rest))
+        && VALUE_TYPES.contains(&ty.as_str())
+        && after.starts_with('=')
+    {
+        info.consts.push(Global { out_line, ty, name });
     }
 }
 
