@@ -990,7 +990,8 @@ impl<'a> Lowering<'_, 'a> {
     fn lower_initializer_lists(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
-        for k in 1..sig.len() {
+        // A declaration has at least a type and a name before its `=`.
+        for k in 2..sig.len() {
             if !(text(k) == "=" && text(k + 1) == "{") {
                 continue;
             }
