@@ -73,6 +73,7 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
         // translucent layer, whose colortex0 alpha is 0, and noisetex bound where it is read.
         let properties = &entries["shaders/shaders.properties"];
         assert!(properties.lines().any(|l| l.trim() == "alphaTest.gbuffers_water=off"), "{dialect}: {properties}");
+        assert!(properties.lines().any(|l| l.trim() == "iris.features.required=PER_BUFFER_BLENDING"), "{dialect}: {properties}");
         let water_vertex = &entries["shaders/gbuffers_water.vsh"];
         assert!(water_vertex.lines().any(|l| l.trim() == "attribute vec4 mc_Entity;"), "{dialect}: OptiFine <= 1.16.5 would not bind mc_Entity");
         let composite = &entries["shaders/composite.fsh"];
@@ -555,6 +556,11 @@ fn properties_optifine_would_ignore_are_refused() {
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"blend.gbuffers_water.colortex44\" = \"off\"", "colortex44 is not a colour buffer"),
         ("\"alphaTest.gbuffers_water\" = \"off\"", "\"alphaTest.gbuffers_water\" = \"GREATER\"", "an alpha test is"),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"oldLighting\" = \"yes\"", "takes true or false"),
+        (
+            "\"iris.features.required\" = \"PER_BUFFER_BLENDING\"",
+            "\"iris.features.required\" = \"PER_BUFFER_BLENDS\"",
+            "PER_BUFFER_BLENDS is not an Iris feature",
+        ),
         ("\"blend.gbuffers_water.colortex4\" = \"off\"", "\"sliders\" = \"SSR_STEPS\"", "from [screen]"),
     ];
     for (from, to, message) in cases {

@@ -4,7 +4,7 @@
 //! show a wrong picture.
 //!
 //! Checked: `blend.<program>[.<buffer>]`, `alphaTest.<program>`, `texture.<stage>.<unit>`,
-//! `flip.<program>.<buffer>`, the boolean switches and `clouds`. Keys the pack writes itself
+//! `flip.<program>.<buffer>`, the boolean switches, `clouds` and `iris.features.*`. Keys the pack writes itself
 //! (`screen`, `sliders`, `profile.*`) are refused; any other key is written as it is, with a
 //! warning that it is unchecked.
 
@@ -27,6 +27,20 @@ pub const BLEND_FACTORS: [&str; 11] = [
     "DST_ALPHA",
     "ONE_MINUS_DST_ALPHA",
     "SRC_ALPHA_SATURATE",
+];
+
+/// The features `iris.features.required` and `.optional` name.
+const IRIS_FEATURES: [&str; 10] = [
+    "SEPARATE_HARDWARE_SAMPLERS",
+    "HIGHER_SHADOWCOLOR",
+    "CUSTOM_IMAGES",
+    "PER_BUFFER_BLENDING",
+    "COMPUTE_SHADERS",
+    "TESSELLATION_SHADERS",
+    "ENTITY_TRANSLUCENT",
+    "REVERSED_CULLING",
+    "BLOCK_EMISSION_ATTRIBUTE",
+    "SSBO",
 ];
 
 /// Comparison functions of `alphaTest.*`.
@@ -134,6 +148,13 @@ fn check_entry(key: &str, value: &str, programs: &[String], pack: &ShippedPack) 
                 return Err("the key names no sampler".into());
             }
             check_texture_path(value, pack)?;
+        }
+        _ if key == "iris.features.required" || key == "iris.features.optional" => {
+            // Iris refuses a pack that requires a feature it does not know, so a typo would
+            // refuse the pack everywhere.
+            if let Some(unknown) = value.split_whitespace().find(|f| !IRIS_FEATURES.contains(f)) {
+                return Err(format!("{unknown} is not an Iris feature; Iris knows {}", IRIS_FEATURES.join(", ")));
+            }
         }
         _ if key == "clouds" => {
             if !matches!(value, "fast" | "fancy" | "off") {
