@@ -569,16 +569,27 @@ impl<'a> Declaration<'a> {
                 return None;
             }
         }
+        // `vec3[9] x` declares what `vec3 x[9]` does: the size moves to each declarator.
+        let mut type_suffix = String::new();
+        let mut j = k + 1;
+        if tokens[*sig.get(j)?].is_punct("[") {
+            let close = (j..sig.len()).find(|&m| tokens[sig[m]].is_punct("]"))?;
+            type_suffix = sig[j..=close].iter().map(|&m| tokens[m].text).collect();
+            j = close + 1;
+            if sig.get(j + 1).is_some_and(|&m| tokens[m].is_punct("(")) {
+                // `vec3[2] f(…);`: a prototype of a function returning an array.
+                return None;
+            }
+        }
         let mut names = Vec::new();
         let mut initializers = Vec::new();
-        let mut j = k + 1;
         while j < sig.len() {
             let name = &tokens[sig[j]];
             if name.kind != TokenKind::Ident {
-                // `float[2] x` and other forms the lowering leaves alone.
+                // Forms the lowering leaves alone.
                 return None;
             }
-            let mut suffix = String::new();
+            let mut suffix = type_suffix.clone();
             let mut depth = 0;
             let mut equals = None;
             let mut end = None;

@@ -2,6 +2,7 @@
 uniform sampler2D specular;
 in vec2 texcoord;
 in float rain;
+flat in vec3 tints[2];
 uniform int frameCounter;
 float gain = rain * 2.0;
 float frames = frameCounter;
@@ -53,5 +54,5 @@ void main() {
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
 	float sample = fade(specular) + gathered(texcoord) + doubled(rain);
-	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))));
+	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))) + tints[1].x);
 }

@@ -11,6 +11,7 @@ const float blend = mix(0.25, 0.75, 0.5);
 const float rcpMax12 = 1.0 / (pow(2.0, 12.0) - 1.0);
 out vec2 texcoord;
 out float rain;
+flat out vec3[2] tints;
 
 float shade(const in float x, vec2 sampler) {
 	return x * sampler.x;
@@ -28,6 +29,7 @@ float lookup(vec2 uv) {
 
 void main() {
 	gl_Position = ftransform();
+	tints = vec3[2](vec3(1.0), vec3(0.5));
 	texcoord = gl_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(gl_VertexID % 4));
 	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + (isRaining ? 1.0 : 0.0) + blend * rcpMax12 + fetch(tex, texcoord).r;
 }

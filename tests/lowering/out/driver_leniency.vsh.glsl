@@ -11,6 +11,7 @@ const vec3[3] palette = vec3[3](vec3(1.0), vec3(0.5), vec3(0.25));
 const float rcpMax12 = 1.0 / (pow(2.0, 12.0) - 1.0);
 layout(location = 1) out vec2 texcoord;
 layout(location = 0) out float rain;
+layout(location = 2) flat out vec3 tints[2];
 
 float shade( in float x, vec2 tp_kw_sampler) {
 	return x * tp_kw_sampler.x;
@@ -28,6 +29,7 @@ float lookup(vec2 uv) {
 
 void tp_main() {
 	gl_Position = (tp_ModelViewProjectionMatrix * tp_Vertex);
+	tints = vec3[2](vec3(1.0), vec3(0.5));
 	texcoord = tp_MultiTexCoord0.xy + offsets[0] * scale + vec2(float(int(gl_VertexIndex) % 4));
 	rain = shade(sign_of_rain, vec2(wet)) + palette[2].x + lookup(texcoord) + ((tp_bool_isRaining != 0) ? 1.0 : 0.0) + blend * rcpMax12 + fetch(tex, tp_sampler_tex, texcoord).r;
 } void main() { sign_of_rain = tp_init_sign_of_rain(); offsets = tp_init_offsets(); scale = tp_init_scale(); wet = tp_init_wet(); blend = tp_init_blend(); tp_main(); }
