@@ -461,12 +461,7 @@ impl Preprocessor<'_> {
 
     fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
-        let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-        let target = raw
-            .strip_prefix('"')
-            .and_then(|s| s.strip_suffix('"'))
-            .ok_or_else(|| err_at(format!("#include expects a \"quoted\" path, found `{raw}`")))?;
-        let resolved = resolve_include(path, target).map_err(err_at)?;
+        let resolved = included_path(path, args).map_err(err_at)?;
         if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
             return Err(err_at(format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)")));
         }
@@ -547,11 +542,7 @@ impl Preprocessor<'_> {
     /// preprocessing: the files must exist, as they must for OptiFine.
     fn check_inactive_include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
-        let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-        let Some(target) = raw.strip_prefix('"').and_then(|s| s.strip_suffix('"')) else {
-            return Err(err_at(format!("#include expects a \"quoted\" path, found `{raw}`")));
-        };
-        let resolved = resolve_include(path, target).map_err(err_at)?;
+        let resolved = included_path(path, args).map_err(err_at)?;
         expand_includes(self.provider, &resolved, "").map(drop).map_err(|e| {
             let note = "OptiFine splices includes in before it evaluates #if, so this include is resolved although its branch is not taken";
             let e = if e.location.is_none() { Diagnostic { location: Some(Location::line(path, at)), ..e } } else { e };
@@ -945,6 +936,17 @@ pub fn expand_includes_mapped(
         }
         None => Ok((format!("{after_version}{body}"), inserted.into_iter().chain(map).collect())),
     }
+}
+
+/// The pack path an `#include "…"` directive of file `from` names (its arguments after the
+/// directive name).
+fn included_path(from: &str, args: &[Token<'_>]) -> Result<String, String> {
+    let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+    let target = raw
+        .strip_prefix('"')
+        .and_then(|s| s.strip_suffix('"'))
+        .ok_or_else(|| format!("#include expects a \"quoted\" path, found `{raw}`"))?;
+    resolve_include(from, target)
 }
 
 /// Resolves an `#include` target: `/x` from the pack's shader root, `x` beside `from`.
