@@ -938,7 +938,7 @@ impl<'a> Lowering<'_, 'a> {
             }
             let Some(equals) = (k..end).find(|&j| self.tokens[sig[j]].is_punct("=")) else { continue };
             const_initializers.push(equals + 1..end);
-            let one_declarator = !(equals..end).any(|j| self.tokens[sig[j]].is_punct(",")) || self.paren_balanced_commas(&sig[equals..end]);
+            let one_declarator = self.paren_balanced_commas(&sig[equals..end]);
             let name = self.tokens[sig[equals - 1]];
             let unfoldable = (equals + 1..end).any(|j| {
                 let t = self.tokens[sig[j]];
