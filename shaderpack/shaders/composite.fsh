@@ -18,15 +18,15 @@
 #include "/lib/caustics.glsl"
 
 /*
-const int colortex4Format = RGBA16;
+const int colortex4Format = RGBA8;
 const int colortex5Format = RGBA8;
 const int colortex6Format = RGBA8;
 */
 
-uniform sampler2D colortex0; // the scene behind the water, glass blended in
-uniform sampler2D colortex4; // view normal (rgb) and material (a) of the nearest translucent
-uniform sampler2D colortex5; // water tint (rgb) and sky light (a) of the nearest translucent
-uniform sampler2D colortex6; // plain water colour, kept where glass covers the water
+uniform sampler2D colortex0; // the scene behind the water, glass blended in; alpha 0 under translucents
+uniform sampler2D colortex4; // water mark (r, weakened by each glass in front) and the water's sky light (g)
+uniform sampler2D colortex5; // the water's tint (rgb)
+uniform sampler2D colortex6; // the water's plain colour (rgb), kept where glass covers the water
 uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height, slope, foam
 uniform sampler2D depthtex0;
 uniform sampler2D depthtex1;
@@ -199,7 +199,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
 }
 
 // Case 3: the camera is under water and this pixel is the surface seen from below.
-vec3 shadeFromBelow(vec2 uv, float depth0, vec3 tint, float skyLight, vec3 scattered) {
+vec3 shadeFromBelow(vec2 uv, float depth0, float skyLight, vec3 scattered) {
     vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
     float distance0 = length(view0);
     vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
@@ -242,25 +242,24 @@ vec3 shadeUnderwater(vec2 uv, float depth0, vec3 color, bool opaque, vec3 scatte
 void main() {
     vec4 scene = ownTexel(colortex0);
     outColor0 = vec4(scene.rgb, 1.0);
-    // Case 1 on a single read: gbuffers_water leaves colortex0's alpha at 0 wherever it drew
-    // (blend.gbuffers_water.colortex0 in shaders.properties), so alpha 1 means no water or
-    // glass in front.
+    // Case 1 on a single read: gbuffers_water's blending leaves colortex0's alpha at 0 wherever
+    // a translucent drew (blend.gbuffers_water in shaders.properties), so alpha 1 means no water
+    // or glass in front.
     if (isEyeInWater != 1 && !NEEDED(scene.a < 1.0)) {
         return;
     }
-    vec4 surface = ownTexel(colortex4);
-    bool water = isWaterMaterial(surface.a);
+    vec4 waterRecord = ownTexel(colortex4);
+    bool water = isWaterNearest(waterRecord.r);
     if (isEyeInWater != 1) {
-        if (isTranslucentMaterial(surface.a)) {
-            // Glass over water: the g-buffer holds the glass, so the water behind it keeps
-            // the plain colour it left in colortex6.
-            vec4 waterBehind = ownTexel(colortex6);
-            outColor0.rgb = mix(scene.rgb, waterBehind.rgb, 0.6 * waterBehind.a);
+        if (isWaterBehindTranslucent(waterRecord.r)) {
+            // Glass over water: the water behind it shows in the plain colour it left in
+            // colortex6.
+            outColor0.rgb = mix(scene.rgb, ownTexel(colortex6).rgb, 0.6);
         }
         if (NEEDED(water)) {
-            vec4 tintAndLight = ownTexel(colortex5);
+            vec3 tint = ownTexel(colortex5).rgb;
             float depth0 = ownTexel(depthtex0).r;
-            vec3 shaded = shadeFromAbove(screenUv, depth0, tintAndLight.rgb, tintAndLight.a);
+            vec3 shaded = shadeFromAbove(screenUv, depth0, tint, waterRecord.g);
             outColor0.rgb = water ? shaded : outColor0.rgb;
         }
         return;
@@ -269,14 +268,14 @@ void main() {
     float eyeSkyLight = clamp(float(eyeBrightnessSmooth.y) / 240.0, 0.0, 1.0);
     float depth0 = ownTexel(depthtex0).r;
     if (NEEDED(water)) {
-        vec4 tintAndLight = ownTexel(colortex5);
-        vec3 scattered = scatteredColor(tintAndLight.rgb, eyeSkyLight, skyColor);
-        vec3 shaded = shadeFromBelow(screenUv, depth0, tintAndLight.rgb, tintAndLight.a, scattered);
+        vec3 scattered = scatteredColor(ownTexel(colortex5).rgb, eyeSkyLight, skyColor);
+        vec3 shaded = shadeFromBelow(screenUv, depth0, waterRecord.g, scattered);
         outColor0.rgb = water ? shaded : outColor0.rgb;
     }
     if (NEEDED(!water)) {
         vec3 scattered = scatteredColor(DEFAULT_WATER_TINT, eyeSkyLight, skyColor);
-        bool opaque = surface.a < 0.25 && depth0 < 1.0;
+        // Opaque: nothing translucent drew here (colortex0's alpha is still 1) and not the sky.
+        bool opaque = scene.a > 0.5 && depth0 < 1.0;
         vec3 shaded = shadeUnderwater(screenUv, depth0, scene.rgb, opaque, scattered);
         outColor0.rgb = water ? outColor0.rgb : shaded;
     }

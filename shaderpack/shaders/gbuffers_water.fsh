@@ -1,10 +1,11 @@
 #version 330 compatibility
-// Translucent terrain. Water leaves colortex0 alone (composite shades it over the scene
-// behind it); glass and ice blend into colortex0 as usual. For composite, every translucent
-// writes its view normal and material to colortex4 and its tint and sky light to colortex5
-// (both with blending off in shaders.properties). Water also writes its plain colour to
-// colortex6 with blending on, where glass drawn later (alpha 0) leaves it intact: what
-// composite shows of water seen through glass.
+// Translucent terrain. Every buffer blends by the output's alpha with the result's alpha set
+// to 0 (blend.gbuffers_water in shaders.properties), so an output with alpha 1 replaces what is
+// there, alpha 0 leaves it, and colortex0's alpha ends at 0 wherever a translucent drew.
+// Water leaves colortex0's colour alone (composite shades it over the scene behind it) and
+// writes its mark and sky light to colortex4, its tint to colortex5 and its plain colour to
+// colortex6. Glass and ice blend into colortex0 as usual, weaken the water mark and keep the
+// water's tint and colour: what composite shows of water seen through glass.
 #include "/lib/common.glsl"
 
 uniform sampler2D gtexture;
@@ -13,8 +14,7 @@ uniform sampler2D lightmap;
 in vec2 texUv;
 in vec2 lightUv;
 in vec4 tint;
-in vec3 viewNormal;
-in float material;
+in float waterBlock;
 
 /* RENDERTARGETS: 0,4,5,6 */
 out vec4 outColor0;
@@ -25,12 +25,21 @@ out vec4 outColor3;
 void main() {
     vec4 albedo = texture(gtexture, texUv) * tint;
     vec3 light = texture(lightmap, lightUv).rgb;
-    bool water = isWaterMaterial(material);
-    // Lightmap coordinates run from 1/32 (dark) to 31/32 (full sky light).
-    float skyLight = clamp((lightUv.y - 1.0 / 32.0) * (16.0 / 15.0), 0.0, 1.0);
-    outColor0 = water ? vec4(0.0) : vec4(albedo.rgb * light, albedo.a);
-    // Interpolation can shorten the normal; re-normalise before encoding.
-    outColor1 = vec4(encodeNormal(safeNormalize(viewNormal, vec3(0.0, 0.0, 1.0))), material);
-    outColor2 = vec4(water ? tint.rgb : albedo.rgb, skyLight);
-    outColor3 = water ? vec4(albedo.rgb * light, 1.0) : vec4(0.0);
+    if (waterBlock > 0.5) {
+        // Lightmap coordinates run from 1/32 (dark) to 31/32 (full sky light).
+        float skyLight = clamp((lightUv.y - 1.0 / 32.0) * (16.0 / 15.0), 0.0, 1.0);
+        outColor0 = vec4(0.0);
+        outColor1 = vec4(WATER_MARK, skyLight, 0.0, 1.0);
+        outColor2 = vec4(tint.rgb, 1.0);
+        outColor3 = vec4(albedo.rgb * light, 1.0);
+    } else {
+        // A clear texel covers nothing: it must not mark the pixel as translucent.
+        if (albedo.a < 1.0 / 255.0) {
+            discard;
+        }
+        outColor0 = vec4(albedo.rgb * light, albedo.a);
+        outColor1 = vec4(0.0, 0.0, 0.0, 1.0 - MARK_KEPT_BEHIND_TRANSLUCENT);
+        outColor2 = vec4(0.0);
+        outColor3 = vec4(0.0);
+    }
 }

@@ -19,8 +19,8 @@ uniform float frameTimeCounter;
 out vec2 texUv;
 out vec2 lightUv;
 out vec4 tint;
-out vec3 viewNormal;
-out float material;
+// 1 on water, 0 on every other translucent block.
+out float waterBlock;
 
 void main() {
     // Ids arrive as floats; unmapped blocks are -1.
@@ -44,6 +44,5 @@ void main() {
     texUv = (gl_TextureMatrix[0] * gl_MultiTexCoord0).xy;
     lightUv = (gl_TextureMatrix[1] * gl_MultiTexCoord1).xy;
     tint = gl_Color;
-    viewNormal = safeNormalize(gl_NormalMatrix * gl_Normal, vec3(0.0, 0.0, 1.0));
-    material = isWater ? MATERIAL_WATER : MATERIAL_TRANSLUCENT;
+    waterBlock = isWater ? 1.0 : 0.0;
 }

@@ -23,7 +23,8 @@ use tidepack_gldriver::{GlContext, GlProgram, legacy};
 use crate::HarnessError;
 use crate::gpu::{Source, fullscreen_quad, resolve_in_pack, terrain_mvp};
 use crate::images::FloatImage;
-use crate::mesh::{self, PackVertex, SceneMesh, TerrainVertex, offsets};
+use crate::loader::MissingProgramDraws;
+use crate::mesh::{self, PackVertex, SceneMesh, offsets};
 use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
@@ -72,6 +73,9 @@ void main() {\n\
     vColor = color;\n\
 }\n";
 const TERRAIN_FS: &str = "#version 330 compatibility\nin vec4 vColor;\nout vec4 outColor;\nvoid main() { outColor = vColor; }\n";
+/// The terrain shader for a loader that draws a pack's missing programs into every draw buffer:
+/// `gl_FragColor` goes to every one, as fixed-function output does.
+const TERRAIN_FS_EVERY_BUFFER: &str = "#version 330 compatibility\nin vec4 vColor;\nvoid main() { gl_FragColor = vColor; }\n";
 
 fn gl_err(what: &str) -> impl Fn(String) -> HarnessError + '_ {
     move |e| HarnessError::Gl(format!("{what}: {e}"))
@@ -159,6 +163,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // Buffers, as in the wgpu path.
         let mut buffers: std::collections::BTreeSet<u8> = [0].into();
         buffers.extend(pack.water.render_targets.iter().copied());
+        buffers.extend(pack.terrain.iter().flat_map(|t| t.render_targets.iter().copied()));
         for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface) {
             if let Ok(Source::Color(n)) = resolve_in_pack(pack, &name, false) {
                 buffers.insert(n);
@@ -221,25 +226,43 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         gl.depth_func(glow::LEQUAL);
         gl.disable(glow::CULL_FACE);
 
-        // 2. terrain
-        let terrain = ctx
-            .compile_program(if depth == DepthMapping::Harness { TERRAIN_VS_HARNESS } else { TERRAIN_VS }, TERRAIN_FS, &[("position", 0), ("color", 1)], &[("outColor", 0)])
-            .map_err(|e| HarnessError::Gl(format!("terrain shader: {e}")))?;
-        attach(&[textures.colors[&0].0], Some(textures.depth0))?;
-        gl.use_program(Some(terrain.raw));
-        gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(terrain.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
-        let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
-        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(&mesh.terrain), glow::STATIC_DRAW);
-        let stride = std::mem::size_of::<TerrainVertex>() as i32;
-        gl.enable_vertex_attrib_array(0);
-        gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, 0);
-        gl.enable_vertex_attrib_array(1);
-        gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, 16);
-        gl.draw_arrays(glow::TRIANGLES, 0, mesh.terrain.len() as i32);
-        gl.disable_vertex_attrib_array(0);
-        gl.disable_vertex_attrib_array(1);
-        ctx.delete_program(terrain);
+        // 2. terrain, with blending off
+        if let Some(program) = &pack.terrain {
+            let compiled = compile(ctx, program, depth)?;
+            let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| textures.colors[b].0).collect();
+            attach(&targets, Some(textures.depth0))?;
+            draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &textures, &mesh.terrain)?;
+            compiled.delete(ctx);
+        } else {
+            let vertex = if depth == DepthMapping::Harness { TERRAIN_VS_HARNESS } else { TERRAIN_VS };
+            let attributes = [("position", 0), ("color", 1)];
+            let (terrain, terrain_targets) = match pack.loader.missing_program_draws() {
+                MissingProgramDraws::FirstBufferOnly => {
+                    (ctx.compile_program(vertex, TERRAIN_FS, &attributes, &[("outColor", 0)]), vec![textures.colors[&0].0])
+                }
+                MissingProgramDraws::EveryBuffer => (
+                    ctx.compile_program(vertex, TERRAIN_FS_EVERY_BUFFER, &attributes, &[]),
+                    textures.colors.values().map(|(t, _)| *t).collect(),
+                ),
+            };
+            let terrain = terrain.map_err(|e| HarnessError::Gl(format!("terrain shader: {e}")))?;
+            attach(&terrain_targets, Some(textures.depth0))?;
+            gl.use_program(Some(terrain.raw));
+            gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(terrain.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
+            let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(&mesh.terrain), glow::STATIC_DRAW);
+            let stride = offsets::STRIDE as i32;
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
+            gl.enable_vertex_attrib_array(1);
+            gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, offsets::COLOR as i32);
+            gl.draw_arrays(glow::TRIANGLES, 0, mesh.terrain.len() as i32);
+            gl.disable_vertex_attrib_array(0);
+            gl.disable_vertex_attrib_array(1);
+            gl.delete_buffer(vbo);
+            ctx.delete_program(terrain);
+        }
 
         // 3. depth copy
         gl.copy_image_sub_data(textures.depth0, glow::TEXTURE_2D, 0, 0, 0, 0, textures.depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
@@ -309,7 +332,6 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         let error = gl.get_error();
         gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         gl.delete_framebuffer(fbo);
-        gl.delete_buffer(vbo);
         for t in [textures.atlas, textures.lightmap, textures.noise, textures.depth0, textures.depth1, textures.out]
             .into_iter()
             .chain(textures.custom.iter().copied())

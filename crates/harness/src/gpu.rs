@@ -2,10 +2,15 @@
 //!
 //! 1. clear: every colour buffer to OptiFine's clear colour (colortex0 fog colour, colortex1
 //!    white, the rest transparent black), depth to 1;
-//! 2. terrain: the harness's own shader draws the opaque geometry into colortex0 and depthtex0;
+//! 2. terrain: the pack's terrain program (the first of gbuffers_terrain's fallback chain it
+//!    has) draws the opaque geometry into its render targets and depthtex0; a pack with none
+//!    gets the harness's own terrain shader, which writes colortex0, or every colour buffer
+//!    where the loader draws a missing program into every draw buffer (OptiFine up to 1.16.5;
+//!    [`crate::loader`]);
 //! 3. depthtex0 is copied to depthtex1 (depth without translucents);
-//! 4. gbuffers_water: the pack's program draws water and glass, blended per buffer as
-//!    shaders.properties says, into its render targets and depthtex0;
+//! 4. gbuffers_water: the pack's program draws water and glass, blended as the loader reads
+//!    shaders.properties and alpha-tested as the loader does, into its render targets and
+//!    depthtex0;
 //! 5. composite: the pack's program full-screen into colortex0's alternate buffer, here an
 //!    RGBA32F target so NaN and Inf survive to the readback;
 //! 6. optionally a one-tap pass-through composite into the same kind of target, the floor
@@ -22,6 +27,7 @@ use wgpu::util::DeviceExt as _;
 use crate::HarnessError;
 use crate::images::FloatImage;
 use crate::mesh::{self, SceneMesh, offsets};
+use crate::loader::MissingProgramDraws;
 use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass};
@@ -320,6 +326,7 @@ fn render_frame(
     // Colour buffers: everything either program writes or reads.
     let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
     buffers.extend(pack.water.render_targets.iter().copied());
+    buffers.extend(pack.terrain.iter().flat_map(|t| t.render_targets.iter().copied()));
     for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface)
         .into_iter()
         .chain(crate::program::texture_resources(&pack.composite.vertex.interface))
@@ -379,17 +386,30 @@ fn render_frame(
     };
 
     let textures = StaticTextures::new(gpu, pack);
-    let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &targets, &textures)?;
-    let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &targets, &textures)?;
-    let terrain = TerrainPipeline::new(gpu, scene)?;
+    let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &|b| pack.blend_of(b), &targets, &textures)?;
+    let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &|_| Blend::Off, &targets, &textures)?;
+    // Opaque terrain is drawn with blending off.
+    let (terrain, terrain_buffers) = match &pack.terrain {
+        Some(program) => {
+            let pipeline = ProgramPipeline::new(gpu, pack, program, scene, Pass::Gbuffers, &|_| Blend::Off, &targets, &textures)?;
+            (Terrain::Pack(pipeline), program.render_targets.clone())
+        }
+        None => {
+            let buffers: Vec<u8> = match pack.loader.missing_program_draws() {
+                MissingProgramDraws::FirstBufferOnly => vec![0],
+                MissingProgramDraws::EveryBuffer => targets.colors.keys().copied().collect(),
+            };
+            let formats: Vec<wgpu::TextureFormat> = buffers.iter().map(|b| targets.colors[b].1).collect();
+            (Terrain::Harness(TerrainPipeline::new(gpu, scene, &formats)?), buffers)
+        }
+    };
     let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets.colors[&0].0)?) } else { None };
 
     // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
-    let one_terrain = [mesh::TerrainVertex::default()];
     let one_pack = [mesh::PackVertex::default()];
     let terrain_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("terrain vertices"),
-        contents: mesh::as_bytes(if mesh.terrain.is_empty() { &one_terrain } else { &mesh.terrain }),
+        contents: mesh::as_bytes(if mesh.terrain.is_empty() { &one_pack } else { &mesh.terrain }),
         usage: wgpu::BufferUsages::VERTEX,
     });
     let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -462,16 +482,27 @@ fn render_frame(
             // 2. terrain
             let mut encoder = new_encoder();
             {
-                let c0 = view(&targets.colors[&0].0);
+                let views: Vec<wgpu::TextureView> = terrain_buffers.iter().map(|b| view(&targets.colors[b].0)).collect();
+                let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("terrain"),
-                    color_attachments: &[Some(load_attachment(&c0))],
+                    color_attachments: &attachments,
                     depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
                     timestamp_writes: stamps(0),
                     ..Default::default()
                 });
-                pass.set_pipeline(&terrain.pipeline);
-                pass.set_bind_group(0, &terrain.bind_group, &[]);
+                match &terrain {
+                    Terrain::Pack(program) => {
+                        pass.set_pipeline(&program.pipeline);
+                        for (i, g) in program.bind_groups.iter().enumerate() {
+                            pass.set_bind_group(i as u32, g, &[]);
+                        }
+                    }
+                    Terrain::Harness(own) => {
+                        pass.set_pipeline(&own.pipeline);
+                        pass.set_bind_group(0, &own.bind_group, &[]);
+                    }
+                }
                 pass.set_vertex_buffer(0, terrain_vertices.slice(..));
                 pass.draw(0..mesh.terrain.len() as u32, 0..1);
             }
@@ -690,6 +721,12 @@ impl StaticTextures {
     }
 }
 
+/// What draws the opaque terrain.
+enum Terrain {
+    Pack(ProgramPipeline),
+    Harness(TerrainPipeline),
+}
+
 struct ProgramPipeline {
     pipeline: wgpu::RenderPipeline,
     bind_groups: Vec<wgpu::BindGroup>,
@@ -704,12 +741,15 @@ enum Entry {
 }
 
 impl ProgramPipeline {
+    /// `blend_of` gives a gbuffers program's blend mode per colour buffer.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         gpu: &Gpu,
         pack: &LoadedPack,
         program: &LoadedProgram,
         scene: &Scene,
         pass: Pass,
+        blend_of: &dyn Fn(u8) -> Blend,
         targets: &Targets,
         statics: &StaticTextures,
     ) -> Result<ProgramPipeline, HarnessError> {
@@ -809,7 +849,7 @@ impl ProgramPipeline {
                 alternates.insert(b, t);
                 format
             };
-            let blend = if gbuffers { wgpu_blend(&pack.blend_of(b)) } else { None };
+            let blend = if gbuffers { wgpu_blend(&blend_of(b)) } else { None };
             color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }));
         }
         let vertex_module = gpu.checked(&format!("{} (wgpu shader module)", program.vertex.path), || {
@@ -999,8 +1039,8 @@ fn stage_entries(
 }
 
 /// The harness's terrain shader: position and colour, OpenGL clip space mapped as in
-/// [`crate::program::adapt_vertex`].
-const TERRAIN_WGSL: &str = r#"
+/// [`crate::program::adapt_vertex`]; the fragment entry point comes from [`terrain_wgsl`].
+const TERRAIN_VERTEX_WGSL: &str = r#"
 struct Uniforms { mvp: mat4x4<f32> }
 @group(0) @binding(0) var<uniform> u: Uniforms;
 struct Out { @builtin(position) position: vec4<f32>, @location(0) color: vec4<f32> }
@@ -1010,8 +1050,18 @@ struct Out { @builtin(position) position: vec4<f32>, @location(0) color: vec4<f3
     clip.z = 0.5 * (clip.z + clip.w);
     return Out(clip, color);
 }
-@fragment fn fs(i: Out) -> @location(0) vec4<f32> { return i.color; }
 "#;
+
+/// The terrain shader writing the same colour to `targets` colour attachments, as
+/// fixed-function drawing does to every draw buffer.
+fn terrain_wgsl(targets: usize) -> String {
+    let fields: String = (0..targets).map(|i| format!("@location({i}) c{i}: vec4<f32>, ")).collect();
+    let values: Vec<&str> = vec!["i.color"; targets];
+    format!(
+        "{TERRAIN_VERTEX_WGSL}struct Targets {{ {fields}}}\n@fragment fn fs(i: Out) -> Targets {{ return Targets({}); }}\n",
+        values.join(", ")
+    )
+}
 
 /// The one-tap pass-through composite: colortex0 to the output, nothing else.
 const PASSTHROUGH_WGSL: &str = r#"
@@ -1036,14 +1086,18 @@ pub fn terrain_mvp(scene: &Scene) -> [f32; 16] {
 }
 
 impl TerrainPipeline {
-    fn new(gpu: &Gpu, scene: &Scene) -> Result<TerrainPipeline, HarnessError> {
+    fn new(gpu: &Gpu, scene: &Scene, formats: &[wgpu::TextureFormat]) -> Result<TerrainPipeline, HarnessError> {
         let device = &gpu.device;
         let module = gpu.checked("terrain shader", || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("terrain"),
-                source: wgpu::ShaderSource::Wgsl(TERRAIN_WGSL.into()),
+                source: wgpu::ShaderSource::Wgsl(terrain_wgsl(formats.len()).into()),
             })
         })?;
+        let targets: Vec<Option<wgpu::ColorTargetState>> = formats
+            .iter()
+            .map(|&format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL }))
+            .collect();
         let mvp: Vec<u8> = terrain_mvp(scene).iter().flat_map(|v| v.to_le_bytes()).collect();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("terrain uniforms"),
@@ -1059,9 +1113,12 @@ impl TerrainPipeline {
                     entry_point: Some("vs"),
                     compilation_options: Default::default(),
                     buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: 32,
+                        array_stride: offsets::STRIDE,
                         step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
+                        attributes: &[
+                            wgpu::VertexAttribute { format: wgpu::VertexFormat::Float32x4, offset: offsets::POSITION, shader_location: 0 },
+                            wgpu::VertexAttribute { format: wgpu::VertexFormat::Float32x4, offset: offsets::COLOR, shader_location: 1 },
+                        ],
                     })],
                 },
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
@@ -1077,11 +1134,7 @@ impl TerrainPipeline {
                     module: &module,
                     entry_point: Some("fs"),
                     compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: wgpu::TextureFormat::Rgba8Unorm,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
+                    targets: &targets,
                 }),
                 multiview_mask: None,
                 cache: None,

@@ -12,7 +12,7 @@ use crate::gpu::{self, PassTiming};
 use crate::images::{self, FloatImage};
 use crate::program::{self, LoadedPack, PackSelection};
 use crate::scene::Scene;
-use crate::{Gpu, HarnessError, gl, mesh, uniforms};
+use crate::{Gpu, HarnessError, Loader, gl, mesh, uniforms};
 
 /// What to render and where to put it.
 #[derive(Clone, Debug)]
@@ -24,6 +24,8 @@ pub struct RenderJob {
     pub profile: Option<String>,
     /// `NAME` → value as written (`on`/`off` for switches).
     pub options: Vec<(String, String)>,
+    /// The loader whose drawing the frame imitates.
+    pub loader: Loader,
     pub out_dir: PathBuf,
     /// Also write colortex0, colortex4, depthtex0 and depthtex1.
     pub buffers: bool,
@@ -42,6 +44,8 @@ pub struct RenderReport {
     pub resolution: [u32; 2],
     /// `120` or `330`, as `--dialect` takes it.
     pub dialect: String,
+    /// The loader imitated (`optifine-1.12.2`, `iris`, ...).
+    pub loader: String,
     pub profile: String,
     /// Every option value in force (profile, then `--set`).
     pub options: std::collections::BTreeMap<String, String>,
@@ -116,7 +120,7 @@ pub fn specialisation_speedup(
     frames: usize,
 ) -> Result<SpecialisationReport, HarnessError> {
     let spec = uniforms::scene_specialisation(scene, scene_label);
-    let specialised = program::load_specialised(selection, Some(&spec))?;
+    let specialised = program::load_for(selection, Some(&spec), general.loader)?;
     let (general_mesh, specialised_mesh) = (mesh::build(scene, general), mesh::build(scene, &specialised));
     const ROUNDS: usize = 3;
     let per_round = frames.div_ceil(ROUNDS).max(1);
@@ -165,7 +169,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         profile: job.profile.clone(),
         options: job.options.clone(),
     };
-    let pack = program::load(&selection)?;
+    let pack = program::load_for(&selection, None, job.loader)?;
     let gpu = Gpu::new()?;
     let frame = crate::render_wgpu(&gpu, &pack, &scene, true)?;
 
@@ -226,6 +230,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
             Dialect::Glsl330 => "330",
         }
         .to_string(),
+        loader: pack.loader.to_string(),
         profile: pack.profile.clone(),
         options: pack.options.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
         adapter: AdapterReport {

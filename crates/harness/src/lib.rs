@@ -1,12 +1,12 @@
-//! The mock-uniform harness: renders the pack's gbuffers_water and composite programs headless
-//! through a small imitation of OptiFine's pipeline in wgpu ([`gpu`]), with uniforms filled
-//! by their OptiFine names through naga's reflection ([`uniforms`]), for scenes described in
-//! TOML ([`scene`]). The same scene can be drawn with the shipped GLSL 120/330 through a real
-//! OpenGL compatibility context ([`gl`]) to prove the lowering changes nothing.
+//! The mock-uniform harness: renders the pack's programs headless through a small imitation of
+//! a loader's pipeline in wgpu ([`gpu`]; which loader: [`loader`]), with uniforms filled by their
+//! OptiFine names through naga's reflection ([`uniforms`]), for scenes described in TOML
+//! ([`scene`]). The same scene can be drawn with the shipped GLSL 120/330 through a real OpenGL
+//! compatibility context ([`gl`]) to prove the lowering changes nothing.
 //!
 //! What is rendered is the lowered form of exactly the shipped text ([`program`]); the only
-//! change is a wrapper `main` on the vertex stage's last line that maps OpenGL's clip space to
-//! wgpu's.
+//! changes are wrapper `main`s on the last line: on the vertex stage, to map OpenGL's clip space
+//! to wgpu's; on gbuffers_water's fragment stage, the alpha test of a loader that applies one.
 
 use std::fmt;
 
@@ -15,6 +15,7 @@ pub mod gl;
 pub mod gpu;
 pub mod images;
 pub mod job;
+pub mod loader;
 pub mod mesh;
 pub mod program;
 pub mod scene;
@@ -22,6 +23,7 @@ pub mod uniforms;
 
 pub use gpu::{Frame, Gpu, PassTiming, median};
 pub use images::FloatImage;
+pub use loader::Loader;
 pub use program::{LoadedPack, PackSelection};
 pub use scene::Scene;
 

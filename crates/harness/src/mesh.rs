@@ -1,6 +1,7 @@
-//! Geometry of a scene: opaque terrain for the harness's own terrain shader, and the
-//! translucent quads (water surface, glass panes) for the pack's gbuffers_water, sorted back to
-//! front as Minecraft sorts translucent terrain. Positions are relative to the camera (computed
+//! Geometry of a scene: opaque terrain (for the pack's terrain program, or the harness's own
+//! terrain shader where the pack has none) and the translucent quads (water surface, glass
+//! panes) for the pack's gbuffers_water, sorted back to front as Minecraft sorts translucent
+//! terrain. Positions are relative to the camera (computed
 //! in f64), so scenes far from the origin lose no precision before the shaders see them;
 //! gl_ModelViewMatrix is then gbufferModelView, as with OptiFine's chunk offsets.
 
@@ -38,25 +39,19 @@ pub mod offsets {
     pub const STRIDE: u64 = 92;
 }
 
-/// The vertex of the harness's terrain shader: position and a lit colour.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[repr(C)]
-pub struct TerrainVertex {
-    pub position: [f32; 4],
-    pub color: [f32; 4],
-}
-
 /// Sprites of the mock block atlas (`gtexture`): uv rectangles inset from the sprite edges so
-/// nearest sampling never reaches a neighbour.
+/// nearest sampling never reaches a neighbour. Glass and terrain take their colour from the
+/// vertex colour over the opaque white sprite.
 pub const WATER_SPRITE: [f32; 4] = [0.0625, 0.125, 0.4375, 0.875];
-pub const GLASS_SPRITE: [f32; 4] = [0.5625, 0.125, 0.9375, 0.875];
+pub const WHITE_SPRITE: [f32; 4] = [0.5625, 0.125, 0.9375, 0.875];
 
 /// Lightmap coordinates of everything in the scenes: no block light, full sky light.
 const LIGHT: [f32; 4] = [0.0, 240.0, 0.0, 1.0];
 
 #[derive(Clone, Debug, Default)]
 pub struct SceneMesh {
-    pub terrain: Vec<TerrainVertex>,
+    /// Triangles; the colour is lit once here (ambient and sun).
+    pub terrain: Vec<PackVertex>,
     /// Triangles, back to front.
     pub translucent: Vec<PackVertex>,
 }
@@ -90,7 +85,14 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
         let light = 0.45 + 0.55 * normal.dot(sun).max(0.0);
         let c = [(color[0] * light) as f32, (color[1] * light) as f32, (color[2] * light) as f32, 1.0];
         for i in [0, 1, 2, 0, 2, 3] {
-            mesh.terrain.push(TerrainVertex { position: rel(corners[i]), color: c });
+            mesh.terrain.push(PackVertex {
+                position: rel(corners[i]),
+                color: c,
+                normal: [normal.x as f32, normal.y as f32, normal.z as f32],
+                uv0: sprite_corner(WHITE_SPRITE, i),
+                uv1: LIGHT,
+                entity: [-1.0, -1.0, 0.0, 0.0],
+            });
         }
     };
     for g in &scene.terrain.ground {
@@ -141,7 +143,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
     for pane in &scene.glass {
         let id = ids.id_of(&pane.block) as f32;
         for (corners, normal) in box_faces(DVec3::from(pane.min), DVec3::from(pane.max)) {
-            quads.push(Quad { corners, normal, color: pane.color, sprite: GLASS_SPRITE, entity: [id, -1.0, 0.0, 0.0] });
+            quads.push(Quad { corners, normal, color: pane.color, sprite: WHITE_SPRITE, entity: [id, -1.0, 0.0, 0.0] });
         }
     }
     // Back to front by centre distance; ties keep their order (the sort is stable).
@@ -149,8 +151,6 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
     let distance = |q: &Quad| ((q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25 - local_camera).length_squared();
     quads.sort_by(|a, b| distance(b).total_cmp(&distance(a)));
     for q in &quads {
-        let [u0, v0, u1, v1] = q.sprite;
-        let uvs = [[u0, v0], [u0, v1], [u1, v1], [u1, v0]];
         let color = q.color.map(|c| c as f32);
         let normal = [q.normal.x as f32, q.normal.y as f32, q.normal.z as f32];
         for i in [0, 1, 2, 0, 2, 3] {
@@ -158,13 +158,19 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
                 position: rel(q.corners[i]),
                 color,
                 normal,
-                uv0: [uvs[i][0], uvs[i][1], 0.0, 1.0],
+                uv0: sprite_corner(q.sprite, i),
                 uv1: LIGHT,
                 entity: q.entity,
             });
         }
     }
     mesh
+}
+
+/// The texture coordinates of corner `i` of a quad (corners in the order of [`box_faces`]).
+fn sprite_corner([u0, v0, u1, v1]: [f32; 4], i: usize) -> [f32; 4] {
+    let [u, v] = [[u0, v0], [u0, v1], [u1, v1], [u1, v0]][i];
+    [u, v, 0.0, 1.0]
 }
 
 /// The six faces of a box with outward normals.

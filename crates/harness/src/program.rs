@@ -22,6 +22,7 @@ use tidepack_pack::specialise::{Specialisation, specialise};
 use tidepack_pack::validation::standard_macros;
 
 use crate::HarnessError;
+use crate::loader::{self, Loader};
 use crate::mesh::BlockIds;
 
 /// Which pack text to render.
@@ -125,6 +126,9 @@ impl BlendFactor {
     }
 }
 
+/// gbuffers_terrain and the programs OptiFine and Iris fall back to for it, in order.
+pub const TERRAIN_CHAIN: [&str; 4] = ["gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
+
 /// OptiFine's default blending of translucent gbuffers programs.
 pub const DEFAULT_TRANSLUCENT_BLEND: Blend = Blend::Factors([
     BlendFactor::SrcAlpha,
@@ -141,10 +145,18 @@ pub struct LoadedPack {
     pub options: OptionSet,
     pub water: LoadedProgram,
     pub composite: LoadedProgram,
+    /// What opaque terrain is drawn with: the first program of gbuffers_terrain's fallback
+    /// chain the pack has ([`TERRAIN_CHAIN`]); none draws it as the loader itself would.
+    pub terrain: Option<LoadedProgram>,
     /// Declared colour buffer formats (`const int colortexNFormat = ...;`).
     pub formats: BTreeMap<u8, BufferFormat>,
-    /// Blend mode of gbuffers_water per colour buffer.
+    /// The loader whose behaviour the frame imitates.
+    pub loader: Loader,
+    /// Blend mode of gbuffers_water per colour buffer, as the loader reads shaders.properties.
     pub water_blend: BTreeMap<u8, Blend>,
+    /// The alpha test on gbuffers_water's output 0 (discard unless alpha > this), if any;
+    /// compiled into the fragment stage of both renderers.
+    pub water_alpha_test: Option<f32>,
     /// block.properties: block name → id.
     pub block_ids: HashMap<String, i32>,
     /// Custom textures from shaders.properties (`texture.<stage>.<unit>=<path>`).
@@ -206,6 +218,11 @@ pub fn load(selection: &PackSelection) -> Result<LoadedPack, HarnessError> {
 /// [`load`], with the uniforms `specialisation` fixes folded into constants first (as
 /// `tidepack build --scene` ships them).
 pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Specialisation>) -> Result<LoadedPack, HarnessError> {
+    load_for(selection, specialisation, Loader::default())
+}
+
+/// [`load_specialised`], for the frame a given loader would draw.
+pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisation>, loader: Loader) -> Result<LoadedPack, HarnessError> {
     let source = PackSource::load(&selection.source_dir).map_err(|d| diag_error("cannot read the pack", &[d]))?;
     let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
     let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
@@ -242,17 +259,23 @@ pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Speci
         Dialect::Glsl120 => 120,
         Dialect::Glsl330 => 330,
     };
-    let water = load_program(&provider, "gbuffers_water", glsl_version)?;
-    let composite = load_program(&provider, "composite", glsl_version)?;
+    let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
+    let water_alpha_test = loader::water_alpha_test(&properties, loader, selection.dialect).map_err(HarnessError::Unsupported)?;
+    let water = load_program(&provider, "gbuffers_water", glsl_version, water_alpha_test)?;
+    let composite = load_program(&provider, "composite", glsl_version, None)?;
+    let terrain = match TERRAIN_CHAIN.iter().find(|name| provider.read(&format!("{name}.fsh")).is_ok()) {
+        Some(name) => Some(load_program(&provider, name, glsl_version, None)?),
+        None => None,
+    };
 
     let mut formats = BTreeMap::new();
-    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment] {
+    let terrain_stages = terrain.iter().flat_map(|t| [&t.vertex, &t.fragment]);
+    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment].into_iter().chain(terrain_stages) {
         for (buffer, format) in declared_formats(&stage.gl_text)? {
             formats.insert(buffer, format);
         }
     }
-    let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
-    let water_blend = blend_modes(&properties, "gbuffers_water")?;
+    let water_blend = blend_modes(&properties, "gbuffers_water", loader.per_buffer_blend())?;
     let block_ids = provider.read("block.properties").map(|t| block_ids(&t)).unwrap_or_default();
     let custom_textures = custom_textures(&pack, &provider, &properties, &selection.source_dir)?;
     Ok(LoadedPack {
@@ -261,15 +284,20 @@ pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Speci
         options: in_force,
         water,
         composite,
+        terrain,
         formats,
+        loader,
         water_blend,
+        water_alpha_test,
         block_ids,
         custom_textures,
         folded_uniforms: pack.folded_uniforms.clone(),
     })
 }
 
-fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> Result<LoadedProgram, HarnessError> {
+/// Loads `<name>.vsh` and `<name>.fsh`; an `alpha_test` discards fragments whose output 0 has
+/// an alpha not above it, as a loader's alpha test would.
+fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alpha_test: Option<f32>) -> Result<LoadedProgram, HarnessError> {
     let macros = standard_macros(glsl_version);
     let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
     let mut pre = Vec::new();
@@ -293,9 +321,14 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> R
     for stage in lowered {
         let path = stage.preprocessed.files[0].clone();
         let lowered_text = stage.lowered.text.clone();
-        let harness_text = match stage.stage {
-            Stage::Vertex => adapt_vertex(&lowered_text)?,
-            Stage::Fragment => lowered_text.clone(),
+        let harness_text = match (stage.stage, alpha_test) {
+            (Stage::Vertex, _) => adapt_vertex(&lowered_text)?,
+            (Stage::Fragment, Some(reference)) => {
+                let output = lowered_output(&lowered_text, 0)
+                    .ok_or_else(|| HarnessError::Pack(format!("{name}.fsh has no output 0 for the loader's alpha test")))?;
+                with_alpha_test(&lowered_text, &output, reference)?
+            }
+            (Stage::Fragment, None) => lowered_text.clone(),
         };
         let adapted = LoweredStage {
             stage: stage.stage,
@@ -304,8 +337,12 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> R
         };
         let valid = validate::validate_stage(&mut frontend, &adapted, provider)
             .map_err(|d| diag_error(&format!("{path} does not validate"), &d))?;
-        let gl_text = preprocess::expand_includes(provider, &path, &defines)
+        let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        if let (Stage::Fragment, Some(reference)) = (stage.stage, alpha_test) {
+            let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
+            gl_text = with_alpha_test(&gl_text, &output, reference)?;
+        }
         stages.push(LoadedStage {
             stage: stage.stage,
             path,
@@ -336,7 +373,28 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32) -> R
 /// -w..w to 0..w (the depth buffer then holds OpenGL's window depth). No line is added, so
 /// naga's line numbers still map to the pack's files.
 pub fn adapt_vertex(lowered: &str) -> Result<String, HarnessError> {
-    let tokens = tokenize(lowered).map_err(|e| HarnessError::Pack(format!("lowered vertex shader: {}", e.message)))?;
+    wrap_main(lowered, "gl_Position.y = -gl_Position.y; gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w);")
+}
+
+/// A fragment stage with a loader's alpha test after its `main`: the fragment is discarded
+/// unless `output`'s alpha is above `reference` (OpenGL's `GREATER`).
+pub fn with_alpha_test(text: &str, output: &str, reference: f32) -> Result<String, HarnessError> {
+    wrap_main(text, &format!("if (!({output}.a > {reference:?})) {{ discard; }}"))
+}
+
+/// The location-`location` output a lowered fragment stage declares
+/// (`layout(location = 0) out vec4 outColor0;`).
+fn lowered_output(lowered: &str, location: u32) -> Option<String> {
+    let declaration = format!("layout(location = {location}) out vec4 ");
+    let at = lowered.find(&declaration)? + declaration.len();
+    let name: String = lowered[at..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+    (!name.is_empty()).then_some(name)
+}
+
+/// Renames the definition of `main` to `tp_shipped_main` and appends, on the last line, a new
+/// `main` that calls it and then runs `epilogue`.
+fn wrap_main(text: &str, epilogue: &str) -> Result<String, HarnessError> {
+    let tokens = tokenize(text).map_err(|e| HarnessError::Pack(format!("shader text: {}", e.message)))?;
     let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
     let mut depth = 0i32;
     let mut main_at = None;
@@ -360,18 +418,15 @@ pub fn adapt_vertex(lowered: &str) -> Result<String, HarnessError> {
             }
         }
     }
-    let main_at = main_at.ok_or_else(|| HarnessError::Pack("the vertex shader has no `void main() { ... }`".into()))?;
-    let mut out = String::with_capacity(lowered.len() + 160);
+    let main_at = main_at.ok_or_else(|| HarnessError::Pack("the shader has no `void main() { ... }`".into()))?;
+    let mut out = String::with_capacity(text.len() + 160);
     for (i, t) in tokens.iter().enumerate() {
         out.push_str(if i == main_at { "tp_shipped_main" } else { t.text });
     }
     if out.ends_with('\n') {
         out.pop();
     }
-    out.push_str(
-        " void main() { tp_shipped_main(); gl_Position.y = -gl_Position.y; \
-         gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w); }\n",
-    );
+    out.push_str(&format!(" void main() {{ tp_shipped_main(); {epilogue} }}\n"));
     Ok(out)
 }
 
@@ -401,8 +456,9 @@ fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError>
     Ok(found)
 }
 
-/// `blend.<program>=` and `blend.<program>.<buffer>=` lines for one program.
-fn blend_modes(properties: &str, program: &str) -> Result<BTreeMap<u8, Blend>, HarnessError> {
+/// `blend.<program>=` and `blend.<program>.<buffer>=` lines for one program; the per-buffer
+/// ones only for a loader that reads them.
+fn blend_modes(properties: &str, program: &str, per_buffer_blend: bool) -> Result<BTreeMap<u8, Blend>, HarnessError> {
     let mut program_wide = None;
     let mut per_buffer = BTreeMap::new();
     for line in properties.lines() {
@@ -424,6 +480,8 @@ fn blend_modes(properties: &str, program: &str) -> Result<BTreeMap<u8, Blend>, H
         };
         if rest.is_empty() {
             program_wide = Some(blend);
+        } else if !per_buffer_blend {
+            continue;
         } else if let Some(buffer) = rest.strip_prefix(".colortex").and_then(|n| n.parse::<u8>().ok()) {
             per_buffer.insert(buffer, blend);
         } else {
@@ -530,13 +588,26 @@ mod tests {
     }
 
     #[test]
+    fn the_alpha_test_wraps_main_on_the_last_line() {
+        let text = "#version 330\nout vec4 outColor0;\nvoid main() {\n    outColor0 = vec4(0.0);\n}\n";
+        let tested = with_alpha_test(text, "outColor0", 0.1).unwrap();
+        assert_eq!(tested.lines().count(), text.lines().count(), "{tested}");
+        assert!(tested.contains("void tp_shipped_main() {"), "{tested}");
+        assert!(tested.ends_with("void main() { tp_shipped_main(); if (!(outColor0.a > 0.1)) { discard; } }\n"), "{tested}");
+        assert_eq!(lowered_output("layout(location = 0) out vec4 tp_FragData0; layout(location = 1) out vec4 x;", 0).as_deref(), Some("tp_FragData0"));
+    }
+
+    #[test]
     fn formats_blend_and_ids_are_read() {
         let formats = declared_formats("/*\nconst int colortex4Format = RGBA16;\nconst int gaux2Format = RGBA32F;\n*/").unwrap();
         assert_eq!(formats, vec![(4, BufferFormat::Rgba16), (5, BufferFormat::Rgba32F)]);
         assert!(declared_formats("const int colortex1Format = R11F_G11F_B10F;").is_err());
-        let modes = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO\nblend.composite=off", "gbuffers_water").unwrap();
+        let modes = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO\nblend.composite=off", "gbuffers_water", true).unwrap();
         assert_eq!(modes[&4], Blend::Off);
         assert_eq!(modes[&0], Blend::Factors([BlendFactor::One, BlendFactor::Zero, BlendFactor::One, BlendFactor::Zero]));
+        // OptiFine before 1.16.5 skips the per-buffer key: the program-wide mode covers colortex4.
+        let old = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO", "gbuffers_water", false).unwrap();
+        assert_eq!(old[&4], old[&0]);
         let ids = block_ids("block.10008=minecraft:water flowing_water\nblock.10095=minecraft:white_stained_glass");
         assert_eq!(ids["minecraft:water"], 10008);
         assert_eq!(ids["minecraft:flowing_water"], 10008);

@@ -191,6 +191,10 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("eyeBrightness", Value::ivec2(0, 240));
     put("eyeBrightnessSmooth", Value::ivec2(0, 240));
     put("hideGUI", Value::int(1));
+    // The harness draws no fog yet: the loaders' value with the game's fog off.
+    put("fogMode", Value::int(0));
+    // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
+    put("alphaTestRef", Value::float(if pass == Pass::Gbuffers { 0.1 } else { 0.0 }));
     let legacy = legacy_matrices(scene, pass);
     let mvp = legacy.projection * legacy.model_view;
     let normal = DMat3::from_mat4(legacy.model_view).inverse().transpose();

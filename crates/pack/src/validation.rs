@@ -600,7 +600,7 @@ mod tests {
         let report = validate_pack(&pack, &options, Coverage::Pairwise, &[], Some(&record)).unwrap();
         let seen = seen.into_inner().unwrap();
         for phase in ["programs' option sets found", "option sets lowered", "stages validated by naga"] {
-            let last = seen.iter().filter(|(p, _, _)| p == phase).next_back().unwrap_or_else(|| panic!("no {phase}: {seen:?}"));
+            let last = seen.iter().rfind(|(p, _, _)| p == phase).unwrap_or_else(|| panic!("no {phase}: {seen:?}"));
             assert_eq!(last.1, last.2, "{phase} ends at its total: {seen:?}");
         }
         assert!(seen.iter().any(|(p, done, _)| p == "stages validated by naga" && *done == report.stages_validated));

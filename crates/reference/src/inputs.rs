@@ -54,13 +54,13 @@ impl Uniforms {
 pub struct Inputs {
     pub width: usize,
     pub height: usize,
-    /// The scene behind the water (glass blended in).
+    /// The scene behind the water (glass blended in); alpha 0 where a translucent drew.
     pub colortex0: Texture,
-    /// View normal and material of the nearest translucent.
+    /// Water mark (r; weakened by each glass in front of the water) and the water's sky light (g).
     pub colortex4: Texture,
-    /// Water tint and sky light of the nearest translucent.
+    /// The water's tint (rgb).
     pub colortex5: Texture,
-    /// Plain water colour kept under glass.
+    /// The water's plain colour (rgb), kept under glass.
     pub colortex6: Texture,
     /// Depth of the nearest surface (r), translucents included.
     pub depthtex0: Texture,

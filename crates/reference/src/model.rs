@@ -61,14 +61,14 @@ fn rotate(m: &DMat4, v: DVec3) -> DVec3 {
 
 // ---- lib/common.glsl ------------------------------------------------------------------------
 
-/// `isWaterMaterial`.
-pub fn is_water_material(mask: f64) -> bool {
-    mask > 0.75
+/// `isWaterNearest`.
+pub fn is_water_nearest(mark: f64) -> bool {
+    mark > 0.875
 }
 
-/// `isTranslucentMaterial`.
-pub fn is_translucent_material(mask: f64) -> bool {
-    mask > 0.25 && mask <= 0.75
+/// `isWaterBehindTranslucent`.
+pub fn is_water_behind_translucent(mark: f64) -> bool {
+    mark > 0.04 && mark <= 0.875
 }
 
 /// `safeNormalize`.
@@ -551,31 +551,29 @@ impl Frame<'_> {
     fn shade(&self, uv: DVec2) -> DVec3 {
         let i = self.i;
         let scene = i.colortex0.sample(uv);
-        let surface = i.colortex4.sample(uv);
+        let water_record = i.colortex4.sample(uv);
+        let water = is_water_nearest(water_record.x);
         let depth0 = i.depthtex0.sample(uv).x;
         if self.u.is_eye_in_water != 1 {
             // As in the pack: colortex0's alpha stays 1 where gbuffers_water drew nothing.
             if self.s.early_outs && scene.w >= 1.0 {
                 return scene.xyz();
             }
-            if is_water_material(surface.w) {
-                let tint_and_light = i.colortex5.sample(uv);
-                return self.shade_from_above(uv, depth0, tint_and_light.xyz(), tint_and_light.w);
+            if water {
+                return self.shade_from_above(uv, depth0, i.colortex5.sample(uv).xyz(), water_record.y);
             }
-            if is_translucent_material(surface.w) {
-                let water_behind = i.colortex6.sample(uv);
-                return mix3(scene.xyz(), water_behind.xyz(), 0.6 * water_behind.w);
+            if is_water_behind_translucent(water_record.x) {
+                return mix3(scene.xyz(), i.colortex6.sample(uv).xyz(), 0.6);
             }
             return scene.xyz();
         }
         let eye_sky_light = (self.u.eye_brightness_smooth[1] as f64 / 240.0).clamp(0.0, 1.0);
-        if is_water_material(surface.w) {
-            let tint_and_light = i.colortex5.sample(uv);
-            let scattered = scattered_color(tint_and_light.xyz(), eye_sky_light, self.u.sky_color);
-            return self.shade_from_below(uv, depth0, tint_and_light.w, scattered);
+        if water {
+            let scattered = scattered_color(i.colortex5.sample(uv).xyz(), eye_sky_light, self.u.sky_color);
+            return self.shade_from_below(uv, depth0, water_record.y, scattered);
         }
         let scattered = scattered_color(DEFAULT_WATER_TINT, eye_sky_light, self.u.sky_color);
-        let opaque = surface.w < 0.25 && depth0 < 1.0;
+        let opaque = scene.w > 0.5 && depth0 < 1.0;
         self.shade_underwater(uv, depth0, scene.xyz(), opaque, scattered)
     }
 }

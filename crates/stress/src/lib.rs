@@ -21,7 +21,7 @@ use tidepack_harness::uniforms::{self, Pass, Value};
 use tidepack_harness::{FloatImage, Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};
 use tidepack_pack::Dialect;
 use tidepack_reference::Inputs;
-use tidepack_reference::model::{is_translucent_material, is_water_material};
+use tidepack_reference::model::{is_water_behind_translucent, is_water_nearest};
 use tidepack_reference::harness::{self as reference, Precision, Textures};
 
 /// The |cameraPosition| magnitudes of the distance table.
@@ -71,7 +71,7 @@ pub const CATEGORIES: [&str; 13] = [
     "sky_depth",
     "d0_eq_d1",
     "near_far",
-    "zero_normals",
+    "dark_water",
     "grazing",
     "sun_below",
     "random",
@@ -262,9 +262,9 @@ fn map_gbuffers(runner: &CompositeOnly, g: &mut GBuffers, mut f: impl FnMut(usiz
         let (mut d0, mut d1) = (g.depth0.pixels[i][0], g.depth1.pixels[i][0]);
         f(i, &mut px, &mut d0, &mut d1);
         // gbuffers_water's blending leaves colortex0's alpha at 0 wherever it drew a translucent
-        // (shaders.properties), and composite reads the material only there: a translucent
-        // material put into colortex4 here must come with that alpha to be shaded.
-        if px.get(&4).is_some_and(|p| is_water_material(p[3] as f64) || is_translucent_material(p[3] as f64))
+        // (shaders.properties), and composite reads the water mark only there: a mark put into
+        // colortex4 here must come with that alpha to be shaded.
+        if px.get(&4).is_some_and(|p| is_water_nearest(p[0] as f64) || is_water_behind_translucent(p[0] as f64))
             && let Some(scene) = px.get_mut(&0)
         {
             scene[3] = 0.0;
@@ -317,27 +317,29 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
                     *d0 = 1.0;
                     *d1 = 1.0;
                     if let Some(p) = px.get_mut(&4) {
-                        p[3] = 1.0; // water material at sky depth
+                        p[0] = 1.0; // water mark at sky depth
                     }
                 } else {
                     *d1 = 1.0;
                 }
             });
-            description.push_str(if all { " +depth0=depth1=1 everywhere, water material" } else { " +sky depth on alternate pixels" });
+            description.push_str(if all { " +depth0=depth1=1 everywhere, water mark" } else { " +sky depth on alternate pixels" });
         }
         "d0_eq_d1" => {
             map_gbuffers(runner, &mut g, |_, _, d0, d1| *d1 = *d0);
             description.push_str(" +depthtex1=depthtex0");
         }
-        "zero_normals" => {
+        "dark_water" => {
+            // Black tint and no sky light: the scattered colour and every sky term vanish.
             map_gbuffers(runner, &mut g, |_, px, _, _| {
                 if let Some(p) = px.get_mut(&4) {
-                    p[0] = 0.5;
-                    p[1] = 0.5;
-                    p[2] = 0.5;
+                    p[1] = 0.0;
+                }
+                if let Some(p) = px.get_mut(&5) {
+                    *p = [0.0, 0.0, 0.0, p[3]];
                 }
             });
-            description.push_str(" +colortex4.rgb=0.5 (decodes to zero)");
+            description.push_str(" +colortex4.g=0 (no sky light), colortex5=black tint");
         }
         "sun_below" => {
             let y = *rng.pick(&[-1.0, -0.5, -0.05, -1e-6, 0.0]);
@@ -367,8 +369,8 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
                         && r2.unit() < 0.3
                     {
                         let u = r2.unit() as f32;
-                        let mask = *r2.pick(&[0.0f32, 0.5, 1.0, u]);
-                        *p = [r2.unit() as f32, r2.unit() as f32, r2.unit() as f32, mask];
+                        let mark = *r2.pick(&[0.0f32, 0.0627, 0.75, 1.0, u]);
+                        *p = [mark, r2.unit() as f32, r2.unit() as f32, r2.unit() as f32];
                     }
                     if let Some(p) = px.get_mut(&5)
                         && r2.unit() < 0.3

@@ -2,32 +2,28 @@
 
 const float TAU = 6.28318530718;
 
-// Material mask in colortex4.a, written by gbuffers_water, read by composite.
-const float MATERIAL_WATER = 1.0;
-const float MATERIAL_TRANSLUCENT = 0.5;
+// The water mark in colortex4.r, written by gbuffers_water and read by composite. Water writes
+// it whole; every other translucent (glass, ice) drawn over it scales it by 3/4, since the one
+// blend mode OptiFine applies to all of gbuffers_water's buffers mixes by the output's alpha,
+// and those translucents write it as 0 with alpha 1/4.
+const float WATER_MARK = 1.0;
+const float MARK_KEPT_BEHIND_TRANSLUCENT = 0.75;
 
-// RGBA8 stores 0.5 as 128/255, so classify with margins rather than equality.
-bool isWaterMaterial(float mask) {
-    return mask > 0.75;
+// Water is the nearest translucent at this pixel.
+bool isWaterNearest(float mark) {
+    return mark > 0.875;
 }
 
-bool isTranslucentMaterial(float mask) {
-    return mask > 0.25 && mask <= 0.75;
+// Water lies behind one to ten layers of glass or ice (mark 0.75 down to 0.75^10 = 0.056; a
+// quarter of an 8-bit step is lost to rounding at each layer).
+bool isWaterBehindTranslucent(float mark) {
+    return mark > 0.04 && mark <= 0.875;
 }
 
 // normalize() of a zero vector is NaN: decoded normals and view vectors can be zero.
 vec3 safeNormalize(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
     return lengthSquared > 1e-12 ? v * inversesqrt(lengthSquared) : fallback;
-}
-
-// Unit normals to the [0, 1] range an unsigned colour buffer can hold, and back.
-vec3 encodeNormal(vec3 normal) {
-    return normal * 0.5 + 0.5;
-}
-
-vec3 decodeNormal(vec3 encoded) {
-    return safeNormalize(encoded * 2.0 - 1.0, vec3(0.0, 1.0, 0.0));
 }
 
 float luminance(vec3 color) {

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use tidepack_harness::HarnessError;
+use tidepack_harness::{HarnessError, Loader};
 use tidepack_harness::job::{self, RenderJob};
 use tidepack_pack::Dialect;
 
@@ -24,6 +24,10 @@ pub struct RenderArgs {
     /// Override an option (repeatable): `--set SSR_STEPS=24`, `--set FOAM=off`.
     #[arg(long = "set", value_name = "OPTION=VALUE")]
     pub set: Vec<String>,
+    /// The loader whose drawing to imitate: optifine-1.21, optifine-1.16.5, optifine-1.12.2,
+    /// optifine-1.8.9 or iris (docs/loaders.md says what differs).
+    #[arg(long, default_value_t = Loader::default())]
+    pub loader: Loader,
     /// Folder the PNG and JSON files are written to.
     #[arg(long, default_value = "render")]
     pub out: PathBuf,
@@ -74,6 +78,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         },
         profile: args.profile.clone(),
         options,
+        loader: args.loader,
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,
@@ -92,11 +97,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         }
     };
     println!(
-        "Rendered {} at {}x{} ({}, profile {}) on {} ({}, {})",
+        "Rendered {} at {}x{} ({}, {}, profile {}) on {} ({}, {})",
         report.scene,
         report.resolution[0],
         report.resolution[1],
         report.dialect,
+        report.loader,
         report.profile,
         report.adapter.name,
         report.adapter.backend,

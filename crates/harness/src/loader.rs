@@ -1,0 +1,141 @@
+//! The loaders the harness imitates, and what each does differently with the programs the
+//! harness draws (clear, terrain, gbuffers_water, composite). docs/loaders.md gives the sources.
+
+use std::fmt;
+use std::str::FromStr;
+
+use tidepack_pack::dialect::Dialect;
+
+/// A loader and version whose behaviour the harness reproduces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Loader {
+    /// OptiFine for Minecraft 1.21 (HD U J1): core profile, legacy GLSL rewritten on load.
+    #[default]
+    OptiFine1_21,
+    /// OptiFine for Minecraft 1.16.5 (HD U G8): the first with per-buffer blend modes.
+    OptiFine1_16_5,
+    /// OptiFine for Minecraft 1.12.2 (HD U G5): fixed-function alpha test on water.
+    OptiFine1_12_2,
+    /// OptiFine for Minecraft 1.8.9 (HD U M5).
+    OptiFine1_8_9,
+    /// Iris 1.4 and later on OpenGL 4.0 or newer.
+    Iris,
+}
+
+/// What a loader draws with where the pack has no program for it (the chain of fallbacks ends
+/// at none): the game's own shading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MissingProgramDraws {
+    /// Into colortex0 only (Iris's built-in fallback; OptiFine 1.17+'s vanilla shaders, whose
+    /// other outputs are undefined and modelled as left alone).
+    FirstBufferOnly,
+    /// The same colour into every draw buffer bound, which is all the colour buffers the pack
+    /// uses (OptiFine up to 1.16.5: fixed-function output goes to every draw buffer, and a
+    /// missing program does not change the draw buffers the clear left).
+    EveryBuffer,
+}
+
+impl Loader {
+    pub const ALL: [Loader; 5] =
+        [Loader::OptiFine1_21, Loader::OptiFine1_16_5, Loader::OptiFine1_12_2, Loader::OptiFine1_8_9, Loader::Iris];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Loader::OptiFine1_21 => "optifine-1.21",
+            Loader::OptiFine1_16_5 => "optifine-1.16.5",
+            Loader::OptiFine1_12_2 => "optifine-1.12.2",
+            Loader::OptiFine1_8_9 => "optifine-1.8.9",
+            Loader::Iris => "iris",
+        }
+    }
+
+    /// Reads `blend.<program>.<buffer>`: OptiFine from 1.16.5 HD U G7, Iris from 1.4 with
+    /// OpenGL 4.0. Older OptiFine skips such keys without a word.
+    pub fn per_buffer_blend(self) -> bool {
+        !matches!(self, Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9)
+    }
+
+    /// The alpha test on gbuffers_water's output 0 when shaders.properties has no
+    /// `alphaTest.gbuffers_water`: fixed-function `GREATER 0.1` up to Minecraft 1.12; none on
+    /// 1.15 to 1.16.5; from 1.17 OptiFine adds `if (a < alphaTestRef) discard;` to writes of
+    /// `gl_FragData[0]` and `gl_FragColor` (the GLSL 120 dialect), not to declared outputs.
+    /// Iris draws water with the test off.
+    pub fn default_water_alpha_test(self, dialect: Dialect) -> Option<f32> {
+        match self {
+            Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9 => Some(0.1),
+            Loader::OptiFine1_21 if dialect == Dialect::Glsl120 => Some(0.1),
+            Loader::OptiFine1_21 | Loader::OptiFine1_16_5 | Loader::Iris => None,
+        }
+    }
+
+    pub fn missing_program_draws(self) -> MissingProgramDraws {
+        match self {
+            Loader::OptiFine1_16_5 | Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9 => MissingProgramDraws::EveryBuffer,
+            Loader::OptiFine1_21 | Loader::Iris => MissingProgramDraws::FirstBufferOnly,
+        }
+    }
+}
+
+impl fmt::Display for Loader {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Loader {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Loader, String> {
+        Loader::ALL.into_iter().find(|l| l.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Loader::ALL.iter().map(|l| l.name()).collect();
+            format!("unknown loader {s}; the harness imitates {}", names.join(", "))
+        })
+    }
+}
+
+/// The alpha test that applies to gbuffers_water: `alphaTest.gbuffers_water` in
+/// shaders.properties (`off`, or `GREATER <ref>`), else the loader's default. Other functions
+/// are not imitated.
+pub fn water_alpha_test(properties: &str, loader: Loader, dialect: Dialect) -> Result<Option<f32>, String> {
+    let setting = properties.lines().map(str::trim).filter(|l| !l.starts_with('#')).find_map(|l| {
+        let (key, value) = l.split_once('=')?;
+        (key.trim() == "alphaTest.gbuffers_water").then(|| value.trim().to_string())
+    });
+    match setting.as_deref() {
+        None => Ok(loader.default_water_alpha_test(dialect)),
+        Some("off" | "false") => Ok(None),
+        Some(value) => {
+            let mut words = value.split_whitespace();
+            match (words.next(), words.next().and_then(|r| r.parse::<f32>().ok()), words.next()) {
+                (Some("GREATER"), Some(reference), None) => Ok(Some(reference)),
+                _ => Err(format!("alphaTest.gbuffers_water={value}: the harness imitates off and GREATER <ref> only")),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_unknown_names_list_the_loaders() {
+        for loader in Loader::ALL {
+            assert_eq!(loader.name().parse::<Loader>(), Ok(loader));
+        }
+        let err = "optifine-1.7".parse::<Loader>().unwrap_err();
+        assert!(err.contains("optifine-1.12.2") && err.contains("iris"), "{err}");
+    }
+
+    #[test]
+    fn alpha_test_follows_the_properties_then_the_loader() {
+        let off = "alphaTest.gbuffers_water=off\n";
+        assert_eq!(water_alpha_test(off, Loader::OptiFine1_12_2, Dialect::Glsl120), Ok(None));
+        assert_eq!(water_alpha_test("", Loader::OptiFine1_12_2, Dialect::Glsl330), Ok(Some(0.1)));
+        assert_eq!(water_alpha_test("", Loader::OptiFine1_16_5, Dialect::Glsl120), Ok(None));
+        assert_eq!(water_alpha_test("", Loader::OptiFine1_21, Dialect::Glsl120), Ok(Some(0.1)));
+        assert_eq!(water_alpha_test("", Loader::OptiFine1_21, Dialect::Glsl330), Ok(None));
+        assert_eq!(water_alpha_test("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, Dialect::Glsl330), Ok(Some(0.5)));
+        assert!(water_alpha_test("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, Dialect::Glsl330).is_err());
+    }
+}

@@ -1,0 +1,98 @@
+//! The pack as each imitated loader draws it (crates/harness/src/loader.rs, docs/loaders.md):
+//! water shaded where it lies, nothing else changed, in both dialects. Each loader differs in
+//! how it reads shaders.properties (per-buffer blend modes), the alpha test it puts on the
+//! translucent layer, and where it draws what the pack has no program for.
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use tidepack_harness::program::{self, PackSelection};
+use tidepack_harness::{Frame, Gpu, LoadedPack, Loader, Scene, images, render_wgpu};
+use tidepack_pack::Dialect;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
+}
+
+fn scene(name: &str) -> Scene {
+    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn pack(loader: Loader, dialect: Dialect) -> LoadedPack {
+    let selection = PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };
+    program::load_for(&selection, None, loader).unwrap_or_else(|e| panic!("{loader}: {e}"))
+}
+
+fn same(a: [f32; 4], b: [f32; 4]) -> bool {
+    (0..3).all(|c| images::to_unorm8(a[c]) == images::to_unorm8(b[c]))
+}
+
+/// Every loader in both dialects: `check(loader, dialect, frame of each scene)`.
+fn for_every_loader(scenes: &[&str], check: impl Fn(Loader, Dialect, &[(String, Frame)]) -> Result<(), String>) {
+    let mut failures = Vec::new();
+    for loader in Loader::ALL {
+        for dialect in [Dialect::Glsl120, Dialect::Glsl330] {
+            let pack = pack(loader, dialect);
+            let frames: Vec<(String, Frame)> = scenes
+                .iter()
+                .map(|&name| (name.to_string(), render_wgpu(gpu(), &pack, &scene(name), false).unwrap_or_else(|e| panic!("{loader} {name}: {e}"))))
+                .collect();
+            if let Err(why) = check(loader, dialect, &frames) {
+                failures.push(format!("{loader} ({dialect:?}): {why}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Water seen from above is shaded with every loader: the blend the pack relies on is one every
+/// loader reads (not per buffer), and no loader's alpha test discards the water.
+#[test]
+fn water_is_shaded_with_every_loader() {
+    for_every_loader(&["case4_above_near", "no_water"], |_, _, frames| {
+        let (_, near) = &frames[0];
+        let input = &near.buffers[&0];
+        let n = input.pixels.len();
+        let changed = (0..n).filter(|&i| !same(near.image.pixels[i], input.pixels[i])).count();
+        if changed * 10 < n * 3 {
+            return Err(format!("case4_above_near: only {changed} of {n} pixels shaded; the water is not drawn"));
+        }
+        let (_, dry) = &frames[1];
+        let changed = (0..dry.image.pixels.len()).filter(|&i| !same(dry.image.pixels[i], dry.buffers[&0].pixels[i])).count();
+        if changed > 0 {
+            return Err(format!("no_water: {changed} pixels changed"));
+        }
+        Ok(())
+    });
+}
+
+/// Land and glass with no water behind stay as drawn, and only the water is shaded, with every
+/// loader: what a loader draws for the pack's missing programs must not reach the water's data.
+/// Where water lies comes from the frame the default loader draws.
+#[test]
+fn only_water_is_shaded_with_every_loader() {
+    let scenes = ["case1_above_dry", "glass", "glass_over_land"];
+    let default_pack = pack(Loader::default(), Dialect::Glsl330);
+    let water: Vec<Vec<bool>> = scenes
+        .iter()
+        .map(|&name| {
+            let frame = render_wgpu(gpu(), &default_pack, &scene(name), false).unwrap_or_else(|e| panic!("{name}: {e}"));
+            frame.buffers[&4].pixels.iter().map(|p| p[0] > 0.04).collect()
+        })
+        .collect();
+    for_every_loader(&scenes, |_, _, frames| {
+        for ((name, frame), water) in frames.iter().zip(&water) {
+            let input = &frame.buffers[&0];
+            let changed = (0..input.pixels.len()).filter(|&i| !water[i] && !same(frame.image.pixels[i], input.pixels[i])).count();
+            if changed > 0 {
+                return Err(format!("{name}: {changed} pixels with no water in front or behind glass changed"));
+            }
+        }
+        Ok(())
+    });
+}

@@ -1,0 +1,51 @@
+// What the game itself would draw, for the programs the pack has only so that nothing is left
+// to the loader: gbuffers_basic (lines, the sky's colour), gbuffers_textured (particles, clouds,
+// sun and moon, glints) and gbuffers_textured_lit (terrain, entities, the hand, weather), which
+// every other gbuffers program falls back to. A loader's own drawing would not do: OptiFine up
+// to Minecraft 1.16.5 writes it into every buffer, the water's data in colortex4 included.
+//
+// The fragment stage of those programs; the including program defines TEXTURED (sample
+// gtexture) and LIT (multiply by the lightmap) before including this.
+
+uniform int fogMode;
+uniform int isEyeInWater;
+uniform float far;
+uniform float alphaTestRef;
+uniform vec3 fogColor;
+
+// The game's distance fog, linear from three quarters of the render distance to its end.
+// None where the game draws without fog (fogMode 0: the sun, moon and stars) and under water,
+// where composite's absorption is the water's fog.
+vec3 withDistanceFog(vec3 color, float viewDistance) {
+    if (fogMode == 0 || isEyeInWater == 1) {
+        return color;
+    }
+    float renderDistance = max(far, 1.0);
+    float fog = clamp((viewDistance - 0.75 * renderDistance) / (0.25 * renderDistance), 0.0, 1.0);
+    return mix(color, fogColor, fog);
+}
+
+#ifdef TEXTURED
+uniform sampler2D gtexture;
+#endif
+#ifdef LIT
+uniform sampler2D lightmap;
+#endif
+
+// The colour the game draws: the vertex colour, times the texture and the lightmap where the
+// program has them, fogged. Fragments the game's alpha test would drop are discarded.
+vec4 vanillaColor(vec2 texUv, vec2 lightUv, vec4 tint, float viewDistance) {
+    vec4 color = tint;
+#ifdef TEXTURED
+    color *= texture(gtexture, texUv);
+#endif
+    // OptiFine from Minecraft 1.17 and Iris leave cutout textures (leaves, grass) to the program;
+    // alphaTestRef is 0 where the game tests nothing.
+    if (color.a < alphaTestRef) {
+        discard;
+    }
+#ifdef LIT
+    color.rgb *= texture(lightmap, lightUv).rgb;
+#endif
+    return vec4(withDistanceFog(color.rgb, viewDistance), color.a);
+}
