@@ -24,6 +24,7 @@ const int colortex6Format = RGBA8;
 */
 
 uniform sampler2D colortex0; // the scene behind the water, glass blended in; alpha 0 under translucents
+uniform sampler2D colortex3; // rain, clouds and the translucent hand: premultiplied colour, coverage
 uniform sampler2D colortex4; // water mark (r, weakened by each glass in front) and the water's sky light (g)
 uniform sampler2D colortex5; // the water's tint (rgb)
 uniform sampler2D colortex6; // the water's plain colour (rgb), kept where glass covers the water
@@ -110,6 +111,13 @@ vec3 lightDirection() {
     return safeNormalize(mat3(gbufferModelViewInverse) * shadowLightPosition, vec3(0.0, 1.0, 0.0));
 }
 
+// The scene at uv without the rain, clouds and translucent hand drawn over it: they lie in
+// colortex0 and, alone, in colortex3 (premultiplied colour, coverage in alpha).
+vec3 sceneBehindOverlay(vec2 uv) {
+    vec4 over = texture(colortex3, uv);
+    return (texture(colortex0, uv).rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
+}
+
 // Cases 4 and 5: the camera is above the water and this pixel is its surface.
 vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
     vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
@@ -151,7 +159,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
     vec3 player1 = playerFromView(view1, gbufferModelViewInverse);
     float pathInWater = max(distance(player1, surface), 0.0);
     bool floorVisible = depth1 < 1.0;
-    vec3 below = texture(colortex0, sceneUv).rgb;
+    vec3 below = sceneBehindOverlay(sceneUv);
     if (floorVisible) {
         below = withCaustics(below, player1.xz + cameraWrap.xz, transmittance(pathInWater).b);
     }
@@ -251,17 +259,22 @@ void main() {
     vec4 waterRecord = ownTexel(colortex4);
     bool water = isWaterNearest(waterRecord.r);
     if (isEyeInWater != 1) {
-        if (isWaterBehindTranslucent(waterRecord.r)) {
-            // Glass over water: the water behind it shows in the plain colour it left in
-            // colortex6.
-            outColor0.rgb = mix(scene.rgb, ownTexel(colortex6).rgb, 0.6);
-        }
+        bool waterBehindGlass = isWaterBehindTranslucent(waterRecord.r);
+        // Rain, clouds and the translucent hand lie in colortex0 over the water, and in
+        // colortex3 alone (premultiplied, coverage in alpha): take them out to shade what lies
+        // behind, then put them back on top.
+        vec4 drawnOver = ownTexel(colortex3);
+        float uncovered = 1.0 - drawnOver.a;
+        vec3 behind = (scene.rgb - drawnOver.rgb) / max(uncovered, INVISIBLE);
+        // Glass over water: the water behind it shows in the plain colour it left in colortex6.
+        vec3 shaded = waterBehindGlass ? mix(behind, ownTexel(colortex6).rgb, 0.6) : behind;
         if (NEEDED(water)) {
             vec3 tint = ownTexel(colortex5).rgb;
             float depth0 = ownTexel(depthtex0).r;
-            vec3 shaded = shadeFromAbove(screenUv, depth0, tint, waterRecord.g);
-            outColor0.rgb = water ? shaded : outColor0.rgb;
+            vec3 surface = shadeFromAbove(screenUv, depth0, tint, waterRecord.g);
+            shaded = water ? surface : shaded;
         }
+        outColor0.rgb = water || waterBehindGlass ? shaded * uncovered + drawnOver.rgb : scene.rgb;
         return;
     }
     // Under water: the sky light reaching the eye stands in for the depth below the surface.

@@ -1,5 +1,5 @@
 #version 330 compatibility
-// Lines, the block outline and the sky's colour, and every program that falls back here: drawn as the game draws it (lib/vanilla.glsl says why the pack has this program).
+// Lines, the block outline and the sky's colour, and every program that falls back here: drawn as the game draws it (lib/vanilla.glsl).
 
 /* RENDERTARGETS: 0,4 */
 out vec4 outColor0;
@@ -15,7 +15,7 @@ in float viewDistance;
 void main() {
     vec4 color = vanillaColor(texUv, lightUv, tint, viewDistance);
     outColor0 = color;
-    // Where this covers water drawn before it (particles, rain, the hand), the water is no
-    // longer what the pixel shows: its mark goes, in part where this is translucent.
+    // Where this covers water drawn before it (particles), the water is no longer what the
+    // pixel shows: its mark goes, in part where this is translucent.
     outColor1 = vec4(0.0, 0.0, 0.0, color.a);
 }

@@ -1,6 +1,7 @@
 #version 330 compatibility
-// Particles, clouds, the sun and moon, glints, and every program that falls back here: drawn as the game draws it (lib/vanilla.glsl says why the pack has this program).
+// Particles, clouds, the sun and moon, glints, and every program that falls back here: drawn as the game draws it (lib/vanilla.glsl).
 #define TEXTURED
+
 out vec2 texUv;
 out vec2 lightUv;
 out vec4 tint;

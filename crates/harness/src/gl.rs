@@ -21,11 +21,11 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
-use crate::gpu::{Source, fullscreen_quad, resolve_in_pack, terrain_mvp};
+use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp};
 use crate::images::FloatImage;
-use crate::loader::MissingProgramDraws;
+use crate::loader::{self, MissingProgramDraws, Phase};
 use crate::mesh::{self, PackVertex, SceneMesh, offsets};
-use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
+use crate::program::{Blend, BlendFactor, BufferFormat, DEFAULT_TRANSLUCENT_BLEND, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
@@ -50,32 +50,34 @@ pub enum DepthMapping {
     /// range [0, 1] (`glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`), Vulkan's provoking vertex
     /// (`glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)`: llvmpipe sets up a triangle's plane
     /// equations from its provoking vertex, so the convention changes the last bit of the
-    /// interpolated depth), and the harness's terrain shader summing the matrix product in
+    /// interpolated depth), and the harness's colour shader summing the matrix product in
     /// wgpu's order. Depth buffers then hold the same bits as wgpu's.
     #[default]
     Harness,
     /// OpenGL's own conventions: the vertex stage's output straight to the rasteriser,
-    /// `z / w * 0.5 + 0.5`, last provoking vertex, the terrain shader's `mvp * position`.
+    /// `z / w * 0.5 + 0.5`, last provoking vertex, the colour shader's `mvp * position`.
     OpenGl,
 }
 
-const TERRAIN_VS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
+/// The harness's colour shader, for geometry the pack has no program for: position and vertex
+/// colour.
+const COLOUR_VS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
 void main() { gl_Position = mvp * position; vColor = color; }\n";
-/// The harness's terrain shader with the wgpu path's arithmetic: the statements of
-/// `TERRAIN_WGSL` in gpu.rs less the y flip, and `mvp * position` summed in the order Mesa gives
+/// The harness's colour shader with the wgpu path's arithmetic: the statements of
+/// `COLOUR_VERTEX_WGSL` in gpu.rs less the y flip, and `mvp * position` summed in the order Mesa gives
 /// the SPIR-V matrix product naga writes for it (last column first, `mvp * position` in GLSL
 /// sums the first column first: the last bits of depth differ in ~4% of the pixels).
-const TERRAIN_VS_HARNESS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
+const COLOUR_VS_HARNESS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
 void main() {\n\
     vec4 clip = mvp[0] * position.x + (mvp[1] * position.y + (mvp[2] * position.z + mvp[3] * position.w));\n\
     clip.z = 0.5 * (clip.z + clip.w);\n\
     gl_Position = clip;\n\
     vColor = color;\n\
 }\n";
-const TERRAIN_FS: &str = "#version 330 compatibility\nin vec4 vColor;\nout vec4 outColor;\nvoid main() { outColor = vColor; }\n";
-/// The terrain shader for a loader that draws a pack's missing programs into every draw buffer:
+const COLOUR_FS: &str = "#version 330 compatibility\nin vec4 vColor;\nout vec4 outColor;\nvoid main() { outColor = vColor; }\n";
+/// The colour shader for a loader that draws a pack's missing programs into every draw buffer:
 /// `gl_FragColor` goes to every one, as fixed-function output does.
-const TERRAIN_FS_EVERY_BUFFER: &str = "#version 330 compatibility\nin vec4 vColor;\nvoid main() { gl_FragColor = vColor; }\n";
+const COLOUR_FS_EVERY_BUFFER: &str = "#version 330 compatibility\nin vec4 vColor;\nvoid main() { gl_FragColor = vColor; }\n";
 
 fn gl_err(what: &str) -> impl Fn(String) -> HarnessError + '_ {
     move |e| HarnessError::Gl(format!("{what}: {e}"))
@@ -163,7 +165,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // Buffers, as in the wgpu path.
         let mut buffers: std::collections::BTreeSet<u8> = [0].into();
         buffers.extend(pack.water.render_targets.iter().copied());
-        buffers.extend(pack.terrain.iter().flat_map(|t| t.render_targets.iter().copied()));
+        buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
         for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface) {
             if let Ok(Source::Color(n)) = resolve_in_pack(pack, &name, false) {
                 buffers.insert(n);
@@ -226,65 +228,96 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         gl.depth_func(glow::LEQUAL);
         gl.disable(glow::CULL_FACE);
 
-        // 2. terrain, with blending off
-        if let Some(program) = &pack.terrain {
-            let compiled = compile(ctx, program, depth)?;
-            let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| textures.colors[b].0).collect();
-            attach(&targets, Some(textures.depth0))?;
-            draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &textures, &mesh.terrain)?;
-            compiled.delete(ctx);
-        } else {
-            let vertex = if depth == DepthMapping::Harness { TERRAIN_VS_HARNESS } else { TERRAIN_VS };
-            let attributes = [("position", 0), ("color", 1)];
-            let (terrain, terrain_targets) = match pack.loader.missing_program_draws() {
-                MissingProgramDraws::FirstBufferOnly => {
-                    (ctx.compile_program(vertex, TERRAIN_FS, &attributes, &[("outColor", 0)]), vec![textures.colors[&0].0])
-                }
-                MissingProgramDraws::EveryBuffer => (
-                    ctx.compile_program(vertex, TERRAIN_FS_EVERY_BUFFER, &attributes, &[]),
-                    textures.colors.values().map(|(t, _)| *t).collect(),
-                ),
+        // Geometry drawn by a gbuffers program, or by the harness's own colour shader where the
+        // pack has no program of the chain (into the buffers the loader would draw into).
+        let draw_geometry = |program: Option<&LoadedProgram>,
+                             blend_of: &dyn Fn(u8) -> Blend,
+                             depth_write: bool,
+                             vertices: &[PackVertex]|
+         -> Result<(), HarnessError> {
+            let buffers: Vec<u8> = match program {
+                Some(p) => p.render_targets.clone(),
+                None => match pack.loader.missing_program_draws() {
+                    MissingProgramDraws::FirstBufferOnly => vec![0],
+                    MissingProgramDraws::EveryBuffer => textures.colors.keys().copied().collect(),
+                },
             };
-            let terrain = terrain.map_err(|e| HarnessError::Gl(format!("terrain shader: {e}")))?;
-            attach(&terrain_targets, Some(textures.depth0))?;
-            gl.use_program(Some(terrain.raw));
-            gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(terrain.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
-            let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(&mesh.terrain), glow::STATIC_DRAW);
-            let stride = offsets::STRIDE as i32;
-            gl.enable_vertex_attrib_array(0);
-            gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
-            gl.enable_vertex_attrib_array(1);
-            gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, offsets::COLOR as i32);
-            gl.draw_arrays(glow::TRIANGLES, 0, mesh.terrain.len() as i32);
-            gl.disable_vertex_attrib_array(0);
-            gl.disable_vertex_attrib_array(1);
-            gl.delete_buffer(vbo);
-            ctx.delete_program(terrain);
-        }
+            let targets: Vec<glow::Texture> = buffers.iter().map(|b| textures.colors[b].0).collect();
+            attach(&targets, Some(textures.depth0))?;
+            for (i, b) in buffers.iter().enumerate() {
+                match blend_of(*b) {
+                    Blend::Off => gl.disable_draw_buffer(glow::BLEND, i as u32),
+                    Blend::Factors([s, d, sa, da]) => {
+                        gl.enable_draw_buffer(glow::BLEND, i as u32);
+                        gl.blend_func_separate_draw_buffer(i as u32, gl_factor(s), gl_factor(d), gl_factor(sa), gl_factor(da));
+                    }
+                }
+            }
+            gl.depth_mask(depth_write);
+            match program {
+                Some(program) => {
+                    let compiled = compile(ctx, program, depth)?;
+                    draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &textures, vertices)?;
+                    compiled.delete(ctx);
+                }
+                None => {
+                    let vertex = if depth == DepthMapping::Harness { COLOUR_VS_HARNESS } else { COLOUR_VS };
+                    let attributes = [("position", 0), ("color", 1)];
+                    let own = match pack.loader.missing_program_draws() {
+                        MissingProgramDraws::FirstBufferOnly => ctx.compile_program(vertex, COLOUR_FS, &attributes, &[("outColor", 0)]),
+                        MissingProgramDraws::EveryBuffer => ctx.compile_program(vertex, COLOUR_FS_EVERY_BUFFER, &attributes, &[]),
+                    };
+                    let own = own.map_err(|e| HarnessError::Gl(format!("the harness's colour shader: {e}")))?;
+                    gl.use_program(Some(own.raw));
+                    gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
+                    let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
+                    gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+                    gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(vertices), glow::STATIC_DRAW);
+                    let stride = offsets::STRIDE as i32;
+                    gl.enable_vertex_attrib_array(0);
+                    gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
+                    gl.enable_vertex_attrib_array(1);
+                    gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, offsets::COLOR as i32);
+                    gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
+                    gl.disable_vertex_attrib_array(0);
+                    gl.disable_vertex_attrib_array(1);
+                    gl.delete_buffer(vbo);
+                    ctx.delete_program(own);
+                }
+            }
+            for i in 0..8 {
+                gl.disable_draw_buffer(glow::BLEND, i);
+            }
+            gl.depth_mask(true);
+            Ok(())
+        };
+        // Rain, clouds, particles and the hand drawn when the loader draws them.
+        let draw_overlays = |phase: Phase| -> Result<(), HarnessError> {
+            for (kind, vertices) in &mesh.overlay {
+                if overlay_phase(pack, scene, *kind) != phase {
+                    continue;
+                }
+                let program = pack.resolve(pack.loader.program_chain(*kind));
+                let blend_of = |b: u8| match program {
+                    Some(p) => pack.gbuffers_blend_of(&p.name, b),
+                    None => DEFAULT_TRANSLUCENT_BLEND,
+                };
+                draw_geometry(program, &blend_of, loader::writes_depth(*kind), vertices)?;
+            }
+            Ok(())
+        };
+
+        draw_overlays(Phase::BeforeTerrain)?;
+        // 2. terrain, with blending off
+        draw_geometry(pack.terrain_program(), &|_| Blend::Off, true, &mesh.terrain)?;
+        draw_overlays(Phase::BeforeWater)?;
 
         // 3. depth copy
         gl.copy_image_sub_data(textures.depth0, glow::TEXTURE_2D, 0, 0, 0, 0, textures.depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
 
         // 4. gbuffers_water
-        let water = compile(ctx, &pack.water, depth)?;
-        let targets: Vec<glow::Texture> = pack.water.render_targets.iter().map(|b| textures.colors[b].0).collect();
-        attach(&targets, Some(textures.depth0))?;
-        for (i, b) in pack.water.render_targets.iter().enumerate() {
-            match pack.blend_of(*b) {
-                Blend::Off => gl.disable_draw_buffer(glow::BLEND, i as u32),
-                Blend::Factors([s, d, sa, da]) => {
-                    gl.enable_draw_buffer(glow::BLEND, i as u32);
-                    gl.blend_func_separate_draw_buffer(i as u32, gl_factor(s), gl_factor(d), gl_factor(sa), gl_factor(da));
-                }
-            }
-        }
-        draw_program(ctx, pack, &pack.water, &water, scene, Pass::Gbuffers, &textures, &mesh.translucent)?;
-        for i in 0..8 {
-            gl.disable_draw_buffer(glow::BLEND, i);
-        }
-        water.delete(ctx);
+        draw_geometry(Some(&pack.water), &|b| pack.blend_of(b), true, &mesh.translucent)?;
+        draw_overlays(Phase::AfterWater)?;
 
         // 5. composite, into the RGBA32F output for colortex0
         let composite = compile(ctx, &pack.composite, depth)?;

@@ -27,8 +27,9 @@ use wgpu::util::DeviceExt as _;
 use crate::HarnessError;
 use crate::images::FloatImage;
 use crate::mesh::{self, SceneMesh, offsets};
-use crate::loader::MissingProgramDraws;
-use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
+use crate::loader::{self, MissingProgramDraws, Phase};
+use crate::program::{Blend, BlendFactor, BufferFormat, DEFAULT_TRANSLUCENT_BLEND, LoadedPack, LoadedProgram, LoadedStage};
+use crate::scene::OverlayKind;
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass};
 
@@ -69,7 +70,13 @@ impl Gpu {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("tidepack-harness"),
             required_features: features,
-            required_limits: wgpu::Limits::default().using_resolution(adapter.limits()),
+            // A gbuffers program may write 8 colour buffers at once, as in OptiFine: the
+            // adapter's own attachment limits, not wgpu's portable 32 bytes a sample.
+            required_limits: wgpu::Limits {
+                max_color_attachments: adapter.limits().max_color_attachments,
+                max_color_attachment_bytes_per_sample: adapter.limits().max_color_attachment_bytes_per_sample,
+                ..wgpu::Limits::default().using_resolution(adapter.limits())
+            },
             ..Default::default()
         }))
         .map_err(|e| HarnessError::NoAdapter(format!("the Vulkan adapter {} refused a device: {e}", info.name)))?;
@@ -326,7 +333,7 @@ fn render_frame(
     // Colour buffers: everything either program writes or reads.
     let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
     buffers.extend(pack.water.render_targets.iter().copied());
-    buffers.extend(pack.terrain.iter().flat_map(|t| t.render_targets.iter().copied()));
+    buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
     for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface)
         .into_iter()
         .chain(crate::program::texture_resources(&pack.composite.vertex.interface))
@@ -386,32 +393,32 @@ fn render_frame(
     };
 
     let textures = StaticTextures::new(gpu, pack);
-    let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &|b| pack.blend_of(b), &targets, &textures)?;
-    let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &|_| Blend::Off, &targets, &textures)?;
+    let water_state = DrawState { blend_of: &|b| pack.blend_of(b), depth_write: true };
+    let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &water_state, &targets, &textures)?;
+    let no_blend = |_| Blend::Off;
+    let fullscreen = DrawState { blend_of: &no_blend, depth_write: false };
+    let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &fullscreen, &targets, &textures)?;
     // Opaque terrain is drawn with blending off.
-    let (terrain, terrain_buffers) = match &pack.terrain {
-        Some(program) => {
-            let pipeline = ProgramPipeline::new(gpu, pack, program, scene, Pass::Gbuffers, &|_| Blend::Off, &targets, &textures)?;
-            (Terrain::Pack(pipeline), program.render_targets.clone())
-        }
-        None => {
-            let buffers: Vec<u8> = match pack.loader.missing_program_draws() {
-                MissingProgramDraws::FirstBufferOnly => vec![0],
-                MissingProgramDraws::EveryBuffer => targets.colors.keys().copied().collect(),
-            };
-            let formats: Vec<wgpu::TextureFormat> = buffers.iter().map(|b| targets.colors[b].1).collect();
-            (Terrain::Harness(TerrainPipeline::new(gpu, scene, &formats)?), buffers)
-        }
-    };
+    let opaque = DrawState { blend_of: &no_blend, depth_write: true };
+    let terrain =
+        GeometryDraw::new(gpu, pack, scene, &targets, &textures, pack.terrain_program(), &opaque, &mesh.terrain, "terrain".into())?;
+    // Rain, clouds, particles and the hand, grouped by when the loader draws them.
+    let mut overlays: BTreeMap<Phase, Vec<GeometryDraw>> = BTreeMap::new();
+    for (kind, vertices) in &mesh.overlay {
+        let program = pack.resolve(pack.loader.program_chain(*kind));
+        let name = program.map(|p| p.name.clone());
+        let blend_of = |b: u8| match &name {
+            Some(name) => pack.gbuffers_blend_of(name, b),
+            None => DEFAULT_TRANSLUCENT_BLEND,
+        };
+        let state = DrawState { blend_of: &blend_of, depth_write: loader::writes_depth(*kind) };
+        let label = format!("{kind:?} ({})", name.as_deref().unwrap_or("the loader's own"));
+        let draw = GeometryDraw::new(gpu, pack, scene, &targets, &textures, program, &state, vertices, label)?;
+        overlays.entry(overlay_phase(pack, scene, *kind)).or_default().push(draw);
+    }
     let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets.colors[&0].0)?) } else { None };
 
-    // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
     let one_pack = [mesh::PackVertex::default()];
-    let terrain_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("terrain vertices"),
-        contents: mesh::as_bytes(if mesh.terrain.is_empty() { &one_pack } else { &mesh.terrain }),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
     let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("translucent vertices"),
         contents: mesh::as_bytes(if mesh.translucent.is_empty() { &one_pack } else { &mesh.translucent }),
@@ -479,38 +486,24 @@ fn render_frame(
                 }
             }
             submit(encoder)?;
+            let draw_phase = |phase: Phase, wall: &mut Vec<(String, f64)>| -> Result<(), HarnessError> {
+                for draw in overlays.get(&phase).into_iter().flatten() {
+                    let mut encoder = new_encoder();
+                    draw.record(&mut encoder, &targets, None);
+                    wall.push((draw.label.clone(), submit(encoder)?));
+                }
+                Ok(())
+            };
+            draw_phase(Phase::BeforeTerrain, &mut wall)?;
             // 2. terrain
             let mut encoder = new_encoder();
-            {
-                let views: Vec<wgpu::TextureView> = terrain_buffers.iter().map(|b| view(&targets.colors[b].0)).collect();
-                let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("terrain"),
-                    color_attachments: &attachments,
-                    depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
-                    timestamp_writes: stamps(0),
-                    ..Default::default()
-                });
-                match &terrain {
-                    Terrain::Pack(program) => {
-                        pass.set_pipeline(&program.pipeline);
-                        for (i, g) in program.bind_groups.iter().enumerate() {
-                            pass.set_bind_group(i as u32, g, &[]);
-                        }
-                    }
-                    Terrain::Harness(own) => {
-                        pass.set_pipeline(&own.pipeline);
-                        pass.set_bind_group(0, &own.bind_group, &[]);
-                    }
-                }
-                pass.set_vertex_buffer(0, terrain_vertices.slice(..));
-                pass.draw(0..mesh.terrain.len() as u32, 0..1);
-            }
-            wall.push(("terrain", submit(encoder)?));
+            terrain.record(&mut encoder, &targets, stamps(0));
+            wall.push(("terrain".into(), submit(encoder)?));
+            draw_phase(Phase::BeforeWater, &mut wall)?;
             // 3. depth copy
             let mut encoder = new_encoder();
             encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size);
-            wall.push(("depth copy", submit(encoder)?));
+            wall.push(("depth copy".into(), submit(encoder)?));
             // 4. gbuffers_water
             let mut encoder = new_encoder();
             {
@@ -532,7 +525,8 @@ fn render_frame(
                     pass.draw(0..mesh.translucent.len() as u32, 0..1);
                 }
             }
-            wall.push(("gbuffers_water", submit(encoder)?));
+            wall.push(("gbuffers_water".into(), submit(encoder)?));
+            draw_phase(Phase::AfterWater, &mut wall)?;
             // 5. composite
             let mut encoder = new_encoder();
             {
@@ -557,7 +551,7 @@ fn render_frame(
                 pass.set_vertex_buffer(0, quad_vertices.slice(..));
                 pass.draw(0..quad.len() as u32, 0..1);
             }
-            wall.push(("composite", submit(encoder)?));
+            wall.push(("composite".into(), submit(encoder)?));
             // 6. pass-through
             if let Some(p) = &copy_pipeline {
                 let mut encoder = new_encoder();
@@ -574,7 +568,7 @@ fn render_frame(
                     pass.set_bind_group(0, &p.bind_group, &[]);
                     pass.draw(0..3, 0..1);
                 }
-                wall.push(("pass-through composite", submit(encoder)?));
+                wall.push(("pass-through composite".into(), submit(encoder)?));
             }
             Ok(())
         })??;
@@ -587,13 +581,15 @@ fn render_frame(
         let mut timings = Vec::new();
         let mut timed = 0;
         for (name, ms) in wall {
-            let gpu_time = if name == "depth copy" {
-                None
-            } else {
+            // The four timed passes carry GPU timestamps; the depth copy and the overlay draws
+            // are timed by the wall clock only.
+            let gpu_time = if TIMED_PASSES.contains(&name.as_str()) {
                 timed += 1;
                 gpu_ms[timed - 1]
+            } else {
+                None
             };
-            timings.push(PassTiming { pass: name.to_string(), gpu_ms: gpu_time, wall_ms: ms });
+            timings.push(PassTiming { pass: name, gpu_ms: gpu_time, wall_ms: ms });
         }
         runs.push(timings);
     }
@@ -612,6 +608,17 @@ fn render_frame(
         timings,
     };
     Ok((frame, runs))
+}
+
+/// The passes with GPU timestamps, in frame order.
+const TIMED_PASSES: [&str; 4] = ["terrain", "gbuffers_water", "composite", "pass-through composite"];
+
+/// When the loader draws a scene's boxes of `kind`.
+pub(crate) fn overlay_phase(pack: &LoadedPack, scene: &Scene, kind: OverlayKind) -> Phase {
+    let boxes = scene.overlay.iter().filter(|o| o.kind == kind);
+    let camera_below = boxes.clone().all(|o| o.min[1] > scene.camera.position[1]);
+    let opaque = boxes.clone().all(|o| o.color[3] >= 1.0);
+    pack.loader.phase(kind, camera_below, opaque)
 }
 
 fn load_attachment(v: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
@@ -721,10 +728,94 @@ impl StaticTextures {
     }
 }
 
-/// What draws the opaque terrain.
-enum Terrain {
+/// How a gbuffers draw blends into each colour buffer, and whether it writes depth.
+struct DrawState<'a> {
+    blend_of: &'a dyn Fn(u8) -> Blend,
+    depth_write: bool,
+}
+
+/// Geometry drawn before composite by one program: the pack's, or the harness's own colour
+/// shader where the pack has no program of the chain (drawing into the buffers the loader
+/// would).
+struct GeometryDraw {
+    label: String,
+    drawer: Drawer,
+    buffers: Vec<u8>,
+    vertices: wgpu::Buffer,
+    count: u32,
+}
+
+enum Drawer {
     Pack(ProgramPipeline),
-    Harness(TerrainPipeline),
+    Harness(ColourPipeline),
+}
+
+impl GeometryDraw {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        gpu: &Gpu,
+        pack: &LoadedPack,
+        scene: &Scene,
+        targets: &Targets,
+        statics: &StaticTextures,
+        program: Option<&LoadedProgram>,
+        state: &DrawState,
+        vertices: &[mesh::PackVertex],
+        label: String,
+    ) -> Result<GeometryDraw, HarnessError> {
+        let (drawer, buffers) = match program {
+            Some(program) => {
+                let pipeline = ProgramPipeline::new(gpu, pack, program, scene, Pass::Gbuffers, state, targets, statics)?;
+                (Drawer::Pack(pipeline), program.render_targets.clone())
+            }
+            None => {
+                let buffers: Vec<u8> = match pack.loader.missing_program_draws() {
+                    MissingProgramDraws::FirstBufferOnly => vec![0],
+                    MissingProgramDraws::EveryBuffer => targets.colors.keys().copied().collect(),
+                };
+                let formats: Vec<(wgpu::TextureFormat, Option<wgpu::BlendState>)> =
+                    buffers.iter().map(|b| (targets.colors[b].1, wgpu_blend(&(state.blend_of)(*b)))).collect();
+                (Drawer::Harness(ColourPipeline::new(gpu, scene, &formats, state.depth_write)?), buffers)
+            }
+        };
+        // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
+        let one = [mesh::PackVertex::default()];
+        let vertices_buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(&label),
+            contents: mesh::as_bytes(if vertices.is_empty() { &one } else { vertices }),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        Ok(GeometryDraw { label, drawer, buffers, vertices: vertices_buffer, count: vertices.len() as u32 })
+    }
+
+    fn record(&self, encoder: &mut wgpu::CommandEncoder, targets: &Targets, timestamps: Option<wgpu::RenderPassTimestampWrites>) {
+        let depth0_view = view(&targets.depth0);
+        let views: Vec<wgpu::TextureView> = self.buffers.iter().map(|b| view(&targets.colors[b].0)).collect();
+        let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(&self.label),
+            color_attachments: &attachments,
+            depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
+            timestamp_writes: timestamps,
+            ..Default::default()
+        });
+        match &self.drawer {
+            Drawer::Pack(program) => {
+                pass.set_pipeline(&program.pipeline);
+                for (i, g) in program.bind_groups.iter().enumerate() {
+                    pass.set_bind_group(i as u32, g, &[]);
+                }
+            }
+            Drawer::Harness(own) => {
+                pass.set_pipeline(&own.pipeline);
+                pass.set_bind_group(0, &own.bind_group, &[]);
+            }
+        }
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        if self.count > 0 {
+            pass.draw(0..self.count, 0..1);
+        }
+    }
 }
 
 struct ProgramPipeline {
@@ -741,7 +832,7 @@ enum Entry {
 }
 
 impl ProgramPipeline {
-    /// `blend_of` gives a gbuffers program's blend mode per colour buffer.
+    /// `state` is a gbuffers program's blending and depth writes (unused for full-screen passes).
     #[allow(clippy::too_many_arguments)]
     fn new(
         gpu: &Gpu,
@@ -749,7 +840,7 @@ impl ProgramPipeline {
         program: &LoadedProgram,
         scene: &Scene,
         pass: Pass,
-        blend_of: &dyn Fn(u8) -> Blend,
+        state: &DrawState,
         targets: &Targets,
         statics: &StaticTextures,
     ) -> Result<ProgramPipeline, HarnessError> {
@@ -849,7 +940,7 @@ impl ProgramPipeline {
                 alternates.insert(b, t);
                 format
             };
-            let blend = if gbuffers { wgpu_blend(&blend_of(b)) } else { None };
+            let blend = if gbuffers { wgpu_blend(&(state.blend_of)(b)) } else { None };
             color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }));
         }
         let vertex_module = gpu.checked(&format!("{} (wgpu shader module)", program.vertex.path), || {
@@ -881,7 +972,7 @@ impl ProgramPipeline {
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
                 depth_stencil: gbuffers.then_some(wgpu::DepthStencilState {
                     format: DEPTH,
-                    depth_write_enabled: Some(true),
+                    depth_write_enabled: Some(state.depth_write),
                     depth_compare: Some(wgpu::CompareFunction::LessEqual),
                     stencil: Default::default(),
                     bias: Default::default(),
@@ -1038,9 +1129,9 @@ fn stage_entries(
     Ok(entries)
 }
 
-/// The harness's terrain shader: position and colour, OpenGL clip space mapped as in
-/// [`crate::program::adapt_vertex`]; the fragment entry point comes from [`terrain_wgsl`].
-const TERRAIN_VERTEX_WGSL: &str = r#"
+/// The harness's colour shader: position and vertex colour, OpenGL clip space mapped as in
+/// [`crate::program::adapt_vertex`]; the fragment entry point comes from [`colour_wgsl`].
+const COLOUR_VERTEX_WGSL: &str = r#"
 struct Uniforms { mvp: mat4x4<f32> }
 @group(0) @binding(0) var<uniform> u: Uniforms;
 struct Out { @builtin(position) position: vec4<f32>, @location(0) color: vec4<f32> }
@@ -1052,13 +1143,13 @@ struct Out { @builtin(position) position: vec4<f32>, @location(0) color: vec4<f3
 }
 "#;
 
-/// The terrain shader writing the same colour to `targets` colour attachments, as
+/// The colour shader writing the same colour to `targets` colour attachments, as
 /// fixed-function drawing does to every draw buffer.
-fn terrain_wgsl(targets: usize) -> String {
+fn colour_wgsl(targets: usize) -> String {
     let fields: String = (0..targets).map(|i| format!("@location({i}) c{i}: vec4<f32>, ")).collect();
     let values: Vec<&str> = vec!["i.color"; targets];
     format!(
-        "{TERRAIN_VERTEX_WGSL}struct Targets {{ {fields}}}\n@fragment fn fs(i: Out) -> Targets {{ return Targets({}); }}\n",
+        "{COLOUR_VERTEX_WGSL}struct Targets {{ {fields}}}\n@fragment fn fs(i: Out) -> Targets {{ return Targets({}); }}\n",
         values.join(", ")
     )
 }
@@ -1075,7 +1166,9 @@ const PASSTHROUGH_WGSL: &str = r#"
 }
 "#;
 
-struct TerrainPipeline {
+/// The harness's own shader for geometry the pack has no program for: the vertex colour into
+/// every colour target given.
+struct ColourPipeline {
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
 }
@@ -1085,18 +1178,23 @@ pub fn terrain_mvp(scene: &Scene) -> [f32; 16] {
     (scene.projection() * scene.model_view()).to_cols_array().map(|v| v as f32)
 }
 
-impl TerrainPipeline {
-    fn new(gpu: &Gpu, scene: &Scene, formats: &[wgpu::TextureFormat]) -> Result<TerrainPipeline, HarnessError> {
+impl ColourPipeline {
+    fn new(
+        gpu: &Gpu,
+        scene: &Scene,
+        targets: &[(wgpu::TextureFormat, Option<wgpu::BlendState>)],
+        depth_write: bool,
+    ) -> Result<ColourPipeline, HarnessError> {
         let device = &gpu.device;
         let module = gpu.checked("terrain shader", || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("terrain"),
-                source: wgpu::ShaderSource::Wgsl(terrain_wgsl(formats.len()).into()),
+                source: wgpu::ShaderSource::Wgsl(colour_wgsl(targets.len()).into()),
             })
         })?;
-        let targets: Vec<Option<wgpu::ColorTargetState>> = formats
+        let targets: Vec<Option<wgpu::ColorTargetState>> = targets
             .iter()
-            .map(|&format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL }))
+            .map(|&(format, blend)| Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }))
             .collect();
         let mvp: Vec<u8> = terrain_mvp(scene).iter().flat_map(|v| v.to_le_bytes()).collect();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -1124,7 +1222,7 @@ impl TerrainPipeline {
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
                 depth_stencil: Some(wgpu::DepthStencilState {
                     format: DEPTH,
-                    depth_write_enabled: Some(true),
+                    depth_write_enabled: Some(depth_write),
                     depth_compare: Some(wgpu::CompareFunction::LessEqual),
                     stencil: Default::default(),
                     bias: Default::default(),
@@ -1145,7 +1243,7 @@ impl TerrainPipeline {
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
         });
-        Ok(TerrainPipeline { pipeline, bind_group })
+        Ok(ColourPipeline { pipeline, bind_group })
     }
 }
 

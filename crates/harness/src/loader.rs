@@ -6,6 +6,8 @@ use std::str::FromStr;
 
 use tidepack_pack::dialect::Dialect;
 
+use crate::scene::OverlayKind;
+
 /// A loader and version whose behaviour the harness reproduces.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Loader {
@@ -33,6 +35,16 @@ pub enum MissingProgramDraws {
     /// uses (OptiFine up to 1.16.5: fixed-function output goes to every draw buffer, and a
     /// missing program does not change the draw buffers the clear left).
     EveryBuffer,
+}
+
+/// When the loader draws a kind of overlay geometry, relative to the terrain and the water.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Phase {
+    BeforeTerrain,
+    /// After the opaque terrain, before depthtex1 is copied and the water drawn.
+    BeforeWater,
+    /// After the water, before composite.
+    AfterWater,
 }
 
 impl Loader {
@@ -65,6 +77,35 @@ impl Loader {
             Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9 => Some(0.1),
             Loader::OptiFine1_21 if dialect == Dialect::Glsl120 => Some(0.1),
             Loader::OptiFine1_21 | Loader::OptiFine1_16_5 | Loader::Iris => None,
+        }
+    }
+
+    /// The programs that may draw `kind`, in fallback order: the loader uses the first the pack
+    /// has. OptiFine draws particles with gbuffers_textured_lit; Iris has gbuffers_particles.
+    pub fn program_chain(self, kind: OverlayKind) -> &'static [&'static str] {
+        match kind {
+            OverlayKind::Particles if self == Loader::Iris => {
+                &["gbuffers_particles", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"]
+            }
+            OverlayKind::Particles => &["gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"],
+            OverlayKind::Clouds => &["gbuffers_clouds", "gbuffers_textured", "gbuffers_basic"],
+            OverlayKind::Rain => &["gbuffers_weather", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"],
+            OverlayKind::Hand => {
+                &["gbuffers_hand_water", "gbuffers_hand", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"]
+            }
+        }
+    }
+
+    /// When `kind` is drawn. Up to Minecraft 1.12 OptiFine draws particles and rain before the
+    /// water, and clouds the camera is below before the terrain; later versions draw all of
+    /// them after the water. Iris draws opaque particles with the opaque world.
+    pub fn phase(self, kind: OverlayKind, camera_below_clouds: bool, opaque: bool) -> Phase {
+        let old = matches!(self, Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9);
+        match kind {
+            OverlayKind::Particles | OverlayKind::Rain if old => Phase::BeforeWater,
+            OverlayKind::Clouds if old && camera_below_clouds => Phase::BeforeTerrain,
+            OverlayKind::Particles if self == Loader::Iris && opaque => Phase::BeforeWater,
+            _ => Phase::AfterWater,
         }
     }
 
@@ -112,6 +153,12 @@ pub fn water_alpha_test(properties: &str, loader: Loader, dialect: Dialect) -> R
             }
         }
     }
+}
+
+/// Whether rain and snow write depth: not unless a pack sets `rain.depth=true`, which the
+/// harness does not imitate.
+pub fn writes_depth(kind: OverlayKind) -> bool {
+    kind != OverlayKind::Rain
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 
 use glam::DVec3;
 
-use crate::scene::Scene;
+use crate::scene::{OverlayKind, Scene};
 
 /// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
 /// can ask for is here (the pipeline binds those the shader declares).
@@ -54,6 +54,8 @@ pub struct SceneMesh {
     pub terrain: Vec<PackVertex>,
     /// Triangles, back to front.
     pub translucent: Vec<PackVertex>,
+    /// Rain, clouds, particles and the translucent hand: triangles per kind, back to front.
+    pub overlay: Vec<(OverlayKind, Vec<PackVertex>)>,
 }
 
 /// Block ids the translucent geometry carries in `mc_Entity.x`.
@@ -146,15 +148,42 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             quads.push(Quad { corners, normal, color: pane.color, sprite: WHITE_SPRITE, entity: [id, -1.0, 0.0, 0.0] });
         }
     }
-    // Back to front by centre distance; ties keep their order (the sort is stable).
     let local_camera = camera - origin;
-    let distance = |q: &Quad| ((q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25 - local_camera).length_squared();
+    mesh.translucent = back_to_front(quads, local_camera, &rel);
+    let mut kinds: Vec<OverlayKind> = scene.overlay.iter().map(|o| o.kind).collect();
+    kinds.sort();
+    kinds.dedup();
+    for kind in kinds {
+        let quads: Vec<Quad> = scene
+            .overlay
+            .iter()
+            .filter(|o| o.kind == kind)
+            .flat_map(|o| {
+                box_faces(DVec3::from(o.min), DVec3::from(o.max)).into_iter().map(|(corners, normal)| Quad {
+                    corners,
+                    normal,
+                    color: o.color,
+                    sprite: WHITE_SPRITE,
+                    entity: [-1.0, -1.0, 0.0, 0.0],
+                })
+            })
+            .collect();
+        mesh.overlay.push((kind, back_to_front(quads, local_camera, &rel)));
+    }
+    mesh
+}
+
+/// Triangles of `quads` sorted back to front by centre distance from `camera`; ties keep their
+/// order (the sort is stable).
+fn back_to_front(mut quads: Vec<Quad>, camera: DVec3, rel: &dyn Fn(DVec3) -> [f32; 4]) -> Vec<PackVertex> {
+    let distance = |q: &Quad| ((q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25 - camera).length_squared();
     quads.sort_by(|a, b| distance(b).total_cmp(&distance(a)));
+    let mut vertices = Vec::with_capacity(quads.len() * 6);
     for q in &quads {
         let color = q.color.map(|c| c as f32);
         let normal = [q.normal.x as f32, q.normal.y as f32, q.normal.z as f32];
         for i in [0, 1, 2, 0, 2, 3] {
-            mesh.translucent.push(PackVertex {
+            vertices.push(PackVertex {
                 position: rel(q.corners[i]),
                 color,
                 normal,
@@ -164,7 +193,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             });
         }
     }
-    mesh
+    vertices
 }
 
 /// The texture coordinates of corner `i` of a quad (corners in the order of [`box_faces`]).

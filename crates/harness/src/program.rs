@@ -24,6 +24,7 @@ use tidepack_pack::validation::standard_macros;
 use crate::HarnessError;
 use crate::loader::{self, Loader};
 use crate::mesh::BlockIds;
+use crate::scene::OverlayKind;
 
 /// Which pack text to render.
 #[derive(Clone, Debug)]
@@ -145,9 +146,11 @@ pub struct LoadedPack {
     pub options: OptionSet,
     pub water: LoadedProgram,
     pub composite: LoadedProgram,
-    /// What opaque terrain is drawn with: the first program of gbuffers_terrain's fallback
-    /// chain the pack has ([`TERRAIN_CHAIN`]); none draws it as the loader itself would.
-    pub terrain: Option<LoadedProgram>,
+    /// The pack's programs for the terrain and for what is drawn after the water, by name:
+    /// those in [`TERRAIN_CHAIN`] and in the loader's chains for each overlay kind.
+    pub gbuffers: BTreeMap<String, LoadedProgram>,
+    /// Blend modes of each program in `gbuffers`, per colour buffer, as the loader reads them.
+    pub gbuffers_blend: BTreeMap<String, BTreeMap<u8, Blend>>,
     /// Declared colour buffer formats (`const int colortexNFormat = ...;`).
     pub formats: BTreeMap<u8, BufferFormat>,
     /// The loader whose behaviour the frame imitates.
@@ -190,6 +193,22 @@ impl LoadedPack {
 
     pub fn blend_of(&self, buffer: u8) -> Blend {
         self.water_blend.get(&buffer).cloned().unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
+    }
+
+    /// The first program of `chain` the pack has: what the loader draws with.
+    pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
+        chain.iter().find_map(|name| self.gbuffers.get(*name))
+    }
+
+    /// What opaque terrain is drawn with; none draws it as the loader itself would.
+    pub fn terrain_program(&self) -> Option<&LoadedProgram> {
+        self.resolve(&TERRAIN_CHAIN)
+    }
+
+    /// The blend mode of a program in `gbuffers` for one colour buffer: its own from
+    /// shaders.properties, else the game's for translucent geometry.
+    pub fn gbuffers_blend_of(&self, program: &str, buffer: u8) -> Blend {
+        self.gbuffers_blend.get(program).and_then(|m| m.get(&buffer)).cloned().unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
     }
 
     /// The custom texture bound to a sampler name in a gbuffers or full-screen program.
@@ -263,19 +282,29 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let water_alpha_test = loader::water_alpha_test(&properties, loader, selection.dialect).map_err(HarnessError::Unsupported)?;
     let water = load_program(&provider, "gbuffers_water", glsl_version, water_alpha_test)?;
     let composite = load_program(&provider, "composite", glsl_version, None)?;
-    let terrain = match TERRAIN_CHAIN.iter().find(|name| provider.read(&format!("{name}.fsh")).is_ok()) {
-        Some(name) => Some(load_program(&provider, name, glsl_version, None)?),
-        None => None,
-    };
+    let mut wanted: Vec<&str> = TERRAIN_CHAIN.to_vec();
+    for kind in OverlayKind::ALL {
+        wanted.extend(loader.program_chain(kind));
+    }
+    let mut gbuffers = BTreeMap::new();
+    for name in wanted {
+        if !gbuffers.contains_key(name) && provider.read(&format!("{name}.fsh")).is_ok() {
+            gbuffers.insert(name.to_string(), load_program(&provider, name, glsl_version, None)?);
+        }
+    }
 
     let mut formats = BTreeMap::new();
-    let terrain_stages = terrain.iter().flat_map(|t| [&t.vertex, &t.fragment]);
-    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment].into_iter().chain(terrain_stages) {
+    let other_stages = gbuffers.values().flat_map(|p| [&p.vertex, &p.fragment]);
+    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment].into_iter().chain(other_stages) {
         for (buffer, format) in declared_formats(&stage.gl_text)? {
             formats.insert(buffer, format);
         }
     }
     let water_blend = blend_modes(&properties, "gbuffers_water", loader.per_buffer_blend())?;
+    let mut gbuffers_blend = BTreeMap::new();
+    for name in gbuffers.keys() {
+        gbuffers_blend.insert(name.clone(), blend_modes(&properties, name, loader.per_buffer_blend())?);
+    }
     let block_ids = provider.read("block.properties").map(|t| block_ids(&t)).unwrap_or_default();
     let custom_textures = custom_textures(&pack, &provider, &properties, &selection.source_dir)?;
     Ok(LoadedPack {
@@ -284,7 +313,8 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
         options: in_force,
         water,
         composite,
-        terrain,
+        gbuffers,
+        gbuffers_blend,
         formats,
         loader,
         water_blend,

@@ -1,5 +1,6 @@
-//! Scenes: TOML files describing a camera, the time, the sky, a body of water, opaque terrain
-//! and stained-glass panes. Everything derived from a scene (matrices, `isEyeInWater`) is
+//! Scenes: TOML files describing a camera, the time, the sky, a body of water, opaque terrain,
+//! stained-glass panes, and what the game draws after the translucent terrain (rain, clouds,
+//! particles, the translucent hand). Everything derived from a scene (matrices, `isEyeInWater`) is
 //! computed here in f64.
 
 use std::path::{Path, PathBuf};
@@ -32,6 +33,9 @@ pub struct Scene {
     pub terrain: Terrain,
     #[serde(default)]
     pub glass: Vec<GlassPane>,
+    /// Boxes drawn as rain, clouds, particles or the translucent hand.
+    #[serde(default)]
+    pub overlay: Vec<OverlayBox>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -164,6 +168,34 @@ pub struct GlassPane {
     /// Block name looked up in the pack's block.properties for `mc_Entity.x`.
     #[serde(default = "default_glass_block")]
     pub block: String,
+}
+
+/// What an [`OverlayBox`] stands for: which programs draw it, and when (crate::loader).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[serde(rename_all = "lowercase")]
+pub enum OverlayKind {
+    Particles,
+    Clouds,
+    Rain,
+    Hand,
+}
+
+impl OverlayKind {
+    pub const ALL: [OverlayKind; 4] = [OverlayKind::Particles, OverlayKind::Clouds, OverlayKind::Rain, OverlayKind::Hand];
+}
+
+/// A box of one colour drawn as rain, clouds, a particle or the translucent hand.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OverlayBox {
+    pub kind: OverlayKind,
+    #[serde(deserialize_with = "exact")]
+    pub min: [f64; 3],
+    #[serde(deserialize_with = "exact")]
+    pub max: [f64; 3],
+    /// Colour and opacity.
+    #[serde(deserialize_with = "exact")]
+    pub color: [f64; 4],
 }
 
 fn default_glass_block() -> String {

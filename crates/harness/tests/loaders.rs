@@ -96,3 +96,75 @@ fn only_water_is_shaded_with_every_loader() {
         Ok(())
     });
 }
+
+/// Rain and clouds over water, with every loader: where they cover the water, the picture is
+/// the water as shaded without them, with them blended on top (`base · (1 − coverage) + colour
+/// · coverage`, the premultiplied colour and coverage being what they left in colortex3), within
+/// 2/255 (8-bit buffers; composite takes them out of colortex0 wherever it samples the scene
+/// behind the water). The translucent hand shows over the water too; the water behind it is
+/// shaded at the hand's depth, which the hand writes over the water's (docs/loaders.md).
+#[test]
+fn rain_clouds_and_the_hand_stay_over_the_shaded_water() {
+    let scenes = ["rain_over_lake", "clouds_over_far_water", "hand_glass_over_water"];
+    for_every_loader(&scenes, |loader, dialect, frames| {
+        let pack = pack(loader, dialect);
+        for (name, frame) in frames {
+            let mut bare = scene(name);
+            bare.overlay.clear();
+            let base = render_wgpu(gpu(), &pack, &bare, false).map_err(|e| e.to_string())?;
+            let over = &frame.buffers[&3];
+            let covered: Vec<usize> = (0..over.pixels.len())
+                .filter(|&i| over.pixels[i][3] > 0.0 && base.buffers[&4].pixels[i][0] > 0.875)
+                .collect();
+            if covered.len() < 200 {
+                return Err(format!("{name}: only {} pixels of water covered", covered.len()));
+            }
+            let visible = covered.iter().filter(|&&i| !same(frame.image.pixels[i], base.image.pixels[i])).count();
+            if visible * 10 < covered.len() * 9 {
+                return Err(format!("{name}: only {visible} of {} covered water pixels show what covers them", covered.len()));
+            }
+            if *name == "hand_glass_over_water" {
+                continue;
+            }
+            let mut off = 0;
+            let mut worst = 0.0f32;
+            for &i in &covered {
+                let (o, b, out) = (over.pixels[i], base.image.pixels[i], frame.image.pixels[i]);
+                let d = (0..3).map(|c| (out[c] - (b[c] * (1.0 - o[3]) + o[c])).abs()).fold(0.0f32, f32::max);
+                worst = worst.max(d);
+                if d > 2.0 / 255.0 {
+                    off += 1;
+                }
+            }
+            if off > 0 {
+                return Err(format!(
+                    "{name}: {off} of {} covered water pixels are not the shaded water with the overlay on top (worst {:.1}/255)",
+                    covered.len(),
+                    worst * 255.0
+                ));
+            }
+        }
+        Ok(())
+    });
+}
+
+/// An opaque particle in front of the water shows as drawn (its colour, fully), with every
+/// loader.
+#[test]
+fn an_opaque_particle_over_water_shows_as_drawn() {
+    for_every_loader(&["particle_over_water"], |_, _, frames| {
+        let (_, frame) = &frames[0];
+        let color = scene("particle_over_water").overlay[0].color;
+        let particle: Vec<usize> = (0..frame.image.pixels.len())
+            .filter(|&i| (0..3).all(|c| (frame.buffers[&0].pixels[i][c] - color[c] as f32).abs() < 0.5 / 255.0))
+            .collect();
+        if particle.len() < 100 {
+            return Err(format!("the particle covers only {} pixels of colortex0", particle.len()));
+        }
+        let changed = particle.iter().filter(|&&i| !same(frame.image.pixels[i], frame.buffers[&0].pixels[i])).count();
+        if changed > 0 {
+            return Err(format!("{changed} of {} particle pixels were shaded as water", particle.len()));
+        }
+        Ok(())
+    });
+}

@@ -110,6 +110,7 @@ pub fn from_gbuffers(
         width: w,
         height: h,
         colortex0: colour(0)?,
+        colortex3: colour(3)?,
         colortex4: colour(4)?,
         colortex5: colour(5)?,
         colortex6: colour(6)?,

@@ -56,6 +56,8 @@ pub struct Inputs {
     pub height: usize,
     /// The scene behind the water (glass blended in); alpha 0 where a translucent drew.
     pub colortex0: Texture,
+    /// Rain, clouds and the translucent hand: premultiplied colour, coverage in alpha.
+    pub colortex3: Texture,
     /// Water mark (r; weakened by each glass in front of the water) and the water's sky light (g).
     pub colortex4: Texture,
     /// The water's tint (rgb).
@@ -78,6 +80,7 @@ impl Inputs {
     pub fn validate(&self) -> Result<(), String> {
         for (name, t) in [
             ("colortex0", &self.colortex0),
+            ("colortex3", &self.colortex3),
             ("colortex4", &self.colortex4),
             ("colortex5", &self.colortex5),
             ("colortex6", &self.colortex6),

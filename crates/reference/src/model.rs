@@ -429,6 +429,12 @@ impl Frame<'_> {
         t * color + (1.0 - t) * scattered
     }
 
+    /// `sceneBehindOverlay`.
+    fn scene_behind_overlay(&self, uv: DVec2) -> DVec3 {
+        let over = self.i.colortex3.sample(uv);
+        (self.colortex0(uv).xyz() - over.xyz()) / (1.0 - over.w).max(INVISIBLE)
+    }
+
     /// `shadeFromAbove`: cases 4 and 5.
     fn shade_from_above(&self, uv: DVec2, depth0: f64, tint: DVec3, sky_light: f64) -> DVec3 {
         let (u, s) = (self.u, self.s);
@@ -465,7 +471,7 @@ impl Frame<'_> {
         let player1 = self.player_from_view(view1);
         let path_in_water = player1.distance(surface).max(0.0);
         let floor_visible = depth1 < 1.0;
-        let mut below = self.colortex0(scene_uv).xyz();
+        let mut below = self.scene_behind_overlay(scene_uv);
         if floor_visible {
             let xz = DVec2::new(player1.x + camera_wrap.x, player1.z + camera_wrap.z);
             below = self.with_caustics(below, xz, self.transmittance(path_in_water).z);
@@ -559,13 +565,20 @@ impl Frame<'_> {
             if self.s.early_outs && scene.w >= 1.0 {
                 return scene.xyz();
             }
-            if water {
-                return self.shade_from_above(uv, depth0, i.colortex5.sample(uv).xyz(), water_record.y);
+            let behind_glass = is_water_behind_translucent(water_record.x);
+            if !water && !behind_glass {
+                return scene.xyz();
             }
-            if is_water_behind_translucent(water_record.x) {
-                return mix3(scene.xyz(), i.colortex6.sample(uv).xyz(), 0.6);
-            }
-            return scene.xyz();
+            // Rain, clouds and the hand over the water: premultiplied in colortex3, coverage in alpha.
+            let drawn_over = i.colortex3.sample(uv);
+            let uncovered = 1.0 - drawn_over.w;
+            let behind = (scene.xyz() - drawn_over.xyz()) / uncovered.max(INVISIBLE);
+            let shaded = if water {
+                self.shade_from_above(uv, depth0, i.colortex5.sample(uv).xyz(), water_record.y)
+            } else {
+                mix3(behind, i.colortex6.sample(uv).xyz(), 0.6)
+            };
+            return shaded * uncovered + drawn_over.xyz();
         }
         let eye_sky_light = (self.u.eye_brightness_smooth[1] as f64 / 240.0).clamp(0.0, 1.0);
         if water {

@@ -1,8 +1,10 @@
-// What the game itself would draw, for the programs the pack has only so that nothing is left
-// to the loader: gbuffers_basic (lines, the sky's colour), gbuffers_textured (particles, clouds,
-// sun and moon, glints) and gbuffers_textured_lit (terrain, entities, the hand, weather), which
-// every other gbuffers program falls back to. A loader's own drawing would not do: OptiFine up
-// to Minecraft 1.16.5 writes it into every buffer, the water's data in colortex4 included.
+// What the game itself would draw. The pack has programs for everything so that nothing is left
+// to the loader: OptiFine up to Minecraft 1.16.5 writes its own drawing into every buffer, the
+// water's data in colortex4 included. gbuffers_basic (lines, the sky's colour),
+// gbuffers_textured (particles, the sun and moon, glints) and gbuffers_textured_lit (terrain,
+// entities, the opaque hand, particles) are the ends of every fallback chain; gbuffers_weather,
+// gbuffers_clouds and gbuffers_hand_water draw over the water and keep a copy of their colour
+// for composite.
 //
 // The fragment stage of those programs; the including program defines TEXTURED (sample
 // gtexture) and LIT (multiply by the lightmap) before including this.
