@@ -4,9 +4,9 @@
 //   2. camera under water, pixel under water: absorption over the distance, caustics;
 //   3. camera under water, pixel seen through the surface: refraction, total internal
 //      reflection, absorption up to the surface;
-//   4. camera above water, water pixel nearer than HAZE_DISTANCE: wave surface, refraction,
-//      absorption, caustics, reflections, highlights, foam, haze;
-//   5. camera above water, water pixel farther: haze towards the fog colour only.
+//   4. camera above water, water pixel nearer than the render distance: wave surface,
+//      refraction, absorption, caustics, reflections, highlights, foam, the game's fog;
+//   5. camera above water, water pixel at or beyond the render distance: the fog colour only.
 // Stained glass and ice get no water effects of their own.
 #include "/lib/settings.glsl"
 #include "/lib/common.glsl"
@@ -43,6 +43,9 @@ uniform mat4 gbufferModelView;
 uniform mat4 gbufferModelViewInverse;
 uniform vec3 cameraPosition;
 uniform vec3 shadowLightPosition;
+uniform vec3 sunPosition;
+uniform float rainStrength;
+uniform float far;
 uniform vec3 skyColor;
 uniform vec3 fogColor;
 uniform float frameTimeCounter;
@@ -54,12 +57,12 @@ in vec2 screenUv;
 /* RENDERTARGETS: 0 */
 out vec4 outColor0;
 
-// Beyond this distance water is only haze (case 5).
-const float HAZE_DISTANCE = 2000.0;
 // Vanilla's default water colour, for pixels under water with no surface of their own.
 const vec3 DEFAULT_WATER_TINT = vec3(0.247, 0.463, 0.894);
 const vec3 CAUSTIC_COLOR = vec3(1.0, 0.97, 0.9);
 const vec3 FOAM_COLOR = vec3(0.9, 0.95, 1.0);
+// The moon's glint against the sun's.
+const float MOON_GLINT = 0.1;
 // Below this, a contribution is invisible in an 8-bit image.
 const float INVISIBLE = 1.0 / 255.0;
 
@@ -107,6 +110,13 @@ vec3 eyePosition() {
     return gbufferModelViewInverse[3].xyz;
 }
 
+// The glint of the sun, or of the moon (the shadow light at night) at a tenth of it; rain
+// clouds hide both.
+float glintStrength() {
+    bool moon = dot(shadowLightPosition, sunPosition) < 0.0;
+    return (moon ? MOON_GLINT : 1.0) * (1.0 - clamp(rainStrength, 0.0, 1.0));
+}
+
 vec3 lightDirection() {
     return safeNormalize(mat3(gbufferModelViewInverse) * shadowLightPosition, vec3(0.0, 1.0, 0.0));
 }
@@ -123,7 +133,8 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
     vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
     float distance0 = length(view0);
 #ifdef FAR_HAZE
-    float haze = clamp((HAZE_DISTANCE - distance0) * 0.0005, 0.0, 1.0);
+    // The game's fog, as lib/vanilla.glsl puts it on the terrain.
+    float haze = 1.0 - distanceFog(distance0, far);
     if (!NEEDED(haze > 0.0)) {
         return fogColor;
     }
@@ -198,7 +209,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
 #endif
 #ifdef SPECULAR
     float foamFree = 1.0 - foam;
-    color += specularLight(reflected, lightDirection(), skyColor, skyLight) * reflectance * foamFree * foamFree * foamFree;
+    color += specularLight(reflected, lightDirection(), glintStrength(), skyColor, skyLight) * reflectance * foamFree * foamFree * foamFree;
 #endif
 #ifdef FAR_HAZE
     color = mix(fogColor, color, haze);

@@ -185,4 +185,20 @@ mod tests {
         assert_eq!(water_alpha_test("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, Dialect::Glsl330), Ok(Some(0.5)));
         assert!(water_alpha_test("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, Dialect::Glsl330).is_err());
     }
+
+    #[test]
+    fn draw_order_follows_the_loader() {
+        use OverlayKind::*;
+        assert_eq!(Loader::OptiFine1_12_2.phase(Rain, false, false), Phase::BeforeWater);
+        assert_eq!(Loader::OptiFine1_8_9.phase(Particles, false, true), Phase::BeforeWater);
+        assert_eq!(Loader::OptiFine1_12_2.phase(Clouds, true, false), Phase::BeforeTerrain);
+        assert_eq!(Loader::OptiFine1_12_2.phase(Clouds, false, false), Phase::AfterWater);
+        assert_eq!(Loader::OptiFine1_16_5.phase(Rain, false, false), Phase::AfterWater);
+        assert_eq!(Loader::OptiFine1_21.phase(Clouds, true, false), Phase::AfterWater);
+        assert_eq!(Loader::Iris.phase(Particles, false, true), Phase::BeforeWater);
+        assert_eq!(Loader::Iris.phase(Particles, false, false), Phase::AfterWater);
+        assert_eq!(Loader::OptiFine1_21.program_chain(Particles)[0], "gbuffers_textured_lit");
+        assert_eq!(Loader::Iris.program_chain(Particles)[0], "gbuffers_particles");
+        assert!(Loader::ALL.iter().all(|l| l.program_chain(Hand)[0] == "gbuffers_hand_water"));
+    }
 }

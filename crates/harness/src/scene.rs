@@ -80,6 +80,9 @@ pub struct Sky {
     pub sky_color: [f64; 3],
     #[serde(deserialize_with = "exact")]
     pub fog_color: [f64; 3],
+    /// `rainStrength` and `wetness`: 0 clear, 1 full rain.
+    #[serde(default)]
+    pub rain_strength: f64,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -270,6 +273,9 @@ impl Scene {
         }
         if self.water.as_ref().is_some_and(|w| w.cell.is_nan() || w.cell < 1.0) {
             return Err("water.cell must be at least 1 block".into());
+        }
+        if !(0.0..=1.0).contains(&self.sky.rain_strength) {
+            return Err("sky.rain_strength must lie in 0..1".into());
         }
         if DVec3::from(self.sky.sun_direction).length() < 1e-9 {
             return Err("sky.sun_direction must not be zero".into());

@@ -140,6 +140,9 @@ pub fn legacy_matrices(scene: &Scene, pass: Pass) -> LegacyMatrices {
     LegacyMatrices { model_view, projection, texture }
 }
 
+/// `fogMode` for the game's linear distance fog.
+const GL_LINEAR: i64 = 0x2601;
+
 /// Every uniform the harness can fill for a scene and pass, by its OptiFine name; the legacy
 /// matrices under their lowered names (`tp_ModelViewMatrix`, …).
 pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
@@ -182,8 +185,8 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
     put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
     put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
-    put("rainStrength", Value::float(0.0));
-    put("wetness", Value::float(0.0));
+    put("rainStrength", Value::float(scene.sky.rain_strength));
+    put("wetness", Value::float(scene.sky.rain_strength));
     put("nightVision", Value::float(0.0));
     put("blindness", Value::float(0.0));
     put("darknessFactor", Value::float(0.0));
@@ -191,8 +194,8 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("eyeBrightness", Value::ivec2(0, 240));
     put("eyeBrightnessSmooth", Value::ivec2(0, 240));
     put("hideGUI", Value::int(1));
-    // The harness draws no fog yet: the loaders' value with the game's fog off.
-    put("fogMode", Value::int(0));
+    // The game's fog is on (GL_LINEAR); the pack's programs apply it.
+    put("fogMode", Value::int(GL_LINEAR));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
     put("alphaTestRef", Value::float(if pass == Pass::Gbuffers { 0.1 } else { 0.0 }));
     let legacy = legacy_matrices(scene, pass);

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use tidepack_harness::program::{self, PackSelection};
-use tidepack_harness::{Frame, Gpu, LoadedPack, Loader, Scene, images, render_wgpu};
+use tidepack_harness::{Frame, Gpu, LoadedPack, Loader, Scene, gl, images, mesh, render_wgpu};
 use tidepack_pack::Dialect;
 
 fn root() -> PathBuf {
@@ -164,6 +164,27 @@ fn an_opaque_particle_over_water_shows_as_drawn() {
         let changed = particle.iter().filter(|&&i| !same(frame.image.pixels[i], frame.buffers[&0].pixels[i])).count();
         if changed > 0 {
             return Err(format!("{changed} of {} particle pixels were shaded as water", particle.len()));
+        }
+        Ok(())
+    });
+}
+
+/// Mesa's OpenGL draws what wgpu draws for every loader, within 1/255: the scenes where loaders
+/// differ (a missing program's drawing, alpha test, blend keys, rain drawn before or after the
+/// water), in both dialects.
+#[test]
+fn opengl_and_wgpu_agree_for_every_loader() {
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    for_every_loader(&["glass_over_land", "rain_over_lake"], |loader, dialect, frames| {
+        let pack = pack(loader, dialect);
+        for (name, frame) in frames {
+            let s = scene(name);
+            let gl_frame = gl::render(&ctx, &pack, &s, &mesh::build(&s, &pack)).map_err(|e| format!("{name}: {e}"))?;
+            let over = images::count_differing(&frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
+            if over > 0 {
+                let max = images::max_channel_difference(&frame.image, &gl_frame.image);
+                return Err(format!("{name}: {over} pixels differ by more than 1/255 (max {max:?})"));
+            }
         }
         Ok(())
     });

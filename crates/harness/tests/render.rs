@@ -370,3 +370,33 @@ fn opengl_and_wgpu_agree_on_every_scene() {
     println!("{}", report.join("\n"));
     assert!(failures.is_empty(), "OpenGL and wgpu disagree by more than 1/255:\n{}", failures.join("\n"));
 }
+
+/// The highlight on the water follows the light: the moon (the shadow light at night, here
+/// where the sun stood by day) glints at a tenth of the sun, and full rain hides the sun's
+/// glint, leaving only the sky's broad lobe. Measured as the largest difference SPECULAR makes
+/// to a pixel.
+#[test]
+fn the_glint_follows_the_light() {
+    let without = program::load(&PackSelection {
+        source_dir: root().join("shaderpack"),
+        dialect: Dialect::Glsl330,
+        profile: None,
+        options: vec![("SPECULAR".into(), "off".into())],
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    let peak = |s: &Scene| -> f32 {
+        let on = render_wgpu(gpu(), pack(Dialect::Glsl330), s, false).unwrap_or_else(|e| panic!("{e}"));
+        let off = render_wgpu(gpu(), &without, s, false).unwrap_or_else(|e| panic!("{e}"));
+        on.image.pixels.iter().zip(&off.image.pixels).map(|(a, b)| (0..3).map(|c| a[c] - b[c]).fold(0.0f32, f32::max)).fold(0.0, f32::max)
+    };
+    let day = scene("case4_above_near");
+    let mut night = day.clone();
+    night.sky.sun_direction = day.sky.sun_direction.map(|v| -v);
+    let mut rain = day.clone();
+    rain.sky.rain_strength = 1.0;
+    let (day_peak, night_peak, rain_peak) = (peak(&day), peak(&night), peak(&rain));
+    assert!(day_peak > 0.1, "the sun should glint on the water: peak {day_peak}");
+    let moon = night_peak / day_peak;
+    assert!((0.07..=0.13).contains(&moon), "the moon glints at {moon:.3} of the sun (peaks {night_peak} and {day_peak})");
+    assert!(rain_peak < 0.1 * day_peak, "in full rain the glint peaks at {rain_peak}, the clear sun's at {day_peak}");
+}

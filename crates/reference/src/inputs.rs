@@ -13,11 +13,15 @@ pub struct Uniforms {
     pub gbuffer_model_view_inverse: DMat4,
     pub camera_position: DVec3,
     pub shadow_light_position: DVec3,
+    pub sun_position: DVec3,
     pub sky_color: DVec3,
     pub fog_color: DVec3,
     pub frame_time_counter: f64,
     pub is_eye_in_water: i32,
     pub eye_brightness_smooth: [i32; 2],
+    pub rain_strength: f64,
+    /// The render distance in blocks.
+    pub far: f64,
 }
 
 impl Uniforms {
@@ -39,11 +43,14 @@ impl Uniforms {
             gbuffer_model_view_inverse: mat4("gbufferModelViewInverse")?,
             camera_position: vec3("cameraPosition")?,
             shadow_light_position: vec3("shadowLightPosition")?,
+            sun_position: vec3("sunPosition")?,
             sky_color: vec3("skyColor")?,
             fog_color: vec3("fogColor")?,
             frame_time_counter: scalar("frameTimeCounter")?,
             is_eye_in_water: scalar("isEyeInWater")? as i32,
             eye_brightness_smooth: [ivec2[0] as i32, ivec2[1] as i32],
+            rain_strength: scalar("rainStrength")?,
+            far: scalar("far")?,
         })
     }
 }

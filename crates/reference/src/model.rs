@@ -26,11 +26,11 @@ const WATER_F0: f64 = 0.02;
 const WATER_IOR: f64 = 1.333;
 
 // composite.fsh
-const HAZE_DISTANCE: f64 = 2000.0;
 const DEFAULT_WATER_TINT: DVec3 = DVec3::new(0.247, 0.463, 0.894);
 const CAUSTIC_COLOR: DVec3 = DVec3::new(1.0, 0.97, 0.9);
 const FOAM_COLOR: DVec3 = DVec3::new(0.9, 0.95, 1.0);
 const INVISIBLE: f64 = 1.0 / 255.0;
+const MOON_GLINT: f64 = 0.1;
 
 const UP: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 
@@ -69,6 +69,12 @@ pub fn is_water_nearest(mark: f64) -> bool {
 /// `isWaterBehindTranslucent`.
 pub fn is_water_behind_translucent(mark: f64) -> bool {
     mark > 0.04 && mark <= 0.875
+}
+
+/// `distanceFog`.
+fn distance_fog(view_distance: f64, render_distance: f64) -> f64 {
+    let range = render_distance.max(1.0);
+    ((view_distance - 0.75 * range) / (0.25 * range)).clamp(0.0, 1.0)
 }
 
 /// `safeNormalize`.
@@ -268,8 +274,8 @@ fn sky_radiance(dir: DVec3, sky_color: DVec3, fog_color: DVec3) -> DVec3 {
 }
 
 /// `specularLight`.
-fn specular_light(reflected: DVec3, light_dir: DVec3, sky_color: DVec3, sky_light: f64) -> DVec3 {
-    let visibility = smoothstep(-0.05, 0.15, light_dir.y) * sky_light;
+fn specular_light(reflected: DVec3, light_dir: DVec3, glint: f64, sky_color: DVec3, sky_light: f64) -> DVec3 {
+    let visibility = smoothstep(-0.05, 0.15, light_dir.y) * sky_light * glint;
     let sun = reflected.dot(light_dir).max(0.0).powf(256.0) * 8.0;
     let sky = reflected.y.max(0.0).powf(4.0) * 0.15;
     DVec3::new(1.0, 0.95, 0.85) * sun * visibility + sky_color * sky * sky_light
@@ -394,6 +400,12 @@ impl Frame<'_> {
         self.u.gbuffer_model_view_inverse.w_axis.xyz()
     }
 
+    /// `glintStrength`.
+    fn glint_strength(&self) -> f64 {
+        let moon = self.u.shadow_light_position.dot(self.u.sun_position) < 0.0;
+        (if moon { MOON_GLINT } else { 1.0 }) * (1.0 - self.u.rain_strength.clamp(0.0, 1.0))
+    }
+
     /// `lightDirection`.
     fn light_direction(&self) -> DVec3 {
         safe_normalize(rotate(&self.u.gbuffer_model_view_inverse, self.u.shadow_light_position), UP)
@@ -440,7 +452,7 @@ impl Frame<'_> {
         let (u, s) = (self.u, self.s);
         let view0 = self.view_from_screen(uv, depth0);
         let distance0 = view0.length();
-        let haze = ((HAZE_DISTANCE - distance0) * 0.0005).clamp(0.0, 1.0);
+        let haze = 1.0 - distance_fog(distance0, u.far);
         if s.far_haze && haze <= 0.0 {
             return u.fog_color;
         }
@@ -504,7 +516,7 @@ impl Frame<'_> {
         }
         if s.specular {
             let foam_free = 1.0 - foam;
-            color += specular_light(reflected, self.light_direction(), u.sky_color, sky_light) * reflectance * foam_free * foam_free * foam_free;
+            color += specular_light(reflected, self.light_direction(), self.glint_strength(), u.sky_color, sky_light) * reflectance * foam_free * foam_free * foam_free;
         }
         if s.far_haze {
             color = mix3(u.fog_color, color, haze);

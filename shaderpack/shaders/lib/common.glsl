@@ -33,3 +33,10 @@ float luminance(vec3 color) {
 float maxComponent(vec3 v) {
     return max(v.r, max(v.g, v.b));
 }
+
+// The game's distance fog: none up to three quarters of the render distance (`far`), all of it
+// at the render distance.
+float distanceFog(float viewDistance, float renderDistance) {
+    float range = max(renderDistance, 1.0);
+    return clamp((viewDistance - 0.75 * range) / (0.25 * range), 0.0, 1.0);
+}

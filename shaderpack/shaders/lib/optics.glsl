@@ -71,10 +71,11 @@ vec3 skyRadiance(vec3 dir, vec3 skyColor, vec3 fogColor) {
     return mix(fogColor, skyColor, smoothstep(-0.05, 0.35, dir.y));
 }
 
-// Phong highlights of the sun or moon and a broad lobe of the sky (A4); the light is below
-// the horizon half the time, so its strength follows its height.
-vec3 specularLight(vec3 reflected, vec3 lightDir, vec3 skyColor, float skyLight) {
-    float visibility = smoothstep(-0.05, 0.15, lightDir.y) * skyLight;
+// Phong highlights of the sun or moon, at `glint` of the sun's strength, and a broad lobe of
+// the sky (A4); the light is below the horizon half the time, so its strength follows its
+// height.
+vec3 specularLight(vec3 reflected, vec3 lightDir, float glint, vec3 skyColor, float skyLight) {
+    float visibility = smoothstep(-0.05, 0.15, lightDir.y) * skyLight * glint;
     float sun = pow(max(dot(reflected, lightDir), 0.0), 256.0) * 8.0;
     float sky = pow(max(reflected.y, 0.0), 4.0) * 0.15;
     return vec3(1.0, 0.95, 0.85) * sun * visibility + skyColor * sky * skyLight;

@@ -9,22 +9,21 @@
 // The fragment stage of those programs; the including program defines TEXTURED (sample
 // gtexture) and LIT (multiply by the lightmap) before including this.
 
+#include "/lib/common.glsl"
+
 uniform int fogMode;
 uniform int isEyeInWater;
 uniform float far;
 uniform float alphaTestRef;
 uniform vec3 fogColor;
 
-// The game's distance fog, linear from three quarters of the render distance to its end.
-// None where the game draws without fog (fogMode 0: the sun, moon and stars) and under water,
-// where composite's absorption is the water's fog.
+// The game's distance fog. None where the game draws without fog (fogMode 0: the sun, moon
+// and stars) and under water, where composite's absorption is the water's fog.
 vec3 withDistanceFog(vec3 color, float viewDistance) {
     if (fogMode == 0 || isEyeInWater == 1) {
         return color;
     }
-    float renderDistance = max(far, 1.0);
-    float fog = clamp((viewDistance - 0.75 * renderDistance) / (0.25 * renderDistance), 0.0, 1.0);
-    return mix(color, fogColor, fog);
+    return mix(color, fogColor, distanceFog(viewDistance, far));
 }
 
 #ifdef TEXTURED
