@@ -113,16 +113,14 @@ fn line_diff(expected: &str, actual: &str) -> String {
     let changed: Vec<usize> = (0..ops.len()).filter(|&k| ops[k].0 != ' ').collect();
     let mut out = String::new();
     let mut last_shown: Option<usize> = None;
-    for k in 0..ops.len() {
+    for (k, &(kind, el, al, text)) in ops.iter().enumerate() {
         let near = changed.iter().any(|&c| c.abs_diff(k) <= CONTEXT);
         if !near {
             continue;
         }
         if last_shown.is_none_or(|l| l + 1 != k) {
-            let (_, el, al, _) = ops[k];
             writeln!(out, "@@ expected line {el}, actual line {al} @@").unwrap();
         }
-        let (kind, _, _, text) = ops[k];
         writeln!(out, "{kind}{text}").unwrap();
         last_shown = Some(k);
     }
