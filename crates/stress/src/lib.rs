@@ -554,36 +554,63 @@ fn rss_text() -> String {
     tidepack_harness::resident_mib().map_or_else(|| "unknown".to_string(), |m| format!("{m:.1} MiB"))
 }
 
-/// summary.json, categories.csv, distance.csv, cases.csv.
+/// summary.json, categories.csv, distance.csv, cases.csv. Fields with commas, quotes or line
+/// breaks (the case descriptions) are quoted by the `csv` crate.
 pub fn write_files(report: &StressReport, dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let write = |name: &str, text: String| std::fs::write(dir.join(name), text).map_err(|e| format!("{}: {e}", dir.join(name).display()));
-    write("summary.json", serde_json::to_string_pretty(report).map_err(|e| e.to_string())? + "\n")?;
-    let mut csv = String::from("category,cases,pixels,non_finite_pixels,reference_non_finite_pixels,max_error,rmse,visible_pixels,worst_case\n");
-    for c in &report.categories {
-        writeln!(
-            csv,
-            "{},{},{},{},{},{:e},{:e},{},\"{}\"",
-            c.category, c.cases, c.pixels, c.non_finite_pixels, c.reference_non_finite_pixels, c.max_error, c.rmse, c.visible_pixels, c.worst_case
-        )
-        .ok();
+    let summary = dir.join("summary.json");
+    std::fs::write(&summary, serde_json::to_string_pretty(report).map_err(|e| e.to_string())? + "\n")
+        .map_err(|e| format!("{}: {e}", summary.display()))?;
+    write_csv(
+        &dir.join("categories.csv"),
+        &["category", "cases", "pixels", "non_finite_pixels", "reference_non_finite_pixels", "max_error", "rmse", "visible_pixels", "worst_case"],
+        report.categories.iter().map(|c| {
+            [
+                c.category.to_string(),
+                c.cases.to_string(),
+                c.pixels.to_string(),
+                c.non_finite_pixels.to_string(),
+                c.reference_non_finite_pixels.to_string(),
+                format!("{:e}", c.max_error),
+                format!("{:e}", c.rmse),
+                c.visible_pixels.to_string(),
+                c.worst_case.clone(),
+            ]
+        }),
+    )?;
+    write_csv(
+        &dir.join("distance.csv"),
+        &["magnitude", "cases", "max_error_f32_inputs", "rmse_f32_inputs", "max_error_exact_inputs", "rmse_exact_inputs", "max_input_rounding"],
+        report.distance.iter().map(|r| {
+            [
+                r.magnitude.to_string(),
+                r.cases.to_string(),
+                format!("{:e}", r.max_error_f32_inputs),
+                format!("{:e}", r.rmse_f32_inputs),
+                format!("{:e}", r.max_error_exact_inputs),
+                format!("{:e}", r.rmse_exact_inputs),
+                format!("{:e}", r.max_input_rounding),
+            ]
+        }),
+    )?;
+    write_csv(
+        &dir.join("cases.csv"),
+        &["index", "category", "non_finite_pixels", "max_error", "description"],
+        report.records.iter().map(|r| {
+            [r.index.to_string(), r.category.to_string(), r.non_finite_pixels.to_string(), format!("{:e}", r.max_error), r.description.clone()]
+        }),
+    )
+}
+
+/// Writes a header and rows to a CSV file.
+fn write_csv<const N: usize>(path: &Path, header: &[&str; N], rows: impl Iterator<Item = [String; N]>) -> Result<(), String> {
+    let error = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let mut w = csv::Writer::from_path(path).map_err(|e| error(&e))?;
+    w.write_record(header).map_err(|e| error(&e))?;
+    for row in rows {
+        w.write_record(&row).map_err(|e| error(&e))?;
     }
-    write("categories.csv", csv)?;
-    let mut csv = String::from("magnitude,cases,max_error_f32_inputs,rmse_f32_inputs,max_error_exact_inputs,rmse_exact_inputs,max_input_rounding\n");
-    for r in &report.distance {
-        writeln!(
-            csv,
-            "{},{},{:e},{:e},{:e},{:e},{:e}",
-            r.magnitude, r.cases, r.max_error_f32_inputs, r.rmse_f32_inputs, r.max_error_exact_inputs, r.rmse_exact_inputs, r.max_input_rounding
-        )
-        .ok();
-    }
-    write("distance.csv", csv)?;
-    let mut csv = String::from("index,category,non_finite_pixels,max_error,description\n");
-    for r in &report.records {
-        writeln!(csv, "{},{},{},{:e},\"{}\"", r.index, r.category, r.non_finite_pixels, r.max_error, r.description).ok();
-    }
-    write("cases.csv", csv)
+    w.flush().map_err(|e| error(&e))
 }
 
 /// The terminal tables (Markdown).
@@ -630,6 +657,47 @@ pub fn tables(report: &StressReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The CSV files quote a field holding a quote and a comma and read back to the same fields.
+    #[test]
+    fn csv_fields_with_quotes_and_commas_read_back_intact() {
+        let description = "shipped:glass \"a, b\" origin=(1.000,0.000,2.000)".to_string();
+        let report = StressReport {
+            adapter: "synthetic".into(),
+            dialect: "330".into(),
+            profile: "HIGH".into(),
+            resolution: [16, 9],
+            seed: 1,
+            cases: 1,
+            base_scenes: 1,
+            non_finite_pixels: 0,
+            categories: vec![CategoryResult {
+                category: "random".into(),
+                cases: 1,
+                max_error: 0.5,
+                worst_case: format!("#0 {description}"),
+                ..Default::default()
+            }],
+            distance: vec![DistanceRow { magnitude: 1e3, ..Default::default() }],
+            seconds: 0.0,
+            records: vec![CaseRecord { index: 0, category: "random".into(), description: description.clone(), non_finite_pixels: 0, max_error: 0.5 }],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        write_files(&report, dir.path()).unwrap();
+        let read = |name: &str| -> (usize, Vec<csv::StringRecord>) {
+            let mut reader = csv::Reader::from_path(dir.path().join(name)).unwrap();
+            let columns = reader.headers().unwrap().len();
+            (columns, reader.records().map(Result::unwrap).collect())
+        };
+        let (columns, cases) = read("cases.csv");
+        assert_eq!((columns, cases.len(), cases[0].len()), (5, 1, 5));
+        assert_eq!(&cases[0][4], description);
+        let (columns, categories) = read("categories.csv");
+        assert_eq!((columns, categories.len(), categories[0].len()), (9, 1, 9));
+        assert_eq!(&categories[0][8], format!("#0 {description}"));
+        let (_, distance) = read("distance.csv");
+        assert_eq!(&distance[0][0], "1000");
+    }
 
     #[test]
     fn cases_are_split_exactly() {
