@@ -37,8 +37,10 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/lowering")
 }
 
+/// Whether to rewrite the snapshots: `TIDEPACK_BLESS` set to anything but empty or `0`, the rule
+/// every test that reads it follows (docs/ARCHITECTURE.md, "Tests").
 fn blessing() -> bool {
-    std::env::var("TIDEPACK_BLESS").is_ok_and(|v| v == "1")
+    std::env::var("TIDEPACK_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")
 }
 
 fn extension(stage: Stage) -> &'static str {
