@@ -1,4 +1,4 @@
-//! Stress sweep (issue 5, step 3): adversarial and random uniform sets and G-buffer contents
+//! Stress sweep: adversarial and random uniform sets and G-buffer contents
 //! through the real composite program on the harness, each compared with the f64 reference fed
 //! the same inputs. Counts NaN/Inf pixels and the largest error per category, and tabulates the
 //! error against |cameraPosition| with the reference fed the f32 uniforms the shader got and
@@ -309,8 +309,8 @@ fn base_scenes(opts: &StressOptions) -> Result<Vec<(String, Scene)>, String> {
 }
 
 /// The reference's inputs for a case: its G-buffers with the uniforms the shader got (`f32_inputs`)
-/// or the exact ones. An RGBA32F colour buffer is taken as not filtering (nearest), as this sweep
-/// always assumed; the pack's colour buffers are RGBA8/RGBA16.
+/// or the exact ones. An RGBA32F colour buffer would be taken as not filtering (nearest) without
+/// asking the adapter: the pack's colour buffers are RGBA8/RGBA16, which filter on every adapter.
 fn reference_inputs(pack: &LoadedPack, textures: &Textures, g: &GBuffers, values: &BTreeMap<String, Value>, f32_inputs: bool) -> Result<Inputs, String> {
     let uniforms = reference::uniforms_of(values, if f32_inputs { Precision::F32 } else { Precision::Exact })?;
     reference::from_gbuffers(pack, &g.colors, &g.depth0, &g.depth1, Some(false), textures, uniforms)
