@@ -76,7 +76,8 @@ pub enum Category {
     WorldTime,
     /// `frameTimeCounter` at and around its wrap at 3600 s.
     FrameTime3600,
-    /// Sky depth (1.0) in depthtex1, or in both depth buffers under a water mark.
+    /// Both depths 1.0 (sky) under a water mark, everywhere or on alternate pixels (depthtex1
+    /// alone 1.0 on the others).
     SkyDepth,
     /// depthtex1 equal to depthtex0.
     D0EqD1,
