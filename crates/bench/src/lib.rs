@@ -1,5 +1,5 @@
-//! `tidepack bench` (issue 5, step 2): for every scene and every option set (the profiles, and
-//! single-knob sweeps around the default profile), the composite's GPU time on the harness
+//! `tidepack bench`: for every scene and every option set (the profiles, and single-knob sweeps
+//! around the default profile), the composite's GPU time on the harness
 //! (median of N frames, with the one-tap pass-through composite of the same frames as the
 //! floor) and its error against the f64 reference at converged settings (max abs, RMSE, PSNR,
 //! mean FLIP). Writes a table, CSV, JSON, a Pareto plot of time against error, FLIP heat-maps
@@ -8,13 +8,11 @@
 //! Each scene is rendered once per option set through the whole harness pipeline
 //! (`render_wgpu`: the image whose error is measured, and the G-buffers). The composite is then
 //! timed alone over those G-buffers with [`tidepack_harness::composite_only`] (all option sets
-//! taking turns, one frame each per round, so load changes hit them alike), whose uniform
-//! blocks are bound as read-only storage: bound as uniform buffers, lavapipe 22.3 recompiles
-//! the composite shader at every draw (with `isEyeInWater` and the other members its `if`s test
-//! inlined) and never frees it: memory grew about 3 MB per frame (docs/stress.md, "Memory"),
-//! and the timed pass carried a few ms of per-draw overhead (HIGH at 160x90: 11.8 ms against
-//! 6.4 ms now; at 640x360 within the noise). The timed image is checked
-//! against the harness frame's (`timed_image_difference`).
+//! taking turns, one frame each per round, so load changes hit them alike). `composite_only`
+//! binds the uniform blocks as read-only storage, so the driver compiles the shader once
+//! instead of specialising it on the blocks' values at every draw, which would add its
+//! compile time to the timed pass (see that module and docs/stress.md, "Memory"). The timed
+//! image is checked against the harness frame's (`timed_image_difference`).
 
 pub mod labels;
 pub mod metrics;

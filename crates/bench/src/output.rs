@@ -120,36 +120,29 @@ fn spread(relative: f64) -> String {
     if relative.is_finite() { format!("±{:.1}%", 100.0 * relative) } else { "?".into() }
 }
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
-}
-
+/// bench.csv: a row per (scene, run), then a row per run over all scenes (scene `ALL`, with its
+/// Pareto verdict). Fields with commas, quotes or line breaks are quoted by the `csv` crate.
 pub fn csv(result: &BenchResult) -> String {
-    let mut s = String::from(
-        "scene,run,kind,profile,knob,value,composite_ms,passthrough_ms,ratio,ratio_spread,max_abs,rmse,psnr_db,mean_flip,pareto\n",
-    );
-    let line = |s: &mut String, scene: &str, run: &RunSpec, [c, p, r, spread]: [f64; 4], m: f64, rmse: f64, psnr: f64, f: f64, front: &str| {
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{c:.6},{p:.6},{r:.4},{spread:.4},{m:.6e},{rmse:.6e},{},{f:.6e},{}",
-            csv_field(scene),
-            csv_field(&run.name),
-            run.kind,
-            csv_field(&run.profile),
-            run.knob.as_deref().unwrap_or(""),
-            run.value.as_deref().unwrap_or(""),
-            if psnr.is_finite() { format!("{psnr:.3}") } else { "inf".into() },
-            csv_field(front)
-        );
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "scene", "run", "kind", "profile", "knob", "value", "composite_ms", "passthrough_ms", "ratio", "ratio_spread", "max_abs", "rmse",
+        "psnr_db", "mean_flip", "pareto",
+    ])
+    .expect("CSV into memory");
+    let mut record = |scene: &str, run: &RunSpec, [c, p, r, spread]: [f64; 4], m: f64, rmse: f64, psnr: f64, f: f64, front: &str| {
+        let psnr = if psnr.is_finite() { format!("{psnr:.3}") } else { "inf".into() };
+        let numbers = [format!("{c:.6}"), format!("{p:.6}"), format!("{r:.4}"), format!("{spread:.4}"), format!("{m:.6e}"), format!("{rmse:.6e}"), psnr, format!("{f:.6e}")];
+        let text = [scene, &run.name, &run.kind, &run.profile, run.knob.as_deref().unwrap_or(""), run.value.as_deref().unwrap_or("")];
+        w.write_record(text.into_iter().chain(numbers.iter().map(String::as_str)).chain([front])).expect("CSV into memory");
     };
     for r in &result.rows {
         let spread = pareto::ratio_spread(&r.composite_frames_ms, &r.passthrough_frames_ms);
-        line(&mut s, &r.scene, &r.run, [r.composite_ms, r.passthrough_ms, r.ratio, spread], r.error.max_abs, r.error.rmse, r.error.psnr, r.error.mean_flip, "");
+        record(&r.scene, &r.run, [r.composite_ms, r.passthrough_ms, r.ratio, spread], r.error.max_abs, r.error.rmse, r.error.psnr, r.error.mean_flip, "");
     }
     for a in &result.aggregates {
-        line(&mut s, "ALL", &a.run, [a.composite_ms, a.passthrough_ms, a.ratio, a.ratio_spread], a.max_abs, a.rmse, a.psnr, a.mean_flip, &front_label(a));
+        record("ALL", &a.run, [a.composite_ms, a.passthrough_ms, a.ratio, a.ratio_spread], a.max_abs, a.rmse, a.psnr, a.mean_flip, &front_label(a));
     }
-    s
+    String::from_utf8(w.into_inner().expect("CSV into memory")).expect("CSV of UTF-8 fields")
 }
 
 fn family(a: &Aggregate) -> String {

@@ -111,3 +111,27 @@ fn the_plot_of_synthetic_runs_is_written() {
     let image = image::open(&path).unwrap();
     assert_eq!((image.width(), image.height()), (1400, 900));
 }
+
+/// bench.csv quotes a field holding a quote and a comma, and reads back to the same fields.
+#[test]
+fn csv_fields_with_quotes_and_commas_read_back_intact() {
+    let mut odd = RunSpec::profile("HIGH");
+    odd.name = "HIGH+NOTE=\"a, b\"".into();
+    odd.kind = "sweep".into();
+    odd.knob = Some("NOTE".into());
+    odd.value = Some("\"a, b\"".into());
+    let result = bench_result(std::slice::from_ref(&odd), vec![row(&odd, vec![5.0, 5.1, 5.2], 1.0, 0.01)]);
+    let text = output::csv(&result);
+    assert!(text.contains(r#""HIGH+NOTE=""a, b""""#), "{text}");
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let columns = reader.headers().unwrap().len();
+    let records: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert_eq!(records.len(), 2, "{text}");
+    for (record, scene) in records.iter().zip(["synthetic", "ALL"]) {
+        assert_eq!(record.len(), columns, "{text}");
+        assert_eq!(&record[0], scene);
+        assert_eq!(&record[1], "HIGH+NOTE=\"a, b\"");
+        assert_eq!(&record[4], "NOTE");
+        assert_eq!(&record[5], "\"a, b\"");
+    }
+}

@@ -142,21 +142,35 @@ impl fmt::Display for DriverInfo {
 
 /// Compatibility-profile entry points glow does not wrap: the fixed-function matrix stacks and
 /// client-state arrays that feed `gl_ModelViewMatrix`, `gl_Vertex`, `gl_Color`, … in legacy GLSL.
-#[allow(clippy::type_complexity)]
+///
+/// Every entry point is an `unsafe` function pointer, as every call of [`glow::HasContext`] is.
+///
+/// # Safety
+///
+/// For every call:
+/// - the [`GlContext`] these pointers came from is current on the calling thread (the pointers
+///   are plain `Copy` values and can outlive the context or reach another thread; calling them
+///   there is undefined behaviour);
+/// - `load_matrix_f` reads 16 `f32`s (column-major) through its pointer, which must be valid for
+///   those reads;
+/// - `vertex_pointer`, `color_pointer`, `normal_pointer` and `tex_coord_pointer` store their
+///   pointer for later draws: with a buffer bound to `GL_ARRAY_BUFFER` it is a byte offset into
+///   that buffer; with none it is a client address that must stay valid for every draw that
+///   reads the array while it is enabled.
 pub struct LegacyGl {
-    pub matrix_mode: extern "system" fn(u32),
-    pub load_matrix_f: extern "system" fn(*const f32),
-    pub enable_client_state: extern "system" fn(u32),
-    pub disable_client_state: extern "system" fn(u32),
-    pub vertex_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
-    pub color_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
-    pub normal_pointer: extern "system" fn(u32, i32, *const std::ffi::c_void),
-    pub tex_coord_pointer: extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
-    pub client_active_texture: extern "system" fn(u32),
+    pub matrix_mode: unsafe extern "system" fn(u32),
+    pub load_matrix_f: unsafe extern "system" fn(*const f32),
+    pub enable_client_state: unsafe extern "system" fn(u32),
+    pub disable_client_state: unsafe extern "system" fn(u32),
+    pub vertex_pointer: unsafe extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub color_pointer: unsafe extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub normal_pointer: unsafe extern "system" fn(u32, i32, *const std::ffi::c_void),
+    pub tex_coord_pointer: unsafe extern "system" fn(i32, u32, i32, *const std::ffi::c_void),
+    pub client_active_texture: unsafe extern "system" fn(u32),
     /// `glProvokingVertex` (OpenGL 3.2).
-    pub provoking_vertex: extern "system" fn(u32),
+    pub provoking_vertex: unsafe extern "system" fn(u32),
     /// `glClipControl` (OpenGL 4.5 or ARB_clip_control), when the driver has it.
-    pub clip_control: Option<extern "system" fn(u32, u32)>,
+    pub clip_control: Option<unsafe extern "system" fn(u32, u32)>,
 }
 
 /// Enums of the compatibility API that glow does not define.
@@ -185,7 +199,8 @@ impl LegacyGl {
                 .get_proc_address(name)
                 .ok_or_else(|| DriverError::new(format!("the OpenGL driver has no {name} (not a compatibility profile)")))?;
             debug_assert_eq!(std::mem::size_of::<T>(), std::mem::size_of::<extern "system" fn()>());
-            // SAFETY: T is the extern "system" fn type of this GL entry point; both are one pointer.
+            // SAFETY: T is the `unsafe extern "system" fn` type of this GL entry point's signature;
+            // both are one function pointer. Calling it stays unsafe (see `LegacyGl`).
             Ok(unsafe { std::mem::transmute_copy::<extern "system" fn(), T>(&f) })
         }
         Ok(LegacyGl {

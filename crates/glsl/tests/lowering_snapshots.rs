@@ -37,8 +37,10 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/lowering")
 }
 
+/// Whether to rewrite the snapshots: `TIDEPACK_BLESS` set to anything but empty or `0`, the rule
+/// every test that reads it follows (docs/ARCHITECTURE.md, "Tests").
 fn blessing() -> bool {
-    std::env::var("TIDEPACK_BLESS").is_ok_and(|v| v == "1")
+    std::env::var("TIDEPACK_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")
 }
 
 fn extension(stage: Stage) -> &'static str {
@@ -113,16 +115,14 @@ fn line_diff(expected: &str, actual: &str) -> String {
     let changed: Vec<usize> = (0..ops.len()).filter(|&k| ops[k].0 != ' ').collect();
     let mut out = String::new();
     let mut last_shown: Option<usize> = None;
-    for k in 0..ops.len() {
+    for (k, &(kind, el, al, text)) in ops.iter().enumerate() {
         let near = changed.iter().any(|&c| c.abs_diff(k) <= CONTEXT);
         if !near {
             continue;
         }
         if last_shown.is_none_or(|l| l + 1 != k) {
-            let (_, el, al, _) = ops[k];
             writeln!(out, "@@ expected line {el}, actual line {al} @@").unwrap();
         }
-        let (kind, _, _, text) = ops[k];
         writeln!(out, "{kind}{text}").unwrap();
         last_shown = Some(k);
     }

@@ -11,12 +11,12 @@
 //!
 //! The uniform blocks are bound as read-only storage buffers by default
 //! ([`UniformBinding::ReadOnlyStorage`]): same bytes, same member offsets, same arithmetic, but
-//! lavapipe (Mesa 22.3) cannot "inline" them. lavapipe recompiles a shader with the current
-//! values of the uniform-buffer members its `if` conditions test (here `isEyeInWater`) at every
-//! draw after a pipeline or descriptor bind, and never frees the compiled shaders: about 3.4 MB
-//! of LLVM JIT memory per draw of composite, even with the pipeline reused (docs/stress.md,
-//! "Memory"). A storage buffer is read with `load_ssbo`, which the inliner ignores, so the
-//! shader is compiled once and the resident memory stays flat over any number of renders.
+//! lavapipe cannot "inline" them. For uniform buffers, lavapipe may recompile a shader with the
+//! current values of the members its `if` conditions test (here `isEyeInWater`) at every draw
+//! after a pipeline or descriptor bind; the lavapipe of Mesa 22.3 (Debian 12's own) does and
+//! never frees the copies, about 3.4 MB per draw of composite (docs/stress.md, "Memory"). A
+//! storage buffer is read with `load_ssbo`, which the inliner ignores, so the shader is compiled
+//! once and the resident memory stays flat over any number of renders, whichever Mesa runs it.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -52,8 +52,8 @@ const DEPTH_AS: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// How the programs' uniform blocks are bound.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum UniformBinding {
-    /// As the program declares them (`uniform` blocks). On lavapipe 22.3 every render leaks the
-    /// shader recompiled with the block's values inlined (see the module doc).
+    /// As the program declares them (`uniform` blocks), for comparison: lavapipe may recompile
+    /// the shader with the blocks' values inlined at every draw (see the module doc).
     Uniform,
     /// The same blocks as read-only storage buffers: no per-draw recompilation, no growth.
     #[default]

@@ -130,13 +130,19 @@ pub fn render_with(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &Sce
         let Some(clip_control) = clip_control else {
             return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
         };
-        clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
-        (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
+        // SAFETY: ctx is current on this thread; the calls take no pointers.
+        unsafe {
+            clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
+            (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
+        }
     }
     let frame = render_frame(ctx, pack, scene, mesh, depth);
     if let (DepthMapping::Harness, Some(clip_control)) = (depth, clip_control) {
-        clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
-        (ctx.legacy().provoking_vertex)(legacy::LAST_VERTEX_CONVENTION);
+        // SAFETY: ctx is current on this thread; the calls take no pointers.
+        unsafe {
+            clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
+            (ctx.legacy().provoking_vertex)(legacy::LAST_VERTEX_CONVENTION);
+        }
     }
     frame
 }

@@ -291,7 +291,7 @@ fn a_uniform_the_harness_cannot_fill_is_an_error_naming_it() {
 
 #[test]
 fn golden_images_match() {
-    let bless = std::env::var("TIDEPACK_BLESS").is_ok_and(|v| !v.is_empty() && v != "0");
+    let bless = blessing();
     let mut failures = Vec::new();
     for (name, frame) in frames() {
         let actual = frame.image.to_rgba8_top_first();
@@ -315,6 +315,12 @@ fn golden_images_match() {
         }
     }
     assert!(failures.is_empty(), "golden images differ (TIDEPACK_BLESS=1 regenerates them):\n{}", failures.join("\n"));
+}
+
+/// Whether to rewrite the golden images: `TIDEPACK_BLESS` set to anything but empty or `0`, the
+/// rule every test that reads it follows (docs/ARCHITECTURE.md, "Tests").
+fn blessing() -> bool {
+    std::env::var("TIDEPACK_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")
 }
 
 fn opaque(rgba: &[u8]) -> Vec<u8> {

@@ -195,10 +195,8 @@ fn downlevel_to_120(
                     for &j in &sig[k + 1..=end] {
                         replaced.insert(j, String::new());
                     }
-                    for j in i + 1..=sig[end] {
-                        if tokens[j].kind == TokenKind::Whitespace {
-                            replaced.insert(j, String::new());
-                        }
+                    for j in (i + 1..=sig[end]).filter(|&j| tokens[j].kind == TokenKind::Whitespace) {
+                        replaced.insert(j, String::new());
                     }
                     skip_until = sig[end] + 1;
                     statement_start = true;

@@ -169,13 +169,16 @@ pub fn validate_pack(
     let searched = Ticker::new(progress, "programs' option sets found", programs.len());
     for program in &programs {
         match option_sets(pack, program, options, &macros, coverage, profiles) {
-            Ok((sets, covered, read)) => {
+            Ok(ProgramSets { sets, covered, read }) => {
                 report.covered = report.covered.max(Some(covered));
                 report.option_sets += sets.len();
                 report.options_read.extend(read);
                 all_sets.extend(sets.into_iter().map(|set| (program, set)));
             }
-            Err((diag, set)) => errors.push((diag, set, program.name.clone())),
+            Err(failed) => {
+                let (diag, set) = *failed;
+                errors.push((diag, set, program.name.clone()));
+            }
         }
         searched.tick();
     }
@@ -404,8 +407,18 @@ fn run_set(
     program.stages.iter().map(|(_, path)| preprocess::preprocess(&provider, path, macros).map(Arc::new)).collect()
 }
 
-/// The option sets of a program (see the module docs), what they cover, and the options its
-/// text depends on.
+/// The option sets of a program, what they cover, and the options its text depends on.
+struct ProgramSets {
+    sets: Vec<OptionSet>,
+    covered: SetsCovered,
+    read: BTreeSet<String>,
+}
+
+/// An error of the option-set search and the set that showed it, boxed so that the common `Ok`
+/// result stays small.
+type SetFailure = Box<(Diagnostic, OptionSet)>;
+
+/// The option sets of a program (see the module docs).
 fn option_sets(
     pack: &ShippedPack,
     program: &Program,
@@ -413,7 +426,7 @@ fn option_sets(
     macros: &PreprocessOptions,
     coverage: Coverage,
     profiles: &[OptionSet],
-) -> Result<(Vec<OptionSet>, SetsCovered, BTreeSet<String>), (Diagnostic, OptionSet)> {
+) -> Result<ProgramSets, SetFailure> {
     let mut relevant: BTreeSet<String> = BTreeSet::new();
     let mut tested: BTreeSet<String> = BTreeSet::new();
     let mut explored: BTreeSet<OptionSet> = BTreeSet::new();
@@ -421,13 +434,13 @@ fn option_sets(
         let (sets, covered) = enumerate(&relevant, &tested, options, coverage, profiles);
         let fresh: Vec<&OptionSet> = sets.iter().filter(|s| !explored.contains(*s)).collect();
         let consulted = parallel_map(&fresh, || (), |(), set| {
-            let stages = run_set(pack, program, set, macros).map_err(|d| (d, (*set).clone()))?;
+            let stages = run_set(pack, program, set, macros).map_err(|d| Box::new((d, (*set).clone())))?;
             let mut names = (BTreeSet::new(), BTreeSet::new());
             for pre in &stages {
                 names.0.extend(pre.consulted_macros.iter().filter(|n| options.contains_key(*n)).cloned());
                 names.1.extend(pre.tested_macros.iter().filter(|n| options.contains_key(*n)).cloned());
             }
-            Ok(names)
+            Ok::<_, SetFailure>(names)
         });
         let mut grew = false;
         for result in consulted {
@@ -441,7 +454,7 @@ fn option_sets(
         }
         explored.extend(fresh.into_iter().cloned());
         if !grew {
-            return Ok((sets, covered, relevant));
+            return Ok(ProgramSets { sets, covered, read: relevant });
         }
     }
 }

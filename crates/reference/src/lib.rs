@@ -1,6 +1,6 @@
-//! The f64 reference of the composite water model (issue 5, step 1): the pack's composite
-//! pass ported function by function to the CPU, evaluated in double precision with converged
-//! iteration counts (by default), fed the same G-buffers, uniforms and textures as the GPU.
+//! The f64 reference of the composite water model: the pack's composite pass ported function
+//! by function to the CPU, evaluated in double precision with converged iteration counts (by
+//! default), fed the same G-buffers, uniforms and textures as the GPU.
 //! It is the ground truth the pack's quality knobs are measured against. See docs/reference.md.
 
 #[cfg(feature = "harness")]

@@ -16,9 +16,12 @@ use tidepack_reference::{Inputs, ReferenceImage, ReferenceSettings, evaluated, r
 /// ULTRA's; gbuffers_water is the same at HIGH and ULTRA).
 const CONVERGED_PROFILE: &str = "ULTRA";
 
+/// A scene's harness frame and the reference's inputs from it, by (scene, profile).
+type InputsCache = Mutex<BTreeMap<(String, String), &'static (tidepack_harness::Frame, Inputs)>>;
+
 /// The harness's inputs of a scene at a profile, rendered once.
 fn scene_inputs(name: &str, profile: &str) -> &'static (tidepack_harness::Frame, Inputs) {
-    static CACHE: OnceLock<Mutex<BTreeMap<(String, String), &'static (tidepack_harness::Frame, Inputs)>>> = OnceLock::new();
+    static CACHE: OnceLock<InputsCache> = OnceLock::new();
     let key = (name.to_string(), profile.to_string());
     if let Some(hit) = CACHE.get_or_init(Default::default).lock().unwrap().get(&key) {
         return hit;

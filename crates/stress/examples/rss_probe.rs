@@ -31,7 +31,8 @@ fn main() {
     let frame = render_wgpu(&gpu, &pack, &scene, false).expect("frame");
     let g = GBuffers::from_frame(&frame);
     let values = uniforms::values(&scene, Pass::Fullscreen);
-    // TP_UNIFORM_BINDING=uniform: the blocks as declared (leaks on lavapipe 22.3).
+    // TP_UNIFORM_BINDING=uniform: the blocks as declared, the binding whose per-draw
+    // recompilation the probe measures (docs/stress.md, "Memory").
     let binding = match std::env::var("TP_UNIFORM_BINDING").as_deref() {
         Ok("uniform") => UniformBinding::Uniform,
         _ => UniformBinding::ReadOnlyStorage,

@@ -1,4 +1,4 @@
-//! Stress sweep (issue 5, step 3): adversarial and random uniform sets and G-buffer contents
+//! Stress sweep: adversarial and random uniform sets and G-buffer contents
 //! through the real composite program on the harness, each compared with the f64 reference fed
 //! the same inputs. Counts NaN/Inf pixels and the largest error per category, and tabulates the
 //! error against |cameraPosition| with the reference fed the f32 uniforms the shader got and
@@ -60,26 +60,93 @@ impl StressOptions {
     }
 }
 
-/// The categories of issue 5, step 3, in report order.
-pub const CATEGORIES: [&str; 13] = [
-    "surface_exact",
-    "surface_above_1e-6",
-    "surface_below_1e-6",
-    "camera_far",
-    "world_time",
-    "frame_time_3600",
-    "sky_depth",
-    "d0_eq_d1",
-    "near_far",
-    "dark_water",
-    "grazing",
-    "sun_below",
-    "random",
+/// What a case stresses: each category draws its cases from its own base scenes and alterations
+/// (see [`make_case`] and docs/stress.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Category {
+    /// Camera exactly at the water surface.
+    SurfaceExact,
+    /// Camera 1e-6 above the surface.
+    SurfaceAbove1e6,
+    /// Camera 1e-6 below the surface.
+    SurfaceBelow1e6,
+    /// Camera far from the origin (the |cameraPosition| magnitudes of the distance table).
+    CameraFar,
+    /// `worldTime` at and around the day's and two days' wrap.
+    WorldTime,
+    /// `frameTimeCounter` at and around its wrap at 3600 s.
+    FrameTime3600,
+    /// Both depths 1.0 (sky) under a water mark, everywhere or on alternate pixels (depthtex1
+    /// alone 1.0 on the others).
+    SkyDepth,
+    /// depthtex1 equal to depthtex0.
+    D0EqD1,
+    /// Extreme near and far planes.
+    NearFar,
+    /// No sky light and a black water tint.
+    DarkWater,
+    /// Camera just above or below the surface looking along it.
+    Grazing,
+    /// Sun at or below the horizon.
+    SunBelow,
+    /// Random uniforms, half of them with fuzzed G-buffers.
+    Random,
+}
+
+/// Every category, in report order (the order `--cases` fills them in).
+pub const CATEGORIES: [Category; 13] = [
+    Category::SurfaceExact,
+    Category::SurfaceAbove1e6,
+    Category::SurfaceBelow1e6,
+    Category::CameraFar,
+    Category::WorldTime,
+    Category::FrameTime3600,
+    Category::SkyDepth,
+    Category::D0EqD1,
+    Category::NearFar,
+    Category::DarkWater,
+    Category::Grazing,
+    Category::SunBelow,
+    Category::Random,
 ];
 
-#[derive(Clone, Debug, Default, Serialize)]
+impl Category {
+    /// The category's name in the tables, the JSON and CSV files, and the labels of its base
+    /// scenes (`surface_exact:yaw180:pitch30`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Category::SurfaceExact => "surface_exact",
+            Category::SurfaceAbove1e6 => "surface_above_1e-6",
+            Category::SurfaceBelow1e6 => "surface_below_1e-6",
+            Category::CameraFar => "camera_far",
+            Category::WorldTime => "world_time",
+            Category::FrameTime3600 => "frame_time_3600",
+            Category::SkyDepth => "sky_depth",
+            Category::D0EqD1 => "d0_eq_d1",
+            Category::NearFar => "near_far",
+            Category::DarkWater => "dark_water",
+            Category::Grazing => "grazing",
+            Category::SunBelow => "sun_below",
+            Category::Random => "random",
+        }
+    }
+}
+
+impl std::fmt::Display for Category {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for Category {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
 pub struct CategoryResult {
-    pub category: String,
+    pub category: Category,
     pub cases: usize,
     pub pixels: usize,
     /// GPU output pixels with a NaN or Inf in any channel.
@@ -95,6 +162,23 @@ pub struct CategoryResult {
     pub visible_pixels: usize,
     #[serde(skip)]
     squares: f64,
+}
+
+impl CategoryResult {
+    fn new(category: Category) -> CategoryResult {
+        CategoryResult {
+            category,
+            cases: 0,
+            pixels: 0,
+            non_finite_pixels: 0,
+            reference_non_finite_pixels: 0,
+            max_error: 0.0,
+            worst_case: String::new(),
+            rmse: 0.0,
+            visible_pixels: 0,
+            squares: 0.0,
+        }
+    }
 }
 
 #[derive(Clone, Debug, Default, Serialize)]
@@ -118,7 +202,7 @@ pub struct DistanceRow {
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseRecord {
     pub index: usize,
-    pub category: String,
+    pub category: Category,
     pub description: String,
     pub non_finite_pixels: usize,
     pub max_error: f64,
@@ -206,24 +290,28 @@ fn base_scenes(opts: &StressOptions) -> Result<Vec<(String, Scene)>, String> {
         s.name = label.to_string();
         (label.to_string(), s)
     };
-    for (tag, dy) in [("surface_exact", 0.0), ("surface_above_1e-6", 1e-6), ("surface_below_1e-6", -1e-6)] {
+    // Labelled `<category>:...`: the categories that carry their hazard in the base scene pick
+    // their bases by that prefix.
+    for (tag, dy) in [(Category::SurfaceExact, 0.0), (Category::SurfaceAbove1e6, 1e-6), (Category::SurfaceBelow1e6, -1e-6)] {
         for (yaw, pitch) in [(180.0, 30.0), (180.0, 0.0), (180.0, -30.0), (90.0, 89.0), (0.0, -89.0)] {
             out.push(at(&format!("{tag}:yaw{yaw}:pitch{pitch}"), level + dy, yaw, pitch, 0.05, 96.0));
         }
     }
+    let near_far = Category::NearFar;
     for (near, far) in [(1e-4, 96.0), (0.05, 2.0), (1.0, 4.0), (0.05, 4096.0), (1e-4, 32768.0)] {
-        out.push(at(&format!("near_far:near{near}:far{far}"), level + 4.0, 180.0, 38.0, near, far));
-        out.push(at(&format!("near_far:below:near{near}:far{far}"), level - 3.0, 180.0, -38.0, near, far));
+        out.push(at(&format!("{near_far}:near{near}:far{far}"), level + 4.0, 180.0, 38.0, near, far));
+        out.push(at(&format!("{near_far}:below:near{near}:far{far}"), level - 3.0, 180.0, -38.0, near, far));
     }
+    let grazing = Category::Grazing;
     for (dy, pitch) in [(0.01, 0.5), (0.1, 0.05), (1.0, 1.0), (0.001, 0.0), (-0.01, -0.5), (-0.1, -0.05)] {
-        out.push(at(&format!("grazing:dy{dy}:pitch{pitch}"), level + dy, 180.0, pitch, 0.05, 96.0));
+        out.push(at(&format!("{grazing}:dy{dy}:pitch{pitch}"), level + dy, 180.0, pitch, 0.05, 96.0));
     }
     Ok(out)
 }
 
 /// The reference's inputs for a case: its G-buffers with the uniforms the shader got (`f32_inputs`)
-/// or the exact ones. An RGBA32F colour buffer is taken as not filtering (nearest), as this sweep
-/// always assumed; the pack's colour buffers are RGBA8/RGBA16.
+/// or the exact ones. An RGBA32F colour buffer would be taken as not filtering (nearest) without
+/// asking the adapter: the pack's colour buffers are RGBA8/RGBA16, which filter on every adapter.
 fn reference_inputs(pack: &LoadedPack, textures: &Textures, g: &GBuffers, values: &BTreeMap<String, Value>, f32_inputs: bool) -> Result<Inputs, String> {
     let uniforms = reference::uniforms_of(values, if f32_inputs { Precision::F32 } else { Precision::Exact })?;
     reference::from_gbuffers(pack, &g.colors, &g.depth0, &g.depth1, Some(false), textures, uniforms)
@@ -278,7 +366,7 @@ fn map_gbuffers(runner: &CompositeOnly, g: &mut GBuffers, mut f: impl FnMut(usiz
     }
 }
 
-fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &CompositeOnly, rng: &mut Rng) -> Case {
+fn make_case(category: Category, k: usize, bases: &[Base], runner: &CompositeOnly, rng: &mut Rng) -> Case {
     let pick_prefix = |rng: &mut Rng, prefix: &str| -> usize {
         let matching: Vec<usize> = bases.iter().enumerate().filter(|(_, b)| b.name.starts_with(prefix)).map(|(i, _)| i).collect();
         *rng.pick(&matching)
@@ -288,10 +376,11 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
         *rng.pick(&matching)
     };
     let mut magnitude = None;
+    use Category::*;
     let base_index = match category {
-        "surface_exact" | "surface_above_1e-6" | "surface_below_1e-6" | "near_far" | "grazing" => pick_prefix(rng, &format!("{category}:")),
-        "random" => rng.next_u64() as usize % bases.len(),
-        _ => any_water(rng),
+        SurfaceExact | SurfaceAbove1e6 | SurfaceBelow1e6 | NearFar | Grazing => pick_prefix(rng, &format!("{category}:")),
+        Random => rng.next_u64() as usize % bases.len(),
+        CameraFar | WorldTime | FrameTime3600 | SkyDepth | D0EqD1 | DarkWater | SunBelow => any_water(rng),
     };
     let base = &bases[base_index];
     let mut scene = base.scene.clone();
@@ -299,18 +388,18 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
     let mut description = base.name.clone();
     scene.time.frame_time_counter = rng.range(0.0, 3600.0);
     match category {
-        "camera_far" => {
+        CameraFar => {
             let m = MAGNITUDES[k % MAGNITUDES.len()];
             with_origin(&mut scene, rng, m);
             magnitude = Some(m);
         }
-        "world_time" => scene.time.world_time = *rng.pick(&[0, 23999, 24000, 1, 12000, 47999, 48000]),
-        "frame_time_3600" => {
+        WorldTime => scene.time.world_time = *rng.pick(&[0, 23999, 24000, 1, 12000, 47999, 48000]),
+        FrameTime3600 => {
             let ulp = 3600f32.next_down() as f64;
             let (a, b) = (3600.0 - rng.range(0.0, 1.0), rng.range(0.0, 0.1));
             scene.time.frame_time_counter = *rng.pick(&[0.0, 1e-6, 3599.9, 3599.999, ulp, 3600.0, a, b]);
         }
-        "sky_depth" => {
+        SkyDepth => {
             let all = rng.unit() < 0.5;
             map_gbuffers(runner, &mut g, |i, px, d0, d1| {
                 if all || i % 2 == 0 {
@@ -325,11 +414,11 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
             });
             description.push_str(if all { " +depth0=depth1=1 everywhere, water mark" } else { " +sky depth on alternate pixels" });
         }
-        "d0_eq_d1" => {
+        D0EqD1 => {
             map_gbuffers(runner, &mut g, |_, _, d0, d1| *d1 = *d0);
             description.push_str(" +depthtex1=depthtex0");
         }
-        "dark_water" => {
+        DarkWater => {
             // Black tint and no sky light: the scattered colour and every sky term vanish.
             map_gbuffers(runner, &mut g, |_, px, _, _| {
                 if let Some(p) = px.get_mut(&4) {
@@ -341,13 +430,13 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
             });
             description.push_str(" +colortex4.g=0 (no sky light), colortex5=black tint");
         }
-        "sun_below" => {
+        SunBelow => {
             let y = *rng.pick(&[-1.0, -0.5, -0.05, -1e-6, 0.0]);
             let a = rng.range(0.0, std::f64::consts::TAU);
             let r = (1.0f64 - y * y).sqrt();
             scene.sky.sun_direction = if r == 0.0 { [0.0, -1.0, 0.0] } else { [r * a.cos(), y, r * a.sin()] };
         }
-        "random" => {
+        Random => {
             let m = *rng.pick(&MAGNITUDES);
             with_origin(&mut scene, rng, m);
             scene.time.world_time = (rng.next_u64() % 48000) as i32;
@@ -381,8 +470,8 @@ fn make_case(category: &'static str, k: usize, bases: &[Base], runner: &Composit
                 description.push_str(" +fuzzed g-buffers");
             }
         }
-        _ => {
-            // Surface / near-far / grazing: the base carries the hazard; vary time, sun, origin.
+        SurfaceExact | SurfaceAbove1e6 | SurfaceBelow1e6 | NearFar | Grazing => {
+            // The base carries the hazard; vary time, sun, origin.
             scene.sky.sun_direction = random_sun(rng, false);
             let m = *rng.pick(&[0.0, 0.0, 1e3, 1e5]);
             with_origin(&mut scene, rng, m);
@@ -458,12 +547,11 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
     let runner = CompositeOnly::new(&gpu, &pack, opts.width, opts.height, &values0).map_err(|e| e.to_string())?;
 
     let mut rng = Rng::new(opts.seed);
-    let mut categories: Vec<CategoryResult> =
-        CATEGORIES.iter().map(|c| CategoryResult { category: c.to_string(), ..Default::default() }).collect();
+    let mut categories: Vec<CategoryResult> = CATEGORIES.map(CategoryResult::new).to_vec();
     let mut distance: Vec<DistanceRow> = MAGNITUDES.iter().map(|&m| DistanceRow { magnitude: m, ..Default::default() }).collect();
     let mut records = Vec::new();
     let mut index = 0;
-    for (ci, &category) in CATEGORIES.iter().enumerate() {
+    for (ci, category) in CATEGORIES.into_iter().enumerate() {
         for k in 0..cases_of_category(opts.cases, ci) {
             let case = make_case(category, k, &bases, &runner, &mut rng);
             let values = uniforms::values(&case.scene, Pass::Fullscreen);
@@ -502,7 +590,7 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
                 row.sq[0] += sq;
                 row.sq[1] += sq_exact;
             }
-            records.push(CaseRecord { index, category: category.to_string(), description: case.description, non_finite_pixels: bad, max_error: max });
+            records.push(CaseRecord { index, category, description: case.description, non_finite_pixels: bad, max_error: max });
             index += 1;
             if index % 100 == 0 {
                 progress(&format!("{index} cases, {:.0} s, RSS {}", started.elapsed().as_secs_f64(), rss_text()));
@@ -554,36 +642,63 @@ fn rss_text() -> String {
     tidepack_harness::resident_mib().map_or_else(|| "unknown".to_string(), |m| format!("{m:.1} MiB"))
 }
 
-/// summary.json, categories.csv, distance.csv, cases.csv.
+/// summary.json, categories.csv, distance.csv, cases.csv. Fields with commas, quotes or line
+/// breaks (the case descriptions) are quoted by the `csv` crate.
 pub fn write_files(report: &StressReport, dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let write = |name: &str, text: String| std::fs::write(dir.join(name), text).map_err(|e| format!("{}: {e}", dir.join(name).display()));
-    write("summary.json", serde_json::to_string_pretty(report).map_err(|e| e.to_string())? + "\n")?;
-    let mut csv = String::from("category,cases,pixels,non_finite_pixels,reference_non_finite_pixels,max_error,rmse,visible_pixels,worst_case\n");
-    for c in &report.categories {
-        writeln!(
-            csv,
-            "{},{},{},{},{},{:e},{:e},{},\"{}\"",
-            c.category, c.cases, c.pixels, c.non_finite_pixels, c.reference_non_finite_pixels, c.max_error, c.rmse, c.visible_pixels, c.worst_case
-        )
-        .ok();
+    let summary = dir.join("summary.json");
+    std::fs::write(&summary, serde_json::to_string_pretty(report).map_err(|e| e.to_string())? + "\n")
+        .map_err(|e| format!("{}: {e}", summary.display()))?;
+    write_csv(
+        &dir.join("categories.csv"),
+        &["category", "cases", "pixels", "non_finite_pixels", "reference_non_finite_pixels", "max_error", "rmse", "visible_pixels", "worst_case"],
+        report.categories.iter().map(|c| {
+            [
+                c.category.to_string(),
+                c.cases.to_string(),
+                c.pixels.to_string(),
+                c.non_finite_pixels.to_string(),
+                c.reference_non_finite_pixels.to_string(),
+                format!("{:e}", c.max_error),
+                format!("{:e}", c.rmse),
+                c.visible_pixels.to_string(),
+                c.worst_case.clone(),
+            ]
+        }),
+    )?;
+    write_csv(
+        &dir.join("distance.csv"),
+        &["magnitude", "cases", "max_error_f32_inputs", "rmse_f32_inputs", "max_error_exact_inputs", "rmse_exact_inputs", "max_input_rounding"],
+        report.distance.iter().map(|r| {
+            [
+                r.magnitude.to_string(),
+                r.cases.to_string(),
+                format!("{:e}", r.max_error_f32_inputs),
+                format!("{:e}", r.rmse_f32_inputs),
+                format!("{:e}", r.max_error_exact_inputs),
+                format!("{:e}", r.rmse_exact_inputs),
+                format!("{:e}", r.max_input_rounding),
+            ]
+        }),
+    )?;
+    write_csv(
+        &dir.join("cases.csv"),
+        &["index", "category", "non_finite_pixels", "max_error", "description"],
+        report.records.iter().map(|r| {
+            [r.index.to_string(), r.category.to_string(), r.non_finite_pixels.to_string(), format!("{:e}", r.max_error), r.description.clone()]
+        }),
+    )
+}
+
+/// Writes a header and rows to a CSV file.
+fn write_csv<const N: usize>(path: &Path, header: &[&str; N], rows: impl Iterator<Item = [String; N]>) -> Result<(), String> {
+    let error = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let mut w = csv::Writer::from_path(path).map_err(|e| error(&e))?;
+    w.write_record(header).map_err(|e| error(&e))?;
+    for row in rows {
+        w.write_record(&row).map_err(|e| error(&e))?;
     }
-    write("categories.csv", csv)?;
-    let mut csv = String::from("magnitude,cases,max_error_f32_inputs,rmse_f32_inputs,max_error_exact_inputs,rmse_exact_inputs,max_input_rounding\n");
-    for r in &report.distance {
-        writeln!(
-            csv,
-            "{},{},{:e},{:e},{:e},{:e},{:e}",
-            r.magnitude, r.cases, r.max_error_f32_inputs, r.rmse_f32_inputs, r.max_error_exact_inputs, r.rmse_exact_inputs, r.max_input_rounding
-        )
-        .ok();
-    }
-    write("distance.csv", csv)?;
-    let mut csv = String::from("index,category,non_finite_pixels,max_error,description\n");
-    for r in &report.records {
-        writeln!(csv, "{},{},{},{:e},\"{}\"", r.index, r.category, r.non_finite_pixels, r.max_error, r.description).ok();
-    }
-    write("cases.csv", csv)
+    w.flush().map_err(|e| error(&e))
 }
 
 /// The terminal tables (Markdown).
@@ -630,6 +745,64 @@ pub fn tables(report: &StressReport) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The CSV files quote a field holding a quote and a comma and read back to the same fields.
+    #[test]
+    fn csv_fields_with_quotes_and_commas_read_back_intact() {
+        let description = "shipped:glass \"a, b\" origin=(1.000,0.000,2.000)".to_string();
+        let report = StressReport {
+            adapter: "synthetic".into(),
+            dialect: "330".into(),
+            profile: "HIGH".into(),
+            resolution: [16, 9],
+            seed: 1,
+            cases: 1,
+            base_scenes: 1,
+            non_finite_pixels: 0,
+            categories: vec![CategoryResult { cases: 1, max_error: 0.5, worst_case: format!("#0 {description}"), ..CategoryResult::new(Category::Random) }],
+            distance: vec![DistanceRow { magnitude: 1e3, ..Default::default() }],
+            seconds: 0.0,
+            records: vec![CaseRecord { index: 0, category: Category::Random, description: description.clone(), non_finite_pixels: 0, max_error: 0.5 }],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        write_files(&report, dir.path()).unwrap();
+        let read = |name: &str| -> (usize, Vec<csv::StringRecord>) {
+            let mut reader = csv::Reader::from_path(dir.path().join(name)).unwrap();
+            let columns = reader.headers().unwrap().len();
+            (columns, reader.records().map(Result::unwrap).collect())
+        };
+        let (columns, cases) = read("cases.csv");
+        assert_eq!((columns, cases.len(), cases[0].len()), (5, 1, 5));
+        assert_eq!(&cases[0][4], description);
+        let (columns, categories) = read("categories.csv");
+        assert_eq!((columns, categories.len(), categories[0].len()), (9, 1, 9));
+        assert_eq!(&categories[0][8], format!("#0 {description}"));
+        let (_, distance) = read("distance.csv");
+        assert_eq!(&distance[0][0], "1000");
+    }
+
+    /// The names the tables, the files and `--cases` reports use.
+    #[test]
+    fn category_names_are_the_reports() {
+        let names = CATEGORIES.map(Category::name);
+        assert_eq!(names, [
+            "surface_exact",
+            "surface_above_1e-6",
+            "surface_below_1e-6",
+            "camera_far",
+            "world_time",
+            "frame_time_3600",
+            "sky_depth",
+            "d0_eq_d1",
+            "near_far",
+            "dark_water",
+            "grazing",
+            "sun_below",
+            "random",
+        ]);
+        assert_eq!(serde_json::to_string(&Category::SurfaceAbove1e6).unwrap(), "\"surface_above_1e-6\"");
+        assert_eq!(Category::D0EqD1.to_string(), "d0_eq_d1");
+    }
 
     #[test]
     fn cases_are_split_exactly() {

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use tidepack_stress::{CATEGORIES, StressOptions, run, tables};
+use tidepack_stress::{CATEGORIES, Category, StressOptions, run, tables};
 
 #[test]
 fn stress_subset_is_finite_and_close_to_the_reference() {
@@ -47,7 +47,7 @@ fn the_sweep_runs_exactly_the_cases_asked_for() {
     let mut messages = Vec::new();
     let report = run(&opts, &mut |m| messages.push(m.to_string())).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(report.cases, 5);
-    let ran: Vec<&str> = report.categories.iter().filter(|c| c.cases > 0).map(|c| c.category.as_str()).collect();
+    let ran: Vec<Category> = report.categories.iter().filter(|c| c.cases > 0).map(|c| c.category).collect();
     assert_eq!(ran, CATEGORIES[..5]);
     assert!(messages.iter().any(|m| m.contains("only the first 5 of the 13 categories")), "{messages:?}");
 }

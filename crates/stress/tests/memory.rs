@@ -1,9 +1,9 @@
-//! Regression tests for the stress sweep's memory growth (docs/stress.md, "Memory"): on lavapipe
-//! 22.3, composite with its uniform blocks bound as uniform buffers leaked about 3.4 MB per
-//! render (the shader recompiled with the blocks' values inlined at every draw, never freed).
-//! `composite_only` binds them as read-only storage; these tests check that the output is the
-//! same bit for bit and that resident memory stays flat. Needs lavapipe (Debian
-//! mesa-vulkan-drivers; tools/test installs it). No time is asserted.
+//! The stress sweep's memory (docs/stress.md, "Memory"): `composite_only` binds composite's
+//! uniform blocks as read-only storage, so that lavapipe cannot recompile the shader with the
+//! blocks' values inlined at every draw (and, in Mesa 22.3, keep every copy). These tests check
+//! that the output is the same bit for bit as with the uniform binding and that resident memory
+//! stays flat over many renders. Needs lavapipe (Debian mesa-vulkan-drivers; tools/test installs
+//! it). No time is asserted.
 
 use std::path::{Path, PathBuf};
 
