@@ -18,14 +18,14 @@
 #include "/lib/caustics.glsl"
 
 /*
-const int colortex4Format = RGBA8;
+const int colortex4Format = RGBA16;
 const int colortex5Format = RGBA8;
 const int colortex6Format = RGBA8;
 */
 
 uniform sampler2D colortex0; // the scene behind the water, glass blended in; alpha 0 under translucents
 uniform sampler2D colortex3; // rain, clouds and the translucent hand: premultiplied colour, coverage
-uniform sampler2D colortex4; // water mark (r, weakened by each glass in front) and the water's sky light (g)
+uniform sampler2D colortex4; // water mark (r, weakened by each glass in front), the water's sky light (g) and distance (b)
 uniform sampler2D colortex5; // the water's tint (rgb)
 uniform sampler2D colortex6; // the water's plain colour (rgb), kept where glass covers the water
 uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height, slope, foam
@@ -281,7 +281,12 @@ void main() {
         vec3 shaded = waterBehindGlass ? mix(behind, ownTexel(colortex6).rgb, 0.6) : behind;
         if (NEEDED(water)) {
             vec3 tint = ownTexel(colortex5).rgb;
-            float depth0 = ownTexel(depthtex0).r;
+            // Rain, clouds and the hand write their depth over the water's: where they drew, the
+            // surface's depth comes from the distance the water kept.
+            float waterDistance = waterRecord.b * WATER_DISTANCE_RANGE * max(far, 1.0);
+            float depth0 = drawnOver.a > 0.0
+                ? depthAtDistance(screenUv, waterDistance, gbufferProjection, gbufferProjectionInverse)
+                : ownTexel(depthtex0).r;
             vec3 surface = shadeFromAbove(screenUv, depth0, tint, waterRecord.g);
             shaded = water ? surface : shaded;
         }

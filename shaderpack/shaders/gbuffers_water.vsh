@@ -21,6 +21,7 @@ out vec2 lightUv;
 out vec4 tint;
 // 1 on water, 0 on every other translucent block.
 out float waterBlock;
+out vec3 viewPosition;
 
 void main() {
     // Ids arrive as floats; unmapped blocks are -1.
@@ -41,6 +42,7 @@ void main() {
     }
 #endif
     gl_Position = gl_ProjectionMatrix * viewPos;
+    viewPosition = viewPos.xyz;
     texUv = (gl_TextureMatrix[0] * gl_MultiTexCoord0).xy;
     lightUv = (gl_TextureMatrix[1] * gl_MultiTexCoord1).xy;
     tint = gl_Color;

@@ -65,7 +65,8 @@ pub struct Inputs {
     pub colortex0: Texture,
     /// Rain, clouds and the translucent hand: premultiplied colour, coverage in alpha.
     pub colortex3: Texture,
-    /// Water mark (r; weakened by each glass in front of the water) and the water's sky light (g).
+    /// Water mark (r; weakened by each glass in front of the water), the water's sky light (g)
+    /// and its distance as a fraction of 4 · far (b).
     pub colortex4: Texture,
     /// The water's tint (rgb).
     pub colortex5: Texture,

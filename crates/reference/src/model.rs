@@ -31,6 +31,7 @@ const CAUSTIC_COLOR: DVec3 = DVec3::new(1.0, 0.97, 0.9);
 const FOAM_COLOR: DVec3 = DVec3::new(0.9, 0.95, 1.0);
 const INVISIBLE: f64 = 1.0 / 255.0;
 const MOON_GLINT: f64 = 0.1;
+const WATER_DISTANCE_RANGE: f64 = 4.0;
 
 const UP: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 
@@ -113,6 +114,13 @@ fn screen_from_view(view: DVec3, projection: &DMat4) -> DVec3 {
         return DVec3::splat(-1.0);
     }
     clip.xyz() / clip.w * 0.5 + 0.5
+}
+
+/// `depthAtDistance`.
+fn depth_at_distance(uv: DVec2, distance: f64, projection: &DMat4, projection_inverse: &DMat4) -> f64 {
+    let ray = safe_normalize(view_from_screen(uv, 0.5, projection_inverse), DVec3::new(0.0, 0.0, -1.0));
+    let clip = *projection * (ray * distance.max(0.0)).extend(1.0);
+    (divide_by_w(clip).z * 0.5 + 0.5).clamp(0.0, 1.0)
 }
 
 /// `playerFromView`.
@@ -586,6 +594,14 @@ impl Frame<'_> {
             let uncovered = 1.0 - drawn_over.w;
             let behind = (scene.xyz() - drawn_over.xyz()) / uncovered.max(INVISIBLE);
             let shaded = if water {
+                // Where rain, clouds or the hand wrote their depth, the surface's comes from the
+                // distance the water kept.
+                let depth0 = if drawn_over.w > 0.0 {
+                    let distance = water_record.z * WATER_DISTANCE_RANGE * self.u.far.max(1.0);
+                    depth_at_distance(uv, distance, &self.u.gbuffer_projection, &self.u.gbuffer_projection_inverse)
+                } else {
+                    depth0
+                };
                 self.shade_from_above(uv, depth0, i.colortex5.sample(uv).xyz(), water_record.y)
             } else {
                 mix3(behind, i.colortex6.sample(uv).xyz(), 0.6)

@@ -9,13 +9,17 @@ const float TAU = 6.28318530718;
 const float WATER_MARK = 1.0;
 const float MARK_KEPT_BEHIND_TRANSLUCENT = 0.75;
 
+// The water's distance from the eye is kept in colortex4.b as a fraction of this many render
+// distances (`far`), the projection's far plane: composite reads the surface's position from it
+// where rain, clouds or the hand wrote their depth over the water's.
+const float WATER_DISTANCE_RANGE = 4.0;
+
 // Water is the nearest translucent at this pixel.
 bool isWaterNearest(float mark) {
     return mark > 0.875;
 }
 
-// Water lies behind one to ten layers of glass or ice (mark 0.75 down to 0.75^10 = 0.056; a
-// quarter of an 8-bit step is lost to rounding at each layer).
+// Water lies behind one to ten layers of glass or ice (mark 0.75 down to 0.75^10 = 0.056).
 bool isWaterBehindTranslucent(float mark) {
     return mark > 0.04 && mark <= 0.875;
 }

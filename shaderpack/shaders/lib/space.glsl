@@ -20,6 +20,13 @@ vec3 screenFromView(vec3 viewPos, mat4 projection) {
     return clip.xyz / clip.w * 0.5 + 0.5;
 }
 
+// Window depth of the point `distance` blocks from the eye along the view ray through uv.
+float depthAtDistance(vec2 screenUv, float distance, mat4 projection, mat4 projectionInverse) {
+    vec3 ray = safeNormalize(viewFromScreen(screenUv, 0.5, projectionInverse), vec3(0.0, 0.0, -1.0));
+    vec4 clip = projection * vec4(ray * max(distance, 0.0), 1.0);
+    return clamp(divideByW(clip).z * 0.5 + 0.5, 0.0, 1.0);
+}
+
 // Position relative to the player's eye, in world axes.
 vec3 playerFromView(vec3 viewPos, mat4 modelViewInverse) {
     return mat3(modelViewInverse) * viewPos + modelViewInverse[3].xyz;
