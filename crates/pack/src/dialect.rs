@@ -1,11 +1,13 @@
 //! The two GLSL dialects the pack ships, generated from one template.
 //!
-//! Templates are written in `#version 330 compatibility`. The 330 dialect is the template with
-//! a header comment; the 120 dialect rewrites, token by token: top-level `in`/`out` to
-//! `attribute`/`varying`, `out vec4 outColorN` to `gl_FragData[N]`, `texture`/`textureLod` on
-//! 2D samplers to `texture2D`/`texture2DLod`, and the `RENDERTARGETS` directive to
-//! `DRAWBUFFERS`. Constructs that GLSL 120 lacks are errors at the template line, so a template
-//! always means the same thing in both dialects.
+//! Templates are written in `#version 330 compatibility`. Both dialects turn the
+//! `RENDERTARGETS` directive into `DRAWBUFFERS`, which every OptiFine reads. The 330 dialect
+//! otherwise keeps the template, giving each `out vec4 outColorN` its `layout(location = N)`
+//! (OptiFine before 1.16.5 G8 does not bind it by name); the 120 dialect rewrites, token by
+//! token: top-level `in`/`out` to `attribute`/`varying`, `out vec4 outColorN` to
+//! `gl_FragData[N]`, `texture`/`textureLod` on 2D samplers to `texture2D`/`texture2DLod`.
+//! Constructs that GLSL 120 lacks are errors at the template line, so a template always means
+//! the same thing in both dialects.
 //!
 //! Generation inserts exactly one line (the header) and changes no other line break, so a line
 //! of a shipped file maps back to its template by [`template_line`].
@@ -105,7 +107,7 @@ pub fn generate(
         return Err(err(1, format!("a program template starts with `{TEMPLATE_VERSION}`")));
     }
     let body = match dialect {
-        Dialect::Glsl330 => text.to_string(),
+        Dialect::Glsl330 => for_every_loader_330(text, stage).map_err(|(line, m)| err(line, m))?,
         Dialect::Glsl120 => downlevel_to_120(text, stage, samplers).map_err(|(line, m)| err(line, m))?,
     };
     let mut out = String::with_capacity(body.len() + header.len() + 2);
@@ -232,18 +234,7 @@ fn downlevel_to_120(
             _ => {}
         }
     }
-    // Comment directives live in trivia tokens.
-    for (i, t) in tokens.iter().enumerate() {
-        if t.kind == TokenKind::BlockComment
-            && let Some(list) = t.text.trim_start_matches("/*").trim_end_matches("*/").trim().strip_prefix("RENDERTARGETS:")
-        {
-            let buffers: Vec<&str> = list.split(',').map(str::trim).collect();
-            if buffers.iter().any(|b| b.len() != 1 || !b.chars().all(|c| c.is_ascii_digit())) {
-                return Err((t.line, format!("DRAWBUFFERS (GLSL 120) can only name buffers 0-9, not `{}`", list.trim())));
-            }
-            replaced.insert(i, format!("/* DRAWBUFFERS:{} */", buffers.concat()));
-        }
-    }
+    replaced.extend(drawbuffers_directives(&tokens)?);
     let mut out = String::with_capacity(text.len());
     for (i, t) in tokens.iter().enumerate() {
         match replaced.get(&i) {
@@ -306,6 +297,66 @@ impl VersionBlocks {
     }
 }
 
+/// The GLSL 330 text, made to work on every loader: `RENDERTARGETS` (OptiFine 1.16.5 G8 and
+/// later) becomes `DRAWBUFFERS`, which every OptiFine reads, and each `out vec4 outColorN;` of a
+/// fragment program gets `layout(location = N)`, since OptiFine before G8 does not bind
+/// `outColorN` to draw buffer N. Line breaks stay as written.
+fn for_every_loader_330(text: &str, stage: Option<Stage>) -> Result<String, (u32, String)> {
+    let tokens = tokenize(text).map_err(|e| (e.line, e.message))?;
+    let mut replaced = drawbuffers_directives(&tokens)?;
+    if stage == Some(Stage::Fragment) {
+        let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+        let mut depth = 0i32;
+        let mut line_of_directive = 0;
+        let mut statement_start = true;
+        for (k, &i) in sig.iter().enumerate() {
+            let t = &tokens[i];
+            if t.is_punct("#") {
+                line_of_directive = t.line;
+            }
+            if t.line == line_of_directive {
+                continue;
+            }
+            match t.text {
+                "{" | "(" => depth += 1,
+                "}" | ")" => depth -= 1,
+                _ => {}
+            }
+            if depth == 0 && statement_start && t.is_ident("out") {
+                let end = (k..sig.len()).find(|&j| tokens[sig[j]].is_punct(";")).ok_or((t.line, "declaration without `;`".to_string()))?;
+                let name = tokens[sig[end - 1]].text;
+                let index = output_index(name)
+                    .ok_or((t.line, format!("fragment outputs are named outColor<N> (OptiFine's naming), not `{name}`")))?;
+                replaced.insert(i, format!("layout(location = {index}) out"));
+            }
+            statement_start = t.is_punct(";") || t.is_punct("}");
+        }
+    }
+    let mut out = String::with_capacity(text.len() + 64);
+    for (i, t) in tokens.iter().enumerate() {
+        out.push_str(replaced.get(&i).map_or(t.text, String::as_str));
+    }
+    Ok(out)
+}
+
+/// `/* RENDERTARGETS: a,b */` comments as `/* DRAWBUFFERS:ab */`, which older loaders read
+/// (buffers 0-9 only).
+fn drawbuffers_directives(tokens: &[Token]) -> Result<HashMap<usize, String>, (u32, String)> {
+    let mut replaced = HashMap::new();
+    for (i, t) in tokens.iter().enumerate() {
+        if t.kind == TokenKind::BlockComment
+            && let Some(list) = t.text.trim_start_matches("/*").trim_end_matches("*/").trim().strip_prefix("RENDERTARGETS:")
+        {
+            let buffers: Vec<&str> = list.split(',').map(str::trim).collect();
+            if buffers.iter().any(|b| b.len() != 1 || !b.chars().all(|c| c.is_ascii_digit())) {
+                return Err((t.line, format!("DRAWBUFFERS can only name buffers 0-9, not `{}`", list.trim())));
+            }
+            replaced.insert(i, format!("/* DRAWBUFFERS:{} */", buffers.concat()));
+        }
+    }
+    Ok(replaced)
+}
+
 /// `N` of an output named `outColorN`.
 fn output_index(name: &str) -> Option<u32> {
     name.strip_prefix("outColor").and_then(|n| n.parse().ok())
@@ -351,9 +402,24 @@ void main() {
     }
 
     #[test]
-    fn generates_330_as_written() {
+    fn generates_330_for_every_loader_line_for_line() {
         let out = generate("t/a.fsh", "a.fsh", FSH, Dialect::Glsl330, &samplers(), "// header").unwrap();
-        assert_eq!(out, FSH.replacen('\n', "\n// header\n", 1));
+        let expected = FSH
+            .replacen('\n', "\n// header\n", 1)
+            .replace("/* RENDERTARGETS: 0,4 */", "/* DRAWBUFFERS:04 */")
+            .replace("\nout vec4 outColor", "\nlayout(location = N) out vec4 outColor");
+        let expected: String = expected
+            .lines()
+            .map(|l| match l.strip_prefix("layout(location = N) out vec4 outColor") {
+                Some(rest) => format!("layout(location = {}) out vec4 outColor{rest}\n", &rest[..1]),
+                None => format!("{l}\n"),
+            })
+            .collect();
+        assert_eq!(out, expected);
+        // A vertex program and lib files keep their text.
+        let vsh = "#version 330 compatibility\nout vec2 uv;\nvoid main() {}\n";
+        let out = generate("t/a.vsh", "a.vsh", vsh, Dialect::Glsl330, &HashMap::new(), "//").unwrap();
+        assert_eq!(out, vsh.replacen('\n', "\n//\n", 1));
     }
 
     #[test]

@@ -85,6 +85,9 @@ pub enum Category {
     NearFar,
     /// No sky light and a black water tint.
     DarkWater,
+    /// Rain, clouds or the hand over the water (colortex3) at any coverage up to 1, with the
+    /// water's kept distance anywhere from 0 to the far plane.
+    DrawnOver,
     /// Camera just above or below the surface looking along it.
     Grazing,
     /// Sun at or below the horizon.
@@ -94,7 +97,7 @@ pub enum Category {
 }
 
 /// Every category, in report order (the order `--cases` fills them in).
-pub const CATEGORIES: [Category; 13] = [
+pub const CATEGORIES: [Category; 14] = [
     Category::SurfaceExact,
     Category::SurfaceAbove1e6,
     Category::SurfaceBelow1e6,
@@ -105,6 +108,7 @@ pub const CATEGORIES: [Category; 13] = [
     Category::D0EqD1,
     Category::NearFar,
     Category::DarkWater,
+    Category::DrawnOver,
     Category::Grazing,
     Category::SunBelow,
     Category::Random,
@@ -125,6 +129,7 @@ impl Category {
             Category::D0EqD1 => "d0_eq_d1",
             Category::NearFar => "near_far",
             Category::DarkWater => "dark_water",
+            Category::DrawnOver => "drawn_over",
             Category::Grazing => "grazing",
             Category::SunBelow => "sun_below",
             Category::Random => "random",
@@ -380,7 +385,7 @@ fn make_case(category: Category, k: usize, bases: &[Base], runner: &CompositeOnl
     let base_index = match category {
         SurfaceExact | SurfaceAbove1e6 | SurfaceBelow1e6 | NearFar | Grazing => pick_prefix(rng, &format!("{category}:")),
         Random => rng.next_u64() as usize % bases.len(),
-        CameraFar | WorldTime | FrameTime3600 | SkyDepth | D0EqD1 | DarkWater | SunBelow => any_water(rng),
+        CameraFar | WorldTime | FrameTime3600 | SkyDepth | D0EqD1 | DarkWater | DrawnOver | SunBelow => any_water(rng),
     };
     let base = &bases[base_index];
     let mut scene = base.scene.clone();
@@ -429,6 +434,24 @@ fn make_case(category: Category, k: usize, bases: &[Base], runner: &CompositeOnl
                 }
             });
             description.push_str(" +colortex4.g=0 (no sky light), colortex5=black tint");
+        }
+        DrawnOver => {
+            let any = rng.unit() as f32;
+            let coverage = *rng.pick(&[0.5f32, 1.0 - 1.0 / 255.0, 1.0, any]);
+            // The water's kept distance: at the eye, as rendered, or anywhere to the far plane.
+            let anywhere = rng.unit() as f32;
+            let distance = *rng.pick(&[Some(0.0f32), None, Some(anywhere)]);
+            let color = [rng.unit() as f32, rng.unit() as f32, rng.unit() as f32];
+            map_gbuffers(runner, &mut g, |_, px, _, _| {
+                if let Some(p) = px.get_mut(&3) {
+                    *p = [color[0] * coverage, color[1] * coverage, color[2] * coverage, coverage];
+                }
+                if let (Some(p), Some(d)) = (px.get_mut(&4), distance) {
+                    p[2] = d;
+                }
+            });
+            let kept = distance.map_or("as rendered".to_string(), |d| d.to_string());
+            description.push_str(&format!(" +colortex3 coverage {coverage}, colortex4.b {kept}"));
         }
         SunBelow => {
             let y = *rng.pick(&[-1.0, -0.5, -0.05, -1e-6, 0.0]);
@@ -796,6 +819,7 @@ mod tests {
             "d0_eq_d1",
             "near_far",
             "dark_water",
+            "drawn_over",
             "grazing",
             "sun_below",
             "random",

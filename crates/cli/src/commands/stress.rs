@@ -13,7 +13,7 @@ use super::render::RenderDialect;
 
 #[derive(Args)]
 pub struct StressArgs {
-    /// Number of cases, run exactly: spread over the 13 categories as evenly as possible (with
+    /// Number of cases, run exactly: spread over the 14 categories as evenly as possible (with
     /// fewer than 13, only the first categories run).
     #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u64).range(1..))]
     pub cases: u64,
