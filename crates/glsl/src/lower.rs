@@ -52,6 +52,7 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
+use crate::preprocess::literal_integer_expression;
 use crate::token::{Token, TokenKind, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -315,11 +316,11 @@ impl VaryingLayout {
                 *slot = (*slot).max(size);
             }
         }
-        let mut next = 0;
+        let mut next = 0u32;
         let mut locations = BTreeMap::new();
         for (name, size) in sizes {
             locations.insert(name, next);
-            next += size;
+            next = next.saturating_add(size);
         }
         Ok(VaryingLayout { locations })
     }
@@ -342,7 +343,7 @@ pub struct VaryingDecl {
 impl VaryingDecl {
     /// Locations the varying takes: one per array element, times one per matrix column.
     pub fn locations(&self) -> u32 {
-        self.array.unwrap_or(1).max(1) * matrix_shape(&self.ty).map_or(1, |(columns, _)| columns)
+        self.array.unwrap_or(1).max(1).saturating_mul(matrix_shape(&self.ty).map_or(1, |(columns, _)| columns))
     }
 }
 
@@ -356,10 +357,11 @@ fn matrix_shape(ty: &str) -> Option<(u32, u32)> {
     }
 }
 
-/// `[N]` with a literal N: `Some(N)`; any other array suffix: `Some(0)`; none: `None`.
+/// `[N]` with N a literal or an expression of literals (`[5 * 5]` from macros): `Some(N)`; any
+/// other array suffix: `Some(0)`; none: `None`.
 fn array_size(suffix: &str) -> Option<u32> {
     let inner = suffix.trim().strip_prefix('[')?.strip_suffix(']')?;
-    Some(inner.trim().trim_end_matches(['u', 'U']).parse().unwrap_or(0))
+    Some(literal_integer_expression(inner).and_then(|n| u32::try_from(n).ok()).unwrap_or(0))
 }
 
 /// The varyings a stage declares, in declaration order.
@@ -825,7 +827,7 @@ impl<'a> Lowering<'_, 'a> {
                                 write!(
                                     text,
                                     "layout(location = {}) {}{direction} {column_ty} {RESERVED_PREFIX}{name}_{c}; ",
-                                    location + c,
+                                    location.saturating_add(c),
                                     decl.interpolation()
                                 )
                                 .unwrap();
