@@ -1387,6 +1387,19 @@ impl<'a> Lowering<'_, 'a> {
             let next = sig.get(k + 1).map(|&j| self.tokens[j]);
             let followed_by_call = next.is_some_and(|n| n.is_punct("("));
             let previous = k.checked_sub(1).map(|j| self.tokens[sig[j]]);
+            if previous.is_some_and(|p| p.is_punct(".")) {
+                // A field or swizzle (`pixel.shadow` beside a sampler `shadow`) names no global;
+                // a field named like a naga keyword is renamed as its declaration is.
+                self.rename_vulkan_keyword(i);
+                k += 1;
+                continue;
+            }
+            if brace_depth > 0 && matches!(t.text, "return" | "discard" | "break" | "continue") && self.ends_block_early(&sig, k) {
+                // naga drops the statements after it, but not the expressions of the calls among
+                // them, and then refuses the function ("expression not visited"); drivers compile
+                // the unreachable code. Behind an always-true `if`, naga keeps it.
+                self.replace(i, i + 1, format!("if (true) {}", t.text));
+            }
             let after_type = previous.is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct("]"));
             if brace_depth == 0 && followed_by_call && after_type {
                 if t.text == "main" && self.needs_main_wrapper() {
@@ -1462,9 +1475,7 @@ impl<'a> Lowering<'_, 'a> {
             {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);
                 self.replace(i, i + 1, combined_use(&lowered, &ty, passes_both));
-            } else if self.symbols.bool_uniforms.contains(t.text)
-                && !(k > 0 && self.tokens[sig[k - 1]].is_punct("."))
-            {
+            } else if self.symbols.bool_uniforms.contains(t.text) {
                 self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
             } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
                 self.rename_vulkan_keyword(i);
@@ -1494,6 +1505,14 @@ impl<'a> Lowering<'_, 'a> {
             k += 1;
         }
         Ok(())
+    }
+
+    /// Whether the jump statement (`return`, `discard`, …) at significant token `k` stands in a
+    /// block, not as the body of an `if`/`else`/loop, and statements of the same block follow it.
+    fn ends_block_early(&self, sig: &[usize], k: usize) -> bool {
+        let in_block = k > 0 && matches!(self.tokens[sig[k - 1]].text, ";" | "{" | "}" | ":");
+        let Some(end) = (k..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(";")) else { return false };
+        in_block && sig.get(end + 1).is_some_and(|&j| !matches!(self.tokens[j].text, "}" | "case" | "default"))
     }
 
     /// Whether the call whose `(` is significant token `open` has only literals, constructors
