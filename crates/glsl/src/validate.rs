@@ -146,7 +146,7 @@ fn validate_text(
             Ok(module) => module,
             Err(errors) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = errors.errors.iter().find_map(|e| scalar_dot(&text, e))
+                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e))
                 {
                     text = repaired;
                     continue;
@@ -334,6 +334,15 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
     let mut diagnostic = diagnostic_at(pre, text, provider, message, at);
     if let ErrorKind::SemanticError(message) = &e.kind
         && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
+        && let Some(swizzle) = name.strip_prefix("tp_store_")
+    {
+        // A store to a matrix column's swizzle, which the repair made a call.
+        diagnostic.message = format!("the value assigned to `.{swizzle}` of a matrix column is not a {}", match swizzle.len() {
+            1 => "float".to_string(),
+            n => format!("vec{n}"),
+        });
+    } else if let ErrorKind::SemanticError(message) = &e.kind
+        && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
     {
         // The function exists, only not with these arguments: show what is declared.
         let declared = declarations_of(pre, name);
@@ -410,33 +419,123 @@ fn expected_words(expected: &ExpectedToken) -> String {
     format!("`{symbol}`")
 }
 
-/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) becomes a product,
-/// through a stand-in declared on the lowering's header line.
-fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
+/// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
+/// scalars, a swizzle assigned on a matrix column.
+fn parse_repair(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
-    if !message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
-        return None;
+    let span = e.meta.to_range()?;
+    if message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
+        scalar_dot_at(text, span.start)
+    } else if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
+        column_swizzle_store(text, span, field)
+    } else {
+        None
     }
-    scalar_dot_at(text, e.meta.to_range()?.start)
 }
 
-/// [`scalar_dot`] for the call that starts at byte `start`.
+/// `text` with `stand_in` on the lowering's header line (the line after `#version`), once.
+fn with_stand_in(mut text: String, stand_in: &str) -> Option<String> {
+    if !text.contains(stand_in) {
+        // `#version` may be preceded by comments.
+        let version = text.find("#version")?;
+        let header = version + text[version..].find('\n')? + 1;
+        text.insert_str(header, stand_in);
+    }
+    Some(text)
+}
+
+/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) at byte `start`
+/// becomes a product, through a stand-in.
 fn scalar_dot_at(text: &str, start: usize) -> Option<String> {
     if !text.get(start..)?.starts_with("dot") {
         return None;
     }
-    // The lowering's header line follows `#version`, which comments may precede.
-    let version = text.find("#version")?;
-    let header = version + text[version..].find('\n')? + 1;
-    let stand_in = "float tp_scalar_dot(float a, float b) { return a * b; } ";
-    let mut repaired = String::with_capacity(text.len() + stand_in.len() + 16);
-    repaired.push_str(&text[..start]);
-    repaired.push_str("tp_scalar_dot");
-    repaired.push_str(&text[start + 3..]);
-    if !repaired.contains(stand_in) {
-        repaired.insert_str(header, stand_in);
+    let repaired = format!("{}tp_scalar_dot{}", &text[..start], &text[start + 3..]);
+    with_stand_in(repaired, "float tp_scalar_dot(float a, float b) { return a * b; } ")
+}
+
+/// `m[i].xz = v;` (or `+=`, `-=`, `*=`, `/=`): naga's parser cannot assign a swizzle of a matrix
+/// column (`field`, the span of `.xz`); drivers can. It becomes `tp_store_xz(m[i], v);`, a
+/// stand-in that takes the column `inout` (a compound assignment passes `m[i].xz - (v)`).
+fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str) -> Option<String> {
+    let set = ["xyzw", "rgba", "stpq"].into_iter().find(|set| swizzle.chars().all(|c| set.contains(c)))?;
+    let highest = swizzle.chars().filter_map(|c| set.find(c)).max()?;
+    if swizzle.len() > 4 || !text.get(field.clone())?.starts_with('.') {
+        return None;
     }
-    Some(repaired)
+    let lhs = postfix_start(text, field.start)..field.end;
+    let column = text[lhs.start..field.start].trim();
+    if !column.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_') {
+        return None;
+    }
+    let after = text.get(lhs.end..)?;
+    let operator_at = after.len() - after.trim_start().len();
+    let operator = ["+=", "-=", "*=", "/=", "="].into_iter().find(|op| after[operator_at..].starts_with(op))?;
+    let value_start = lhs.end + operator_at + operator.len();
+    if text[value_start..].starts_with('=') {
+        return None;
+    }
+    let mut depth = 0i32;
+    let value_len = text[value_start..].find(|c: char| {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ => {}
+        }
+        depth < 0 || (depth == 0 && c == ';')
+    })?;
+    let value_end = value_start + value_len;
+    if !text[value_end..].starts_with(';') {
+        return None;
+    }
+    let value = &text[value_start..value_end];
+    let value = match operator.strip_suffix('=').filter(|op| !op.is_empty()) {
+        // The copy of the column's text keeps the line count: no line break in it.
+        Some(op) => format!("{}.{swizzle} {op} ({value})", column.replace(['\n', '\r'], " ")),
+        None => value.to_string(),
+    };
+    let repaired = format!("{}tp_store_{swizzle}({column}, {value}){}", &text[..lhs.start], &text[value_end..]);
+    let value_ty = if swizzle.len() == 1 { "float".to_string() } else { format!("vec{}", swizzle.len()) };
+    let stand_ins: String = (highest + 1..=4)
+        .filter(|&n| n >= 2)
+        .map(|n| format!("void tp_store_{swizzle}(inout vec{n} c, {value_ty} v) {{ c.{swizzle} = v; }} "))
+        .collect();
+    with_stand_in(repaired, &stand_ins)
+}
+
+/// The start of the variable, element or field (`s.m[i]`, `m[i][j]`) that ends at byte `end`.
+fn postfix_start(text: &str, end: usize) -> usize {
+    let bytes = text.as_bytes();
+    let is_word = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
+    let mut at = end;
+    loop {
+        let last = text[..at].trim_end().len();
+        match last.checked_sub(1).map(|i| bytes[i]) {
+            Some(b']') => {
+                let mut depth = 0;
+                let Some(open) = (0..last).rev().find(|&i| {
+                    match bytes[i] {
+                        b']' => depth += 1,
+                        b'[' => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                }) else {
+                    return at;
+                };
+                at = open;
+            }
+            Some(b) if is_word(b) => {
+                let word = text[..last].trim_end_matches(|c: char| c.is_ascii() && is_word(c as u8)).len();
+                let before = text[..word].trim_end();
+                if !before.ends_with('.') {
+                    return word;
+                }
+                at = before.len() - 1;
+            }
+            _ => return at,
+        }
+    }
 }
 
 /// The function a validation error is in, and the function's error.
