@@ -2,6 +2,7 @@
 //! the lowered text with naga, and report every error at the pack file and line it came from.
 
 use std::error::Error as _;
+use std::fmt::Write as _;
 use std::sync::Arc;
 
 pub use naga::front::glsl::Frontend;
@@ -146,7 +147,7 @@ fn validate_text(
             Ok(module) => module,
             Err(errors) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e))
+                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version))
                 {
                     text = repaired;
                     continue;
@@ -420,14 +421,16 @@ fn expected_words(expected: &ExpectedToken) -> String {
 }
 
 /// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
-/// scalars, a swizzle assigned on a matrix column.
-fn parse_repair(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
+/// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types.
+fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
     let span = e.meta.to_range()?;
     if message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
         scalar_dot_at(text, span.start)
     } else if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
         column_swizzle_store(text, span, field)
+    } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
+        mixed_type_overloads(text, name, version)
     } else {
         None
     }
@@ -536,6 +539,58 @@ fn postfix_start(text: &str, end: usize) -> usize {
             _ => return at,
         }
     }
+}
+
+/// Built-ins that take several arguments of one type, among `int`, `uint` and `float`
+/// vectors, and whether they compare (returning a `bvec`).
+const MIXED_TYPE_BUILTINS: &[(&str, usize, bool)] = &[
+    ("min", 2, false),
+    ("max", 2, false),
+    ("clamp", 3, false),
+    ("lessThan", 2, true),
+    ("lessThanEqual", 2, true),
+    ("greaterThan", 2, true),
+    ("greaterThanEqual", 2, true),
+    ("equal", 2, true),
+    ("notEqual", 2, true),
+];
+
+/// A built-in called with mixed `int`, `uint` and `float` arguments (`max(uint, int)`,
+/// `lessThan(uvec2, ivec2)`): GLSL converts them implicitly to one type, naga calls the call
+/// ambiguous. Overloads of the built-in for every mixed combination, each converting its
+/// arguments to the type GLSL picks, make the call an exact match: before GLSL 4.00 only
+/// integers convert to `float`; from 4.00 `int` converts to `uint` too, which is then closer.
+fn mixed_type_overloads(text: &str, name: &str, version: u32) -> Option<String> {
+    const KINDS: [(&str, &str); 3] = [("int", "i"), ("uint", "u"), ("float", "")];
+    let &(_, arity, compares) = MIXED_TYPE_BUILTINS.iter().find(|(n, ..)| *n == name)?;
+    let type_name = |kind: usize, size: u32| match size {
+        1 => KINDS[kind].0.to_string(),
+        n => format!("{}vec{n}", KINDS[kind].1),
+    };
+    let mut stand_ins = String::new();
+    for size in if compares { 2..=4 } else { 1..=4 } {
+        // The other arguments of `min`, `max` and `clamp` may be scalars beside a vector.
+        let other_sizes: &[u32] = if compares || size == 1 { &[size] } else { &[size, 1] };
+        for &other_size in other_sizes {
+            for combination in 0..3usize.pow(arity as u32) {
+                let kinds: Vec<usize> = (0..arity).map(|a| combination / 3usize.pow(a as u32) % 3).collect();
+                if kinds.iter().all(|&k| k == kinds[0]) {
+                    continue;
+                }
+                let target = if kinds.contains(&2) || (version < 400 && kinds.contains(&0)) { 2 } else { 1 };
+                let sizes: Vec<u32> = (0..arity).map(|a| if a == 0 { size } else { other_size }).collect();
+                let parameters: Vec<String> = (0..arity).map(|a| format!("{} a{a}", type_name(kinds[a], sizes[a]))).collect();
+                let arguments: Vec<String> = (0..arity).map(|a| format!("{}(a{a})", type_name(target, sizes[a]))).collect();
+                let result = if compares { format!("bvec{size}") } else { type_name(target, size) };
+                write!(stand_ins, "{result} {name}({}) {{ return {name}({}); }} ", parameters.join(", "), arguments.join(", ")).ok()?;
+            }
+        }
+    }
+    // Once added, the overloads leave nothing ambiguous; an error that remains is naga's to report.
+    if text.contains(&stand_ins) {
+        return None;
+    }
+    with_stand_in(text.to_string(), &stand_ins)
 }
 
 /// The function a validation error is in, and the function's error.
