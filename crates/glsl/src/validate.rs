@@ -196,6 +196,7 @@ fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) 
             let mut parsed = frontend.parse(&Options::from(naga_stage), text);
             if let Ok(module) = &mut parsed {
                 callees_first(module);
+                member_array_types(module);
             }
             let validated =
                 parsed.as_ref().ok().map(|module| Validator::new(ValidationFlags::all(), Capabilities::all()).validate(module));
@@ -309,6 +310,44 @@ fn callees_first(module: &mut naga::Module) {
     }
     for entry in &mut module.entry_points {
         remap(&mut entry.function, &map);
+    }
+}
+
+/// naga's GLSL front-end lays out an array inside a struct with a uniform block's stride and an
+/// array constructor with its natural one, so to its validator `S(float[2](a, b))` composes a
+/// struct from an array of another type; in GLSL both are `float[2]`. Each array constructor
+/// composed into a struct member gets that member's type (same element type and size).
+fn member_array_types(module: &mut naga::Module) {
+    use naga::{Arena, Expression, TypeInner};
+    let types = &module.types;
+    let retype = |expressions: &mut Arena<Expression>| {
+        let mut fixes = Vec::new();
+        for (_, expression) in expressions.iter() {
+            let Expression::Compose { ty, ref components } = *expression else { continue };
+            let TypeInner::Struct { ref members, .. } = types[ty].inner else { continue };
+            for (member, &component) in members.iter().zip(components) {
+                let Expression::Compose { ty: given, .. } = expressions[component] else { continue };
+                let same_array = match (&types[given].inner, &types[member.ty].inner) {
+                    (TypeInner::Array { base, size, .. }, TypeInner::Array { base: b, size: s, .. }) => base == b && size == s,
+                    _ => false,
+                };
+                if given != member.ty && same_array {
+                    fixes.push((component, member.ty));
+                }
+            }
+        }
+        for (component, member_ty) in fixes {
+            if let Expression::Compose { ty, .. } = expressions.get_mut(component) {
+                *ty = member_ty;
+            }
+        }
+    };
+    retype(&mut module.global_expressions);
+    for (_, function) in module.functions.iter_mut() {
+        retype(&mut function.expressions);
+    }
+    for entry in &mut module.entry_points {
+        retype(&mut entry.function.expressions);
     }
 }
 
