@@ -15,7 +15,11 @@
 //!   [`VaryingLayout`]), so both stages agree; `gl_FrontColor`/`gl_Color` and `gl_TexCoord[i]`
 //!   become reserved varyings.
 //! - Fragment outputs: `gl_FragData[i]` and `gl_FragColor` become `layout(location = i) out vec4`;
-//!   330 `out vec4 outColorN` gets location N, other outputs their declaration order.
+//!   330 `out vec4 outColorN` gets location N, other outputs their declaration order (or their
+//!   `layout(location)`); an output packed beside another by `component` gets a location of
+//!   its own from [`PACKED_OUTPUT_LOCATION`].
+//! - A `return`, `discard`, `break` or `continue` followed by more statements of its block
+//!   becomes `if (true) return …`, so naga keeps the unreachable statements.
 //! - `texture2D`, `texture2DLod`, `shadow2D`, … become `texture`, `textureLod`, and
 //!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms. Outside fragment stages, where GLSL
 //!   samples the base level and naga refuses implicit levels, `texture(s, p)` (also from
@@ -89,6 +93,9 @@ pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
+/// Fragment outputs packed beside another by `layout(component = c)` are lowered to location
+/// `PACKED_OUTPUT_LOCATION + 4 * location + c`, clear of every render target.
+pub const PACKED_OUTPUT_LOCATION: u32 = 16;
 /// First location of user vertex attributes; 0-7 are the legacy built-in inputs.
 pub const FIRST_ATTRIBUTE_LOCATION: u32 = 8;
 
@@ -643,12 +650,12 @@ impl<'a> Declaration<'a> {
         self.qualifiers.iter().filter(|q| is_varying_qualifier(q)).map(|q| format!("{q} ")).collect()
     }
 
-    /// `N` of an explicit `layout(location = N)`.
-    fn explicit_location(&self, tokens: &[Token<'_>]) -> Option<u32> {
+    /// `N` of an explicit `layout(key = N)` (`location`, `component`).
+    fn layout_value(&self, tokens: &[Token<'_>], key: &str) -> Option<u32> {
         let (start, end) = self.layout?;
         let sig: Vec<&Token<'_>> = tokens[start..=end].iter().filter(|t| !t.is_trivia()).collect();
         sig.windows(3)
-            .find(|w| w[0].is_ident("location") && w[1].is_punct("="))
+            .find(|w| w[0].is_ident(key) && w[1].is_punct("="))
             .and_then(|w| w[2].text.parse().ok())
     }
 }
@@ -764,6 +771,8 @@ impl<'a> Lowering<'_, 'a> {
         }
         let mut attribute_count = 0;
         let mut output_order = 0;
+        // Locations into which outputs are packed by `component`.
+        let mut packed_outputs: HashSet<u32> = HashSet::new();
         // Function headers seen so far, as token text.
         let mut seen_headers: HashSet<String> = HashSet::new();
         for stmt in &statements {
@@ -851,13 +860,31 @@ impl<'a> Lowering<'_, 'a> {
                         let location = name
                             .strip_prefix("outColor")
                             .and_then(|n| n.parse().ok())
-                            .or_else(|| decl.explicit_location(self.tokens))
+                            .or_else(|| decl.layout_value(self.tokens, "location"))
                             .unwrap_or(output_order);
                         output_order += 1;
-                        if let Some(previous) = self.interface.outputs.insert(location, name.to_string()) {
-                            return Err(self.err(start, format!("`{name}` and `{previous}` both write output {location}")));
+                        // Outputs packed into one location by `component` (GLSL 4.40) share it;
+                        // naga has no components, so each packed output gets a location of its
+                        // own above the render targets.
+                        let component = decl.layout_value(self.tokens, "component").unwrap_or(0);
+                        let lowered_location = if component > 0 {
+                            PACKED_OUTPUT_LOCATION.saturating_add(location.saturating_mul(4)).saturating_add(component)
+                        } else {
+                            location
+                        };
+                        match self.interface.outputs.get(&location) {
+                            Some(previous) if component == 0 && !packed_outputs.contains(&location) => {
+                                return Err(self.err(start, format!("`{name}` and `{previous}` both write output {location}")));
+                            }
+                            Some(_) => {}
+                            None => {
+                                self.interface.outputs.insert(location, name.to_string());
+                            }
                         }
-                        write!(text, "layout(location = {location}) out {} {name}{suffix}; ", decl.ty).unwrap();
+                        if component > 0 {
+                            packed_outputs.insert(location);
+                        }
+                        write!(text, "layout(location = {lowered_location}) out {} {name}{suffix}; ", decl.ty).unwrap();
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
