@@ -11,7 +11,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use crate::diagnostic::{Diagnostic, Location};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
-use crate::preprocess::{FileProvider, Preprocessed};
+use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
 use crate::token::{TokenKind, tokenize};
 
 /// One stage after lowering, ready for naga.
@@ -460,7 +460,8 @@ fn expected_words(expected: &ExpectedToken) -> String {
 }
 
 /// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
-/// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types.
+/// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types,
+/// a constant shift whose bits run out of the integer.
 fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
     let span = e.meta.to_range()?;
@@ -470,6 +471,8 @@ fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32) -> Optio
         column_swizzle_store(text, span, field)
     } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
         mixed_type_overloads(text, name, version)
+    } else if message.as_ref() == "<< operation overflowed" {
+        literal_shift(text, span)
     } else {
         None
     }
@@ -578,6 +581,18 @@ fn postfix_start(text: &str, end: usize) -> usize {
             _ => return at,
         }
     }
+}
+
+/// `1 << 31` (bits shifted out of an `int` or `uint`, which GLSL drops and naga's constant
+/// evaluator calls an overflow) of literals only, at `span`: replaced by its value, computed as
+/// `#if` computes and cut to 32 bits.
+fn literal_shift(text: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let shift = text.get(span.clone())?;
+    let (left, _) = shift.rsplit_once("<<")?;
+    let value = literal_integer_expression(shift)? as u32;
+    // A shift has the type of its left operand.
+    let literal = if left.contains(['u', 'U']) { format!("{value}u") } else { format!("int({value}u)") };
+    Some(format!("{}{literal}{}", &text[..span.start], &text[span.end..]))
 }
 
 /// Built-ins that take several arguments of one type, among `int`, `uint` and `float`
