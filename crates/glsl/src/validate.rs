@@ -361,6 +361,11 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
             format!("unexpected {found}: expected {}", words.join(" or "))
         }
         ErrorKind::EndOfFile => "the file ends inside a declaration or block: a `}`, `)` or `;` is missing".to_string(),
+        // naga names the expression by its internal form.
+        ErrorKind::SemanticError(m) if m.ends_with("cannot be in the left hand side") => {
+            "this cannot be assigned to: the left side of an assignment must be a variable, an element, a field or a swizzle"
+                .to_string()
+        }
         other => other.to_string(),
     };
     if let (Some(range), ErrorKind::InvalidToken(_, expected)) = (&mut span, &e.kind)
