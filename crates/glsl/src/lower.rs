@@ -517,7 +517,10 @@ fn top_level_statements(tokens: &[Token<'_>]) -> Vec<Statement> {
         if t.is_punct(";") {
             out.push(Statement { sig: std::mem::take(&mut current) });
         } else if t.is_punct("{") {
-            let is_function = current.iter().any(|&j| tokens[j].is_punct("("));
+            // A name before `(` makes a function header; `layout(…)` may open a block too.
+            let is_function = current
+                .windows(2)
+                .any(|w| tokens[w[1]].is_punct("(") && tokens[w[0]].kind == TokenKind::Ident && !tokens[w[0]].is_ident("layout"));
             if is_function {
                 out.push(Statement { sig: std::mem::take(&mut current) });
                 depth = 1;
