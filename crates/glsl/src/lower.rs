@@ -371,6 +371,37 @@ fn array_size(suffix: &str) -> Option<u32> {
     Some(literal_integer_expression(inner).and_then(|n| u32::try_from(n).ok()).unwrap_or(0))
 }
 
+/// An array suffix (`[A][B]`) in the order naga reads it: naga makes `T x[A][B]` B arrays of
+/// `T[A]`, where GLSL means A arrays of `T[B]`, so the sizes go in reverse. Anything but a
+/// row of `[…]` is returned as it is.
+fn naga_dimensions(suffix: &str) -> String {
+    let mut groups = Vec::new();
+    let mut depth = 0;
+    let mut start = 0;
+    for (i, c) in suffix.char_indices() {
+        match c {
+            '[' => {
+                if depth == 0 {
+                    start = i;
+                }
+                depth += 1;
+            }
+            ']' => {
+                depth -= 1;
+                if depth == 0 {
+                    groups.push(&suffix[start..=i]);
+                }
+            }
+            c if depth == 0 && !c.is_whitespace() => return suffix.to_string(),
+            _ => {}
+        }
+    }
+    if depth != 0 {
+        return suffix.to_string();
+    }
+    groups.iter().rev().copied().collect()
+}
+
 /// The varyings a stage declares, in declaration order.
 pub fn varying_declarations(text: &str, stage: Stage, version: u32) -> Result<Vec<VaryingDecl>, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
@@ -581,7 +612,8 @@ impl<'a> Declaration<'a> {
                 return None;
             }
         }
-        // `vec3[9] x` declares what `vec3 x[9]` does: the size moves to each declarator.
+        // `vec3[9] x` declares what `vec3 x[9]` does: the size moves to each declarator, after
+        // its own (`vec3[2] x[3]` is `vec3 x[3][2]`).
         let mut type_suffix = String::new();
         let mut j = k + 1;
         if tokens[*sig.get(j)?].is_punct("[") {
@@ -601,7 +633,7 @@ impl<'a> Declaration<'a> {
                 // Forms the lowering leaves alone.
                 return None;
             }
-            let mut suffix = type_suffix.clone();
+            let mut suffix = String::new();
             let mut depth = 0;
             let mut equals = None;
             let mut end = None;
@@ -626,6 +658,7 @@ impl<'a> Declaration<'a> {
                 }
                 j += 1;
             }
+            suffix.push_str(&type_suffix);
             names.push((name.text, suffix));
             initializers.push(equals.zip(end));
         }
@@ -763,6 +796,7 @@ impl<'a> Lowering<'_, 'a> {
         let version_index = self.find_version()?;
         self.lower_initializer_lists();
         self.lower_array_constructor_sizes();
+        self.reverse_array_dimensions();
         self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
         for (name, _) in GATHER_STAND_INS {
@@ -817,7 +851,7 @@ impl<'a> Lowering<'_, 'a> {
                         let location = FIRST_ATTRIBUTE_LOCATION + attribute_count;
                         attribute_count += 1;
                         self.interface.inputs.insert(name.to_string(), location);
-                        write!(text, "layout(location = {location}) in {} {name}{suffix}; ", decl.ty).unwrap();
+                        write!(text, "layout(location = {location}) in {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
@@ -849,9 +883,10 @@ impl<'a> Lowering<'_, 'a> {
                         }
                         write!(
                             text,
-                            "layout(location = {location}) {}{direction} {} {name}{suffix}; ",
+                            "layout(location = {location}) {}{direction} {} {name}{}; ",
                             decl.interpolation(),
-                            decl.ty
+                            decl.ty,
+                            naga_dimensions(suffix)
                         )
                         .unwrap();
                     }
@@ -887,7 +922,7 @@ impl<'a> Lowering<'_, 'a> {
                         if component > 0 {
                             packed_outputs.insert(location);
                         }
-                        write!(text, "layout(location = {lowered_location}) out {} {name}{suffix}; ", decl.ty).unwrap();
+                        write!(text, "layout(location = {lowered_location}) out {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
@@ -931,7 +966,7 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
-            self.replace(equals, equals + 1, format!("; {}{suffix} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty));
+            self.replace(equals, equals + 1, format!("; {}{} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty, naga_dimensions(suffix)));
             self.replace(end, end + 1, format!("; }}{after}"));
             self.global_initializers.push(name.to_string());
         }
@@ -1143,6 +1178,44 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
+    /// Arrays of arrays declared (`T x[A][B]`, `T[A][B] x`) or constructed (`T[A][B](…)`) get
+    /// their sizes in naga's order ([`naga_dimensions`]); indexing (`x[i][j]`) stays as written.
+    /// Declarations the lowering rewrites whole write their suffix through the same function.
+    fn reverse_array_dimensions(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let token = |k: usize| sig.get(k).map(|&i| self.tokens[i]);
+        let mut k = 0;
+        while k < sig.len() {
+            let mut j = k + 1;
+            let mut groups = 0;
+            while token(j).is_some_and(|t| t.is_punct("[")) {
+                let mut depth = 0;
+                let Some(close) = (j..sig.len()).find(|&m| {
+                    match self.tokens[sig[m]].text {
+                        "[" => depth += 1,
+                        "]" => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                }) else {
+                    break;
+                };
+                groups += 1;
+                j = close + 1;
+            }
+            let is_name = token(k).is_some_and(|t| t.kind == TokenKind::Ident);
+            // A declarator follows its type; a type with sizes is followed by a name or `(`.
+            let declarator = k > 0 && token(k - 1).is_some_and(|p| p.kind == TokenKind::Ident && !is_statement_keyword(p.text));
+            let sized_type = token(j).is_some_and(|n| n.kind == TokenKind::Ident || n.is_punct("("));
+            let (start, end) = (sig.get(k + 1).copied().unwrap_or(0), sig.get(j - 1).map_or(0, |&i| i + 1));
+            if is_name && groups >= 2 && (declarator || sized_type) && !(start..end).any(|i| self.covered(i)) {
+                let written: String = sig[k + 1..j].iter().map(|&i| self.tokens[i].text).collect();
+                self.replace_lines(start, end, naga_dimensions(&written));
+            }
+            k = j.max(k + 1);
+        }
+    }
+
     fn collect_function_signature(&mut self, stmt: &Statement) {
         let Some(open) = stmt.sig.iter().position(|&i| self.tokens[i].is_punct("(")) else { return };
         if open == 0 || !self.tokens[stmt.sig[open - 1]].kind.eq(&TokenKind::Ident) {
@@ -1315,7 +1388,7 @@ impl<'a> Lowering<'_, 'a> {
             self.next_binding += 1;
             let mut members = String::new();
             for (name, suffix) in &decl.names {
-                write!(members, "{} {name}{suffix}; ", decl.ty).unwrap();
+                write!(members, "{} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                 self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
             }
             let text = format!(
@@ -1326,7 +1399,7 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         for (name, suffix) in &decl.names {
-            self.block.push(format!("{} {name}{suffix};", decl.ty));
+            self.block.push(format!("{} {name}{};", decl.ty, naga_dimensions(suffix)));
             self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
         }
         self.replace_lines(start, end, String::new());
