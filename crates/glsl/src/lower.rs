@@ -701,7 +701,7 @@ impl<'a> Declaration<'a> {
 struct Symbols {
     /// Shipped sampler name → (lowered texture name, combined type).
     samplers: HashMap<String, (String, String)>,
-    /// Function name → for each parameter, whether it is a sampler.
+    /// Function name → for each parameter position, whether an overload takes a sampler there.
     sampler_functions: HashMap<String, Vec<bool>>,
     /// `uniform bool` names; they live in the block as `int tp_bool_<name>`.
     bool_uniforms: std::collections::HashSet<String>,
@@ -1224,7 +1224,15 @@ impl<'a> Lowering<'_, 'a> {
         let name = self.tokens[stmt.sig[open - 1]].text;
         let params = self.parameters(&stmt.sig[open..]);
         if params.iter().any(|p| p.sampler.is_some()) {
-            self.symbols.sampler_functions.insert(name.to_string(), params.iter().map(|p| p.sampler.is_some()).collect());
+            // Overloads merge: a sampler argument can only go to a sampler parameter, so a
+            // position any overload takes a sampler at passes both halves.
+            let positions = self.symbols.sampler_functions.entry(name.to_string()).or_default();
+            for (k, p) in params.iter().enumerate() {
+                if k == positions.len() {
+                    positions.push(false);
+                }
+                positions[k] |= p.sampler.is_some();
+            }
         }
     }
 
