@@ -972,14 +972,29 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
-    /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, or a
-    /// built-in of [`NOT_CONSTANT_FOLDED`]) when no constant expression needs their value (no
-    /// array size, `case` label or other constant's initializer names them).
+    /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, a built-in of
+    /// [`NOT_CONSTANT_FOLDED`], an index in a global's initializer) when no constant expression
+    /// needs their value (no array size, `case` label or other constant's initializer names them).
     fn drop_const_naga_cannot_fold(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
-        // (index of `const`, declared name, tokens of the initializer)
-        let mut candidates: Vec<(usize, &str, std::ops::Range<usize>)> = Vec::new();
-        let mut const_initializers: Vec<std::ops::Range<usize>> = Vec::new();
+        // One-declarator constants: (index of `const`, declared name, tokens of the initializer,
+        // whether naga cannot fold it).
+        let mut constants: Vec<(usize, &str, std::ops::Range<usize>, bool)> = Vec::new();
+        // Every constant's initializer, with its entry in `constants` if it has one.
+        let mut const_initializers: Vec<(std::ops::Range<usize>, Option<usize>)> = Vec::new();
+        // Brace depth at each significant token.
+        let depths: Vec<i32> = sig
+            .iter()
+            .scan(0, |depth, &i| {
+                let here = *depth;
+                match self.tokens[i].text {
+                    "{" => *depth += 1,
+                    "}" => *depth -= 1,
+                    _ => {}
+                }
+                Some(here)
+            })
+            .collect();
         for (k, &i) in sig.iter().enumerate() {
             if !self.tokens[i].is_ident("const") {
                 continue;
@@ -1004,32 +1019,91 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let Some(equals) = (k..end).find(|&j| self.tokens[sig[j]].is_punct("=")) else { continue };
-            const_initializers.push(equals + 1..end);
             let one_declarator = self.paren_balanced_commas(&sig[equals..end]);
             let name = self.tokens[sig[equals - 1]];
+            if !(one_declarator && name.kind == TokenKind::Ident) {
+                const_initializers.push((equals + 1..end, None));
+                continue;
+            }
             let unfoldable = (equals + 1..end).any(|j| {
                 let t = self.tokens[sig[j]];
-                t.is_punct("?") || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
+                t.is_punct("?")
+                    || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
+                    || (depths[k] == 0 && self.indexes(&sig, j))
             });
-            if one_declarator && name.kind == TokenKind::Ident && unfoldable {
-                candidates.push((i, name.text, equals + 1..end));
+            const_initializers.push((equals + 1..end, Some(constants.len())));
+            constants.push((i, name.text, equals + 1..end, unfoldable));
+        }
+        // Where each constant's name appears, by significant-token index.
+        let index_of: HashMap<&str, usize> = constants.iter().enumerate().map(|(n, c)| (c.1, n)).collect();
+        let mut uses: Vec<Vec<usize>> = vec![Vec::new(); constants.len()];
+        for (k, &i) in sig.iter().enumerate() {
+            if let Some(&n) = index_of.get(self.tokens[i].text) {
+                uses[n].push(k);
             }
         }
-        for (const_index, name, own) in candidates {
-            let needed_constant = sig.iter().enumerate().any(|(k, &i)| {
-                let t = self.tokens[i];
-                if !t.is_ident(name) {
-                    return false;
+        // A constant computed from one that becomes a variable becomes a variable too.
+        let mut variable: Vec<bool> = constants.iter().map(|c| c.3).collect();
+        let mut pending: Vec<usize> = (0..constants.len()).filter(|&n| variable[n]).collect();
+        while let Some(n) = pending.pop() {
+            for &k in &uses[n] {
+                if let Some((_, Some(user))) = const_initializers.iter().find(|(r, _)| r.contains(&k))
+                    && !variable[*user]
+                {
+                    variable[*user] = true;
+                    pending.push(*user);
                 }
-                let in_other_constant = const_initializers.iter().any(|r| r.contains(&k) && *r != own);
-                let after_case = k > 0 && self.tokens[sig[k - 1]].is_ident("case");
-                in_other_constant || after_case || self.inside_brackets(&sig, k)
-            });
-            if !needed_constant {
+            }
+        }
+        // Unless a constant expression needs it: an array size, a `case` label or the
+        // initializer of a constant that stays one.
+        loop {
+            let mut changed = false;
+            for n in 0..constants.len() {
+                if !variable[n] {
+                    continue;
+                }
+                let needed = uses[n].iter().any(|&k| {
+                    let in_constant = const_initializers
+                        .iter()
+                        .any(|(r, entry)| r.contains(&k) && entry.is_none_or(|e| !variable[e]) && *entry != Some(n));
+                    let after_case = k > 0 && self.tokens[sig[k - 1]].is_ident("case");
+                    in_constant || after_case || self.inside_brackets(&sig, k)
+                });
+                if needed {
+                    variable[n] = false;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        for (n, &(const_index, name, ..)) in constants.iter().enumerate() {
+            if variable[n] {
                 self.unconst.insert(name.to_string());
                 self.replace(const_index, const_index + 1, String::new());
             }
         }
+    }
+
+    /// Whether significant token `k` opens an index (`a[1]`), not an array type (`float[3](…)`).
+    /// naga's parser crashes on a constant index in a global constant's initializer (it looks
+    /// the index up in the wrong expression arena), so such constants are not kept constant.
+    fn indexes(&self, sig: &[usize], k: usize) -> bool {
+        if !self.tokens[sig[k]].is_punct("[") {
+            return false;
+        }
+        let mut depth = 0;
+        let close = (k..sig.len()).find(|&j| {
+            match self.tokens[sig[j]].text {
+                "[" => depth += 1,
+                "]" => depth -= 1,
+                _ => {}
+            }
+            depth == 0
+        });
+        close.is_some_and(|c| sig.get(c + 1).is_none_or(|&n| !self.tokens[n].is_punct("(")))
     }
 
     /// Whether every `,` of the tokens sits inside parentheses (one declarator).
