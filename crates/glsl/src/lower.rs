@@ -797,6 +797,7 @@ impl<'a> Lowering<'_, 'a> {
         self.lower_initializer_lists();
         self.lower_array_constructor_sizes();
         self.reverse_array_dimensions();
+        self.inline_local_constant_sizes();
         self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
         for (name, _) in GATHER_STAND_INS {
@@ -1287,6 +1288,47 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace_lines(start, end, naga_dimensions(&written));
             }
             k = j.max(k + 1);
+        }
+    }
+
+    /// naga's parser cannot size an array by a local constant (`const int n = 3; float w[n];`);
+    /// drivers can. Inside a function, a local `const int` or `uint` of literals is written as its
+    /// value where it stands inside `[…]`.
+    fn inline_local_constant_sizes(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
+        let mut depth = 0;
+        let mut values: HashMap<&str, String> = HashMap::new();
+        for k in 0..sig.len() {
+            match text(k) {
+                "{" => depth += 1,
+                "}" => {
+                    depth -= 1;
+                    if depth == 0 {
+                        values.clear();
+                    }
+                }
+                _ => {}
+            }
+            if depth == 0 {
+                continue;
+            }
+            let name = self.tokens[sig[k]];
+            if text(k) == "const" && matches!(text(k + 1), "int" | "uint") && text(k + 3) == "=" {
+                let Some(end) = (k + 4..sig.len()).find(|&j| text(j) == ";") else { continue };
+                let written: Vec<&str> = (k + 4..end).map(text).collect();
+                if let Some(value) = literal_integer_expression(&written.join(" ")) {
+                    let suffix = if text(k + 1) == "uint" { "u" } else { "" };
+                    values.insert(text(k + 2), format!("{value}{suffix}"));
+                }
+            } else if name.kind == TokenKind::Ident
+                && !self.covered(sig[k])
+                && self.inside_brackets(&sig, k)
+                && let Some(value) = values.get(name.text)
+            {
+                let value = value.clone();
+                self.replace(sig[k], sig[k] + 1, value);
+            }
         }
     }
 
