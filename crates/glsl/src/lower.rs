@@ -1825,6 +1825,12 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         if self.compute {
+            if name == "gl_WorkGroupSize"
+                && let Some(size) = self.local_size()
+            {
+                // A constant in GLSL (array sizes use it); naga reads it at run time.
+                self.replace(i, i + 1, size);
+            }
             return Ok(());
         }
         if let Some(varying) = legacy_varying(name, stage) {
@@ -1913,6 +1919,27 @@ impl<'a> Lowering<'_, 'a> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// The work group size a compute stage declares (`layout(local_size_x = 16, …) in;`) as a
+    /// `uvec3` constructor; sizes left out are 1.
+    fn local_size(&self) -> Option<String> {
+        let sig: Vec<&Token<'_>> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let mut size = [1u32; 3];
+        let mut declared = false;
+        for w in sig.windows(3) {
+            let axis = match w[0].text {
+                "local_size_x" => 0,
+                "local_size_y" => 1,
+                "local_size_z" => 2,
+                _ => continue,
+            };
+            if w[1].is_punct("=") {
+                size[axis] = w[2].text.trim_end_matches(['u', 'U']).parse().ok()?;
+                declared = true;
+            }
+        }
+        declared.then(|| format!("uvec3({}u, {}u, {}u)", size[0], size[1], size[2]))
     }
 
     fn add_header(&mut self, decl: String) {

@@ -156,7 +156,14 @@ fn validate_text(
             }
         };
         match validated.expect("a parsed module is validated") {
-            Ok(info) => return Ok(ValidStage { module, info }),
+            Ok(info) => {
+                if naga_stage == naga::ShaderStage::Compute
+                    && let Some(diagnostic) = shared_memory_overflow(pre, &text, provider, &module)
+                {
+                    return Err(vec![diagnostic]);
+                }
+                return Ok(ValidStage { module, info });
+            }
             Err(e) => {
                 if repairs < MAX_REPAIRS
                     && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
@@ -183,6 +190,35 @@ fn validate_text(
         }
     }
     unreachable!("the loop returns")
+}
+
+/// Shared memory OpenGL guarantees a compute shader (the least `GL_MAX_COMPUTE_SHARED_MEMORY_SIZE`
+/// may be; Mesa's llvmpipe gives no more).
+const SHARED_MEMORY_BYTES: u64 = 32768;
+
+/// A compute stage whose `shared` variables take more than [`SHARED_MEMORY_BYTES`], which Mesa
+/// refuses to link, reported at the largest of them. Sizes are naga's layout, within a few bytes
+/// of Mesa's (a `vec3` array's last element counts 16 bytes, not 12).
+fn shared_memory_overflow(pre: &Preprocessed, text: &str, provider: &dyn FileProvider, module: &naga::Module) -> Option<Diagnostic> {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).ok()?;
+    let shared: Vec<_> = module
+        .global_variables
+        .iter()
+        .filter(|(_, g)| g.space == naga::AddressSpace::WorkGroup)
+        .map(|(handle, g)| (handle, u64::from(layouter[g.ty].size)))
+        .collect();
+    let total: u64 = shared.iter().map(|(_, size)| size).sum();
+    if total <= SHARED_MEMORY_BYTES {
+        return None;
+    }
+    let &(largest, _) = shared.iter().max_by_key(|(_, size)| *size)?;
+    let span = module.global_variables.get_span(largest);
+    let at = span.is_defined().then(|| span.location(text));
+    let message = format!(
+        "the `shared` variables take {total} bytes, more than the {SHARED_MEMORY_BYTES} bytes of shared memory OpenGL guarantees a compute shader: the program fails to link on Mesa"
+    );
+    Some(diagnostic_at(pre, text, provider, message, at))
 }
 
 type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<Result<ModuleInfo, naga::WithSpan<naga::valid::ValidationError>>>);
