@@ -983,6 +983,7 @@ impl<'a> Lowering<'_, 'a> {
         let mut constants: Vec<(usize, &str, std::ops::Range<usize>, bool)> = Vec::new();
         // Every constant's initializer, with its entry in `constants` if it has one.
         let mut const_initializers: Vec<(std::ops::Range<usize>, Option<usize>)> = Vec::new();
+        let closing = self.closing_brackets(&sig);
         // Brace depth at each significant token.
         let depths: Vec<i32> = sig
             .iter()
@@ -1030,7 +1031,7 @@ impl<'a> Lowering<'_, 'a> {
                 let t = self.tokens[sig[j]];
                 t.is_punct("?")
                     || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
-                    || (depths[k] == 0 && self.indexes(&sig, j))
+                    || (depths[k] == 0 && self.indexes(&sig, &closing, j))
             });
             const_initializers.push((equals + 1..end, Some(constants.len())));
             constants.push((i, name.text, equals + 1..end, unfoldable));
@@ -1091,20 +1092,26 @@ impl<'a> Lowering<'_, 'a> {
     /// Whether significant token `k` opens an index (`a[1]`), not an array type (`float[3](…)`).
     /// naga's parser crashes on a constant index in a global constant's initializer (it looks
     /// the index up in the wrong expression arena), so such constants are not kept constant.
-    fn indexes(&self, sig: &[usize], k: usize) -> bool {
-        if !self.tokens[sig[k]].is_punct("[") {
-            return false;
-        }
-        let mut depth = 0;
-        let close = (k..sig.len()).find(|&j| {
-            match self.tokens[sig[j]].text {
-                "[" => depth += 1,
-                "]" => depth -= 1,
+    fn indexes(&self, sig: &[usize], closing: &[Option<usize>], k: usize) -> bool {
+        closing[k].is_some_and(|c| sig.get(c + 1).is_none_or(|&n| !self.tokens[n].is_punct("(")))
+    }
+
+    /// For each significant token that is a `[`, the significant index of its `]`.
+    fn closing_brackets(&self, sig: &[usize]) -> Vec<Option<usize>> {
+        let mut closing = vec![None; sig.len()];
+        let mut open = Vec::new();
+        for (k, &i) in sig.iter().enumerate() {
+            match self.tokens[i].text {
+                "[" => open.push(k),
+                "]" => {
+                    if let Some(o) = open.pop() {
+                        closing[o] = Some(k);
+                    }
+                }
                 _ => {}
             }
-            depth == 0
-        });
-        close.is_some_and(|c| sig.get(c + 1).is_none_or(|&n| !self.tokens[n].is_punct("(")))
+        }
+        closing
     }
 
     /// Whether every `,` of the tokens sits inside parentheses (one declarator).
@@ -1259,22 +1266,12 @@ impl<'a> Lowering<'_, 'a> {
     fn reverse_array_dimensions(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let token = |k: usize| sig.get(k).map(|&i| self.tokens[i]);
+        let closing = self.closing_brackets(&sig);
         let mut k = 0;
         while k < sig.len() {
             let mut j = k + 1;
             let mut groups = 0;
-            while token(j).is_some_and(|t| t.is_punct("[")) {
-                let mut depth = 0;
-                let Some(close) = (j..sig.len()).find(|&m| {
-                    match self.tokens[sig[m]].text {
-                        "[" => depth += 1,
-                        "]" => depth -= 1,
-                        _ => {}
-                    }
-                    depth == 0
-                }) else {
-                    break;
-                };
+            while let Some(Some(close)) = closing.get(j) {
                 groups += 1;
                 j = close + 1;
             }
@@ -1321,10 +1318,9 @@ impl<'a> Lowering<'_, 'a> {
                     let suffix = if text(k + 1) == "uint" { "u" } else { "" };
                     values.insert(text(k + 2), format!("{value}{suffix}"));
                 }
-            } else if name.kind == TokenKind::Ident
+            } else if let Some(value) = values.get(name.text)
                 && !self.covered(sig[k])
                 && self.inside_brackets(&sig, k)
-                && let Some(value) = values.get(name.text)
             {
                 let value = value.clone();
                 self.replace(sig[k], sig[k] + 1, value);
