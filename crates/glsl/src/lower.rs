@@ -20,6 +20,9 @@
 //!   its own from [`PACKED_OUTPUT_LOCATION`].
 //! - A `return`, `discard`, `break` or `continue` followed by more statements of its block
 //!   becomes `if (true) return …`, so naga keeps the unreachable statements.
+//! - Arrays of arrays get their sizes in the order naga's parser nests them (reversed); inside
+//!   a function, a local integer constant of literals is written as its value inside `[…]`.
+//! - In compute stages, `gl_WorkGroupSize` becomes the `uvec3` of the declared local size.
 //! - `texture2D`, `texture2DLod`, `shadow2D`, … become `texture`, `textureLod`, and
 //!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms. Outside fragment stages, where GLSL
 //!   samples the base level and naga refuses implicit levels, `texture(s, p)` (also from
