@@ -15,7 +15,14 @@
 //!   [`VaryingLayout`]), so both stages agree; `gl_FrontColor`/`gl_Color` and `gl_TexCoord[i]`
 //!   become reserved varyings.
 //! - Fragment outputs: `gl_FragData[i]` and `gl_FragColor` become `layout(location = i) out vec4`;
-//!   330 `out vec4 outColorN` gets location N, other outputs their declaration order.
+//!   330 `out vec4 outColorN` gets location N, other outputs their declaration order (or their
+//!   `layout(location)`); an output packed beside another by `component` gets a location of
+//!   its own from [`PACKED_OUTPUT_LOCATION`].
+//! - A `return`, `discard`, `break` or `continue` followed by more statements of its block
+//!   becomes `if (true) return …`, so naga keeps the unreachable statements.
+//! - Arrays of arrays get their sizes in the order naga's parser nests them (reversed); inside
+//!   a function, a local integer constant of literals is written as its value inside `[…]`.
+//! - In compute stages, `gl_WorkGroupSize` becomes the `uvec3` of the declared local size.
 //! - `texture2D`, `texture2DLod`, `shadow2D`, … become `texture`, `textureLod`, and
 //!   `vec4(vec3(texture(...)), 1.0)` for the shadow forms. Outside fragment stages, where GLSL
 //!   samples the base level and naga refuses implicit levels, `texture(s, p)` (also from
@@ -52,6 +59,7 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
+use crate::preprocess::literal_integer_expression;
 use crate::token::{Token, TokenKind, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -88,6 +96,9 @@ pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
+/// Fragment outputs packed beside another by `layout(component = c)` are lowered to location
+/// `PACKED_OUTPUT_LOCATION + 4 * location + c`, clear of every render target.
+pub const PACKED_OUTPUT_LOCATION: u32 = 16;
 /// First location of user vertex attributes; 0-7 are the legacy built-in inputs.
 pub const FIRST_ATTRIBUTE_LOCATION: u32 = 8;
 
@@ -315,11 +326,11 @@ impl VaryingLayout {
                 *slot = (*slot).max(size);
             }
         }
-        let mut next = 0;
+        let mut next = 0u32;
         let mut locations = BTreeMap::new();
         for (name, size) in sizes {
             locations.insert(name, next);
-            next += size;
+            next = next.saturating_add(size);
         }
         Ok(VaryingLayout { locations })
     }
@@ -342,7 +353,7 @@ pub struct VaryingDecl {
 impl VaryingDecl {
     /// Locations the varying takes: one per array element, times one per matrix column.
     pub fn locations(&self) -> u32 {
-        self.array.unwrap_or(1).max(1) * matrix_shape(&self.ty).map_or(1, |(columns, _)| columns)
+        self.array.unwrap_or(1).max(1).saturating_mul(matrix_shape(&self.ty).map_or(1, |(columns, _)| columns))
     }
 }
 
@@ -356,10 +367,42 @@ fn matrix_shape(ty: &str) -> Option<(u32, u32)> {
     }
 }
 
-/// `[N]` with a literal N: `Some(N)`; any other array suffix: `Some(0)`; none: `None`.
+/// `[N]` with N a literal or an expression of literals (`[5 * 5]` from macros): `Some(N)`; any
+/// other array suffix: `Some(0)`; none: `None`.
 fn array_size(suffix: &str) -> Option<u32> {
     let inner = suffix.trim().strip_prefix('[')?.strip_suffix(']')?;
-    Some(inner.trim().trim_end_matches(['u', 'U']).parse().unwrap_or(0))
+    Some(literal_integer_expression(inner).and_then(|n| u32::try_from(n).ok()).unwrap_or(0))
+}
+
+/// An array suffix (`[A][B]`) in the order naga reads it: naga makes `T x[A][B]` B arrays of
+/// `T[A]`, where GLSL means A arrays of `T[B]`, so the sizes go in reverse. Anything but a
+/// row of `[…]` is returned as it is.
+fn naga_dimensions(suffix: &str) -> String {
+    let mut groups = Vec::new();
+    let mut depth = 0;
+    let mut start = 0;
+    for (i, c) in suffix.char_indices() {
+        match c {
+            '[' => {
+                if depth == 0 {
+                    start = i;
+                }
+                depth += 1;
+            }
+            ']' => {
+                depth -= 1;
+                if depth == 0 {
+                    groups.push(&suffix[start..=i]);
+                }
+            }
+            c if depth == 0 && !c.is_whitespace() => return suffix.to_string(),
+            _ => {}
+        }
+    }
+    if depth != 0 {
+        return suffix.to_string();
+    }
+    groups.iter().rev().copied().collect()
 }
 
 /// The varyings a stage declares, in declaration order.
@@ -508,7 +551,10 @@ fn top_level_statements(tokens: &[Token<'_>]) -> Vec<Statement> {
         if t.is_punct(";") {
             out.push(Statement { sig: std::mem::take(&mut current) });
         } else if t.is_punct("{") {
-            let is_function = current.iter().any(|&j| tokens[j].is_punct("("));
+            // A name before `(` makes a function header; `layout(…)` may open a block too.
+            let is_function = current
+                .windows(2)
+                .any(|w| tokens[w[1]].is_punct("(") && tokens[w[0]].kind == TokenKind::Ident && !tokens[w[0]].is_ident("layout"));
             if is_function {
                 out.push(Statement { sig: std::mem::take(&mut current) });
                 depth = 1;
@@ -569,7 +615,8 @@ impl<'a> Declaration<'a> {
                 return None;
             }
         }
-        // `vec3[9] x` declares what `vec3 x[9]` does: the size moves to each declarator.
+        // `vec3[9] x` declares what `vec3 x[9]` does: the size moves to each declarator, after
+        // its own (`vec3[2] x[3]` is `vec3 x[3][2]`).
         let mut type_suffix = String::new();
         let mut j = k + 1;
         if tokens[*sig.get(j)?].is_punct("[") {
@@ -589,7 +636,7 @@ impl<'a> Declaration<'a> {
                 // Forms the lowering leaves alone.
                 return None;
             }
-            let mut suffix = type_suffix.clone();
+            let mut suffix = String::new();
             let mut depth = 0;
             let mut equals = None;
             let mut end = None;
@@ -614,6 +661,7 @@ impl<'a> Declaration<'a> {
                 }
                 j += 1;
             }
+            suffix.push_str(&type_suffix);
             names.push((name.text, suffix));
             initializers.push(equals.zip(end));
         }
@@ -641,12 +689,12 @@ impl<'a> Declaration<'a> {
         self.qualifiers.iter().filter(|q| is_varying_qualifier(q)).map(|q| format!("{q} ")).collect()
     }
 
-    /// `N` of an explicit `layout(location = N)`.
-    fn explicit_location(&self, tokens: &[Token<'_>]) -> Option<u32> {
+    /// `N` of an explicit `layout(key = N)` (`location`, `component`).
+    fn layout_value(&self, tokens: &[Token<'_>], key: &str) -> Option<u32> {
         let (start, end) = self.layout?;
         let sig: Vec<&Token<'_>> = tokens[start..=end].iter().filter(|t| !t.is_trivia()).collect();
         sig.windows(3)
-            .find(|w| w[0].is_ident("location") && w[1].is_punct("="))
+            .find(|w| w[0].is_ident(key) && w[1].is_punct("="))
             .and_then(|w| w[2].text.parse().ok())
     }
 }
@@ -656,7 +704,7 @@ impl<'a> Declaration<'a> {
 struct Symbols {
     /// Shipped sampler name → (lowered texture name, combined type).
     samplers: HashMap<String, (String, String)>,
-    /// Function name → for each parameter, whether it is a sampler.
+    /// Function name → for each parameter position, whether an overload takes a sampler there.
     sampler_functions: HashMap<String, Vec<bool>>,
     /// `uniform bool` names; they live in the block as `int tp_bool_<name>`.
     bool_uniforms: std::collections::HashSet<String>,
@@ -751,6 +799,8 @@ impl<'a> Lowering<'_, 'a> {
         let version_index = self.find_version()?;
         self.lower_initializer_lists();
         self.lower_array_constructor_sizes();
+        self.reverse_array_dimensions();
+        self.inline_local_constant_sizes();
         self.drop_const_naga_cannot_fold();
         let statements = top_level_statements(self.tokens);
         for (name, _) in GATHER_STAND_INS {
@@ -762,6 +812,8 @@ impl<'a> Lowering<'_, 'a> {
         }
         let mut attribute_count = 0;
         let mut output_order = 0;
+        // Locations into which outputs are packed by `component`.
+        let mut packed_outputs: HashSet<u32> = HashSet::new();
         // Function headers seen so far, as token text.
         let mut seen_headers: HashSet<String> = HashSet::new();
         for stmt in &statements {
@@ -803,7 +855,7 @@ impl<'a> Lowering<'_, 'a> {
                         let location = FIRST_ATTRIBUTE_LOCATION + attribute_count;
                         attribute_count += 1;
                         self.interface.inputs.insert(name.to_string(), location);
-                        write!(text, "layout(location = {location}) in {} {name}{suffix}; ", decl.ty).unwrap();
+                        write!(text, "layout(location = {location}) in {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
@@ -825,7 +877,7 @@ impl<'a> Lowering<'_, 'a> {
                                 write!(
                                     text,
                                     "layout(location = {}) {}{direction} {column_ty} {RESERVED_PREFIX}{name}_{c}; ",
-                                    location + c,
+                                    location.saturating_add(c),
                                     decl.interpolation()
                                 )
                                 .unwrap();
@@ -835,9 +887,10 @@ impl<'a> Lowering<'_, 'a> {
                         }
                         write!(
                             text,
-                            "layout(location = {location}) {}{direction} {} {name}{suffix}; ",
+                            "layout(location = {location}) {}{direction} {} {name}{}; ",
                             decl.interpolation(),
-                            decl.ty
+                            decl.ty,
+                            naga_dimensions(suffix)
                         )
                         .unwrap();
                     }
@@ -849,13 +902,31 @@ impl<'a> Lowering<'_, 'a> {
                         let location = name
                             .strip_prefix("outColor")
                             .and_then(|n| n.parse().ok())
-                            .or_else(|| decl.explicit_location(self.tokens))
+                            .or_else(|| decl.layout_value(self.tokens, "location"))
                             .unwrap_or(output_order);
                         output_order += 1;
-                        if let Some(previous) = self.interface.outputs.insert(location, name.to_string()) {
-                            return Err(self.err(start, format!("`{name}` and `{previous}` both write output {location}")));
+                        // Outputs packed into one location by `component` (GLSL 4.40) share it;
+                        // naga has no components, so each packed output gets a location of its
+                        // own above the render targets.
+                        let component = decl.layout_value(self.tokens, "component").unwrap_or(0);
+                        let lowered_location = if component > 0 {
+                            PACKED_OUTPUT_LOCATION.saturating_add(location.saturating_mul(4)).saturating_add(component)
+                        } else {
+                            location
+                        };
+                        match self.interface.outputs.get(&location) {
+                            Some(previous) if component == 0 && !packed_outputs.contains(&location) => {
+                                return Err(self.err(start, format!("`{name}` and `{previous}` both write output {location}")));
+                            }
+                            Some(_) => {}
+                            None => {
+                                self.interface.outputs.insert(location, name.to_string());
+                            }
                         }
-                        write!(text, "layout(location = {location}) out {} {name}{suffix}; ", decl.ty).unwrap();
+                        if component > 0 {
+                            packed_outputs.insert(location);
+                        }
+                        write!(text, "layout(location = {lowered_location}) out {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
                     self.replace_lines(start, end, text.trim_end().to_string());
                 }
@@ -899,20 +970,36 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
-            self.replace(equals, equals + 1, format!("; {}{suffix} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty));
+            self.replace(equals, equals + 1, format!("; {}{} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty, naga_dimensions(suffix)));
             self.replace(end, end + 1, format!("; }}{after}"));
             self.global_initializers.push(name.to_string());
         }
     }
 
-    /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, or a
-    /// built-in of [`NOT_CONSTANT_FOLDED`]) when no constant expression needs their value (no
-    /// array size, `case` label or other constant's initializer names them).
+    /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, a built-in of
+    /// [`NOT_CONSTANT_FOLDED`], an index in a global's initializer) when no constant expression
+    /// needs their value (no array size, `case` label or other constant's initializer names them).
     fn drop_const_naga_cannot_fold(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
-        // (index of `const`, declared name, tokens of the initializer)
-        let mut candidates: Vec<(usize, &str, std::ops::Range<usize>)> = Vec::new();
-        let mut const_initializers: Vec<std::ops::Range<usize>> = Vec::new();
+        // One-declarator constants: (index of `const`, declared name, tokens of the initializer,
+        // whether naga cannot fold it).
+        let mut constants: Vec<(usize, &str, std::ops::Range<usize>, bool)> = Vec::new();
+        // Every constant's initializer, with its entry in `constants` if it has one.
+        let mut const_initializers: Vec<(std::ops::Range<usize>, Option<usize>)> = Vec::new();
+        let closing = self.closing_brackets(&sig);
+        // Brace depth at each significant token.
+        let depths: Vec<i32> = sig
+            .iter()
+            .scan(0, |depth, &i| {
+                let here = *depth;
+                match self.tokens[i].text {
+                    "{" => *depth += 1,
+                    "}" => *depth -= 1,
+                    _ => {}
+                }
+                Some(here)
+            })
+            .collect();
         for (k, &i) in sig.iter().enumerate() {
             if !self.tokens[i].is_ident("const") {
                 continue;
@@ -937,32 +1024,97 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let Some(equals) = (k..end).find(|&j| self.tokens[sig[j]].is_punct("=")) else { continue };
-            const_initializers.push(equals + 1..end);
             let one_declarator = self.paren_balanced_commas(&sig[equals..end]);
             let name = self.tokens[sig[equals - 1]];
+            if !(one_declarator && name.kind == TokenKind::Ident) {
+                const_initializers.push((equals + 1..end, None));
+                continue;
+            }
             let unfoldable = (equals + 1..end).any(|j| {
                 let t = self.tokens[sig[j]];
-                t.is_punct("?") || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
+                t.is_punct("?")
+                    || (NOT_CONSTANT_FOLDED.contains(&t.text) && self.tokens[sig[j + 1]].is_punct("("))
+                    || (depths[k] == 0 && self.indexes(&sig, &closing, j))
             });
-            if one_declarator && name.kind == TokenKind::Ident && unfoldable {
-                candidates.push((i, name.text, equals + 1..end));
+            const_initializers.push((equals + 1..end, Some(constants.len())));
+            constants.push((i, name.text, equals + 1..end, unfoldable));
+        }
+        // Where each constant's name appears, by significant-token index.
+        let index_of: HashMap<&str, usize> = constants.iter().enumerate().map(|(n, c)| (c.1, n)).collect();
+        let mut uses: Vec<Vec<usize>> = vec![Vec::new(); constants.len()];
+        for (k, &i) in sig.iter().enumerate() {
+            if let Some(&n) = index_of.get(self.tokens[i].text) {
+                uses[n].push(k);
             }
         }
-        for (const_index, name, own) in candidates {
-            let needed_constant = sig.iter().enumerate().any(|(k, &i)| {
-                let t = self.tokens[i];
-                if !t.is_ident(name) {
-                    return false;
+        // A constant computed from one that becomes a variable becomes a variable too.
+        let mut variable: Vec<bool> = constants.iter().map(|c| c.3).collect();
+        let mut pending: Vec<usize> = (0..constants.len()).filter(|&n| variable[n]).collect();
+        while let Some(n) = pending.pop() {
+            for &k in &uses[n] {
+                if let Some((_, Some(user))) = const_initializers.iter().find(|(r, _)| r.contains(&k))
+                    && !variable[*user]
+                {
+                    variable[*user] = true;
+                    pending.push(*user);
                 }
-                let in_other_constant = const_initializers.iter().any(|r| r.contains(&k) && *r != own);
-                let after_case = k > 0 && self.tokens[sig[k - 1]].is_ident("case");
-                in_other_constant || after_case || self.inside_brackets(&sig, k)
-            });
-            if !needed_constant {
+            }
+        }
+        // Unless a constant expression needs it: an array size, a `case` label or the
+        // initializer of a constant that stays one.
+        loop {
+            let mut changed = false;
+            for n in 0..constants.len() {
+                if !variable[n] {
+                    continue;
+                }
+                let needed = uses[n].iter().any(|&k| {
+                    let in_constant = const_initializers
+                        .iter()
+                        .any(|(r, entry)| r.contains(&k) && entry.is_none_or(|e| !variable[e]) && *entry != Some(n));
+                    let after_case = k > 0 && self.tokens[sig[k - 1]].is_ident("case");
+                    in_constant || after_case || self.inside_brackets(&sig, k)
+                });
+                if needed {
+                    variable[n] = false;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        for (n, &(const_index, name, ..)) in constants.iter().enumerate() {
+            if variable[n] {
                 self.unconst.insert(name.to_string());
                 self.replace(const_index, const_index + 1, String::new());
             }
         }
+    }
+
+    /// Whether significant token `k` opens an index (`a[1]`), not an array type (`float[3](…)`).
+    /// naga's parser crashes on a constant index in a global constant's initializer (it looks
+    /// the index up in the wrong expression arena), so such constants are not kept constant.
+    fn indexes(&self, sig: &[usize], closing: &[Option<usize>], k: usize) -> bool {
+        closing[k].is_some_and(|c| sig.get(c + 1).is_none_or(|&n| !self.tokens[n].is_punct("(")))
+    }
+
+    /// For each significant token that is a `[`, the significant index of its `]`.
+    fn closing_brackets(&self, sig: &[usize]) -> Vec<Option<usize>> {
+        let mut closing = vec![None; sig.len()];
+        let mut open = Vec::new();
+        for (k, &i) in sig.iter().enumerate() {
+            match self.tokens[i].text {
+                "[" => open.push(k),
+                "]" => {
+                    if let Some(o) = open.pop() {
+                        closing[o] = Some(k);
+                    }
+                }
+                _ => {}
+            }
+        }
+        closing
     }
 
     /// Whether every `,` of the tokens sits inside parentheses (one declarator).
@@ -1111,6 +1263,74 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
+    /// Arrays of arrays declared (`T x[A][B]`, `T[A][B] x`) or constructed (`T[A][B](…)`) get
+    /// their sizes in naga's order ([`naga_dimensions`]); indexing (`x[i][j]`) stays as written.
+    /// Declarations the lowering rewrites whole write their suffix through the same function.
+    fn reverse_array_dimensions(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let token = |k: usize| sig.get(k).map(|&i| self.tokens[i]);
+        let closing = self.closing_brackets(&sig);
+        let mut k = 0;
+        while k < sig.len() {
+            let mut j = k + 1;
+            let mut groups = 0;
+            while let Some(Some(close)) = closing.get(j) {
+                groups += 1;
+                j = close + 1;
+            }
+            let is_name = token(k).is_some_and(|t| t.kind == TokenKind::Ident);
+            // A declarator follows its type; a type with sizes is followed by a name or `(`.
+            let declarator = k > 0 && token(k - 1).is_some_and(|p| p.kind == TokenKind::Ident && !is_statement_keyword(p.text));
+            let sized_type = token(j).is_some_and(|n| n.kind == TokenKind::Ident || n.is_punct("("));
+            let (start, end) = (sig.get(k + 1).copied().unwrap_or(0), sig.get(j - 1).map_or(0, |&i| i + 1));
+            if is_name && groups >= 2 && (declarator || sized_type) && !(start..end).any(|i| self.covered(i)) {
+                let written: String = sig[k + 1..j].iter().map(|&i| self.tokens[i].text).collect();
+                self.replace_lines(start, end, naga_dimensions(&written));
+            }
+            k = j.max(k + 1);
+        }
+    }
+
+    /// naga's parser cannot size an array by a local constant (`const int n = 3; float w[n];`);
+    /// drivers can. Inside a function, a local `const int` or `uint` of literals is written as its
+    /// value where it stands inside `[…]`.
+    fn inline_local_constant_sizes(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
+        let mut depth = 0;
+        let mut values: HashMap<&str, String> = HashMap::new();
+        for k in 0..sig.len() {
+            match text(k) {
+                "{" => depth += 1,
+                "}" => {
+                    depth -= 1;
+                    if depth == 0 {
+                        values.clear();
+                    }
+                }
+                _ => {}
+            }
+            if depth == 0 {
+                continue;
+            }
+            let name = self.tokens[sig[k]];
+            if text(k) == "const" && matches!(text(k + 1), "int" | "uint") && text(k + 3) == "=" {
+                let Some(end) = (k + 4..sig.len()).find(|&j| text(j) == ";") else { continue };
+                let written: Vec<&str> = (k + 4..end).map(text).collect();
+                if let Some(value) = literal_integer_expression(&written.join(" ")) {
+                    let suffix = if text(k + 1) == "uint" { "u" } else { "" };
+                    values.insert(text(k + 2), format!("{value}{suffix}"));
+                }
+            } else if let Some(value) = values.get(name.text)
+                && !self.covered(sig[k])
+                && self.inside_brackets(&sig, k)
+            {
+                let value = value.clone();
+                self.replace(sig[k], sig[k] + 1, value);
+            }
+        }
+    }
+
     fn collect_function_signature(&mut self, stmt: &Statement) {
         let Some(open) = stmt.sig.iter().position(|&i| self.tokens[i].is_punct("(")) else { return };
         if open == 0 || !self.tokens[stmt.sig[open - 1]].kind.eq(&TokenKind::Ident) {
@@ -1119,7 +1339,15 @@ impl<'a> Lowering<'_, 'a> {
         let name = self.tokens[stmt.sig[open - 1]].text;
         let params = self.parameters(&stmt.sig[open..]);
         if params.iter().any(|p| p.sampler.is_some()) {
-            self.symbols.sampler_functions.insert(name.to_string(), params.iter().map(|p| p.sampler.is_some()).collect());
+            // Overloads merge: a sampler argument can only go to a sampler parameter, so a
+            // position any overload takes a sampler at passes both halves.
+            let positions = self.symbols.sampler_functions.entry(name.to_string()).or_default();
+            for (k, p) in params.iter().enumerate() {
+                if k == positions.len() {
+                    positions.push(false);
+                }
+                positions[k] |= p.sampler.is_some();
+            }
         }
     }
 
@@ -1283,7 +1511,7 @@ impl<'a> Lowering<'_, 'a> {
             self.next_binding += 1;
             let mut members = String::new();
             for (name, suffix) in &decl.names {
-                write!(members, "{} {name}{suffix}; ", decl.ty).unwrap();
+                write!(members, "{} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                 self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
             }
             let text = format!(
@@ -1294,7 +1522,7 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         for (name, suffix) in &decl.names {
-            self.block.push(format!("{} {name}{suffix};", decl.ty));
+            self.block.push(format!("{} {name}{};", decl.ty, naga_dimensions(suffix)));
             self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
         }
         self.replace_lines(start, end, String::new());
@@ -1385,6 +1613,19 @@ impl<'a> Lowering<'_, 'a> {
             let next = sig.get(k + 1).map(|&j| self.tokens[j]);
             let followed_by_call = next.is_some_and(|n| n.is_punct("("));
             let previous = k.checked_sub(1).map(|j| self.tokens[sig[j]]);
+            if previous.is_some_and(|p| p.is_punct(".")) {
+                // A field or swizzle (`pixel.shadow` beside a sampler `shadow`) names no global;
+                // a field named like a naga keyword is renamed as its declaration is.
+                self.rename_vulkan_keyword(i);
+                k += 1;
+                continue;
+            }
+            if brace_depth > 0 && matches!(t.text, "return" | "discard" | "break" | "continue") && self.ends_block_early(&sig, k) {
+                // naga drops the statements after it, but not the expressions of the calls among
+                // them, and then refuses the function ("expression not visited"); drivers compile
+                // the unreachable code. Behind an always-true `if`, naga keeps it.
+                self.replace(i, i + 1, format!("if (true) {}", t.text));
+            }
             let after_type = previous.is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct("]"));
             if brace_depth == 0 && followed_by_call && after_type {
                 if t.text == "main" && self.needs_main_wrapper() {
@@ -1460,9 +1701,7 @@ impl<'a> Lowering<'_, 'a> {
             {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);
                 self.replace(i, i + 1, combined_use(&lowered, &ty, passes_both));
-            } else if self.symbols.bool_uniforms.contains(t.text)
-                && !(k > 0 && self.tokens[sig[k - 1]].is_punct("."))
-            {
+            } else if self.symbols.bool_uniforms.contains(t.text) {
                 self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
             } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
                 self.rename_vulkan_keyword(i);
@@ -1492,6 +1731,14 @@ impl<'a> Lowering<'_, 'a> {
             k += 1;
         }
         Ok(())
+    }
+
+    /// Whether the jump statement (`return`, `discard`, …) at significant token `k` stands in a
+    /// block, not as the body of an `if`/`else`/loop, and statements of the same block follow it.
+    fn ends_block_early(&self, sig: &[usize], k: usize) -> bool {
+        let in_block = k > 0 && matches!(self.tokens[sig[k - 1]].text, ";" | "{" | "}" | ":");
+        let Some(end) = (k..sig.len()).find(|&j| self.tokens[sig[j]].is_punct(";")) else { return false };
+        in_block && sig.get(end + 1).is_some_and(|&j| !matches!(self.tokens[j].text, "}" | "case" | "default"))
     }
 
     /// Whether the call whose `(` is significant token `open` has only literals, constructors
@@ -1577,6 +1824,12 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         if self.compute {
+            if name == "gl_WorkGroupSize"
+                && let Some(size) = self.local_size()
+            {
+                // A constant in GLSL (array sizes use it); naga reads it at run time.
+                self.replace(i, i + 1, size);
+            }
             return Ok(());
         }
         if let Some(varying) = legacy_varying(name, stage) {
@@ -1665,6 +1918,27 @@ impl<'a> Lowering<'_, 'a> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// The work group size a compute stage declares (`layout(local_size_x = 16, …) in;`) as a
+    /// `uvec3` constructor; sizes left out are 1.
+    fn local_size(&self) -> Option<String> {
+        let sig: Vec<&Token<'_>> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let mut size = [1u32; 3];
+        let mut declared = false;
+        for w in sig.windows(3) {
+            let axis = match w[0].text {
+                "local_size_x" => 0,
+                "local_size_y" => 1,
+                "local_size_z" => 2,
+                _ => continue,
+            };
+            if w[1].is_punct("=") {
+                size[axis] = w[2].text.trim_end_matches(['u', 'U']).parse().ok()?;
+                declared = true;
+            }
+        }
+        declared.then(|| format!("uvec3({}u, {}u, {}u)", size[0], size[1], size[2]))
     }
 
     fn add_header(&mut self, decl: String) {

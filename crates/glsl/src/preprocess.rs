@@ -1004,6 +1004,25 @@ enum ExprToken {
     Op(String),
 }
 
+/// The value of an integer expression of literals only (`5 * 5`, what an array size is after
+/// macro expansion), evaluated as `#if` evaluates; `None` when it names anything or does not
+/// parse.
+pub fn literal_integer_expression(text: &str) -> Option<i64> {
+    let tokens = tokenize(text).ok()?;
+    let values: Vec<ExprToken> = tokens
+        .iter()
+        .filter(|t| !t.is_trivia())
+        .map(|t| match t.kind {
+            TokenKind::Number => parse_int(t.text).ok().map(ExprToken::Num),
+            TokenKind::Punct => Some(ExprToken::Op(t.text.to_string())),
+            _ => None,
+        })
+        .collect::<Option<_>>()?;
+    let mut parser = ExprParser { tokens: &values, pos: 0, depth: 0 };
+    let value = parser.ternary().ok()?;
+    (parser.pos == values.len()).then_some(value)
+}
+
 /// Precedence-climbing evaluator for `#if` expressions (C preprocessor semantics on i64).
 struct ExprParser<'t> {
     tokens: &'t [ExprToken],

@@ -2,6 +2,7 @@
 //! the lowered text with naga, and report every error at the pack file and line it came from.
 
 use std::error::Error as _;
+use std::fmt::Write as _;
 use std::sync::Arc;
 
 pub use naga::front::glsl::Frontend;
@@ -10,7 +11,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use crate::diagnostic::{Diagnostic, Location};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
-use crate::preprocess::{FileProvider, Preprocessed};
+use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
 use crate::token::{TokenKind, tokenize};
 
 /// One stage after lowering, ready for naga.
@@ -146,7 +147,7 @@ fn validate_text(
             Ok(module) => module,
             Err(errors) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = errors.errors.iter().find_map(|e| scalar_dot(&text, e))
+                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version))
                 {
                     text = repaired;
                     continue;
@@ -155,7 +156,14 @@ fn validate_text(
             }
         };
         match validated.expect("a parsed module is validated") {
-            Ok(info) => return Ok(ValidStage { module, info }),
+            Ok(info) => {
+                if naga_stage == naga::ShaderStage::Compute
+                    && let Some(diagnostic) = shared_memory_overflow(pre, &text, provider, &module)
+                {
+                    return Err(vec![diagnostic]);
+                }
+                return Ok(ValidStage { module, info });
+            }
             Err(e) => {
                 if repairs < MAX_REPAIRS
                     && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
@@ -184,6 +192,35 @@ fn validate_text(
     unreachable!("the loop returns")
 }
 
+/// Shared memory OpenGL guarantees a compute shader (the least `GL_MAX_COMPUTE_SHARED_MEMORY_SIZE`
+/// may be; Mesa's llvmpipe gives no more).
+const SHARED_MEMORY_BYTES: u64 = 32768;
+
+/// A compute stage whose `shared` variables take more than [`SHARED_MEMORY_BYTES`], which Mesa
+/// refuses to link, reported at the largest of them. Sizes are naga's layout, within a few bytes
+/// of Mesa's (a `vec3` array's last element counts 16 bytes, not 12).
+fn shared_memory_overflow(pre: &Preprocessed, text: &str, provider: &dyn FileProvider, module: &naga::Module) -> Option<Diagnostic> {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).ok()?;
+    let shared: Vec<_> = module
+        .global_variables
+        .iter()
+        .filter(|(_, g)| g.space == naga::AddressSpace::WorkGroup)
+        .map(|(handle, g)| (handle, u64::from(layouter[g.ty].size)))
+        .collect();
+    let total: u64 = shared.iter().map(|(_, size)| size).sum();
+    if total <= SHARED_MEMORY_BYTES {
+        return None;
+    }
+    let &(largest, _) = shared.iter().max_by_key(|(_, size)| *size)?;
+    let span = module.global_variables.get_span(largest);
+    let at = span.is_defined().then(|| span.location(text));
+    let message = format!(
+        "the `shared` variables take {total} bytes, more than the {SHARED_MEMORY_BYTES} bytes of shared memory OpenGL guarantees a compute shader: the program fails to link on Mesa"
+    );
+    Some(diagnostic_at(pre, text, provider, message, at))
+}
+
 type NagaResult = (Result<naga::Module, naga::front::glsl::ParseErrors>, Option<Result<ModuleInfo, naga::WithSpan<naga::valid::ValidationError>>>);
 
 /// Parses and validates on a thread of its own, so that the caller's stack size does not
@@ -195,6 +232,7 @@ fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) 
             let mut parsed = frontend.parse(&Options::from(naga_stage), text);
             if let Ok(module) = &mut parsed {
                 callees_first(module);
+                member_array_types(module);
             }
             let validated =
                 parsed.as_ref().ok().map(|module| Validator::new(ValidationFlags::all(), Capabilities::all()).validate(module));
@@ -311,6 +349,44 @@ fn callees_first(module: &mut naga::Module) {
     }
 }
 
+/// naga's GLSL front-end lays out an array inside a struct with a uniform block's stride and an
+/// array constructor with its natural one, so to its validator `S(float[2](a, b))` composes a
+/// struct from an array of another type; in GLSL both are `float[2]`. Each array constructor
+/// composed into a struct member gets that member's type (same element type and size).
+fn member_array_types(module: &mut naga::Module) {
+    use naga::{Arena, Expression, TypeInner};
+    let types = &module.types;
+    let retype = |expressions: &mut Arena<Expression>| {
+        let mut fixes = Vec::new();
+        for (_, expression) in expressions.iter() {
+            let Expression::Compose { ty, ref components } = *expression else { continue };
+            let TypeInner::Struct { ref members, .. } = types[ty].inner else { continue };
+            for (member, &component) in members.iter().zip(components) {
+                let Expression::Compose { ty: given, .. } = expressions[component] else { continue };
+                let same_array = match (&types[given].inner, &types[member.ty].inner) {
+                    (TypeInner::Array { base, size, .. }, TypeInner::Array { base: b, size: s, .. }) => base == b && size == s,
+                    _ => false,
+                };
+                if given != member.ty && same_array {
+                    fixes.push((component, member.ty));
+                }
+            }
+        }
+        for (component, member_ty) in fixes {
+            if let Expression::Compose { ty, .. } = expressions.get_mut(component) {
+                *ty = member_ty;
+            }
+        }
+    };
+    retype(&mut module.global_expressions);
+    for (_, function) in module.functions.iter_mut() {
+        retype(&mut function.expressions);
+    }
+    for entry in &mut module.entry_points {
+        retype(&mut entry.function.expressions);
+    }
+}
+
 /// A parse error in GLSL's words, at the pack file and line.
 fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider, e: &naga::front::glsl::Error) -> Diagnostic {
     let mut span = e.meta.to_range();
@@ -321,6 +397,11 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
             format!("unexpected {found}: expected {}", words.join(" or "))
         }
         ErrorKind::EndOfFile => "the file ends inside a declaration or block: a `}`, `)` or `;` is missing".to_string(),
+        // naga names the expression by its internal form.
+        ErrorKind::SemanticError(m) if m.ends_with("cannot be in the left hand side") => {
+            "this cannot be assigned to: the left side of an assignment must be a variable, an element, a field or a swizzle"
+                .to_string()
+        }
         other => other.to_string(),
     };
     if let (Some(range), ErrorKind::InvalidToken(_, expected)) = (&mut span, &e.kind)
@@ -333,6 +414,15 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
     let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
     let mut diagnostic = diagnostic_at(pre, text, provider, message, at);
     if let ErrorKind::SemanticError(message) = &e.kind
+        && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
+        && let Some(swizzle) = name.strip_prefix("tp_store_")
+    {
+        // A store to a matrix column's swizzle, which the repair made a call.
+        diagnostic.message = format!("the value assigned to `.{swizzle}` of a matrix column is not a {}", match swizzle.len() {
+            1 => "float".to_string(),
+            n => format!("vec{n}"),
+        });
+    } else if let ErrorKind::SemanticError(message) = &e.kind
         && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
     {
         // The function exists, only not with these arguments: show what is declared.
@@ -410,33 +500,192 @@ fn expected_words(expected: &ExpectedToken) -> String {
     format!("`{symbol}`")
 }
 
-/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) becomes a product,
-/// through a stand-in declared on the lowering's header line.
-fn scalar_dot(text: &str, e: &naga::front::glsl::Error) -> Option<String> {
+/// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
+/// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types,
+/// a constant shift whose bits run out of the integer.
+fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
-    if !message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
-        return None;
+    let span = e.meta.to_range()?;
+    if message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
+        scalar_dot_at(text, span.start)
+    } else if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
+        column_swizzle_store(text, span, field)
+    } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
+        mixed_type_overloads(text, name, version)
+    } else if message.as_ref() == "<< operation overflowed" {
+        literal_shift(text, span)
+    } else {
+        None
     }
-    scalar_dot_at(text, e.meta.to_range()?.start)
 }
 
-/// [`scalar_dot`] for the call that starts at byte `start`.
+/// `text` with `stand_in` on the lowering's header line (the line after `#version`), once.
+fn with_stand_in(mut text: String, stand_in: &str) -> Option<String> {
+    if !text.contains(stand_in) {
+        // `#version` may be preceded by comments.
+        let version = text.find("#version")?;
+        let header = version + text[version..].find('\n')? + 1;
+        text.insert_str(header, stand_in);
+    }
+    Some(text)
+}
+
+/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) at byte `start`
+/// becomes a product, through a stand-in.
 fn scalar_dot_at(text: &str, start: usize) -> Option<String> {
     if !text.get(start..)?.starts_with("dot") {
         return None;
     }
-    // The lowering's header line follows `#version`, which comments may precede.
-    let version = text.find("#version")?;
-    let header = version + text[version..].find('\n')? + 1;
-    let stand_in = "float tp_scalar_dot(float a, float b) { return a * b; } ";
-    let mut repaired = String::with_capacity(text.len() + stand_in.len() + 16);
-    repaired.push_str(&text[..start]);
-    repaired.push_str("tp_scalar_dot");
-    repaired.push_str(&text[start + 3..]);
-    if !repaired.contains(stand_in) {
-        repaired.insert_str(header, stand_in);
+    let repaired = format!("{}tp_scalar_dot{}", &text[..start], &text[start + 3..]);
+    with_stand_in(repaired, "float tp_scalar_dot(float a, float b) { return a * b; } ")
+}
+
+/// `m[i].xz = v;` (or `+=`, `-=`, `*=`, `/=`): naga's parser cannot assign a swizzle of a matrix
+/// column (`field`, the span of `.xz`); drivers can. It becomes `tp_store_xz(m[i], v);`, a
+/// stand-in that takes the column `inout` (a compound assignment passes `m[i].xz - (v)`).
+fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str) -> Option<String> {
+    let set = ["xyzw", "rgba", "stpq"].into_iter().find(|set| swizzle.chars().all(|c| set.contains(c)))?;
+    let highest = swizzle.chars().filter_map(|c| set.find(c)).max()?;
+    if swizzle.len() > 4 || !text.get(field.clone())?.starts_with('.') {
+        return None;
     }
-    Some(repaired)
+    let lhs = postfix_start(text, field.start)..field.end;
+    let column = text[lhs.start..field.start].trim();
+    if !column.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_') {
+        return None;
+    }
+    let after = text.get(lhs.end..)?;
+    let operator_at = after.len() - after.trim_start().len();
+    let operator = ["+=", "-=", "*=", "/=", "="].into_iter().find(|op| after[operator_at..].starts_with(op))?;
+    let value_start = lhs.end + operator_at + operator.len();
+    if text[value_start..].starts_with('=') {
+        return None;
+    }
+    let mut depth = 0i32;
+    let value_len = text[value_start..].find(|c: char| {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ => {}
+        }
+        depth < 0 || (depth == 0 && c == ';')
+    })?;
+    let value_end = value_start + value_len;
+    if !text[value_end..].starts_with(';') {
+        return None;
+    }
+    let value = &text[value_start..value_end];
+    let value = match operator.strip_suffix('=').filter(|op| !op.is_empty()) {
+        // The copy of the column's text keeps the line count: no line break in it.
+        Some(op) => format!("{}.{swizzle} {op} ({value})", column.replace(['\n', '\r'], " ")),
+        None => value.to_string(),
+    };
+    let repaired = format!("{}tp_store_{swizzle}({column}, {value}){}", &text[..lhs.start], &text[value_end..]);
+    let value_ty = if swizzle.len() == 1 { "float".to_string() } else { format!("vec{}", swizzle.len()) };
+    let stand_ins: String = (highest + 1..=4)
+        .filter(|&n| n >= 2)
+        .map(|n| format!("void tp_store_{swizzle}(inout vec{n} c, {value_ty} v) {{ c.{swizzle} = v; }} "))
+        .collect();
+    with_stand_in(repaired, &stand_ins)
+}
+
+/// The start of the variable, element or field (`s.m[i]`, `m[i][j]`) that ends at byte `end`.
+fn postfix_start(text: &str, end: usize) -> usize {
+    let bytes = text.as_bytes();
+    let is_word = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
+    let mut at = end;
+    loop {
+        let last = text[..at].trim_end().len();
+        match last.checked_sub(1).map(|i| bytes[i]) {
+            Some(b']') => {
+                let mut depth = 0;
+                let Some(open) = (0..last).rev().find(|&i| {
+                    match bytes[i] {
+                        b']' => depth += 1,
+                        b'[' => depth -= 1,
+                        _ => {}
+                    }
+                    depth == 0
+                }) else {
+                    return at;
+                };
+                at = open;
+            }
+            Some(b) if is_word(b) => {
+                let word = text[..last].trim_end_matches(|c: char| c.is_ascii() && is_word(c as u8)).len();
+                let before = text[..word].trim_end();
+                if !before.ends_with('.') {
+                    return word;
+                }
+                at = before.len() - 1;
+            }
+            _ => return at,
+        }
+    }
+}
+
+/// `1 << 31` (bits shifted out of an `int` or `uint`, which GLSL drops and naga's constant
+/// evaluator calls an overflow) of literals only, at `span`: replaced by its value, computed as
+/// `#if` computes and cut to 32 bits.
+fn literal_shift(text: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let shift = text.get(span.clone())?;
+    let (left, _) = shift.rsplit_once("<<")?;
+    let value = literal_integer_expression(shift)? as u32;
+    // A shift has the type of its left operand.
+    let literal = if left.contains(['u', 'U']) { format!("{value}u") } else { format!("int({value}u)") };
+    Some(format!("{}{literal}{}", &text[..span.start], &text[span.end..]))
+}
+
+/// Built-ins that take several arguments of one type, among `int`, `uint` and `float`
+/// vectors, and whether they compare (returning a `bvec`).
+const MIXED_TYPE_BUILTINS: &[(&str, usize, bool)] = &[
+    ("min", 2, false),
+    ("max", 2, false),
+    ("clamp", 3, false),
+    ("lessThan", 2, true),
+    ("lessThanEqual", 2, true),
+    ("greaterThan", 2, true),
+    ("greaterThanEqual", 2, true),
+    ("equal", 2, true),
+    ("notEqual", 2, true),
+];
+
+/// A built-in called with mixed `int`, `uint` and `float` arguments (`max(uint, int)`,
+/// `lessThan(uvec2, ivec2)`): GLSL converts them implicitly to one type, naga calls the call
+/// ambiguous. Overloads of the built-in for every mixed combination, each converting its
+/// arguments to the type GLSL picks, make the call an exact match: before GLSL 4.00 only
+/// integers convert to `float`; from 4.00 `int` converts to `uint` too, which is then closer.
+fn mixed_type_overloads(text: &str, name: &str, version: u32) -> Option<String> {
+    const KINDS: [(&str, &str); 3] = [("int", "i"), ("uint", "u"), ("float", "")];
+    let &(_, arity, compares) = MIXED_TYPE_BUILTINS.iter().find(|(n, ..)| *n == name)?;
+    let type_name = |kind: usize, size: u32| match size {
+        1 => KINDS[kind].0.to_string(),
+        n => format!("{}vec{n}", KINDS[kind].1),
+    };
+    let mut stand_ins = String::new();
+    for size in if compares { 2..=4 } else { 1..=4 } {
+        // The other arguments of `min`, `max` and `clamp` may be scalars beside a vector.
+        let other_sizes: &[u32] = if compares || size == 1 { &[size] } else { &[size, 1] };
+        for &other_size in other_sizes {
+            for combination in 0..3usize.pow(arity as u32) {
+                let kinds: Vec<usize> = (0..arity).map(|a| combination / 3usize.pow(a as u32) % 3).collect();
+                if kinds.iter().all(|&k| k == kinds[0]) {
+                    continue;
+                }
+                let target = if kinds.contains(&2) || (version < 400 && kinds.contains(&0)) { 2 } else { 1 };
+                let sizes: Vec<u32> = (0..arity).map(|a| if a == 0 { size } else { other_size }).collect();
+                let parameters: Vec<String> = (0..arity).map(|a| format!("{} a{a}", type_name(kinds[a], sizes[a]))).collect();
+                let arguments: Vec<String> = (0..arity).map(|a| format!("{}(a{a})", type_name(target, sizes[a]))).collect();
+                let result = if compares { format!("bvec{size}") } else { type_name(target, size) };
+                write!(stand_ins, "{result} {name}({}) {{ return {name}({}); }} ", parameters.join(", "), arguments.join(", ")).ok()?;
+            }
+        }
+    }
+    // Once added, the overloads leave nothing ambiguous; an error that remains is naga's to report.
+    if text.contains(&stand_ins) {
+        return None;
+    }
+    with_stand_in(text.to_string(), &stand_ins)
 }
 
 /// The function a validation error is in, and the function's error.

@@ -2,7 +2,7 @@
 uniform sampler2D specular;
 in vec2 texcoord;
 in float rain;
-flat in vec3 tints[2];
+flat in vec3 tints[1 + 1];
 uniform int frameCounter;
 float gain = rain * 2.0;
 float frames = frameCounter;
@@ -49,10 +49,19 @@ float gathered(vec2 uv) {
 	return textureGather(specular, uv).x * weights[1] + textureGather(specular, uv, 1).y * pairs[1].y * scale.z;
 }
 
+// A struct field named like a sampler, and statements after a `return`.
+struct Surface { float specular; };
+float surfaced(float x) {
+	Surface s;
+	s.specular = x;
+	return s.specular;
+	return fade(x);
+}
+
 void main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture2D(specular, texcoord).r;
 	float sample = fade(specular) + gathered(texcoord) + doubled(rain);
-	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))) + tints[1].x);
+	gl_FragData[0] = vec4(sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))) + tints[1].x + surfaced(rain));
 }

@@ -2,7 +2,7 @@
 layout(std140, set = 1, binding = 0) uniform tp_Uniforms { int frameCounter; }; vec4 textureGather(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0); } vec4 textureGather(texture2D t, sampler s, vec2 p, int c) { return textureLod(sampler2D(t, s), p, 0.0); } float modf(float x, out float i) { i = trunc(x); return x - i; } vec2 modf(vec2 x, out vec2 i) { i = trunc(x); return x - i; } vec3 modf(vec3 x, out vec3 i) { i = trunc(x); return x - i; } vec4 modf(vec4 x, out vec4 i) { i = trunc(x); return x - i; } layout(location = 0) out vec4 tp_FragData0; layout(set = 1, binding = 1) uniform texture2D specular; layout(set = 1, binding = 2) uniform sampler tp_sampler_specular;
 layout(location = 1) in vec2 texcoord;
 layout(location = 0) in float rain;
-layout(location = 2) flat in vec3 tints[2];
+layout(location = 2) flat in vec3 tints[1+1];
 
 float gain ; float tp_init_gain() { return rain * 2.0; }
 float frames ; float tp_init_frames() { return frameCounter; }
@@ -49,10 +49,19 @@ float gathered(vec2 uv) {
 	return textureGather(specular, tp_sampler_specular, uv).x * weights[1] + textureGather(specular, tp_sampler_specular, uv, 1).y * pairs[1].y * scale.z;
 }
 
+
+struct Surface { float specular; };
+float surfaced(float x) {
+	Surface s;
+	s.specular = x;
+	if (true) return s.specular;
+	return fade(x);
+}
+
 void tp_main() {
 	float whole;
 	float part = modf(rain, whole);
 	float specular = texture(sampler2D(specular, tp_sampler_specular), texcoord).r;
 	float tp_kw_sample = fade(specular) + gathered(texcoord) + doubled(rain);
-	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))) + tints[1].x);
+	tp_FragData0 = vec4(tp_kw_sample * gain + part + whole + dot(rain, rain) + ticks(int(rain)) + frames + float(brightest(vec3(rain))) + tints[1].x + surfaced(rain));
 } void main() { gain = tp_init_gain(); frames = tp_init_frames(); weights = tp_init_weights(); tp_main(); }
