@@ -54,7 +54,9 @@ vec3 transmittance(float pathLength) {
     return vec3(r * r, g * g, b * b);
 #else
     // Beer-Lambert with pure water's absorption per block (Pope & Fry 1997: 0.40 /m at
-    // red, 0.057 /m at green, 0.009 /m at blue), scaled to a denser, game-like water.
+    // red, 0.057 /m at green, 0.009 /m at blue), times ABSORPTION_DENSITY. At 1 the floor
+    // keeps its colour a few blocks down and blue lasts as far as the game's water fog
+    // (which ends 96 blocks away).
     const vec3 PURE_WATER_ABSORPTION = vec3(0.40, 0.057, 0.009);
     return exp(-PURE_WATER_ABSORPTION * ABSORPTION_DENSITY * L);
 #endif

@@ -20,8 +20,8 @@
 // Water volume
 #define DEPTH_FADE // Light is absorbed along its way through water.
 #define ABSORPTION_MODEL 1 // [0 1] 0: clamped linear ramp. 1: Beer-Lambert per colour channel.
-#define DEPTH_FADE_DISTANCE 12.0 // [6.0 8.0 12.0 16.0 24.0] Path in blocks after which the ramp model has absorbed everything.
-#define ABSORPTION_DENSITY 10.0 // [5.0 10.0 20.0] Beer-Lambert density as a multiple of pure water.
+#define DEPTH_FADE_DISTANCE 48.0 // [12.0 24.0 48.0 96.0] Path in blocks after which the ramp model has absorbed everything.
+#define ABSORPTION_DENSITY 1.0 // [0.5 1.0 2.0 5.0 10.0] Beer-Lambert density as a multiple of pure water.
 #define CAUSTICS // Light patterns on surfaces under water.
 #define CAUSTICS_MODE 0 // [0 1] 0: two samples of the water height texture. 1: two samples of the noise texture.
 #define CAUSTIC_SAMPLES 3 // [1 2 3] Sample pairs of the caustic pattern, each at a finer scale.
