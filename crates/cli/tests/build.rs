@@ -172,9 +172,9 @@ fn glslang_accepts_every_shipped_stage() {
         }
     }
     // gbuffers_water, the six programs that draw as the game does (basic, textured,
-    // textured_lit, weather, clouds, hand_water), composite and the Nether's composite, two
-    // stages each.
-    assert_eq!(checked, source.manifest.profiles.len() * Dialect::ALL.len() * 9 * 2);
+    // textured_lit, weather, clouds, hand_water), composite and the Nether's and the End's
+    // composites, two stages each.
+    assert_eq!(checked, source.manifest.profiles.len() * Dialect::ALL.len() * 10 * 2);
 }
 
 fn which(program: &str) -> Option<PathBuf> {
@@ -403,20 +403,24 @@ fn options_properties_and_lang_agree() {
     }
 }
 
-/// The Nether (world-1) has no water: its programs carry none of the water model's code.
+/// The Nether (world-1) has no water, and the End (world1) no sun or sky light for the model:
+/// their programs carry none of the water model's code.
 #[test]
-fn the_nether_gets_no_water_code() {
+fn the_nether_and_the_end_get_no_water_code() {
     let out = tempfile::tempdir().unwrap();
     assert!(build_into(&repo_root().join("shaderpack"), out.path(), &["--dialect", "120"]).status.success());
     let entries = zip_entries(&out.path().join("Tidepack-0.1.0-glsl120.zip"));
-    let nether: Vec<(&String, &String)> = entries.iter().filter(|(name, _)| name.starts_with("shaders/world-1/")).collect();
-    let mut names: Vec<&str> = nether.iter().map(|(n, _)| n.as_str()).collect();
-    names.sort();
-    assert_eq!(names, ["shaders/world-1/composite.fsh", "shaders/world-1/composite.vsh"]);
-    for (name, text) in nether {
-        assert!(!text.contains("#include"), "{name} includes shared water code");
-        for water_word in ["colortex4", "colortex5", "colortex6", "colortex7", "depthtex", "isEyeInWater", "wave"] {
-            assert!(!text.contains(water_word), "{name} mentions {water_word}");
+    for world in ["world-1", "world1"] {
+        let prefix = format!("shaders/{world}/");
+        let programs: Vec<(&String, &String)> = entries.iter().filter(|(name, _)| name.starts_with(&prefix)).collect();
+        let mut names: Vec<&str> = programs.iter().map(|(n, _)| n.as_str()).collect();
+        names.sort();
+        assert_eq!(names, [format!("{prefix}composite.fsh"), format!("{prefix}composite.vsh")]);
+        for (name, text) in programs {
+            assert!(!text.contains("#include"), "{name} includes shared water code");
+            for water_word in ["colortex4", "colortex5", "colortex6", "colortex7", "depthtex", "isEyeInWater", "wave"] {
+                assert!(!text.contains(water_word), "{name} mentions {water_word}");
+            }
         }
     }
 }
