@@ -406,3 +406,31 @@ fn the_glint_follows_the_light() {
     assert!((0.07..=0.13).contains(&moon), "the moon glints at {moon:.3} of the sun (peaks {night_peak} and {day_peak})");
     assert!(rain_peak < 0.1 * day_peak, "in full rain the glint peaks at {rain_peak}, the clear sun's at {day_peak}");
 }
+
+/// Water meets the game's fog where the terrain does: from three quarters of the render
+/// distance `far` it fades into the fog colour, and at `far` and beyond it is the fog colour.
+#[test]
+fn distant_water_fades_into_the_fog_at_the_render_distance() {
+    let frame = &frames()["case5_above_far"];
+    let s = scene("case5_above_far");
+    let inverse = s.projection().inverse();
+    let (w, h) = (s.width(), s.height());
+    let far = s.camera.far;
+    let fog = s.sky.fog_color;
+    let mut beyond = 0;
+    for i in 0..frame.image.pixels.len() {
+        if frame.buffers[&4].pixels[i][0] <= 0.875 {
+            continue;
+        }
+        let (x, y) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
+        let d = frame.depth0.pixels[i][0] as f64;
+        let v = inverse * glam::DVec4::new(x / w as f64 * 2.0 - 1.0, y / h as f64 * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+        if (v.truncate() / v.w).length() >= far * 1.01 {
+            beyond += 1;
+            let out = frame.image.pixels[i];
+            let off = (0..3).map(|c| (out[c] as f64 - fog[c]).abs()).fold(0.0, f64::max);
+            assert!(off < 1.0 / 255.0, "water {i} beyond far is {out:?}, not the fog colour {fog:?}");
+        }
+    }
+    assert!(beyond > 500, "case 5 should show water beyond the render distance, got {beyond} pixels");
+}
