@@ -75,11 +75,12 @@ pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> 
         read_zip(file, &shown, limits, &mut raw)?;
     }
     let root = find_shaders_root(&raw.files).ok_or_else(|| {
-        let unread: Vec<&str> = raw.warnings.iter().filter(|d| d.is_error()).map(|d| d.message.as_str()).collect();
+        // Entries left out for their size or name may be the pack's whole shaders/ folder.
+        let unread: Vec<&str> = raw.warnings.iter().map(|d| d.message.as_str()).collect();
         let message = if unread.is_empty() {
             format!("{shown} holds no shader pack: no `shaders/` folder at its root or inside one wrapper folder")
         } else {
-            format!("{shown}: no readable `shaders/` folder; {} entries could not be read, first: {}", unread.len(), unread[0])
+            format!("{shown}: no readable `shaders/` folder; {} entries were left out, first: {}", unread.len(), unread[0])
         };
         Diagnostic::error(message, None)
     })?;
@@ -151,6 +152,17 @@ impl RawEntries {
         self.warnings.push(Diagnostic::warning(format!("skipped `{}`: {why}", name.escape_debug()), None));
     }
 
+    /// An entry left unread for its size. Shader text the loader would read and this check
+    /// cannot is an error, so a pack is never passed with programs unchecked; other files
+    /// (textures) are skipped with a warning.
+    fn too_large(&mut self, name: &str, why: String) {
+        if is_text(name) {
+            self.warnings.push(Diagnostic::error(format!("`{}` is not checked: {why}", name.escape_debug()), None));
+        } else {
+            self.skip(name, why);
+        }
+    }
+
     fn unreadable(&mut self, name: &str, why: String) {
         self.warnings.push(Diagnostic::error(format!("cannot read `{}`: {why}", name.escape_debug()), None));
     }
@@ -185,12 +197,12 @@ fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, dep
         } else if kind.is_file() {
             let size = entry.metadata().map_or(0, |m| m.len());
             if size > limits.max_file_bytes {
-                raw.skip(&path, format!("{size} bytes, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
+                raw.too_large(&path, format!("{size} bytes, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
                 continue;
             }
             let cost = if is_text(&path) { 2 * size } else { size };
             if raw.total + cost > limits.max_total_bytes {
-                raw.skip(&path, format!("the pack exceeds {} MiB in all", limits.max_total_bytes >> 20));
+                raw.too_large(&path, format!("the pack exceeds {} MiB in all", limits.max_total_bytes >> 20));
                 continue;
             }
             match std::fs::read(entry.path()) {
@@ -281,16 +293,16 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
         }
         let (size, compressed) = (entry.size(), entry.compressed_size());
         if size > limits.max_file_bytes {
-            raw.skip(&name, format!("{size} bytes uncompressed, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
+            raw.too_large(&name, format!("{size} bytes uncompressed, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
             continue;
         }
         if size > limits.ratio_floor_bytes && size / compressed.max(1) > limits.max_ratio {
-            raw.skip(&name, format!("compression ratio {}:1 looks like a zip bomb", size / compressed.max(1)));
+            raw.too_large(&name, format!("compression ratio {}:1 looks like a zip bomb", size / compressed.max(1)));
             continue;
         }
         let cost = if is_text(&path) { 2 * size } else { size };
         if raw.total + cost > limits.max_total_bytes {
-            raw.skip(&name, format!("the pack exceeds {} MiB uncompressed in all", limits.max_total_bytes >> 20));
+            raw.too_large(&name, format!("the pack exceeds {} MiB uncompressed in all", limits.max_total_bytes >> 20));
             continue;
         }
         // The header's size may lie: never read more than the limit.
@@ -372,6 +384,22 @@ mod tests {
         let mut raw = RawEntries::default();
         read_zip(std::io::Cursor::new(data), "t.zip", &small, &mut raw).unwrap();
         assert!(raw.warnings[0].message.contains("limit for one file"), "{:?}", raw.warnings);
+        // Shader text left unchecked fails the pack; a texture too large is only skipped.
+        assert!(raw.warnings[0].is_error(), "{:?}", raw.warnings);
+        let data = zip_of(&[("shaders/noise.png", &zeros), ("shaders/final.fsh", b"void main() {}\n")]);
+        let mut raw = RawEntries::default();
+        read_zip(std::io::Cursor::new(data), "t.zip", &small, &mut raw).unwrap();
+        assert!(!raw.warnings[0].is_error() && raw.warnings[0].message.contains("skipped"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn a_pack_whose_shaders_were_all_left_out_says_why() {
+        let zeros = vec![0u8; 4 << 20];
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("one.zip");
+        std::fs::write(&path, zip_of(&[("shaders/composite.fsh", &zeros)])).unwrap();
+        let err = read_pack(&path, &Limits::default()).unwrap_err();
+        assert!(err.message.contains("left out") && err.message.contains("shaders/composite.fsh"), "{}", err.message);
     }
 
     #[test]
