@@ -258,9 +258,10 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Stand-ins for `textureGather*` on a `sampler2D`, which naga's GLSL front-end lacks: they
-/// check the arguments' types and sample the texture once (their result is never used).
-const GATHER_STAND_INS: [(&str, &str); 2] = [
+/// Stand-ins for `textureGather*` and `textureQueryLod` on a `sampler2D`, which naga's GLSL
+/// front-end lacks: they check the arguments' types and sample the texture once (their result
+/// is never used).
+const GATHER_STAND_INS: [(&str, &str); 3] = [
     (
         "textureGather",
         "vec4 textureGather(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0); } \
@@ -271,6 +272,7 @@ const GATHER_STAND_INS: [(&str, &str); 2] = [
         "vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o) { return textureLod(sampler2D(t, s), p, 0.0); } \
          vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o, int c) { return textureLod(sampler2D(t, s), p, 0.0); }",
     ),
+    ("textureQueryLod", "vec2 textureQueryLod(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0).xy; }"),
 ];
 
 /// Built-ins naga cannot evaluate in a constant expression (drivers can).

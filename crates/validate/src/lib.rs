@@ -641,9 +641,9 @@ fn clarify(mut diag: Diagnostic) -> Diagnostic {
 
 /// Built-in functions and variables (by prefix) naga's GLSL front-end lacks and the lowering has
 /// no stand-in for: image atomics (images cannot be function parameters in naga), atomic
-/// counters, the subgroup built-ins of `GL_KHR_shader_subgroup_*`, and the `textureGather*`
-/// forms the lowering has no stand-in for (integer and shadow samplers).
-const NAGA_LACKS: [&str; 5] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup", "textureGather"];
+/// counters, the subgroup built-ins of `GL_KHR_shader_subgroup_*`, and the `textureGather*` and
+/// `textureQueryLod` forms the lowering has no stand-in for (other sampler types).
+const NAGA_LACKS: [&str; 6] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup", "textureGather", "textureQueryLod"];
 
 /// `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
 pub fn unlower_names(message: &str) -> String {
