@@ -25,7 +25,7 @@ use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrai
 use crate::images::FloatImage;
 use crate::loader::{self, MissingProgramDraws, Phase};
 use crate::mesh::{self, PackVertex, SceneMesh, offsets};
-use crate::program::{Blend, BlendFactor, BufferFormat, DEFAULT_TRANSLUCENT_BLEND, LoadedPack, LoadedProgram, LoadedStage};
+use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
@@ -304,11 +304,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
                     continue;
                 }
                 let program = pack.resolve(pack.loader.program_chain(*kind));
-                let blend_of = |b: u8| match program {
-                    Some(p) => pack.gbuffers_blend_of(&p.name, b),
-                    None => DEFAULT_TRANSLUCENT_BLEND,
-                };
-                draw_geometry(program, &blend_of, loader::writes_depth(*kind), vertices)?;
+                draw_geometry(program, &|b| pack.gbuffers_blend_of(program, b), loader::writes_depth(*kind), vertices)?;
             }
             Ok(())
         };

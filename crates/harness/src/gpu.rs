@@ -28,7 +28,7 @@ use crate::HarnessError;
 use crate::images::FloatImage;
 use crate::mesh::{self, SceneMesh, offsets};
 use crate::loader::{self, MissingProgramDraws, Phase};
-use crate::program::{Blend, BlendFactor, BufferFormat, DEFAULT_TRANSLUCENT_BLEND, LoadedPack, LoadedProgram, LoadedStage};
+use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
 use crate::scene::OverlayKind;
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass};
@@ -394,7 +394,17 @@ fn render_frame(
 
     let textures = StaticTextures::new(gpu, pack);
     let water_state = DrawState { blend_of: &|b| pack.blend_of(b), depth_write: true };
-    let water = ProgramPipeline::new(gpu, pack, &pack.water, scene, Pass::Gbuffers, &water_state, &targets, &textures)?;
+    let water = GeometryDraw::new(
+        gpu,
+        pack,
+        scene,
+        &targets,
+        &textures,
+        Some(&pack.water),
+        &water_state,
+        &mesh.translucent,
+        "gbuffers_water".into(),
+    )?;
     let no_blend = |_| Blend::Off;
     let fullscreen = DrawState { blend_of: &no_blend, depth_write: false };
     let composite = ProgramPipeline::new(gpu, pack, &pack.composite, scene, Pass::Fullscreen, &fullscreen, &targets, &textures)?;
@@ -406,24 +416,13 @@ fn render_frame(
     let mut overlays: BTreeMap<Phase, Vec<GeometryDraw>> = BTreeMap::new();
     for (kind, vertices) in &mesh.overlay {
         let program = pack.resolve(pack.loader.program_chain(*kind));
-        let name = program.map(|p| p.name.clone());
-        let blend_of = |b: u8| match &name {
-            Some(name) => pack.gbuffers_blend_of(name, b),
-            None => DEFAULT_TRANSLUCENT_BLEND,
-        };
-        let state = DrawState { blend_of: &blend_of, depth_write: loader::writes_depth(*kind) };
-        let label = format!("{kind:?} ({})", name.as_deref().unwrap_or("the loader's own"));
+        let state = DrawState { blend_of: &|b| pack.gbuffers_blend_of(program, b), depth_write: loader::writes_depth(*kind) };
+        let label = format!("{kind:?} ({})", program.map_or("the loader's own", |p| p.name.as_str()));
         let draw = GeometryDraw::new(gpu, pack, scene, &targets, &textures, program, &state, vertices, label)?;
         overlays.entry(overlay_phase(pack, scene, *kind)).or_default().push(draw);
     }
     let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets.colors[&0].0)?) } else { None };
 
-    let one_pack = [mesh::PackVertex::default()];
-    let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("translucent vertices"),
-        contents: mesh::as_bytes(if mesh.translucent.is_empty() { &one_pack } else { &mesh.translucent }),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
     let quad = fullscreen_quad();
     let quad_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("full-screen quad"),
@@ -506,25 +505,7 @@ fn render_frame(
             wall.push(("depth copy".into(), submit(encoder)?));
             // 4. gbuffers_water
             let mut encoder = new_encoder();
-            {
-                let views: Vec<wgpu::TextureView> = pack.water.render_targets.iter().map(|b| view(&targets.colors[b].0)).collect();
-                let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("gbuffers_water"),
-                    color_attachments: &attachments,
-                    depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
-                    timestamp_writes: stamps(1),
-                    ..Default::default()
-                });
-                pass.set_pipeline(&water.pipeline);
-                for (i, g) in water.bind_groups.iter().enumerate() {
-                    pass.set_bind_group(i as u32, g, &[]);
-                }
-                pass.set_vertex_buffer(0, water_vertices.slice(..));
-                if !mesh.translucent.is_empty() {
-                    pass.draw(0..mesh.translucent.len() as u32, 0..1);
-                }
-            }
+            water.record(&mut encoder, &targets, stamps(1));
             wall.push(("gbuffers_water".into(), submit(encoder)?));
             draw_phase(Phase::AfterWater, &mut wall)?;
             // 5. composite

@@ -206,9 +206,14 @@ impl LoadedPack {
     }
 
     /// The blend mode of a program in `gbuffers` for one colour buffer: its own from
-    /// shaders.properties, else the game's for translucent geometry.
-    pub fn gbuffers_blend_of(&self, program: &str, buffer: u8) -> Blend {
-        self.gbuffers_blend.get(program).and_then(|m| m.get(&buffer)).cloned().unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
+    /// shaders.properties, else (also where the pack has no program) the game's for
+    /// translucent geometry.
+    pub fn gbuffers_blend_of(&self, program: Option<&LoadedProgram>, buffer: u8) -> Blend {
+        program
+            .and_then(|p| self.gbuffers_blend.get(&p.name))
+            .and_then(|m| m.get(&buffer))
+            .cloned()
+            .unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
     }
 
     /// The custom texture bound to a sampler name in a gbuffers or full-screen program.
