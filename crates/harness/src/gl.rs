@@ -64,7 +64,7 @@ pub enum DepthMapping {
 const COLOUR_VS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
 void main() { gl_Position = mvp * position; vColor = color; }\n";
 /// The harness's colour shader with the wgpu path's arithmetic: the statements of
-/// `COLOUR_VERTEX_WGSL` in gpu.rs less the y flip, and `mvp * position` summed in the order Mesa gives
+/// `COLOUR_VERTEX_WGSL` in gpu/own.rs less the y flip, and `mvp * position` summed in the order Mesa gives
 /// the SPIR-V matrix product naga writes for it (last column first, `mvp * position` in GLSL
 /// sums the first column first: the last bits of depth differ in ~4% of the pixels).
 const COLOUR_VS_HARNESS: &str = "#version 330 compatibility\nuniform mat4 mvp;\nin vec4 position;\nin vec4 color;\nout vec4 vColor;\n\
@@ -278,7 +278,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
                     gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
                     let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
                     gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-                    gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(vertices), glow::STATIC_DRAW);
+                    gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, bytemuck::cast_slice(vertices), glow::STATIC_DRAW);
                     let stride = offsets::STRIDE as i32;
                     gl.enable_vertex_attrib_array(0);
                     gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
@@ -612,7 +612,7 @@ unsafe fn draw_program(
         // Vertex arrays: legacy inputs through client state, user attributes generic.
         let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
         gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, mesh::as_bytes(vertices), glow::STATIC_DRAW);
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, bytemuck::cast_slice(vertices), glow::STATIC_DRAW);
         let stride = offsets::STRIDE as i32;
         let at = |offset: u64| offset as usize as *const std::ffi::c_void;
         (lg.enable_client_state)(legacy::VERTEX_ARRAY);

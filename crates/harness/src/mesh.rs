@@ -11,7 +11,7 @@ use crate::scene::{OverlayKind, Scene};
 
 /// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
 /// can ask for is here (the pipeline binds those the shader declares).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct PackVertex {
     /// gl_Vertex (w = 1).
@@ -215,12 +215,6 @@ fn box_faces(min: DVec3, max: DVec3) -> Vec<([DVec3; 4], DVec3)> {
         ([p(false, false, false), p(false, true, false), p(true, true, false), p(true, false, false)], DVec3::NEG_Z),
         ([p(false, false, true), p(true, false, true), p(true, true, true), p(false, true, true)], DVec3::Z),
     ]
-}
-
-/// Bytes of a slice of plain-old-data vertices.
-pub fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
-    // SAFETY: the vertex types are #[repr(C)] structs of f32 arrays: no padding, no pointers.
-    unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
 }
 
 /// The mock block atlas: 32×16 RGBA8, a water sprite (left) and a glass sprite (right), each

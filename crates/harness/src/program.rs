@@ -465,23 +465,26 @@ fn wrap_main(text: &str, epilogue: &str) -> Result<String, HarnessError> {
     Ok(out)
 }
 
+/// The colour buffer a name refers to: `colortexN` (N < 16) or one of OptiFine's legacy names
+/// for buffers 0-7 (`gcolor`, `gdepth`, `gnormal`, `composite`, `gaux1`-`gaux4`).
+pub(crate) fn colour_buffer_number(name: &str) -> Option<u8> {
+    const LEGACY: [&str; 8] = ["gcolor", "gdepth", "gnormal", "composite", "gaux1", "gaux2", "gaux3", "gaux4"];
+    match name.strip_prefix("colortex") {
+        Some(n) => n.parse::<u8>().ok().filter(|n| *n < 16),
+        None => LEGACY.iter().position(|legacy| *legacy == name).map(|n| n as u8),
+    }
+}
+
 /// `const int colortexNFormat = FORMAT;` (also inside comments, as OptiFine reads them) and
 /// the legacy `/* GAUXnFORMAT:FORMAT */`.
 fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
-    let aliases = [("gcolor", 0), ("gdepth", 1), ("gnormal", 2), ("composite", 3), ("gaux1", 4), ("gaux2", 5), ("gaux3", 6), ("gaux4", 7)];
     let mut found = Vec::new();
     for line in text.lines() {
         let line = line.trim();
         let Some(rest) = line.strip_prefix("const int ") else { continue };
         let Some((name, value)) = rest.split_once('=') else { continue };
         let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
-        let buffer = match buffer_name.strip_prefix("colortex").and_then(|n| n.parse::<u8>().ok()) {
-            Some(n) => n,
-            None => match aliases.iter().find(|(a, _)| *a == buffer_name) {
-                Some((_, n)) => *n,
-                None => continue,
-            },
-        };
+        let Some(buffer) = colour_buffer_number(buffer_name) else { continue };
         let value = value.trim().trim_end_matches(';').trim();
         let format = BufferFormat::parse(value).ok_or_else(|| {
             HarnessError::Unsupported(format!("colortex{buffer}Format = {value}: the harness renders RGBA8, RGBA16, RGBA16F and RGBA32F buffers"))

@@ -1,6 +1,6 @@
 //! The adapter from the harness to the reference (cargo feature `harness`): hands over exactly
 //! what composite read (G-buffers at full precision, uniforms by OptiFine name, the water and
-//! noise textures with the samplers gpu.rs binds them with), and the pack's settings.
+//! noise textures with the samplers gpu/bindings.rs binds them with), and the pack's settings.
 //!
 //! One copy for the bench, the stress sweep and this crate's tests. Behind a feature so that the
 //! reference itself builds on glam alone: the harness brings wgpu.
@@ -31,7 +31,7 @@ pub fn converged_settings() -> ReferenceSettings {
     ReferenceSettings { slope_range: tidepack_pack::textures::water_texture().slope_range, ..ReferenceSettings::converged() }
 }
 
-/// The filter gpu.rs binds a colour buffer's sampler with in a full-screen program: linear
+/// The filter gpu/bindings.rs binds a colour buffer's sampler with in a full-screen program: linear
 /// when its format filters, nearest otherwise (always clamp). Whether RGBA32F filters depends on
 /// the adapter (wgpu's `FLOAT32_FILTERABLE`): `float32_filterable` says so, and `None` (not
 /// known) makes an RGBA32F buffer an error.
@@ -89,7 +89,7 @@ pub fn uniforms_of(values: &BTreeMap<String, Value>, precision: Precision) -> Re
 
 /// The inputs from G-buffers (colour buffers by number, both depth buffers; the frame's size is
 /// depthtex0's), the textures and the uniforms. Depth does not filter: nearest + clamp, as
-/// gpu.rs binds it; colour buffers get [`colour_filter`] and clamp.
+/// gpu/bindings.rs binds it; colour buffers get [`colour_filter`] and clamp.
 pub fn from_gbuffers(
     pack: &LoadedPack,
     colours: &BTreeMap<u8, FloatImage>,

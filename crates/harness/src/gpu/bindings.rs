@@ -1,0 +1,616 @@
+//! One program as a wgpu pipeline: what its sampler names refer to under OptiFine's naming,
+//! the bind groups that give it those textures and its uniform blocks (filled by reflection),
+//! its vertex attributes, blend and depth state. The whole-frame renderer ([`super::frame`]) and
+//! the composite-only runner ([`crate::composite_only`]) both build their programs here.
+
+use std::borrow::Cow;
+use std::collections::{BTreeMap, BTreeSet};
+
+use wgpu::util::DeviceExt as _;
+
+use crate::HarnessError;
+use crate::mesh::{self, offsets};
+use crate::program::{Blend, BlendFactor, LoadedPack, LoadedProgram, LoadedStage, colour_buffer_number, texture_resources};
+use crate::uniforms::{self, Value};
+
+use super::Gpu;
+
+/// The format of a full-screen program's colortex0 output: RGBA32F, so NaN and Inf survive to
+/// the readback.
+pub(crate) const OUT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The depth buffer gbuffers programs test and write.
+pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// What a sampler name in a program refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    Atlas,
+    Lightmap,
+    Noise,
+    Color(u8),
+    Depth0,
+    Depth1,
+    /// A custom texture of the pack (index into [`LoadedPack::custom_textures`]).
+    Custom(usize),
+}
+
+/// Resolves a sampler name, custom textures of the pack first.
+pub fn resolve_in_pack(pack: &LoadedPack, name: &str, gbuffers: bool) -> Result<Source, String> {
+    let stage = if gbuffers { "gbuffers" } else { "composite" };
+    match pack.custom_textures.iter().position(|t| t.stage == stage && t.unit == name) {
+        Some(i) => Ok(Source::Custom(i)),
+        None => resolve_sampler(name, gbuffers),
+    }
+}
+
+/// Resolves a shipped sampler name for a program (`gbuffers` or full-screen).
+pub fn resolve_sampler(name: &str, gbuffers: bool) -> Result<Source, String> {
+    let color = colour_buffer_number(name);
+    Ok(match (name, gbuffers) {
+        ("noisetex", _) => Source::Noise,
+        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
+        ("lightmap", true) => Source::Lightmap,
+        ("depthtex1" | "depthtex2", _) => Source::Depth1,
+        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
+        ("depthtex0" | "gdepthtex", true) => {
+            return Err(format!("{name} is the depth buffer gbuffers_water draws into; read depthtex1 there"));
+        }
+        _ => match color {
+            Some(n) if !gbuffers => Source::Color(n),
+            Some(n) => {
+                return Err(format!(
+                    "{name} (colortex{n}) is not readable in gbuffers programs of this pipeline (nothing wrote it before translucents)"
+                ));
+            }
+            None => return Err(format!("sampler {name} is not one the harness provides")),
+        },
+    })
+}
+
+/// The colour buffers a full-screen program samples.
+pub(crate) fn colour_buffers_read(pack: &LoadedPack, program: &LoadedProgram) -> BTreeSet<u8> {
+    [&program.vertex, &program.fragment]
+        .into_iter()
+        .flat_map(|stage| texture_resources(&stage.interface))
+        .filter_map(|(name, _)| match resolve_in_pack(pack, &name, false) {
+            Ok(Source::Color(n)) => Some(n),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `module` with every `uniform` global moved to read-only storage. Types, member offsets and
+/// bindings are unchanged, so the bytes [`uniforms::fill_block`] lays out read the same.
+///
+/// Lavapipe may recompile a shader with the current values of the uniform-buffer members its
+/// `if` conditions test (`isEyeInWater`) at every draw, and some versions never free the copies
+/// (about 3 MB a frame); storage buffers are never inlined. The image is the same bit for bit
+/// (crates/stress/tests/memory.rs).
+fn uniforms_as_storage(module: &naga::Module) -> naga::Module {
+    let mut module = module.clone();
+    for (_, global) in module.global_variables.iter_mut() {
+        if global.space == naga::AddressSpace::Uniform {
+            global.space = naga::AddressSpace::Storage { access: naga::StorageAccess::LOAD };
+        }
+    }
+    module
+}
+
+/// How the programs' uniform blocks are bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum UniformBinding {
+    /// As the program declares them (`uniform` blocks), for comparison: lavapipe may recompile
+    /// the shader with the blocks' values inlined at every draw (see [`uniforms_as_storage`]).
+    Uniform,
+    /// The same blocks as read-only storage buffers: no per-draw recompilation, no growth.
+    #[default]
+    ReadOnlyStorage,
+}
+
+pub(crate) fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// The harness's own textures (atlas, lightmap, noise), the pack's custom textures, and the
+/// samplers OptiFine gives each kind.
+pub(crate) struct HarnessTextures {
+    atlas: wgpu::TextureView,
+    lightmap: wgpu::TextureView,
+    noise: wgpu::TextureView,
+    nearest_repeat: wgpu::Sampler,
+    linear_repeat: wgpu::Sampler,
+    linear_clamp: wgpu::Sampler,
+    nearest_clamp: wgpu::Sampler,
+    /// Per custom texture of the pack: its view and the sampler its properties ask for.
+    custom: Vec<(wgpu::TextureView, wgpu::Sampler)>,
+}
+
+impl HarnessTextures {
+    pub(crate) fn new(gpu: &Gpu, pack: &LoadedPack) -> HarnessTextures {
+        let upload = |label: &str, (w, h, data): (u32, u32, Vec<u8>)| {
+            let t = gpu.device.create_texture_with_data(
+                &gpu.queue,
+                &wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Rgba8Unorm,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                    view_formats: &[],
+                },
+                wgpu::util::TextureDataOrder::LayerMajor,
+                &data,
+            );
+            view(&t)
+        };
+        let sampler = |filter: wgpu::FilterMode, address: wgpu::AddressMode| {
+            gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                address_mode_u: address,
+                address_mode_v: address,
+                address_mode_w: address,
+                mag_filter: filter,
+                min_filter: filter,
+                ..Default::default()
+            })
+        };
+        let custom = pack
+            .custom_textures
+            .iter()
+            .map(|t| {
+                let filter = if t.blur { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
+                let address = if t.clamp { wgpu::AddressMode::ClampToEdge } else { wgpu::AddressMode::Repeat };
+                (upload(&t.path, (t.width, t.height, t.rgba.clone())), sampler(filter, address))
+            })
+            .collect();
+        HarnessTextures {
+            custom,
+            atlas: upload("gtexture (mock atlas)", mesh::atlas()),
+            lightmap: upload("lightmap", mesh::lightmap()),
+            noise: upload("noisetex", mesh::noise(256)),
+            nearest_repeat: sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::Repeat),
+            linear_repeat: sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::Repeat),
+            linear_clamp: sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::ClampToEdge),
+            nearest_clamp: sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::ClampToEdge),
+        }
+    }
+}
+
+/// Everything a program's samplers can be bound to: the harness's textures and the frame's
+/// buffers. Depth textures may be any single-channel float format (Depth32Float when drawn
+/// into, R32Float when the caller uploads depth values); both bind unfilterable.
+pub(crate) struct BindableTextures<'a> {
+    pub harness: &'a HarnessTextures,
+    pub colors: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+    pub depth0: &'a wgpu::Texture,
+    pub depth1: &'a wgpu::Texture,
+}
+
+impl BindableTextures<'_> {
+    /// The view of `source` and whether it filters.
+    fn texture(&self, gpu: &Gpu, source: Source) -> Result<(wgpu::TextureView, bool), String> {
+        let harness = self.harness;
+        Ok(match source {
+            Source::Atlas => (harness.atlas.clone(), true),
+            Source::Lightmap => (harness.lightmap.clone(), true),
+            Source::Noise => (harness.noise.clone(), true),
+            Source::Custom(i) => (harness.custom[i].0.clone(), true),
+            Source::Depth0 => (view(self.depth0), false),
+            Source::Depth1 => (view(self.depth1), false),
+            Source::Color(n) => {
+                let (t, format) = self.colors.get(&n).ok_or_else(|| format!("colortex{n} is not a buffer of this frame"))?;
+                (view(t), gpu.filterable(*format))
+            }
+        })
+    }
+
+    /// The sampler OptiFine gives `source`: the atlas nearest and repeating, noise linear and
+    /// repeating, the lightmap linear and clamped, buffers linear where they filter, nearest
+    /// otherwise; custom textures as their properties say.
+    fn sampler(&self, source: Source, filters: bool) -> wgpu::Sampler {
+        let harness = self.harness;
+        match source {
+            Source::Custom(i) => harness.custom[i].1.clone(),
+            Source::Atlas => harness.nearest_repeat.clone(),
+            Source::Noise => harness.linear_repeat.clone(),
+            Source::Lightmap => harness.linear_clamp.clone(),
+            Source::Color(_) if filters => harness.linear_clamp.clone(),
+            _ => harness.nearest_clamp.clone(),
+        }
+    }
+}
+
+/// How a gbuffers draw blends into each colour buffer, and whether it writes depth.
+pub(crate) struct DrawState<'a> {
+    pub blend_of: &'a dyn Fn(u8) -> Blend,
+    pub depth_write: bool,
+}
+
+/// What kind of pass a program runs in.
+pub(crate) enum PassKind<'a> {
+    /// Geometry into the frame's colour buffers (which must hold every render target) and
+    /// depthtex0.
+    Gbuffers(&'a DrawState<'a>),
+    /// A full-screen quad: colortex0 goes to an [`OUT`] target, other render targets to
+    /// alternate buffers of their declared formats; no depth.
+    Fullscreen { width: u32, height: u32 },
+}
+
+enum Entry {
+    Uniform(wgpu::Buffer),
+    Texture(wgpu::TextureView, wgpu::TextureSampleType),
+    Sampler(wgpu::Sampler, wgpu::SamplerBindingType),
+}
+
+/// One program of the pack as a wgpu pipeline with its bind groups.
+pub(crate) struct ProgramPipeline {
+    pub pipeline: wgpu::RenderPipeline,
+    pub bind_groups: Vec<wgpu::BindGroup>,
+    /// Alternate buffers a full-screen program writes (other than colortex0).
+    pub alternates: BTreeMap<u8, wgpu::Texture>,
+    /// The uniform block of each stage that has one, for [`ProgramPipeline::write_uniforms`].
+    uniform_buffers: Vec<(tidepack_glsl::Stage, wgpu::Buffer)>,
+}
+
+impl ProgramPipeline {
+    /// Builds `program` with its uniform blocks filled from `values` (every member must have
+    /// one) and its samplers bound to `textures`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        gpu: &Gpu,
+        pack: &LoadedPack,
+        program: &LoadedProgram,
+        values: &BTreeMap<String, Value>,
+        kind: PassKind,
+        textures: &BindableTextures,
+        uniform_binding: UniformBinding,
+    ) -> Result<ProgramPipeline, HarnessError> {
+        let device = &gpu.device;
+        let gbuffers = matches!(kind, PassKind::Gbuffers(_));
+        let storage = uniform_binding == UniformBinding::ReadOnlyStorage;
+        // group → binding → (visibility, entry)
+        let mut groups: BTreeMap<u32, BTreeMap<u32, (wgpu::ShaderStages, Entry)>> = BTreeMap::new();
+        let mut uniform_buffers = Vec::new();
+        for stage in [&program.vertex, &program.fragment] {
+            let visibility = match stage.stage {
+                tidepack_glsl::Stage::Vertex => wgpu::ShaderStages::VERTEX,
+                tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
+            };
+            let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
+            if let Some(block) = uniforms::fill_block(&stage.module, values, &stage.path)? {
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&format!("{} uniforms", stage.path)),
+                    contents: &block.bytes,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                });
+                uniform_buffers.push((stage.stage, buffer.clone()));
+                entries.push((block.group, block.binding, Entry::Uniform(buffer)));
+            }
+            for (group, binding, entry) in entries {
+                if groups.entry(group).or_default().insert(binding, (visibility, entry)).is_some() {
+                    return Err(HarnessError::Pack(format!("{}: binding {group}.{binding} used twice", stage.path)));
+                }
+            }
+        }
+        let max_group = groups.keys().copied().max().map_or(0, |g| g + 1);
+        let mut layouts = Vec::new();
+        let mut bind_groups = Vec::new();
+        for g in 0..max_group {
+            let entries = groups.remove(&g).unwrap_or_default();
+            let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = entries
+                .iter()
+                .map(|(binding, (visibility, entry))| wgpu::BindGroupLayoutEntry {
+                    binding: *binding,
+                    visibility: *visibility,
+                    ty: match entry {
+                        Entry::Uniform(_) => wgpu::BindingType::Buffer {
+                            ty: if storage { wgpu::BufferBindingType::Storage { read_only: true } } else { wgpu::BufferBindingType::Uniform },
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
+                        },
+                        Entry::Texture(_, sample_type) => wgpu::BindingType::Texture {
+                            sample_type: *sample_type,
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                        Entry::Sampler(_, ty) => wgpu::BindingType::Sampler(*ty),
+                    },
+                    count: None,
+                })
+                .collect();
+            let label = format!("{} set {g}", program.name);
+            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&label), entries: &layout_entries });
+            let group_entries: Vec<wgpu::BindGroupEntry> = entries
+                .iter()
+                .map(|(binding, (_, entry))| wgpu::BindGroupEntry {
+                    binding: *binding,
+                    resource: match entry {
+                        Entry::Uniform(b) => b.as_entire_binding(),
+                        Entry::Texture(v, _) => wgpu::BindingResource::TextureView(v),
+                        Entry::Sampler(s, _) => wgpu::BindingResource::Sampler(s),
+                    },
+                })
+                .collect();
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(&label), layout: &layout, entries: &group_entries });
+            layouts.push(layout);
+            bind_groups.push(group);
+        }
+        let layout_refs: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(Some).collect();
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&program.name),
+            bind_group_layouts: &layout_refs,
+            immediate_size: 0,
+        });
+
+        let attributes = vertex_attributes(&program.vertex)?;
+        let mut alternates = BTreeMap::new();
+        let mut color_targets = Vec::new();
+        for &b in &program.render_targets {
+            let (format, blend) = match &kind {
+                PassKind::Gbuffers(state) => {
+                    let (_, format) = textures.colors.get(&b).ok_or_else(|| {
+                        HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
+                    })?;
+                    (*format, wgpu_blend(&(state.blend_of)(b)))
+                }
+                PassKind::Fullscreen { .. } if b == 0 => (OUT, None),
+                PassKind::Fullscreen { width, height } => {
+                    let format = gpu.texture_format(pack.format_of(b))?;
+                    let t = device.create_texture(&wgpu::TextureDescriptor {
+                        label: Some(&format!("colortex{b} alternate")),
+                        size: wgpu::Extent3d { width: *width, height: *height, depth_or_array_layers: 1 },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format,
+                        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                        view_formats: &[],
+                    });
+                    alternates.insert(b, t);
+                    (format, None)
+                }
+            };
+            color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }));
+        }
+        let shader_module = |stage: &LoadedStage| {
+            gpu.checked(&format!("{} (wgpu shader module)", stage.path), || {
+                let module = if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() };
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&stage.path),
+                    source: wgpu::ShaderSource::Naga(Cow::Owned(module)),
+                })
+            })
+        };
+        let vertex_module = shader_module(&program.vertex)?;
+        let fragment_module = shader_module(&program.fragment)?;
+        let depth_stencil = match &kind {
+            PassKind::Gbuffers(state) => Some(wgpu::DepthStencilState {
+                format: DEPTH,
+                depth_write_enabled: Some(state.depth_write),
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            PassKind::Fullscreen { .. } => None,
+        };
+        let pipeline = gpu.checked(&format!("{} (wgpu pipeline)", program.name), || {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&program.name),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &vertex_module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: offsets::STRIDE,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &attributes,
+                    })],
+                },
+                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                depth_stencil,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &fragment_module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    targets: &color_targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers })
+    }
+
+    /// Rewrites the uniform blocks with `values`, for the next submission.
+    pub(crate) fn write_uniforms(&self, gpu: &Gpu, program: &LoadedProgram, values: &BTreeMap<String, Value>) -> Result<(), HarnessError> {
+        for (stage, buffer) in &self.uniform_buffers {
+            let stage = if *stage == tidepack_glsl::Stage::Vertex { &program.vertex } else { &program.fragment };
+            let block = uniforms::fill_block(&stage.module, values, &stage.path)?
+                .ok_or_else(|| HarnessError::Uniform(format!("{}: the uniform block is gone", stage.path)))?;
+            gpu.queue.write_buffer(buffer, 0, &block.bytes);
+        }
+        Ok(())
+    }
+
+    /// Sets the pipeline and its bind groups on `pass`.
+    pub(crate) fn bind(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        for (i, group) in self.bind_groups.iter().enumerate() {
+            pass.set_bind_group(i as u32, group, &[]);
+        }
+    }
+
+    /// Records `program`, a full-screen program built with [`PassKind::Fullscreen`], over the
+    /// quad: colortex0 into `out`, other render targets into the alternates, all cleared first.
+    pub(crate) fn record_fullscreen(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        program: &LoadedProgram,
+        out: &wgpu::Texture,
+        quad: &FullscreenQuad,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let views: Vec<wgpu::TextureView> =
+            program.render_targets.iter().map(|b| if *b == 0 { view(out) } else { view(&self.alternates[b]) }).collect();
+        let attachments: Vec<_> = views.iter().map(|v| Some(clear_attachment(v))).collect();
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(&program.name),
+            color_attachments: &attachments,
+            timestamp_writes,
+            ..Default::default()
+        });
+        self.bind(&mut pass);
+        pass.set_vertex_buffer(0, quad.vertices.slice(..));
+        pass.draw(0..quad.count, 0..1);
+    }
+}
+
+/// A colour attachment cleared to transparent black.
+pub(crate) fn clear_attachment(v: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view: v,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+    }
+}
+
+/// The full-screen quad OptiFine draws for composite programs, uploaded.
+pub(crate) struct FullscreenQuad {
+    vertices: wgpu::Buffer,
+    count: u32,
+}
+
+impl FullscreenQuad {
+    pub(crate) fn new(gpu: &Gpu) -> FullscreenQuad {
+        let quad = fullscreen_quad();
+        let vertices = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("full-screen quad"),
+            contents: bytemuck::cast_slice(&quad),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        FullscreenQuad { vertices, count: quad.len() as u32 }
+    }
+}
+
+/// The full-screen quad OptiFine draws: x, y in 0..1 under an orthographic projection,
+/// texture coordinates 0..1, as two triangles.
+pub fn fullscreen_quad() -> Vec<mesh::PackVertex> {
+    let corner = |x: f32, y: f32| mesh::PackVertex {
+        position: [x, y, 0.0, 1.0],
+        color: [1.0; 4],
+        normal: [0.0, 0.0, 1.0],
+        uv0: [x, y, 0.0, 1.0],
+        uv1: [0.0, 0.0, 0.0, 1.0],
+        entity: [-1.0, -1.0, 0.0, 0.0],
+    };
+    [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().map(|&(x, y)| corner(x, y)).collect()
+}
+
+pub(crate) fn wgpu_blend(blend: &Blend) -> Option<wgpu::BlendState> {
+    let factor = |f: BlendFactor| match f {
+        BlendFactor::Zero => wgpu::BlendFactor::Zero,
+        BlendFactor::One => wgpu::BlendFactor::One,
+        BlendFactor::SrcColor => wgpu::BlendFactor::Src,
+        BlendFactor::OneMinusSrcColor => wgpu::BlendFactor::OneMinusSrc,
+        BlendFactor::DstColor => wgpu::BlendFactor::Dst,
+        BlendFactor::OneMinusDstColor => wgpu::BlendFactor::OneMinusDst,
+        BlendFactor::SrcAlpha => wgpu::BlendFactor::SrcAlpha,
+        BlendFactor::OneMinusSrcAlpha => wgpu::BlendFactor::OneMinusSrcAlpha,
+        BlendFactor::DstAlpha => wgpu::BlendFactor::DstAlpha,
+        BlendFactor::OneMinusDstAlpha => wgpu::BlendFactor::OneMinusDstAlpha,
+    };
+    match blend {
+        Blend::Off => None,
+        Blend::Factors([s, d, sa, da]) => Some(wgpu::BlendState {
+            color: wgpu::BlendComponent { src_factor: factor(*s), dst_factor: factor(*d), operation: wgpu::BlendOperation::Add },
+            alpha: wgpu::BlendComponent { src_factor: factor(*sa), dst_factor: factor(*da), operation: wgpu::BlendOperation::Add },
+        }),
+    }
+}
+
+/// The vertex attributes of [`mesh::PackVertex`] a stage declares, by its shipped input names.
+pub fn vertex_attribute_source(name: &str) -> Option<(wgpu::VertexFormat, u64)> {
+    Some(match name {
+        "gl_Vertex" => (wgpu::VertexFormat::Float32x4, offsets::POSITION),
+        "gl_Color" => (wgpu::VertexFormat::Float32x4, offsets::COLOR),
+        "gl_Normal" => (wgpu::VertexFormat::Float32x3, offsets::NORMAL),
+        "gl_MultiTexCoord0" => (wgpu::VertexFormat::Float32x4, offsets::UV0),
+        "gl_MultiTexCoord1" => (wgpu::VertexFormat::Float32x4, offsets::UV1),
+        "mc_Entity" => (wgpu::VertexFormat::Float32x4, offsets::ENTITY),
+        _ => return None,
+    })
+}
+
+fn vertex_attributes(stage: &LoadedStage) -> Result<Vec<wgpu::VertexAttribute>, HarnessError> {
+    let mut attributes = Vec::new();
+    for (name, location) in &stage.interface.inputs {
+        let (format, offset) = vertex_attribute_source(name).ok_or_else(|| {
+            HarnessError::Unsupported(format!(
+                "{} reads vertex input {name}, which the harness does not provide (it has gl_Vertex, gl_Color, gl_Normal, \
+                 gl_MultiTexCoord0, gl_MultiTexCoord1, mc_Entity)",
+                stage.path
+            ))
+        })?;
+        attributes.push(wgpu::VertexAttribute { format, offset, shader_location: *location });
+    }
+    Ok(attributes)
+}
+
+/// The textures and samplers of a stage, each bound to what its name resolves to. Every name
+/// the harness cannot bind is reported, all in one error.
+fn stage_entries(
+    gpu: &Gpu,
+    pack: &LoadedPack,
+    stage: &LoadedStage,
+    gbuffers: bool,
+    textures: &BindableTextures,
+) -> Result<Vec<(u32, u32, Entry)>, HarnessError> {
+    let module = &stage.module;
+    let mut entries = Vec::new();
+    // Textures first, so each sampler knows whether its texture filters.
+    let mut resolved: BTreeMap<String, (Source, bool)> = BTreeMap::new();
+    let mut problems = Vec::new();
+    for (_, global) in module.global_variables.iter() {
+        let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
+        if let naga::TypeInner::Image { class, dim, arrayed, .. } = &module.types[global.ty].inner {
+            if *dim != naga::ImageDimension::D2 || *arrayed || !matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }) {
+                problems.push(format!("texture {name} is not a plain sampler2D"));
+                continue;
+            }
+            let bound = resolve_in_pack(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source)?)));
+            match bound {
+                Ok((source, (view, filters))) => {
+                    resolved.insert(name.clone(), (source, filters));
+                    entries.push((binding.group, binding.binding, Entry::Texture(view, wgpu::TextureSampleType::Float { filterable: filters })));
+                }
+                Err(m) => problems.push(m),
+            }
+        }
+    }
+    for (_, global) in module.global_variables.iter() {
+        let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
+        if let naga::TypeInner::Sampler { comparison } = &module.types[global.ty].inner {
+            let texture = name.strip_prefix("tp_sampler_").unwrap_or(name);
+            if *comparison {
+                problems.push(format!("{texture} is a shadow sampler; the harness has no shadow maps"));
+                continue;
+            }
+            let Some(&(source, filters)) = resolved.get(texture) else {
+                if !problems.iter().any(|p| p.contains(texture)) {
+                    problems.push(format!("sampler {name} has no texture {texture}"));
+                }
+                continue;
+            };
+            let ty = if filters { wgpu::SamplerBindingType::Filtering } else { wgpu::SamplerBindingType::NonFiltering };
+            entries.push((binding.group, binding.binding, Entry::Sampler(textures.sampler(source, filters), ty)));
+        }
+    }
+    if !problems.is_empty() {
+        return Err(HarnessError::Uniform(format!("{}: {}", stage.path, problems.join("; "))));
+    }
+    Ok(entries)
+}

@@ -1,0 +1,23 @@
+//! The wgpu side of the harness, by concern:
+//!
+//! - [`device`]: the adapter and device, the formats and resolutions they allow, and the
+//!   validation-error scope every call runs in;
+//! - [`bindings`]: one program of the pack as a pipeline, its sampler names resolved as
+//!   OptiFine names them and bound with its uniform blocks; used by the frame and by
+//!   [`crate::composite_only`] alike;
+//! - [`frame`]: a whole frame as the loader draws it, pass by pass;
+//! - [`own`]: the harness's own shaders (a loader's fixed-function colour, the pass-through);
+//! - [`readback`]: textures and timestamps back to the CPU.
+
+pub mod bindings;
+pub mod device;
+pub mod frame;
+pub mod own;
+pub mod readback;
+
+pub use bindings::{Source, UniformBinding, fullscreen_quad, resolve_in_pack, resolve_sampler, vertex_attribute_source};
+pub use device::{Gpu, VULKAN_PACKAGE};
+pub use frame::{Frame, PassTiming, median, render, render_repeated};
+pub(crate) use frame::overlay_phase;
+pub use own::terrain_mvp;
+pub use readback::read_texture;

@@ -1,0 +1,194 @@
+//! The harness's own shaders, for what is not the pack's: the fixed-function colour a loader
+//! draws geometry with when the pack has no program for it, and the one-tap pass-through
+//! composite that composite's cost is measured against.
+
+use wgpu::util::DeviceExt as _;
+
+use crate::HarnessError;
+use crate::mesh::offsets;
+use crate::scene::Scene;
+
+use super::Gpu;
+use super::bindings::{DEPTH, OUT, clear_attachment, view};
+
+/// The harness's colour shader: position and vertex colour, OpenGL clip space mapped as in
+/// [`crate::program::adapt_vertex`]; the fragment entry point comes from [`colour_wgsl`].
+const COLOUR_VERTEX_WGSL: &str = r#"
+struct Uniforms { mvp: mat4x4<f32> }
+@group(0) @binding(0) var<uniform> u: Uniforms;
+struct Out { @builtin(position) position: vec4<f32>, @location(0) color: vec4<f32> }
+@vertex fn vs(@location(0) position: vec4<f32>, @location(1) color: vec4<f32>) -> Out {
+    var clip = u.mvp * position;
+    clip.y = -clip.y;
+    clip.z = 0.5 * (clip.z + clip.w);
+    return Out(clip, color);
+}
+"#;
+
+/// The colour shader writing the same colour to `targets` colour attachments, as
+/// fixed-function drawing does to every draw buffer.
+fn colour_wgsl(targets: usize) -> String {
+    let fields: String = (0..targets).map(|i| format!("@location({i}) c{i}: vec4<f32>, ")).collect();
+    let values: Vec<&str> = vec!["i.color"; targets];
+    format!(
+        "{COLOUR_VERTEX_WGSL}struct Targets {{ {fields}}}\n@fragment fn fs(i: Out) -> Targets {{ return Targets({}); }}\n",
+        values.join(", ")
+    )
+}
+
+/// The one-tap pass-through composite: colortex0 to the output, nothing else.
+const PASSTHROUGH_WGSL: &str = r#"
+@group(0) @binding(0) var colortex0: texture_2d<f32>;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    return textureLoad(colortex0, vec2<i32>(p.xy), 0);
+}
+"#;
+
+/// The harness's own shader for geometry the pack has no program for: the vertex colour into
+/// every colour target given.
+pub(crate) struct ColourPipeline {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+}
+
+/// The model-view-projection the terrain shader uses (f64, then f32), shared with the GL path.
+pub fn terrain_mvp(scene: &Scene) -> [f32; 16] {
+    (scene.projection() * scene.model_view()).to_cols_array().map(|v| v as f32)
+}
+
+impl ColourPipeline {
+    pub(crate) fn new(
+        gpu: &Gpu,
+        scene: &Scene,
+        targets: &[(wgpu::TextureFormat, Option<wgpu::BlendState>)],
+        depth_write: bool,
+    ) -> Result<ColourPipeline, HarnessError> {
+        let device = &gpu.device;
+        let module = gpu.checked("terrain shader", || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("terrain"),
+                source: wgpu::ShaderSource::Wgsl(colour_wgsl(targets.len()).into()),
+            })
+        })?;
+        let targets: Vec<Option<wgpu::ColorTargetState>> = targets
+            .iter()
+            .map(|&(format, blend)| Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }))
+            .collect();
+        let mvp: Vec<u8> = terrain_mvp(scene).iter().flat_map(|v| v.to_le_bytes()).collect();
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("terrain uniforms"),
+            contents: &mvp,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let pipeline = gpu.checked("terrain pipeline", || {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("terrain"),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: offsets::STRIDE,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &[
+                            wgpu::VertexAttribute { format: wgpu::VertexFormat::Float32x4, offset: offsets::POSITION, shader_location: 0 },
+                            wgpu::VertexAttribute { format: wgpu::VertexFormat::Float32x4, offset: offsets::COLOR, shader_location: 1 },
+                        ],
+                    })],
+                },
+                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(depth_write),
+                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("terrain"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+        });
+        Ok(ColourPipeline { pipeline, bind_group })
+    }
+
+    /// Sets the pipeline and its bind group on `pass`.
+    pub(crate) fn bind(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+    }
+}
+
+/// The one-tap pass-through composite over `colortex0`, the floor composite is timed against.
+pub(crate) struct PassthroughPipeline {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+}
+
+impl PassthroughPipeline {
+    pub(crate) fn new(gpu: &Gpu, colortex0: &wgpu::Texture) -> Result<PassthroughPipeline, HarnessError> {
+        let device = &gpu.device;
+        let module = gpu.checked("pass-through shader", || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("pass-through"),
+                source: wgpu::ShaderSource::Wgsl(PASSTHROUGH_WGSL.into()),
+            })
+        })?;
+        let pipeline = gpu.checked("pass-through pipeline", || {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("pass-through"),
+                layout: None,
+                vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState { format: OUT, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        let bind_group = gpu.checked("pass-through bind group", || {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("pass-through"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(colortex0)) }],
+            })
+        })?;
+        Ok(PassthroughPipeline { pipeline, bind_group })
+    }
+
+    /// Records the pass-through into `out`, an [`OUT`] texture, cleared first.
+    pub(crate) fn record(&self, encoder: &mut wgpu::CommandEncoder, out: &wgpu::Texture, timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>) {
+        let v = view(out);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("pass-through composite"),
+            color_attachments: &[Some(clear_attachment(&v))],
+            timestamp_writes,
+            ..Default::default()
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
