@@ -22,7 +22,7 @@ use std::collections::BTreeMap;
 use half::f16;
 
 use crate::HarnessError;
-use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, colour_buffers_read};
+use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, colour_buffers_read};
 use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
 use crate::gpu::{Frame, Gpu};
@@ -112,7 +112,7 @@ impl CompositeOnly {
         };
         let input = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let output = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let mut buffers = colour_buffers_read(pack, &pack.composite);
+        let mut buffers = colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false);
         buffers.insert(0);
         let mut colors = BTreeMap::new();
         let mut formats = BTreeMap::new();
@@ -125,7 +125,7 @@ impl CompositeOnly {
         let depth0 = texture("depthtex0 (R32Float)", DEPTH_AS, input);
         let depth1 = texture("depthtex1 (R32Float)", DEPTH_AS, input);
         let harness_textures = HarnessTextures::new(gpu, pack);
-        let bindable = BindableTextures { harness: &harness_textures, colors: &colors, depth0: &depth0, depth1: &depth1 };
+        let bindable = BindableTextures { naming: SamplerNaming::OwnFrame, harness: &harness_textures, colors: &colors, depth0: &depth0, depth1: &depth1 };
         let composite = gpu.checked("composite_only", || {
             ProgramPipeline::new(gpu, pack, &pack.composite, values, PassKind::Fullscreen { width, height }, &bindable, binding)
         })??;

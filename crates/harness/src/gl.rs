@@ -300,7 +300,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // Rain, clouds, particles and the hand drawn when the loader draws them.
         let draw_overlays = |phase: Phase| -> Result<(), HarnessError> {
             for (kind, vertices) in &mesh.overlay {
-                if overlay_phase(pack, scene, *kind) != phase {
+                if overlay_phase(pack.loader, scene, *kind) != phase {
                     continue;
                 }
                 let program = pack.resolve(pack.loader.program_chain(*kind));
@@ -544,6 +544,10 @@ unsafe fn set_uniforms(
                             continue;
                         }
                     },
+                    Ok(other) => {
+                        missing.push(format!("{name} ({other:?} is bound by the wgpu path only)"));
+                        continue;
+                    }
                     Err(m) => {
                         missing.push(m);
                         continue;

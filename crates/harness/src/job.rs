@@ -218,7 +218,6 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         (Some(c), Some(p)) if p > 0.0 => Some(c / p),
         _ => None,
     };
-    let a = &gpu.adapter;
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = RenderReport {
@@ -233,12 +232,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         loader: pack.loader.to_string(),
         profile: pack.profile.clone(),
         options: pack.options.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
-        adapter: AdapterReport {
-            name: a.name.clone(),
-            backend: format!("{:?}", a.backend),
-            device_type: format!("{:?}", a.device_type),
-            driver: format!("{} {}", a.driver, a.driver_info).trim().to_string(),
-        },
+        adapter: adapter_report(&gpu),
         timing_source: if gpu.timestamps { "gpu" } else { "wall" }.to_string(),
         passes,
         composite_over_passthrough: ratio,
@@ -251,6 +245,98 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     let json_path = job.out_dir.join(&json_name);
     std::fs::write(&json_path, json + "\n").map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", json_path.display())))?;
     Ok(report)
+}
+
+/// A released pack rendered on a scene: what `tidepack render --pack` runs.
+#[derive(Clone, Debug)]
+pub struct AnyPackJob {
+    pub scene: PathBuf,
+    /// The pack folder or zip.
+    pub pack: PathBuf,
+    pub loader: Loader,
+    pub out_dir: PathBuf,
+    /// Also write every colour buffer and both depth buffers as final read them.
+    pub buffers: bool,
+}
+
+/// The JSON report of [`run_any_pack`] (`<scene>.json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct AnyPackReport {
+    pub scene: String,
+    pub scene_file: String,
+    pub pack: String,
+    pub resolution: [u32; 2],
+    pub loader: String,
+    pub adapter: AdapterReport,
+    /// The folder the programs came from (`world0` or `""`).
+    pub world: String,
+    /// Each pass as it ran, in frame order, with its NaN and Inf counts.
+    pub passes: Vec<crate::gpu::AnyPassReport>,
+    /// Pixels of the screen that are NaN or infinite.
+    pub non_finite_pixels: usize,
+    /// What the pack uses that the frame did not imitate.
+    pub not_modelled: Vec<String>,
+    /// Programs the loader would run that did not load, with why.
+    pub failed_programs: Vec<(String, String)>,
+    /// Files written, relative to the output folder.
+    pub files: Vec<String>,
+}
+
+/// Renders the job's scene with any pack and writes the files; returns the report (also
+/// written as JSON).
+pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
+    let scene = Scene::load(&job.scene)?;
+    let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader)?;
+    let gpu = Gpu::new()?;
+    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh::build(&scene, &pack))?;
+    let stem = file_stem(&scene.name);
+    std::fs::create_dir_all(&job.out_dir)
+        .map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", job.out_dir.display())))?;
+    let mut files = Vec::new();
+    let mut write = |suffix: &str, image: &FloatImage| -> Result<(), HarnessError> {
+        let name = format!("{stem}{suffix}.png");
+        image.write_png(&job.out_dir.join(&name), false)?;
+        files.push(name);
+        Ok(())
+    };
+    write("", &frame.image)?;
+    if job.buffers {
+        for (b, image) in &frame.buffers {
+            write(&format!(".colortex{b}"), image)?;
+        }
+        write(".depthtex0", &frame.depth0.depth_for_viewing())?;
+        write(".depthtex1", &frame.depth1.depth_for_viewing())?;
+    }
+    let json_name = format!("{stem}.json");
+    files.push(json_name.clone());
+    let report = AnyPackReport {
+        scene: scene.name.clone(),
+        scene_file: job.scene.display().to_string(),
+        pack: job.pack.display().to_string(),
+        resolution: scene.resolution,
+        loader: pack.loader.to_string(),
+        adapter: adapter_report(&gpu),
+        world: pack.world.clone(),
+        non_finite_pixels: frame.image.non_finite(),
+        passes: frame.passes,
+        not_modelled: frame.not_modelled,
+        failed_programs: pack.failed.clone(),
+        files,
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(|e| HarnessError::Io(format!("report: {e}")))?;
+    let json_path = job.out_dir.join(&json_name);
+    std::fs::write(&json_path, json + "\n").map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", json_path.display())))?;
+    Ok(report)
+}
+
+fn adapter_report(gpu: &Gpu) -> AdapterReport {
+    let a = &gpu.adapter;
+    AdapterReport {
+        name: a.name.clone(),
+        backend: format!("{:?}", a.backend),
+        device_type: format!("{:?}", a.device_type),
+        driver: format!("{} {}", a.driver, a.driver_info).trim().to_string(),
+    }
 }
 
 fn pass_report(t: &PassTiming) -> PassReport {

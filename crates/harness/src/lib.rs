@@ -10,6 +10,7 @@
 
 use std::fmt;
 
+pub mod any_pack;
 pub mod composite_only;
 pub mod gl;
 pub mod gpu;

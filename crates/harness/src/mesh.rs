@@ -26,6 +26,8 @@ pub struct PackVertex {
     pub uv1: [f32; 4],
     /// mc_Entity: x = block id from block.properties (-1 unmapped), y = render type (1 fluid, -1 other).
     pub entity: [f32; 4],
+    /// vaUV2 of the 1.17+ core profile: the lightmap coordinates of `uv1` as integers.
+    pub lightmap: [i32; 2],
 }
 
 /// Byte offsets of the attributes of [`PackVertex`].
@@ -36,7 +38,8 @@ pub mod offsets {
     pub const UV0: u64 = 44;
     pub const UV1: u64 = 60;
     pub const ENTITY: u64 = 76;
-    pub const STRIDE: u64 = 92;
+    pub const LIGHTMAP: u64 = 92;
+    pub const STRIDE: u64 = 100;
 }
 
 /// Sprites of the mock block atlas (`gtexture`): uv rectangles inset from the sprite edges so
@@ -47,6 +50,7 @@ pub const WHITE_SPRITE: [f32; 4] = [0.5625, 0.125, 0.9375, 0.875];
 
 /// Lightmap coordinates of everything in the scenes: no block light, full sky light.
 const LIGHT: [f32; 4] = [0.0, 240.0, 0.0, 1.0];
+const LIGHT_INT: [i32; 2] = [0, 240];
 
 #[derive(Clone, Debug, Default)]
 pub struct SceneMesh {
@@ -94,6 +98,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
                 uv0: sprite_corner(WHITE_SPRITE, i),
                 uv1: LIGHT,
                 entity: [-1.0, -1.0, 0.0, 0.0],
+                lightmap: LIGHT_INT,
             });
         }
     };
@@ -190,6 +195,7 @@ fn back_to_front(mut quads: Vec<Quad>, camera: DVec3, rel: &dyn Fn(DVec3) -> [f3
                 uv0: sprite_corner(q.sprite, i),
                 uv1: LIGHT,
                 entity: q.entity,
+                lightmap: LIGHT_INT,
             });
         }
     }

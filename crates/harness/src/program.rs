@@ -76,6 +76,28 @@ pub enum BufferFormat {
 }
 
 impl BufferFormat {
+    /// The format a pack's format name is stored in, and whether exactly: formats the harness
+    /// lacks (fewer channels, packed, signed) are stored in the RGBA format that holds every
+    /// value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F, `RGB10_A2` in RGBA16).
+    pub fn stand_in(name: &str) -> Option<(BufferFormat, bool)> {
+        if let Some(exact) = BufferFormat::parse(name) {
+            return Some((exact, true));
+        }
+        let stand_in = match name {
+            "R8" | "RG8" | "RGB5_A1" | "RGBA2" | "RGBA4" | "R3_G3_B2" | "R16" | "RG16" | "RGB10_A2" | "RGB12" | "RGBA12" => {
+                BufferFormat::Rgba16
+            }
+            "R16F" | "RG16F" | "R11F_G11F_B10F" | "RGB9_E5" => BufferFormat::Rgba16F,
+            // Signed normalised formats keep their negative values in a float buffer.
+            "R8_SNORM" | "RG8_SNORM" | "RGB8_SNORM" | "RGBA8_SNORM" | "R16_SNORM" | "RG16_SNORM" | "RGB16_SNORM" | "RGBA16_SNORM" => {
+                BufferFormat::Rgba32F
+            }
+            "R32F" | "RG32F" => BufferFormat::Rgba32F,
+            _ => return None,
+        };
+        Some((stand_in, false))
+    }
+
     fn parse(name: &str) -> Option<BufferFormat> {
         Some(match name {
             "RGBA" | "RGBA8" | "RGB8" | "RGB" => BufferFormat::Rgba8,
@@ -129,6 +151,27 @@ impl BlendFactor {
 
 /// gbuffers_terrain and the programs OptiFine and Iris fall back to for it, in order.
 pub const TERRAIN_CHAIN: [&str; 4] = ["gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
+
+/// gbuffers_water and its fallbacks, in order.
+pub const WATER_CHAIN: [&str; 5] = ["gbuffers_water", "gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
+
+/// What binding a program's samplers needs of its pack besides the program itself.
+pub trait PackResources {
+    /// The format colortex`buffer` is stored in.
+    fn format_of(&self, buffer: u8) -> BufferFormat;
+    /// Custom textures from shaders.properties.
+    fn custom_textures(&self) -> &[CustomTexture];
+}
+
+impl PackResources for LoadedPack {
+    fn format_of(&self, buffer: u8) -> BufferFormat {
+        LoadedPack::format_of(self, buffer)
+    }
+
+    fn custom_textures(&self) -> &[CustomTexture] {
+        &self.custom_textures
+    }
+}
 
 /// OptiFine's default blending of translucent gbuffers programs.
 pub const DEFAULT_TRANSLUCENT_BLEND: Blend = Blend::Factors([
@@ -311,7 +354,17 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
         gbuffers_blend.insert(name.clone(), blend_modes(&properties, name, loader.per_buffer_blend())?);
     }
     let block_ids = provider.read("block.properties").map(|t| block_ids(&t)).unwrap_or_default();
-    let custom_textures = custom_textures(&pack, &provider, &properties, &selection.source_dir)?;
+    let read_bytes = |path: &str| match pack.binaries.get(path) {
+        Some(b) => Ok(b.to_vec()),
+        None => {
+            let on_disk = selection.source_dir.join("shaders").join(path);
+            std::fs::read(&on_disk).map_err(|e| format!("{path} is neither generated nor at {} ({e})", on_disk.display()))
+        }
+    };
+    let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
+    if !unsupported.is_empty() {
+        return Err(HarnessError::Unsupported(unsupported.join("; ")));
+    }
     Ok(LoadedPack {
         dialect: selection.dialect,
         profile,
@@ -333,23 +386,47 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
 /// Loads `<name>.vsh` and `<name>.fsh`; an `alpha_test` discards fragments whose output 0 has
 /// an alpha not above it, as a loader's alpha test would.
 fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alpha_test: Option<f32>) -> Result<LoadedProgram, HarnessError> {
-    let macros = standard_macros(glsl_version);
+    let files = ProgramFiles { name, vertex: format!("{name}.vsh"), fragment: format!("{name}.fsh") };
+    load_program_files(provider, &files, &standard_macros(glsl_version), alpha_test, UndeclaredTargets::Refuse)
+}
+
+/// The two stage files of one program, as paths inside `shaders/`.
+pub(crate) struct ProgramFiles<'a> {
+    pub name: &'a str,
+    pub vertex: String,
+    pub fragment: String,
+}
+
+/// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum UndeclaredTargets {
+    /// Nowhere: the pack must say (our own pack always does).
+    Refuse,
+    /// Every buffer it has an output for, output N to colortexN (OptiFine: all used buffers;
+    /// outputs not written are undefined there, untouched here).
+    Outputs,
+    /// colortex0 only (Iris).
+    FirstOnly,
+}
+
+/// Loads one program from its stage files with `macros` predefined.
+pub(crate) fn load_program_files(
+    provider: &dyn FileProvider,
+    files: &ProgramFiles,
+    macros: &preprocess::PreprocessOptions,
+    alpha_test: Option<f32>,
+    undeclared: UndeclaredTargets,
+) -> Result<LoadedProgram, HarnessError> {
+    let name = files.name;
     let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
     let mut pre = Vec::new();
-    for (stage, ext) in [(Stage::Vertex, "vsh"), (Stage::Fragment, "fsh")] {
-        let path = format!("{name}.{ext}");
-        provider.read(&path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
-        let p = preprocess::preprocess(provider, &path, &macros).map_err(|d| diag_error(&path.to_string(), &[d]))?;
+    for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
+        provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
+        let mut p = preprocess::preprocess(provider, path, macros).map_err(|d| diag_error(path, &[d]))?;
+        tidepack_validate::assume_glsl_110(&mut p);
         pre.push((stage, Arc::new(p)));
     }
-    let render_targets = match &pre[1].1.render_targets {
-        Some(rt) => rt.buffers.clone(),
-        None => {
-            return Err(HarnessError::Pack(format!(
-                "{name}.fsh declares no RENDERTARGETS or DRAWBUFFERS; OptiFine and Iris disagree on the default"
-            )));
-        }
-    };
+    let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
     let lowered = validate::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
     let mut frontend = validate::Frontend::default();
     let mut stages = Vec::new();
@@ -360,7 +437,7 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alph
             (Stage::Vertex, _) => adapt_vertex(&lowered_text)?,
             (Stage::Fragment, Some(reference)) => {
                 let output = lowered_output(&lowered_text, 0)
-                    .ok_or_else(|| HarnessError::Pack(format!("{name}.fsh has no output 0 for the loader's alpha test")))?;
+                    .ok_or_else(|| HarnessError::Pack(format!("{} has no output 0 for the loader's alpha test", files.fragment)))?;
                 with_alpha_test(&lowered_text, &output, reference)?
             }
             (Stage::Fragment, None) => lowered_text.clone(),
@@ -391,10 +468,24 @@ fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alph
     }
     let fragment = stages.pop().expect("two stages");
     let vertex = stages.pop().expect("two stages");
-    for location in fragment.interface.outputs.keys() {
+    let render_targets = match (declared_targets, undeclared) {
+        (Some(buffers), _) => buffers,
+        (None, UndeclaredTargets::Refuse) => {
+            return Err(HarnessError::Pack(format!(
+                "{} declares no RENDERTARGETS or DRAWBUFFERS; OptiFine and Iris disagree on the default",
+                files.fragment
+            )));
+        }
+        (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
+        (None, UndeclaredTargets::FirstOnly) => vec![0],
+    };
+    // Iris drops the outputs past colortex0 of an undeclared program; elsewhere every output
+    // must have its buffer.
+    for location in fragment.interface.outputs.keys().filter(|_| undeclared != UndeclaredTargets::FirstOnly) {
         if *location as usize >= render_targets.len() {
             return Err(HarnessError::Pack(format!(
-                "{name}.fsh writes output {location} but its render targets list only {} buffers",
+                "{} writes output {location} but its render targets list only {} buffers",
+                files.fragment,
                 render_targets.len()
             )));
         }
@@ -477,7 +568,20 @@ pub(crate) fn colour_buffer_number(name: &str) -> Option<u8> {
 
 /// `const int colortexNFormat = FORMAT;` (also inside comments, as OptiFine reads them) and
 /// the legacy `/* GAUXnFORMAT:FORMAT */`.
-fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
+pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
+    declared_format_names(text)
+        .into_iter()
+        .map(|(buffer, value)| {
+            let format = BufferFormat::parse(&value).ok_or_else(|| {
+                HarnessError::Unsupported(format!("colortex{buffer}Format = {value}: the harness renders RGBA8, RGBA16, RGBA16F and RGBA32F buffers"))
+            })?;
+            Ok((buffer, format))
+        })
+        .collect()
+}
+
+/// The buffer and format name of each `const int <buffer>Format = <FORMAT>;` line.
+pub(crate) fn declared_format_names(text: &str) -> Vec<(u8, String)> {
     let mut found = Vec::new();
     for line in text.lines() {
         let line = line.trim();
@@ -485,18 +589,14 @@ fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError>
         let Some((name, value)) = rest.split_once('=') else { continue };
         let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
         let Some(buffer) = colour_buffer_number(buffer_name) else { continue };
-        let value = value.trim().trim_end_matches(';').trim();
-        let format = BufferFormat::parse(value).ok_or_else(|| {
-            HarnessError::Unsupported(format!("colortex{buffer}Format = {value}: the harness renders RGBA8, RGBA16, RGBA16F and RGBA32F buffers"))
-        })?;
-        found.push((buffer, format));
+        found.push((buffer, value.trim().trim_end_matches(';').trim().to_string()));
     }
-    Ok(found)
+    found
 }
 
 /// `blend.<program>=` and `blend.<program>.<buffer>=` lines for one program; the per-buffer
 /// ones only for a loader that reads them.
-fn blend_modes(properties: &str, program: &str, per_buffer_blend: bool) -> Result<BTreeMap<u8, Blend>, HarnessError> {
+pub(crate) fn blend_modes(properties: &str, program: &str, per_buffer_blend: bool) -> Result<BTreeMap<u8, Blend>, HarnessError> {
     let mut program_wide = None;
     let mut per_buffer = BTreeMap::new();
     for line in properties.lines() {
@@ -535,34 +635,29 @@ fn blend_modes(properties: &str, program: &str, per_buffer_blend: bool) -> Resul
     Ok(modes)
 }
 
-/// `texture.<stage>.<unit>=<path>` lines: the PNG from the generated pack, or from the pack's
-/// source folder, with the filter and wrap of its `.mcmeta`.
-fn custom_textures(
-    pack: &ShippedPack,
+/// `texture.<stage>.<unit>=<path>` lines: the PNG `read_bytes` gives for the path, with the
+/// filter and wrap of its `.mcmeta`. Lines the harness cannot honour come back as messages
+/// naming the key, for the caller to refuse or report.
+pub(crate) fn custom_textures(
+    read_bytes: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     provider: &dyn FileProvider,
     properties: &str,
-    source_dir: &std::path::Path,
-) -> Result<Vec<CustomTexture>, HarnessError> {
+) -> Result<(Vec<CustomTexture>, Vec<String>), HarnessError> {
     let mut found = Vec::new();
+    let mut unsupported = Vec::new();
     for line in properties.lines() {
         let Some((key, path)) = line.trim().split_once('=') else { continue };
         let Some((stage, unit)) = key.trim().strip_prefix("texture.").and_then(|k| k.split_once('.')) else { continue };
         let path = path.trim().trim_start_matches('/').to_string();
         if !matches!(stage, "gbuffers" | "composite") {
-            return Err(HarnessError::Unsupported(format!("{key}: the harness runs gbuffers and composite programs only")));
+            unsupported.push(format!("{key}: the harness binds custom textures in gbuffers and composite programs only"));
+            continue;
         }
         if path.ends_with(".dat") || path.contains(':') {
-            return Err(HarnessError::Unsupported(format!("{key}={path}: only PNG textures inside the pack are read")));
+            unsupported.push(format!("{key}={path}: only PNG textures inside the pack are read"));
+            continue;
         }
-        let bytes: Vec<u8> = match pack.binaries.get(&path) {
-            Some(b) => b.to_vec(),
-            None => {
-                let on_disk = source_dir.join("shaders").join(&path);
-                std::fs::read(&on_disk).map_err(|e| {
-                    HarnessError::Pack(format!("{key}: {path} is neither generated nor at {} ({e})", on_disk.display()))
-                })?
-            }
-        };
+        let bytes = read_bytes(&path).map_err(|e| HarnessError::Pack(format!("{key}: {e}")))?;
         let decoded = image::load_from_memory(&bytes)
             .map_err(|e| HarnessError::Pack(format!("{key}: {path} is not a readable image: {e}")))?
             .to_rgba8();
@@ -581,11 +676,11 @@ fn custom_textures(
             rgba: decoded.into_raw(),
         });
     }
-    Ok(found)
+    Ok((found, unsupported))
 }
 
 /// `block.<id>=<names>` lines.
-fn block_ids(properties: &str) -> HashMap<String, i32> {
+pub(crate) fn block_ids(properties: &str) -> HashMap<String, i32> {
     let mut ids = HashMap::new();
     for line in properties.lines() {
         let Some((key, names)) = line.trim().split_once('=') else { continue };

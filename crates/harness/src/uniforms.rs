@@ -212,6 +212,15 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("tp_ProjectionMatrixInverse", Value::mat4(legacy.projection.inverse()));
     put("tp_ModelViewProjectionMatrixInverse", Value::mat4(mvp.inverse()));
     put("tp_TextureMatrixInverse", Value::mat4_array(&textures.map(|m| m.inverse())));
+    // The 1.17+ core profile's names for the same matrices; its vertex positions are relative
+    // to chunkOffset, the origin of the harness's camera-relative vertices.
+    put("modelViewMatrix", Value::mat4(legacy.model_view));
+    put("modelViewMatrixInverse", Value::mat4(legacy.model_view.inverse()));
+    put("projectionMatrix", Value::mat4(legacy.projection));
+    put("projectionMatrixInverse", Value::mat4(legacy.projection.inverse()));
+    put("normalMatrix", Value::mat3(normal));
+    put("textureMatrix", Value::mat4(legacy.texture[0]));
+    put("chunkOffset", Value::vec3(DVec3::ZERO));
     v
 }
 
@@ -303,6 +312,50 @@ fn vector_len(size: VectorSize) -> u8 {
     size as u8
 }
 
+/// The GLSL shape of a uniform of type `ty` as a [`Value`] with no data, with its array
+/// element type, array stride and scalar kind.
+fn declared_shape(module: &naga::Module, ty: naga::Handle<naga::Type>) -> Result<(Value, naga::Handle<naga::Type>, usize, ScalarKind), String> {
+    let (element_ty, count, stride) = match &module.types[ty].inner {
+        TypeInner::Array { base, size: naga::ArraySize::Constant(n), stride } => (*base, Some(n.get()), *stride as usize),
+        _ => (ty, None, 0),
+    };
+    let element = &module.types[element_ty].inner;
+    let (scalar, columns, rows) = match *element {
+        TypeInner::Scalar(s) => (s, 1u8, 1u8),
+        TypeInner::Vector { size, scalar } => (scalar, 1, vector_len(size)),
+        TypeInner::Matrix { columns, rows, scalar } => (scalar, vector_len(columns), vector_len(rows)),
+        _ => return Err(format!("type {:?} is not supported by the harness", element)),
+    };
+    let kind = match scalar.kind {
+        ScalarKind::Float if scalar.width == 4 => Kind::Float,
+        ScalarKind::Sint | ScalarKind::Uint if scalar.width == 4 => Kind::Int,
+        ScalarKind::Bool => return Err("bool uniforms are not supported".into()),
+        _ => return Err(format!("{}-byte scalars are not supported", scalar.width)),
+    };
+    Ok((Value { kind, columns, rows, array: count, data: Vec::new() }, element_ty, stride, scalar.kind))
+}
+
+/// Every member of `module`'s uniform block `values` has no value for, as a zero of its
+/// declared type: what a loader's uniforms hold before anything sets them. Keyed like
+/// `values` (lowered names); members of unsupported types are left out.
+pub fn zeros_for_unfilled(module: &naga::Module, values: &BTreeMap<String, Value>) -> BTreeMap<String, Value> {
+    let mut zeros = BTreeMap::new();
+    for (_, global) in module.global_variables.iter().filter(|(_, g)| g.space == AddressSpace::Uniform) {
+        let TypeInner::Struct { members, .. } = &module.types[global.ty].inner else { continue };
+        for member in members {
+            let Some(name) = &member.name else { continue };
+            if values.contains_key(name) {
+                continue;
+            }
+            if let Ok((mut zero, ..)) = declared_shape(module, member.ty) {
+                zero.data = vec![0.0; zero.columns as usize * zero.rows as usize * zero.array.unwrap_or(1) as usize];
+                zeros.insert(name.clone(), zero);
+            }
+        }
+    }
+    zeros
+}
+
 fn write_member(
     module: &naga::Module,
     layouter: &naga::proc::Layouter,
@@ -311,29 +364,10 @@ fn write_member(
     value: &Value,
     bytes: &mut [u8],
 ) -> Result<(), String> {
-    let inner = &module.types[ty].inner;
-    let (element_ty, count, stride) = match inner {
-        TypeInner::Array { base, size: naga::ArraySize::Constant(n), stride } => (*base, Some(n.get()), *stride as usize),
-        _ => (ty, None, 0),
-    };
-    let element = &module.types[element_ty].inner;
-    let (kind, columns, rows, width, column_stride) = match *element {
-        TypeInner::Scalar(s) => (s.kind, 1u8, 1u8, s.width, 0usize),
-        TypeInner::Vector { size, scalar } => (scalar.kind, 1, vector_len(size), scalar.width, 0),
-        TypeInner::Matrix { columns, rows, scalar } => {
-            let c = vector_len(columns);
-            let size = layouter[element_ty].size as usize;
-            (scalar.kind, c, vector_len(rows), scalar.width, size / c as usize)
-        }
-        _ => return Err(format!("type {:?} is not supported by the harness", element)),
-    };
-    let declared_kind = match kind {
-        ScalarKind::Float => Kind::Float,
-        ScalarKind::Sint | ScalarKind::Uint => Kind::Int,
-        _ => return Err("bool uniforms are not supported".into()),
-    };
-    let declared = Value { kind: declared_kind, columns, rows, array: count, data: Vec::new() };
-    if declared_kind != value.kind || columns != value.columns || rows != value.rows || count != value.array || width != 4 {
+    let (declared, element_ty, stride, kind) = declared_shape(module, ty)?;
+    let (columns, rows, count) = (declared.columns, declared.rows, declared.array);
+    let column_stride = if columns > 1 { layouter[element_ty].size as usize / columns as usize } else { 0 };
+    if declared.kind != value.kind || columns != value.columns || rows != value.rows || count != value.array {
         return Err(format!("declared {}, the harness provides {}", declared.glsl_type(), value.glsl_type()));
     }
     let per_element = columns as usize * rows as usize;

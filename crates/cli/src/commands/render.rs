@@ -46,6 +46,12 @@ pub struct RenderArgs {
     /// Folder with pack.toml and the shader templates.
     #[arg(long, default_value = "shaderpack")]
     pub source: PathBuf,
+    /// Render any OptiFine or Iris pack (folder or zip) instead of ours: its whole pipeline,
+    /// with every pass's time and NaN/Inf count, and what it uses that the harness does not
+    /// imitate listed by name. `--dialect`, `--profile`, `--set`, `--gl`, `--specialise` and
+    /// `--source` apply to our pack only.
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["profile", "set", "gl", "specialise"])]
+    pub pack: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -59,6 +65,9 @@ pub enum RenderDialect {
 }
 
 pub fn run(args: &RenderArgs) -> ExitCode {
+    if let Some(pack) = &args.pack {
+        return run_any_pack(args, pack);
+    }
     let mut options = Vec::new();
     for assignment in &args.set {
         match assignment.split_once('=') {
@@ -86,15 +95,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     };
     let report = match job::run(&job) {
         Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return match e {
-                HarnessError::NoAdapter(_) | HarnessError::NoGlDriver(_) | HarnessError::Io(_) | HarnessError::Scene(_) => {
-                    ExitCode::from(2)
-                }
-                _ => ExitCode::FAILURE,
-            };
-        }
+        Err(e) => return failure(e),
     };
     println!(
         "Rendered {} at {}x{} ({}, {}, profile {}) on {} ({}, {})",
@@ -129,6 +130,62 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
     for f in &report.files {
         println!("  wrote {}", args.out.join(f).display());
+    }
+    ExitCode::SUCCESS
+}
+
+/// Prints a harness error; exit code 2 where the input or a driver is missing, 1 otherwise.
+fn failure(e: HarnessError) -> ExitCode {
+    eprintln!("error: {e}");
+    match e {
+        HarnessError::NoAdapter(_) | HarnessError::NoGlDriver(_) | HarnessError::Io(_) | HarnessError::Scene(_) => ExitCode::from(2),
+        _ => ExitCode::FAILURE,
+    }
+}
+
+fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
+    let job = job::AnyPackJob {
+        scene: args.scene.clone(),
+        pack: pack.to_path_buf(),
+        loader: args.loader,
+        out_dir: args.out.clone(),
+        buffers: args.buffers,
+    };
+    let report = match job::run_any_pack(&job) {
+        Ok(r) => r,
+        Err(e) => return failure(e),
+    };
+    println!(
+        "Rendered {} at {}x{} with {} ({}) on {} ({}, {})",
+        report.scene,
+        report.resolution[0],
+        report.resolution[1],
+        report.pack,
+        report.loader,
+        report.adapter.name,
+        report.adapter.backend,
+        report.adapter.device_type
+    );
+    for p in &report.passes {
+        let time = p.gpu_ms.map_or(format!("{:>9.3} ms (wall)", p.wall_ms), |ms| format!("{ms:>9.3} ms (GPU)"));
+        let bad: Vec<String> = p.non_finite.iter().filter(|(_, n)| **n > 0).map(|(b, n)| format!("{b}: {n} NaN/Inf")).collect();
+        println!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
+    }
+    for (program, why) in &report.failed_programs {
+        println!("  not loaded: {program}: {}", why.lines().next().unwrap_or(""));
+    }
+    if !report.not_modelled.is_empty() {
+        println!("  not imitated ({}):", report.not_modelled.len());
+        for line in &report.not_modelled {
+            println!("    {line}");
+        }
+    }
+    for f in &report.files {
+        println!("  wrote {}", args.out.join(f).display());
+    }
+    if report.non_finite_pixels > 0 {
+        eprintln!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
+        return ExitCode::FAILURE;
     }
     ExitCode::SUCCESS
 }

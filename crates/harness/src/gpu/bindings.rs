@@ -10,7 +10,7 @@ use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
 use crate::mesh::{self, offsets};
-use crate::program::{Blend, BlendFactor, LoadedPack, LoadedProgram, LoadedStage, colour_buffer_number, texture_resources};
+use crate::program::{Blend, BlendFactor, LoadedProgram, LoadedStage, PackResources, colour_buffer_number, texture_resources};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;
@@ -30,14 +30,58 @@ pub enum Source {
     Color(u8),
     Depth0,
     Depth1,
-    /// A custom texture of the pack (index into [`LoadedPack::custom_textures`]).
+    /// A custom texture of the pack (index into [`PackResources::custom_textures`]).
     Custom(usize),
+    /// The normal map of a resource pack without one: flat, (0.5, 0.5, 1).
+    FlatNormals,
+    /// The specular map of a resource pack without one: zero.
+    NoSpecular,
+    /// shadowtex*: a shadow map nothing was drawn into (depth 1 everywhere).
+    EmptyShadowDepth,
+    /// shadowcolor*: a shadow colour buffer nothing was drawn into (white).
+    EmptyShadowColour,
+}
+
+/// How sampler names resolve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SamplerNaming {
+    /// The frame of our own pack ([`resolve_in_pack`]): gbuffers programs read no colour
+    /// buffer and not the depth buffer they draw into.
+    OwnFrame,
+    /// Any pack ([`resolve_any`]): every name OptiFine binds, with what the frame does not
+    /// draw (the shadow pass) bound empty.
+    AnyPack,
+}
+
+/// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
+/// buffers are read as they stood before the draw, and depthtex0 (the buffer being drawn
+/// into) is read as depthtex1.
+pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+    let stage = if gbuffers { "gbuffers" } else { "composite" };
+    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
+        return Ok(Source::Custom(i));
+    }
+    Ok(match (name, gbuffers) {
+        ("noisetex", _) => Source::Noise,
+        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
+        ("lightmap", true) => Source::Lightmap,
+        ("normals", true) => Source::FlatNormals,
+        ("specular", true) => Source::NoSpecular,
+        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
+        ("depthtex0" | "gdepthtex" | "depthtex1" | "depthtex2", _) => Source::Depth1,
+        ("shadow" | "watershadow" | "shadowtex0" | "shadowtex1", _) => Source::EmptyShadowDepth,
+        ("shadowcolor" | "shadowcolor0" | "shadowcolor1", _) => Source::EmptyShadowColour,
+        _ => match colour_buffer_number(name) {
+            Some(n) => Source::Color(n),
+            None => return Err(format!("sampler {name} is not one the harness provides")),
+        },
+    })
 }
 
 /// Resolves a sampler name, custom textures of the pack first.
-pub fn resolve_in_pack(pack: &LoadedPack, name: &str, gbuffers: bool) -> Result<Source, String> {
+pub fn resolve_in_pack(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
     let stage = if gbuffers { "gbuffers" } else { "composite" };
-    match pack.custom_textures.iter().position(|t| t.stage == stage && t.unit == name) {
+    match pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
         Some(i) => Ok(Source::Custom(i)),
         None => resolve_sampler(name, gbuffers),
     }
@@ -67,14 +111,20 @@ pub fn resolve_sampler(name: &str, gbuffers: bool) -> Result<Source, String> {
     })
 }
 
-/// The colour buffers a full-screen program samples.
-pub(crate) fn colour_buffers_read(pack: &LoadedPack, program: &LoadedProgram) -> BTreeSet<u8> {
+/// The colour buffers a program samples, its sampler names resolved under `naming`.
+pub(crate) fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming, gbuffers: bool) -> BTreeSet<u8> {
     [&program.vertex, &program.fragment]
         .into_iter()
         .flat_map(|stage| texture_resources(&stage.interface))
-        .filter_map(|(name, _)| match resolve_in_pack(pack, &name, false) {
-            Ok(Source::Color(n)) => Some(n),
-            _ => None,
+        .filter_map(|(name, _)| {
+            let source = match naming {
+                SamplerNaming::OwnFrame => resolve_in_pack(pack, &name, gbuffers),
+                SamplerNaming::AnyPack => resolve_any(pack, &name, gbuffers),
+            };
+            match source {
+                Ok(Source::Color(n)) => Some(n),
+                _ => None,
+            }
         })
         .collect()
 }
@@ -121,12 +171,17 @@ pub(crate) struct HarnessTextures {
     linear_repeat: wgpu::Sampler,
     linear_clamp: wgpu::Sampler,
     nearest_clamp: wgpu::Sampler,
+    comparison: wgpu::Sampler,
+    flat_normals: wgpu::TextureView,
+    no_specular: wgpu::TextureView,
+    shadow_colour: wgpu::TextureView,
+    shadow_depth: wgpu::TextureView,
     /// Per custom texture of the pack: its view and the sampler its properties ask for.
     custom: Vec<(wgpu::TextureView, wgpu::Sampler)>,
 }
 
 impl HarnessTextures {
-    pub(crate) fn new(gpu: &Gpu, pack: &LoadedPack) -> HarnessTextures {
+    pub(crate) fn new(gpu: &Gpu, pack: &dyn PackResources) -> HarnessTextures {
         let upload = |label: &str, (w, h, data): (u32, u32, Vec<u8>)| {
             let t = gpu.device.create_texture_with_data(
                 &gpu.queue,
@@ -156,7 +211,7 @@ impl HarnessTextures {
             })
         };
         let custom = pack
-            .custom_textures
+            .custom_textures()
             .iter()
             .map(|t| {
                 let filter = if t.blur { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
@@ -164,8 +219,17 @@ impl HarnessTextures {
                 (upload(&t.path, (t.width, t.height, t.rgba.clone())), sampler(filter, address))
             })
             .collect();
+        let one_texel = |label: &str, rgba: [u8; 4]| upload(label, (1, 1, rgba.to_vec()));
         HarnessTextures {
             custom,
+            comparison: gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                compare: Some(wgpu::CompareFunction::LessEqual),
+                ..Default::default()
+            }),
+            flat_normals: one_texel("normals (flat)", [128, 128, 255, 255]),
+            no_specular: one_texel("specular (none)", [0, 0, 0, 0]),
+            shadow_colour: one_texel("shadowcolor (nothing drawn)", [255; 4]),
+            shadow_depth: view(&empty_depth(gpu)),
             atlas: upload("gtexture (mock atlas)", mesh::atlas()),
             lightmap: upload("lightmap", mesh::lightmap()),
             noise: upload("noisetex", mesh::noise(256)),
@@ -177,10 +241,37 @@ impl HarnessTextures {
     }
 }
 
+/// A 1x1 depth texture cleared to 1: a shadow map nothing was drawn into.
+fn empty_depth(gpu: &Gpu) -> wgpu::Texture {
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("shadowtex (nothing drawn)"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: DEPTH,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("shadowtex clear"),
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &view(&texture),
+            depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    });
+    gpu.queue.submit([encoder.finish()]);
+    texture
+}
+
 /// Everything a program's samplers can be bound to: the harness's textures and the frame's
 /// buffers. Depth textures may be any single-channel float format (Depth32Float when drawn
 /// into, R32Float when the caller uploads depth values); both bind unfilterable.
 pub(crate) struct BindableTextures<'a> {
+    pub naming: SamplerNaming,
     pub harness: &'a HarnessTextures,
     pub colors: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     pub depth0: &'a wgpu::Texture,
@@ -188,10 +279,21 @@ pub(crate) struct BindableTextures<'a> {
 }
 
 impl BindableTextures<'_> {
+    fn resolve(&self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+        match self.naming {
+            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
+            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
+        }
+    }
+
     /// The view of `source` and whether it filters.
     fn texture(&self, gpu: &Gpu, source: Source) -> Result<(wgpu::TextureView, bool), String> {
         let harness = self.harness;
         Ok(match source {
+            Source::FlatNormals => (harness.flat_normals.clone(), true),
+            Source::NoSpecular => (harness.no_specular.clone(), true),
+            Source::EmptyShadowColour => (harness.shadow_colour.clone(), true),
+            Source::EmptyShadowDepth => (harness.shadow_depth.clone(), false),
             Source::Atlas => (harness.atlas.clone(), true),
             Source::Lightmap => (harness.lightmap.clone(), true),
             Source::Noise => (harness.noise.clone(), true),
@@ -214,7 +316,7 @@ impl BindableTextures<'_> {
             Source::Custom(i) => harness.custom[i].1.clone(),
             Source::Atlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
-            Source::Lightmap => harness.linear_clamp.clone(),
+            Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::EmptyShadowColour => harness.linear_clamp.clone(),
             Source::Color(_) if filters => harness.linear_clamp.clone(),
             _ => harness.nearest_clamp.clone(),
         }
@@ -232,6 +334,9 @@ pub(crate) enum PassKind<'a> {
     /// Geometry into the frame's colour buffers (which must hold every render target) and
     /// depthtex0.
     Gbuffers(&'a DrawState<'a>),
+    /// A full-screen quad into buffers of the given formats, blended as `blend_of` says; no
+    /// depth.
+    FullscreenInto { formats: &'a BTreeMap<u8, wgpu::TextureFormat>, blend_of: &'a dyn Fn(u8) -> Blend },
     /// A full-screen quad: colortex0 goes to an [`OUT`] target, other render targets to
     /// alternate buffers of their declared formats; no depth.
     Fullscreen { width: u32, height: u32 },
@@ -251,6 +356,10 @@ pub(crate) struct ProgramPipeline {
     pub alternates: BTreeMap<u8, wgpu::Texture>,
     /// The uniform block of each stage that has one, for [`ProgramPipeline::write_uniforms`].
     uniform_buffers: Vec<(tidepack_glsl::Stage, wgpu::Buffer)>,
+    /// The zero element the vertex inputs the harness does not provide read.
+    zero_vertex: Option<wgpu::Buffer>,
+    /// Those inputs, by name.
+    pub zeroed_inputs: Vec<String>,
 }
 
 impl ProgramPipeline {
@@ -259,7 +368,7 @@ impl ProgramPipeline {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         gpu: &Gpu,
-        pack: &LoadedPack,
+        pack: &dyn PackResources,
         program: &LoadedProgram,
         values: &BTreeMap<String, Value>,
         kind: PassKind,
@@ -343,16 +452,33 @@ impl ProgramPipeline {
             immediate_size: 0,
         });
 
-        let attributes = vertex_attributes(&program.vertex)?;
+        let VertexInputs { known: attributes, zeroed: zeroed_attributes, zeroed_names: zeroed } =
+            vertex_attributes(&program.vertex, textures.naming == SamplerNaming::AnyPack)?;
+        let zero_vertex = (!zeroed_attributes.is_empty()).then(|| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{} inputs the harness does not provide (zero)", program.name)),
+                contents: &[0u8; 16],
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        });
         let mut alternates = BTreeMap::new();
         let mut color_targets = Vec::new();
-        for &b in &program.render_targets {
+        for (location, &b) in program.render_targets.iter().enumerate() {
+            // A target the fragment stage has no output for is left as it is.
+            let written = program.fragment.interface.outputs.contains_key(&(location as u32));
+            let write_mask = if written { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() };
             let (format, blend) = match &kind {
                 PassKind::Gbuffers(state) => {
                     let (_, format) = textures.colors.get(&b).ok_or_else(|| {
                         HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
                     })?;
                     (*format, wgpu_blend(&(state.blend_of)(b)))
+                }
+                PassKind::FullscreenInto { formats, blend_of } => {
+                    let format = formats.get(&b).ok_or_else(|| {
+                        HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
+                    })?;
+                    (*format, wgpu_blend(&blend_of(b)))
                 }
                 PassKind::Fullscreen { .. } if b == 0 => (OUT, None),
                 PassKind::Fullscreen { width, height } => {
@@ -371,7 +497,7 @@ impl ProgramPipeline {
                     (format, None)
                 }
             };
-            color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }));
+            color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask }));
         }
         let shader_module = |stage: &LoadedStage| {
             gpu.checked(&format!("{} (wgpu shader module)", stage.path), || {
@@ -392,7 +518,7 @@ impl ProgramPipeline {
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
-            PassKind::Fullscreen { .. } => None,
+            PassKind::Fullscreen { .. } | PassKind::FullscreenInto { .. } => None,
         };
         let pipeline = gpu.checked(&format!("{} (wgpu pipeline)", program.name), || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -402,11 +528,19 @@ impl ProgramPipeline {
                     module: &vertex_module,
                     entry_point: Some("main"),
                     compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: offsets::STRIDE,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &attributes,
-                    })],
+                    buffers: &[
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: offsets::STRIDE,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: &attributes,
+                        }),
+                        // One zero element for every instance: the inputs read zero at every vertex.
+                        (!zeroed_attributes.is_empty()).then_some(wgpu::VertexBufferLayout {
+                            array_stride: 16,
+                            step_mode: wgpu::VertexStepMode::Instance,
+                            attributes: &zeroed_attributes,
+                        }),
+                    ],
                 },
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
                 depth_stencil,
@@ -421,7 +555,7 @@ impl ProgramPipeline {
                 cache: None,
             })
         })?;
-        Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers })
+        Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers, zero_vertex, zeroed_inputs: zeroed })
     }
 
     /// Rewrites the uniform blocks with `values`, for the next submission.
@@ -441,6 +575,9 @@ impl ProgramPipeline {
         for (i, group) in self.bind_groups.iter().enumerate() {
             pass.set_bind_group(i as u32, group, &[]);
         }
+        if let Some(zero) = &self.zero_vertex {
+            pass.set_vertex_buffer(1, zero.slice(..));
+        }
     }
 
     /// Records `program`, a full-screen program built with [`PassKind::Fullscreen`], over the
@@ -453,9 +590,33 @@ impl ProgramPipeline {
         quad: &FullscreenQuad,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let views: Vec<wgpu::TextureView> =
-            program.render_targets.iter().map(|b| if *b == 0 { view(out) } else { view(&self.alternates[b]) }).collect();
-        let attachments: Vec<_> = views.iter().map(|v| Some(clear_attachment(v))).collect();
+        let target = |b: u8| if b == 0 { out } else { &self.alternates[&b] };
+        self.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), quad, timestamp_writes);
+    }
+
+    /// Records a full-screen `program` over the quad into the texture `target` gives for each
+    /// of its render targets, loaded as `load` says.
+    pub(crate) fn record_fullscreen_into<'t>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        program: &LoadedProgram,
+        target: &dyn Fn(u8) -> &'t wgpu::Texture,
+        load: wgpu::LoadOp<wgpu::Color>,
+        quad: &FullscreenQuad,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let views: Vec<wgpu::TextureView> = program.render_targets.iter().map(|b| view(target(*b))).collect();
+        let attachments: Vec<_> = views
+            .iter()
+            .map(|v| {
+                Some(wgpu::RenderPassColorAttachment {
+                    view: v,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+                })
+            })
+            .collect();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&program.name),
             color_attachments: &attachments,
@@ -506,6 +667,7 @@ pub fn fullscreen_quad() -> Vec<mesh::PackVertex> {
         uv0: [x, y, 0.0, 1.0],
         uv1: [0.0, 0.0, 0.0, 1.0],
         entity: [-1.0, -1.0, 0.0, 0.0],
+        lightmap: [0, 0],
     };
     [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().map(|&(x, y)| corner(x, y)).collect()
 }
@@ -541,30 +703,68 @@ pub fn vertex_attribute_source(name: &str) -> Option<(wgpu::VertexFormat, u64)> 
         "gl_MultiTexCoord0" => (wgpu::VertexFormat::Float32x4, offsets::UV0),
         "gl_MultiTexCoord1" => (wgpu::VertexFormat::Float32x4, offsets::UV1),
         "mc_Entity" => (wgpu::VertexFormat::Float32x4, offsets::ENTITY),
+        // The 1.17+ core profile's names for the same data (positions relative to the chunk
+        // at chunkOffset, which is the origin of the harness's camera-relative vertices).
+        "vaPosition" => (wgpu::VertexFormat::Float32x3, offsets::POSITION),
+        "vaColor" => (wgpu::VertexFormat::Float32x4, offsets::COLOR),
+        "vaNormal" => (wgpu::VertexFormat::Float32x3, offsets::NORMAL),
+        "vaUV0" => (wgpu::VertexFormat::Float32x2, offsets::UV0),
+        "vaUV2" => (wgpu::VertexFormat::Sint32x2, offsets::LIGHTMAP),
         _ => return None,
     })
 }
 
-fn vertex_attributes(stage: &LoadedStage) -> Result<Vec<wgpu::VertexAttribute>, HarnessError> {
-    let mut attributes = Vec::new();
+/// A vertex stage's inputs bound to vertex buffers.
+#[derive(Default)]
+struct VertexInputs {
+    /// Those of [`mesh::PackVertex`], buffer slot 0.
+    known: Vec<wgpu::VertexAttribute>,
+    /// The others, all reading a one-element zero buffer in slot 1.
+    zeroed: Vec<wgpu::VertexAttribute>,
+    zeroed_names: Vec<String>,
+}
+
+/// The vertex inputs a stage declares; those the harness's vertices lack are an error unless
+/// `zero_unknown`.
+fn vertex_attributes(stage: &LoadedStage, zero_unknown: bool) -> Result<VertexInputs, HarnessError> {
+    let VertexInputs { mut known, mut zeroed, mut zeroed_names } = VertexInputs::default();
     for (name, location) in &stage.interface.inputs {
-        let (format, offset) = vertex_attribute_source(name).ok_or_else(|| {
-            HarnessError::Unsupported(format!(
+        if let Some((format, offset)) = vertex_attribute_source(name) {
+            known.push(wgpu::VertexAttribute { format, offset, shader_location: *location });
+        } else if zero_unknown {
+            let format = match input_scalar_kind(&stage.module, *location) {
+                Some(naga::ScalarKind::Sint) => wgpu::VertexFormat::Sint32x4,
+                Some(naga::ScalarKind::Uint) => wgpu::VertexFormat::Uint32x4,
+                _ => wgpu::VertexFormat::Float32x4,
+            };
+            zeroed.push(wgpu::VertexAttribute { format, offset: 0, shader_location: *location });
+            zeroed_names.push(name.clone());
+        } else {
+            return Err(HarnessError::Unsupported(format!(
                 "{} reads vertex input {name}, which the harness does not provide (it has gl_Vertex, gl_Color, gl_Normal, \
                  gl_MultiTexCoord0, gl_MultiTexCoord1, mc_Entity)",
                 stage.path
-            ))
-        })?;
-        attributes.push(wgpu::VertexAttribute { format, offset, shader_location: *location });
+            )));
+        }
     }
-    Ok(attributes)
+    Ok(VertexInputs { known, zeroed, zeroed_names })
+}
+
+/// The scalar kind of the vertex entry point's input at `location`.
+fn input_scalar_kind(module: &naga::Module, location: u32) -> Option<naga::ScalarKind> {
+    let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Vertex)?;
+    let argument = entry.function.arguments.iter().find(|a| matches!(a.binding, Some(naga::Binding::Location { location: l, .. }) if l == location))?;
+    match module.types[argument.ty].inner {
+        naga::TypeInner::Scalar(s) | naga::TypeInner::Vector { scalar: s, .. } => Some(s.kind),
+        _ => None,
+    }
 }
 
 /// The textures and samplers of a stage, each bound to what its name resolves to. Every name
 /// the harness cannot bind is reported, all in one error.
 fn stage_entries(
     gpu: &Gpu,
-    pack: &LoadedPack,
+    pack: &dyn PackResources,
     stage: &LoadedStage,
     gbuffers: bool,
     textures: &BindableTextures,
@@ -577,15 +777,24 @@ fn stage_entries(
     for (_, global) in module.global_variables.iter() {
         let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
         if let naga::TypeInner::Image { class, dim, arrayed, .. } = &module.types[global.ty].inner {
-            if *dim != naga::ImageDimension::D2 || *arrayed || !matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }) {
+            // A shadow sampler's texture is a depth texture, sampled by comparison.
+            let depth_class = matches!(class, naga::ImageClass::Depth { multi: false });
+            if *dim != naga::ImageDimension::D2
+                || *arrayed
+                || !(depth_class || matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }))
+            {
                 problems.push(format!("texture {name} is not a plain sampler2D"));
                 continue;
             }
-            let bound = resolve_in_pack(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source)?)));
+            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source)?)));
             match bound {
+                Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::EmptyShadowDepth) => {
+                    problems.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
+                }
                 Ok((source, (view, filters))) => {
                     resolved.insert(name.clone(), (source, filters));
-                    entries.push((binding.group, binding.binding, Entry::Texture(view, wgpu::TextureSampleType::Float { filterable: filters })));
+                    let sample_type = if depth_class { wgpu::TextureSampleType::Depth } else { wgpu::TextureSampleType::Float { filterable: filters } };
+                    entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type)));
                 }
                 Err(m) => problems.push(m),
             }
@@ -595,18 +804,20 @@ fn stage_entries(
         let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
         if let naga::TypeInner::Sampler { comparison } = &module.types[global.ty].inner {
             let texture = name.strip_prefix("tp_sampler_").unwrap_or(name);
-            if *comparison {
-                problems.push(format!("{texture} is a shadow sampler; the harness has no shadow maps"));
-                continue;
-            }
             let Some(&(source, filters)) = resolved.get(texture) else {
                 if !problems.iter().any(|p| p.contains(texture)) {
                     problems.push(format!("sampler {name} has no texture {texture}"));
                 }
                 continue;
             };
-            let ty = if filters { wgpu::SamplerBindingType::Filtering } else { wgpu::SamplerBindingType::NonFiltering };
-            entries.push((binding.group, binding.binding, Entry::Sampler(textures.sampler(source, filters), ty)));
+            let (sampler, ty) = if *comparison {
+                (textures.harness.comparison.clone(), wgpu::SamplerBindingType::Comparison)
+            } else if filters {
+                (textures.sampler(source, true), wgpu::SamplerBindingType::Filtering)
+            } else {
+                (textures.sampler(source, false), wgpu::SamplerBindingType::NonFiltering)
+            };
+            entries.push((binding.group, binding.binding, Entry::Sampler(sampler, ty)));
         }
     }
     if !problems.is_empty() {

@@ -48,6 +48,9 @@ impl Gpu {
             required_limits: wgpu::Limits {
                 max_color_attachments: adapter.limits().max_color_attachments,
                 max_color_attachment_bytes_per_sample: adapter.limits().max_color_attachment_bytes_per_sample,
+                // Packs pass more varyings than wgpu's portable 16 locations; GL drivers allow
+                // 32 and more.
+                max_inter_stage_shader_variables: adapter.limits().max_inter_stage_shader_variables,
                 ..wgpu::Limits::default().using_resolution(adapter.limits())
             },
             ..Default::default()

@@ -21,22 +21,21 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
-use wgpu::util::DeviceExt as _;
-
 use crate::HarnessError;
 use crate::images::FloatImage;
-use crate::loader::{self, MissingProgramDraws, Phase};
+use crate::loader::{self, Loader, Phase};
 use crate::mesh::{self, SceneMesh};
 use crate::program::{Blend, LoadedPack, LoadedProgram};
 use crate::scene::{OverlayKind, Scene};
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::{self, Pass};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, UniformBinding,
-    colour_buffers_read, view, wgpu_blend,
+    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, UniformBinding,
+    colour_buffers_read, view,
 };
-use super::own::{ColourPipeline, PassthroughPipeline};
+use super::geometry::{GeometryDraw, depth_attachment};
+use super::own::PassthroughPipeline;
 use super::readback::{read_pass_ms, read_texture};
 
 /// Median of pass times (NaN for none): what every timing report of the harness quotes.
@@ -91,7 +90,7 @@ impl FrameTargets {
         let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
         buffers.extend(pack.water.render_targets.iter().copied());
         buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
-        buffers.extend(colour_buffers_read(pack, &pack.composite));
+        buffers.extend(colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false));
         let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
             gpu.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -121,7 +120,7 @@ impl FrameTargets {
     }
 
     fn bindable<'a>(&'a self, harness: &'a HarnessTextures) -> BindableTextures<'a> {
-        BindableTextures { harness, colors: &self.colors, depth0: &self.depth0, depth1: &self.depth1 }
+        BindableTextures { naming: SamplerNaming::OwnFrame, harness, colors: &self.colors, depth0: &self.depth0, depth1: &self.depth1 }
     }
 }
 
@@ -196,7 +195,7 @@ fn render_frame(
     let bindable = targets.bindable(&harness_textures);
     let gbuffers_values = uniforms::values(scene, Pass::Gbuffers);
     let geometry = |program: Option<&LoadedProgram>, state: &DrawState, vertices: &[mesh::PackVertex], label: String| {
-        GeometryDraw::new(gpu, pack, scene, &gbuffers_values, &bindable, program, state, vertices, label)
+        GeometryDraw::new(gpu, pack, pack.loader.missing_program_draws(), scene, &gbuffers_values, &bindable, program, state, vertices, label)
     };
 
     let no_blend = |_| Blend::Off;
@@ -210,7 +209,7 @@ fn render_frame(
         let program = pack.resolve(pack.loader.program_chain(*kind));
         let state = DrawState { blend_of: &|b| pack.gbuffers_blend_of(program, b), depth_write: loader::writes_depth(*kind) };
         let label = format!("{kind:?} ({})", program.map_or("the loader's own", |p| p.name.as_str()));
-        overlays.entry(overlay_phase(pack, scene, *kind)).or_default().push(geometry(program, &state, vertices, label)?);
+        overlays.entry(overlay_phase(pack.loader, scene, *kind)).or_default().push(geometry(program, &state, vertices, label)?);
     }
     let composite = ProgramPipeline::new(
         gpu,
@@ -273,7 +272,7 @@ fn render_frame(
                 let stamp = if matches!(step, Step::DepthCopy) { None } else { stamps(timed) };
                 timed += u32::from(stamp.is_some());
                 match step {
-                    Step::Geometry(draw) => draw.record(&mut encoder, &targets, stamp),
+                    Step::Geometry(draw) => draw.record(&mut encoder, &|b| &targets.colors[&b].0, &targets.depth0, stamp),
                     Step::DepthCopy => encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size),
                     Step::Composite => composite.record_fullscreen(&mut encoder, &pack.composite, &targets.out, &quad, stamp),
                     Step::Passthrough(p) => p.record(&mut encoder, &targets.passthrough, stamp),
@@ -341,106 +340,12 @@ fn record_clear(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, scen
 }
 
 /// When the loader draws a scene's boxes of `kind`.
-pub(crate) fn overlay_phase(pack: &LoadedPack, scene: &Scene, kind: OverlayKind) -> Phase {
+pub(crate) fn overlay_phase(loader: Loader, scene: &Scene, kind: OverlayKind) -> Phase {
     let boxes = scene.overlay.iter().filter(|o| o.kind == kind);
     let camera_below = boxes.clone().all(|o| o.min[1] > scene.camera.position[1]);
     let opaque = boxes.clone().all(|o| o.color[3] >= 1.0);
-    pack.loader.phase(kind, camera_below, opaque)
+    loader.phase(kind, camera_below, opaque)
 }
 
-fn load_attachment(v: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
-    wgpu::RenderPassColorAttachment {
-        view: v,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-    }
-}
 
-fn depth_attachment(v: &wgpu::TextureView, clear: bool) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-    wgpu::RenderPassDepthStencilAttachment {
-        view: v,
-        depth_ops: Some(wgpu::Operations {
-            load: if clear { wgpu::LoadOp::Clear(1.0) } else { wgpu::LoadOp::Load },
-            store: wgpu::StoreOp::Store,
-        }),
-        stencil_ops: None,
-    }
-}
 
-/// Geometry drawn before composite by one program: the pack's, or the harness's own colour
-/// shader where the pack has no program of the chain (drawing into the buffers the loader
-/// would).
-struct GeometryDraw {
-    label: String,
-    drawer: Drawer,
-    buffers: Vec<u8>,
-    vertices: wgpu::Buffer,
-    count: u32,
-}
-
-enum Drawer {
-    Pack(ProgramPipeline),
-    Harness(ColourPipeline),
-}
-
-impl GeometryDraw {
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        gpu: &Gpu,
-        pack: &LoadedPack,
-        scene: &Scene,
-        values: &BTreeMap<String, Value>,
-        textures: &BindableTextures,
-        program: Option<&LoadedProgram>,
-        state: &DrawState,
-        vertices: &[mesh::PackVertex],
-        label: String,
-    ) -> Result<GeometryDraw, HarnessError> {
-        let (drawer, buffers) = match program {
-            Some(program) => {
-                let pipeline =
-                    ProgramPipeline::new(gpu, pack, program, values, PassKind::Gbuffers(state), textures, UniformBinding::ReadOnlyStorage)?;
-                (Drawer::Pack(pipeline), program.render_targets.clone())
-            }
-            None => {
-                let buffers: Vec<u8> = match pack.loader.missing_program_draws() {
-                    MissingProgramDraws::FirstBufferOnly => vec![0],
-                    MissingProgramDraws::EveryBuffer => textures.colors.keys().copied().collect(),
-                };
-                let formats: Vec<(wgpu::TextureFormat, Option<wgpu::BlendState>)> =
-                    buffers.iter().map(|b| (textures.colors[b].1, wgpu_blend(&(state.blend_of)(*b)))).collect();
-                (Drawer::Harness(ColourPipeline::new(gpu, scene, &formats, state.depth_write)?), buffers)
-            }
-        };
-        // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
-        let one = [mesh::PackVertex::default()];
-        let vertices_buffer = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(&label),
-            contents: bytemuck::cast_slice(if vertices.is_empty() { &one } else { vertices }),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        Ok(GeometryDraw { label, drawer, buffers, vertices: vertices_buffer, count: vertices.len() as u32 })
-    }
-
-    fn record(&self, encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, timestamps: Option<wgpu::RenderPassTimestampWrites>) {
-        let depth0_view = view(&targets.depth0);
-        let views: Vec<wgpu::TextureView> = self.buffers.iter().map(|b| view(&targets.colors[b].0)).collect();
-        let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(&self.label),
-            color_attachments: &attachments,
-            depth_stencil_attachment: Some(depth_attachment(&depth0_view, false)),
-            timestamp_writes: timestamps,
-            ..Default::default()
-        });
-        match &self.drawer {
-            Drawer::Pack(program) => program.bind(&mut pass),
-            Drawer::Harness(own) => own.bind(&mut pass),
-        }
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
-        if self.count > 0 {
-            pass.draw(0..self.count, 0..1);
-        }
-    }
-}

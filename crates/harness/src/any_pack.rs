@@ -1,0 +1,291 @@
+//! Any OptiFine or Iris pack, read as the loader reads it, for `tidepack render --pack`: the
+//! overworld's programs (`world0/` when the pack has that folder, which then holds all of
+//! them), preprocessed with the pack's default option values and OptiFine's standard macros,
+//! lowered and validated like our own programs ([`crate::program`]); buffer formats and clears
+//! from the sources; blend modes, custom textures and block ids from the properties files.
+//!
+//! Whatever the pack uses that the harness does not imitate is listed in
+//! [`AnyPack::not_modelled`] by name: the frame is drawn without it, never silently.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use tidepack_glsl::macros::StandardMacros;
+use tidepack_glsl::options::OptionSet;
+use tidepack_glsl::preprocess::FileProvider;
+use tidepack_validate::input::{Limits, PackFiles, read_pack};
+use tidepack_validate::programs::{self, find_programs};
+use tidepack_validate::SetProvider;
+
+use crate::HarnessError;
+use crate::loader::Loader;
+use crate::mesh::BlockIds;
+use crate::program::{
+    self, Blend, BufferFormat, CustomTexture, LoadedProgram, PackResources, ProgramFiles, UndeclaredTargets, blend_modes,
+    custom_textures, declared_format_names,
+};
+use crate::scene::OverlayKind;
+
+/// The full-screen programs OptiFine runs, by family, in frame order within each family.
+const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
+
+/// What a colour buffer is cleared to at the start of a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BufferClear {
+    /// colortex0: the fog colour; colortex1: white; the rest: transparent black.
+    Default,
+    /// `const vec4 colortexNClearColor = vec4(...)`.
+    Color([f64; 4]),
+    /// `const bool colortexNClear = false`: the previous frame's contents stay.
+    Keep,
+}
+
+#[derive(Debug)]
+pub struct AnyPack {
+    /// The pack as messages name it (`Pack.zip/shaders/`).
+    pub display_root: String,
+    pub loader: Loader,
+    /// The folder the programs come from: `world0/` or the shaders folder itself (`""`).
+    pub world: String,
+    /// gbuffers programs the scenes can draw with, by name (fallbacks resolve among these).
+    pub gbuffers: BTreeMap<String, LoadedProgram>,
+    /// prepare*, deferred*, composite* and final, in the order the loader runs them.
+    pub fullscreen: Vec<LoadedProgram>,
+    pub formats: BTreeMap<u8, BufferFormat>,
+    pub clears: BTreeMap<u8, BufferClear>,
+    /// Blend modes per program and colour buffer from shaders.properties.
+    pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
+    pub custom_textures: Vec<CustomTexture>,
+    pub block_ids: HashMap<String, i32>,
+    /// What the pack uses that the frame does not imitate, one line each.
+    pub not_modelled: Vec<String>,
+    /// Programs the loader would run that could not be loaded, with the reason.
+    pub failed: Vec<(String, String)>,
+}
+
+impl PackResources for AnyPack {
+    fn format_of(&self, buffer: u8) -> BufferFormat {
+        self.formats.get(&buffer).copied().unwrap_or(BufferFormat::Rgba8)
+    }
+
+    fn custom_textures(&self) -> &[CustomTexture] {
+        &self.custom_textures
+    }
+}
+
+impl BlockIds for AnyPack {
+    fn id_of(&self, block: &str) -> i32 {
+        self.block_ids.get(block).copied().unwrap_or(-1)
+    }
+}
+
+impl AnyPack {
+    /// Reads the pack at `path` (folder or zip) and loads every program a scene can use.
+    pub fn load(path: &Path, loader: Loader) -> Result<AnyPack, HarnessError> {
+        let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Pack(d.to_string()))?;
+        AnyPack::from_files(&files, loader)
+    }
+
+    pub fn from_files(files: &PackFiles, loader: Loader) -> Result<AnyPack, HarnessError> {
+        let defaults = OptionSet::new();
+        let provider = SetProvider::new(files, &defaults);
+        let all = find_programs(files.files.keys());
+        let world = if all.iter().any(|p| p.world == "world0") { "world0" } else { "" };
+        let present: BTreeMap<&str, &programs::Program> =
+            all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
+        let macros = StandardMacros::default().preprocess_options();
+        let undeclared = if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs };
+        let mut not_modelled = Vec::new();
+        let mut failed = Vec::new();
+        let mut load = |name: &str| -> Option<LoadedProgram> {
+            let program = present.get(name)?;
+            let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
+            let files = ProgramFiles {
+                name,
+                vertex: stage_file(tidepack_glsl::Stage::Vertex)?,
+                fragment: stage_file(tidepack_glsl::Stage::Fragment)?,
+            };
+            if !program.other_stages.is_empty() {
+                not_modelled.push(format!("{name}: geometry and tessellation stages ({})", program.other_stages.join(", ")));
+            }
+            if !program.compute.is_empty() {
+                not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
+            }
+            match program::load_program_files(&provider, &files, &macros, None, undeclared) {
+                Ok(p) => Some(p),
+                Err(e) => {
+                    failed.push((name.to_string(), e.to_string()));
+                    None
+                }
+            }
+        };
+
+        let mut gbuffers = BTreeMap::new();
+        let mut wanted: Vec<&str> = program::TERRAIN_CHAIN.to_vec();
+        wanted.extend(program::WATER_CHAIN);
+        for kind in OverlayKind::ALL {
+            wanted.extend(loader.program_chain(kind));
+        }
+        for name in wanted {
+            if !gbuffers.contains_key(name)
+                && let Some(p) = load(name)
+            {
+                gbuffers.insert(name.to_string(), p);
+            }
+        }
+        let mut fullscreen = Vec::new();
+        for family in FULLSCREEN_FAMILIES {
+            for n in 0..100 {
+                let name = if n == 0 { family.to_string() } else { format!("{family}{n}") };
+                fullscreen.extend(load(&name));
+            }
+        }
+        fullscreen.extend(load("final"));
+
+        let unused: Vec<&str> = present
+            .keys()
+            .copied()
+            .filter(|name| {
+                !gbuffers.contains_key(*name)
+                    && !fullscreen.iter().any(|p| p.name == *name)
+                    && !failed.iter().any(|(f, _)| f == name)
+                    && programs::loader_of(name) == programs::Loader::OptiFine
+            })
+            .collect();
+        for name in unused {
+            let why = match name {
+                "shadow" => "the shadow pass is not drawn: shadowtex*/shadowcolor* are bound empty (depth 1, colour white)",
+                n if n.starts_with("shadowcomp") => "runs after the shadow pass, which is not drawn",
+                "gbuffers_skybasic" | "gbuffers_skytextured" => "the scenes have no sky geometry: colortex0 keeps its clear colour",
+                _ => "the scenes hold no geometry this program draws",
+            };
+            not_modelled.push(format!("{name}: {why}"));
+        }
+
+        let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
+        let mut blends = BTreeMap::new();
+        for name in gbuffers.keys().chain(fullscreen.iter().map(|p| &p.name)) {
+            match blend_modes(&properties, name, loader.per_buffer_blend()) {
+                Ok(modes) => {
+                    blends.insert(name.clone(), modes);
+                }
+                Err(e) => not_modelled.push(format!("{name}: {e}")),
+            }
+        }
+        let read_bytes = |path: &str| {
+            files.files.get(path).map(|b| b.to_vec()).ok_or_else(|| format!("{path} is not in the pack"))
+        };
+        let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
+        not_modelled.extend(unsupported);
+        for key in ["uniform.", "variable.", "size.buffer.", "scale.", "flip.", "alphaTest.", "program."] {
+            let used: Vec<&str> =
+                properties.lines().map(str::trim).filter(|l| l.starts_with(key)).filter_map(|l| l.split('=').next()).map(str::trim).collect();
+            if !used.is_empty() {
+                let shown: Vec<&str> = used.iter().take(6).copied().collect();
+                let more = if used.len() > shown.len() { format!(" and {} more", used.len() - shown.len()) } else { String::new() };
+                not_modelled.push(format!("shaders.properties {key}*: {}{more}", shown.join(", ")));
+            }
+        }
+
+        let mut formats = BTreeMap::new();
+        let mut clears = BTreeMap::new();
+        let programs = gbuffers.values().chain(fullscreen.iter());
+        for stage in programs.flat_map(|p| [&p.vertex, &p.fragment]) {
+            for (buffer, name) in declared_format_names(&stage.gl_text) {
+                match BufferFormat::stand_in(&name) {
+                    Some((format, exact)) => {
+                        if !exact {
+                            not_modelled.push(format!("colortex{buffer}Format = {name}: stored as {format:?}"));
+                        }
+                        formats.insert(buffer, format);
+                    }
+                    None => not_modelled.push(format!("colortex{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
+                }
+            }
+            clears.extend(declared_clears(&stage.gl_text));
+            for (buffer, what) in [("colortex", "MipmapEnabled"), ("shadowcolor", "MipmapEnabled"), ("shadowtex", "Mipmap")] {
+                if stage.gl_text.contains(what) && stage.gl_text.contains(buffer) {
+                    let line = format!("{buffer}*{what}: mipmaps are not generated");
+                    if !not_modelled.contains(&line) {
+                        not_modelled.push(line);
+                    }
+                }
+            }
+        }
+        let block_ids = provider.read("block.properties").map(|t| program::block_ids(&t)).unwrap_or_default();
+        not_modelled.sort();
+        not_modelled.dedup();
+        Ok(AnyPack {
+            display_root: files.display_root.clone(),
+            loader,
+            world: world.to_string(),
+            gbuffers,
+            fullscreen,
+            formats,
+            clears,
+            blends,
+            custom_textures,
+            block_ids,
+            not_modelled,
+            failed,
+        })
+    }
+
+    /// The first program of `chain` the pack has: what the loader draws with.
+    pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
+        chain.iter().find_map(|name| self.gbuffers.get(*name))
+    }
+
+    /// How `program` blends into `buffer`: its own mode from shaders.properties, else
+    /// `default`.
+    pub fn blend_of(&self, program: Option<&LoadedProgram>, buffer: u8, default: &Blend) -> Blend {
+        program.and_then(|p| self.blends.get(&p.name)).and_then(|m| m.get(&buffer)).cloned().unwrap_or_else(|| default.clone())
+    }
+
+    pub fn clear_of(&self, buffer: u8) -> BufferClear {
+        self.clears.get(&buffer).copied().unwrap_or(BufferClear::Default)
+    }
+}
+
+/// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`.
+fn declared_clears(text: &str) -> Vec<(u8, BufferClear)> {
+    let mut found = Vec::new();
+    for line in text.lines() {
+        let line = line.trim();
+        let Some(rest) = line.strip_prefix("const ") else { continue };
+        let Some((declaration, value)) = rest.split_once('=') else { continue };
+        let value = value.trim().trim_end_matches(';').trim();
+        let name = declaration.split_whitespace().last().unwrap_or("");
+        if let Some(buffer) = name.strip_suffix("ClearColor").and_then(program::colour_buffer_number) {
+            let inner = value.strip_prefix("vec4(").and_then(|v| v.strip_suffix(')'));
+            let parts: Vec<f64> = inner.map(|v| v.split(',').filter_map(|p| p.trim().trim_end_matches('f').parse().ok()).collect()).unwrap_or_default();
+            let color = match parts.as_slice() {
+                [v] => Some([*v; 4]),
+                [r, g, b, a] => Some([*r, *g, *b, *a]),
+                _ => None,
+            };
+            if let Some(color) = color {
+                found.push((buffer, BufferClear::Color(color)));
+            }
+        } else if let Some(buffer) = name.strip_suffix("Clear").and_then(program::colour_buffer_number)
+            && value == "false"
+        {
+            found.push((buffer, BufferClear::Keep));
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_clear_directives() {
+        let text = "const bool colortex2Clear = false;\nconst vec4 colortex3ClearColor = vec4(1.0, 0.5, 0.0, 1.0);\nconst vec4 gaux1ClearColor = vec4(0.25);\n";
+        assert_eq!(
+            declared_clears(text),
+            [(2, BufferClear::Keep), (3, BufferClear::Color([1.0, 0.5, 0.0, 1.0])), (4, BufferClear::Color([0.25; 4]))]
+        );
+    }
+}
