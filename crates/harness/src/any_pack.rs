@@ -7,7 +7,7 @@
 //! Whatever the pack uses that the harness does not imitate is listed in
 //! [`AnyPack::not_modelled`] by name: the frame is drawn without it, never silently.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 use tidepack_glsl::macros::StandardMacros;
@@ -18,13 +18,15 @@ use tidepack_validate::programs::{self, find_programs};
 use tidepack_validate::SetProvider;
 
 use crate::HarnessError;
-use crate::loader::Loader;
-use crate::mesh::BlockIds;
+use crate::gpu::bindings::{SamplerNaming, colour_buffers_read};
+use crate::gpu::frame::overlay_phase;
+use crate::loader::{Loader, Phase};
+use crate::mesh::{BlockIds, PackVertex, SceneMesh};
 use crate::program::{
-    self, Blend, BufferFormat, CustomTexture, LoadedProgram, PackResources, ProgramFiles, UndeclaredTargets, blend_modes,
-    custom_textures, declared_format_names,
+    self, Blend, BufferFormat, CustomTexture, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, ProgramFiles, TERRAIN_CHAIN,
+    UndeclaredTargets, WATER_CHAIN, blend_modes, custom_textures, declared_format_names,
 };
-use crate::scene::OverlayKind;
+use crate::scene::{OverlayKind, Scene};
 
 /// The full-screen programs OptiFine runs, by family, in frame order within each family.
 const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
@@ -244,6 +246,136 @@ impl AnyPack {
 
     pub fn clear_of(&self, buffer: u8) -> BufferClear {
         self.clears.get(&buffer).copied().unwrap_or(BufferClear::Default)
+    }
+}
+
+/// What one step of a frame does, in terms of the pack's programs and the frame's buffers.
+/// Every colour buffer has two textures; `current` says which of each a step reads (and, for
+/// geometry, draws into).
+#[derive(Debug)]
+pub enum PlannedWork<'a> {
+    /// Geometry drawn by a gbuffers program, or by the loader's own colour where the chain has
+    /// none (into the buffers [`crate::loader::MissingProgramDraws`] says).
+    Geometry {
+        program: Option<&'a LoadedProgram>,
+        vertices: &'a [PackVertex],
+        /// Blend of buffers the program sets none for.
+        default_blend: Blend,
+        depth_write: bool,
+        current: BTreeMap<u8, usize>,
+        /// Colour buffers the program samples: copied just before the draw and read from the
+        /// copy (GL leaves reading a buffer being drawn into undefined).
+        snapshots: BTreeSet<u8>,
+    },
+    /// depthtex0 to depthtex1.
+    DepthCopy,
+    /// A full-screen program: reads the current textures, draws into the other texture of each
+    /// of its render targets (which then becomes current), or into the screen for final.
+    Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool },
+    /// colortex0's current texture to the screen, for a pack without final.
+    ScreenCopy { current: usize },
+}
+
+#[derive(Debug)]
+pub struct PlannedStep<'a> {
+    /// `terrain (gbuffers_terrain)`, `composite1`, `depth copy`, …
+    pub label: String,
+    pub work: PlannedWork<'a>,
+}
+
+/// A frame of any pack on one scene as OptiFine 1.16.5 and later draw it:
+///
+/// 1. prepare*;
+/// 2. the loader's overlays before the terrain, the terrain (gbuffers_terrain's chain), the
+///    overlays before the water;
+/// 3. depthtex0 to depthtex1;
+/// 4. deferred*;
+/// 5. the water and glass (gbuffers_water's chain), the overlays after the water;
+/// 6. composite*;
+/// 7. final into the screen, or colortex0 copied there.
+#[derive(Debug)]
+pub struct FramePlan<'a> {
+    /// Every colour buffer a program writes or reads, and colortex0.
+    pub buffers: BTreeSet<u8>,
+    pub steps: Vec<PlannedStep<'a>>,
+    /// Which texture of each buffer is current at the end.
+    pub current: BTreeMap<u8, usize>,
+}
+
+impl<'a> FramePlan<'a> {
+    pub fn new(pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh) -> FramePlan<'a> {
+        let is_final = |p: &LoadedProgram| p.name == "final";
+        let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
+        for program in pack.gbuffers.values() {
+            buffers.extend(program.render_targets.iter().copied());
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, true));
+        }
+        for program in &pack.fullscreen {
+            if !is_final(program) {
+                buffers.extend(program.render_targets.iter().copied());
+            }
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, false));
+        }
+        let mut plan = FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, steps: Vec::new() };
+        let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
+        for program in family("prepare") {
+            plan.fullscreen(program, false);
+        }
+        plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
+        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain");
+        plan.overlays(pack, scene, mesh, Phase::BeforeWater);
+        plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
+        for program in family("deferred") {
+            plan.fullscreen(program, false);
+        }
+        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water");
+        plan.overlays(pack, scene, mesh, Phase::AfterWater);
+        for program in family("composite") {
+            plan.fullscreen(program, false);
+        }
+        match pack.fullscreen.iter().find(|p| is_final(p)) {
+            Some(program) => plan.fullscreen(program, true),
+            None => {
+                let current = plan.current[&0];
+                plan.steps.push(PlannedStep { label: "colortex0 to the screen (no final)".into(), work: PlannedWork::ScreenCopy { current } });
+            }
+        }
+        plan
+    }
+
+    fn geometry(
+        &mut self,
+        pack: &'a AnyPack,
+        program: Option<&'a LoadedProgram>,
+        vertices: &'a [PackVertex],
+        default_blend: Blend,
+        depth_write: bool,
+        what: &str,
+    ) {
+        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::AnyPack, true)).unwrap_or_default();
+        self.steps.push(PlannedStep {
+            label: format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str())),
+            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current: self.current.clone(), snapshots },
+        });
+    }
+
+    fn overlays(&mut self, pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh, phase: Phase) {
+        for (kind, vertices) in &mesh.overlay {
+            if overlay_phase(pack.loader, scene, *kind) == phase {
+                let program = pack.resolve(pack.loader.program_chain(*kind));
+                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, crate::loader::writes_depth(*kind), &format!("{kind:?}"));
+            }
+        }
+    }
+
+    fn fullscreen(&mut self, program: &'a LoadedProgram, into_screen: bool) {
+        let current = self.current.clone();
+        if !into_screen {
+            for b in &program.render_targets {
+                self.current.insert(*b, 1 - current[b]);
+            }
+        }
+        self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::Fullscreen { program, current, into_screen } });
     }
 }
 

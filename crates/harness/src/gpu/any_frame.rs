@@ -1,43 +1,23 @@
-//! Any pack's frame ([`crate::any_pack`]), pass by pass, as OptiFine 1.16.5 and later draw it:
-//!
-//! 1. clear: each colour buffer as its directives say (colortex0 the fog colour, colortex1
-//!    white, the rest transparent black, or its `ClearColor`), depth to 1;
-//! 2. prepare*: full-screen;
-//! 3. the loader's overlay phase before the terrain; terrain (gbuffers_terrain's chain); the
-//!    phase before the water;
-//! 4. depthtex0 to depthtex1;
-//! 5. deferred*: full-screen;
-//! 6. gbuffers_water's chain draws water and glass; the phase after the water;
-//! 7. composite*: full-screen;
-//! 8. final into the screen (RGBA32F, so NaN and Inf survive), or colortex0 copied there when
-//!    the pack has no final.
-//!
-//! Every colour buffer has two textures. gbuffers programs draw into the buffer's current one;
-//! a full-screen program reads the current ones and writes the other of each buffer it draws
-//! into, which then becomes current (OptiFine's flip). A gbuffers program that samples a colour
-//! buffer reads a copy taken just before its draw (in the game it would read the buffer it
-//! draws into, which GL leaves undefined).
-//!
-//! After each pass the buffers it wrote are read back and their NaN and Inf counted.
+//! Any pack's frame ([`crate::any_pack::FramePlan`]) through wgpu, step by step: each step's
+//! pipeline is built against the textures current at its turn. The screen is RGBA32F, so NaN
+//! and Inf survive; after each step the buffers it wrote are read back and their NaN and Inf
+//! counted.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, BufferClear};
+use crate::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
 use crate::images::FloatImage;
-use crate::loader::Phase;
-use crate::mesh::{PackVertex, SceneMesh};
-use crate::program::{Blend, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, TERRAIN_CHAIN, WATER_CHAIN};
+use crate::mesh::SceneMesh;
+use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, UniformBinding,
-    colour_buffers_read, view,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, UniformBinding, view,
 };
-use super::frame::overlay_phase;
 use super::geometry::{GeometryDraw, depth_attachment};
 use super::own::PassthroughPipeline;
 use super::readback::{read_pass_ms, read_texture};
@@ -80,18 +60,11 @@ struct Buffer {
     float: bool,
 }
 
-enum Work {
-    Geometry { draw: GeometryDraw, current: BTreeMap<u8, usize>, snapshots: BTreeSet<u8> },
+enum Work<'p> {
+    Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8> },
     DepthCopy,
-    Fullscreen { program: usize, pipeline: ProgramPipeline, current: BTreeMap<u8, usize>, into_screen: bool },
+    Fullscreen { program: &'p LoadedProgram, pipeline: ProgramPipeline, current: &'p BTreeMap<u8, usize>, into_screen: bool },
     ScreenCopy(PassthroughPipeline),
-}
-
-struct Step {
-    label: String,
-    work: Work,
-    /// What to count NaN and Inf in afterwards: (name, buffer and texture index) or the screen.
-    written: Vec<(String, Option<(u8, usize)>)>,
 }
 
 /// Renders one frame of `scene` with any pack's programs.
@@ -103,6 +76,7 @@ pub fn render_any(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) ->
 
 fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<AnyFrame, HarnessError> {
     let device = &gpu.device;
+    let plan = FramePlan::new(pack, scene, mesh);
     let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
     let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
         device.create_texture(&wgpu::TextureDescriptor {
@@ -120,22 +94,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         | wgpu::TextureUsages::TEXTURE_BINDING
         | wgpu::TextureUsages::COPY_SRC
         | wgpu::TextureUsages::COPY_DST;
-
-    // Every colour buffer a program writes or reads.
-    let final_program = pack.fullscreen.iter().position(|p| p.name == "final");
-    let mut used: BTreeSet<u8> = BTreeSet::from([0]);
-    for program in pack.gbuffers.values() {
-        used.extend(program.render_targets.iter().copied());
-        used.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, true));
-    }
-    for (i, program) in pack.fullscreen.iter().enumerate() {
-        if Some(i) != final_program {
-            used.extend(program.render_targets.iter().copied());
-        }
-        used.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, false));
-    }
     let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
-    for b in used {
+    for &b in &plan.buffers {
         let format = gpu.texture_format(pack.format_of(b))?;
         let label = |what: &str| format!("colortex{b} {what}");
         buffers.insert(
@@ -155,142 +115,81 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let quad = FullscreenQuad::new(gpu);
 
     let mut not_modelled = pack.not_modelled.clone();
-    let with_zeros = |program: &LoadedProgram, pass: Pass, not_modelled: &mut Vec<String>| -> BTreeMap<String, Value> {
+    let mut note = |line: String| {
+        if !not_modelled.contains(&line) {
+            not_modelled.push(line);
+        }
+    };
+    let mut values_for = |program: Option<&LoadedProgram>, pass: Pass| -> BTreeMap<String, Value> {
         let mut values = uniforms::values(scene, pass);
-        for stage in [&program.vertex, &program.fragment] {
+        for stage in program.into_iter().flat_map(|p| [&p.vertex, &p.fragment]) {
             for (name, zero) in uniforms::zeros_for_unfilled(&stage.module, &values) {
-                let line = format!("uniform {}: zero (the harness has no value for it)", uniforms::shipped_name(&name));
-                if !not_modelled.contains(&line) {
-                    not_modelled.push(line);
-                }
+                note(format!("uniform {}: zero (the harness has no value for it)", uniforms::shipped_name(&name)));
                 values.insert(name, zero);
             }
         }
         values
     };
-
-    // The frame's steps, each pipeline built against the textures current at its turn.
-    let mut current: BTreeMap<u8, usize> = buffers.keys().map(|b| (*b, 0)).collect();
     let snapshot_colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
         buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
-    let mut steps: Vec<Step> = Vec::new();
-    let gbuffers_values_for = |program: Option<&LoadedProgram>, not_modelled: &mut Vec<String>| match program {
-        Some(p) => with_zeros(p, Pass::Gbuffers, not_modelled),
-        None => uniforms::values(scene, Pass::Gbuffers),
-    };
-    let geometry = |steps: &mut Vec<Step>,
-                        current: &BTreeMap<u8, usize>,
-                        program: Option<&LoadedProgram>,
-                        default_blend: &Blend,
-                        depth_write: bool,
-                        vertices: &[PackVertex],
-                        what: &str,
-                        not_modelled: &mut Vec<String>|
-     -> Result<(), HarnessError> {
-        let values = gbuffers_values_for(program, not_modelled);
-        let blend_of = |b: u8| pack.blend_of(program, b, default_blend);
-        let state = DrawState { blend_of: &blend_of, depth_write };
-        let textures = BindableTextures {
-            naming: SamplerNaming::AnyPack,
-            harness: &harness_textures,
-            colors: &snapshot_colors,
-            depth0: &depth1,
-            depth1: &depth1,
-        };
-        let label = format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str()));
-        let missing = pack.loader.missing_program_draws();
-        let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, program, &state, vertices, label.clone())?;
-        if let Some(Some(pipeline)) = program.map(|_| draw.pipeline()) {
-            for input in &pipeline.zeroed_inputs {
-                let line = format!("vertex input {input}: zero (the harness's vertices do not carry it)");
-                if !not_modelled.contains(&line) {
-                    not_modelled.push(line);
+
+    // Each step's pipeline, and what to count NaN and Inf in afterwards: (name, buffer and
+    // texture index), or the screen.
+    let mut steps: Vec<(&str, Work, Vec<(String, Option<(u8, usize)>)>)> = Vec::new();
+    let mut zeroed_inputs = Vec::new();
+    for step in &plan.steps {
+        let (work, written) = match &step.work {
+            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots } => {
+                let values = values_for(*program, Pass::Gbuffers);
+                let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
+                let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
+                // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
+                let textures = BindableTextures {
+                    naming: SamplerNaming::AnyPack,
+                    harness: &harness_textures,
+                    colors: &snapshot_colors,
+                    depth0: &depth1,
+                    depth1: &depth1,
+                };
+                let missing = pack.loader.missing_program_draws();
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, *program, &state, vertices, step.label.clone())?;
+                if let Some(pipeline) = draw.pipeline() {
+                    zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
                 }
+                let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), Some((*b, current[b])))).collect();
+                (Work::Geometry { draw, current, snapshots }, written)
             }
-        }
-        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::AnyPack, true)).unwrap_or_default();
-        let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), Some((*b, current[b])))).collect();
-        steps.push(Step { label, work: Work::Geometry { draw, current: current.clone(), snapshots }, written });
-        Ok(())
-    };
-    let fullscreen = |steps: &mut Vec<Step>, current: &mut BTreeMap<u8, usize>, index: usize, not_modelled: &mut Vec<String>| -> Result<(), HarnessError> {
-        let program = &pack.fullscreen[index];
-        let into_screen = Some(index) == final_program;
-        let values = with_zeros(program, Pass::Fullscreen, not_modelled);
-        let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
-            buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
-        let formats: BTreeMap<u8, wgpu::TextureFormat> =
-            if into_screen { BTreeMap::from([(0, OUT)]) } else { buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect() };
-        let no_blend = Blend::Off;
-        let blend_of = |b: u8| pack.blend_of(Some(program), b, &no_blend);
-        let textures = BindableTextures { naming: SamplerNaming::AnyPack, harness: &harness_textures, colors: &reading, depth0: &depth0, depth1: &depth1 };
-        let pipeline = ProgramPipeline::new(
-            gpu,
-            pack,
-            program,
-            &values,
-            PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of },
-            &textures,
-            UniformBinding::ReadOnlyStorage,
-        )?;
-        let before = current.clone();
-        let written = if into_screen {
-            vec![("screen".to_string(), None)]
-        } else {
-            let mut written = Vec::new();
-            for b in &program.render_targets {
-                let flipped = 1 - before[b];
-                current.insert(*b, flipped);
-                written.push((format!("colortex{b}"), Some((*b, flipped))));
+            PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+            PlannedWork::Fullscreen { program, current, into_screen } => {
+                let values = values_for(Some(program), Pass::Fullscreen);
+                let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
+                    buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
+                let formats: BTreeMap<u8, wgpu::TextureFormat> =
+                    if *into_screen { BTreeMap::from([(0, OUT)]) } else { buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect() };
+                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                let textures =
+                    BindableTextures { naming: SamplerNaming::AnyPack, harness: &harness_textures, colors: &reading, depth0: &depth0, depth1: &depth1 };
+                let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
+                let pipeline = ProgramPipeline::new(gpu, pack, program, &values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
+                let written = if *into_screen {
+                    vec![("screen".to_string(), None)]
+                } else {
+                    program.render_targets.iter().map(|b| (format!("colortex{b}"), Some((*b, 1 - current[b])))).collect()
+                };
+                (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen }, written)
             }
-            written
+            PlannedWork::ScreenCopy { current } => {
+                (Work::ScreenCopy(PassthroughPipeline::new(gpu, &buffers[&0].textures[*current])?), vec![("screen".to_string(), None)])
+            }
         };
-        steps.push(Step { label: program.name.clone(), work: Work::Fullscreen { program: index, pipeline, current: before, into_screen }, written });
-        Ok(())
-    };
-    let family = |prefix: &str| -> Vec<usize> {
-        (0..pack.fullscreen.len()).filter(|&i| pack.fullscreen[i].name.starts_with(prefix)).collect()
-    };
-    for i in family("prepare") {
-        fullscreen(&mut steps, &mut current, i, &mut not_modelled)?;
+        steps.push((step.label.as_str(), work, written));
     }
-    let overlays_in = |phase: Phase| mesh.overlay.iter().filter(move |(kind, _)| overlay_phase(pack.loader, scene, *kind) == phase);
-    let no_blend = Blend::Off;
-    for (kind, vertices) in overlays_in(Phase::BeforeTerrain) {
-        let program = pack.resolve(pack.loader.program_chain(*kind));
-        geometry(&mut steps, &current, program, &DEFAULT_TRANSLUCENT_BLEND, crate::loader::writes_depth(*kind), vertices, &format!("{kind:?}"), &mut not_modelled)?;
-    }
-    geometry(&mut steps, &current, pack.resolve(&TERRAIN_CHAIN), &no_blend, true, &mesh.terrain, "terrain", &mut not_modelled)?;
-    for (kind, vertices) in overlays_in(Phase::BeforeWater) {
-        let program = pack.resolve(pack.loader.program_chain(*kind));
-        geometry(&mut steps, &current, program, &DEFAULT_TRANSLUCENT_BLEND, crate::loader::writes_depth(*kind), vertices, &format!("{kind:?}"), &mut not_modelled)?;
-    }
-    steps.push(Step { label: "depth copy".into(), work: Work::DepthCopy, written: Vec::new() });
-    for i in family("deferred") {
-        fullscreen(&mut steps, &mut current, i, &mut not_modelled)?;
-    }
-    geometry(&mut steps, &current, pack.resolve(&WATER_CHAIN), &DEFAULT_TRANSLUCENT_BLEND, true, &mesh.translucent, "water", &mut not_modelled)?;
-    for (kind, vertices) in overlays_in(Phase::AfterWater) {
-        let program = pack.resolve(pack.loader.program_chain(*kind));
-        geometry(&mut steps, &current, program, &DEFAULT_TRANSLUCENT_BLEND, crate::loader::writes_depth(*kind), vertices, &format!("{kind:?}"), &mut not_modelled)?;
-    }
-    for i in family("composite") {
-        fullscreen(&mut steps, &mut current, i, &mut not_modelled)?;
-    }
-    match final_program {
-        Some(i) => fullscreen(&mut steps, &mut current, i, &mut not_modelled)?,
-        None => {
-            let colortex0 = &buffers[&0].textures[current[&0]];
-            steps.push(Step {
-                label: "colortex0 to the screen (no final)".into(),
-                work: Work::ScreenCopy(PassthroughPipeline::new(gpu, colortex0)?),
-                written: vec![("screen".to_string(), None)],
-            });
-        }
+    for input in zeroed_inputs {
+        note(format!("vertex input {input}: zero (the harness's vertices do not carry it)"));
     }
 
     // Run.
-    let render_passes = steps.iter().filter(|s| !matches!(s.work, Work::DepthCopy)).count() as u32;
+    let render_passes = steps.iter().filter(|(_, work, _)| !matches!(work, Work::DepthCopy)).count() as u32;
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
     });
@@ -306,9 +205,9 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     submit(encoder)?;
     let mut reports = Vec::new();
     let mut timed = 0u32;
-    for step in &steps {
+    for (label, work, written) in &steps {
         let mut encoder = new_encoder();
-        let stamps = match (&queries, &step.work) {
+        let stamps = match (&queries, work) {
             (_, Work::DepthCopy) | (None, _) => None,
             (Some(q), _) => {
                 timed += 1;
@@ -319,9 +218,9 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 })
             }
         };
-        match &step.work {
+        match work {
             Work::Geometry { draw, current, snapshots } => {
-                for b in snapshots {
+                for b in *snapshots {
                     let buffer = &buffers[b];
                     encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), size);
                 }
@@ -330,14 +229,13 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
             Work::Fullscreen { program, pipeline, current, into_screen } => {
                 let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
-                let program = &pack.fullscreen[*program];
                 pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
             }
             Work::ScreenCopy(copy) => copy.record(&mut encoder, &screen, stamps),
         }
         let wall_ms = submit(encoder)?;
         let mut non_finite = BTreeMap::new();
-        for (name, texture) in &step.written {
+        for (name, texture) in written {
             let count = match texture {
                 None => read_texture(gpu, &screen, OUT)?.non_finite(),
                 Some((b, i)) if buffers[b].float => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?.non_finite(),
@@ -345,12 +243,12 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             };
             non_finite.insert(name.clone(), count);
         }
-        reports.push(AnyPassReport { pass: step.label.clone(), wall_ms, gpu_ms: None, non_finite });
+        reports.push(AnyPassReport { pass: label.to_string(), wall_ms, gpu_ms: None, non_finite });
     }
     if let Some(q) = &queries {
         let mut gpu_ms = read_pass_ms(gpu, q, render_passes)?.into_iter();
-        for (report, step) in reports.iter_mut().zip(&steps) {
-            if !matches!(step.work, Work::DepthCopy) {
+        for (report, (_, work, _)) in reports.iter_mut().zip(&steps) {
+            if !matches!(work, Work::DepthCopy) {
                 report.gpu_ms = gpu_ms.next();
             }
         }
@@ -358,7 +256,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
 
     let mut images = BTreeMap::new();
     for (b, buffer) in &buffers {
-        images.insert(*b, read_texture(gpu, &buffer.textures[current[b]], buffer.format)?);
+        images.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
     }
     not_modelled.sort();
     not_modelled.dedup();
