@@ -60,6 +60,10 @@ struct Buffer {
     float: bool,
 }
 
+/// A texture a step wrote, by name (`colortex2`, `screen`): a buffer's texture (buffer, index),
+/// or the screen (`None`).
+type Written = (String, Option<(u8, usize)>);
+
 enum Work<'p> {
     Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8> },
     DepthCopy,
@@ -133,9 +137,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let snapshot_colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
         buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
 
-    // Each step's pipeline, and what to count NaN and Inf in afterwards: (name, buffer and
-    // texture index), or the screen.
-    let mut steps: Vec<(&str, Work, Vec<(String, Option<(u8, usize)>)>)> = Vec::new();
+    // Each step's pipeline, and what to count NaN and Inf in afterwards.
+    let mut steps: Vec<(&str, Work, Vec<Written>)> = Vec::new();
     let mut zeroed_inputs = Vec::new();
     for step in &plan.steps {
         let (work, written) = match &step.work {
