@@ -21,11 +21,12 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
-use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp};
+use crate::gpu::bindings::SamplerNaming;
+use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_any, resolve_in_pack, terrain_mvp, vertex_attribute_source};
 use crate::images::FloatImage;
 use crate::loader::{self, MissingProgramDraws, Phase};
 use crate::mesh::{self, PackVertex, SceneMesh, offsets};
-use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage};
+use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage, PackResources};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
@@ -83,7 +84,7 @@ fn gl_err(what: &str) -> impl Fn(String) -> HarnessError + '_ {
     move |e| HarnessError::Gl(format!("{what}: {e}"))
 }
 
-fn internal_format(format: BufferFormat) -> u32 {
+pub(crate) fn internal_format(format: BufferFormat) -> u32 {
     match format {
         BufferFormat::Rgba8 => glow::RGBA8,
         BufferFormat::Rgba16 => glow::RGBA16,
@@ -107,15 +108,68 @@ fn gl_factor(f: BlendFactor) -> u32 {
     }
 }
 
-struct Textures {
+/// The harness's own textures in OpenGL, as [`crate::gpu::bindings::HarnessTextures`] has them
+/// for wgpu.
+pub(crate) struct GlHarnessTextures {
     atlas: glow::Texture,
     lightmap: glow::Texture,
     noise: glow::Texture,
     custom: Vec<glow::Texture>,
-    colors: BTreeMap<u8, (glow::Texture, BufferFormat)>,
-    depth0: glow::Texture,
-    depth1: glow::Texture,
-    out: glow::Texture,
+    flat_normals: glow::Texture,
+    no_specular: glow::Texture,
+    shadow_colour: glow::Texture,
+    /// A shadow map nothing was drawn into, for `sampler2D` and (comparing) `sampler2DShadow`.
+    shadow_depth: glow::Texture,
+    shadow_depth_compared: glow::Texture,
+}
+
+impl GlHarnessTextures {
+    pub(crate) unsafe fn new(gl: &glow::Context, pack: &dyn PackResources) -> Result<GlHarnessTextures, HarnessError> {
+        let rgba8 = |(tw, th, data): (u32, u32, Vec<u8>), linear: bool, repeat: bool| {
+            // SAFETY: the caller holds the current context.
+            unsafe { make_texture(gl, glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE, tw as i32, th as i32, Some(&data), linear, repeat) }
+        };
+        let one_texel = |rgba: [u8; 4]| rgba8((1, 1, rgba.to_vec()), true, false);
+        let one_depth = |compared: bool| {
+            // SAFETY: the caller holds the current context.
+            unsafe {
+                let t = make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, 1, 1, Some(bytemuck::bytes_of(&1.0f32)), false, false)?;
+                if compared {
+                    gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE as i32);
+                    gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL as i32);
+                }
+                Ok::<_, HarnessError>(t)
+            }
+        };
+        Ok(GlHarnessTextures {
+            atlas: rgba8(mesh::atlas(), false, true)?,
+            lightmap: rgba8(mesh::lightmap(), true, false)?,
+            noise: rgba8(mesh::noise(256), true, true)?,
+            custom: pack.custom_textures().iter().map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp)).collect::<Result<_, _>>()?,
+            flat_normals: one_texel([128, 128, 255, 255])?,
+            no_specular: one_texel([0; 4])?,
+            shadow_colour: one_texel([255; 4])?,
+            shadow_depth: one_depth(false)?,
+            shadow_depth_compared: one_depth(true)?,
+        })
+    }
+
+    pub(crate) unsafe fn delete(&self, gl: &glow::Context) {
+        let own = [self.atlas, self.lightmap, self.noise, self.flat_normals, self.no_specular, self.shadow_colour, self.shadow_depth, self.shadow_depth_compared];
+        for t in own.into_iter().chain(self.custom.iter().copied()) {
+            // SAFETY: the caller holds the current context that made the texture.
+            unsafe { gl.delete_texture(t) };
+        }
+    }
+}
+
+/// What a program's samplers can be bound to, as [`crate::gpu::bindings::BindableTextures`].
+pub(crate) struct Textures<'a> {
+    pub naming: SamplerNaming,
+    pub harness: &'a GlHarnessTextures,
+    pub colors: BTreeMap<u8, (glow::Texture, BufferFormat)>,
+    pub depth0: glow::Texture,
+    pub depth1: glow::Texture,
 }
 
 /// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
@@ -152,21 +206,8 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
     let (w, h) = (scene.width() as i32, scene.height() as i32);
     // SAFETY: every call below is on the context current on this thread, with objects it made.
     unsafe {
-        let make_texture = |internal: u32, format: u32, ty: u32, width: i32, height: i32, data: Option<&[u8]>, linear: bool, repeat: bool| {
-            let t = gl.create_texture().map_err(gl_err("texture"))?;
-            gl.bind_texture(glow::TEXTURE_2D, Some(t));
-            gl.tex_image_2d(glow::TEXTURE_2D, 0, internal as i32, width, height, 0, format, ty, glow::PixelUnpackData::Slice(data));
-            let filter = if linear { glow::LINEAR } else { glow::NEAREST } as i32;
-            let wrap = if repeat { glow::REPEAT } else { glow::CLAMP_TO_EDGE } as i32;
-            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter);
-            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAG_FILTER, filter);
-            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_S, wrap);
-            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
-            gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
-            Ok::<_, HarnessError>(t)
-        };
-        let rgba8 = |(tw, th, data): (u32, u32, Vec<u8>), linear: bool, repeat: bool| {
-            make_texture(glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE, tw as i32, th as i32, Some(&data), linear, repeat)
+        let make_texture = |internal, format, ty, width, height, data: Option<&[u8]>, linear, repeat| {
+            make_texture(gl, internal, format, ty, width, height, data, linear, repeat)
         };
         // Buffers, as in the wgpu path.
         let mut buffers: std::collections::BTreeSet<u8> = [0].into();
@@ -183,40 +224,14 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             colors.insert(b, (make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false)?, format));
         }
         let depth_texture = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
-        let textures = Textures {
-            atlas: rgba8(mesh::atlas(), false, true)?,
-            lightmap: rgba8(mesh::lightmap(), true, false)?,
-            noise: rgba8(mesh::noise(256), true, true)?,
-            custom: pack
-                .custom_textures
-                .iter()
-                .map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp))
-                .collect::<Result<_, _>>()?,
-            colors,
-            depth0: depth_texture()?,
-            depth1: depth_texture()?,
-            out: make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
-        };
+        let harness = GlHarnessTextures::new(gl, pack)?;
+        let textures = Textures { naming: SamplerNaming::OwnFrame, harness: &harness, colors, depth0: depth_texture()?, depth1: depth_texture()? };
+        let out = make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
 
         let fbo = gl.create_framebuffer().map_err(gl_err("framebuffer"))?;
         gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
         gl.viewport(0, 0, w, h);
-        let attach = |attachments: &[glow::Texture], depth: Option<glow::Texture>| -> Result<(), HarnessError> {
-            for i in 0..8 {
-                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i, glow::TEXTURE_2D, None, 0);
-            }
-            for (i, t) in attachments.iter().enumerate() {
-                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i as u32, glow::TEXTURE_2D, Some(*t), 0);
-            }
-            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::DEPTH_ATTACHMENT, glow::TEXTURE_2D, depth, 0);
-            let draw: Vec<u32> = (0..attachments.len() as u32).map(|i| glow::COLOR_ATTACHMENT0 + i).collect();
-            gl.draw_buffers(&draw);
-            let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
-            if status != glow::FRAMEBUFFER_COMPLETE {
-                return Err(HarnessError::Gl(format!("framebuffer incomplete (0x{status:x})")));
-            }
-            Ok(())
-        };
+        let attach = |attachments: &[glow::Texture], depth: Option<glow::Texture>| attach(gl, attachments, depth);
 
         // 1. clear
         for (b, (t, _)) in &textures.colors {
@@ -250,15 +265,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             };
             let targets: Vec<glow::Texture> = buffers.iter().map(|b| textures.colors[b].0).collect();
             attach(&targets, Some(textures.depth0))?;
-            for (i, b) in buffers.iter().enumerate() {
-                match blend_of(*b) {
-                    Blend::Off => gl.disable_draw_buffer(glow::BLEND, i as u32),
-                    Blend::Factors([s, d, sa, da]) => {
-                        gl.enable_draw_buffer(glow::BLEND, i as u32);
-                        gl.blend_func_separate_draw_buffer(i as u32, gl_factor(s), gl_factor(d), gl_factor(sa), gl_factor(da));
-                    }
-                }
-            }
+            set_blends(gl, &buffers, blend_of);
             gl.depth_mask(depth_write);
             match program {
                 Some(program) => {
@@ -266,30 +273,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
                     draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &textures, vertices)?;
                     compiled.delete(ctx);
                 }
-                None => {
-                    let vertex = if depth == DepthMapping::Harness { COLOUR_VS_HARNESS } else { COLOUR_VS };
-                    let attributes = [("position", 0), ("color", 1)];
-                    let own = match pack.loader.missing_program_draws() {
-                        MissingProgramDraws::FirstBufferOnly => ctx.compile_program(vertex, COLOUR_FS, &attributes, &[("outColor", 0)]),
-                        MissingProgramDraws::EveryBuffer => ctx.compile_program(vertex, COLOUR_FS_EVERY_BUFFER, &attributes, &[]),
-                    };
-                    let own = own.map_err(|e| HarnessError::Gl(format!("the harness's colour shader: {e}")))?;
-                    gl.use_program(Some(own.raw));
-                    gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
-                    let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
-                    gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-                    gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, bytemuck::cast_slice(vertices), glow::STATIC_DRAW);
-                    let stride = offsets::STRIDE as i32;
-                    gl.enable_vertex_attrib_array(0);
-                    gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
-                    gl.enable_vertex_attrib_array(1);
-                    gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, offsets::COLOR as i32);
-                    gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
-                    gl.disable_vertex_attrib_array(0);
-                    gl.disable_vertex_attrib_array(1);
-                    gl.delete_buffer(vbo);
-                    ctx.delete_program(own);
-                }
+                None => draw_own_colour(ctx, pack.loader.missing_program_draws(), depth, scene, vertices)?,
             }
             for i in 0..8 {
                 gl.disable_draw_buffer(glow::BLEND, i);
@@ -326,7 +310,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         let mut outs = Vec::new();
         for b in &pack.composite.render_targets {
             outs.push(if *b == 0 {
-                textures.out
+                out
             } else {
                 let format = textures.colors.get(b).map_or(BufferFormat::Rgba8, |c| c.1);
                 make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, false, false)?
@@ -339,25 +323,8 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         composite.delete(ctx);
         gl.finish();
 
-        let read = |t: glow::Texture, is_depth: bool| -> Result<FloatImage, HarnessError> {
-            if is_depth {
-                attach(&[textures.out], Some(t))?;
-            } else {
-                attach(&[t], None)?;
-                gl.read_buffer(glow::COLOR_ATTACHMENT0);
-            }
-            let mut image = FloatImage::new(w as u32, h as u32);
-            let channels = if is_depth { 1 } else { 4 };
-            let mut bytes = vec![0u8; (w * h) as usize * channels * 4];
-            let format = if is_depth { glow::DEPTH_COMPONENT } else { glow::RGBA };
-            gl.read_pixels(0, 0, w, h, format, glow::FLOAT, glow::PixelPackData::Slice(Some(&mut bytes)));
-            for (i, px) in image.pixels.iter_mut().enumerate() {
-                let f = |c: usize| f32::from_le_bytes(bytes[(i * channels + c) * 4..(i * channels + c) * 4 + 4].try_into().expect("4 bytes"));
-                *px = if is_depth { [f(0), f(0), f(0), 1.0] } else { [f(0), f(1), f(2), f(3)] };
-            }
-            Ok(image)
-        };
-        let image = read(textures.out, false)?;
+        let read = |t: glow::Texture, is_depth: bool| read(gl, t, is_depth, out, w, h);
+        let image = read(out, false)?;
         let mut images = BTreeMap::new();
         for (b, (t, _)) in &textures.colors {
             images.insert(*b, read(*t, false)?);
@@ -367,11 +334,8 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         let error = gl.get_error();
         gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         gl.delete_framebuffer(fbo);
-        for t in [textures.atlas, textures.lightmap, textures.noise, textures.depth0, textures.depth1, textures.out]
-            .into_iter()
-            .chain(textures.custom.iter().copied())
-            .chain(textures.colors.values().map(|c| c.0))
-        {
+        harness.delete(gl);
+        for t in [textures.depth0, textures.depth1, out].into_iter().chain(textures.colors.values().map(|c| c.0)) {
             gl.delete_texture(t);
         }
         if error != glow::NO_ERROR {
@@ -381,8 +345,137 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
     }
 }
 
+/// Draws `vertices` in their vertex colour with the harness's colour shader: what a loader
+/// draws where the pack has no program of the chain, into the bound draw buffers.
+pub(crate) unsafe fn draw_own_colour(
+    ctx: &GlContext,
+    missing: MissingProgramDraws,
+    depth: DepthMapping,
+    scene: &Scene,
+    vertices: &[PackVertex],
+) -> Result<(), HarnessError> {
+    let gl = ctx.gl();
+    let vertex = if depth == DepthMapping::Harness { COLOUR_VS_HARNESS } else { COLOUR_VS };
+    let attributes = [("position", 0), ("color", 1)];
+    let own = match missing {
+        MissingProgramDraws::FirstBufferOnly => ctx.compile_program(vertex, COLOUR_FS, &attributes, &[("outColor", 0)]),
+        MissingProgramDraws::EveryBuffer => ctx.compile_program(vertex, COLOUR_FS_EVERY_BUFFER, &attributes, &[]),
+    };
+    let own = own.map_err(|e| HarnessError::Gl(format!("the harness's colour shader: {e}")))?;
+    // SAFETY: the caller holds the current context; the vertex data outlives the draw.
+    unsafe {
+        gl.use_program(Some(own.raw));
+        gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
+        let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, bytemuck::cast_slice(vertices), glow::STATIC_DRAW);
+        let stride = offsets::STRIDE as i32;
+        gl.enable_vertex_attrib_array(0);
+        gl.vertex_attrib_pointer_f32(0, 4, glow::FLOAT, false, stride, offsets::POSITION as i32);
+        gl.enable_vertex_attrib_array(1);
+        gl.vertex_attrib_pointer_f32(1, 4, glow::FLOAT, false, stride, offsets::COLOR as i32);
+        gl.draw_arrays(glow::TRIANGLES, 0, vertices.len() as i32);
+        gl.disable_vertex_attrib_array(0);
+        gl.disable_vertex_attrib_array(1);
+        gl.delete_buffer(vbo);
+    }
+    ctx.delete_program(own);
+    Ok(())
+}
+
+/// Sets the blend of each draw buffer (draw buffer i draws into `buffers[i]`).
+pub(crate) unsafe fn set_blends(gl: &glow::Context, buffers: &[u8], blend_of: &dyn Fn(u8) -> Blend) {
+    for (i, b) in buffers.iter().enumerate() {
+        // SAFETY: the caller holds the current context.
+        unsafe {
+            match blend_of(*b) {
+                Blend::Off => gl.disable_draw_buffer(glow::BLEND, i as u32),
+                Blend::Factors([s, d, sa, da]) => {
+                    gl.enable_draw_buffer(glow::BLEND, i as u32);
+                    gl.blend_func_separate_draw_buffer(i as u32, gl_factor(s), gl_factor(d), gl_factor(sa), gl_factor(da));
+                }
+            }
+        }
+    }
+}
+
+/// A 2D texture with one level, filtered and wrapped as asked.
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn make_texture(
+    gl: &glow::Context,
+    internal: u32,
+    format: u32,
+    ty: u32,
+    width: i32,
+    height: i32,
+    data: Option<&[u8]>,
+    linear: bool,
+    repeat: bool,
+) -> Result<glow::Texture, HarnessError> {
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        let t = gl.create_texture().map_err(gl_err("texture"))?;
+        gl.bind_texture(glow::TEXTURE_2D, Some(t));
+        gl.tex_image_2d(glow::TEXTURE_2D, 0, internal as i32, width, height, 0, format, ty, glow::PixelUnpackData::Slice(data));
+        let filter = if linear { glow::LINEAR } else { glow::NEAREST } as i32;
+        let wrap = if repeat { glow::REPEAT } else { glow::CLAMP_TO_EDGE } as i32;
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter);
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAG_FILTER, filter);
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_S, wrap);
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
+        Ok(t)
+    }
+}
+
+/// Attaches `attachments` as colour attachments 0.. (draw buffers in that order) and `depth`
+/// to the bound framebuffer.
+pub(crate) unsafe fn attach(gl: &glow::Context, attachments: &[glow::Texture], depth: Option<glow::Texture>) -> Result<(), HarnessError> {
+    // SAFETY: the caller holds the current context with a framebuffer bound.
+    unsafe {
+        for i in 0..8 {
+            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i, glow::TEXTURE_2D, None, 0);
+        }
+        for (i, t) in attachments.iter().enumerate() {
+            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i as u32, glow::TEXTURE_2D, Some(*t), 0);
+        }
+        gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::DEPTH_ATTACHMENT, glow::TEXTURE_2D, depth, 0);
+        let draw: Vec<u32> = (0..attachments.len() as u32).map(|i| glow::COLOR_ATTACHMENT0 + i).collect();
+        gl.draw_buffers(&draw);
+        let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+        if status != glow::FRAMEBUFFER_COMPLETE {
+            return Err(HarnessError::Gl(format!("framebuffer incomplete (0x{status:x})")));
+        }
+        Ok(())
+    }
+}
+
+/// Reads a colour texture, or a depth texture (attached beside the colour texture `scratch`),
+/// as floats, bottom row first.
+pub(crate) unsafe fn read(gl: &glow::Context, t: glow::Texture, is_depth: bool, scratch: glow::Texture, w: i32, h: i32) -> Result<FloatImage, HarnessError> {
+    // SAFETY: the caller holds the current context with a framebuffer bound.
+    unsafe {
+        if is_depth {
+            attach(gl, &[scratch], Some(t))?;
+        } else {
+            attach(gl, &[t], None)?;
+            gl.read_buffer(glow::COLOR_ATTACHMENT0);
+        }
+        let mut image = FloatImage::new(w as u32, h as u32);
+        let channels = if is_depth { 1 } else { 4 };
+        let mut floats = vec![0f32; (w * h) as usize * channels];
+        let format = if is_depth { glow::DEPTH_COMPONENT } else { glow::RGBA };
+        gl.read_pixels(0, 0, w, h, format, glow::FLOAT, glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut floats))));
+        for (i, px) in image.pixels.iter_mut().enumerate() {
+            let f = |c: usize| floats[i * channels + c];
+            *px = if is_depth { [f(0), f(0), f(0), 1.0] } else { [f(0), f(1), f(2), f(3)] };
+        }
+        Ok(image)
+    }
+}
+
 /// A program's shipped text as the driver built it.
-enum Compiled {
+pub(crate) enum Compiled {
     /// Vertex and fragment stage linked together ([`DepthMapping::OpenGl`]).
     Direct(GlProgram),
     /// [`DepthMapping::Harness`]: the shipped vertex stage alone, recording `gl_Position` and
@@ -392,7 +485,7 @@ enum Compiled {
 }
 
 impl Compiled {
-    fn delete(self, ctx: &GlContext) {
+    pub(crate) fn delete(self, ctx: &GlContext) {
         match self {
             Compiled::Direct(p) => ctx.delete_program(p),
             Compiled::Captured { capture, draw, .. } => {
@@ -462,7 +555,7 @@ fn pass_through_vertex(fragment_text: &str, outputs: &[(String, u32)]) -> String
 
 /// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
 /// locations the lowering gave them (so both renderers feed and read the same slots).
-fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
+pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
     let attributes: Vec<(&str, u32)> = program
         .vertex
         .interface
@@ -511,7 +604,7 @@ fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Res
 #[allow(clippy::too_many_arguments)]
 unsafe fn set_uniforms(
     gl: &glow::Context,
-    pack: &LoadedPack,
+    pack: &dyn PackResources,
     program: &LoadedProgram,
     raw: glow::Program,
     values: &BTreeMap<String, Value>,
@@ -529,12 +622,23 @@ unsafe fn set_uniforms(
             }
             let name = active.name.trim_end_matches("[0]").to_string();
             let location = gl.get_uniform_location(raw, &active.name);
-            if matches!(active.utype, glow::SAMPLER_2D) {
-                let texture = match resolve_in_pack(pack, &name, gbuffers) {
-                    Ok(Source::Atlas) => textures.atlas,
-                    Ok(Source::Lightmap) => textures.lightmap,
-                    Ok(Source::Noise) => textures.noise,
-                    Ok(Source::Custom(i)) => textures.custom[i],
+            if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW) {
+                let shadow = active.utype == glow::SAMPLER_2D_SHADOW;
+                let resolved = match textures.naming {
+                    SamplerNaming::OwnFrame => resolve_in_pack(pack, &name, gbuffers),
+                    SamplerNaming::AnyPack => resolve_any(pack, &name, gbuffers),
+                };
+                let harness = textures.harness;
+                let texture = match resolved {
+                    Ok(Source::Atlas) => harness.atlas,
+                    Ok(Source::Lightmap) => harness.lightmap,
+                    Ok(Source::Noise) => harness.noise,
+                    Ok(Source::Custom(i)) => harness.custom[i],
+                    Ok(Source::FlatNormals) => harness.flat_normals,
+                    Ok(Source::NoSpecular) => harness.no_specular,
+                    Ok(Source::EmptyShadowColour) => harness.shadow_colour,
+                    Ok(Source::EmptyShadowDepth) if shadow => harness.shadow_depth_compared,
+                    Ok(Source::EmptyShadowDepth) => harness.shadow_depth,
                     Ok(Source::Depth0) => textures.depth0,
                     Ok(Source::Depth1) => textures.depth1,
                     Ok(Source::Color(n)) => match textures.colors.get(&n) {
@@ -544,15 +648,15 @@ unsafe fn set_uniforms(
                             continue;
                         }
                     },
-                    Ok(other) => {
-                        missing.push(format!("{name} ({other:?} is bound by the wgpu path only)"));
-                        continue;
-                    }
                     Err(m) => {
                         missing.push(m);
                         continue;
                     }
                 };
+                if shadow && !matches!(resolved, Ok(Source::EmptyShadowDepth)) {
+                    missing.push(format!("{name} is a shadow sampler; the harness compares only against the empty shadow map"));
+                    continue;
+                }
                 gl.active_texture(glow::TEXTURE0 + unit);
                 gl.bind_texture(glow::TEXTURE_2D, Some(texture));
                 gl.uniform_1_i32(location.as_ref(), unit as i32);
@@ -560,7 +664,11 @@ unsafe fn set_uniforms(
                 continue;
             }
             let Some(value) = values.get(&name) else {
-                missing.push(name);
+                // Any pack's uniforms the harness has no value for keep OpenGL's initial zero,
+                // as the wgpu path fills them with zero.
+                if textures.naming == SamplerNaming::OwnFrame {
+                    missing.push(name);
+                }
                 continue;
             };
             set_uniform(gl, location.as_ref(), active.utype, value)
@@ -575,9 +683,9 @@ unsafe fn set_uniforms(
 }
 
 #[allow(clippy::too_many_arguments)]
-unsafe fn draw_program(
+pub(crate) unsafe fn draw_program(
     ctx: &GlContext,
-    pack: &LoadedPack,
+    pack: &dyn PackResources,
     program: &LoadedProgram,
     compiled: &Compiled,
     scene: &Scene,
@@ -635,13 +743,26 @@ unsafe fn draw_program(
             if name.starts_with("gl_") {
                 continue;
             }
-            let offset = match name.as_str() {
-                "mc_Entity" => offsets::ENTITY,
-                other => return Err(HarnessError::Unsupported(format!("vertex input {other}"))),
-            };
-            gl.enable_vertex_attrib_array(*location);
-            gl.vertex_attrib_pointer_f32(*location, 4, glow::FLOAT, false, stride, offset as i32);
-            generic.push(*location);
+            match vertex_attribute_source(name) {
+                Some((format, offset)) => {
+                    gl.enable_vertex_attrib_array(*location);
+                    match format {
+                        wgpu::VertexFormat::Sint32x2 => gl.vertex_attrib_pointer_i32(*location, 2, glow::INT, stride, offset as i32),
+                        _ => {
+                            let components = (format.size() / 4) as i32;
+                            gl.vertex_attrib_pointer_f32(*location, components, glow::FLOAT, false, stride, offset as i32);
+                        }
+                    }
+                    generic.push(*location);
+                }
+                // As in the wgpu path: inputs the harness's vertices lack read zero in any
+                // pack, and are an error in ours.
+                None if textures.naming == SamplerNaming::AnyPack => {
+                    gl.disable_vertex_attrib_array(*location);
+                    gl.vertex_attrib_4_f32(*location, 0.0, 0.0, 0.0, 0.0);
+                }
+                None => return Err(HarnessError::Unsupported(format!("vertex input {name}"))),
+            }
         }
         // Captured: the vertex stage alone, its outputs recorded, nothing rasterised.
         let feedback = match compiled {

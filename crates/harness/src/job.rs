@@ -3,6 +3,7 @@
 //! adapter, the resolution, the dialect and the options in force; optionally the same frame
 //! through the OpenGL driver and the comparison of the two.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use serde::Serialize;
@@ -257,6 +258,27 @@ pub struct AnyPackJob {
     pub out_dir: PathBuf,
     /// Also write every colour buffer and both depth buffers as final read them.
     pub buffers: bool,
+    /// Also render through the OpenGL driver and compare every step's textures.
+    pub gl: bool,
+}
+
+/// One step of the OpenGL frame against the wgpu frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct GlStepComparison {
+    pub pass: String,
+    /// Per texture the step wrote: the largest difference of any channel, in 1/255.
+    pub max_difference_255: BTreeMap<String, f32>,
+    /// Per texture: pixels differing by more than 1/255 in some channel.
+    pub pixels_over_1_255: BTreeMap<String, usize>,
+}
+
+/// The OpenGL frame of any pack against the wgpu frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct GlAnyComparison {
+    pub renderer: String,
+    pub steps: Vec<GlStepComparison>,
+    /// Programs OpenGL drew with its own depth range (outputs transform feedback cannot record).
+    pub own_depth_mapping: Vec<String>,
 }
 
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
@@ -278,6 +300,7 @@ pub struct AnyPackReport {
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that did not load, with why.
     pub failed_programs: Vec<(String, String)>,
+    pub gl: Option<GlAnyComparison>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
 }
@@ -288,7 +311,15 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let scene = Scene::load(&job.scene)?;
     let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader)?;
     let gpu = Gpu::new()?;
-    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh::build(&scene, &pack))?;
+    let mesh = mesh::build(&scene, &pack);
+    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh)?;
+    let gl = if job.gl {
+        let ctx = gl::context()?;
+        let gl_frame = crate::gl_any::render_any(&ctx, &pack, &scene, &mesh)?;
+        Some((ctx.info().to_string(), gl_frame))
+    } else {
+        None
+    };
     let stem = file_stem(&scene.name);
     std::fs::create_dir_all(&job.out_dir)
         .map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", job.out_dir.display())))?;
@@ -307,9 +338,17 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         write(".depthtex0", &frame.depth0.depth_for_viewing())?;
         write(".depthtex1", &frame.depth1.depth_for_viewing())?;
     }
+    let gl = match gl {
+        Some((renderer, gl_frame)) => {
+            write(".gl", &gl_frame.image)?;
+            Some(compare_steps(renderer, &frame, &gl_frame)?)
+        }
+        None => None,
+    };
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = AnyPackReport {
+        gl,
         scene: scene.name.clone(),
         scene_file: job.scene.display().to_string(),
         pack: job.pack.display().to_string(),
@@ -327,6 +366,25 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let json_path = job.out_dir.join(&json_name);
     std::fs::write(&json_path, json + "\n").map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", json_path.display())))?;
     Ok(report)
+}
+
+/// The OpenGL frame's textures against the wgpu frame's, step by step.
+fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_any::GlAnyFrame) -> Result<GlAnyComparison, HarnessError> {
+    if wgpu.passes.len() != gl.steps.len() {
+        return Err(HarnessError::Gl(format!("the OpenGL frame ran {} steps, the wgpu frame {}", gl.steps.len(), wgpu.passes.len())));
+    }
+    let mut steps = Vec::new();
+    for (pass, (label, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
+        let mut max_difference_255 = BTreeMap::new();
+        let mut pixels_over_1_255 = BTreeMap::new();
+        for ((name, a), (_, b)) in pass.images.iter().zip(gl_images) {
+            let d = images::max_channel_difference(a, b);
+            max_difference_255.insert(name.clone(), d.iter().fold(0f32, |m, c| m.max(*c)) * 255.0);
+            pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, 1.0 / 255.0 + 1e-6));
+        }
+        steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255 });
+    }
+    Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone() })
 }
 
 fn adapter_report(gpu: &Gpu) -> AdapterReport {

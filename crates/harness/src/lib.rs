@@ -13,6 +13,7 @@ use std::fmt;
 pub mod any_pack;
 pub mod composite_only;
 pub mod gl;
+pub mod gl_any;
 pub mod gpu;
 pub mod images;
 pub mod job;

@@ -48,9 +48,10 @@ pub struct RenderArgs {
     pub source: PathBuf,
     /// Render any OptiFine or Iris pack (folder or zip) instead of ours: its whole pipeline,
     /// with every pass's time and NaN/Inf count, and what it uses that the harness does not
-    /// imitate listed by name. `--dialect`, `--profile`, `--set`, `--gl`, `--specialise` and
+    /// imitate listed by name. With `--gl`, every step is also drawn through Mesa's OpenGL
+    /// and compared texture by texture. `--dialect`, `--profile`, `--set`, `--specialise` and
     /// `--source` apply to our pack only.
-    #[arg(long, value_name = "PATH", conflicts_with_all = ["profile", "set", "gl", "specialise"])]
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["profile", "set", "specialise"])]
     pub pack: Option<PathBuf>,
 }
 
@@ -150,6 +151,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         loader: args.loader,
         out_dir: args.out.clone(),
         buffers: args.buffers,
+        gl: args.gl,
     };
     let report = match job::run_any_pack(&job) {
         Ok(r) => r,
@@ -170,6 +172,18 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         let time = p.gpu_ms.map_or(format!("{:>9.3} ms (wall)", p.wall_ms), |ms| format!("{ms:>9.3} ms (GPU)"));
         let bad: Vec<String> = p.non_finite.iter().filter(|(_, n)| **n > 0).map(|(b, n)| format!("{b}: {n} NaN/Inf")).collect();
         println!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
+    }
+    if let Some(gl) = &report.gl {
+        println!("  OpenGL ({}), largest difference per texture (x/255) after each step:", gl.renderer);
+        for step in &gl.steps {
+            let parts: Vec<String> = step.max_difference_255.iter().map(|(t, d)| format!("{t} {d:.2}")).collect();
+            if !parts.is_empty() {
+                println!("    {:<38} {}", step.pass, parts.join(", "));
+            }
+        }
+        if !gl.own_depth_mapping.is_empty() {
+            println!("    drawn with OpenGL's own depth range: {}", gl.own_depth_mapping.join(", "));
+        }
     }
     for (program, why) in &report.failed_programs {
         println!("  not loaded: {program}: {}", why.lines().next().unwrap_or(""));

@@ -30,9 +30,12 @@ pub struct AnyPassReport {
     pub wall_ms: f64,
     /// GPU time from timestamps, when the adapter has them.
     pub gpu_ms: Option<f64>,
-    /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `screen`), float buffers
-    /// only (normalised formats cannot hold them).
+    /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `screen`); normalised
+    /// formats cannot hold them.
     pub non_finite: BTreeMap<String, usize>,
+    /// The textures the pass wrote, by the same names, for comparing renderers pass by pass.
+    #[serde(skip)]
+    pub images: Vec<(String, FloatImage)>,
 }
 
 /// A frame of any pack.
@@ -56,8 +59,6 @@ struct Buffer {
     /// The copy gbuffers programs sample.
     snapshot: wgpu::Texture,
     format: wgpu::TextureFormat,
-    /// Whether NaN and Inf can be stored (float formats).
-    float: bool,
 }
 
 /// A texture a step wrote, by name (`colortex2`, `screen`): a buffer's texture (buffer, index),
@@ -108,7 +109,6 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 textures: [texture(&label("A"), format, every_use), texture(&label("B"), format, every_use)],
                 snapshot: texture(&label("as gbuffers read it"), format, every_use),
                 format,
-                float: matches!(format, wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float),
             },
         );
     }
@@ -238,15 +238,16 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         }
         let wall_ms = submit(encoder)?;
         let mut non_finite = BTreeMap::new();
+        let mut images = Vec::new();
         for (name, texture) in written {
-            let count = match texture {
-                None => read_texture(gpu, &screen, OUT)?.non_finite(),
-                Some((b, i)) if buffers[b].float => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?.non_finite(),
-                Some(_) => 0,
+            let image = match texture {
+                None => read_texture(gpu, &screen, OUT)?,
+                Some((b, i)) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
             };
-            non_finite.insert(name.clone(), count);
+            non_finite.insert(name.clone(), image.non_finite());
+            images.push((name.clone(), image));
         }
-        reports.push(AnyPassReport { pass: label.to_string(), wall_ms, gpu_ms: None, non_finite });
+        reports.push(AnyPassReport { pass: label.to_string(), wall_ms, gpu_ms: None, non_finite, images });
     }
     if let Some(q) = &queries {
         let mut gpu_ms = read_pass_ms(gpu, q, render_passes)?.into_iter();
