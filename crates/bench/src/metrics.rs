@@ -6,8 +6,9 @@ use tidepack_harness::FloatImage;
 use tidepack_harness::images::{self, to_unorm8};
 use tidepack_reference::ReferenceImage;
 
+/// How far an image is from the reference, by four measures (a measurement, not a failure).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
-pub struct Error {
+pub struct ErrorMetrics {
     pub max_abs: f64,
     pub rmse: f64,
     /// 10 log10(1 / MSE), peak 1.0; infinite when the images are equal.
@@ -17,7 +18,7 @@ pub struct Error {
 }
 
 /// The error of `gpu` against `reference`, rgb channels, every pixel. Returns the FLIP error map too.
-pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (Error, nv_flip::FlipImageFloat) {
+pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (ErrorMetrics, nv_flip::FlipImageFloat) {
     assert_eq!((gpu.width as usize, gpu.height as usize), (reference.width, reference.height));
     let (mut max_abs, mut squares) = (0.0f64, 0.0f64);
     for (g, r) in gpu.pixels.iter().zip(&reference.pixels) {
@@ -30,7 +31,7 @@ pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (Error, nv_flip::F
     let mse = squares / (3 * gpu.pixels.len()) as f64;
     let flip_map = images::flip_map(&gpu.to_rgb8_top_first(), &reference_rgb8_top_first(reference), gpu.width, gpu.height);
     let mean_flip = images::mean_flip(&flip_map);
-    (Error { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
+    (ErrorMetrics { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
 }
 
 /// PSNR in dB of a mean squared error over 0..1 values; infinite (identical) when the error is
