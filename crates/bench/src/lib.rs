@@ -32,7 +32,7 @@ use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::Specialisation;
 use tidepack_reference::ReferenceImage;
 
-pub use metrics::Error;
+pub use metrics::ErrorMetrics;
 
 /// The knobs swept one at a time around the base profile, with every value settings.glsl lists.
 pub const SWEPT_KNOBS: [&str; 8] = [
@@ -116,7 +116,7 @@ pub struct Row {
     /// far apart two runs must be for a Pareto verdict ([`pareto::ratio_spread`]).
     pub composite_frames_ms: Vec<f64>,
     pub passthrough_frames_ms: Vec<f64>,
-    pub error: Error,
+    pub error: ErrorMetrics,
     /// Sum of squared rgb differences over the pixels / (3 pixels): to aggregate PSNR.
     pub mse: f64,
     /// Largest |timed composite output − the harness frame's composite output| (rgba): the

@@ -3,11 +3,12 @@
 
 use glam::DVec3;
 use tidepack_harness::FloatImage;
-use tidepack_harness::images::to_unorm8;
+use tidepack_harness::images::{self, to_unorm8};
 use tidepack_reference::ReferenceImage;
 
+/// How far an image is from the reference, by four measures (a measurement, not a failure).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
-pub struct Error {
+pub struct ErrorMetrics {
     pub max_abs: f64,
     pub rmse: f64,
     /// 10 log10(1 / MSE), peak 1.0; infinite when the images are equal.
@@ -17,7 +18,7 @@ pub struct Error {
 }
 
 /// The error of `gpu` against `reference`, rgb channels, every pixel. Returns the FLIP error map too.
-pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (Error, nv_flip::FlipImageFloat) {
+pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (ErrorMetrics, nv_flip::FlipImageFloat) {
     assert_eq!((gpu.width as usize, gpu.height as usize), (reference.width, reference.height));
     let (mut max_abs, mut squares) = (0.0f64, 0.0f64);
     for (g, r) in gpu.pixels.iter().zip(&reference.pixels) {
@@ -28,9 +29,9 @@ pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (Error, nv_flip::F
         squares += d.length_squared();
     }
     let mse = squares / (3 * gpu.pixels.len()) as f64;
-    let flip_map = flip(&rgb8_top_first(gpu), &reference_rgb8_top_first(reference), gpu.width, gpu.height);
-    let mean_flip = nv_flip::FlipPool::from_image(&flip_map).mean() as f64;
-    (Error { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
+    let flip_map = images::flip_map(&gpu.to_rgb8_top_first(), &reference_rgb8_top_first(reference), gpu.width, gpu.height);
+    let mean_flip = images::mean_flip(&flip_map);
+    (ErrorMetrics { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
 }
 
 /// PSNR in dB of a mean squared error over 0..1 values; infinite (identical) when the error is
@@ -40,27 +41,7 @@ pub fn psnr_of_mse(mse: f64) -> f64 {
     if mse > resolution * resolution { 10.0 * (1.0 / mse).log10() } else { f64::INFINITY }
 }
 
-/// FLIP's error map of `test` against `reference` (8-bit RGB, top row first). The composite
-/// writes display values straight to an 8-bit framebuffer, so these bytes are already the
-/// sRGB-encoded image FLIP expects.
-pub fn flip(test: &[u8], reference: &[u8], width: u32, height: u32) -> nv_flip::FlipImageFloat {
-    let r = nv_flip::FlipImageRgb8::with_data(width, height, reference);
-    let t = nv_flip::FlipImageRgb8::with_data(width, height, test);
-    nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE)
-}
-
-/// RGB8, top row first, as the framebuffer would hold it.
-pub fn rgb8_top_first(image: &FloatImage) -> Vec<u8> {
-    let (w, h) = (image.width as usize, image.height as usize);
-    let mut out = Vec::with_capacity(w * h * 3);
-    for y in (0..h).rev() {
-        for p in &image.pixels[y * w..(y + 1) * w] {
-            out.extend([to_unorm8(p[0]), to_unorm8(p[1]), to_unorm8(p[2])]);
-        }
-    }
-    out
-}
-
+/// The reference as RGB8, top row first, rounded as the framebuffer would hold it.
 pub fn reference_rgb8_top_first(image: &ReferenceImage) -> Vec<u8> {
     let (w, h) = (image.width, image.height);
     let mut out = Vec::with_capacity(w * h * 3);

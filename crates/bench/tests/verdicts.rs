@@ -3,7 +3,7 @@
 //! the report count them.
 
 use tidepack_bench::pareto::Verdict;
-use tidepack_bench::{BenchResult, Error, Row, RunSpec, output};
+use tidepack_bench::{BenchResult, ErrorMetrics, Row, RunSpec, output};
 
 fn row(run: &RunSpec, composite_frames_ms: Vec<f64>, passthrough_ms: f64, mean_flip: f64) -> Row {
     let composite_ms = tidepack_harness::median(&composite_frames_ms);
@@ -16,7 +16,7 @@ fn row(run: &RunSpec, composite_frames_ms: Vec<f64>, passthrough_ms: f64, mean_f
         ratio: composite_ms / passthrough_ms,
         composite_frames_ms,
         passthrough_frames_ms,
-        error: Error { max_abs: mean_flip, rmse: mean_flip, psnr: 30.0, mean_flip },
+        error: ErrorMetrics { max_abs: mean_flip, rmse: mean_flip, psnr: 30.0, mean_flip },
         mse: mean_flip * mean_flip,
         timed_image_difference: 0.0,
     }

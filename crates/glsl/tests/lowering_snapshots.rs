@@ -83,48 +83,22 @@ fn line_breaks(text: &str) -> usize {
     text.bytes().filter(|&b| b == b'\n').count()
 }
 
-/// A line diff of `expected` against `actual` (longest common subsequence), with a few lines
-/// of context around each change: `-` lines are expected only, `+` lines actual only.
+/// A line diff of `expected` against `actual` (the `similar` crate) with `CONTEXT` lines around
+/// each change: `-` lines are expected only, `+` lines actual only; each hunk starts with the
+/// line numbers where it starts on either side.
 fn line_diff(expected: &str, actual: &str) -> String {
+    const CONTEXT: usize = 2;
     let a: Vec<&str> = expected.split('\n').collect();
     let b: Vec<&str> = actual.split('\n').collect();
-    // lcs[i][j]: length of the longest common subsequence of a[i..] and b[j..].
-    let mut lcs = vec![vec![0u32; b.len() + 1]; a.len() + 1];
-    for i in (0..a.len()).rev() {
-        for j in (0..b.len()).rev() {
-            lcs[i][j] = if a[i] == b[j] { lcs[i + 1][j + 1] + 1 } else { lcs[i + 1][j].max(lcs[i][j + 1]) };
-        }
-    }
-    // (kind, expected line number, actual line number, text)
-    let mut ops: Vec<(char, usize, usize, &str)> = Vec::new();
-    let (mut i, mut j) = (0, 0);
-    while i < a.len() || j < b.len() {
-        if i < a.len() && j < b.len() && a[i] == b[j] {
-            ops.push((' ', i + 1, j + 1, a[i]));
-            i += 1;
-            j += 1;
-        } else if i < a.len() && (j == b.len() || lcs[i + 1][j] >= lcs[i][j + 1]) {
-            ops.push(('-', i + 1, j + 1, a[i]));
-            i += 1;
-        } else {
-            ops.push(('+', i + 1, j + 1, b[j]));
-            j += 1;
-        }
-    }
-    const CONTEXT: usize = 2;
-    let changed: Vec<usize> = (0..ops.len()).filter(|&k| ops[k].0 != ' ').collect();
+    let diff = similar::TextDiff::configure().diff_slices(&a, &b);
     let mut out = String::new();
-    let mut last_shown: Option<usize> = None;
-    for (k, &(kind, el, al, text)) in ops.iter().enumerate() {
-        let near = changed.iter().any(|&c| c.abs_diff(k) <= CONTEXT);
-        if !near {
-            continue;
+    for hunk in diff.grouped_ops(CONTEXT) {
+        let Some(first) = hunk.first() else { continue };
+        let (el, al) = (first.old_range().start + 1, first.new_range().start + 1);
+        writeln!(out, "@@ expected line {el}, actual line {al} @@").unwrap();
+        for change in hunk.iter().flat_map(|op| diff.iter_changes(op)) {
+            writeln!(out, "{}{}", change.tag(), change.value()).unwrap();
         }
-        if last_shown.is_none_or(|l| l + 1 != k) {
-            writeln!(out, "@@ expected line {el}, actual line {al} @@").unwrap();
-        }
-        writeln!(out, "{kind}{text}").unwrap();
-        last_shown = Some(k);
     }
     out
 }

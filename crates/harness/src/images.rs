@@ -1,5 +1,6 @@
 //! Float images in OpenGL orientation (row 0 is the bottom of the screen), PNG output (flipped
-//! back to top-first), and the comparisons the tests and the GL check use.
+//! back to top-first), and the comparisons the tests, the GL check and the bench use (PSNR,
+//! differences, NVIDIA's FLIP through the `nv-flip` crate).
 
 use std::path::Path;
 
@@ -37,6 +38,11 @@ impl FloatImage {
             }
         }
         out
+    }
+
+    /// 8-bit RGB, top row first: [`Self::to_rgba8_top_first`] without alpha, the layout FLIP takes.
+    pub fn to_rgb8_top_first(&self) -> Vec<u8> {
+        rgba8_to_rgb8(&self.to_rgba8_top_first())
     }
 
     /// Writes a PNG (opaque: alpha is forced to 255 unless `keep_alpha`).
@@ -141,4 +147,48 @@ pub fn difference_rgb8(a: &[u8], b: &[u8]) -> Vec<u8> {
             [d(0), d(1), d(2), 255]
         })
         .collect()
+}
+
+/// Drops the alpha of 8-bit RGBA pixels.
+pub fn rgba8_to_rgb8(rgba: &[u8]) -> Vec<u8> {
+    rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+/// NVIDIA FLIP's LDR error map (0..1 per pixel) of `test` against `reference`, both 8-bit RGB,
+/// top row first, at FLIP's default viewing conditions (67 pixels per degree). The composite
+/// writes display values straight to an 8-bit framebuffer, so these bytes are already the
+/// sRGB-encoded image LDR FLIP expects.
+pub fn flip_map(test_rgb8: &[u8], reference_rgb8: &[u8], width: u32, height: u32) -> nv_flip::FlipImageFloat {
+    let reference = nv_flip::FlipImageRgb8::with_data(width, height, reference_rgb8);
+    let test = nv_flip::FlipImageRgb8::with_data(width, height, test_rgb8);
+    nv_flip::flip(reference, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE)
+}
+
+/// The mean of a FLIP error map, the single number FLIP's tools report.
+pub fn mean_flip(map: &nv_flip::FlipImageFloat) -> f64 {
+    nv_flip::FlipPool::from_image(map).mean() as f64
+}
+
+/// A FLIP error map through FLIP's magma colour map (0 black, 1 near white), as opaque 8-bit
+/// RGBA top row first.
+pub fn flip_heatmap_rgba8(map: &nv_flip::FlipImageFloat) -> Vec<u8> {
+    map.apply_color_lut(&nv_flip::magma_lut()).to_vec().chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flip_is_zero_for_equal_images_and_grows_with_the_difference() {
+        let (w, h) = (32u32, 16u32);
+        let base: Vec<u8> = (0..w * h).flat_map(|i| [(i % w * 8) as u8, (i / w * 16) as u8, 128]).collect();
+        assert_eq!(mean_flip(&flip_map(&base, &base, w, h)), 0.0);
+        let shifted = |d: u8| base.iter().map(|c| c.saturating_add(d)).collect::<Vec<u8>>();
+        let (small, large) = (mean_flip(&flip_map(&shifted(4), &base, w, h)), mean_flip(&flip_map(&shifted(64), &base, w, h)));
+        assert!(0.0 < small && small < large && large <= 1.0, "{small} {large}");
+        let heat = flip_heatmap_rgba8(&flip_map(&shifted(64), &base, w, h));
+        assert_eq!(heat.len(), (w * h * 4) as usize);
+        assert!(heat.chunks_exact(4).all(|p| p[3] == 255));
+    }
 }

@@ -6,6 +6,8 @@
 //! gl_ModelViewMatrix is then gbufferModelView, as with OptiFine's chunk offsets.
 
 use glam::DVec3;
+use rand_core::{Rng as _, SeedableRng as _};
+use rand_xoshiro::SplitMix64;
 
 use crate::scene::{OverlayKind, Scene};
 
@@ -257,17 +259,11 @@ pub fn lightmap() -> (u32, u32, Vec<u8>) {
 /// OptiFine's `noisetex`: RGB white noise, 256×256, opaque; a fixed-seed generator so every
 /// run and both renderers see the same texture.
 pub fn noise(size: u32) -> (u32, u32, Vec<u8>) {
-    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = || {
-        // xorshift64*
-        state ^= state >> 12;
-        state ^= state << 25;
-        state ^= state >> 27;
-        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 56) as u8
-    };
+    let mut rng = SplitMix64::seed_from_u64(0x9E37_79B9_7F4A_7C15);
     let mut data = Vec::with_capacity((size * size * 4) as usize);
     for _ in 0..size * size {
-        data.extend([next(), next(), next(), 255]);
+        data.extend([0; 3].map(|_: u8| (rng.next_u64() >> 56) as u8));
+        data.push(255);
     }
     (size, size, data)
 }

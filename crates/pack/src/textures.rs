@@ -10,6 +10,9 @@
 use std::f64::consts::TAU;
 use std::io::Cursor;
 
+use rand_core::{Rng, SeedableRng};
+use rand_xoshiro::SplitMix64;
+
 /// Path inside `shaders/`, as named by `texture.composite.colortex7`.
 pub const WATER_TEXTURE: &str = "textures/water.png";
 pub const SIZE: u32 = 256;
@@ -28,31 +31,26 @@ struct Wave {
     phase: f64,
 }
 
-/// xorshift64*: deterministic across platforms, so the texture is the same on every build.
-struct Rng(u64);
-
-impl Rng {
-    fn next_unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn frequency(&mut self, min: i64, max: i64) -> f64 {
-        let span = (max - min + 1) as f64;
-        let magnitude = (min as f64 + (self.next_unit() * span).floor()).min(max as f64);
-        if self.next_unit() < 0.5 { -magnitude } else { magnitude }
-    }
+/// Uniform in [0, 1) from the top 53 bits. splitmix64 is value-stable for a seed (see the
+/// workspace manifest), so the texture is the same on every build.
+fn unit(rng: &mut SplitMix64) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
-fn waves(rng: &mut Rng, count: usize, min: i64, max: i64) -> Vec<Wave> {
+/// A whole number of cycles in min..=max, either sign.
+fn frequency(rng: &mut SplitMix64, min: i64, max: i64) -> f64 {
+    let span = (max - min + 1) as f64;
+    let magnitude = (min as f64 + (unit(rng) * span).floor()).min(max as f64);
+    if unit(rng) < 0.5 { -magnitude } else { magnitude }
+}
+
+fn waves(rng: &mut SplitMix64, count: usize, min: i64, max: i64) -> Vec<Wave> {
     (0..count)
         .map(|_| {
-            let fu = rng.frequency(min, max);
-            let fv = rng.frequency(min, max);
+            let fu = frequency(rng, min, max);
+            let fv = frequency(rng, min, max);
             let amplitude = 1.0 / (fu * fu + fv * fv).sqrt().max(1.0);
-            Wave { fu, fv, amplitude, phase: rng.next_unit() * TAU }
+            Wave { fu, fv, amplitude, phase: unit(rng) * TAU }
         })
         .collect()
 }
@@ -67,7 +65,7 @@ fn evaluate(waves: &[Wave], u: f64, v: f64) -> (f64, f64, f64) {
 }
 
 pub fn water_texture() -> WaterTexture {
-    let mut rng = Rng(0x7469_6465_7061_636B); // "tidepack"
+    let mut rng = SplitMix64::seed_from_u64(0x7469_6465_7061_636B); // "tidepack"
     let height_waves = waves(&mut rng, 24, 1, 9);
     let foam_waves = waves(&mut rng, 16, 10, 28);
     let n = SIZE as usize;

@@ -21,6 +21,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use rayon::prelude::*;
+
 use tidepack_glsl::Diagnostic;
 use tidepack_glsl::options::{OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
@@ -206,7 +208,9 @@ fn lower_sets(
     seen: &mut HashMap<(String, String), ()>,
     ticker: Option<&Ticker>,
 ) -> (Vec<(LoweredStage, OptionSet)>, Vec<Failure>, usize) {
-    let lowered = parallel_map(sets, || (), |(), (program, set)| {
+    // Collected in the order of `sets` (rayon keeps an indexed iterator's order), so the
+    // diagnostics and the first set that gave a lowered text do not depend on the scheduling.
+    let lowered: Vec<_> = sets.par_iter().map(|(program, set)| {
         let stages = run_set(pack, program, set, macros)?;
         let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
         let result = validate::lower_program(&with_stage);
@@ -214,7 +218,7 @@ fn lower_sets(
             ticker.tick();
         }
         result
-    });
+    }).collect();
     let mut unique = Vec::new();
     let mut errors = Vec::new();
     let mut identical = 0;
@@ -343,42 +347,14 @@ fn describe_set(set: &OptionSet) -> String {
     }
 }
 
-/// Maps `items` on every core; `init` makes each worker's state (a naga front-end).
-fn parallel_map<T: Sync, S, R: Send>(
-    items: &[T],
-    init: impl Fn() -> S + Sync,
-    f: impl Fn(&mut S, &T) -> R + Sync,
-) -> Vec<R> {
-    let next = AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(items.len().max(1));
-    let mut results: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers)
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut state = init();
-                    let mut done = Vec::new();
-                    loop {
-                        let i = next.fetch_add(1, Ordering::Relaxed);
-                        let Some(item) = items.get(i) else { break };
-                        done.push((i, f(&mut state, item)));
-                    }
-                    done
-                })
-            })
-            .collect();
-        handles.into_iter().flat_map(|h| h.join().expect("validation worker panicked")).collect()
-    });
-    results.sort_by_key(|(i, _)| *i);
-    results.into_iter().map(|(_, r)| r).collect()
-}
-
 fn validate_in_parallel(
     pack: &ShippedPack,
     programs: &[Program],
     unique: &[(LoweredStage, OptionSet)],
     ticker: Option<&Ticker>,
 ) -> Vec<Failure> {
-    let results = parallel_map(unique, validate::Frontend::default, |frontend, (stage, set)| {
+    // One naga front-end per rayon job, reused for the stages it takes; results in input order.
+    let results: Vec<_> = unique.par_iter().map_init(validate::Frontend::default, |frontend, (stage, set)| {
         let provider = WithOptions::new(pack, set);
         let result = validate::validate_stage(frontend, stage, &provider).err();
         if let Some(ticker) = ticker {
@@ -387,7 +363,7 @@ fn validate_in_parallel(
         let path = &stage.preprocessed.files[0];
         let program = programs.iter().find(|p| p.stages.iter().any(|(_, s)| s == path)).map_or_else(|| path.clone(), |p| p.name.clone());
         result.map(|diags| (diags, set.clone(), program))
-    });
+    }).collect();
     results
         .into_iter()
         .flatten()
@@ -433,7 +409,7 @@ fn option_sets(
     loop {
         let (sets, covered) = enumerate(&relevant, &tested, options, coverage, profiles);
         let fresh: Vec<&OptionSet> = sets.iter().filter(|s| !explored.contains(*s)).collect();
-        let consulted = parallel_map(&fresh, || (), |(), set| {
+        let consulted: Vec<_> = fresh.par_iter().map(|set| {
             let stages = run_set(pack, program, set, macros).map_err(|d| Box::new((d, (*set).clone())))?;
             let mut names = (BTreeSet::new(), BTreeSet::new());
             for pre in &stages {
@@ -441,7 +417,7 @@ fn option_sets(
                 names.1.extend(pre.tested_macros.iter().filter(|n| options.contains_key(*n)).cloned());
             }
             Ok::<_, SetFailure>(names)
-        });
+        }).collect();
         let mut grew = false;
         for result in consulted {
             let (all, in_conditionals) = result?;

@@ -11,6 +11,7 @@ pub mod sampling;
 pub mod settings;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 pub use inputs::{Inputs, Uniforms};
 pub use model::shade_pixel;
@@ -26,34 +27,20 @@ pub struct ReferenceImage {
 }
 
 /// Evaluates every pixel `stride`-th pixel in x and y (stride 1: the full frame); pixels not
-/// evaluated stay zero and `evaluated` lists the ones that were. Rows are split over the
-/// available cores.
+/// evaluated stay zero and `evaluated` lists the ones that were.
 pub fn render(inputs: &Inputs, settings: &ReferenceSettings, stride: usize) -> Result<ReferenceImage, String> {
     inputs.validate()?;
     let stride = stride.max(1);
     let (w, h) = (inputs.width, inputs.height);
     let mut pixels = vec![DVec3::ZERO; w * h];
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(8);
-    let rows: Vec<usize> = (0..h).step_by(stride).collect();
-    let chunk = rows.len().div_ceil(threads).max(1);
-    let shaded: Vec<Vec<(usize, DVec3)>> = std::thread::scope(|scope| {
-        let workers: Vec<_> = rows
-            .chunks(chunk)
-            .map(|band| {
-                scope.spawn(move || {
-                    let mut out = Vec::new();
-                    for &y in band {
-                        for x in (0..w).step_by(stride) {
-                            out.push((y * w + x, shade_pixel(inputs, settings, x, y)));
-                        }
-                    }
-                    out
-                })
-            })
-            .collect();
-        workers.into_iter().map(|t| t.join().expect("a reference worker panicked")).collect()
-    });
-    for (index, colour) in shaded.into_iter().flatten() {
+    // Rows on every core (rayon); each pixel depends on nothing but its inputs, so the image does
+    // not depend on the scheduling.
+    let shaded: Vec<(usize, DVec3)> = (0..h)
+        .into_par_iter()
+        .step_by(stride)
+        .flat_map_iter(|y| (0..w).step_by(stride).map(move |x| (y * w + x, shade_pixel(inputs, settings, x, y))))
+        .collect();
+    for (index, colour) in shaded {
         pixels[index] = colour;
     }
     Ok(ReferenceImage { width: w, height: h, pixels })

@@ -9,6 +9,8 @@
 //! pipeline; per case only composite runs ([`tidepack_harness::composite_only`]), with its
 //! uniforms rewritten and, for some categories, the G-buffers altered.
 
+use rand_core::{Rng as _, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -230,19 +232,16 @@ pub struct StressReport {
     pub records: Vec<CaseRecord>,
 }
 
-/// splitmix64: deterministic, no dependency.
-pub struct Rng(u64);
+/// The draws the categories make, on the workspace's splitmix64 (value-stable for a seed, so a
+/// seed names the same cases on every build).
+pub struct Rng(SplitMix64);
 
 impl Rng {
     pub fn new(seed: u64) -> Rng {
-        Rng(seed)
+        Rng(SplitMix64::seed_from_u64(seed))
     }
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     /// Uniform in [0, 1).
     pub fn unit(&mut self) -> f64 {

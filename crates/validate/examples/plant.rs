@@ -11,6 +11,8 @@
 //! [--threads N] PACK_DIR...` (tools/plant runs it over packs of a folder). Packs are copied to a
 //! temporary folder: the originals are never written.
 
+use rand_core::{Rng as _, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -163,19 +165,16 @@ enum Outcome {
     Missed,
 }
 
-/// Deterministic choices without a dependency.
-struct Rng(u64);
+/// Deterministic choices on the workspace's splitmix64: a seed plants the same mistakes on
+/// every build.
+struct Rng(SplitMix64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+    fn new(seed: u64) -> Rng {
+        Rng(SplitMix64::seed_from_u64(seed))
     }
     fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
+        (self.0.next_u64() % n as u64) as usize
     }
 }
 
@@ -283,7 +282,7 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
     let mut plants = Vec::new();
     for kind in KINDS {
         for round in 0..per_kind {
-            let mut rng = Rng(seed ^ fnv(pack) ^ ((kind as u64) << 32) ^ round as u64);
+            let mut rng = Rng::new(seed ^ fnv(pack) ^ ((kind as u64) << 32) ^ round as u64);
             let Some((path, line, text, program)) = choose(kind, &mut rng, &stages, &anchors, &base, &provider, &macros) else {
                 eprintln!("{pack}: no place for {}", kind.name());
                 continue;

@@ -12,6 +12,8 @@
 //! A panic inside naga is counted apart (`naga_panics`): the validator turns it into a "not
 //! checked" warning, so it is not a crash of the toolchain, but it is worth reporting upstream.
 
+use rand_core::{Rng as _, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use std::collections::BTreeMap;
 use std::panic::AssertUnwindSafe;
 use std::sync::Arc;
@@ -53,19 +55,16 @@ pub struct FuzzStats {
     pub findings: Vec<(String, Vec<u8>)>,
 }
 
-/// xorshift64*: small, fast, deterministic.
-struct Rng(u64);
+/// The workspace's splitmix64: a seed replays the same run on every build.
+struct Rng(SplitMix64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545F4914F6CDD1D)
+    fn new(seed: u64) -> Rng {
+        Rng(SplitMix64::seed_from_u64(seed))
     }
 
     fn below(&mut self, n: usize) -> usize {
-        if n == 0 { 0 } else { (self.next() % n as u64) as usize }
+        if n == 0 { 0 } else { (self.0.next_u64() % n as u64) as usize }
     }
 }
 
@@ -115,7 +114,7 @@ pub type SeedPack = BTreeMap<String, Vec<u8>>;
 /// Runs until `executions` inputs were tried or `time` ran out, whichever is first.
 pub fn run(seeds: &[SeedPack], executions: u64, time: Duration, seed: u64) -> FuzzStats {
     let mut stats = FuzzStats::default();
-    let mut rng = Rng(seed.max(1));
+    let mut rng = Rng::new(seed);
     let all_files: Vec<&[u8]> = seeds.iter().flat_map(|p| p.values().map(Vec::as_slice)).collect();
     let started = Instant::now();
     let previous_hook = std::panic::take_hook();
@@ -218,7 +217,7 @@ mod tests {
 
     #[test]
     fn mutation_is_deterministic() {
-        let (mut a, mut b) = (Rng(7), Rng(7));
+        let (mut a, mut b) = (Rng::new(7), Rng::new(7));
         let input = b"#version 120\nvoid main() {}\n";
         assert_eq!(mutate(&mut a, input, &[]), mutate(&mut b, input, &[]));
     }

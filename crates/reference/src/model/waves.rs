@@ -1,0 +1,121 @@
+//! shaderpack/shaders/lib/waves.glsl in f64: the wave height, the surface bisection and the normal.
+
+use glam::{DVec2, DVec3};
+
+use super::builtins::*;
+use super::common::*;
+use crate::sampling::Texture;
+use crate::settings::{NormalMode, ReferenceSettings};
+
+pub const WAVE_TILE: f64 = 64.0;
+pub(crate) const WAVE_VECTOR: DVec2 = DVec2::new(3.0 * (TAU / WAVE_TILE), 5.0 * (TAU / WAVE_TILE));
+pub(crate) const WAVE_SPEED: f64 = TAU * 180.0 / 3600.0;
+pub(crate) const WAVE_AMPLITUDE_ANALYTIC: f64 = 0.10;
+pub(crate) const WAVE_NOISE_WEIGHT: f64 = 0.6;
+pub(crate) const WAVE_MAX_HEIGHT: f64 = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT);
+pub(crate) const WAVE_DRIFT: DVec2 = DVec2::new(36.0 / 3600.0, 24.0 / 3600.0);
+
+/// `heightTexel`.
+pub(crate) fn height_texel(water: &Texture, world_xz: DVec2, time: f64, scale: f64) -> f64 {
+    let uv = 0.5 + scale * DVec2::new(world_xz.x, -world_xz.y) / WAVE_TILE + time * WAVE_DRIFT;
+    water.sample(fract2(uv)).x
+}
+
+/// `analyticWave`.
+pub(crate) fn analytic_wave(world_xz: DVec2, time: f64) -> f64 {
+    let phase = WAVE_SPEED * time + WAVE_VECTOR.dot(world_xz);
+    (phase - 0.5 * phase.cos()).sin()
+}
+
+/// `waveHeight`.
+pub(crate) fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
+    let noise = height_texel(water, world_xz, time, 1.0) * 2.0 - 1.0;
+    WAVE_AMPLITUDE_ANALYTIC * (analytic_wave(world_xz, time) + WAVE_NOISE_WEIGHT * noise)
+}
+
+/// `refineSurface` (A1): bisection along the ray from the flat hit towards the wave surface.
+pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, s: &ReferenceSettings) -> DVec3 {
+    let mut p = player_hit;
+    let plane_y = player_hit.y;
+    let mut step_length = 10.0 * WAVE_MAX_HEIGHT;
+    for _ in 0..s.wave_refine_steps {
+        let gap = p.y - plane_y - wave_height(water, DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z), time);
+        if gap.abs() < s.surface_tolerance {
+            break;
+        }
+        let camera_side = (gap > 0.0) == camera_above;
+        p += ray_dir * if camera_side { step_length } else { -step_length };
+        step_length *= 0.5;
+    }
+    p
+}
+
+/// The four height samples at `±e` in x and z, each the sum of the octaves in use.
+pub(crate) fn height_cross(water: &Texture, world_xz: DVec2, time: f64, distance: f64, octaves: u32) -> [f64; 4] {
+    const E: f64 = 0.25;
+    let offsets = [DVec2::new(E, 0.0), DVec2::new(-E, 0.0), DVec2::new(0.0, E), DVec2::new(0.0, -E)];
+    let mut h = offsets.map(|o| height_texel(water, world_xz + o, time, 1.0));
+    let (mut weight, mut scale) = (0.75, 2.0);
+    for _ in 1..octaves {
+        if distance >= 500.0 {
+            break;
+        }
+        for (hk, o) in h.iter_mut().zip(offsets) {
+            *hk += weight * height_texel(water, world_xz + o, time, scale);
+        }
+        weight *= 0.75;
+        scale *= 2.0;
+    }
+    h
+}
+
+/// `waveNormal` (A2): the normal (world axes) and the diffuse intensity.
+pub(crate) fn wave_normal(water: &Texture, world_xz: DVec2, time: f64, distance: f64, s: &ReferenceSettings) -> (DVec3, f64) {
+    let flatten = 1.0 + 0.05 * distance;
+    match s.normal_mode {
+        NormalMode::StoredSlope => {
+            let uv = 0.5 + DVec2::new(world_xz.x, -world_xz.y) / WAVE_TILE + time * WAVE_DRIFT;
+            let texel = water.sample(fract2(uv));
+            let slope = (DVec2::new(texel.y, texel.z) * 2.0 - 1.0) * s.slope_range * WAVE_NOISE_WEIGHT * WAVE_AMPLITUDE_ANALYTIC * 2.0 / WAVE_TILE;
+            let diffuse = 0.35 + 0.4 * (texel.x - 0.5);
+            (safe_normalize(DVec3::new(-slope.x, flatten, slope.y), UP), diffuse)
+        }
+        NormalMode::HeightSamples => {
+            const E: f64 = 0.25;
+            let [h1, h2, h3, h4] = height_cross(water, world_xz, time, distance, s.normal_octaves);
+            let travel = WAVE_SPEED * time;
+            let dx = (h1 - h2) * (1.0 + 0.3 * travel.cos());
+            let dz = (h3 - h4) * (1.0 + 0.3 * travel.sin());
+            let a1 = analytic_wave(world_xz + DVec2::new(2.1, 0.0), time);
+            let a2 = analytic_wave(world_xz - DVec2::new(2.1, 0.0), time);
+            let a3 = analytic_wave(world_xz + DVec2::new(0.0, 2.1), time);
+            let a4 = analytic_wave(world_xz - DVec2::new(0.0, 2.1), time);
+            let diffuse = 0.35 + 0.05 * (h1 + h2 + h3 + h4) + 0.05 * (a1 + a2 + a3 + a4);
+            let slope_x = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dx / (2.0 * E) + (a1 - a2) / 4.2);
+            let slope_z = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dz / (2.0 * E) + (a3 - a4) / 4.2);
+            (safe_normalize(DVec3::new(-slope_x, flatten, -slope_z), UP), diffuse)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec4;
+
+    use super::*;
+
+    #[test]
+    fn the_surface_bisection_converges_to_the_wave_height() {
+        let water = Texture::new(1, 1, vec![DVec4::splat(0.5)], crate::Filter::Linear, crate::Wrap::Repeat);
+        let hit = DVec3::new(3.0, -5.0, -4.0);
+        let dir = hit.normalize();
+        let p = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &ReferenceSettings::converged());
+        let expected = hit.y + wave_height(&water, DVec2::new(p.x, p.z), 12.5);
+        assert!((p.y - expected).abs() < 1e-12, "{} vs {expected}", p.y);
+        // With the pack's tolerance it stops as soon as it is that close.
+        let pack = ReferenceSettings { surface_tolerance: crate::settings::SURFACE_TOLERANCE, ..ReferenceSettings::converged() };
+        let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &pack);
+        let expected = hit.y + wave_height(&water, DVec2::new(q.x, q.z), 12.5);
+        assert!((q.y - expected).abs() < crate::settings::SURFACE_TOLERANCE, "{} vs {expected}", q.y);
+    }
+}
