@@ -63,3 +63,70 @@ fn a_bad_option_is_an_error() {
     assert!(String::from_utf8_lossy(&output.stderr).contains("NO_SUCH_OPTION"));
     assert!(!out.path().join("case1_above_dry.png").exists());
 }
+
+/// Writes a pack of `files` (paths inside `shaders/`) into a new temporary folder.
+fn pack_of(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (path, text) in files {
+        let at = dir.path().join("shaders").join(path);
+        std::fs::create_dir_all(at.parent().unwrap()).unwrap();
+        std::fs::write(at, text).unwrap();
+    }
+    dir
+}
+
+const FULLSCREEN_VSH: &str = "#version 120\nvarying vec2 uv;\nvoid main() { gl_Position = ftransform(); uv = gl_MultiTexCoord0.xy; }\n";
+
+fn render_pack(pack: &Path, out: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_tidepack"))
+        .args(["render", "tests/scenes/case4_above_near.toml", "--pack"])
+        .arg(pack)
+        .arg("--out")
+        .arg(out)
+        .current_dir(repo_root())
+        .output()
+        .expect("run tidepack")
+}
+
+#[test]
+fn render_pack_writes_the_screen_and_a_report_of_every_pass() {
+    let out = tempfile::tempdir().unwrap();
+    let output = render_pack(&repo_root().join("tests/packs/flip_chain"), out.path());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&output.stderr));
+    image::open(out.path().join("case4_above_near.png")).expect("the screen as PNG");
+    let json = std::fs::read_to_string(out.path().join("case4_above_near.json")).expect("the JSON report");
+    let report: serde_json::Value = serde_json::from_str(&json).expect("the report parses");
+    let passes: Vec<&str> = report["passes"].as_array().expect("passes").iter().filter_map(|p| p["pass"].as_str()).collect();
+    assert_eq!(passes, ["terrain (gbuffers_terrain)", "depth copy", "deferred", "water (gbuffers_water)", "composite", "composite1", "final"]);
+    assert_eq!(report["non_finite_pixels"], 0);
+    assert_eq!(report["not_modelled"], serde_json::json!([]));
+}
+
+#[test]
+fn render_pack_fails_on_nan_and_names_the_pass() {
+    let pack = pack_of(&[
+        ("final.vsh", FULLSCREEN_VSH),
+        ("final.fsh", "#version 120\nuniform float viewWidth;\nvoid main() { gl_FragColor = vec4(sqrt(-viewWidth)); }\n"),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let output = render_pack(pack.path(), out.path());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stdout}\n{stderr}");
+    assert!(stderr.contains("NaN or Inf"), "{stderr}");
+    assert!(stdout.lines().any(|l| l.contains("final") && l.contains("screen: 230400 NaN/Inf")), "{stdout}");
+}
+
+#[test]
+fn render_pack_fails_when_a_program_the_loader_runs_does_not_load() {
+    let pack = pack_of(&[
+        ("composite.vsh", FULLSCREEN_VSH),
+        ("composite.fsh", "#version 120\nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = vec4(uv, missing, 1.0);\n}\n"),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let output = render_pack(pack.path(), out.path());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("composite does not load") && stderr.contains("composite.fsh:4"), "{stderr}");
+}

@@ -185,9 +185,6 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
             println!("    drawn with OpenGL's own depth range: {}", gl.own_depth_mapping.join(", "));
         }
     }
-    for (program, why) in &report.failed_programs {
-        println!("  not loaded: {program}: {}", why.lines().next().unwrap_or(""));
-    }
     if !report.not_modelled.is_empty() {
         println!("  not imitated ({}):", report.not_modelled.len());
         for line in &report.not_modelled {
@@ -197,9 +194,14 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
     for f in &report.files {
         println!("  wrote {}", args.out.join(f).display());
     }
+    let mut failed = false;
     if report.non_finite_pixels > 0 {
         eprintln!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
-        return ExitCode::FAILURE;
+        failed = true;
     }
-    ExitCode::SUCCESS
+    for (program, why) in &report.failed_programs {
+        eprintln!("error: {program} does not load, so the frame is not the one the loader draws: {why}");
+        failed = true;
+    }
+    if failed { ExitCode::FAILURE } else { ExitCode::SUCCESS }
 }

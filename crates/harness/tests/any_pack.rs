@@ -1,0 +1,126 @@
+//! `render --pack`: any pack's pipeline (crates/harness/src/any_pack.rs, gpu/any_frame.rs,
+//! gl_any.rs) on packs of our own in tests/packs, each a minimal reproduction of what released
+//! packs do: a flip chain of deferred and composite programs reading and writing the same
+//! buffer, a float buffer with its own clear colour, a program without DRAWBUFFERS, and the
+//! 1.17+ core profile's vertex attributes and matrices.
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use tidepack_harness::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
+use tidepack_harness::gpu::{AnyFrame, render_any};
+use tidepack_harness::program::{BufferFormat, PackResources as _};
+use tidepack_harness::{Gpu, Loader, Scene, gl, gl_any, images, mesh};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
+}
+
+fn scene(name: &str) -> Scene {
+    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn pack(name: &str, loader: Loader) -> AnyPack {
+    AnyPack::load(&root().join("tests/packs").join(name), loader).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn render(pack: &AnyPack, scene: &Scene) -> AnyFrame {
+    render_any(gpu(), pack, scene, &mesh::build(scene, pack)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn the_plan_runs_the_programs_in_optifines_order_and_flips_what_full_screen_passes_write() {
+    let pack = pack("flip_chain", Loader::default());
+    assert!(pack.failed.is_empty(), "{:?}", pack.failed);
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let plan = FramePlan::new(&pack, &scene, &mesh);
+    let labels: Vec<&str> = plan.steps.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(
+        labels,
+        ["terrain (gbuffers_terrain)", "depth copy", "deferred", "water (gbuffers_water)", "composite", "composite1", "final"]
+    );
+    // Which texture of colortex0 each full-screen program reads: composite the one the
+    // geometry drew into, composite1 the one composite wrote, final the one composite1 wrote.
+    let reads: Vec<(&str, usize)> = plan
+        .steps
+        .iter()
+        .filter_map(|s| match &s.work {
+            PlannedWork::Fullscreen { program, current, .. } => Some((program.name.as_str(), current[&0])),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(reads, [("deferred", 0), ("composite", 0), ("composite1", 1), ("final", 0)]);
+    assert_eq!(pack.clear_of(3), BufferClear::Color([0.0, 0.0, 1.0, 1.0]));
+    assert_eq!(pack.format_of(3), BufferFormat::Rgba16F);
+}
+
+#[test]
+fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
+    let pack = pack("flip_chain", Loader::default());
+    let frame = render(&pack, &scene("case4_above_near"));
+    assert!(frame.not_modelled.is_empty(), "{:?}", frame.not_modelled);
+    let written = |pass: &str, texture: &str| {
+        let step = frame.passes.iter().find(|p| p.pass == pass).unwrap_or_else(|| panic!("no step {pass}"));
+        step.images.iter().find(|(name, _)| name == texture).map(|(_, image)| image.clone()).unwrap_or_else(|| panic!("{pass} wrote no {texture}"))
+    };
+    let composite = written("composite", "colortex0");
+    let composite1 = written("composite1", "colortex0");
+    let mut worst = 0f32;
+    for (a, b) in composite.pixels.iter().zip(&composite1.pixels) {
+        for c in 0..3 {
+            // composite1 = sqrt(composite), through an RGBA8 buffer.
+            worst = worst.max((a[c].sqrt() - b[c]).abs());
+        }
+    }
+    assert!(worst <= 1.0 / 255.0 + 1e-6, "composite1 is not sqrt of composite's output: {}", worst * 255.0);
+    assert_eq!(images::max_channel_difference(&composite1, &frame.image), [0.0; 4], "final passes colortex0 through");
+    for pass in &frame.passes {
+        assert!(pass.non_finite.values().all(|n| *n == 0), "{}: {:?}", pass.pass, pass.non_finite);
+    }
+}
+
+#[test]
+fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    let mut failures = Vec::new();
+    for name in ["flip_chain", "core_profile"] {
+        for loader in [Loader::default(), Loader::Iris] {
+            let pack = pack(name, loader);
+            for scene_name in ["case4_above_near", "rain_over_lake"] {
+                let scene = scene(scene_name);
+                let mesh = mesh::build(&scene, &pack);
+                let wgpu = render_any(gpu(), &pack, &scene, &mesh).unwrap_or_else(|e| panic!("{e}"));
+                let gl = gl_any::render_any(&ctx, &pack, &scene, &mesh).unwrap_or_else(|e| panic!("{e}"));
+                assert_eq!(wgpu.passes.len(), gl.steps.len());
+                for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
+                    for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
+                        let over = images::count_differing(a, b, 1.0 / 255.0 + 1e-6);
+                        if over > 0 {
+                            failures.push(format!("{name} {loader} {scene_name} {}: {texture}: {over} pixels over 1/255", pass.pass));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn the_core_profile_gets_the_same_geometry_as_the_legacy_built_ins() {
+    // core_profile draws with vaPosition, vaColor, vaUV0 and vaUV2 under modelViewMatrix,
+    // projectionMatrix and chunkOffset what flip_chain draws with ftransform() and gl_Color.
+    let scene = scene("case4_above_near");
+    let legacy = render(&pack("flip_chain", Loader::default()), &scene);
+    let core = render(&pack("core_profile", Loader::default()), &scene);
+    assert!(core.not_modelled.is_empty(), "{:?}", core.not_modelled);
+    let terrain = |frame: &AnyFrame| frame.passes[0].images[0].1.clone();
+    let d = images::max_channel_difference(&terrain(&legacy), &terrain(&core));
+    assert!(d.iter().all(|c| *c <= 1.0 / 255.0), "terrain colour differs by {d:?}");
+}

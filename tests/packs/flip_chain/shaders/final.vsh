@@ -1,0 +1,2 @@
+#version 120
+#include "/lib/fullscreen.glsl"
