@@ -1224,11 +1224,27 @@ impl<'a> Lowering<'_, 'a> {
 
     /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it
     /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
+    /// An unsized declaration initialised by a sized constructor (`T x[] = T[3](…)`) gets the
+    /// constructor's size too.
     fn lower_array_constructor_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
         for k in 1..sig.len() {
-            if !(self.tokens[sig[k - 1]].kind == TokenKind::Ident && punct(k, "[") && punct(k + 1, "]") && punct(k + 2, "(")) {
+            if !(self.tokens[sig[k - 1]].kind == TokenKind::Ident && punct(k, "[")) {
+                continue;
+            }
+            if !punct(k + 1, "]") {
+                // `T[N](`: one size group, then the constructor's arguments.
+                let Some(close) = (k + 1..sig.len()).find(|&j| matches!(self.tokens[sig[j]].text, "]" | "[" | ";" | "{" | "}")) else {
+                    continue;
+                };
+                if punct(close, "]") && punct(close + 1, "(") && !self.covered(sig[k]) {
+                    let size: String = sig[k + 1..close].iter().map(|&i| self.tokens[i].text).collect();
+                    self.size_unsized_declarator(&sig, k, &size);
+                }
+                continue;
+            }
+            if !punct(k + 2, "(") {
                 continue;
             }
             let mut depth = 0;
@@ -1252,15 +1268,21 @@ impl<'a> Lowering<'_, 'a> {
             }
             let size = if empty { 0 } else { count + 1 };
             self.replace(sig[k], sig[k + 1] + 1, format!("[{size}]"));
-            // The declaration's own `[]`, between the statement's start and this constructor.
-            for j in (0..k).rev() {
-                let t = self.tokens[sig[j]];
-                if matches!(t.text, ";" | "{" | "}") {
-                    break;
-                }
-                if t.is_punct("[") && punct(j + 1, "]") && !punct(j + 2, "(") {
-                    self.replace(sig[j], sig[j + 1] + 1, format!("[{size}]"));
-                }
+            self.size_unsized_declarator(&sig, k, &size.to_string());
+        }
+    }
+
+    /// The unsized `[]` of the declaration whose initializer has a constructor at `sig[k]`
+    /// (between the statement's start and the constructor) becomes `[size]`.
+    fn size_unsized_declarator(&mut self, sig: &[usize], k: usize, size: &str) {
+        let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
+        for j in (0..k).rev() {
+            let t = self.tokens[sig[j]];
+            if matches!(t.text, ";" | "{" | "}") {
+                break;
+            }
+            if t.is_punct("[") && punct(j + 1, "]") && !punct(j + 2, "(") {
+                self.replace(sig[j], sig[j + 1] + 1, format!("[{size}]"));
             }
         }
     }
