@@ -827,6 +827,9 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let Some(decl) = Declaration::parse(self.tokens, stmt) else {
+                if self.lower_interface_block(stmt)? {
+                    continue;
+                }
                 // GLSL allows a function to be declared again; naga refuses a second prototype.
                 let signature: Vec<&str> = stmt.sig.iter().map(|&i| self.tokens[i].text).collect();
                 let header = &signature[..signature.len() - 1];
@@ -865,6 +868,9 @@ impl<'a> Lowering<'_, 'a> {
                     let direction = if self.stage == Stage::Vertex { "out" } else { "in" };
                     let mut text = String::new();
                     for (name, suffix) in &decl.names {
+                        if self.stage == Stage::Fragment && !decl.qualifiers.contains(&"flat") {
+                            self.integer_input_must_be_flat(start, decl.ty, name)?;
+                        }
                         let location = self.varyings.locations.get(*name).copied().ok_or_else(|| {
                             self.err(start, format!("varying `{name}` is missing from the program's varying layout"))
                         })?;
@@ -937,6 +943,74 @@ impl<'a> Lowering<'_, 'a> {
         }
         self.rewrite_bodies()?;
         self.finish_header(version_index);
+        Ok(())
+    }
+
+    /// An `in` or `out` interface block (`out Data { flat int id; vec2 uv; } v;`): naga's parser
+    /// reads no qualifiers on block members, so they are blanked (columns kept). In a fragment
+    /// stage an integer member must be `flat`. Returns whether
+    /// `stmt` is such a block.
+    fn lower_interface_block(&mut self, stmt: &Statement) -> Result<bool, LowerError> {
+        let sig = &stmt.sig;
+        let Some(open) = sig.iter().position(|&i| self.tokens[i].is_punct("{")) else { return Ok(false) };
+        let head: Vec<&str> = sig[..open].iter().map(|&i| self.tokens[i].text).collect();
+        let Some(direction) = head.iter().position(|w| matches!(*w, "in" | "out")) else { return Ok(false) };
+        // `in`/`out`, then the block name right before `{`, with only qualifiers or a layout
+        // before the direction.
+        if open < 1 || direction + 2 != open || self.tokens[sig[open - 1]].kind != TokenKind::Ident {
+            return Ok(false);
+        }
+        if let Some(q) = (0..direction).find(|&q| is_varying_qualifier(head[q])) {
+            return Err(self.err(
+                sig[q],
+                format!("`{}` cannot qualify a block, only its members (Mesa refuses it as a syntax error)", head[q]),
+            ));
+        }
+        let fragment_input = self.stage == Stage::Fragment && head[direction] == "in" && !self.compute;
+        let block_name = head[open - 1];
+        // The statement ends at the first member's `;`: read the members from the tokens.
+        let sig: Vec<usize> = (sig[open]..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let open = 0;
+        let mut member_start = open + 1;
+        let mut k = open + 1;
+        while k < sig.len() && !self.tokens[sig[k]].is_punct("}") {
+            let t = self.tokens[sig[k]];
+            if t.is_punct(";") {
+                member_start = k + 1;
+            } else if k >= member_start && (is_varying_qualifier(t.text) || is_precision(t.text) || t.text == "sample") {
+                // Qualifiers lead the member; the first other word is its type.
+                if (member_start..k).all(|j| {
+                    let w = self.tokens[sig[j]].text;
+                    is_varying_qualifier(w) || is_precision(w) || w == "sample"
+                }) {
+                    self.replace(sig[k], sig[k] + 1, " ".repeat(t.text.len()));
+                }
+            } else if fragment_input && t.kind == TokenKind::Ident {
+                let qualifiers = &sig[member_start..k];
+                let is_type = qualifiers.iter().all(|&j| {
+                    let w = self.tokens[j].text;
+                    is_varying_qualifier(w) || is_precision(w) || w == "sample"
+                });
+                if is_type && !qualifiers.iter().any(|&j| self.tokens[j].text == "flat") {
+                    let member = sig.get(k + 1).map_or("", |&j| self.tokens[j].text);
+                    self.integer_input_must_be_flat(sig[k], t.text, &format!("{block_name}.{member}"))?;
+                }
+            }
+            k += 1;
+        }
+        Ok(true)
+    }
+
+    /// GLSL 1.30 §4.3.4: fragment inputs of an integer type must be `flat` (Mesa and glslang
+    /// refuse the stage); naga would make them flat by itself.
+    fn integer_input_must_be_flat(&self, at: usize, ty: &str, name: &str) -> Result<(), LowerError> {
+        let integer = matches!(ty, "int" | "uint") || ["ivec", "uvec"].iter().any(|p| ty.starts_with(p));
+        if integer && self.version >= 130 {
+            return Err(self.err(
+                at,
+                format!("fragment input `{name}` is an integer ({ty}) and must be qualified `flat` (GLSL 1.30 §4.3.4; drivers refuse the shader)"),
+            ));
+        }
         Ok(())
     }
 
