@@ -17,13 +17,49 @@ fn version_of(pre: &Preprocessed) -> u32 {
     pre.version.as_ref().map_or(110, |v| v.number)
 }
 
-/// Identifier uses in a text: name → (count, first line).
-fn identifier_uses(text: &str) -> HashMap<&str, (usize, u32)> {
-    let mut uses: HashMap<&str, (usize, u32)> = HashMap::new();
-    for t in tokenize(text).unwrap_or_default() {
-        if t.kind == TokenKind::Ident {
-            uses.entry(t.text).or_insert((0, t.line)).0 += 1;
+/// Identifiers a text reads as globals: name → first line. A name declared again as a local or
+/// parameter means that local inside its block or function, so those uses are not counted;
+/// nor are global declarations, or fields after `.`.
+fn global_uses(text: &str) -> HashMap<&str, u32> {
+    let tokens = tokenize(text).unwrap_or_default();
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia() && !t.is_punct("#")).collect();
+    let mut uses: HashMap<&str, u32> = HashMap::new();
+    // Names declared inside functions, with the brace depth their scope closes below.
+    let mut shadows: Vec<(&str, u32)> = Vec::new();
+    let (mut depth, mut parens) = (0u32, 0u32);
+    for (k, t) in sig.iter().enumerate() {
+        match t.text {
+            "{" => depth += 1,
+            "}" => {
+                depth = depth.saturating_sub(1);
+                shadows.retain(|&(_, scope)| scope <= depth);
+            }
+            "(" => parens += 1,
+            ")" => parens = parens.saturating_sub(1),
+            // A prototype's parameters have no body.
+            ";" if depth == 0 => shadows.clear(),
+            _ => {}
         }
+        if t.kind != TokenKind::Ident {
+            continue;
+        }
+        let previous = k.checked_sub(1).map(|p| sig[p]);
+        let declared = previous.is_some_and(|p| {
+            p.kind == TokenKind::Ident && !matches!(p.text, "return" | "else" | "do" | "case" | "goto")
+        });
+        if declared {
+            if depth > 0 {
+                shadows.push((t.text, depth));
+            } else if parens > 0 {
+                // A parameter: its scope is the function body that follows.
+                shadows.push((t.text, 1));
+            }
+            continue;
+        }
+        if previous.is_some_and(|p| p.is_punct(".")) || shadows.iter().any(|&(name, _)| name == t.text) {
+            continue;
+        }
+        uses.entry(t.text).or_insert(t.line);
     }
     uses
 }
@@ -44,21 +80,41 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
         return Vec::new();
     };
     let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
-    let uses = identifier_uses(&fragment.text);
+    let uses = global_uses(&fragment.text);
     let vertex_path = vertex.files.first().cloned().unwrap_or_default();
+    // Mesa's linker (like the GLSL 4.20 specification) refuses a statically read input that
+    // the vertex stage does not declare in GLSL 1.10/1.20 and from 4.20 on, by the higher
+    // `#version` of the two; from 1.30 to 4.10 it links the program.
+    let version = version_of(vertex).max(version_of(fragment));
+    let mesa_links = (130..420).contains(&version);
     let mut found = Vec::new();
     for input in &inputs {
         let at = fragment.location(input.line);
         match outputs.get(input.name.as_str()) {
             None => {
-                // Only a statically used input must be written (GLSL 1.20 §4.3.6).
-                if uses.get(input.name.as_str()).is_some_and(|(n, _)| *n > 1) {
+                // Only a statically read input must be declared by the vertex stage.
+                let Some(&read_at) = uses.get(input.name.as_str()) else { continue };
+                let declare =
+                    format!("declare `varying {} {};` (or `out`) in the vertex shader and write it", input.ty, input.name);
+                if mesa_links {
+                    found.push(
+                        Diagnostic::warning(
+                            format!(
+                                "fragment input `{}` is read at {} but {vertex_path} does not declare it: GLSL wants every input that is read written by the previous stage (stated as a link error from GLSL 4.20 on); Mesa links it under #version {version} (it refuses it only from 4.20 and in 1.10/1.20), stricter drivers may not",
+                                input.name,
+                                fragment.location(read_at).map_or_else(|| format!("line {read_at}"), |l| format!("{}:{}", l.path, l.line)),
+                            ),
+                            at,
+                        )
+                        .with_note(declare),
+                    );
+                } else {
                     found.push(
                         Diagnostic::error(
                             format!("fragment input `{}` is not an output of {vertex_path}: the program fails to link", input.name),
                             at,
                         )
-                        .with_note(format!("declare `varying {} {};` (or `out`) in the vertex shader and write it", input.ty, input.name)),
+                        .with_note(declare),
                     );
                 }
             }
