@@ -50,6 +50,8 @@
 //!   its type. `memoryBarrier*()`/`groupMemoryBarrier()` and the `int`/`uint` `atomic*()`
 //!   functions, which naga's GLSL front-end lacks, get stand-ins of the same signature on line 2
 //!   when a stage calls them.
+//! - The pack's buffer and uniform blocks with a `binding` go to their own descriptor sets in
+//!   vertex and fragment stages ([`PACK_BUFFER_SET`]), clear of the lowered resources.
 //! - Compute stages ([`lower_compute`]): uniforms, samplers and images as above (descriptor set
 //!   [`COMPUTE_DESCRIPTOR_SET`]); `layout(local_size_…) in;`, `shared` and the `gl_*` compute
 //!   built-ins are left as they are; no varyings or legacy built-ins.
@@ -93,6 +95,11 @@ impl Stage {
 /// Descriptor set of a compute stage's lowered resources (the pack's own `layout(binding = N)`
 /// blocks stay in set 0).
 pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
+
+/// Descriptor set of the pack's own buffer blocks (`layout(std430, binding = N) buffer …`) in
+/// vertex and fragment stages, clear of the sets the lowering uses there; uniform blocks with a
+/// binding take the next one (OpenGL numbers the two kinds of binding apart).
+pub const PACK_BUFFER_SET: u32 = 3;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
@@ -826,6 +833,7 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace(only, only + 1, String::new());
                 continue;
             }
+            self.move_bound_block(stmt);
             let Some(decl) = Declaration::parse(self.tokens, stmt) else {
                 if self.lower_interface_block(stmt)? {
                     continue;
@@ -999,6 +1007,28 @@ impl<'a> Lowering<'_, 'a> {
             k += 1;
         }
         Ok(true)
+    }
+
+    /// A buffer or uniform block with an explicit `binding` in a vertex or fragment stage goes
+    /// to a set of its own ([`PACK_BUFFER_SET`]): in the stage's set it would collide with the
+    /// lowered uniforms and samplers. Compute stages keep it in set 0 (theirs is set 2).
+    fn move_bound_block(&mut self, stmt: &Statement) {
+        let sig = &stmt.sig;
+        let words: Vec<&str> = sig.iter().map(|&i| self.tokens[i].text).collect();
+        if self.compute || words.first() != Some(&"layout") || !words.contains(&"{") {
+            return;
+        }
+        let Some(close) = words.iter().position(|w| *w == ")") else { return };
+        let layout = &words[..close];
+        if !layout.contains(&"binding") || layout.contains(&"set") {
+            return;
+        }
+        let set = match words[close..].iter().find(|w| matches!(**w, "buffer" | "uniform")) {
+            Some(&"buffer") => PACK_BUFFER_SET,
+            Some(_) => PACK_BUFFER_SET + 1,
+            None => return,
+        };
+        self.replace(sig[close], sig[close] + 1, format!(", set = {set})"));
     }
 
     /// GLSL 1.30 §4.3.4: fragment inputs of an integer type must be `flat` (Mesa and glslang
