@@ -5,7 +5,7 @@
 //!   `flat`/`noperspective`, `uint`, `switch`, `in`/`out` globals, and the 1.30 functions
 //!   (`texture`, `textureLod`, `texelFetch`, `textureSize`, …), unless `GL_EXT_gpu_shader4`
 //!   is enabled for the parts it adds; `texture2DLod` & co. in fragment shaders without
-//!   `GL_ARB_shader_texture_lod`;
+//!   `GL_ARB_shader_texture_lod` or `GL_EXT_gpu_shader4`;
 //! - before GLSL 4.20, `= { … }` initializer lists without `GL_ARB_shading_language_420pack`;
 //! - in a core profile (`#version 140`+ without `compatibility`): the removed built-ins
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
@@ -81,7 +81,8 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
     let legacy_rules = number < 130 || core;
     let gpu4 = extensions.contains(GPU_SHADER4);
-    let lod = extensions.contains(TEXTURE_LOD);
+    // GL_EXT_gpu_shader4 brings the `Lod` lookups to fragment shaders too.
+    let lod = extensions.contains(TEXTURE_LOD) || gpu4;
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     let mut found: Vec<Diagnostic> = Vec::new();
