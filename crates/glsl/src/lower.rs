@@ -101,6 +101,12 @@ pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
 /// binding take the next one (OpenGL numbers the two kinds of binding apart).
 pub const PACK_BUFFER_SET: u32 = 3;
 
+/// Location of the first `in`/`out` interface block: naga takes a block as one value whose
+/// members follow each other from location 0 unless told otherwise, where they would collide
+/// with the varyings. Each further block starts [`INTERFACE_BLOCK_STRIDE`] locations on.
+pub const INTERFACE_BLOCK_LOCATION: u32 = 64;
+pub const INTERFACE_BLOCK_STRIDE: u32 = 64;
+
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
 /// Fragment outputs packed beside another by `layout(component = c)` are lowered to location
@@ -743,6 +749,7 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
         symbols: Symbols::default(),
         interface: Interface::default(),
         next_binding: 1,
+        interface_blocks: 0,
         varyings,
         prelude: String::new(),
         matrix_varyings: Vec::new(),
@@ -769,6 +776,8 @@ struct Lowering<'t, 'a> {
     symbols: Symbols,
     interface: Interface,
     next_binding: u32,
+    /// `in`/`out` interface blocks lowered so far (each gets a location of its own).
+    interface_blocks: u32,
     varyings: &'t VaryingLayout,
     /// Type definitions the uniform block needs, put before it.
     prelude: String,
@@ -973,6 +982,12 @@ impl<'a> Lowering<'_, 'a> {
                 sig[q],
                 format!("`{}` cannot qualify a block, only its members (Mesa refuses it as a syntax error)", head[q]),
             ));
+        }
+        if !head.contains(&"layout") {
+            let location = INTERFACE_BLOCK_LOCATION.saturating_add(self.interface_blocks.saturating_mul(INTERFACE_BLOCK_STRIDE));
+            self.interface_blocks += 1;
+            let at = sig[direction];
+            self.replace(at, at + 1, format!("layout(location = {location}) {}", head[direction]));
         }
         let fragment_input = self.stage == Stage::Fragment && head[direction] == "in" && !self.compute;
         let block_name = head[open - 1];

@@ -136,6 +136,137 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
             }
         }
     }
+    found.extend(check_blocks(vertex, fragment, &uses));
+    found
+}
+
+/// A member of an `in`/`out` interface block: its qualifiers (`flat`, `centroid`, …), type,
+/// name and array suffix as written.
+#[derive(PartialEq, Eq)]
+struct BlockMember {
+    qualifiers: Vec<String>,
+    ty: String,
+    name: String,
+    array: String,
+}
+
+impl BlockMember {
+    fn describe(&self) -> String {
+        let qualifiers: String = self.qualifiers.iter().map(|q| format!("{q} ")).collect();
+        format!("{qualifiers}{} {}{}", self.ty, self.name, self.array)
+    }
+}
+
+/// An `in` or `out` interface block of a stage.
+struct Block {
+    name: String,
+    /// The instance name, if any (members are globals without one).
+    instance: Option<String>,
+    line: u32,
+    members: Vec<BlockMember>,
+}
+
+/// The interface blocks of `direction` (`in` or `out`) a stage declares.
+fn interface_blocks(text: &str, direction: &str) -> Vec<Block> {
+    let tokens = tokenize(text).unwrap_or_default();
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut blocks = Vec::new();
+    let mut depth = 0;
+    for k in 0..sig.len() {
+        match sig[k].text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            _ => {}
+        }
+        if depth != 0
+            || sig[k].text != direction
+            || !sig.get(k + 1).is_some_and(|t| t.kind == TokenKind::Ident)
+            || !sig.get(k + 2).is_some_and(|t| t.is_punct("{"))
+        {
+            continue;
+        }
+        let mut members = Vec::new();
+        let mut words: Vec<&str> = Vec::new();
+        let mut j = k + 3;
+        while let Some(t) = sig.get(j) {
+            j += 1;
+            match t.text {
+                "}" => break,
+                ";" | "," => {
+                    // `[qualifiers] type name[size]`; after a `,` the next declarator shares them.
+                    let array_at = words.iter().position(|w| *w == "[").unwrap_or(words.len());
+                    if array_at >= 2 {
+                        let (head, array) = words.split_at(array_at);
+                        let (name, head) = head.split_last().expect("two words");
+                        let (ty, qualifiers) = head.split_last().expect("one word");
+                        members.push(BlockMember {
+                            qualifiers: qualifiers.iter().map(|q| q.to_string()).collect(),
+                            ty: ty.to_string(),
+                            name: name.to_string(),
+                            array: array.concat(),
+                        });
+                        words = if t.text == "," { head.to_vec() } else { Vec::new() };
+                    } else {
+                        words.clear();
+                    }
+                }
+                w => words.push(w),
+            }
+        }
+        let instance = sig.get(j).filter(|t| t.kind == TokenKind::Ident).map(|t| t.text.to_string());
+        blocks.push(Block { name: sig[k + 1].text.to_string(), instance, line: sig[k].line, members });
+    }
+    blocks
+}
+
+/// Fragment input blocks against the vertex stage's output blocks of the same name: GLSL
+/// matches blocks by name, and their members must agree in order, name, type and (before GLSL
+/// 4.40) interpolation; a block the fragment stage uses must be an output of the vertex stage.
+fn check_blocks(vertex: &Preprocessed, fragment: &Preprocessed, uses: &HashMap<&str, u32>) -> Vec<Diagnostic> {
+    let outputs = interface_blocks(&vertex.text, "out");
+    let vertex_path = vertex.files.first().cloned().unwrap_or_default();
+    let version = version_of(vertex).max(version_of(fragment));
+    // Mesa compares `centroid` and `sample` always, the interpolation only before 4.40.
+    let counted = |m: &BlockMember| -> Vec<String> {
+        m.qualifiers
+            .iter()
+            .filter(|q| matches!(q.as_str(), "centroid" | "sample") || (version < 440 && matches!(q.as_str(), "flat" | "smooth" | "noperspective")))
+            .cloned()
+            .collect()
+    };
+    let mut found = Vec::new();
+    for input in interface_blocks(&fragment.text, "in") {
+        let at = fragment.location(input.line);
+        let Some(output) = outputs.iter().find(|b| b.name == input.name) else {
+            let used = match &input.instance {
+                Some(instance) => uses.contains_key(instance.as_str()),
+                None => input.members.iter().any(|m| uses.contains_key(m.name.as_str())),
+            };
+            if used {
+                found.push(Diagnostic::error(
+                    format!("input block `{}` is not an output block of {vertex_path}: the program fails to link", input.name),
+                    at,
+                ));
+            }
+            continue;
+        };
+        let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
+        let mismatch = (0..input.members.len().max(output.members.len())).find_map(|i| {
+            match (input.members.get(i), output.members.get(i)) {
+                (Some(a), Some(b)) if a.ty == b.ty && a.name == b.name && a.array == b.array && counted(a) == counted(b) => None,
+                (Some(a), Some(b)) => Some(format!("member {} is `{}` here and `{}` there", i + 1, a.describe(), b.describe())),
+                (Some(a), None) => Some(format!("`{}` is missing there", a.describe())),
+                (None, Some(b)) => Some(format!("`{}` is missing here", b.describe())),
+                (None, None) => None,
+            }
+        });
+        if let Some(mismatch) = mismatch {
+            found.push(Diagnostic::error(
+                format!("block `{}` here does not match its declaration at {out_at} ({mismatch}): the program fails to link", input.name),
+                at,
+            ));
+        }
+    }
     found
 }
 
