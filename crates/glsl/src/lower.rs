@@ -50,6 +50,8 @@
 //!   its type. `memoryBarrier*()`/`groupMemoryBarrier()` and the `int`/`uint` `atomic*()`
 //!   functions, which naga's GLSL front-end lacks, get stand-ins of the same signature on line 2
 //!   when a stage calls them.
+//! - `in`/`out` interface blocks lose the qualifiers of their members (naga reads none there)
+//!   and each gets a location of its own from [`INTERFACE_BLOCK_LOCATION`].
 //! - The pack's buffer and uniform blocks with a `binding` go to their own descriptor sets in
 //!   vertex and fragment stages ([`PACK_BUFFER_SET`]), clear of the lowered resources.
 //! - Compute stages ([`lower_compute`]): uniforms, samplers and images as above (descriptor set
