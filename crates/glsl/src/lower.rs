@@ -50,6 +50,10 @@
 //!   its type. `memoryBarrier*()`/`groupMemoryBarrier()` and the `int`/`uint` `atomic*()`
 //!   functions, which naga's GLSL front-end lacks, get stand-ins of the same signature on line 2
 //!   when a stage calls them.
+//! - `in`/`out` interface blocks lose the qualifiers of their members (naga reads none there)
+//!   and each gets a location of its own from [`INTERFACE_BLOCK_LOCATION`].
+//! - The pack's buffer and uniform blocks with a `binding` go to their own descriptor sets in
+//!   vertex and fragment stages ([`PACK_BUFFER_SET`]), clear of the lowered resources.
 //! - Compute stages ([`lower_compute`]): uniforms, samplers and images as above (descriptor set
 //!   [`COMPUTE_DESCRIPTOR_SET`]); `layout(local_size_…) in;`, `shared` and the `gl_*` compute
 //!   built-ins are left as they are; no varyings or legacy built-ins.
@@ -93,6 +97,17 @@ impl Stage {
 /// Descriptor set of a compute stage's lowered resources (the pack's own `layout(binding = N)`
 /// blocks stay in set 0).
 pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
+
+/// Descriptor set of the pack's own buffer blocks (`layout(std430, binding = N) buffer …`) in
+/// vertex and fragment stages, clear of the sets the lowering uses there; uniform blocks with a
+/// binding take the next one (OpenGL numbers the two kinds of binding apart).
+pub const PACK_BUFFER_SET: u32 = 3;
+
+/// Location of the first `in`/`out` interface block: naga takes a block as one value whose
+/// members follow each other from location 0 unless told otherwise, where they would collide
+/// with the varyings. Each further block starts [`INTERFACE_BLOCK_STRIDE`] locations on.
+pub const INTERFACE_BLOCK_LOCATION: u32 = 64;
+pub const INTERFACE_BLOCK_STRIDE: u32 = 64;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
@@ -736,6 +751,7 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
         symbols: Symbols::default(),
         interface: Interface::default(),
         next_binding: 1,
+        interface_blocks: 0,
         varyings,
         prelude: String::new(),
         matrix_varyings: Vec::new(),
@@ -762,6 +778,8 @@ struct Lowering<'t, 'a> {
     symbols: Symbols,
     interface: Interface,
     next_binding: u32,
+    /// `in`/`out` interface blocks lowered so far (each gets a location of its own).
+    interface_blocks: u32,
     varyings: &'t VaryingLayout,
     /// Type definitions the uniform block needs, put before it.
     prelude: String,
@@ -826,7 +844,11 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace(only, only + 1, String::new());
                 continue;
             }
+            self.move_bound_block(stmt);
             let Some(decl) = Declaration::parse(self.tokens, stmt) else {
+                if self.lower_interface_block(stmt)? {
+                    continue;
+                }
                 // GLSL allows a function to be declared again; naga refuses a second prototype.
                 let signature: Vec<&str> = stmt.sig.iter().map(|&i| self.tokens[i].text).collect();
                 let header = &signature[..signature.len() - 1];
@@ -865,6 +887,9 @@ impl<'a> Lowering<'_, 'a> {
                     let direction = if self.stage == Stage::Vertex { "out" } else { "in" };
                     let mut text = String::new();
                     for (name, suffix) in &decl.names {
+                        if self.stage == Stage::Fragment && !decl.qualifiers.contains(&"flat") {
+                            self.integer_input_must_be_flat(start, decl.ty, name)?;
+                        }
                         let location = self.varyings.locations.get(*name).copied().ok_or_else(|| {
                             self.err(start, format!("varying `{name}` is missing from the program's varying layout"))
                         })?;
@@ -937,6 +962,102 @@ impl<'a> Lowering<'_, 'a> {
         }
         self.rewrite_bodies()?;
         self.finish_header(version_index);
+        Ok(())
+    }
+
+    /// An `in` or `out` interface block (`out Data { flat int id; vec2 uv; } v;`): naga's parser
+    /// reads no qualifiers on block members, so they are blanked (columns kept). In a fragment
+    /// stage an integer member must be `flat`. Returns whether
+    /// `stmt` is such a block.
+    fn lower_interface_block(&mut self, stmt: &Statement) -> Result<bool, LowerError> {
+        let sig = &stmt.sig;
+        let Some(open) = sig.iter().position(|&i| self.tokens[i].is_punct("{")) else { return Ok(false) };
+        let head: Vec<&str> = sig[..open].iter().map(|&i| self.tokens[i].text).collect();
+        let Some(direction) = head.iter().position(|w| matches!(*w, "in" | "out")) else { return Ok(false) };
+        // `in`/`out`, then the block name right before `{`, with only qualifiers or a layout
+        // before the direction.
+        if open < 1 || direction + 2 != open || self.tokens[sig[open - 1]].kind != TokenKind::Ident {
+            return Ok(false);
+        }
+        if let Some(q) = (0..direction).find(|&q| is_varying_qualifier(head[q])) {
+            return Err(self.err(
+                sig[q],
+                format!("`{}` cannot qualify a block, only its members (Mesa refuses it as a syntax error)", head[q]),
+            ));
+        }
+        if !head.contains(&"layout") {
+            let location = INTERFACE_BLOCK_LOCATION.saturating_add(self.interface_blocks.saturating_mul(INTERFACE_BLOCK_STRIDE));
+            self.interface_blocks += 1;
+            let at = sig[direction];
+            self.replace(at, at + 1, format!("layout(location = {location}) {}", head[direction]));
+        }
+        let fragment_input = self.stage == Stage::Fragment && head[direction] == "in" && !self.compute;
+        let block_name = head[open - 1];
+        // The statement ends at the first member's `;`: read the members from the tokens.
+        let sig: Vec<usize> = (sig[open]..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let open = 0;
+        let mut member_start = open + 1;
+        let mut k = open + 1;
+        while k < sig.len() && !self.tokens[sig[k]].is_punct("}") {
+            let t = self.tokens[sig[k]];
+            if t.is_punct(";") {
+                member_start = k + 1;
+            } else if k >= member_start && (is_varying_qualifier(t.text) || is_precision(t.text) || t.text == "sample") {
+                // Qualifiers lead the member; the first other word is its type.
+                if (member_start..k).all(|j| {
+                    let w = self.tokens[sig[j]].text;
+                    is_varying_qualifier(w) || is_precision(w) || w == "sample"
+                }) {
+                    self.replace(sig[k], sig[k] + 1, " ".repeat(t.text.len()));
+                }
+            } else if fragment_input && t.kind == TokenKind::Ident {
+                let qualifiers = &sig[member_start..k];
+                let is_type = qualifiers.iter().all(|&j| {
+                    let w = self.tokens[j].text;
+                    is_varying_qualifier(w) || is_precision(w) || w == "sample"
+                });
+                if is_type && !qualifiers.iter().any(|&j| self.tokens[j].text == "flat") {
+                    let member = sig.get(k + 1).map_or("", |&j| self.tokens[j].text);
+                    self.integer_input_must_be_flat(sig[k], t.text, &format!("{block_name}.{member}"))?;
+                }
+            }
+            k += 1;
+        }
+        Ok(true)
+    }
+
+    /// A buffer or uniform block with an explicit `binding` in a vertex or fragment stage goes
+    /// to a set of its own ([`PACK_BUFFER_SET`]): in the stage's set it would collide with the
+    /// lowered uniforms and samplers. Compute stages keep it in set 0 (theirs is set 2).
+    fn move_bound_block(&mut self, stmt: &Statement) {
+        let sig = &stmt.sig;
+        let words: Vec<&str> = sig.iter().map(|&i| self.tokens[i].text).collect();
+        if self.compute || words.first() != Some(&"layout") || !words.contains(&"{") {
+            return;
+        }
+        let Some(close) = words.iter().position(|w| *w == ")") else { return };
+        let layout = &words[..close];
+        if !layout.contains(&"binding") || layout.contains(&"set") {
+            return;
+        }
+        let set = match words[close..].iter().find(|w| matches!(**w, "buffer" | "uniform")) {
+            Some(&"buffer") => PACK_BUFFER_SET,
+            Some(_) => PACK_BUFFER_SET + 1,
+            None => return,
+        };
+        self.replace(sig[close], sig[close] + 1, format!(", set = {set})"));
+    }
+
+    /// GLSL 1.30 §4.3.4: fragment inputs of an integer type must be `flat` (Mesa and glslang
+    /// refuse the stage); naga would make them flat by itself.
+    fn integer_input_must_be_flat(&self, at: usize, ty: &str, name: &str) -> Result<(), LowerError> {
+        let integer = matches!(ty, "int" | "uint") || ["ivec", "uvec"].iter().any(|p| ty.starts_with(p));
+        if integer && self.version >= 130 {
+            return Err(self.err(
+                at,
+                format!("fragment input `{name}` is an integer ({ty}) and must be qualified `flat` (GLSL 1.30 §4.3.4; drivers refuse the shader)"),
+            ));
+        }
         Ok(())
     }
 
@@ -1224,11 +1345,27 @@ impl<'a> Lowering<'_, 'a> {
 
     /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it
     /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
+    /// An unsized declaration initialised by a sized constructor (`T x[] = T[3](…)`) gets the
+    /// constructor's size too.
     fn lower_array_constructor_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
         for k in 1..sig.len() {
-            if !(self.tokens[sig[k - 1]].kind == TokenKind::Ident && punct(k, "[") && punct(k + 1, "]") && punct(k + 2, "(")) {
+            if !(self.tokens[sig[k - 1]].kind == TokenKind::Ident && punct(k, "[")) {
+                continue;
+            }
+            if !punct(k + 1, "]") {
+                // `T[N](`: one size group, then the constructor's arguments.
+                let Some(close) = (k + 1..sig.len()).find(|&j| matches!(self.tokens[sig[j]].text, "]" | "[" | ";" | "{" | "}")) else {
+                    continue;
+                };
+                if punct(close, "]") && punct(close + 1, "(") && !self.covered(sig[k]) {
+                    let size: String = sig[k + 1..close].iter().map(|&i| self.tokens[i].text).collect();
+                    self.size_unsized_declarator(&sig, k, &size);
+                }
+                continue;
+            }
+            if !punct(k + 2, "(") {
                 continue;
             }
             let mut depth = 0;
@@ -1252,15 +1389,21 @@ impl<'a> Lowering<'_, 'a> {
             }
             let size = if empty { 0 } else { count + 1 };
             self.replace(sig[k], sig[k + 1] + 1, format!("[{size}]"));
-            // The declaration's own `[]`, between the statement's start and this constructor.
-            for j in (0..k).rev() {
-                let t = self.tokens[sig[j]];
-                if matches!(t.text, ";" | "{" | "}") {
-                    break;
-                }
-                if t.is_punct("[") && punct(j + 1, "]") && !punct(j + 2, "(") {
-                    self.replace(sig[j], sig[j + 1] + 1, format!("[{size}]"));
-                }
+            self.size_unsized_declarator(&sig, k, &size.to_string());
+        }
+    }
+
+    /// The unsized `[]` of the declaration whose initializer has a constructor at `sig[k]`
+    /// (between the statement's start and the constructor) becomes `[size]`.
+    fn size_unsized_declarator(&mut self, sig: &[usize], k: usize, size: &str) {
+        let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
+        for j in (0..k).rev() {
+            let t = self.tokens[sig[j]];
+            if matches!(t.text, ";" | "{" | "}") {
+                break;
+            }
+            if t.is_punct("[") && punct(j + 1, "]") && !punct(j + 2, "(") {
+                self.replace(sig[j], sig[j + 1] + 1, format!("[{size}]"));
             }
         }
     }

@@ -141,13 +141,15 @@ fn validate_text(
     // repaired in the text (line for line) and naga runs again.
     let mut text = lowered.text.clone();
     let version = pre.version.as_ref().map_or(110, |v| v.number);
+    // Scalars take swizzles (`f().r`) from GLSL 4.20 or with GL_ARB_shading_language_420pack.
+    let scalar_swizzles = version >= 420 || extension_enabled(&pre.text, "GL_ARB_shading_language_420pack");
     for repairs in 0.. {
         let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
         let module = match parsed {
             Ok(module) => module,
             Err(errors) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version))
+                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles))
                 {
                     text = repaired;
                     continue;
@@ -397,6 +399,12 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
             format!("unexpected {found}: expected {}", words.join(" or "))
         }
         ErrorKind::EndOfFile => "the file ends inside a declaration or block: a `}`, `)` or `;` is missing".to_string(),
+        ErrorKind::SemanticError(m) if m.starts_with("Can't lookup field on this type") => {
+            let field = span.as_ref().and_then(|r| text.get(r.clone())).map_or("this field".to_string(), |t| format!("`{}`", t.trim()));
+            format!(
+                "{field} selects from a value that is neither a vector nor a struct: scalars take swizzles only from GLSL 4.20 (or with GL_ARB_shading_language_420pack), matrices never (Mesa refuses it)"
+            )
+        }
         // naga names the expression by its internal form.
         ErrorKind::SemanticError(m) if m.ends_with("cannot be in the left hand side") => {
             "this cannot be assigned to: the left side of an assignment must be a variable, an element, a field or a swizzle"
@@ -502,14 +510,15 @@ fn expected_words(expected: &ExpectedToken) -> String {
 
 /// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
 /// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types,
-/// a constant shift whose bits run out of the integer.
-fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32) -> Option<String> {
+/// a constant shift whose bits run out of the integer, a swizzle of a scalar where the version
+/// allows one.
+fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32, scalar_swizzles: bool) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
     let span = e.meta.to_range()?;
     if message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
         scalar_dot_at(text, span.start)
     } else if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
-        column_swizzle_store(text, span, field)
+        column_swizzle_store(text, span.clone(), field).or_else(|| if scalar_swizzles { scalar_swizzle(text, span, field) } else { None })
     } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
         mixed_type_overloads(text, name, version)
     } else if message.as_ref() == "<< operation overflowed" {
@@ -587,6 +596,65 @@ fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str
         .map(|n| format!("void tp_store_{swizzle}(inout vec{n} c, {value_ty} v) {{ c.{swizzle} = v; }} "))
         .collect();
     with_stand_in(repaired, &stand_ins)
+}
+
+/// `extension` enabled by an `#extension` line of `text`.
+fn extension_enabled(text: &str, extension: &str) -> bool {
+    text.lines().any(|line| {
+        let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
+        matches!(words.as_slice(), ["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..]
+            if *name == extension && *behaviour != "disable")
+    })
+}
+
+/// `f(x).rr` (GLSL 4.20 swizzles scalars; naga's parser does not): the operand before `field`
+/// (the span of `.rr`) becomes `tp_splat2(f(x))`, overloads for each scalar type; `.r` alone
+/// becomes `(f(x))`. Only the first component (`x`, `r`, `s`) exists in a scalar.
+fn scalar_swizzle(text: &str, field: std::ops::Range<usize>, swizzle: &str) -> Option<String> {
+    let n = swizzle.len();
+    let first = swizzle.chars().next()?;
+    if !(1..=4).contains(&n) || !"xrs".contains(first) || swizzle.chars().any(|c| c != first) || !text.get(field.clone())?.starts_with('.') {
+        return None;
+    }
+    let start = operand_start(text, field.start);
+    let operand = text[start..field.start].trim();
+    if operand.is_empty() {
+        return None;
+    }
+    if n == 1 {
+        return Some(format!("{}({operand}){}", &text[..start], &text[field.end..]));
+    }
+    let repaired = format!("{}tp_splat{n}({operand}){}", &text[..start], &text[field.end..]);
+    let stand_ins: String = [("float", "vec"), ("int", "ivec"), ("uint", "uvec"), ("bool", "bvec")]
+        .iter()
+        .map(|(scalar, vector)| format!("{vector}{n} tp_splat{n}({scalar} a) {{ return {vector}{n}(a); }} "))
+        .collect();
+    with_stand_in(repaired, &stand_ins)
+}
+
+/// The start of the operand that ends at byte `end`: a call or parenthesised expression
+/// (`f(x)`, `(a + b)`), or what [`postfix_start`] finds.
+fn operand_start(text: &str, end: usize) -> usize {
+    let last = text[..end].trim_end().len();
+    if !text[..last].ends_with(')') {
+        return postfix_start(text, end);
+    }
+    let bytes = text.as_bytes();
+    let mut depth = 0;
+    let Some(open) = (0..last).rev().find(|&i| {
+        match bytes[i] {
+            b')' => depth += 1,
+            b'(' => depth -= 1,
+            _ => {}
+        }
+        depth == 0
+    }) else {
+        return end;
+    };
+    // The called function's name, if any.
+    let before = text[..open].trim_end();
+    let name = before.trim_end_matches(|c: char| c.is_ascii_alphanumeric() || c == '_');
+    if name.len() < before.len() { name.len() } else { open }
 }
 
 /// The start of the variable, element or field (`s.m[i]`, `m[i][j]`) that ends at byte `end`.

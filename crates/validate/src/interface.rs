@@ -17,13 +17,49 @@ fn version_of(pre: &Preprocessed) -> u32 {
     pre.version.as_ref().map_or(110, |v| v.number)
 }
 
-/// Identifier uses in a text: name → (count, first line).
-fn identifier_uses(text: &str) -> HashMap<&str, (usize, u32)> {
-    let mut uses: HashMap<&str, (usize, u32)> = HashMap::new();
-    for t in tokenize(text).unwrap_or_default() {
-        if t.kind == TokenKind::Ident {
-            uses.entry(t.text).or_insert((0, t.line)).0 += 1;
+/// Identifiers a text reads as globals: name → first line. A name declared again as a local or
+/// parameter means that local inside its block or function, so those uses are not counted;
+/// nor are global declarations, or fields after `.`.
+fn global_uses(text: &str) -> HashMap<&str, u32> {
+    let tokens = tokenize(text).unwrap_or_default();
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia() && !t.is_punct("#")).collect();
+    let mut uses: HashMap<&str, u32> = HashMap::new();
+    // Names declared inside functions, with the brace depth their scope closes below.
+    let mut shadows: Vec<(&str, u32)> = Vec::new();
+    let (mut depth, mut parens) = (0u32, 0u32);
+    for (k, t) in sig.iter().enumerate() {
+        match t.text {
+            "{" => depth += 1,
+            "}" => {
+                depth = depth.saturating_sub(1);
+                shadows.retain(|&(_, scope)| scope <= depth);
+            }
+            "(" => parens += 1,
+            ")" => parens = parens.saturating_sub(1),
+            // A prototype's parameters have no body.
+            ";" if depth == 0 => shadows.clear(),
+            _ => {}
         }
+        if t.kind != TokenKind::Ident {
+            continue;
+        }
+        let previous = k.checked_sub(1).map(|p| sig[p]);
+        let declared = previous.is_some_and(|p| {
+            p.kind == TokenKind::Ident && !matches!(p.text, "return" | "else" | "do" | "case" | "goto")
+        });
+        if declared {
+            if depth > 0 {
+                shadows.push((t.text, depth));
+            } else if parens > 0 {
+                // A parameter: its scope is the function body that follows.
+                shadows.push((t.text, 1));
+            }
+            continue;
+        }
+        if previous.is_some_and(|p| p.is_punct(".")) || shadows.iter().any(|&(name, _)| name == t.text) {
+            continue;
+        }
+        uses.entry(t.text).or_insert(t.line);
     }
     uses
 }
@@ -44,21 +80,41 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
         return Vec::new();
     };
     let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
-    let uses = identifier_uses(&fragment.text);
+    let uses = global_uses(&fragment.text);
     let vertex_path = vertex.files.first().cloned().unwrap_or_default();
+    // Mesa's linker (like the GLSL 4.20 specification) refuses a statically read input that
+    // the vertex stage does not declare in GLSL 1.10/1.20 and from 4.20 on, by the higher
+    // `#version` of the two; from 1.30 to 4.10 it links the program.
+    let version = version_of(vertex).max(version_of(fragment));
+    let mesa_links = (130..420).contains(&version);
     let mut found = Vec::new();
     for input in &inputs {
         let at = fragment.location(input.line);
         match outputs.get(input.name.as_str()) {
             None => {
-                // Only a statically used input must be written (GLSL 1.20 §4.3.6).
-                if uses.get(input.name.as_str()).is_some_and(|(n, _)| *n > 1) {
+                // Only a statically read input must be declared by the vertex stage.
+                let Some(&read_at) = uses.get(input.name.as_str()) else { continue };
+                let declare =
+                    format!("declare `varying {} {};` (or `out`) in the vertex shader and write it", input.ty, input.name);
+                if mesa_links {
+                    found.push(
+                        Diagnostic::warning(
+                            format!(
+                                "fragment input `{}` is read at {} but {vertex_path} does not declare it: GLSL wants every input that is read written by the previous stage (stated as a link error from GLSL 4.20 on); Mesa links it under #version {version} (it refuses it only from 4.20 and in 1.10/1.20), stricter drivers may not",
+                                input.name,
+                                fragment.location(read_at).map_or_else(|| format!("line {read_at}"), |l| format!("{}:{}", l.path, l.line)),
+                            ),
+                            at,
+                        )
+                        .with_note(declare),
+                    );
+                } else {
                     found.push(
                         Diagnostic::error(
                             format!("fragment input `{}` is not an output of {vertex_path}: the program fails to link", input.name),
                             at,
                         )
-                        .with_note(format!("declare `varying {} {};` (or `out`) in the vertex shader and write it", input.ty, input.name)),
+                        .with_note(declare),
                     );
                 }
             }
@@ -78,6 +134,137 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                     ));
                 }
             }
+        }
+    }
+    found.extend(check_blocks(vertex, fragment, &uses));
+    found
+}
+
+/// A member of an `in`/`out` interface block: its qualifiers (`flat`, `centroid`, …), type,
+/// name and array suffix as written.
+#[derive(PartialEq, Eq)]
+struct BlockMember {
+    qualifiers: Vec<String>,
+    ty: String,
+    name: String,
+    array: String,
+}
+
+impl BlockMember {
+    fn describe(&self) -> String {
+        let qualifiers: String = self.qualifiers.iter().map(|q| format!("{q} ")).collect();
+        format!("{qualifiers}{} {}{}", self.ty, self.name, self.array)
+    }
+}
+
+/// An `in` or `out` interface block of a stage.
+struct Block {
+    name: String,
+    /// The instance name, if any (members are globals without one).
+    instance: Option<String>,
+    line: u32,
+    members: Vec<BlockMember>,
+}
+
+/// The interface blocks of `direction` (`in` or `out`) a stage declares.
+fn interface_blocks(text: &str, direction: &str) -> Vec<Block> {
+    let tokens = tokenize(text).unwrap_or_default();
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut blocks = Vec::new();
+    let mut depth = 0;
+    for k in 0..sig.len() {
+        match sig[k].text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            _ => {}
+        }
+        if depth != 0
+            || sig[k].text != direction
+            || !sig.get(k + 1).is_some_and(|t| t.kind == TokenKind::Ident)
+            || !sig.get(k + 2).is_some_and(|t| t.is_punct("{"))
+        {
+            continue;
+        }
+        let mut members = Vec::new();
+        let mut words: Vec<&str> = Vec::new();
+        let mut j = k + 3;
+        while let Some(t) = sig.get(j) {
+            j += 1;
+            match t.text {
+                "}" => break,
+                ";" | "," => {
+                    // `[qualifiers] type name[size]`; after a `,` the next declarator shares them.
+                    let array_at = words.iter().position(|w| *w == "[").unwrap_or(words.len());
+                    if array_at >= 2 {
+                        let (head, array) = words.split_at(array_at);
+                        let (name, head) = head.split_last().expect("two words");
+                        let (ty, qualifiers) = head.split_last().expect("one word");
+                        members.push(BlockMember {
+                            qualifiers: qualifiers.iter().map(|q| q.to_string()).collect(),
+                            ty: ty.to_string(),
+                            name: name.to_string(),
+                            array: array.concat(),
+                        });
+                        words = if t.text == "," { head.to_vec() } else { Vec::new() };
+                    } else {
+                        words.clear();
+                    }
+                }
+                w => words.push(w),
+            }
+        }
+        let instance = sig.get(j).filter(|t| t.kind == TokenKind::Ident).map(|t| t.text.to_string());
+        blocks.push(Block { name: sig[k + 1].text.to_string(), instance, line: sig[k].line, members });
+    }
+    blocks
+}
+
+/// Fragment input blocks against the vertex stage's output blocks of the same name: GLSL
+/// matches blocks by name, and their members must agree in order, name, type and (before GLSL
+/// 4.40) interpolation; a block the fragment stage uses must be an output of the vertex stage.
+fn check_blocks(vertex: &Preprocessed, fragment: &Preprocessed, uses: &HashMap<&str, u32>) -> Vec<Diagnostic> {
+    let outputs = interface_blocks(&vertex.text, "out");
+    let vertex_path = vertex.files.first().cloned().unwrap_or_default();
+    let version = version_of(vertex).max(version_of(fragment));
+    // Mesa compares `centroid` and `sample` always, the interpolation only before 4.40.
+    let counted = |m: &BlockMember| -> Vec<String> {
+        m.qualifiers
+            .iter()
+            .filter(|q| matches!(q.as_str(), "centroid" | "sample") || (version < 440 && matches!(q.as_str(), "flat" | "smooth" | "noperspective")))
+            .cloned()
+            .collect()
+    };
+    let mut found = Vec::new();
+    for input in interface_blocks(&fragment.text, "in") {
+        let at = fragment.location(input.line);
+        let Some(output) = outputs.iter().find(|b| b.name == input.name) else {
+            let used = match &input.instance {
+                Some(instance) => uses.contains_key(instance.as_str()),
+                None => input.members.iter().any(|m| uses.contains_key(m.name.as_str())),
+            };
+            if used {
+                found.push(Diagnostic::error(
+                    format!("input block `{}` is not an output block of {vertex_path}: the program fails to link", input.name),
+                    at,
+                ));
+            }
+            continue;
+        };
+        let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
+        let mismatch = (0..input.members.len().max(output.members.len())).find_map(|i| {
+            match (input.members.get(i), output.members.get(i)) {
+                (Some(a), Some(b)) if a.ty == b.ty && a.name == b.name && a.array == b.array && counted(a) == counted(b) => None,
+                (Some(a), Some(b)) => Some(format!("member {} is `{}` here and `{}` there", i + 1, a.describe(), b.describe())),
+                (Some(a), None) => Some(format!("`{}` is missing there", a.describe())),
+                (None, Some(b)) => Some(format!("`{}` is missing here", b.describe())),
+                (None, None) => None,
+            }
+        });
+        if let Some(mismatch) = mismatch {
+            found.push(Diagnostic::error(
+                format!("block `{}` here does not match its declaration at {out_at} ({mismatch}): the program fails to link", input.name),
+                at,
+            ));
         }
     }
     found

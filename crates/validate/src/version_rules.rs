@@ -5,7 +5,7 @@
 //!   `flat`/`noperspective`, `uint`, `switch`, `in`/`out` globals, and the 1.30 functions
 //!   (`texture`, `textureLod`, `texelFetch`, `textureSize`, …), unless `GL_EXT_gpu_shader4`
 //!   is enabled for the parts it adds; `texture2DLod` & co. in fragment shaders without
-//!   `GL_ARB_shader_texture_lod`;
+//!   `GL_ARB_shader_texture_lod` or `GL_EXT_gpu_shader4`;
 //! - before GLSL 4.20, `= { … }` initializer lists without `GL_ARB_shading_language_420pack`;
 //! - in a core profile (`#version 140`+ without `compatibility`): the removed built-ins
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
@@ -81,7 +81,8 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
     let legacy_rules = number < 130 || core;
     let gpu4 = extensions.contains(GPU_SHADER4);
-    let lod = extensions.contains(TEXTURE_LOD);
+    // GL_EXT_gpu_shader4 brings the `Lod` lookups to fragment shaders too.
+    let lod = extensions.contains(TEXTURE_LOD) || gpu4;
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     let mut found: Vec<Diagnostic> = Vec::new();
@@ -207,7 +208,53 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
             found.push(Diagnostic::error(message, pre.location(t.line)));
         }
     }
+    if number >= 130 {
+        found.extend(hidden_builtin_calls(pre, &sig));
+    }
     found.extend(warnings);
+    found
+}
+
+/// Calls of a GLSL 1.30 function (`texture(…)`) after a global variable of the same name was
+/// declared (`uniform sampler2D texture;`, OptiFine's old atlas name): the variable hides the
+/// built-in from that scope on, so the call names no function (Mesa: "no function with name
+/// 'texture'"). naga never sees it, since the lowering renames the sampler.
+fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>]) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    let mut declared: Vec<(&str, u32)> = Vec::new();
+    let mut reported: BTreeSet<u32> = BTreeSet::new();
+    let (mut depth, mut parens) = (0i32, 0i32);
+    for (k, t) in sig.iter().enumerate() {
+        match t.text {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            "(" => parens += 1,
+            ")" => parens -= 1,
+            _ => {}
+        }
+        if t.kind != TokenKind::Ident || !GLSL130_FUNCTIONS.contains(&t.text) {
+            continue;
+        }
+        let previous = k.checked_sub(1).map(|p| sig[p]);
+        let next = sig.get(k + 1);
+        if depth == 0 && parens == 0 && previous.is_some_and(|p| p.kind == TokenKind::Ident) && next.is_some_and(|n| matches!(n.text, ";" | "=" | "," | "[")) {
+            declared.push((t.text, t.line));
+        } else if next.is_some_and(|n| n.is_punct("("))
+            && !previous.is_some_and(|p| p.is_punct("."))
+            && let Some(&(_, declared_at)) = declared.iter().find(|(name, _)| *name == t.text)
+            && reported.insert(t.line)
+        {
+            let at = pre.location(declared_at).map_or_else(|| format!("line {declared_at}"), |l| format!("{}:{}", l.path, l.line));
+            let hint = if t.text == "texture" { " (OptiFine binds the atlas as `gtexture` and `tex` too)" } else { "" };
+            found.push(Diagnostic::error(
+                format!(
+                    "`{0}` is a variable here (declared at {at}), which hides the built-in function {0}() from GLSL 1.30 on: this call names no function (Mesa: \"no function with name '{0}'\"); rename the variable{hint}",
+                    t.text
+                ),
+                pre.location(t.line),
+            ));
+        }
+    }
     found
 }
 
