@@ -18,7 +18,7 @@ use tidepack_validate::programs::{self, find_programs};
 use tidepack_validate::SetProvider;
 
 use crate::HarnessError;
-use crate::gpu::bindings::{SamplerNaming, colour_buffers_read};
+use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read, resolve_any};
 use crate::gpu::frame::overlay_phase;
 use crate::loader::{Loader, Phase};
 use crate::mesh::{BlockIds, PackVertex, SceneMesh};
@@ -30,6 +30,20 @@ use crate::scene::{OverlayKind, Scene};
 
 /// The full-screen programs OptiFine runs, by family, in frame order within each family.
 const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
+
+/// Resolving sampler names before the custom textures are read: a custom texture replaces a
+/// name OptiFine binds anyway, so it never turns an unbound name into a bound one.
+struct NoCustomTextures;
+
+impl PackResources for NoCustomTextures {
+    fn format_of(&self, _: u8) -> BufferFormat {
+        BufferFormat::Rgba8
+    }
+
+    fn custom_textures(&self) -> &[CustomTexture] {
+        &[]
+    }
+}
 
 /// What a colour buffer is cleared to at the start of a frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,6 +178,16 @@ impl AnyPack {
             not_modelled.push(format!("{name}: {why}"));
         }
 
+        for program in gbuffers.values().chain(&fullscreen) {
+            let gbuffers_program = program.name.starts_with("gbuffers_");
+            for stage in [&program.vertex, &program.fragment] {
+                for (name, _) in program::texture_resources(&stage.interface) {
+                    if resolve_any(&NoCustomTextures, &name, gbuffers_program) == Ok(Source::Unbound) {
+                        not_modelled.push(format!("sampler {name} in {}: OptiFine binds nothing to it; it reads transparent black", program.name));
+                    }
+                }
+            }
+        }
         let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
         let mut blends = BTreeMap::new();
         for name in gbuffers.keys().chain(fullscreen.iter().map(|p| &p.name)) {

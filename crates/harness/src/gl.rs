@@ -121,6 +121,7 @@ pub(crate) struct GlHarnessTextures {
     /// A shadow map nothing was drawn into, for `sampler2D` and (comparing) `sampler2DShadow`.
     shadow_depth: glow::Texture,
     shadow_depth_compared: glow::Texture,
+    unbound: glow::Texture,
 }
 
 impl GlHarnessTextures {
@@ -151,11 +152,22 @@ impl GlHarnessTextures {
             shadow_colour: one_texel([255; 4])?,
             shadow_depth: one_depth(false)?,
             shadow_depth_compared: one_depth(true)?,
+            unbound: one_texel([0; 4])?,
         })
     }
 
     pub(crate) unsafe fn delete(&self, gl: &glow::Context) {
-        let own = [self.atlas, self.lightmap, self.noise, self.flat_normals, self.no_specular, self.shadow_colour, self.shadow_depth, self.shadow_depth_compared];
+        let own = [
+            self.atlas,
+            self.lightmap,
+            self.noise,
+            self.flat_normals,
+            self.no_specular,
+            self.shadow_colour,
+            self.shadow_depth,
+            self.shadow_depth_compared,
+            self.unbound,
+        ];
         for t in own.into_iter().chain(self.custom.iter().copied()) {
             // SAFETY: the caller holds the current context that made the texture.
             unsafe { gl.delete_texture(t) };
@@ -525,7 +537,9 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
             naga::TypeInner::Vector { size, scalar: naga::Scalar::F32 } => *size as u32,
             other => return Err(unsupported(format!("output {name} of type {other:?}"))),
         };
-        if name.is_empty() || name.starts_with("gl_") {
+        // Names the lowering made (a matrix varying split into columns) are not in the shipped
+        // text transform feedback records.
+        if name.is_empty() || name.starts_with("gl_") || name.starts_with("tp_") {
             return Err(unsupported(format!("output {name:?}")));
         }
         outputs.push((name, components));
@@ -639,6 +653,7 @@ unsafe fn set_uniforms(
                     Ok(Source::EmptyShadowColour) => harness.shadow_colour,
                     Ok(Source::EmptyShadowDepth) if shadow => harness.shadow_depth_compared,
                     Ok(Source::EmptyShadowDepth) => harness.shadow_depth,
+                    Ok(Source::Unbound) => harness.unbound,
                     Ok(Source::Depth0) => textures.depth0,
                     Ok(Source::Depth1) => textures.depth1,
                     Ok(Source::Color(n)) => match textures.colors.get(&n) {

@@ -55,6 +55,9 @@ pub struct LoadedStage {
     pub interface: Interface,
     pub module: naga::Module,
     pub info: naga::valid::ModuleInfo,
+    /// Fragment outputs declared with fewer than four channels, by location: the harness text
+    /// writes them as `vec4` and the pipeline masks the channels they lack.
+    pub narrow_outputs: BTreeMap<u32, u8>,
 }
 
 #[derive(Debug)]
@@ -428,19 +431,25 @@ pub(crate) fn load_program_files(
     }
     let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
     let lowered = validate::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
+    let fragment_lowered = lowered.iter().find(|s| s.stage == Stage::Fragment).map(|s| s.lowered.text.clone()).unwrap_or_default();
     let mut frontend = validate::Frontend::default();
     let mut stages = Vec::new();
     for stage in lowered {
         let path = stage.preprocessed.files[0].clone();
         let lowered_text = stage.lowered.text.clone();
-        let harness_text = match (stage.stage, alpha_test) {
-            (Stage::Vertex, _) => adapt_vertex(&lowered_text)?,
-            (Stage::Fragment, Some(reference)) => {
-                let output = lowered_output(&lowered_text, 0)
-                    .ok_or_else(|| HarnessError::Pack(format!("{} has no output 0 for the loader's alpha test", files.fragment)))?;
-                with_alpha_test(&lowered_text, &output, reference)?
+        let mut narrow_outputs = BTreeMap::new();
+        let harness_text = match stage.stage {
+            Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
+            Stage::Fragment => {
+                let (text, mut epilogue, widened) = widen_fragment_outputs(&lowered_text);
+                narrow_outputs = widened;
+                if let Some(reference) = alpha_test {
+                    let output = lowered_output(&lowered_text, 0)
+                        .ok_or_else(|| HarnessError::Pack(format!("{} has no output 0 for the loader's alpha test", files.fragment)))?;
+                    epilogue.push_str(&alpha_test_statement(&output, reference));
+                }
+                if epilogue.is_empty() { text } else { wrap_main(&text, &epilogue)? }
             }
-            (Stage::Fragment, None) => lowered_text.clone(),
         };
         let adapted = LoweredStage {
             stage: stage.stage,
@@ -464,6 +473,7 @@ pub(crate) fn load_program_files(
             interface: stage.lowered.interface,
             module: valid.module,
             info: valid.info,
+            narrow_outputs,
         });
     }
     let fragment = stages.pop().expect("two stages");
@@ -505,7 +515,11 @@ pub fn adapt_vertex(lowered: &str) -> Result<String, HarnessError> {
 /// A fragment stage with a loader's alpha test after its `main`: the fragment is discarded
 /// unless `output`'s alpha is above `reference` (OpenGL's `GREATER`).
 pub fn with_alpha_test(text: &str, output: &str, reference: f32) -> Result<String, HarnessError> {
-    wrap_main(text, &format!("if (!({output}.a > {reference:?})) {{ discard; }}"))
+    wrap_main(text, &alpha_test_statement(output, reference))
+}
+
+fn alpha_test_statement(output: &str, reference: f32) -> String {
+    format!("if (!({output}.a > {reference:?})) {{ discard; }}")
 }
 
 /// The location-`location` output a lowered fragment stage declares
@@ -515,6 +529,91 @@ fn lowered_output(lowered: &str, location: u32) -> Option<String> {
     let at = lowered.find(&declaration)? + declaration.len();
     let name: String = lowered[at..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
     (!name.is_empty()).then_some(name)
+}
+
+/// A `layout(location = N) [qualifiers] in|out TYPE NAME;` declaration of a lowered stage.
+struct InterfaceDeclaration<'a> {
+    location: u32,
+    /// The statement's bytes in the text, `;` included.
+    statement: std::ops::Range<usize>,
+    /// Everything after the location: qualifiers, direction, type and name (with any array size).
+    words: Vec<&'a str>,
+}
+
+impl InterfaceDeclaration<'_> {
+    fn direction(&self) -> Option<&str> {
+        self.words.iter().copied().find(|w| matches!(*w, "in" | "out"))
+    }
+}
+
+/// The single-variable interface declarations of a lowered stage (blocks are left out).
+fn interface_declarations(text: &str) -> Vec<InterfaceDeclaration<'_>> {
+    const HEAD: &str = "layout(location = ";
+    let mut found = Vec::new();
+    let mut from = 0;
+    while let Some(at) = text[from..].find(HEAD).map(|i| from + i) {
+        let Some(end) = text[at..].find(';').map(|i| at + i + 1) else { break };
+        from = at + HEAD.len();
+        let rest = &text[from..end - 1];
+        let Some((number, tail)) = rest.split_once(')') else { continue };
+        let (Ok(location), false) = (number.trim().parse::<u32>(), tail.contains(['{', '}', '('])) else { continue };
+        found.push(InterfaceDeclaration { location, statement: at..end, words: tail.split_whitespace().collect() });
+    }
+    found
+}
+
+/// The lowered vertex stage with an output declared for every input of the fragment stage it
+/// lacks. OpenGL links such a program (before GLSL 4.20) and the input's value is undefined;
+/// wgpu refuses the pipeline. The declarations go at the end of the line after `#version`, so
+/// no line moves.
+fn complete_vertex_outputs(vertex: &str, fragment: &str) -> String {
+    let outputs: std::collections::BTreeSet<u32> =
+        interface_declarations(vertex).iter().filter(|d| d.direction() == Some("out")).map(|d| d.location).collect();
+    let mut added = String::new();
+    for input in interface_declarations(fragment).iter().filter(|d| d.direction() == Some("in") && !outputs.contains(&d.location)) {
+        let words: Vec<&str> = input.words.iter().map(|w| if *w == "in" { "out" } else { w }).collect();
+        added.push_str(&format!(" layout(location = {}) {};", input.location, words.join(" ")));
+    }
+    insert_after_version_line(vertex, &added)
+}
+
+/// `text` with `addition` at the end of its second line (the one after `#version`).
+fn insert_after_version_line(text: &str, addition: &str) -> String {
+    if addition.is_empty() {
+        return text.to_string();
+    }
+    let second_line_end = text.match_indices('\n').nth(1).map_or(text.len(), |(i, _)| i);
+    format!("{}{addition}{}", &text[..second_line_end], &text[second_line_end..])
+}
+
+/// The lowered fragment stage with every `float`, `vec2` or `vec3` output widened to `vec4`
+/// (wgpu wants an output for each channel of its buffer; OpenGL leaves the missing channels
+/// undefined): the declaration becomes a plain global, and a `vec4` output at its location
+/// takes its value at the end of `main` (`epilogue`). Returns the text, the epilogue, and
+/// each widened location with its original channel count.
+fn widen_fragment_outputs(fragment: &str) -> (String, String, BTreeMap<u32, u8>) {
+    let mut text = fragment.to_string();
+    let mut epilogue = String::new();
+    let mut widened = BTreeMap::new();
+    // From the end, so earlier byte ranges stay valid.
+    for declaration in interface_declarations(fragment).iter().rev() {
+        let [.., direction, ty, name] = declaration.words.as_slice() else { continue };
+        let channels = match *ty {
+            "float" => 1,
+            "vec2" => 2,
+            "vec3" => 3,
+            _ => continue,
+        };
+        if *direction != "out" || name.contains('[') {
+            continue;
+        }
+        let location = declaration.location;
+        text.replace_range(declaration.statement.clone(), &format!("{ty} {name}; layout(location = {location}) out vec4 tp_widened{location};"));
+        let zeros = ", 0.0".repeat(4 - channels as usize);
+        epilogue.push_str(&format!("tp_widened{location} = vec4({name}{zeros}); "));
+        widened.insert(location, channels);
+    }
+    (text, epilogue, widened)
 }
 
 /// Renames the definition of `main` to `tp_shipped_main` and appends, on the last line, a new

@@ -249,12 +249,26 @@ pub struct FilledBlock {
 }
 
 /// Finds the module's uniform block and writes every member from `values`. `stage_name`
-/// names the stage in errors.
-pub fn fill_block(
+/// names the stage in errors; a member without a value is an error.
+pub fn fill_block(module: &naga::Module, values: &BTreeMap<String, Value>, stage_name: &str) -> Result<Option<FilledBlock>, HarnessError> {
+    let (block, missing) = fill_block_leaving_zero(module, values, stage_name)?;
+    if !missing.is_empty() {
+        return Err(HarnessError::Uniform(format!(
+            "{stage_name} declares uniform{} the harness cannot fill: {}",
+            if missing.len() == 1 { "" } else { "s" },
+            missing.join(", ")
+        )));
+    }
+    Ok(block)
+}
+
+/// [`fill_block`], leaving members without a value zero (as a loader leaves uniforms it does
+/// not set) and returning their shipped names.
+pub fn fill_block_leaving_zero(
     module: &naga::Module,
     values: &BTreeMap<String, Value>,
     stage_name: &str,
-) -> Result<Option<FilledBlock>, HarnessError> {
+) -> Result<(Option<FilledBlock>, Vec<String>), HarnessError> {
     let mut layouter = naga::proc::Layouter::default();
     layouter
         .update(module.to_ctx())
@@ -288,16 +302,12 @@ pub fn fill_block(
             write_member(module, &layouter, member.ty, member.offset as usize, value, &mut bytes)
                 .map_err(|m| HarnessError::Uniform(format!("{stage_name}: uniform {}: {m}", shipped_name(&name))))?;
         }
-        if !missing.is_empty() {
-            return Err(HarnessError::Uniform(format!(
-                "{stage_name} declares uniform{} the harness cannot fill: {}",
-                if missing.len() == 1 { "" } else { "s" },
-                missing.join(", ")
-            )));
-        }
-        found = Some(FilledBlock { group: binding.group, binding: binding.binding, bytes, members: names });
+        found = Some((FilledBlock { group: binding.group, binding: binding.binding, bytes, members: names }, missing));
     }
-    Ok(found)
+    Ok(match found {
+        Some((block, missing)) => (Some(block), missing),
+        None => (None, Vec::new()),
+    })
 }
 
 /// The shipped name of a block member (`tp_ModelViewMatrix` → `gl_ModelViewMatrix`).
@@ -333,27 +343,6 @@ fn declared_shape(module: &naga::Module, ty: naga::Handle<naga::Type>) -> Result
         _ => return Err(format!("{}-byte scalars are not supported", scalar.width)),
     };
     Ok((Value { kind, columns, rows, array: count, data: Vec::new() }, element_ty, stride, scalar.kind))
-}
-
-/// Every member of `module`'s uniform block `values` has no value for, as a zero of its
-/// declared type: what a loader's uniforms hold before anything sets them. Keyed like
-/// `values` (lowered names); members of unsupported types are left out.
-pub fn zeros_for_unfilled(module: &naga::Module, values: &BTreeMap<String, Value>) -> BTreeMap<String, Value> {
-    let mut zeros = BTreeMap::new();
-    for (_, global) in module.global_variables.iter().filter(|(_, g)| g.space == AddressSpace::Uniform) {
-        let TypeInner::Struct { members, .. } = &module.types[global.ty].inner else { continue };
-        for member in members {
-            let Some(name) = &member.name else { continue };
-            if values.contains_key(name) {
-                continue;
-            }
-            if let Ok((mut zero, ..)) = declared_shape(module, member.ty) {
-                zero.data = vec![0.0; zero.columns as usize * zero.rows as usize * zero.array.unwrap_or(1) as usize];
-                zeros.insert(name.clone(), zero);
-            }
-        }
-    }
-    zeros
 }
 
 fn write_member(

@@ -124,15 +124,15 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             not_modelled.push(line);
         }
     };
-    let mut values_for = |program: Option<&LoadedProgram>, pass: Pass| -> BTreeMap<String, Value> {
-        let mut values = uniforms::values(scene, pass);
+    // Uniforms the harness has no value for stay zero, as a loader leaves uniforms it does not set.
+    let mut values_for = |program: Option<&LoadedProgram>, pass: Pass| -> Result<BTreeMap<String, Value>, HarnessError> {
+        let values = uniforms::values(scene, pass);
         for stage in program.into_iter().flat_map(|p| [&p.vertex, &p.fragment]) {
-            for (name, zero) in uniforms::zeros_for_unfilled(&stage.module, &values) {
-                note(format!("uniform {}: zero (the harness has no value for it)", uniforms::shipped_name(&name)));
-                values.insert(name, zero);
+            for name in uniforms::fill_block_leaving_zero(&stage.module, &values, &stage.path)?.1 {
+                note(format!("uniform {name}: zero (the harness has no value for it)"));
             }
         }
-        values
+        Ok(values)
     };
     let snapshot_colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
         buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
@@ -143,7 +143,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     for step in &plan.steps {
         let (work, written) = match &step.work {
             PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots } => {
-                let values = values_for(*program, Pass::Gbuffers);
+                let values = values_for(*program, Pass::Gbuffers)?;
                 let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                 let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                 // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -164,7 +164,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             }
             PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
             PlannedWork::Fullscreen { program, current, into_screen } => {
-                let values = values_for(Some(program), Pass::Fullscreen);
+                let values = values_for(Some(program), Pass::Fullscreen)?;
                 let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
                     buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
                 let formats: BTreeMap<u8, wgpu::TextureFormat> =

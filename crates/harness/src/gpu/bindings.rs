@@ -40,6 +40,8 @@ pub enum Source {
     EmptyShadowDepth,
     /// shadowcolor*: a shadow colour buffer nothing was drawn into (white).
     EmptyShadowColour,
+    /// A name OptiFine binds nothing to: transparent black.
+    Unbound,
 }
 
 /// How sampler names resolve.
@@ -55,7 +57,7 @@ pub(crate) enum SamplerNaming {
 
 /// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
 /// buffers are read as they stood before the draw, and depthtex0 (the buffer being drawn
-/// into) is read as depthtex1.
+/// into) is read as depthtex1; a name OptiFine binds nothing to reads transparent black.
 pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
     let stage = if gbuffers { "gbuffers" } else { "composite" };
     if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
@@ -73,7 +75,7 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
         ("shadowcolor" | "shadowcolor0" | "shadowcolor1", _) => Source::EmptyShadowColour,
         _ => match colour_buffer_number(name) {
             Some(n) => Source::Color(n),
-            None => return Err(format!("sampler {name} is not one the harness provides")),
+            None => Source::Unbound,
         },
     })
 }
@@ -176,6 +178,7 @@ pub(crate) struct HarnessTextures {
     no_specular: wgpu::TextureView,
     shadow_colour: wgpu::TextureView,
     shadow_depth: wgpu::TextureView,
+    unbound: wgpu::TextureView,
     /// Per custom texture of the pack: its view and the sampler its properties ask for.
     custom: Vec<(wgpu::TextureView, wgpu::Sampler)>,
 }
@@ -229,6 +232,7 @@ impl HarnessTextures {
             flat_normals: one_texel("normals (flat)", [128, 128, 255, 255]),
             no_specular: one_texel("specular (none)", [0, 0, 0, 0]),
             shadow_colour: one_texel("shadowcolor (nothing drawn)", [255; 4]),
+            unbound: one_texel("a sampler OptiFine binds nothing to", [0; 4]),
             shadow_depth: view(&empty_depth(gpu)),
             atlas: upload("gtexture (mock atlas)", mesh::atlas()),
             lightmap: upload("lightmap", mesh::lightmap()),
@@ -293,6 +297,7 @@ impl BindableTextures<'_> {
             Source::FlatNormals => (harness.flat_normals.clone(), true),
             Source::NoSpecular => (harness.no_specular.clone(), true),
             Source::EmptyShadowColour => (harness.shadow_colour.clone(), true),
+            Source::Unbound => (harness.unbound.clone(), true),
             Source::EmptyShadowDepth => (harness.shadow_depth.clone(), false),
             Source::Atlas => (harness.atlas.clone(), true),
             Source::Lightmap => (harness.lightmap.clone(), true),
@@ -316,7 +321,9 @@ impl BindableTextures<'_> {
             Source::Custom(i) => harness.custom[i].1.clone(),
             Source::Atlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
-            Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::EmptyShadowColour => harness.linear_clamp.clone(),
+            Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::EmptyShadowColour | Source::Unbound => {
+                harness.linear_clamp.clone()
+            }
             Source::Color(_) if filters => harness.linear_clamp.clone(),
             _ => harness.nearest_clamp.clone(),
         }
@@ -381,13 +388,17 @@ impl ProgramPipeline {
         // group → binding → (visibility, entry)
         let mut groups: BTreeMap<u32, BTreeMap<u32, (wgpu::ShaderStages, Entry)>> = BTreeMap::new();
         let mut uniform_buffers = Vec::new();
+        let fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
+            SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
+            SamplerNaming::AnyPack => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, _)| block),
+        };
         for stage in [&program.vertex, &program.fragment] {
             let visibility = match stage.stage {
                 tidepack_glsl::Stage::Vertex => wgpu::ShaderStages::VERTEX,
                 tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
             };
             let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
-            if let Some(block) = uniforms::fill_block(&stage.module, values, &stage.path)? {
+            if let Some(block) = fill(&stage.module, values, &stage.path)? {
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some(&format!("{} uniforms", stage.path)),
                     contents: &block.bytes,
@@ -465,8 +476,14 @@ impl ProgramPipeline {
         let mut color_targets = Vec::new();
         for (location, &b) in program.render_targets.iter().enumerate() {
             // A target the fragment stage has no output for is left as it is.
-            let written = program.fragment.interface.outputs.contains_key(&(location as u32));
-            let write_mask = if written { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() };
+            let location = location as u32;
+            let write_mask = match program.fragment.narrow_outputs.get(&location) {
+                _ if !program.fragment.interface.outputs.contains_key(&location) => wgpu::ColorWrites::empty(),
+                Some(1) => wgpu::ColorWrites::RED,
+                Some(2) => wgpu::ColorWrites::RED | wgpu::ColorWrites::GREEN,
+                Some(3) => wgpu::ColorWrites::COLOR,
+                _ => wgpu::ColorWrites::ALL,
+            };
             let (format, blend) = match &kind {
                 PassKind::Gbuffers(state) => {
                     let (_, format) = textures.colors.get(&b).ok_or_else(|| {

@@ -51,6 +51,8 @@ impl Gpu {
                 // Packs pass more varyings than wgpu's portable 16 locations; GL drivers allow
                 // 32 and more.
                 max_inter_stage_shader_variables: adapter.limits().max_inter_stage_shader_variables,
+                // The lowering numbers vertex inputs by their legacy slots (up to 24 and more).
+                max_vertex_attributes: adapter.limits().max_vertex_attributes,
                 ..wgpu::Limits::default().using_resolution(adapter.limits())
             },
             ..Default::default()
