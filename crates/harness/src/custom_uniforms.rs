@@ -1070,7 +1070,7 @@ fn binary(op: Op, l: Val, r: Val) -> std::result::Result<Val, String> {
 /// `if(c1, v1, c2, v2, ..., else)`: the value of the first true condition. `ifb` is OptiFine's
 /// spelling for boolean values; `if` here accepts any type as long as the branches agree.
 fn select(name: &str, values: &[Val]) -> std::result::Result<Val, String> {
-    if values.len() < 3 || values.len() % 2 == 0 {
+    if values.len() < 3 || values.len().is_multiple_of(2) {
         return Err(format!("{name}() takes (condition, value, ..., else value): an odd number of at least 3 arguments, found {}", values.len()));
     }
     let branches: Vec<usize> = (1..values.len()).step_by(2).chain([values.len() - 1]).collect();
