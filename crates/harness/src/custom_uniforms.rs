@@ -20,7 +20,9 @@
 //!   of the dividend (Java's `%`), `fmod` is the floored one.
 //! * A component is read with a suffix on a name: `sunPosition.y`, `skyColor.r`, Iris's
 //!   `.w/.a`, `.s/.t/.p/.q` and `.0`–`.3`; a matrix element with two: `gbufferModelView.3.1`
-//!   is column 3, row 1 (GLSL's `m[3][1]`; both loaders index the column-major buffer so).
+//!   is column 3, row 1, GLSL's `m[3][1]`, as Iris reads it (its first suffix picks a column).
+//!   OptiFine's text calls the indices "row and column"; its code is not public, so Iris's
+//!   reading is the one followed.
 //!   Suffixes apply to names only, never to `(...)` or calls (Iris's rule; OptiFine's names
 //!   simply contain the dots).
 //! * Vectors come from `vec2/vec3/vec4(...)` and vector uniforms; arithmetic and the numeric
