@@ -12,6 +12,7 @@ use std::fmt;
 
 pub mod any_pack;
 pub mod composite_only;
+pub mod custom_uniforms;
 pub mod gl;
 pub mod gl_any;
 pub mod gpu;
