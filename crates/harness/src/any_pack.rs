@@ -73,6 +73,9 @@ pub struct AnyPack {
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
     pub block_ids: HashMap<String, i32>,
+    /// shaders.properties, for the custom uniforms of each pass
+    /// ([`crate::custom_uniforms`]).
+    pub properties: String,
     /// What the pack uses that the frame does not imitate, one line each.
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that could not be loaded, with the reason.
@@ -203,7 +206,7 @@ impl AnyPack {
         };
         let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
-        for key in ["uniform.", "variable.", "size.buffer.", "scale.", "flip.", "alphaTest.", "program."] {
+        for key in ["size.buffer.", "scale.", "flip.", "alphaTest.", "program."] {
             let used: Vec<&str> =
                 properties.lines().map(str::trim).filter(|l| l.starts_with(key)).filter_map(|l| l.split('=').next()).map(str::trim).collect();
             if !used.is_empty() {
@@ -252,6 +255,7 @@ impl AnyPack {
             blends,
             custom_textures,
             block_ids,
+            properties,
             not_modelled,
             failed,
         })

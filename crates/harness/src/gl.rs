@@ -282,7 +282,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             match program {
                 Some(program) => {
                     let compiled = compile(ctx, program, depth)?;
-                    draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &textures, vertices)?;
+                    draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &uniforms::values(scene, Pass::Gbuffers), &textures, vertices)?;
                     compiled.delete(ctx);
                 }
                 None => draw_own_colour(ctx, pack.loader.missing_program_draws(), depth, scene, vertices)?,
@@ -331,7 +331,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         attach(&outs, None)?;
         gl.disable(glow::DEPTH_TEST);
         gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
-        draw_program(ctx, pack, &pack.composite, &composite, scene, Pass::Fullscreen, &textures, &fullscreen_quad())?;
+        draw_program(ctx, pack, &pack.composite, &composite, scene, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &fullscreen_quad())?;
         composite.delete(ctx);
         gl.finish();
 
@@ -515,6 +515,13 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
     let unsupported = |what: String| HarnessError::Unsupported(format!("{}: {what} (OpenGL depth mapping)", stage.path));
     let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Vertex).ok_or_else(|| unsupported("no vertex entry point".into()))?;
     let Some(result) = &entry.function.result else { return Ok(Vec::new()) };
+    // Outputs the harness declared for fragment inputs the shipped vertex stage lacks are not
+    // in the shipped text: nothing to record.
+    let declared: Vec<&str> = crate::program::interface_declarations(&stage.lowered_text)
+        .into_iter()
+        .filter(|d| d.direction() == Some("out"))
+        .filter_map(|d| d.words.last().copied())
+        .collect();
     let naga::TypeInner::Struct { members, .. } = &module.types[result.ty].inner else {
         return Err(unsupported("the entry point does not return a struct".into()));
     };
@@ -523,6 +530,7 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
         let name = member.name.clone().unwrap_or_default();
         match &member.binding {
             Some(naga::Binding::BuiltIn(naga::BuiltIn::Position { .. })) => continue,
+            Some(naga::Binding::Location { .. }) if !declared.iter().any(|d| d.split('[').next() == Some(name.as_str())) => continue,
             Some(naga::Binding::Location { interpolation, sampling, .. }) => {
                 if !matches!(interpolation, None | Some(naga::Interpolation::Perspective))
                     || !matches!(sampling, None | Some(naga::Sampling::Center))
@@ -705,12 +713,12 @@ pub(crate) unsafe fn draw_program(
     compiled: &Compiled,
     scene: &Scene,
     pass: Pass,
+    values: &BTreeMap<String, Value>,
     textures: &Textures,
     vertices: &[PackVertex],
 ) -> Result<(), HarnessError> {
     let gl = ctx.gl();
     let lg = ctx.legacy();
-    let values = uniforms::values(scene, pass);
     let gbuffers = pass == Pass::Gbuffers;
     let first = match compiled {
         Compiled::Direct(p) => p.raw,
@@ -719,7 +727,7 @@ pub(crate) unsafe fn draw_program(
     // SAFETY: the caller holds the current context.
     unsafe {
         gl.use_program(Some(first));
-        set_uniforms(gl, pack, program, first, &values, gbuffers, textures)?;
+        set_uniforms(gl, pack, program, first, values, gbuffers, textures)?;
         // Legacy matrices through the fixed-function stacks.
         let m = uniforms::legacy_matrices(scene, pass);
         let load = |mode: u32, matrix: glam::DMat4| {
@@ -814,7 +822,7 @@ pub(crate) unsafe fn draw_program(
             gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, None);
             // The shipped fragment stage behind the pass-through vertex shader.
             gl.use_program(Some(draw.raw));
-            set_uniforms(gl, pack, program, draw.raw, &values, gbuffers, textures)?;
+            set_uniforms(gl, pack, program, draw.raw, values, gbuffers, textures)?;
             gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
             let stride = components.iter().sum::<i32>() * 4;
             let mut offset = 0;

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
 
-use crate::HarnessError;
+use crate::{HarnessError, custom_uniforms};
 use crate::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
@@ -25,7 +25,7 @@ use crate::images::FloatImage;
 use crate::mesh::{PackVertex, SceneMesh};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
-use crate::uniforms::Pass;
+use crate::uniforms::{self, Pass};
 
 /// A frame of any pack from the OpenGL driver.
 #[derive(Clone, Debug)]
@@ -115,7 +115,9 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
-            let drawn = draw_program(ctx, pack, program, compiled, scene, pass, textures, vertices);
+            let mut values = uniforms::values(scene, pass);
+            values.extend(custom_uniforms::evaluate(&pack.properties, &values).uniforms);
+            let drawn = draw_program(ctx, pack, program, compiled, scene, pass, &values, textures, vertices);
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }

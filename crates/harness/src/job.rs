@@ -266,8 +266,8 @@ pub struct AnyPackJob {
 #[derive(Clone, Debug, Serialize)]
 pub struct GlStepComparison {
     pub pass: String,
-    /// Per texture the step wrote: the largest difference of any channel, in 1/255.
-    pub max_difference_255: BTreeMap<String, f32>,
+    /// Per texture the step wrote: the largest difference of each channel (RGBA), in 1/255.
+    pub max_difference_255: BTreeMap<String, [f32; 4]>,
     /// Per texture: pixels differing by more than 1/255 in some channel.
     pub pixels_over_1_255: BTreeMap<String, usize>,
 }
@@ -279,6 +279,9 @@ pub struct GlAnyComparison {
     pub steps: Vec<GlStepComparison>,
     /// Programs OpenGL drew with its own depth range (outputs transform feedback cannot record).
     pub own_depth_mapping: Vec<String>,
+    /// What the driver refused (a program that does not compile or link), when it did: then
+    /// there are no steps to compare.
+    pub refused: Option<String>,
 }
 
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
@@ -315,8 +318,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh)?;
     let gl = if job.gl {
         let ctx = gl::context()?;
-        let gl_frame = crate::gl_any::render_any(&ctx, &pack, &scene, &mesh)?;
-        Some((ctx.info().to_string(), gl_frame))
+        Some((ctx.info().to_string(), crate::gl_any::render_any(&ctx, &pack, &scene, &mesh)))
     } else {
         None
     };
@@ -339,10 +341,15 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         write(".depthtex1", &frame.depth1.depth_for_viewing())?;
     }
     let gl = match gl {
-        Some((renderer, gl_frame)) => {
+        Some((renderer, Ok(gl_frame))) => {
             write(".gl", &gl_frame.image)?;
             Some(compare_steps(renderer, &frame, &gl_frame)?)
         }
+        // The driver refusing a program is a finding about the pack, reported with the frame.
+        Some((renderer, Err(HarnessError::Gl(refused)))) => {
+            Some(GlAnyComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: Some(refused) })
+        }
+        Some((_, Err(e))) => return Err(e),
         None => None,
     };
     let json_name = format!("{stem}.json");
@@ -379,12 +386,12 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_a
         let mut pixels_over_1_255 = BTreeMap::new();
         for ((name, a), (_, b)) in pass.images.iter().zip(gl_images) {
             let d = images::max_channel_difference(a, b);
-            max_difference_255.insert(name.clone(), d.iter().fold(0f32, |m, c| m.max(*c)) * 255.0);
+            max_difference_255.insert(name.clone(), d.map(|c| c * 255.0));
             pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, 1.0 / 255.0 + 1e-6));
         }
         steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255 });
     }
-    Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone() })
+    Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
 }
 
 fn adapter_report(gpu: &Gpu) -> AdapterReport {

@@ -532,22 +532,22 @@ fn lowered_output(lowered: &str, location: u32) -> Option<String> {
 }
 
 /// A `layout(location = N) [qualifiers] in|out TYPE NAME;` declaration of a lowered stage.
-struct InterfaceDeclaration<'a> {
+pub(crate) struct InterfaceDeclaration<'a> {
     location: u32,
     /// The statement's bytes in the text, `;` included.
     statement: std::ops::Range<usize>,
     /// Everything after the location: qualifiers, direction, type and name (with any array size).
-    words: Vec<&'a str>,
+    pub(crate) words: Vec<&'a str>,
 }
 
 impl InterfaceDeclaration<'_> {
-    fn direction(&self) -> Option<&str> {
+    pub(crate) fn direction(&self) -> Option<&str> {
         self.words.iter().copied().find(|w| matches!(*w, "in" | "out"))
     }
 }
 
 /// The single-variable interface declarations of a lowered stage (blocks are left out).
-fn interface_declarations(text: &str) -> Vec<InterfaceDeclaration<'_>> {
+pub(crate) fn interface_declarations(text: &str) -> Vec<InterfaceDeclaration<'_>> {
     const HEAD: &str = "layout(location = ";
     let mut found = Vec::new();
     let mut from = 0;

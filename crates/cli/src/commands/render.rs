@@ -174,9 +174,16 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         println!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
     }
     if let Some(gl) = &report.gl {
-        println!("  OpenGL ({}), largest difference per texture (x/255) after each step:", gl.renderer);
+        println!(
+            "  OpenGL ({}), largest difference per texture after each step (x/255, colour/alpha; pixels over 1/255):",
+            gl.renderer
+        );
         for step in &gl.steps {
-            let parts: Vec<String> = step.max_difference_255.iter().map(|(t, d)| format!("{t} {d:.2}")).collect();
+            let parts: Vec<String> = step
+                .max_difference_255
+                .iter()
+                .map(|(t, d)| format!("{t} {:.2}/{:.2} ({} px)", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t]))
+                .collect();
             if !parts.is_empty() {
                 println!("    {:<38} {}", step.pass, parts.join(", "));
             }
@@ -195,6 +202,10 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         println!("  wrote {}", args.out.join(f).display());
     }
     let mut failed = false;
+    if let Some(refused) = report.gl.as_ref().and_then(|gl| gl.refused.as_ref()) {
+        eprintln!("error: Mesa's OpenGL refuses the pack, so the frames were not compared: {refused}");
+        failed = true;
+    }
     if report.non_finite_pixels > 0 {
         eprintln!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
         failed = true;

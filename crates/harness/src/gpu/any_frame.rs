@@ -6,7 +6,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
-use crate::HarnessError;
+use crate::{HarnessError, custom_uniforms};
 use crate::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
 use crate::images::FloatImage;
 use crate::mesh::SceneMesh;
@@ -124,9 +124,15 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             not_modelled.push(line);
         }
     };
-    // Uniforms the harness has no value for stay zero, as a loader leaves uniforms it does not set.
+    // The pack's custom uniforms join the standard ones; uniforms the harness has no value for
+    // stay zero, as a loader leaves uniforms it does not set.
     let mut values_for = |program: Option<&LoadedProgram>, pass: Pass| -> Result<BTreeMap<String, Value>, HarnessError> {
-        let values = uniforms::values(scene, pass);
+        let mut values = uniforms::values(scene, pass);
+        let custom = custom_uniforms::evaluate(&pack.properties, &values);
+        for problem in &custom.problems {
+            note(format!("{problem} (the uniform stays zero)"));
+        }
+        values.extend(custom.uniforms);
         for stage in program.into_iter().flat_map(|p| [&p.vertex, &p.fragment]) {
             for name in uniforms::fill_block_leaving_zero(&stage.module, &values, &stage.path)?.1 {
                 note(format!("uniform {name}: zero (the harness has no value for it)"));
