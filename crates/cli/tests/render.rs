@@ -130,3 +130,44 @@ fn render_pack_fails_when_a_program_the_loader_runs_does_not_load() {
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("composite does not load") && stderr.contains("composite.fsh:4"), "{stderr}");
 }
+
+#[test]
+fn render_pack_compares_the_screen_with_a_blessed_one() {
+    let out = tempfile::tempdir().unwrap();
+    let blessed = tempfile::tempdir().unwrap();
+    let pack = repo_root().join("tests/packs/flip_chain");
+    let run = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_tidepack"))
+            .args(["render", "tests/scenes/case4_above_near.toml", "--pack"])
+            .arg(&pack)
+            .arg("--out")
+            .arg(out.path())
+            .arg("--expect")
+            .arg(blessed.path())
+            .args(extra)
+            .current_dir(repo_root())
+            .output()
+            .expect("run tidepack")
+    };
+    let missing = run(&[]);
+    assert_eq!(missing.status.code(), Some(2), "no blessed screen yet: {}", String::from_utf8_lossy(&missing.stderr));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("--bless"));
+    assert!(run(&["--bless"]).status.success());
+    let same = run(&[]);
+    assert!(same.status.success(), "{}", String::from_utf8_lossy(&same.stderr));
+    assert!(String::from_utf8_lossy(&same.stdout).contains("mean FLIP 0.00000"));
+
+    // A blessed screen that differs everywhere fails, with the FLIP map and the difference written.
+    let path = blessed.path().join("case4_above_near.png");
+    let mut image = image::open(&path).unwrap().to_rgba8();
+    for p in image.pixels_mut() {
+        p.0 = [255 - p.0[0], 255 - p.0[1], 255 - p.0[2], 255];
+    }
+    image.save(&path).unwrap();
+    let different = run(&[]);
+    assert_eq!(different.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&different.stderr).contains("mean FLIP"), "{}", String::from_utf8_lossy(&different.stderr));
+    for file in ["case4_above_near.flip.png", "case4_above_near.difference.png"] {
+        assert!(out.path().join(file).exists(), "{file}");
+    }
+}

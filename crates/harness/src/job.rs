@@ -260,6 +260,25 @@ pub struct AnyPackJob {
     pub buffers: bool,
     /// Also render through the OpenGL driver and compare every step's textures.
     pub gl: bool,
+    /// Frames to render for the timings (medians leave out the first).
+    pub frames: usize,
+    /// A folder of blessed screens (`<scene>.png`) to compare the screen with, by mean FLIP.
+    pub expect: Option<PathBuf>,
+    /// Write the screen into `expect` instead of comparing.
+    pub bless: bool,
+    /// The largest mean FLIP against the blessed screen that passes.
+    pub max_flip: f64,
+}
+
+/// The screen against a blessed one.
+#[derive(Clone, Debug, Serialize)]
+pub struct ExpectedScreen {
+    /// The blessed image.
+    pub path: String,
+    /// Mean FLIP (0: identical, 1: as different as can be); `None` when the screen was blessed.
+    pub mean_flip: Option<f64>,
+    pub max_flip: f64,
+    pub passed: bool,
 }
 
 /// One step of the OpenGL frame against the wgpu frame.
@@ -297,6 +316,9 @@ pub struct AnyPackReport {
     pub world: String,
     /// Each pass as it ran, in frame order, with its NaN and Inf counts.
     pub passes: Vec<crate::gpu::AnyPassReport>,
+    /// The frame against the one-tap pass-through composite, measured in the same run.
+    pub timing: crate::gpu::FrameTiming,
+    pub expected: Option<ExpectedScreen>,
     /// Pixels of the screen that are NaN or infinite.
     pub non_finite_pixels: usize,
     /// What the pack uses that the frame did not imitate.
@@ -315,7 +337,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
-    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh)?;
+    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh, job.frames)?;
     let gl = if job.gl {
         let ctx = gl::context()?;
         Some((ctx.info().to_string(), crate::gl_any::render_any(&ctx, &pack, &scene, &mesh)))
@@ -333,6 +355,13 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         Ok(())
     };
     write("", &frame.image)?;
+    let mut rgba8_files = Vec::new();
+    let mut write_rgba8 = |suffix: &str, width: u32, height: u32, rgba: &[u8]| -> Result<(), HarnessError> {
+        let name = format!("{stem}{suffix}.png");
+        images::write_rgba8_png(&job.out_dir.join(&name), width, height, rgba)?;
+        rgba8_files.push(name);
+        Ok(())
+    };
     if job.buffers {
         for (b, image) in &frame.buffers {
             write(&format!(".colortex{b}"), image)?;
@@ -352,10 +381,17 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         Some((_, Err(e))) => return Err(e),
         None => None,
     };
+    let expected = match &job.expect {
+        Some(dir) => Some(compare_with_blessed(&frame.image, dir, &stem, job, &mut write_rgba8)?),
+        None => None,
+    };
+    files.extend(rgba8_files);
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = AnyPackReport {
         gl,
+        expected,
+        timing: frame.timing.clone(),
         scene: scene.name.clone(),
         scene_file: job.scene.display().to_string(),
         pack: job.pack.display().to_string(),
@@ -392,6 +428,36 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_a
         steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255 });
     }
     Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
+}
+
+/// Blesses the screen into `dir`, or compares it with the blessed one there by mean FLIP and
+/// writes the FLIP error map and an 8× amplified difference beside the screen.
+fn compare_with_blessed(
+    screen: &FloatImage,
+    dir: &std::path::Path,
+    stem: &str,
+    job: &AnyPackJob,
+    write: &mut dyn FnMut(&str, u32, u32, &[u8]) -> Result<(), HarnessError>,
+) -> Result<ExpectedScreen, HarnessError> {
+    let path = dir.join(format!("{stem}.png"));
+    let (width, height) = (screen.width, screen.height);
+    let actual = screen.to_rgba8_top_first();
+    if job.bless {
+        std::fs::create_dir_all(dir).map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", dir.display())))?;
+        images::write_rgba8_png(&path, width, height, &actual)?;
+        return Ok(ExpectedScreen { path: path.display().to_string(), mean_flip: None, max_flip: job.max_flip, passed: true });
+    }
+    let (w, h, expected) = images::read_rgba8_png(&path)
+        .map_err(|e| HarnessError::Io(format!("{e}; write the blessed screens with --bless first")))?;
+    if (w, h) != (width, height) {
+        return Err(HarnessError::Scene(format!("{} is {w}x{h}, the screen {width}x{height}", path.display())));
+    }
+    let (actual_rgb, expected_rgb) = (images::rgba8_to_rgb8(&actual), images::rgba8_to_rgb8(&expected));
+    let map = images::flip_map(&actual_rgb, &expected_rgb, width, height);
+    let mean_flip = images::mean_flip(&map);
+    write(".flip", width, height, &images::flip_heatmap_rgba8(&map))?;
+    write(".difference", width, height, &images::difference_rgb8(&actual, &expected))?;
+    Ok(ExpectedScreen { path: path.display().to_string(), mean_flip: Some(mean_flip), max_flip: job.max_flip, passed: mean_flip <= job.max_flip })
 }
 
 fn adapter_report(gpu: &Gpu) -> AdapterReport {

@@ -30,7 +30,7 @@ fn pack(name: &str, loader: Loader) -> AnyPack {
 }
 
 fn render(pack: &AnyPack, scene: &Scene) -> AnyFrame {
-    render_any(gpu(), pack, scene, &mesh::build(scene, pack)).unwrap_or_else(|e| panic!("{e}"))
+    render_any(gpu(), pack, scene, &mesh::build(scene, pack), 1).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
@@ -96,7 +96,7 @@ fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
             for scene_name in ["case4_above_near", "rain_over_lake"] {
                 let scene = scene(scene_name);
                 let mesh = mesh::build(&scene, &pack);
-                let wgpu = render_any(gpu(), &pack, &scene, &mesh).unwrap_or_else(|e| panic!("{e}"));
+                let wgpu = render_any(gpu(), &pack, &scene, &mesh, 1).unwrap_or_else(|e| panic!("{e}"));
                 let gl = gl_any::render_any(&ctx, &pack, &scene, &mesh).unwrap_or_else(|e| panic!("{e}"));
                 assert_eq!(wgpu.passes.len(), gl.steps.len());
                 for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {

@@ -53,6 +53,20 @@ pub struct RenderArgs {
     /// `--source` apply to our pack only.
     #[arg(long, value_name = "PATH", conflicts_with_all = ["profile", "set", "specialise"])]
     pub pack: Option<PathBuf>,
+    /// With --pack: frames to render; pass times and the frame's cost against a one-tap
+    /// pass-through are medians over the frames after the first.
+    #[arg(long, default_value_t = 1, requires = "pack", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub frames: u32,
+    /// With --pack: compare the screen with the blessed `DIR/<scene>.png` by mean FLIP, write
+    /// the FLIP map and the difference beside the screen, and fail above --max-flip.
+    #[arg(long, value_name = "DIR", requires = "pack")]
+    pub expect: Option<PathBuf>,
+    /// With --expect: write the screen as the blessed image instead of comparing.
+    #[arg(long, requires = "expect")]
+    pub bless: bool,
+    /// With --expect: the largest mean FLIP that passes.
+    #[arg(long, default_value_t = 0.03, requires = "expect")]
+    pub max_flip: f64,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -152,6 +166,10 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,
+        frames: args.frames as usize,
+        expect: args.expect.clone(),
+        bless: args.bless,
+        max_flip: args.max_flip,
     };
     let report = match job::run_any_pack(&job) {
         Ok(r) => r,
@@ -168,11 +186,21 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         report.adapter.backend,
         report.adapter.device_type
     );
+    let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
     for p in &report.passes {
-        let time = p.gpu_ms.map_or(format!("{:>9.3} ms (wall)", p.wall_ms), |ms| format!("{ms:>9.3} ms (GPU)"));
+        let time = format!("{:>9.3} ms", p.median_ms);
         let bad: Vec<String> = p.non_finite.iter().filter(|(_, n)| **n > 0).map(|(b, n)| format!("{b}: {n} NaN/Inf")).collect();
         println!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
     }
+    let t = &report.timing;
+    println!(
+        "  frame {:.3} ms, one-tap pass-through {:.3} ms: {:.1}x ({source} times, median of {} frame{})",
+        t.frame_ms,
+        t.passthrough_ms,
+        t.frame_ms / t.passthrough_ms,
+        t.frames.saturating_sub(1).max(1),
+        if t.frames > 2 { "s after the first" } else { "" }
+    );
     if let Some(gl) = &report.gl {
         println!(
             "  OpenGL ({}), largest difference per texture after each step (x/255, colour/alpha; pixels over 1/255):",
@@ -202,6 +230,16 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         println!("  wrote {}", args.out.join(f).display());
     }
     let mut failed = false;
+    if let Some(expected) = &report.expected {
+        match expected.mean_flip {
+            None => println!("  blessed {}", expected.path),
+            Some(flip) if expected.passed => println!("  mean FLIP {flip:.5} against {} (at most {})", expected.path, expected.max_flip),
+            Some(flip) => {
+                eprintln!("error: mean FLIP {flip:.5} against {} is over {}; see the .flip and .difference images", expected.path, expected.max_flip);
+                failed = true;
+            }
+        }
+    }
     if let Some(refused) = report.gl.as_ref().and_then(|gl| gl.refused.as_ref()) {
         eprintln!("error: Mesa's OpenGL refuses the pack, so the frames were not compared: {refused}");
         failed = true;

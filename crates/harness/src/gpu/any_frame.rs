@@ -20,6 +20,7 @@ use super::bindings::{
 };
 use super::geometry::{GeometryDraw, depth_attachment};
 use super::own::PassthroughPipeline;
+use super::frame::median;
 use super::readback::{read_pass_ms, read_texture};
 
 /// One pass of the frame as it ran.
@@ -28,14 +29,27 @@ pub struct AnyPassReport {
     /// `terrain (gbuffers_terrain)`, `composite1`, `depth copy`, …
     pub pass: String,
     pub wall_ms: f64,
-    /// GPU time from timestamps, when the adapter has them.
+    /// GPU time from timestamps, when the adapter has them (last frame).
     pub gpu_ms: Option<f64>,
+    /// Median over the frames after the first: GPU time where timestamps exist, else wall.
+    pub median_ms: f64,
     /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `screen`); normalised
     /// formats cannot hold them.
     pub non_finite: BTreeMap<String, usize>,
     /// The textures the pass wrote, by the same names, for comparing renderers pass by pass.
     #[serde(skip)]
     pub images: Vec<(String, FloatImage)>,
+}
+
+/// What a frame costs against the one-tap pass-through composite, in the same run.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FrameTiming {
+    /// Frames rendered; medians leave out the first (llvmpipe compiles shaders at first use).
+    pub frames: usize,
+    /// Median of the sum of every step's time.
+    pub frame_ms: f64,
+    /// Median time of the one-tap pass-through of colortex0.
+    pub passthrough_ms: f64,
 }
 
 /// A frame of any pack.
@@ -48,6 +62,7 @@ pub struct AnyFrame {
     pub depth0: FloatImage,
     pub depth1: FloatImage,
     pub passes: Vec<AnyPassReport>,
+    pub timing: FrameTiming,
     /// What the pack uses that this frame did not imitate: the pack's own list, and the
     /// uniforms and vertex inputs left at zero.
     pub not_modelled: Vec<String>,
@@ -72,14 +87,15 @@ enum Work<'p> {
     ScreenCopy(PassthroughPipeline),
 }
 
-/// Renders one frame of `scene` with any pack's programs.
-pub fn render_any(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<AnyFrame, HarnessError> {
+/// Renders `frames` frames of `scene` with any pack's programs, pipelines made once; returns
+/// the last with the medians of the others' times.
+pub fn render_any(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, frames: usize) -> Result<AnyFrame, HarnessError> {
     gpu.check_resolution(scene.width(), scene.height())
         .map_err(|e| HarnessError::Scene(format!("scene {}: {e}", scene.name)))?;
-    gpu.checked("frame", || render_any_checked(gpu, pack, scene, mesh))?
+    gpu.checked("frame", || render_any_checked(gpu, pack, scene, mesh, frames))?
 }
 
-fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<AnyFrame, HarnessError> {
+fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, frames: usize) -> Result<AnyFrame, HarnessError> {
     let device = &gpu.device;
     let plan = FramePlan::new(pack, scene, mesh);
     let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
@@ -197,8 +213,12 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         note(format!("vertex input {input}: zero (the harness's vertices do not carry it)"));
     }
 
-    // Run.
-    let render_passes = steps.iter().filter(|(_, work, _)| !matches!(work, Work::DepthCopy)).count() as u32;
+    // Run `frames` frames, each followed by a one-tap pass-through of colortex0 to a texture of
+    // its own (the floor the frame's cost is measured against); the textures are read back, and
+    // their NaN and Inf counted, after every step of the last frame only.
+    let floor_target = texture("pass-through output (RGBA32F)", OUT, every_use);
+    let floor = PassthroughPipeline::new(gpu, &buffers[&0].textures[plan.current[&0]])?;
+    let render_passes = steps.iter().filter(|(_, work, _)| !matches!(work, Work::DepthCopy)).count() as u32 + 1;
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
     });
@@ -209,60 +229,86 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
         Ok(started.elapsed().as_secs_f64() * 1000.0)
     };
-    let mut encoder = new_encoder();
-    record_clears(&mut encoder, pack, scene, &buffers, &depth0);
-    submit(encoder)?;
-    let mut reports = Vec::new();
-    let mut timed = 0u32;
-    for (label, work, written) in &steps {
+    let frames = frames.max(1);
+    let mut reports: Vec<AnyPassReport> = Vec::new();
+    // Per frame: each step's time (GPU where timestamps exist, else wall) and the floor's.
+    let mut step_ms: Vec<Vec<f64>> = vec![Vec::new(); steps.len()];
+    let mut floor_ms = Vec::new();
+    for frame in 0..frames {
+        let last = frame + 1 == frames;
         let mut encoder = new_encoder();
-        let stamps = match (&queries, work) {
-            (_, Work::DepthCopy) | (None, _) => None,
-            (Some(q), _) => {
-                timed += 1;
-                Some(wgpu::RenderPassTimestampWrites {
-                    query_set: q,
-                    beginning_of_pass_write_index: Some(2 * (timed - 1)),
-                    end_of_pass_write_index: Some(2 * (timed - 1) + 1),
-                })
-            }
+        record_clears(&mut encoder, pack, scene, &buffers, &depth0);
+        submit(encoder)?;
+        let mut timed = 0u32;
+        let mut stamp = |timestamps: bool| {
+            let q = queries.as_ref().filter(|_| timestamps)?;
+            timed += 1;
+            Some(wgpu::RenderPassTimestampWrites {
+                query_set: q,
+                beginning_of_pass_write_index: Some(2 * (timed - 1)),
+                end_of_pass_write_index: Some(2 * (timed - 1) + 1),
+            })
         };
-        match work {
-            Work::Geometry { draw, current, snapshots } => {
-                for b in *snapshots {
-                    let buffer = &buffers[b];
-                    encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), size);
+        let mut walls = Vec::new();
+        for (label, work, written) in &steps {
+            let mut encoder = new_encoder();
+            let stamps = stamp(!matches!(work, Work::DepthCopy));
+            match work {
+                Work::Geometry { draw, current, snapshots } => {
+                    for b in *snapshots {
+                        let buffer = &buffers[b];
+                        encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), size);
+                    }
+                    draw.record(&mut encoder, &|b| &buffers[&b].textures[current[&b]], &depth0, stamps);
                 }
-                draw.record(&mut encoder, &|b| &buffers[&b].textures[current[&b]], &depth0, stamps);
+                Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
+                Work::Fullscreen { program, pipeline, current, into_screen } => {
+                    let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
+                    pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
+                }
+                Work::ScreenCopy(copy) => copy.record(&mut encoder, &screen, stamps),
             }
-            Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
-            Work::Fullscreen { program, pipeline, current, into_screen } => {
-                let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
-                pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
+            let wall_ms = submit(encoder)?;
+            walls.push(wall_ms);
+            if last {
+                let mut non_finite = BTreeMap::new();
+                let mut images = Vec::new();
+                for (name, texture) in written {
+                    let image = match texture {
+                        None => read_texture(gpu, &screen, OUT)?,
+                        Some((b, i)) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
+                    };
+                    non_finite.insert(name.clone(), image.non_finite());
+                    images.push((name.clone(), image));
+                }
+                reports.push(AnyPassReport { pass: label.to_string(), wall_ms, gpu_ms: None, median_ms: 0.0, non_finite, images });
             }
-            Work::ScreenCopy(copy) => copy.record(&mut encoder, &screen, stamps),
         }
-        let wall_ms = submit(encoder)?;
-        let mut non_finite = BTreeMap::new();
-        let mut images = Vec::new();
-        for (name, texture) in written {
-            let image = match texture {
-                None => read_texture(gpu, &screen, OUT)?,
-                Some((b, i)) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
-            };
-            non_finite.insert(name.clone(), image.non_finite());
-            images.push((name.clone(), image));
+        let mut encoder = new_encoder();
+        floor.record(&mut encoder, &floor_target, stamp(true));
+        walls.push(submit(encoder)?);
+        let gpu_ms = match &queries {
+            Some(q) => Some(read_pass_ms(gpu, q, render_passes)?),
+            None => None,
+        };
+        // The timestamps are in order of the timed passes; the depth copy has wall time only.
+        let mut gpu_iter = gpu_ms.iter().flatten().copied();
+        for (i, (_, work, _)) in steps.iter().enumerate() {
+            let gpu_time = if matches!(work, Work::DepthCopy) { None } else { gpu_iter.next() };
+            step_ms[i].push(gpu_time.unwrap_or(walls[i]));
+            if last {
+                reports[i].gpu_ms = gpu_time;
+            }
         }
-        reports.push(AnyPassReport { pass: label.to_string(), wall_ms, gpu_ms: None, non_finite, images });
+        floor_ms.push(gpu_iter.next().unwrap_or(walls[steps.len()]));
     }
-    if let Some(q) = &queries {
-        let mut gpu_ms = read_pass_ms(gpu, q, render_passes)?.into_iter();
-        for (report, (_, work, _)) in reports.iter_mut().zip(&steps) {
-            if !matches!(work, Work::DepthCopy) {
-                report.gpu_ms = gpu_ms.next();
-            }
-        }
+    // The first frame pays for llvmpipe's lazy shader compilation: medians leave it out.
+    let settled = |samples: &[f64]| median(if samples.len() > 1 { &samples[1..] } else { samples });
+    for (report, samples) in reports.iter_mut().zip(&step_ms) {
+        report.median_ms = settled(samples);
     }
+    let frame_ms: Vec<f64> = (0..frames).map(|f| step_ms.iter().map(|s| s[f]).sum()).collect();
+    let timing = FrameTiming { frames, frame_ms: settled(&frame_ms), passthrough_ms: settled(&floor_ms) };
 
     let mut images = BTreeMap::new();
     for (b, buffer) in &buffers {
@@ -276,6 +322,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         depth0: read_texture(gpu, &depth0, DEPTH)?,
         depth1: read_texture(gpu, &depth1, DEPTH)?,
         passes: reports,
+        timing,
         not_modelled,
     })
 }

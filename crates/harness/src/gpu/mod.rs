@@ -21,7 +21,7 @@ pub mod readback;
 
 pub use bindings::{Source, UniformBinding, fullscreen_quad, resolve_any, resolve_in_pack, resolve_sampler, vertex_attribute_source};
 pub use device::{Gpu, VULKAN_PACKAGE};
-pub use any_frame::{AnyFrame, AnyPassReport, render_any};
+pub use any_frame::{AnyFrame, AnyPassReport, FrameTiming, render_any};
 pub use frame::{Frame, PassTiming, median, render, render_repeated};
 pub(crate) use frame::overlay_phase;
 pub use own::terrain_mvp;
