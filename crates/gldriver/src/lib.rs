@@ -171,6 +171,9 @@ pub struct LegacyGl {
     pub provoking_vertex: unsafe extern "system" fn(u32),
     /// `glClipControl` (OpenGL 4.5 or ARB_clip_control), when the driver has it.
     pub clip_control: Option<unsafe extern "system" fn(u32, u32)>,
+    /// `glFogf` and `glFogfv`: the fixed-function fog state `gl_Fog` reads.
+    pub fog_f: unsafe extern "system" fn(u32, f32),
+    pub fog_fv: unsafe extern "system" fn(u32, *const f32),
 }
 
 /// Enums of the compatibility API that glow does not define.
@@ -187,6 +190,11 @@ pub mod legacy {
     pub const UPPER_LEFT: u32 = 0x8CA2;
     pub const NEGATIVE_ONE_TO_ONE: u32 = 0x935E;
     pub const ZERO_TO_ONE: u32 = 0x935F;
+    /// glFog parameters.
+    pub const FOG_DENSITY: u32 = 0x0B62;
+    pub const FOG_START: u32 = 0x0B63;
+    pub const FOG_END: u32 = 0x0B64;
+    pub const FOG_COLOR: u32 = 0x0B66;
     /// glProvokingVertex conventions.
     pub const FIRST_VERTEX_CONVENTION: u32 = 0x8E4D;
     pub const LAST_VERTEX_CONVENTION: u32 = 0x8E4E;
@@ -215,6 +223,8 @@ impl LegacyGl {
             client_active_texture: get(egl, "glClientActiveTexture")?,
             provoking_vertex: get(egl, "glProvokingVertex")?,
             clip_control: get(egl, "glClipControl").ok(),
+            fog_f: get(egl, "glFogf")?,
+            fog_fv: get(egl, "glFogfv")?,
         })
     }
 }

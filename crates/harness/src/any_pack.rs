@@ -186,7 +186,7 @@ impl AnyPack {
             for stage in [&program.vertex, &program.fragment] {
                 for (name, _) in program::texture_resources(&stage.interface) {
                     if resolve_any(&NoCustomTextures, &name, gbuffers_program) == Ok(Source::Unbound) {
-                        not_modelled.push(format!("sampler {name} in {}: OptiFine binds nothing to it; it reads transparent black", program.name));
+                        not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name));
                     }
                 }
             }

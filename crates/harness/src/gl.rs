@@ -547,7 +547,7 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
         };
         // Names the lowering made (a matrix varying split into columns) are not in the shipped
         // text transform feedback records.
-        if name.is_empty() || name.starts_with("gl_") || name.starts_with("tp_") {
+        if name.is_empty() || name.starts_with("gl_") || name.starts_with("tp_") || outputs.iter().any(|(n, _)| *n == name) {
             return Err(unsupported(format!("output {name:?}")));
         }
         outputs.push((name, components));
@@ -743,6 +743,14 @@ pub(crate) unsafe fn draw_program(
         }
         (lg.matrix_mode)(legacy::MODELVIEW);
         gl.active_texture(glow::TEXTURE0);
+        // The fog state `gl_Fog` reads, as the wgpu path fills it.
+        let fog = |key: &str| values.get(&format!("tp_Fog.{key}")).map(Value::as_f32);
+        if let (Some(color), Some(density), Some(start), Some(end)) = (fog("color"), fog("density"), fog("start"), fog("end")) {
+            (lg.fog_fv)(legacy::FOG_COLOR, color.as_ptr());
+            (lg.fog_f)(legacy::FOG_DENSITY, density[0]);
+            (lg.fog_f)(legacy::FOG_START, start[0]);
+            (lg.fog_f)(legacy::FOG_END, end[0]);
+        }
 
         // Vertex arrays: legacy inputs through client state, user attributes generic.
         let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;

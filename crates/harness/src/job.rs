@@ -430,6 +430,9 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_a
     Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
 }
 
+/// Writes an RGBA8 image beside the screen: (file suffix, width, height, pixels top row first).
+type WriteRgba8<'a> = dyn FnMut(&str, u32, u32, &[u8]) -> Result<(), HarnessError> + 'a;
+
 /// Blesses the screen into `dir`, or compares it with the blessed one there by mean FLIP and
 /// writes the FLIP error map and an 8× amplified difference beside the screen.
 fn compare_with_blessed(
@@ -437,7 +440,7 @@ fn compare_with_blessed(
     dir: &std::path::Path,
     stem: &str,
     job: &AnyPackJob,
-    write: &mut dyn FnMut(&str, u32, u32, &[u8]) -> Result<(), HarnessError>,
+    write: &mut WriteRgba8,
 ) -> Result<ExpectedScreen, HarnessError> {
     let path = dir.join(format!("{stem}.png"));
     let (width, height) = (screen.width, screen.height);

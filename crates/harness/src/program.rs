@@ -489,9 +489,9 @@ pub(crate) fn load_program_files(
         (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
         (None, UndeclaredTargets::FirstOnly) => vec![0],
     };
-    // Iris drops the outputs past colortex0 of an undeclared program; elsewhere every output
-    // must have its buffer.
-    for location in fragment.interface.outputs.keys().filter(|_| undeclared != UndeclaredTargets::FirstOnly) {
+    // Our own programs must give every output its buffer; loaders drop the outputs of any
+    // pack's programs past the buffers listed.
+    for location in fragment.interface.outputs.keys().filter(|_| undeclared == UndeclaredTargets::Refuse) {
         if *location as usize >= render_targets.len() {
             return Err(HarnessError::Pack(format!(
                 "{} writes output {location} but its render targets list only {} buffers",
@@ -567,10 +567,10 @@ pub(crate) fn interface_declarations(text: &str) -> Vec<InterfaceDeclaration<'_>
 /// wgpu refuses the pipeline. The declarations go at the end of the line after `#version`, so
 /// no line moves.
 fn complete_vertex_outputs(vertex: &str, fragment: &str) -> String {
-    let outputs: std::collections::BTreeSet<u32> =
-        interface_declarations(vertex).iter().filter(|d| d.direction() == Some("out")).map(|d| d.location).collect();
+    let vertex_outputs: Vec<InterfaceDeclaration> = interface_declarations(vertex).into_iter().filter(|d| d.direction() == Some("out")).collect();
+    let declared = |input: &InterfaceDeclaration| vertex_outputs.iter().any(|o| o.location == input.location || o.words.last() == input.words.last());
     let mut added = String::new();
-    for input in interface_declarations(fragment).iter().filter(|d| d.direction() == Some("in") && !outputs.contains(&d.location)) {
+    for input in interface_declarations(fragment).iter().filter(|d| d.direction() == Some("in") && !declared(d)) {
         let words: Vec<&str> = input.words.iter().map(|w| if *w == "in" { "out" } else { w }).collect();
         added.push_str(&format!(" layout(location = {}) {};", input.location, words.join(" ")));
     }
@@ -688,7 +688,8 @@ pub(crate) fn declared_format_names(text: &str) -> Vec<(u8, String)> {
         let Some((name, value)) = rest.split_once('=') else { continue };
         let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
         let Some(buffer) = colour_buffer_number(buffer_name) else { continue };
-        found.push((buffer, value.trim().trim_end_matches(';').trim().to_string()));
+        // The value ends at the `;`; a comment may follow on the line.
+        found.push((buffer, value.split(';').next().unwrap_or("").trim().to_string()));
     }
     found
 }
@@ -746,17 +747,26 @@ pub(crate) fn custom_textures(
     let mut unsupported = Vec::new();
     for line in properties.lines() {
         let Some((key, path)) = line.trim().split_once('=') else { continue };
-        let Some((stage, unit)) = key.trim().strip_prefix("texture.").and_then(|k| k.split_once('.')) else { continue };
-        let path = path.trim().trim_start_matches('/').to_string();
+        let key = key.trim();
+        let Some((stage, unit)) = key.strip_prefix("texture.").and_then(|k| k.split_once('.')) else { continue };
+        // `path` alone, or a raw texture: `path TYPE FORMAT WIDTH HEIGHT [DEPTH] PIXELFORMAT PIXELTYPE`.
+        let mut words = path.split_whitespace();
+        let path = normalise_pack_path(words.next().unwrap_or(""));
         if !matches!(stage, "gbuffers" | "composite") {
             unsupported.push(format!("{key}: the harness binds custom textures in gbuffers and composite programs only"));
             continue;
         }
-        if path.ends_with(".dat") || path.contains(':') {
+        if words.next().is_some() || path.ends_with(".dat") || path.contains(':') {
             unsupported.push(format!("{key}={path}: only PNG textures inside the pack are read"));
             continue;
         }
-        let bytes = read_bytes(&path).map_err(|e| HarnessError::Pack(format!("{key}: {e}")))?;
+        let bytes = match read_bytes(&path) {
+            Ok(bytes) => bytes,
+            Err(e) => {
+                unsupported.push(format!("{key}: {e}"));
+                continue;
+            }
+        };
         let decoded = image::load_from_memory(&bytes)
             .map_err(|e| HarnessError::Pack(format!("{key}: {path} is not a readable image: {e}")))?
             .to_rgba8();
@@ -776,6 +786,23 @@ pub(crate) fn custom_textures(
         });
     }
     Ok((found, unsupported))
+}
+
+/// A texture path of shaders.properties as a path inside `shaders/`: a leading `/` dropped,
+/// `a/../b` folded (`../shaders/x` climbs out of `shaders/` and back in).
+fn normalise_pack_path(path: &str) -> String {
+    let mut parts: Vec<&str> = Vec::new();
+    for part in path.trim_start_matches('/').split('/') {
+        match part {
+            "" | "." => {}
+            ".." => {
+                parts.pop();
+            }
+            "shaders" if parts.is_empty() && path.starts_with("../") => {}
+            other => parts.push(other),
+        }
+    }
+    parts.join("/")
 }
 
 /// `block.<id>=<names>` lines.

@@ -185,6 +185,15 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
     put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
     put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
+    // The game's linear fog as the legacy `gl_Fog` state holds it: from 0.75·far to far, the
+    // curve the scenes' fog follows.
+    let (fog_start, fog_end) = (0.75 * scene.camera.far, scene.camera.far);
+    let [r, g, b] = scene.sky.fog_color;
+    put("tp_Fog.color", Value::vec4(DVec4::new(r, g, b, 1.0)));
+    put("tp_Fog.density", Value::float(1.0));
+    put("tp_Fog.start", Value::float(fog_start));
+    put("tp_Fog.end", Value::float(fog_end));
+    put("tp_Fog.scale", Value::float(1.0 / (fog_end - fog_start)));
     put("rainStrength", Value::float(scene.sky.rain_strength));
     put("wetness", Value::float(scene.sky.rain_strength));
     put("nightVision", Value::float(0.0));
@@ -224,16 +233,21 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     v
 }
 
+/// The 1.17+ core profile's names for the legacy matrices, which differ between passes:
+/// never folded.
+const PER_PASS: [&str; 7] =
+    ["modelViewMatrix", "modelViewMatrixInverse", "projectionMatrix", "projectionMatrixInverse", "normalMatrix", "textureMatrix", "chunkOffset"];
+
 /// Uniforms that change from frame to frame while a scene is shown: never folded.
 const ANIMATION_CLOCK: [&str; 3] = ["frameTimeCounter", "frameTime", "frameCounter"];
 
 /// What `build --scene` folds: every OptiFine uniform the scene fixes (camera, matrices,
-/// sky, `isEyeInWater`, ...), but not the animation clock nor the legacy `gl_` matrices,
-/// which differ between passes. `label` names the scene in the folded lines.
+/// sky, `isEyeInWater`, ...), but not the animation clock nor the legacy matrices under
+/// either name, which differ between passes. `label` names the scene in the folded lines.
 pub fn scene_specialisation(scene: &Scene, label: &str) -> Specialisation {
     let constants = values(scene, Pass::Fullscreen)
         .into_iter()
-        .filter(|(name, _)| !name.starts_with("tp_") && !ANIMATION_CLOCK.contains(&name.as_str()))
+        .filter(|(name, _)| !name.starts_with("tp_") && !ANIMATION_CLOCK.contains(&name.as_str()) && !PER_PASS.contains(&name.as_str()))
         .filter_map(|(name, value)| Some((name, value.glsl_initialiser()?)))
         .collect();
     Specialisation { scene: label.to_string(), constants }
@@ -251,7 +265,7 @@ pub struct FilledBlock {
 /// Finds the module's uniform block and writes every member from `values`. `stage_name`
 /// names the stage in errors; a member without a value is an error.
 pub fn fill_block(module: &naga::Module, values: &BTreeMap<String, Value>, stage_name: &str) -> Result<Option<FilledBlock>, HarnessError> {
-    let (block, missing) = fill_block_leaving_zero(module, values, stage_name)?;
+    let (block, missing) = fill(module, values, stage_name, true)?;
     if !missing.is_empty() {
         return Err(HarnessError::Uniform(format!(
             "{stage_name} declares uniform{} the harness cannot fill: {}",
@@ -262,12 +276,23 @@ pub fn fill_block(module: &naga::Module, values: &BTreeMap<String, Value>, stage
     Ok(block)
 }
 
-/// [`fill_block`], leaving members without a value zero (as a loader leaves uniforms it does
-/// not set) and returning their shipped names.
+/// [`fill_block`], leaving zero the members without a value, or whose declared type is not the
+/// type of the value (a loader's `glUniform` of the wrong type sets nothing), as a loader
+/// leaves uniforms it does not set; returns their shipped names, with the type clash where
+/// there is one.
 pub fn fill_block_leaving_zero(
     module: &naga::Module,
     values: &BTreeMap<String, Value>,
     stage_name: &str,
+) -> Result<(Option<FilledBlock>, Vec<String>), HarnessError> {
+    fill(module, values, stage_name, false)
+}
+
+fn fill(
+    module: &naga::Module,
+    values: &BTreeMap<String, Value>,
+    stage_name: &str,
+    strict: bool,
 ) -> Result<(Option<FilledBlock>, Vec<String>), HarnessError> {
     let mut layouter = naga::proc::Layouter::default();
     layouter
@@ -295,12 +320,27 @@ pub fn fill_block_leaving_zero(
         for member in members {
             let name = member.name.clone().unwrap_or_default();
             names.push(name.clone());
-            let Some(value) = values.get(&name) else {
+            // A struct member (`gl_Fog`) is filled field by field from `name.field` values.
+            let fields: Vec<(String, naga::Handle<naga::Type>, u32)> = match &module.types[member.ty].inner {
+                TypeInner::Struct { members: fields, .. } => fields
+                    .iter()
+                    .map(|f| (format!("{name}.{}", f.name.as_deref().unwrap_or("")), f.ty, member.offset + f.offset))
+                    .collect(),
+                _ => vec![(name.clone(), member.ty, member.offset)],
+            };
+            if fields.iter().any(|(key, ..)| !values.contains_key(key)) {
                 missing.push(shipped_name(&name));
                 continue;
-            };
-            write_member(module, &layouter, member.ty, member.offset as usize, value, &mut bytes)
-                .map_err(|m| HarnessError::Uniform(format!("{stage_name}: uniform {}: {m}", shipped_name(&name))))?;
+            }
+            let written = fields
+                .iter()
+                .try_for_each(|(key, ty, offset)| write_member(module, &layouter, *ty, *offset as usize, &values[key], &mut bytes));
+            if let Err(m) = written {
+                if strict {
+                    return Err(HarnessError::Uniform(format!("{stage_name}: uniform {}: {m}", shipped_name(&name))));
+                }
+                missing.push(format!("{} ({m})", shipped_name(&name)));
+            }
         }
         found = Some((FilledBlock { group: binding.group, binding: binding.binding, bytes, members: names }, missing));
     }

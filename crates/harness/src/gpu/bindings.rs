@@ -245,6 +245,68 @@ impl HarnessTextures {
     }
 }
 
+/// Runs `f`, turning a panic into an error about `what`. naga's SPIR-V writer, run by wgpu
+/// when it makes a shader module or pipeline, panics on some modules naga's validator passed:
+/// that is a program the harness cannot run, not a crash of the tool.
+fn without_panics<T>(what: &str, f: impl FnOnce() -> Result<T, HarnessError>) -> Result<T, HarnessError> {
+    // The panic becomes the error below: the default hook's report on stderr would read as a
+    // crash.
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    std::panic::set_hook(hook);
+    outcome.unwrap_or_else(|panic| {
+        let why = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
+        Err(HarnessError::Unsupported(format!(
+            "{what}: naga cannot translate the lowered program for wgpu ({})",
+            why.unwrap_or_else(|| "no message".into())
+        )))
+    })
+}
+
+/// An empty (zero) texture of a shader's texture type other than a plain 2D float texture:
+/// its view, sample type and dimension; `None` for storage images and multisampled textures.
+fn empty_texture_of(
+    gpu: &Gpu,
+    dim: naga::ImageDimension,
+    arrayed: bool,
+    class: &naga::ImageClass,
+) -> Option<(wgpu::TextureView, wgpu::TextureSampleType, wgpu::TextureViewDimension)> {
+    let (format, sample_type) = match class {
+        naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false } => {
+            (wgpu::TextureFormat::Rgba8Unorm, wgpu::TextureSampleType::Float { filterable: true })
+        }
+        naga::ImageClass::Sampled { kind: naga::ScalarKind::Sint, multi: false } => (wgpu::TextureFormat::Rgba32Sint, wgpu::TextureSampleType::Sint),
+        naga::ImageClass::Sampled { kind: naga::ScalarKind::Uint, multi: false } => (wgpu::TextureFormat::Rgba32Uint, wgpu::TextureSampleType::Uint),
+        naga::ImageClass::Depth { multi: false } => (DEPTH, wgpu::TextureSampleType::Depth),
+        _ => return None,
+    };
+    let (dimension, view_dimension, layers) = match (dim, arrayed) {
+        (naga::ImageDimension::D1, false) => (wgpu::TextureDimension::D1, wgpu::TextureViewDimension::D1, 1),
+        (naga::ImageDimension::D2, false) => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::D2, 1),
+        (naga::ImageDimension::D2, true) => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::D2Array, 1),
+        (naga::ImageDimension::D3, false) => (wgpu::TextureDimension::D3, wgpu::TextureViewDimension::D3, 1),
+        (naga::ImageDimension::Cube, false) => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::Cube, 6),
+        (naga::ImageDimension::Cube, true) => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::CubeArray, 6),
+        _ => return None,
+    };
+    if format == DEPTH && dimension != wgpu::TextureDimension::D2 {
+        return None;
+    }
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("a texture the harness does not make (empty)"),
+        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: layers },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let view = texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(view_dimension), ..Default::default() });
+    Some((view, sample_type, view_dimension))
+}
+
 /// A 1x1 depth texture cleared to 1: a shadow map nothing was drawn into.
 fn empty_depth(gpu: &Gpu) -> wgpu::Texture {
     let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -318,6 +380,7 @@ impl BindableTextures<'_> {
     fn sampler(&self, source: Source, filters: bool) -> wgpu::Sampler {
         let harness = self.harness;
         match source {
+            _ if !filters => harness.nearest_clamp.clone(),
             Source::Custom(i) => harness.custom[i].1.clone(),
             Source::Atlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
@@ -351,7 +414,7 @@ pub(crate) enum PassKind<'a> {
 
 enum Entry {
     Uniform(wgpu::Buffer),
-    Texture(wgpu::TextureView, wgpu::TextureSampleType),
+    Texture(wgpu::TextureView, wgpu::TextureSampleType, wgpu::TextureViewDimension),
     Sampler(wgpu::Sampler, wgpu::SamplerBindingType),
 }
 
@@ -429,9 +492,9 @@ impl ProgramPipeline {
                             has_dynamic_offset: false,
                             min_binding_size: None,
                         },
-                        Entry::Texture(_, sample_type) => wgpu::BindingType::Texture {
+                        Entry::Texture(_, sample_type, view_dimension) => wgpu::BindingType::Texture {
                             sample_type: *sample_type,
-                            view_dimension: wgpu::TextureViewDimension::D2,
+                            view_dimension: *view_dimension,
                             multisampled: false,
                         },
                         Entry::Sampler(_, ty) => wgpu::BindingType::Sampler(*ty),
@@ -447,7 +510,7 @@ impl ProgramPipeline {
                     binding: *binding,
                     resource: match entry {
                         Entry::Uniform(b) => b.as_entire_binding(),
-                        Entry::Texture(v, _) => wgpu::BindingResource::TextureView(v),
+                        Entry::Texture(v, ..) => wgpu::BindingResource::TextureView(v),
                         Entry::Sampler(s, _) => wgpu::BindingResource::Sampler(s),
                     },
                 })
@@ -517,11 +580,13 @@ impl ProgramPipeline {
             color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask }));
         }
         let shader_module = |stage: &LoadedStage| {
-            gpu.checked(&format!("{} (wgpu shader module)", stage.path), || {
-                let module = if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() };
-                device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(&stage.path),
-                    source: wgpu::ShaderSource::Naga(Cow::Owned(module)),
+            let module = if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() };
+            without_panics(&stage.path, || {
+                gpu.checked(&format!("{} (wgpu shader module)", stage.path), || {
+                    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some(&stage.path),
+                        source: wgpu::ShaderSource::Naga(Cow::Owned(module)),
+                    })
                 })
             })
         };
@@ -537,7 +602,7 @@ impl ProgramPipeline {
             }),
             PassKind::Fullscreen { .. } | PassKind::FullscreenInto { .. } => None,
         };
-        let pipeline = gpu.checked(&format!("{} (wgpu pipeline)", program.name), || {
+        let pipeline = without_panics(&program.name, || gpu.checked(&format!("{} (wgpu pipeline)", program.name), || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&program.name),
                 layout: Some(&pipeline_layout),
@@ -571,7 +636,7 @@ impl ProgramPipeline {
                 multiview_mask: None,
                 cache: None,
             })
-        })?;
+        }))?;
         Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers, zero_vertex, zeroed_inputs: zeroed })
     }
 
@@ -800,7 +865,16 @@ fn stage_entries(
                 || *arrayed
                 || !(depth_class || matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }))
             {
-                problems.push(format!("texture {name} is not a plain sampler2D"));
+                // Any pack's 3D, array, cube and integer textures are custom textures or
+                // images the harness does not make: they read an empty texture of their kind.
+                match (textures.naming, empty_texture_of(gpu, *dim, *arrayed, class)) {
+                    (SamplerNaming::AnyPack, Some((view, sample_type, dimension))) => {
+                        let filters = matches!(sample_type, wgpu::TextureSampleType::Float { filterable: true });
+                        resolved.insert(name.clone(), (Source::Unbound, filters));
+                        entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type, dimension)));
+                    }
+                    _ => problems.push(format!("texture {name} is not a plain sampler2D")),
+                }
                 continue;
             }
             let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source)?)));
@@ -811,7 +885,7 @@ fn stage_entries(
                 Ok((source, (view, filters))) => {
                     resolved.insert(name.clone(), (source, filters));
                     let sample_type = if depth_class { wgpu::TextureSampleType::Depth } else { wgpu::TextureSampleType::Float { filterable: filters } };
-                    entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type)));
+                    entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type, wgpu::TextureViewDimension::D2)));
                 }
                 Err(m) => problems.push(m),
             }

@@ -53,6 +53,9 @@ impl Gpu {
                 max_inter_stage_shader_variables: adapter.limits().max_inter_stage_shader_variables,
                 // The lowering numbers vertex inputs by their legacy slots (up to 24 and more).
                 max_vertex_attributes: adapter.limits().max_vertex_attributes,
+                // Packs sample more textures per stage than wgpu's portable 16.
+                max_sampled_textures_per_shader_stage: adapter.limits().max_sampled_textures_per_shader_stage,
+                max_samplers_per_shader_stage: adapter.limits().max_samplers_per_shader_stage,
                 ..wgpu::Limits::default().using_resolution(adapter.limits())
             },
             ..Default::default()
