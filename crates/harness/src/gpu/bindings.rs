@@ -414,6 +414,8 @@ pub(crate) enum PassKind<'a> {
 
 enum Entry {
     Uniform(wgpu::Buffer),
+    /// A pack's own buffer block (Iris's `bufferObject`), zero-filled; read-only or not.
+    Storage(wgpu::Buffer, bool),
     Texture(wgpu::TextureView, wgpu::TextureSampleType, wgpu::TextureViewDimension),
     Sampler(wgpu::Sampler, wgpu::SamplerBindingType),
 }
@@ -492,6 +494,11 @@ impl ProgramPipeline {
                             has_dynamic_offset: false,
                             min_binding_size: None,
                         },
+                        Entry::Storage(_, read_only) => wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Storage { read_only: *read_only },
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
+                        },
                         Entry::Texture(_, sample_type, view_dimension) => wgpu::BindingType::Texture {
                             sample_type: *sample_type,
                             view_dimension: *view_dimension,
@@ -509,7 +516,7 @@ impl ProgramPipeline {
                 .map(|(binding, (_, entry))| wgpu::BindGroupEntry {
                     binding: *binding,
                     resource: match entry {
-                        Entry::Uniform(b) => b.as_entire_binding(),
+                        Entry::Uniform(b) | Entry::Storage(b, _) => b.as_entire_binding(),
                         Entry::Texture(v, ..) => wgpu::BindingResource::TextureView(v),
                         Entry::Sampler(s, _) => wgpu::BindingResource::Sampler(s),
                     },
@@ -853,6 +860,33 @@ fn stage_entries(
 ) -> Result<Vec<(u32, u32, Entry)>, HarnessError> {
     let module = &stage.module;
     let mut entries = Vec::new();
+    // Any pack's own buffer blocks read zero: nothing the harness runs writes them.
+    if textures.naming == SamplerNaming::AnyPack {
+        let mut layouter = naga::proc::Layouter::default();
+        if layouter.update(module.to_ctx()).is_ok() {
+            for (_, global) in module.global_variables.iter() {
+                let (Some(binding), naga::AddressSpace::Storage { access }) = (&global.binding, global.space) else { continue };
+                // A runtime-sized array at the end gets 1024 elements.
+                let tail = match &module.types[global.ty].inner {
+                    naga::TypeInner::Struct { members, .. } => members.last().map(|m| &module.types[m.ty].inner),
+                    other => Some(other),
+                };
+                let extra = match tail {
+                    Some(naga::TypeInner::Array { size: naga::ArraySize::Dynamic, stride, .. }) => *stride as u64 * 1024,
+                    _ => 0,
+                };
+                let size = (layouter[global.ty].size as u64 + extra).max(16).next_multiple_of(16);
+                let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("{} buffer block (zero)", stage.path)),
+                    size,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                });
+                let read_only = !access.contains(naga::StorageAccess::STORE);
+                entries.push((binding.group, binding.binding, Entry::Storage(buffer, read_only)));
+            }
+        }
+    }
     // Textures first, so each sampler knows whether its texture filters.
     let mut resolved: BTreeMap<String, (Source, bool)> = BTreeMap::new();
     let mut problems = Vec::new();
