@@ -1,0 +1,122 @@
+//! naga on the distinct lowered stages, on worker threads with stacks deep enough for naga's
+//! recursion; a panic inside naga becomes a warning that the stage was not checked.
+
+use std::panic::AssertUnwindSafe;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use tidepack_glsl::options::OptionSet;
+use tidepack_glsl::preprocess::Preprocessed;
+use tidepack_glsl::validate::{self, LoweredCompute, LoweredStage};
+use tidepack_glsl::{Diagnostic, Location};
+
+use crate::messages::clarify;
+use crate::{Finding, PackFiles, SetProvider};
+
+/// One distinct lowered stage for naga, with the program and option set that produced it.
+pub(crate) struct Job {
+    pub stage: JobStage,
+    pub set: usize,
+    pub program: usize,
+    /// A vertex stage followed by a geometry or tessellation stage need not write
+    /// `gl_Position`, which naga requires of every vertex stage.
+    pub position_optional: bool,
+}
+
+/// naga's complaint about a vertex stage that does not write `gl_Position`.
+const POSITION_REQUIRED: &str = "must return a `@builtin(position)` output";
+
+pub(crate) enum JobStage {
+    Graphics(LoweredStage),
+    Compute(LoweredCompute),
+}
+
+impl JobStage {
+    pub fn preprocessed(&self) -> &Preprocessed {
+        match self {
+            JobStage::Graphics(s) => &s.preprocessed,
+            JobStage::Compute(s) => &s.preprocessed,
+        }
+    }
+
+    pub fn text(&self) -> &str {
+        match self {
+            JobStage::Graphics(s) => &s.lowered.text,
+            JobStage::Compute(s) => &s.lowered.text,
+        }
+    }
+}
+
+/// Longest stage (in lines, after preprocessing) naga is given: its parse time grows
+/// quadratically with the number of declarations (200 000 take minutes), and no real pack
+/// comes near (the largest known stages have a few thousand lines).
+pub const MAX_NAGA_LINES: usize = 40_000;
+
+/// Validates the jobs with naga on `threads` workers; a panic inside naga becomes a warning
+/// that the stage was not checked.
+pub(crate) fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<Finding> {
+    let next = AtomicUsize::new(0);
+    let workers = threads.max(1).min(jobs.len().max(1));
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                std::thread::Builder::new()
+                    .stack_size(64 << 20)
+                    .spawn_scoped(scope, || {
+                        let mut frontend = validate::Frontend::default();
+                        let mut found = Vec::new();
+                        loop {
+                            let i = next.fetch_add(1, Ordering::Relaxed);
+                            let Some(job) = jobs.get(i) else { break };
+                            let provider = SetProvider::new(pack, &sets[job.set].1);
+                            let entry = &job.stage.preprocessed().files[0];
+                            let lines = job.stage.text().lines().count();
+                            if lines > MAX_NAGA_LINES {
+                                let diag = Diagnostic::warning(
+                                    format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
+                                    Some(Location::line(entry.clone(), 1)),
+                                );
+                                found.push(Finding { program: job.program, set: job.set, diagnostic: diag });
+                                continue;
+                            }
+                            let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                                match &job.stage {
+                                    JobStage::Graphics(stage) => validate::validate_stage(&mut frontend, stage, &provider).map(|_| ()),
+                                    JobStage::Compute(stage) => validate::validate_compute(&mut frontend, stage, &provider).map(|_| ()),
+                                }
+                            }));
+                            match result {
+                                Ok(Ok(_)) => {}
+                                Ok(Err(diags)) => found.extend(
+                                    diags
+                                        .into_iter()
+                                        .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
+                                        .map(|d| Finding { program: job.program, set: job.set, diagnostic: clarify(d) }),
+                                ),
+                                Err(panic) => {
+                                    frontend = validate::Frontend::default();
+                                    let what = panic
+                                        .downcast_ref::<String>()
+                                        .cloned()
+                                        .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                                        .unwrap_or_default();
+                                    // A bug in naga, not a verdict on the shader: the stage
+                                    // stays unchecked, as the warning says.
+                                    let diag = Diagnostic::warning(
+                                        format!(
+                                            "{entry} is not checked: naga crashed on it ({what}), a bug in naga rather than in the \
+                                             shader; `--driver` compiles it with Mesa"
+                                        ),
+                                        Some(Location::line(entry.clone(), 1)),
+                                    );
+                                    found.push(Finding { program: job.program, set: job.set, diagnostic: diag });
+                                }
+                            }
+                        }
+                        found
+                    })
+                    .expect("spawn a validation thread")
+            })
+            .collect();
+        handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
+    })
+}
