@@ -219,8 +219,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         None
     };
     // One diagnostic per distinct message and place, noting every program and option set it
-    // was seen in. naga's results arrive in thread order: everything here is keyed and sorted
-    // so that the report does not depend on it.
+    // was seen in, keyed by message and sorted by place so that the report reads file by file.
     let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
     let mut distinct: BTreeMap<String, (Diagnostic, BTreeSet<usize>, BTreeSet<usize>)> = BTreeMap::new();
     for Finding { program, set, diagnostic: diag } in found {

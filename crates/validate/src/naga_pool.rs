@@ -2,7 +2,8 @@
 //! recursion; a panic inside naga becomes a warning that the stage was not checked.
 
 use std::panic::AssertUnwindSafe;
-use std::sync::atomic::{AtomicUsize, Ordering};
+
+use rayon::prelude::*;
 
 use tidepack_glsl::options::OptionSet;
 use tidepack_glsl::preprocess::Preprocessed;
@@ -51,72 +52,65 @@ impl JobStage {
 /// comes near (the largest known stages have a few thousand lines).
 pub const MAX_NAGA_LINES: usize = 40_000;
 
-/// Validates the jobs with naga on `threads` workers; a panic inside naga becomes a warning
-/// that the stage was not checked.
+/// Stack of each naga worker: naga's parser and validator recurse once per nesting level.
+const WORKER_STACK_BYTES: usize = 64 << 20;
+
+/// Validates the jobs with naga on `threads` workers; the findings come in the order of `jobs`.
 pub(crate) fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<Finding> {
-    let next = AtomicUsize::new(0);
     let workers = threads.max(1).min(jobs.len().max(1));
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers)
-            .map(|_| {
-                std::thread::Builder::new()
-                    .stack_size(64 << 20)
-                    .spawn_scoped(scope, || {
-                        let mut frontend = validate::Frontend::default();
-                        let mut found = Vec::new();
-                        loop {
-                            let i = next.fetch_add(1, Ordering::Relaxed);
-                            let Some(job) = jobs.get(i) else { break };
-                            let provider = SetProvider::new(pack, &sets[job.set].1);
-                            let entry = &job.stage.preprocessed().files[0];
-                            let lines = job.stage.text().lines().count();
-                            if lines > MAX_NAGA_LINES {
-                                let diag = Diagnostic::warning(
-                                    format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
-                                    Some(Location::line(entry.clone(), 1)),
-                                );
-                                found.push(Finding { program: job.program, set: job.set, diagnostic: diag });
-                                continue;
-                            }
-                            let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                                match &job.stage {
-                                    JobStage::Graphics(stage) => validate::validate_stage(&mut frontend, stage, &provider).map(|_| ()),
-                                    JobStage::Compute(stage) => validate::validate_compute(&mut frontend, stage, &provider).map(|_| ()),
-                                }
-                            }));
-                            match result {
-                                Ok(Ok(_)) => {}
-                                Ok(Err(diags)) => found.extend(
-                                    diags
-                                        .into_iter()
-                                        .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
-                                        .map(|d| Finding { program: job.program, set: job.set, diagnostic: clarify(d) }),
-                                ),
-                                Err(panic) => {
-                                    frontend = validate::Frontend::default();
-                                    let what = panic
-                                        .downcast_ref::<String>()
-                                        .cloned()
-                                        .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                                        .unwrap_or_default();
-                                    // A bug in naga, not a verdict on the shader: the stage
-                                    // stays unchecked, as the warning says.
-                                    let diag = Diagnostic::warning(
-                                        format!(
-                                            "{entry} is not checked: naga crashed on it ({what}), a bug in naga rather than in the \
-                                             shader; `--driver` compiles it with Mesa"
-                                        ),
-                                        Some(Location::line(entry.clone(), 1)),
-                                    );
-                                    found.push(Finding { program: job.program, set: job.set, diagnostic: diag });
-                                }
-                            }
-                        }
-                        found
-                    })
-                    .expect("spawn a validation thread")
-            })
-            .collect();
-        handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
-    })
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(workers)
+        .stack_size(WORKER_STACK_BYTES)
+        .build()
+        .expect("start naga's worker threads");
+    // One naga front-end per rayon job, reused for the stages it takes.
+    let found: Vec<Vec<Finding>> =
+        pool.install(|| jobs.par_iter().map_init(validate::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect());
+    found.into_iter().flatten().collect()
+}
+
+/// One job through naga; a panic inside naga becomes a warning that the stage was not checked.
+fn check_job(frontend: &mut validate::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Finding> {
+    let finding = |diagnostic| Finding { program: job.program, set: job.set, diagnostic };
+    let provider = SetProvider::new(pack, &sets[job.set].1);
+    let entry = &job.stage.preprocessed().files[0];
+    let lines = job.stage.text().lines().count();
+    if lines > MAX_NAGA_LINES {
+        let diag = Diagnostic::warning(
+            format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
+            Some(Location::line(entry.clone(), 1)),
+        );
+        return vec![finding(diag)];
+    }
+    let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
+        JobStage::Graphics(stage) => validate::validate_stage(frontend, stage, &provider).map(|_| ()),
+        JobStage::Compute(stage) => validate::validate_compute(frontend, stage, &provider).map(|_| ()),
+    }));
+    match result {
+        Ok(Ok(())) => Vec::new(),
+        Ok(Err(diags)) => diags
+            .into_iter()
+            .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
+            .map(|d| finding(clarify(d)))
+            .collect(),
+        Err(panic) => {
+            // The front-end may be left half-way through a parse.
+            *frontend = validate::Frontend::default();
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            // A bug in naga, not a verdict on the shader: the stage stays unchecked, as the
+            // warning says.
+            let diag = Diagnostic::warning(
+                format!(
+                    "{entry} is not checked: naga crashed on it ({what}), a bug in naga rather than in the \
+                     shader; `--driver` compiles it with Mesa"
+                ),
+                Some(Location::line(entry.clone(), 1)),
+            );
+            vec![finding(diag)]
+        }
+    }
 }
