@@ -1422,20 +1422,12 @@ impl<'a> Lowering<'_, 'a> {
     fn inline_local_constant_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
-        let mut depth = 0;
+        let depth_of_token = brace_depths(self.tokens);
         let mut values: HashMap<&str, String> = HashMap::new();
         for k in 0..sig.len() {
-            match text(k) {
-                "{" => depth += 1,
-                "}" => {
-                    depth -= 1;
-                    if depth == 0 {
-                        values.clear();
-                    }
-                }
-                _ => {}
-            }
-            if depth == 0 {
+            if depth_of_token[sig[k]] == 0 {
+                // Between functions: the last one's constants are out of scope.
+                values.clear();
                 continue;
             }
             let name = self.tokens[sig[k]];
