@@ -12,14 +12,14 @@ use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{function_definitions, tokenize};
-use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::naga_check::{self as validate, LoweredStage};
 use tidepack_glsl::{Diagnostic, Stage};
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
 use tidepack_pack::shipped::{ShippedPack, WithOptions};
 use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::{Specialisation, specialise};
-use tidepack_pack::validation::standard_macros;
+use tidepack_pack::option_sets::standard_macros;
 
 use crate::HarnessError;
 use crate::loader::{self, Loader};

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, brace_depths, tokenize};
-use tidepack_glsl::validate::LoweredStage;
+use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use crate::known;

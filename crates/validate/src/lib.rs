@@ -4,7 +4,7 @@
 //! Data flow: [`input::read_pack`] (in memory, hostile input refused entry by entry) →
 //! [`programs::find_programs`] (world folders, program names, other loaders' programs) →
 //! option sets (defaults, `shaders.properties` profiles) → per program and set:
-//! `tidepack_glsl::preprocess` with OptiFine's standard macros → `validate::lower_program` →
+//! `tidepack_glsl::preprocess` with OptiFine's standard macros → `naga_check::lower_program` →
 //! naga (each distinct lowered text once, in parallel, panics caught) and the checks of
 //! [`interface`] → diagnostics located in the pack's files.
 

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use tidepack_glsl::options::OptionSet;
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::validate::{self, LoweredCompute, LoweredStage};
+use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::{Diagnostic, Location};
 
 use crate::messages::clarify;
@@ -65,12 +65,12 @@ pub(crate) fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSe
         .expect("start naga's worker threads");
     // One naga front-end per rayon job, reused for the stages it takes.
     let found: Vec<Vec<Finding>> =
-        pool.install(|| jobs.par_iter().map_init(validate::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect());
+        pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect());
     found.into_iter().flatten().collect()
 }
 
 /// One job through naga; a panic inside naga becomes a warning that the stage was not checked.
-fn check_job(frontend: &mut validate::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Finding> {
+fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Finding> {
     let finding = |diagnostic| Finding { program: job.program, set: job.set, diagnostic };
     let provider = SetProvider::new(pack, &sets[job.set].1);
     let entry = &job.stage.preprocessed().files[0];
@@ -83,8 +83,8 @@ fn check_job(frontend: &mut validate::Frontend, job: &Job, pack: &PackFiles, set
         return vec![finding(diag)];
     }
     let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
-        JobStage::Graphics(stage) => validate::validate_stage(frontend, stage, &provider).map(|_| ()),
-        JobStage::Compute(stage) => validate::validate_compute(frontend, stage, &provider).map(|_| ()),
+        JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),
+        JobStage::Compute(stage) => naga_check::validate_compute(frontend, stage, &provider).map(|_| ()),
     }));
     match result {
         Ok(Ok(())) => Vec::new(),
@@ -95,7 +95,7 @@ fn check_job(frontend: &mut validate::Frontend, job: &Job, pack: &PackFiles, set
             .collect(),
         Err(panic) => {
             // The front-end may be left half-way through a parse.
-            *frontend = validate::Frontend::default();
+            *frontend = naga_check::Frontend::default();
             let what = panic
                 .downcast_ref::<String>()
                 .cloned()

@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use tidepack_glsl::validate::{self, LoweredCompute, LoweredStage};
+use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
@@ -39,7 +39,7 @@ pub(crate) fn check_program(
         if linked { vec![preprocessed.clone()] } else { preprocessed.iter().map(|s| vec![s.clone()]).collect() };
     let mut lowered = Vec::new();
     for group in groups {
-        match validate::lower_program(&group) {
+        match naga_check::lower_program(&group) {
             Ok(stages) => lowered.extend(stages),
             Err(e) => {
                 diags.push(e);
@@ -117,7 +117,7 @@ pub(crate) fn check_compute(
     assume_glsl_110(&mut pre);
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
     diags.extend(version_rules::check_compute(&pre));
-    match validate::lower_compute(Arc::new(pre)) {
+    match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
             diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, props));
             (Some(stage), diags)
