@@ -3,10 +3,12 @@
 //!
 //! Data flow: [`input::read_pack`] (in memory, hostile input refused entry by entry) →
 //! [`programs::find_programs`] (world folders, program names, other loaders' programs) →
-//! option sets (defaults, `shaders.properties` profiles) → per program and set:
-//! `tidepack_glsl::preprocess` with OptiFine's standard macros → `naga_check::lower_program` →
-//! naga (each distinct lowered text once, in parallel, panics caught) and the checks of
-//! [`interface`] → diagnostics located in the pack's files.
+//! option sets (defaults, `shaders.properties` profiles) → per program and set, in `stages`:
+//! `tidepack_glsl::preprocess` with OptiFine's standard macros → `naga_check::lower_program`
+//! and the checks of [`interface`] and [`version_rules`] → in `naga_pool`: naga on each
+//! distinct lowered text once, in parallel, panics caught, its messages put in the pack's
+//! terms by `messages` → here: diagnostics located in the pack's files, each once, in a
+//! [`Report`].
 
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 use std::time::Instant;

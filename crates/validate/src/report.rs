@@ -41,7 +41,7 @@ pub struct Report {
     /// Distinct lowered stages naga validated.
     pub stages_validated: usize,
     pub elapsed: Duration,
-    /// With [`Options::driver`]: how the driver's verdicts compare with tidepack's.
+    /// With [`Options::driver`](crate::Options::driver): how the driver's verdicts compare with tidepack's.
     pub driver: Option<driver::DriverSummary>,
 }
 
