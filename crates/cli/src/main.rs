@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use tidepack_pack::validation::Coverage;
+use tidepack_pack::option_sets::Coverage;
 use tidepack_pack::{BuildOptions, Dialect};
 
 mod commands;
@@ -84,7 +84,7 @@ fn main() -> ExitCode {
     // A panic inside naga becomes a diagnostic; its panic message would only repeat it raw.
     let report_panic = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
-        if std::thread::current().name() != Some(tidepack_glsl::validate::NAGA_THREAD) {
+        if std::thread::current().name() != Some(tidepack_glsl::naga_check::NAGA_THREAD) {
             report_panic(info);
         }
     }));

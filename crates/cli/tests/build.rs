@@ -10,7 +10,7 @@ use tidepack_glsl::preprocess::expand_includes;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::ShippedPack;
 use tidepack_pack::source::PackSource;
-use tidepack_pack::{pack_options, validation};
+use tidepack_pack::{option_sets, pack_options};
 
 fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
@@ -149,7 +149,7 @@ fn glslang_accepts_every_shipped_stage() {
             let pack = ShippedPack::generate(&source, &options, dialect, &defaults).unwrap();
             let files: HashMap<String, Arc<str>> = pack.files.iter().map(|(k, v)| (k.clone(), v.text.clone())).collect();
             let version = if dialect == Dialect::Glsl120 { 120 } else { 330 };
-            let macros: String = validation::standard_macros(version)
+            let macros: String = option_sets::standard_macros(version)
                 .predefined
                 .iter()
                 .map(|(k, v)| format!("#define {k} {v}\n"))
@@ -449,7 +449,7 @@ fn build_for_a_scene_folds_its_uniforms_validates_and_measures_the_speedup() {
             .collect();
         let version = if dialect == Dialect::Glsl120 { 120 } else { 330 };
         let macros: String =
-            validation::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+            option_sets::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
         let text = expand_includes(&files, "composite.fsh", &macros).unwrap();
         let file = out.path().join(format!("composite-{}.fsh", dialect.slug()));
         std::fs::write(&file, &text).unwrap();

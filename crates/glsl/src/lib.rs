@@ -3,16 +3,16 @@
 //! validation through naga with errors mapped back to the pack's files.
 //!
 //! Data flow: [`preprocess`] (includes, macros, conditionals; one output line per source line)
-//! → [`lower`] (line-preserving token rewrites to GLSL 450) → [`validate`] (naga parse and
+//! → [`lower`] (line-preserving token rewrites to GLSL 450) → [`naga_check`] (naga parse and
 //! validation, errors mapped through the preprocessor's line map).
 
 pub mod diagnostic;
 pub mod lower;
 pub mod macros;
+pub mod naga_check;
 pub mod options;
 pub mod preprocess;
 pub mod token;
-pub mod validate;
 
 pub use diagnostic::{Diagnostic, Location, Severity};
 pub use lower::Stage;

@@ -64,7 +64,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::preprocess::literal_integer_expression;
-use crate::token::{Token, TokenKind, tokenize};
+use crate::token::{Token, TokenKind, brace_depths, function_definitions, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -535,9 +535,9 @@ struct Statement {
 
 /// Splits the top level into statements, skipping directive lines and function bodies.
 fn top_level_statements(tokens: &[Token<'_>]) -> Vec<Statement> {
+    let mut bodies = function_definitions(tokens).into_iter().peekable();
     let mut out = Vec::new();
     let mut current = Vec::new();
-    let mut depth = 0i32;
     let mut at_line_start = true;
     let mut in_directive = false;
     for (i, t) in tokens.iter().enumerate() {
@@ -556,27 +556,17 @@ fn top_level_statements(tokens: &[Token<'_>]) -> Vec<Statement> {
         if in_directive {
             continue;
         }
-        if depth > 0 {
-            if t.is_punct("{") {
-                depth += 1;
-            } else if t.is_punct("}") {
-                depth -= 1;
-            }
+        while bodies.peek().is_some_and(|body| body.close < i) {
+            bodies.next();
+        }
+        let body = bodies.peek();
+        if body.is_some_and(|body| body.open < i) {
             continue;
         }
         current.push(i);
-        if t.is_punct(";") {
+        // Struct and interface-block braces stay inside the statement up to its `;`.
+        if t.is_punct(";") || body.is_some_and(|body| body.open == i) {
             out.push(Statement { sig: std::mem::take(&mut current) });
-        } else if t.is_punct("{") {
-            // A name before `(` makes a function header; `layout(…)` may open a block too.
-            let is_function = current
-                .windows(2)
-                .any(|w| tokens[w[1]].is_punct("(") && tokens[w[0]].kind == TokenKind::Ident && !tokens[w[0]].is_ident("layout"));
-            if is_function {
-                out.push(Statement { sig: std::mem::take(&mut current) });
-                depth = 1;
-            }
-            // Struct and interface-block braces stay inside the statement up to its `;`.
         }
     }
     out
@@ -1110,19 +1100,9 @@ impl<'a> Lowering<'_, 'a> {
         // Every constant's initializer, with its entry in `constants` if it has one.
         let mut const_initializers: Vec<(std::ops::Range<usize>, Option<usize>)> = Vec::new();
         let closing = self.closing_brackets(&sig);
+        let depth_of_token = brace_depths(self.tokens);
         // Brace depth at each significant token.
-        let depths: Vec<i32> = sig
-            .iter()
-            .scan(0, |depth, &i| {
-                let here = *depth;
-                match self.tokens[i].text {
-                    "{" => *depth += 1,
-                    "}" => *depth -= 1,
-                    _ => {}
-                }
-                Some(here)
-            })
-            .collect();
+        let depths: Vec<i32> = sig.iter().map(|&i| depth_of_token[i]).collect();
         for (k, &i) in sig.iter().enumerate() {
             if !self.tokens[i].is_ident("const") {
                 continue;
@@ -1442,20 +1422,12 @@ impl<'a> Lowering<'_, 'a> {
     fn inline_local_constant_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let text = |k: usize| sig.get(k).map_or("", |&i| self.tokens[i].text);
-        let mut depth = 0;
+        let depth_of_token = brace_depths(self.tokens);
         let mut values: HashMap<&str, String> = HashMap::new();
         for k in 0..sig.len() {
-            match text(k) {
-                "{" => depth += 1,
-                "}" => {
-                    depth -= 1;
-                    if depth == 0 {
-                        values.clear();
-                    }
-                }
-                _ => {}
-            }
-            if depth == 0 {
+            if depth_of_token[sig[k]] == 0 {
+                // Between functions: the last one's constants are out of scope.
+                values.clear();
                 continue;
             }
             let name = self.tokens[sig[k]];

@@ -5,6 +5,7 @@
 //! breaks included. Line continuations (`\` before a line break) are kept inside the
 //! whitespace token they appear in; every token records the 1-based line it starts on.
 
+use std::borrow::Borrow;
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -203,6 +204,90 @@ pub fn significant(tokens: &[Token<'_>]) -> Vec<usize> {
     (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect()
 }
 
+/// The brace depth at each token of `tokens`, counted from the start (the `{` and `}`
+/// themselves count as inside). Stray `}` make it negative, so that what follows them is not
+/// taken for top level.
+pub fn brace_depths<'a, T: Borrow<Token<'a>>>(tokens: &[T]) -> Vec<i32> {
+    let mut depth = 0;
+    tokens
+        .iter()
+        .map(|t| {
+            let t = t.borrow();
+            if t.is_punct("{") {
+                depth += 1;
+            } else if t.is_punct("}") {
+                depth -= 1;
+                return depth + 1;
+            }
+            depth
+        })
+        .collect()
+}
+
+/// A function definition at top level; indices into the tokens given to
+/// [`function_definitions`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FunctionDefinition {
+    /// The function's name.
+    pub name: usize,
+    /// The `{` that opens the body.
+    pub open: usize,
+    /// The `}` that closes the body, or the number of tokens if nothing closes it.
+    pub close: usize,
+}
+
+/// The function definitions at brace depth 0, in order: a name after the return type (an
+/// identifier or an array's `]`), a parenthesised parameter list and a `{`. Prototypes, structs and interface
+/// blocks are not definitions. Trivia may be among the tokens or left out.
+pub fn function_definitions<'a, T: Borrow<Token<'a>>>(tokens: &[T]) -> Vec<FunctionDefinition> {
+    let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].borrow().is_trivia()).collect();
+    let token = |k: usize| sig.get(k).map(|&i| tokens[i].borrow());
+    let mut found = Vec::new();
+    let mut k = 0;
+    while k < sig.len() {
+        let t = tokens[sig[k]].borrow();
+        if t.is_punct("{") {
+            // A block that is not a function body (a struct, an interface block): skip it whole.
+            k = matching_close(&sig, tokens, k).map_or(sig.len(), |c| c + 1);
+            continue;
+        }
+        let header = t.kind == TokenKind::Ident
+            && k > 0
+            && token(k - 1).is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct("]"))
+            && token(k + 1).is_some_and(|n| n.is_punct("("));
+        if header
+            && let Some(params_end) = matching_close(&sig, tokens, k + 1)
+            && token(params_end + 1).is_some_and(|n| n.is_punct("{"))
+        {
+            let open = params_end + 1;
+            let close = matching_close(&sig, tokens, open);
+            found.push(FunctionDefinition { name: sig[k], open: sig[open], close: close.map_or(tokens.len(), |c| sig[c]) });
+            k = close.map_or(sig.len(), |c| c + 1);
+            continue;
+        }
+        k += 1;
+    }
+    found
+}
+
+/// The position in `sig` of the bracket that closes the one at `sig[open]` (`(` or `{`).
+fn matching_close<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], open: usize) -> Option<usize> {
+    let (opener, closer) = if tokens[sig[open]].borrow().is_punct("(") { ("(", ")") } else { ("{", "}") };
+    let mut depth = 0usize;
+    for (k, &i) in sig.iter().enumerate().skip(open) {
+        let t = tokens[i].borrow();
+        if t.is_punct(opener) {
+            depth += 1;
+        } else if t.is_punct(closer) {
+            depth -= 1;
+            if depth == 0 {
+                return Some(k);
+            }
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -254,5 +339,28 @@ mod tests {
         assert!(toks.contains(&(TokenKind::Unknown, "@")));
         assert!(toks.contains(&(TokenKind::Unknown, "é")));
         assert!(toks.contains(&(TokenKind::Unknown, "\\")));
+    }
+
+    #[test]
+    fn function_definitions_are_the_top_level_bodies() {
+        let src = "struct S { float f(); };\nvec3 g(float x);\nuniform B { int h; } b;\nvoid main() { if (x) { y(); } }\nfloat[2] k(int a) { return float[2](0.0, 1.0); }\n";
+        let tokens = tokenize(src).unwrap();
+        let defs = function_definitions(&tokens);
+        let names: Vec<&str> = defs.iter().map(|d| tokens[d.name].text).collect();
+        assert_eq!(names, ["main", "k"]);
+        let body: String = tokens[defs[0].open..=defs[0].close].iter().map(|t| t.text).collect();
+        assert_eq!(body, "{ if (x) { y(); } }");
+        // Without trivia, indices are into the tokens given.
+        let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let defs = function_definitions(&sig);
+        assert_eq!((sig[defs[0].name].text, sig[defs[0].open].text, sig[defs[0].close].text), ("main", "{", "}"));
+        let unclosed = tokenize("void main() { x;").unwrap();
+        assert_eq!(function_definitions(&unclosed)[0].close, unclosed.len());
+    }
+
+    #[test]
+    fn brace_depths_count_the_braces_as_inside() {
+        let tokens: Vec<Token<'_>> = tokenize("a { b { c } } } d").unwrap().into_iter().filter(|t| !t.is_trivia()).collect();
+        assert_eq!(brace_depths(&tokens), [0, 1, 1, 2, 2, 2, 1, 0, -1]);
     }
 }

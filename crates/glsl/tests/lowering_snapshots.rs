@@ -2,7 +2,7 @@
 //!
 //! Every program in `tests/lowering/in` (a `<name>.vsh` and/or `<name>.fsh`; when both exist
 //! they are lowered together and share the varying layout) is preprocessed with no predefined
-//! macros, lowered with `validate::lower_program`, and checked:
+//! macros, lowered with `naga_check::lower_program`, and checked:
 //!
 //! 1. the lowered text equals `tests/lowering/out/<name>.<vsh|fsh>.glsl` exactly;
 //! 2. it has exactly as many lines as the preprocessed text (the lowering is line-preserving);
@@ -28,7 +28,7 @@ use std::sync::Arc;
 
 use naga::front::glsl::Frontend;
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed};
-use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::{Diagnostic, Stage};
 
 type Files = HashMap<String, Arc<str>>;
@@ -76,7 +76,7 @@ fn lower(stages: &[(Stage, String)], files: &Files) -> Result<Vec<LoweredStage>,
             .map_err(|d| format!("preprocessing failed: {d}"))?;
         preprocessed.push((*stage, Arc::new(pre)));
     }
-    validate::lower_program(&preprocessed).map_err(|d| format!("lowering failed: {d}"))
+    naga_check::lower_program(&preprocessed).map_err(|d| format!("lowering failed: {d}"))
 }
 
 fn line_breaks(text: &str) -> usize {
@@ -176,7 +176,7 @@ fn lowering_snapshots() {
             }
 
             // (3) naga accepts it.
-            if let Err(diagnostics) = validate::validate_stage(&mut frontend, stage, &files) {
+            if let Err(diagnostics) = naga_check::validate_stage(&mut frontend, stage, &files) {
                 problems.push(format!("{out_name}: naga rejects the lowered text:{}", show(&diagnostics)));
             }
         }
@@ -214,7 +214,7 @@ fn naga_errors(files: &[(&str, &str)]) -> Vec<Diagnostic> {
     let mut frontend = Frontend::default();
     let mut errors = Vec::new();
     for stage in &lowered {
-        if let Err(d) = validate::validate_stage(&mut frontend, stage, &map) {
+        if let Err(d) = naga_check::validate_stage(&mut frontend, stage, &map) {
             errors.extend(d);
         }
     }

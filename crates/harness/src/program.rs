@@ -11,15 +11,15 @@ use std::sync::Arc;
 use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, FileProvider};
-use tidepack_glsl::token::{TokenKind, tokenize};
-use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::token::{function_definitions, tokenize};
+use tidepack_glsl::naga_check::{self as validate, LoweredStage};
 use tidepack_glsl::{Diagnostic, Stage};
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
 use tidepack_pack::shipped::{ShippedPack, WithOptions};
 use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::{Specialisation, specialise};
-use tidepack_pack::validation::standard_macros;
+use tidepack_pack::option_sets::standard_macros;
 
 use crate::HarnessError;
 use crate::loader::{self, Loader};
@@ -620,29 +620,10 @@ fn widen_fragment_outputs(fragment: &str) -> (String, String, BTreeMap<u32, u8>)
 /// `main` that calls it and then runs `epilogue`.
 fn wrap_main(text: &str, epilogue: &str) -> Result<String, HarnessError> {
     let tokens = tokenize(text).map_err(|e| HarnessError::Pack(format!("shader text: {}", e.message)))?;
-    let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
-    let mut depth = 0i32;
-    let mut main_at = None;
-    for (k, &i) in sig.iter().enumerate() {
-        let t = &tokens[i];
-        if t.is_punct("{") {
-            depth += 1;
-        } else if t.is_punct("}") {
-            depth -= 1;
-        } else if depth == 0
-            && t.kind == TokenKind::Ident
-            && t.text == "main"
-            && k > 0
-            && tokens[sig[k - 1]].text == "void"
-            && sig.get(k + 1).is_some_and(|&j| tokens[j].is_punct("("))
-        {
-            // The definition, not a prototype: the next `)` is followed by `{`.
-            let close = (k + 1..sig.len()).find(|&j| tokens[sig[j]].is_punct(")"));
-            if close.and_then(|c| sig.get(c + 1)).is_some_and(|&j| tokens[j].is_punct("{")) {
-                main_at = Some(i);
-            }
-        }
-    }
+    // The definition, not a prototype.
+    let main_at = function_definitions(&tokens).into_iter().map(|f| f.name).rfind(|&name| {
+        tokens[name].text == "main" && tokens[..name].iter().rev().find(|t| !t.is_trivia()).is_some_and(|t| t.text == "void")
+    });
     let main_at = main_at.ok_or_else(|| HarnessError::Pack("the shader has no `void main() { ... }`".into()))?;
     let mut out = String::with_capacity(text.len() + 160);
     for (i, t) in tokens.iter().enumerate() {

@@ -1,8 +1,8 @@
 //! Prints the shipped and lowered text of one stage of the pack (a debugging aid):
 //! `cargo run -p tidepack-pack --example dump_lowered -- composite.fsh 120`
 use std::sync::Arc;
-use tidepack_glsl::{preprocess, validate, Stage};
-use tidepack_pack::{dialect::Dialect, pack_options, shipped::ShippedPack, source::PackSource, validation};
+use tidepack_glsl::{naga_check, preprocess, Stage};
+use tidepack_pack::{dialect::Dialect, option_sets, pack_options, shipped::ShippedPack, source::PackSource};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -11,12 +11,12 @@ fn main() {
     let options = pack_options::collect(&source).unwrap();
     let pack = ShippedPack::generate(&source, &options, dialect, &Default::default()).unwrap();
     let program = pack.programs().into_iter().find(|p| p.stages.iter().any(|(_, p)| p == path)).unwrap();
-    let macros = validation::standard_macros(120);
+    let macros = option_sets::standard_macros(120);
     let stages: Vec<(Stage, Arc<preprocess::Preprocessed>)> = program.stages.iter().map(|(s, p)| {
         let provider: std::collections::HashMap<String, Arc<str>> = pack.files.iter().map(|(k, v)| (k.clone(), v.text.clone())).collect();
         (*s, Arc::new(preprocess::preprocess(&provider, p, &macros).unwrap()))
     }).collect();
-    let lowered = validate::lower_program(&stages).unwrap();
+    let lowered = naga_check::lower_program(&stages).unwrap();
     for (l, (_, p)) in lowered.iter().zip(&program.stages) {
         if p == path { println!("{}", l.lowered.text); }
     }

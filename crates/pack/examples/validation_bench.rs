@@ -11,8 +11,8 @@ use tidepack_pack::build::generate_validated;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::WithOptions;
 use tidepack_pack::source::PackSource;
-use tidepack_pack::validation::Coverage;
-use tidepack_pack::{pack_options, validation};
+use tidepack_pack::option_sets::Coverage;
+use tidepack_pack::{option_sets, pack_options};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -36,7 +36,7 @@ fn main() {
     let mut files = Vec::new();
     for (pack, report) in &packs {
         let version = if pack.dialect == Dialect::Glsl120 { 120 } else { 330 };
-        let macros: String = validation::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+        let macros: String = option_sets::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
         for (i, (path, set)) in report.validated.iter().enumerate() {
             let provider = WithOptions::new(pack, set);
             let text = expand_includes(&provider, path, &macros).unwrap();

@@ -14,7 +14,7 @@ use crate::pack_options::{self, PackOptions};
 use crate::shipped::ShippedPack;
 use crate::specialise::{Specialisation, specialise};
 use crate::source::PackSource;
-use crate::validation::{self, Coverage, Progress, ValidationReport};
+use crate::option_sets::{self, Coverage, Progress, ValidationReport};
 
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -122,7 +122,7 @@ pub fn generate_validated(
         }
         let report = progress.map(|p| move |step: Progress| p(dialect, step));
         let report = report.as_ref().map(|r| r as &(dyn Fn(Progress) + Sync));
-        match validation::validate_pack(&pack, &shipped_options, coverage, &profiles, report) {
+        match option_sets::validate_pack(&pack, &shipped_options, coverage, &profiles, report) {
             Ok(report) => packs.push((pack, report)),
             Err(errors) => {
                 for diag in errors {

@@ -6,7 +6,7 @@
 //! - [`dialect`] generates GLSL 120 and 330 text from each template; [`shipped`] assembles the
 //!   whole pack per dialect in memory, with [`writers`] for the files made from the manifest and
 //!   [`properties`] checking what the manifest passes on to shaders.properties.
-//! - [`validation`] runs every program under every option set through the preprocessor, the
+//! - [`option_sets`] runs every program under every option set through the preprocessor, the
 //!   lowering and naga.
 //! - [`specialise`] folds the uniforms a scene fixes into constants (`build --scene`).
 //! - [`textures`] generates the water texture the shaders sample.
@@ -16,13 +16,13 @@ pub mod archive;
 pub mod build;
 pub mod dialect;
 pub mod manifest;
+pub mod option_sets;
 pub mod pack_options;
 pub mod properties;
 pub mod shipped;
 pub mod source;
 pub mod specialise;
 pub mod textures;
-pub mod validation;
 pub mod writers;
 
 pub use build::{BuildFailure, BuildOptions, BuildReport, build};

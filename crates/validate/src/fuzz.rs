@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 
 use tidepack_glsl::preprocess::{self, PreprocessOptions};
 use tidepack_glsl::token::tokenize;
-use tidepack_glsl::validate;
+use tidepack_glsl::naga_check;
 use tidepack_glsl::Stage;
 
 use crate::input::pack_from_memory;
@@ -169,7 +169,7 @@ fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String>
         .collect();
     if let Some(stage) = Stage::from_path(target)
         && let Ok(pre) = preprocess::preprocess(&files, target, &PreprocessOptions::default())
-        && let Ok(lowered) = validate::lower_program(&[(stage, Arc::new(pre))])
+        && let Ok(lowered) = naga_check::lower_program(&[(stage, Arc::new(pre))])
     {
         let (pre_lines, lowered_lines) =
             (lowered[0].preprocessed.text.matches('\n').count(), lowered[0].lowered.text.matches('\n').count());
@@ -179,7 +179,7 @@ fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String>
     }
     if target.ends_with(".csh")
         && let Ok(pre) = preprocess::preprocess(&files, target, &PreprocessOptions::default())
-        && let Ok(lowered) = validate::lower_compute(Arc::new(pre))
+        && let Ok(lowered) = naga_check::lower_compute(Arc::new(pre))
     {
         let (pre_lines, lowered_lines) =
             (lowered.preprocessed.text.matches('\n').count(), lowered.lowered.text.matches('\n').count());

@@ -6,8 +6,8 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{TokenKind, tokenize};
-use tidepack_glsl::validate::LoweredStage;
+use tidepack_glsl::token::{TokenKind, brace_depths, tokenize};
+use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use crate::known;
@@ -170,15 +170,10 @@ struct Block {
 fn interface_blocks(text: &str, direction: &str) -> Vec<Block> {
     let tokens = tokenize(text).unwrap_or_default();
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let depths = brace_depths(&sig);
     let mut blocks = Vec::new();
-    let mut depth = 0;
     for k in 0..sig.len() {
-        match sig[k].text {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            _ => {}
-        }
-        if depth != 0
+        if depths[k] != 0
             || sig[k].text != direction
             || !sig.get(k + 1).is_some_and(|t| t.kind == TokenKind::Ident)
             || !sig.get(k + 2).is_some_and(|t| t.is_punct("{"))

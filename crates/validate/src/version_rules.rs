@@ -14,7 +14,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{TokenKind, tokenize};
+use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Stage};
 
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
@@ -92,6 +92,8 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
         Some(p) => format!("#version {number} {p}"),
         None => format!("#version {number}"),
     };
+    // Where each function body's `}` is, for a `;` after it.
+    let function_ends: BTreeSet<usize> = function_definitions(&sig).iter().map(|f| f.close).collect();
     let mut depth = 0i32;
     let mut parens = 0i32;
     let mut line_start = true;
@@ -144,7 +146,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
             continue;
         }
         let initializer_list = t.is_punct("=") && sig.get(k + 1).is_some_and(|n| n.is_punct("{"));
-        if t.is_punct(";") && depth == 0 && parens == 0 && number < 460 && k > 0 && sig[k - 1].is_punct("}") && ends_function(&sig[..k]) {
+        if t.is_punct(";") && depth == 0 && parens == 0 && number < 460 && k > 0 && function_ends.contains(&(k - 1)) {
             warnings.push(Diagnostic::warning(
                 format!(
                     "`;` after a function body is an empty declaration, which GLSL allows only from 4.60 on: Mesa and \
@@ -279,25 +281,6 @@ fn function_parameters<'a>(from: &[&tidepack_glsl::token::Token<'a>]) -> BTreeSe
         }
     }
     BTreeSet::new()
-}
-
-/// Whether the `}` that ends `before` closes a function body (its `{` follows a `)`), not a
-/// struct or block declaration.
-fn ends_function(before: &[&tidepack_glsl::token::Token<'_>]) -> bool {
-    let mut depth = 0;
-    for (k, t) in before.iter().enumerate().rev() {
-        match t.text {
-            "}" => depth += 1,
-            "{" => {
-                depth -= 1;
-                if depth == 0 {
-                    return k > 0 && before[k - 1].is_punct(")");
-                }
-            }
-            _ => {}
-        }
-    }
-    false
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use tidepack_pack::validation::Progress;
+use tidepack_pack::option_sets::Progress;
 use tidepack_pack::{BuildOptions, Dialect};
 
 use super::print_diagnostics;

@@ -26,7 +26,7 @@ use rayon::prelude::*;
 use tidepack_glsl::Diagnostic;
 use tidepack_glsl::options::{OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
-use tidepack_glsl::validate::{self, LoweredStage};
+use tidepack_glsl::naga_check::{self, LoweredStage};
 
 use crate::pack_options::PackOptions;
 use crate::shipped::{Program, ShippedPack, WithOptions};
@@ -213,7 +213,7 @@ fn lower_sets(
     let lowered: Vec<_> = sets.par_iter().map(|(program, set)| {
         let stages = run_set(pack, program, set, macros)?;
         let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
-        let result = validate::lower_program(&with_stage);
+        let result = naga_check::lower_program(&with_stage);
         if let Some(ticker) = ticker {
             ticker.tick();
         }
@@ -275,7 +275,7 @@ fn distinct_errors(pack: &ShippedPack, programs: &[Program], macros: &Preprocess
 /// a time, keeping a drop when `program` still shows the same error without it.
 fn minimal_set(pack: &ShippedPack, program: &Program, macros: &PreprocessOptions, set: &OptionSet, key: &str) -> OptionSet {
     let mut needed = set.clone();
-    let mut frontend = validate::Frontend::default();
+    let mut frontend = naga_check::Frontend::default();
     for name in set.keys() {
         let mut trial = needed.clone();
         trial.remove(name);
@@ -293,20 +293,20 @@ fn shows_error(
     macros: &PreprocessOptions,
     set: &OptionSet,
     key: &str,
-    frontend: &mut validate::Frontend,
+    frontend: &mut naga_check::Frontend,
 ) -> bool {
     let stages = match run_set(pack, program, set, macros) {
         Ok(stages) => stages,
         Err(diag) => return diag.to_string() == key,
     };
     let with_stage: Vec<_> = program.stages.iter().map(|(s, _)| *s).zip(stages).collect();
-    let lowered = match validate::lower_program(&with_stage) {
+    let lowered = match naga_check::lower_program(&with_stage) {
         Ok(lowered) => lowered,
         Err(diag) => return diag.to_string() == key,
     };
     let provider = WithOptions::new(pack, set);
     lowered.iter().any(|stage| {
-        validate::validate_stage(frontend, stage, &provider).is_err_and(|diags| diags.iter().any(|d| d.to_string() == key))
+        naga_check::validate_stage(frontend, stage, &provider).is_err_and(|diags| diags.iter().any(|d| d.to_string() == key))
     })
 }
 
@@ -354,9 +354,9 @@ fn validate_in_parallel(
     ticker: Option<&Ticker>,
 ) -> Vec<Failure> {
     // One naga front-end per rayon job, reused for the stages it takes; results in input order.
-    let results: Vec<_> = unique.par_iter().map_init(validate::Frontend::default, |frontend, (stage, set)| {
+    let results: Vec<_> = unique.par_iter().map_init(naga_check::Frontend::default, |frontend, (stage, set)| {
         let provider = WithOptions::new(pack, set);
-        let result = validate::validate_stage(frontend, stage, &provider).err();
+        let result = naga_check::validate_stage(frontend, stage, &provider).err();
         if let Some(ticker) = ticker {
             ticker.tick();
         }

@@ -12,7 +12,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use crate::diagnostic::{Diagnostic, Location};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
-use crate::token::{TokenKind, tokenize};
+use crate::token::{TokenKind, brace_depths, function_definitions, tokenize};
 
 /// One stage after lowering, ready for naga.
 #[derive(Clone, Debug)]
@@ -450,15 +450,10 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
 fn declarations_of(pre: &Preprocessed, name: &str) -> Vec<(String, Option<Location>)> {
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    let mut depth = 0;
+    let depths = brace_depths(&sig);
     let mut found = Vec::new();
     for k in 0..sig.len() {
-        match sig[k].text {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            _ => {}
-        }
-        let declares = depth == 0
+        let declares = depths[k] == 0
             && sig[k].is_ident(name)
             && k > 0
             && sig[k - 1].kind == TokenKind::Ident
@@ -936,7 +931,9 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             // undefined and drivers compile it; naga wants a `return` there.
             let naga::valid::ValidationError::Function { handle, .. } = error else { return None };
             let header = module.functions.get_span(*handle).to_range()?;
-            let body_end = matching_brace(text, header.start + text.get(header.start..)?.find('{')?)?;
+            let tokens = tokenize(text).ok()?;
+            let body = function_definitions(&tokens).into_iter().find(|f| tokens[f.open].offset >= header.start)?;
+            let body_end = tokens.get(body.close)?.offset;
             let zero = glsl_type_name(&module.types[*ty].inner)?;
             return Some(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
         }
@@ -980,24 +977,6 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     let span = function.expressions.get_span(value).to_range()?;
     let inner = text.get(span.clone())?;
     Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]))
-}
-
-/// The index of the `}` that closes the `{` at `open`.
-fn matching_brace(text: &str, open: usize) -> Option<usize> {
-    let mut depth = 0usize;
-    for (i, b) in text.bytes().enumerate().skip(open) {
-        match b {
-            b'{' => depth += 1,
-            b'}' => {
-                depth -= 1;
-                if depth == 0 {
-                    return Some(i);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
 }
 
 /// GLSL's name of a scalar or vector type of 32-bit components (or bools).

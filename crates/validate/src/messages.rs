@@ -1,0 +1,103 @@
+//! naga's messages in the pack's terms: the lowering's reserved names turned back into the
+//! GLSL names they stand for, and what naga cannot check said as such.
+
+use tidepack_glsl::{Diagnostic, Severity};
+
+/// Speaks of the pack's names instead of the lowering's reserved ones in naga's messages, and
+/// explains the messages that the lowering makes obscure.
+pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
+    diag.message = unlower_names(&diag.message);
+    let sampling = ["texture", "textureLod", "textureProj", "textureGrad", "texelFetch", "textureSize", "textureOffset"];
+    let unknown = diag.message.strip_prefix("Unknown function '").and_then(|r| r.strip_suffix('\'')).map(str::to_string);
+    let unknown_variable = diag.message.strip_prefix("Unknown variable: ").map(str::to_string);
+    if let Some(name) = unknown.as_deref().or(unknown_variable.as_deref())
+        && NAGA_LACKS.iter().any(|prefix| name.starts_with(prefix))
+    {
+        // Valid GLSL naga's front-end does not implement: not the pack's mistake.
+        let call = if unknown.is_some() { "()" } else { "" };
+        diag.severity = Severity::Warning;
+        diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
+        return diag;
+    }
+    if diag.message.contains("Unable to operate on image class Sampled { kind: Uint")
+        || diag.message.contains("Unable to operate on image class Sampled { kind: Sint")
+    {
+        // GLSL samples integer textures (nearest texel); naga only loads from them.
+        diag.severity = Severity::Warning;
+        diag.message = "sampling an integer texture (isampler*/usampler*) is not checked: naga refuses it, drivers \
+                        accept it (`--driver` compiles it with Mesa)"
+            .into();
+        return diag;
+    }
+    if let Some(name) = unknown.as_deref()
+        && sampling.contains(&name)
+    {
+        diag = diag.with_note(format!(
+            "no form of {name}() (texture2D, shadow2D, … in old GLSL) takes these arguments: check the sampler's type \
+             (sampler2D, sampler2DShadow, sampler3D, …) against the coordinates"
+        ));
+    } else if let Some(name) = unknown.as_deref()
+        && matches!(name, "imageLoad" | "imageStore" | "imageSize")
+    {
+        diag = diag.with_note(format!(
+            "no form of {name}() takes these arguments: check the image's type (image2D, uimage2D, image3D, …) against \
+             the coordinates (ivec2 for image2D) and the value (vec4 for image*, uvec4 for uimage*, ivec4 for iimage*)"
+        ));
+    } else if let Some(name) = unknown.as_deref()
+        && name.starts_with("atomic")
+    {
+        diag = diag.with_note(format!("no form of {name}() takes these arguments: atomics take an int or uint variable (shared or in a buffer) and an int or uint value"));
+    }
+    diag
+}
+
+/// Built-in functions and variables (by prefix) naga's GLSL front-end lacks and the lowering has
+/// no stand-in for: image atomics (images cannot be function parameters in naga), atomic
+/// counters, the subgroup built-ins of `GL_KHR_shader_subgroup_*`, and the `textureGather*` and
+/// `textureQueryLod` forms the lowering has no stand-in for (other sampler types).
+const NAGA_LACKS: [&str; 6] = ["imageAtomic", "atomicCounter", "subgroup", "gl_Subgroup", "textureGather", "textureQueryLod"];
+
+/// `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
+pub fn unlower_names(message: &str) -> String {
+    let prefix = tidepack_glsl::lower::RESERVED_PREFIX;
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find(prefix) {
+        let word_start = at == 0 || !rest.as_bytes()[at - 1].is_ascii_alphanumeric() && rest.as_bytes()[at - 1] != b'_';
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + prefix.len()..];
+        let len = tail.find(|c: char| !c.is_ascii_alphanumeric() && c != '_').unwrap_or(tail.len());
+        let name = &tail[..len];
+        if !word_start {
+            out.push_str(prefix);
+            out.push_str(name);
+        } else if let Some(n) = name.strip_prefix("FragData") {
+            out.push_str(&format!("gl_FragData[{n}]"));
+        } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
+            out.push_str(&format!("gl_TexCoord[{n}]"));
+        } else if let Some(x) =
+            ["sampler_", "bool_", "kw_", "init_", "scalar_"].iter().find_map(|p| name.strip_prefix(p))
+        {
+            out.push_str(x);
+        } else if name == "main" {
+            out.push_str("main");
+        } else {
+            out.push_str("gl_");
+            out.push_str(name);
+        }
+        rest = &tail[len..];
+    }
+    out.push_str(rest);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reserved_names_read_as_the_packs() {
+        assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
+        assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
+    }
+}

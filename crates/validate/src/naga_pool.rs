@@ -1,0 +1,116 @@
+//! naga on the distinct lowered stages, on worker threads with stacks deep enough for naga's
+//! recursion; a panic inside naga becomes a warning that the stage was not checked.
+
+use std::panic::AssertUnwindSafe;
+
+use rayon::prelude::*;
+
+use tidepack_glsl::options::OptionSet;
+use tidepack_glsl::preprocess::Preprocessed;
+use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
+use tidepack_glsl::{Diagnostic, Location};
+
+use crate::messages::clarify;
+use crate::{Finding, PackFiles, SetProvider};
+
+/// One distinct lowered stage for naga, with the program and option set that produced it.
+pub(crate) struct Job {
+    pub stage: JobStage,
+    pub set: usize,
+    pub program: usize,
+    /// A vertex stage followed by a geometry or tessellation stage need not write
+    /// `gl_Position`, which naga requires of every vertex stage.
+    pub position_optional: bool,
+}
+
+/// naga's complaint about a vertex stage that does not write `gl_Position`.
+const POSITION_REQUIRED: &str = "must return a `@builtin(position)` output";
+
+pub(crate) enum JobStage {
+    Graphics(LoweredStage),
+    Compute(LoweredCompute),
+}
+
+impl JobStage {
+    pub fn preprocessed(&self) -> &Preprocessed {
+        match self {
+            JobStage::Graphics(s) => &s.preprocessed,
+            JobStage::Compute(s) => &s.preprocessed,
+        }
+    }
+
+    pub fn text(&self) -> &str {
+        match self {
+            JobStage::Graphics(s) => &s.lowered.text,
+            JobStage::Compute(s) => &s.lowered.text,
+        }
+    }
+}
+
+/// Longest stage (in lines, after preprocessing) naga is given: its parse time grows
+/// quadratically with the number of declarations (200 000 take minutes), and no real pack
+/// comes near (the largest known stages have a few thousand lines).
+pub const MAX_NAGA_LINES: usize = 40_000;
+
+/// Stack of each naga worker: naga's parser and validator recurse once per nesting level.
+const WORKER_STACK_BYTES: usize = 64 << 20;
+
+/// Validates the jobs with naga on `threads` workers; the findings come in the order of `jobs`.
+pub(crate) fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<Finding> {
+    let workers = threads.max(1).min(jobs.len().max(1));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(workers)
+        .stack_size(WORKER_STACK_BYTES)
+        .build()
+        .expect("start naga's worker threads");
+    // One naga front-end per rayon job, reused for the stages it takes.
+    let found: Vec<Vec<Finding>> =
+        pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect());
+    found.into_iter().flatten().collect()
+}
+
+/// One job through naga; a panic inside naga becomes a warning that the stage was not checked.
+fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Finding> {
+    let finding = |diagnostic| Finding { program: job.program, set: job.set, diagnostic };
+    let provider = SetProvider::new(pack, &sets[job.set].1);
+    let entry = &job.stage.preprocessed().files[0];
+    let lines = job.stage.text().lines().count();
+    if lines > MAX_NAGA_LINES {
+        let diag = Diagnostic::warning(
+            format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
+            Some(Location::line(entry.clone(), 1)),
+        );
+        return vec![finding(diag)];
+    }
+    let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
+        JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),
+        JobStage::Compute(stage) => naga_check::validate_compute(frontend, stage, &provider).map(|_| ()),
+    }));
+    match result {
+        Ok(Ok(())) => Vec::new(),
+        Ok(Err(diags)) => diags
+            .into_iter()
+            .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
+            .map(|d| finding(clarify(d)))
+            .collect(),
+        Err(panic) => {
+            // The front-end may be left half-way through a parse.
+            *frontend = naga_check::Frontend::default();
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            // A bug in naga, not a verdict on the shader: the stage stays unchecked, as the
+            // warning says.
+            let diag = Diagnostic::warning(
+                format!(
+                    "{entry} is not checked: naga crashed on it ({what}), a bug in naga rather than in the \
+                     shader; `--driver` compiles it with Mesa"
+                ),
+                Some(Location::line(entry.clone(), 1)),
+            );
+            vec![finding(diag)]
+        }
+    }
+}
