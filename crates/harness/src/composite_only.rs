@@ -98,18 +98,7 @@ impl CompositeOnly {
         binding: UniformBinding,
     ) -> Result<CompositeOnly, HarnessError> {
         gpu.check_resolution(width, height)?;
-        let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let texture = |label: &str, format, usage| gpu.texture(label, wgpu::Extent3d { width, height, depth_or_array_layers: 1 }, format, usage);
         let input = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let output = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
         let mut buffers = colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false);

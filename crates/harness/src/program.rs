@@ -12,7 +12,7 @@ use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{function_definitions, tokenize};
-use tidepack_glsl::naga_check::{self as validate, LoweredStage};
+use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::{Diagnostic, Stage};
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
@@ -430,9 +430,9 @@ pub(crate) fn load_program_files(
         pre.push((stage, Arc::new(p)));
     }
     let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
-    let lowered = validate::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
+    let lowered = naga_check::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
     let fragment_lowered = lowered.iter().find(|s| s.stage == Stage::Fragment).map(|s| s.lowered.text.clone()).unwrap_or_default();
-    let mut frontend = validate::Frontend::default();
+    let mut frontend = naga_check::Frontend::default();
     let mut stages = Vec::new();
     for stage in lowered {
         let path = stage.preprocessed.files[0].clone();
@@ -456,7 +456,7 @@ pub(crate) fn load_program_files(
             preprocessed: stage.preprocessed.clone(),
             lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: stage.lowered.interface.clone() },
         };
-        let valid = validate::validate_stage(&mut frontend, &adapted, provider)
+        let valid = naga_check::validate_stage(&mut frontend, &adapted, provider)
             .map_err(|d| diag_error(&format!("{path} does not validate"), &d))?;
         let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;

@@ -309,16 +309,12 @@ fn empty_texture_of(
 
 /// A 1x1 depth texture cleared to 1: a shadow map nothing was drawn into.
 fn empty_depth(gpu: &Gpu) -> wgpu::Texture {
-    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("shadowtex (nothing drawn)"),
-        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: DEPTH,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    });
+    let texture = gpu.texture(
+        "shadowtex (nothing drawn)",
+        wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+        DEPTH,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+    );
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("shadowtex clear"),
@@ -570,16 +566,8 @@ impl ProgramPipeline {
                 PassKind::Fullscreen { .. } if b == 0 => (OUT, None),
                 PassKind::Fullscreen { width, height } => {
                     let format = gpu.texture_format(pack.format_of(b))?;
-                    let t = device.create_texture(&wgpu::TextureDescriptor {
-                        label: Some(&format!("colortex{b} alternate")),
-                        size: wgpu::Extent3d { width: *width, height: *height, depth_or_array_layers: 1 },
-                        mip_level_count: 1,
-                        sample_count: 1,
-                        dimension: wgpu::TextureDimension::D2,
-                        format,
-                        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                        view_formats: &[],
-                    });
+                    let size = wgpu::Extent3d { width: *width, height: *height, depth_or_array_layers: 1 };
+                    let t = gpu.texture(&format!("colortex{b} alternate"), size, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
                     alternates.insert(b, t);
                     (format, None)
                 }

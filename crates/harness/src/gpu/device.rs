@@ -125,6 +125,20 @@ impl Gpu {
         format != wgpu::TextureFormat::Rgba32Float || self.float32_filterable
     }
 
+    /// A single-level 2D texture of `size`.
+    pub(crate) fn texture(&self, label: &str, size: wgpu::Extent3d, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    }
+
     /// Runs `f` inside a validation error scope and turns a captured error into a HarnessError.
     pub(crate) fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, HarnessError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);

@@ -91,18 +91,7 @@ impl FrameTargets {
         buffers.extend(pack.water.render_targets.iter().copied());
         buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
         buffers.extend(colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false));
-        let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let texture = |label: &str, format, usage| gpu.texture(label, size, format, usage);
         let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
         let mut colors = BTreeMap::new();
         for b in buffers {
