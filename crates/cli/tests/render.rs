@@ -98,7 +98,7 @@ fn render_pack_writes_the_screen_and_a_report_of_every_pass() {
     let json = std::fs::read_to_string(out.path().join("case4_above_near.json")).expect("the JSON report");
     let report: serde_json::Value = serde_json::from_str(&json).expect("the report parses");
     let passes: Vec<&str> = report["passes"].as_array().expect("passes").iter().filter_map(|p| p["pass"].as_str()).collect();
-    assert_eq!(passes, ["terrain (gbuffers_terrain)", "depth copy", "deferred", "water (gbuffers_water)", "composite", "composite1", "final"]);
+    assert_eq!(passes, ["sky (the loader's own)", "terrain (gbuffers_terrain)", "depth copy", "deferred", "water (gbuffers_water)", "composite", "composite1", "final"]);
     assert_eq!(report["non_finite_pixels"], 0);
     assert_eq!(report["not_modelled"], serde_json::json!([]));
 }

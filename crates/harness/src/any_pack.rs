@@ -28,6 +28,9 @@ use crate::program::{
 };
 use crate::scene::{OverlayKind, Scene};
 
+/// gbuffers_skybasic and its fallbacks.
+const SKY_CHAIN: [&str; 2] = ["gbuffers_skybasic", "gbuffers_basic"];
+
 /// The full-screen programs OptiFine runs, by family, in frame order within each family.
 const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
 
@@ -141,6 +144,7 @@ impl AnyPack {
 
         let mut gbuffers = BTreeMap::new();
         let mut wanted: Vec<&str> = program::TERRAIN_CHAIN.to_vec();
+        wanted.extend(SKY_CHAIN);
         wanted.extend(program::WATER_CHAIN);
         for kind in OverlayKind::ALL {
             wanted.extend(loader.program_chain(kind));
@@ -175,7 +179,7 @@ impl AnyPack {
             let why = match name {
                 "shadow" => "the shadow pass is not drawn: shadowtex*/shadowcolor* are bound empty (depth 1, colour white)",
                 n if n.starts_with("shadowcomp") => "runs after the shadow pass, which is not drawn",
-                "gbuffers_skybasic" | "gbuffers_skytextured" => "the scenes have no sky geometry: colortex0 keeps its clear colour",
+                "gbuffers_skytextured" => "the scenes have no sun, moon or sky texture",
                 _ => "the scenes hold no geometry this program draws",
             };
             not_modelled.push(format!("{name}: {why}"));
@@ -314,8 +318,8 @@ pub struct PlannedStep<'a> {
 /// A frame of any pack on one scene as OptiFine 1.16.5 and later draw it:
 ///
 /// 1. prepare*;
-/// 2. the loader's overlays before the terrain, the terrain (gbuffers_terrain's chain), the
-///    overlays before the water;
+/// 2. the sky (gbuffers_skybasic's chain, no depth written), the loader's overlays before the
+///    terrain, the terrain (gbuffers_terrain's chain), the overlays before the water;
 /// 3. depthtex0 to depthtex1;
 /// 4. deferred*;
 /// 5. the water and glass (gbuffers_water's chain), the overlays after the water;
@@ -349,6 +353,8 @@ impl<'a> FramePlan<'a> {
         for program in family("prepare") {
             plan.fullscreen(program, false);
         }
+        // The sky: the game's own colour where the pack has no skybasic program.
+        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky");
         plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
         plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain");
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);

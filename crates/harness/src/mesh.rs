@@ -62,6 +62,9 @@ pub struct SceneMesh {
     pub translucent: Vec<PackVertex>,
     /// Rain, clouds, particles and the translucent hand: triangles per kind, back to front.
     pub overlay: Vec<(OverlayKind, Vec<PackVertex>)>,
+    /// The sky as the game draws it for gbuffers_skybasic: a box around the camera in the sky
+    /// colour, inside the far plane, drawn before the terrain without writing depth.
+    pub sky: Vec<PackVertex>,
 }
 
 /// Block ids the translucent geometry carries in `mc_Entity.x`.
@@ -176,6 +179,22 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             })
             .collect();
         mesh.overlay.push((kind, back_to_front(quads, local_camera, &rel)));
+    }
+    let reach = 0.5 * scene.camera.far;
+    let [r, g, b] = scene.sky.sky_color.map(|c| c as f32);
+    for (corners, normal) in box_faces(camera - DVec3::splat(reach), camera + DVec3::splat(reach)) {
+        for i in [0, 1, 2, 0, 2, 3] {
+            let p = corners[i] - camera;
+            mesh.sky.push(PackVertex {
+                position: [p.x as f32, p.y as f32, p.z as f32, 1.0],
+                color: [r, g, b, 1.0],
+                normal: [-normal.x as f32, -normal.y as f32, -normal.z as f32],
+                uv0: sprite_corner(WHITE_SPRITE, i),
+                uv1: LIGHT,
+                entity: [-1.0, -1.0, 0.0, 0.0],
+                lightmap: LIGHT_INT,
+            });
+        }
     }
     mesh
 }
