@@ -11,7 +11,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 use tidepack_glsl::macros::StandardMacros;
-use tidepack_glsl::options::OptionSet;
+use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::FileProvider;
 use tidepack_validate::input::{Limits, PackFiles, read_pack};
 use tidepack_validate::programs::{self, find_programs};
@@ -101,16 +101,56 @@ impl BlockIds for AnyPack {
     }
 }
 
+/// The option values a pack is rendered with: a profile of shaders.properties, then single
+/// options (`NAME` → value as written: `on`/`off`/`true`/`false` for switches).
+#[derive(Clone, Debug, Default)]
+pub struct OptionChoice {
+    pub profile: Option<String>,
+    pub options: Vec<(String, String)>,
+}
+
+impl OptionChoice {
+    /// The option set the choice means for `files`, as OptiFine rewrites the option lines.
+    fn option_set(&self, files: &PackFiles) -> Result<OptionSet, HarnessError> {
+        let declared = tidepack_validate::declared_options(files);
+        let mut set = match &self.profile {
+            Some(name) => {
+                let properties = files.texts.get(tidepack_validate::properties::PATH).map(|t| tidepack_validate::properties::parse(t));
+                let properties = properties.unwrap_or_default();
+                tidepack_validate::properties::profile_set(&properties, name, &declared).map_err(|d| HarnessError::Pack(d.to_string()))?.0
+            }
+            None => OptionSet::new(),
+        };
+        for (name, value) in &self.options {
+            let kind = declared.get(name).ok_or_else(|| {
+                let known: Vec<&str> = declared.keys().map(String::as_str).collect();
+                HarnessError::Pack(format!("the pack has no option {name}; it has {}", known.join(", ")))
+            })?;
+            let parsed = match kind {
+                OptionKind::Switch { .. } => match value.as_str() {
+                    "on" | "true" | "1" => OptionValue::Switch(true),
+                    "off" | "false" | "0" => OptionValue::Switch(false),
+                    _ => return Err(HarnessError::Pack(format!("{name} is a switch: set it to on or off, not {value}"))),
+                },
+                OptionKind::Value { .. } => OptionValue::Value(value.clone()),
+            };
+            set.insert(name.clone(), parsed);
+        }
+        Ok(set)
+    }
+}
+
 impl AnyPack {
-    /// Reads the pack at `path` (folder or zip) and loads every program a scene can use.
-    pub fn load(path: &Path, loader: Loader) -> Result<AnyPack, HarnessError> {
+    /// Reads the pack at `path` (folder or zip) and loads every program a scene can use, with
+    /// the option values `choice` gives.
+    pub fn load(path: &Path, loader: Loader, choice: &OptionChoice) -> Result<AnyPack, HarnessError> {
         let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Pack(d.to_string()))?;
-        AnyPack::from_files(&files, loader)
+        AnyPack::from_files(&files, loader, choice)
     }
 
-    pub fn from_files(files: &PackFiles, loader: Loader) -> Result<AnyPack, HarnessError> {
-        let defaults = OptionSet::new();
-        let provider = SetProvider::new(files, &defaults);
+    pub fn from_files(files: &PackFiles, loader: Loader, choice: &OptionChoice) -> Result<AnyPack, HarnessError> {
+        let options = choice.option_set(files)?;
+        let provider = SetProvider::new(files, &options);
         let all = find_programs(files.files.keys());
         let world = if all.iter().any(|p| p.world == "world0") { "world0" } else { "" };
         let present: BTreeMap<&str, &programs::Program> =
@@ -445,6 +485,31 @@ fn declared_clears(text: &str) -> Vec<(u8, BufferClear)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_profile_then_single_options_choose_the_values() {
+        let files = tidepack_validate::input::pack_from_memory(
+            "test/shaders/",
+            [
+                ("composite.fsh".to_string(), b"#define MODE 1 // [1 2 3]\n#define GLOW\n#ifdef GLOW\n#endif\nvoid main() {}\n".to_vec()),
+                ("shaders.properties".to_string(), b"profile.LOW=MODE:2 !GLOW\n".to_vec()),
+            ],
+        );
+        let choice = |profile: Option<&str>, options: &[(&str, &str)]| OptionChoice {
+            profile: profile.map(str::to_string),
+            options: options.iter().map(|(n, v)| (n.to_string(), v.to_string())).collect(),
+        };
+        let low = choice(Some("LOW"), &[]).option_set(&files).unwrap();
+        assert_eq!(low.get("MODE"), Some(&OptionValue::Value("2".into())));
+        assert_eq!(low.get("GLOW"), Some(&OptionValue::Switch(false)));
+        let overridden = choice(Some("LOW"), &[("MODE", "3"), ("GLOW", "on")]).option_set(&files).unwrap();
+        assert_eq!(overridden.get("MODE"), Some(&OptionValue::Value("3".into())));
+        assert_eq!(overridden.get("GLOW"), Some(&OptionValue::Switch(true)));
+        let unknown = choice(None, &[("NOPE", "1")]).option_set(&files).unwrap_err().to_string();
+        assert!(unknown.contains("no option NOPE") && unknown.contains("MODE"), "{unknown}");
+        assert!(choice(Some("ULTRA"), &[]).option_set(&files).unwrap_err().to_string().contains("ULTRA"));
+        assert!(choice(None, &[("GLOW", "maybe")]).option_set(&files).is_err());
+    }
 
     #[test]
     fn reads_clear_directives() {

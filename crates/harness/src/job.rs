@@ -255,6 +255,8 @@ pub struct AnyPackJob {
     /// The pack folder or zip.
     pub pack: PathBuf,
     pub loader: Loader,
+    /// The profile and option values to render with.
+    pub options: crate::any_pack::OptionChoice,
     pub out_dir: PathBuf,
     /// Also write every colour buffer and both depth buffers as final read them.
     pub buffers: bool,
@@ -334,7 +336,7 @@ pub struct AnyPackReport {
 /// written as JSON).
 pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let scene = Scene::load(&job.scene)?;
-    let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader)?;
+    let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader, &job.options)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
     let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh, job.frames)?;

@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use tidepack_harness::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
+use tidepack_harness::any_pack::{AnyPack, BufferClear, FramePlan, OptionChoice, PlannedWork};
 use tidepack_harness::gpu::{AnyFrame, render_any};
 use tidepack_harness::program::{BufferFormat, PackResources as _};
 use tidepack_harness::{Gpu, Loader, Scene, gl, gl_any, images, mesh};
@@ -26,7 +26,7 @@ fn scene(name: &str) -> Scene {
 }
 
 fn pack(name: &str, loader: Loader) -> AnyPack {
-    AnyPack::load(&root().join("tests/packs").join(name), loader).unwrap_or_else(|e| panic!("{name}: {e}"))
+    AnyPack::load(&root().join("tests/packs").join(name), loader, &OptionChoice::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn render(pack: &AnyPack, scene: &Scene) -> AnyFrame {
@@ -142,7 +142,7 @@ fn our_shipped_pack(dialect: tidepack_pack::Dialect) -> AnyPack {
         .map(|(path, file)| (path.clone(), file.text.as_bytes().to_vec()))
         .chain(shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec())));
     let files = tidepack_validate::input::pack_from_memory("Tidepack/shaders/", files);
-    AnyPack::from_files(&files, Loader::default()).unwrap_or_else(|e| panic!("{e}"))
+    AnyPack::from_files(&files, Loader::default(), &OptionChoice::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]

@@ -49,9 +49,9 @@ pub struct RenderArgs {
     /// Render any OptiFine or Iris pack (folder or zip) instead of ours: its whole pipeline,
     /// with every pass's time and NaN/Inf count, and what it uses that the harness does not
     /// imitate listed by name. With `--gl`, every step is also drawn through Mesa's OpenGL
-    /// and compared texture by texture. `--dialect`, `--profile`, `--set`, `--specialise` and
-    /// `--source` apply to our pack only.
-    #[arg(long, value_name = "PATH", conflicts_with_all = ["profile", "set", "specialise"])]
+    /// and compared texture by texture; `--profile` and `--set` choose the pack's option values.
+    /// `--dialect`, `--specialise` and `--source` apply to our pack only.
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["specialise"])]
     pub pack: Option<PathBuf>,
     /// With --pack: frames to render; pass times and the frame's cost against a one-tap
     /// pass-through are medians over the frames after the first.
@@ -79,20 +79,26 @@ pub enum RenderDialect {
     V330,
 }
 
-pub fn run(args: &RenderArgs) -> ExitCode {
-    if let Some(pack) = &args.pack {
-        return run_any_pack(args, pack);
-    }
+/// `--set OPTION=VALUE` arguments as pairs; `None` (after saying why) for a malformed one.
+fn option_assignments(set: &[String]) -> Option<Vec<(String, String)>> {
     let mut options = Vec::new();
-    for assignment in &args.set {
+    for assignment in set {
         match assignment.split_once('=') {
             Some((name, value)) if !name.trim().is_empty() => options.push((name.trim().to_string(), value.trim().to_string())),
             _ => {
                 eprintln!("error: --set takes OPTION=VALUE, not `{assignment}`");
-                return ExitCode::from(2);
+                return None;
             }
         }
     }
+    Some(options)
+}
+
+pub fn run(args: &RenderArgs) -> ExitCode {
+    if let Some(pack) = &args.pack {
+        return run_any_pack(args, pack);
+    }
+    let Some(options) = option_assignments(&args.set) else { return ExitCode::from(2) };
     let job = RenderJob {
         scene: args.scene.clone(),
         source_dir: args.source.clone(),
@@ -159,10 +165,12 @@ fn failure(e: HarnessError) -> ExitCode {
 }
 
 fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
+    let Some(options) = option_assignments(&args.set) else { return ExitCode::from(2) };
     let job = job::AnyPackJob {
         scene: args.scene.clone(),
         pack: pack.to_path_buf(),
         loader: args.loader,
+        options: tidepack_harness::any_pack::OptionChoice { profile: args.profile.clone(), options },
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,
