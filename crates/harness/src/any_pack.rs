@@ -117,14 +117,15 @@ impl OptionChoice {
             Some(name) => {
                 let properties = files.texts.get(tidepack_validate::properties::PATH).map(|t| tidepack_validate::properties::parse(t));
                 let properties = properties.unwrap_or_default();
-                tidepack_validate::properties::profile_set(&properties, name, &declared).map_err(|d| HarnessError::Pack(d.to_string()))?.0
+                tidepack_validate::properties::profile_set(&properties, name, &declared).map_err(|d| HarnessError::Pack(d.message))?.0
             }
             None => OptionSet::new(),
         };
         for (name, value) in &self.options {
             let kind = declared.get(name).ok_or_else(|| {
                 let known: Vec<&str> = declared.keys().map(String::as_str).collect();
-                HarnessError::Pack(format!("the pack has no option {name}; it has {}", known.join(", ")))
+                let known = if known.is_empty() { "none".to_string() } else { known.join(", ") };
+                HarnessError::Pack(format!("the pack has no option {name}; its options: {known}"))
             })?;
             let parsed = match kind {
                 OptionKind::Switch { .. } => match value.as_str() {
