@@ -603,7 +603,15 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
             let outputs = vertex_outputs(&program.vertex)?;
             let mut captured = vec!["gl_Position"];
             captured.extend(outputs.iter().map(|(name, _)| name.as_str()));
-            let capture = ctx.compile_capture_program(&program.vertex.gl_text, &attributes, &captured).map_err(failed)?;
+            // The driver drops outputs the vertex stage never writes, and then refuses to record
+            // them: that program cannot be captured (the caller may draw it as shipped).
+            let capture = ctx.compile_capture_program(&program.vertex.gl_text, &attributes, &captured).map_err(|e| {
+                if e.to_string().contains("Transform feedback varying") {
+                    HarnessError::Unsupported(format!("{}: {e}", program.name))
+                } else {
+                    failed(e)
+                }
+            })?;
             let vertex = pass_through_vertex(&program.fragment.gl_text, &outputs);
             let mut locations = vec![("tp_position".to_string(), 0u32)];
             locations.extend((0..outputs.len()).map(|i| (format!("tp_output{i}"), i as u32 + 1)));
