@@ -37,20 +37,51 @@ pub struct RenderJob {
     pub specialise: bool,
 }
 
-/// The JSON report (`<scene>.json`).
+/// What every render report starts with: the scene, the loader imitated and the adapter.
 #[derive(Clone, Debug, Serialize)]
-pub struct RenderReport {
+pub struct RenderedScene {
     pub scene: String,
     pub scene_file: String,
     pub resolution: [u32; 2],
-    /// `120` or `330`, as `--dialect` takes it.
-    pub dialect: String,
     /// The loader imitated (`optifine-1.12.2`, `iris`, ...).
     pub loader: String,
+    pub adapter: AdapterReport,
+}
+
+impl RenderedScene {
+    fn new(scene: &Scene, job_scene: &std::path::Path, loader: Loader, gpu: &Gpu) -> RenderedScene {
+        let a = &gpu.adapter;
+        RenderedScene {
+            scene: scene.name.clone(),
+            scene_file: job_scene.display().to_string(),
+            resolution: scene.resolution,
+            loader: loader.to_string(),
+            adapter: AdapterReport {
+                name: a.name.clone(),
+                backend: format!("{:?}", a.backend),
+                device_type: format!("{:?}", a.device_type),
+                driver: format!("{} {}", a.driver, a.driver_info).trim().to_string(),
+            },
+        }
+    }
+
+    /// `case4_above_near at 640x360 (<what>) on llvmpipe (Vulkan, Cpu)`.
+    pub fn describe(&self, what: &str) -> String {
+        let a = &self.adapter;
+        format!("{} at {}x{} ({what}) on {} ({}, {})", self.scene, self.resolution[0], self.resolution[1], a.name, a.backend, a.device_type)
+    }
+}
+
+/// The JSON report (`<scene>.json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct RenderReport {
+    #[serde(flatten)]
+    pub rendered: RenderedScene,
+    /// `120` or `330`, as `--dialect` takes it.
+    pub dialect: String,
     pub profile: String,
     /// Every option value in force (profile, then `--set`).
     pub options: std::collections::BTreeMap<String, String>,
-    pub adapter: AdapterReport,
     /// `gpu` when the adapter has timestamp queries, else `wall`.
     pub timing_source: String,
     pub passes: Vec<PassReport>,
@@ -222,18 +253,14 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = RenderReport {
-        scene: scene.name.clone(),
-        scene_file: job.scene.display().to_string(),
-        resolution: scene.resolution,
+        rendered: RenderedScene::new(&scene, &job.scene, pack.loader, &gpu),
         dialect: match job.dialect {
             Dialect::Glsl120 => "120",
             Dialect::Glsl330 => "330",
         }
         .to_string(),
-        loader: pack.loader.to_string(),
         profile: pack.profile.clone(),
         options: pack.options.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
-        adapter: adapter_report(&gpu),
         timing_source: if gpu.timestamps { "gpu" } else { "wall" }.to_string(),
         passes,
         composite_over_passthrough: ratio,
@@ -308,12 +335,9 @@ pub struct GlAnyComparison {
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
 #[derive(Clone, Debug, Serialize)]
 pub struct AnyPackReport {
-    pub scene: String,
-    pub scene_file: String,
+    #[serde(flatten)]
+    pub rendered: RenderedScene,
     pub pack: String,
-    pub resolution: [u32; 2],
-    pub loader: String,
-    pub adapter: AdapterReport,
     /// The folder the programs came from (`world0` or `""`).
     pub world: String,
     /// Each pass as it ran, in frame order, with its NaN and Inf counts.
@@ -394,12 +418,8 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         gl,
         expected,
         timing: frame.timing.clone(),
-        scene: scene.name.clone(),
-        scene_file: job.scene.display().to_string(),
+        rendered: RenderedScene::new(&scene, &job.scene, pack.loader, &gpu),
         pack: job.pack.display().to_string(),
-        resolution: scene.resolution,
-        loader: pack.loader.to_string(),
-        adapter: adapter_report(&gpu),
         world: pack.world.clone(),
         non_finite_pixels: frame.image.non_finite(),
         passes: frame.passes,
@@ -465,15 +485,6 @@ fn compare_with_blessed(
     Ok(ExpectedScreen { path: path.display().to_string(), mean_flip: Some(mean_flip), max_flip: job.max_flip, passed: mean_flip <= job.max_flip })
 }
 
-fn adapter_report(gpu: &Gpu) -> AdapterReport {
-    let a = &gpu.adapter;
-    AdapterReport {
-        name: a.name.clone(),
-        backend: format!("{:?}", a.backend),
-        device_type: format!("{:?}", a.device_type),
-        driver: format!("{} {}", a.driver, a.driver_info).trim().to_string(),
-    }
-}
 
 fn pass_report(t: &PassTiming) -> PassReport {
     PassReport { pass: t.pass.clone(), ms: t.gpu_ms.unwrap_or(t.wall_ms), gpu_ms: t.gpu_ms, wall_ms: t.wall_ms }

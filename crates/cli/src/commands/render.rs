@@ -118,18 +118,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => return failure(e),
     };
-    println!(
-        "Rendered {} at {}x{} ({}, {}, profile {}) on {} ({}, {})",
-        report.scene,
-        report.resolution[0],
-        report.resolution[1],
-        report.dialect,
-        report.loader,
-        report.profile,
-        report.adapter.name,
-        report.adapter.backend,
-        report.adapter.device_type
-    );
+    println!("Rendered {}", report.rendered.describe(&format!("{}, {}, profile {}", report.dialect, report.rendered.loader, report.profile)));
     for p in &report.passes {
         println!("  {:<24} {:>9.3} ms ({})", p.pass, p.ms, if p.gpu_ms.is_some() { "GPU" } else { "wall" });
     }
@@ -183,17 +172,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         Ok(r) => r,
         Err(e) => return failure(e),
     };
-    println!(
-        "Rendered {} at {}x{} with {} ({}) on {} ({}, {})",
-        report.scene,
-        report.resolution[0],
-        report.resolution[1],
-        report.pack,
-        report.loader,
-        report.adapter.name,
-        report.adapter.backend,
-        report.adapter.device_type
-    );
+    println!("Rendered {}", report.rendered.describe(&format!("{}, {}", report.pack, report.rendered.loader)));
     let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
     for p in &report.passes {
         let time = format!("{:>9.3} ms", p.median_ms);
