@@ -4,26 +4,13 @@
 //! buffer, a float buffer with its own clear colour, a program without DRAWBUFFERS, and the
 //! 1.17+ core profile's vertex attributes and matrices.
 
-use std::path::PathBuf;
-use std::sync::OnceLock;
-
 use tidepack_harness::any_pack::{AnyPack, BufferClear, FramePlan, OptionChoice, PlannedWork};
 use tidepack_harness::gpu::{AnyFrame, render_any};
 use tidepack_harness::program::{BufferFormat, PackResources as _};
-use tidepack_harness::{Gpu, Loader, Scene, gl, gl_any, images, mesh};
+use tidepack_harness::{Loader, Scene, gl, gl_any, images, mesh};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
-}
-
-fn scene(name: &str) -> Scene {
-    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+mod common;
+use common::{gpu, root, scene};
 
 fn pack(name: &str, loader: Loader) -> AnyPack {
     AnyPack::load(&root().join("tests/packs").join(name), loader, &OptionChoice::default()).unwrap_or_else(|e| panic!("{name}: {e}"))

@@ -3,25 +3,12 @@
 //! how it reads shaders.properties (per-buffer blend modes), the alpha test it puts on the
 //! translucent layer, and where it draws what the pack has no program for.
 
-use std::path::PathBuf;
-use std::sync::OnceLock;
-
 use tidepack_harness::program::{self, PackSelection};
-use tidepack_harness::{Frame, Gpu, LoadedPack, Loader, Scene, gl, images, mesh, render_wgpu};
+use tidepack_harness::{Frame, LoadedPack, Loader, gl, images, mesh, render_wgpu};
 use tidepack_pack::Dialect;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
-}
-
-fn scene(name: &str) -> Scene {
-    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+mod common;
+use common::{gpu, root, scene};
 
 fn pack(loader: Loader, dialect: Dialect) -> LoadedPack {
     let selection = PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };

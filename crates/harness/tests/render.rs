@@ -7,20 +7,15 @@
 //! TIDEPACK_BLESS=1).
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use tidepack_harness::images::{self, FloatImage};
-use tidepack_harness::{Frame, Gpu, LoadedPack, PackSelection, Scene, gl, mesh, program, render_wgpu};
+use tidepack_harness::{Frame, LoadedPack, PackSelection, Scene, gl, mesh, program, render_wgpu};
 use tidepack_pack::Dialect;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn scene(name: &str) -> Scene {
-    Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"))
-}
+mod common;
+use common::{gpu, root, scene};
 
 fn scene_names() -> Vec<String> {
     let files = tidepack_harness::scene::scene_files(&root().join("tests/scenes")).unwrap_or_else(|e| panic!("{e}"));
@@ -35,11 +30,6 @@ fn pack(dialect: Dialect) -> &'static LoadedPack {
         program::load(&PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] })
             .unwrap_or_else(|e| panic!("{e}"))
     })
-}
-
-fn gpu() -> &'static Gpu {
-    static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// Every scene rendered once (GLSL 330, default profile), shared by the tests.
