@@ -1,9 +1,10 @@
 //! Geometry of a scene: opaque terrain (for the pack's terrain program, or the harness's own
-//! terrain shader where the pack has none) and the translucent quads (water surface, glass
-//! panes) for the pack's gbuffers_water, sorted back to front as Minecraft sorts translucent
-//! terrain. Positions are relative to the camera (computed
-//! in f64), so scenes far from the origin lose no precision before the shaders see them;
-//! gl_ModelViewMatrix is then gbufferModelView, as with OptiFine's chunk offsets.
+//! terrain shader where the pack has none), the translucent quads (water surface, glass panes)
+//! for the pack's gbuffers_water, sorted back to front as Minecraft sorts translucent terrain,
+//! the overlays (rain, clouds, particles, the hand) and, for any pack's frame, the sky.
+//! Positions are relative to the camera (computed in f64), so scenes far from the origin lose
+//! no precision before the shaders see them; gl_ModelViewMatrix is then gbufferModelView, as
+//! with OptiFine's chunk offsets.
 
 use glam::DVec3;
 use rand_core::{Rng as _, SeedableRng as _};

@@ -1,7 +1,7 @@
 //! Any pack's frame ([`crate::any_pack::FramePlan`]) through wgpu, step by step: each step's
 //! pipeline is built against the textures current at its turn. The screen is RGBA32F, so NaN
-//! and Inf survive; after each step the buffers it wrote are read back and their NaN and Inf
-//! counted.
+//! and Inf survive. Frames can be repeated for timing; after each step of the last one the
+//! textures it wrote are read back and their NaN and Inf counted.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
@@ -28,6 +28,7 @@ use super::readback::{read_pass_ms, read_texture};
 pub struct AnyPassReport {
     /// `terrain (gbuffers_terrain)`, `composite1`, `depth copy`, …
     pub pass: String,
+    /// Wall time of the last frame's step.
     pub wall_ms: f64,
     /// GPU time from timestamps, when the adapter has them (last frame).
     pub gpu_ms: Option<f64>,
