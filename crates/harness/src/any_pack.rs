@@ -17,7 +17,8 @@ use tidepack_validate::input::{Limits, PackFiles, read_pack};
 use tidepack_validate::programs::{self, find_programs};
 use tidepack_validate::SetProvider;
 
-use crate::HarnessError;
+use crate::uniforms::{self, Pass, Value};
+use crate::{HarnessError, custom_uniforms};
 use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read, resolve_any};
 use crate::gpu::frame::overlay_phase;
 use crate::loader::{Loader, Phase};
@@ -57,6 +58,23 @@ pub enum BufferClear {
     Color([f64; 4]),
     /// `const bool colortexNClear = false`: the previous frame's contents stay.
     Keep,
+}
+
+impl BufferClear {
+    /// The RGBA colour colortex`buffer` holds after the clear in `scene` (a kept buffer starts
+    /// transparent black in the harness's single frame).
+    pub fn colour(self, buffer: u8, scene: &Scene) -> [f64; 4] {
+        match (self, buffer) {
+            (BufferClear::Color(c), _) => c,
+            (BufferClear::Keep, _) => [0.0; 4],
+            (BufferClear::Default, 0) => {
+                let [r, g, b] = scene.sky.fog_color;
+                [r, g, b, 1.0]
+            }
+            (BufferClear::Default, 1) => [1.0; 4],
+            (BufferClear::Default, _) => [0.0; 4],
+        }
+    }
 }
 
 #[derive(Debug)]
@@ -315,6 +333,15 @@ impl AnyPack {
     /// `default`.
     pub fn blend_of(&self, program: Option<&LoadedProgram>, buffer: u8, default: &Blend) -> Blend {
         program.and_then(|p| self.blends.get(&p.name)).and_then(|m| m.get(&buffer)).cloned().unwrap_or_else(|| default.clone())
+    }
+
+    /// The uniform values of `pass` in `scene`: the harness's standard ones and the pack's
+    /// custom uniforms (shaders.properties), with the problems of those that fail.
+    pub fn uniform_values(&self, scene: &Scene, pass: Pass) -> (BTreeMap<String, Value>, Vec<custom_uniforms::Problem>) {
+        let mut values = uniforms::values(scene, pass);
+        let custom = custom_uniforms::evaluate(&self.properties, &values);
+        values.extend(custom.uniforms);
+        (values, custom.problems)
     }
 
     pub fn clear_of(&self, buffer: u8) -> BufferClear {

@@ -21,6 +21,7 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
+use crate::any_pack::BufferClear;
 use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_any, resolve_in_pack, terrain_mvp, vertex_attribute_source};
 use crate::images::FloatImage;
@@ -248,11 +249,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // 1. clear
         for (b, (t, _)) in &textures.colors {
             attach(&[*t], Some(textures.depth0))?;
-            let c = match b {
-                0 => [scene.sky.fog_color[0] as f32, scene.sky.fog_color[1] as f32, scene.sky.fog_color[2] as f32, 1.0],
-                1 => [1.0; 4],
-                _ => [0.0; 4],
-            };
+            let c = BufferClear::Default.colour(*b, scene).map(|v| v as f32);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
         }
         gl.depth_mask(true);

@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
 
-use crate::{HarnessError, custom_uniforms};
-use crate::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
+use crate::HarnessError;
+use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
     set_blends,
@@ -25,7 +25,7 @@ use crate::images::FloatImage;
 use crate::mesh::{PackVertex, SceneMesh};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
-use crate::uniforms::{self, Pass};
+use crate::uniforms::Pass;
 
 /// A frame of any pack from the OpenGL driver.
 #[derive(Clone, Debug)]
@@ -78,15 +78,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         gl.viewport(0, 0, w, h);
 
         // Clear, as the wgpu path does: both textures of each buffer, depth to 1.
-        let fog = scene.sky.fog_color;
         for (b, (textures, _, _)) in &buffers {
-            let c = match (pack.clear_of(*b), b) {
-                (BufferClear::Color(c), _) => c.map(|v| v as f32),
-                (BufferClear::Keep, _) => [0.0; 4],
-                (BufferClear::Default, 0) => [fog[0] as f32, fog[1] as f32, fog[2] as f32, 1.0],
-                (BufferClear::Default, 1) => [1.0; 4],
-                (BufferClear::Default, _) => [0.0; 4],
-            };
+            let c = pack.clear_of(*b).colour(*b, scene).map(|v| v as f32);
             for t in textures {
                 attach(gl, &[*t], Some(depth0))?;
                 gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
@@ -111,13 +104,14 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                 Err(e) => Err(e),
             }
         };
+        let (gbuffers_values, _) = pack.uniform_values(scene, Pass::Gbuffers);
+        let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
         let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, textures: &Textures, vertices: &[PackVertex]| {
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
-            let mut values = uniforms::values(scene, pass);
-            values.extend(custom_uniforms::evaluate(&pack.properties, &values).uniforms);
-            let drawn = draw_program(ctx, pack, program, compiled, scene, pass, &values, textures, vertices);
+            let values = if pass == Pass::Gbuffers { &gbuffers_values } else { &fullscreen_values };
+            let drawn = draw_program(ctx, pack, program, compiled, scene, pass, values, textures, vertices);
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }

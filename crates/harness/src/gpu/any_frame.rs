@@ -6,21 +6,21 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
-use crate::{HarnessError, custom_uniforms};
-use crate::any_pack::{AnyPack, BufferClear, FramePlan, PlannedWork};
+use crate::HarnessError;
+use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::images::FloatImage;
 use crate::mesh::SceneMesh;
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::Pass;
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, UniformBinding, view,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, UniformBinding,
 };
-use super::geometry::{GeometryDraw, depth_attachment};
+use super::geometry::GeometryDraw;
 use super::own::PassthroughPipeline;
-use super::frame::median;
+use super::frame::{median, record_clears};
 use super::readback::{read_pass_ms, read_texture};
 
 /// One pass of the frame as it ran.
@@ -130,32 +130,23 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             not_modelled.push(line);
         }
     };
-    // The pack's custom uniforms join the standard ones; uniforms the harness has no value for
-    // stay zero, as a loader leaves uniforms it does not set.
-    let mut values_for = |program: Option<&LoadedProgram>, pass: Pass| -> Result<BTreeMap<String, Value>, HarnessError> {
-        let mut values = uniforms::values(scene, pass);
-        let custom = custom_uniforms::evaluate(&pack.properties, &values);
-        for problem in &custom.problems {
-            note(format!("{problem} (the uniform stays zero)"));
-        }
-        values.extend(custom.uniforms);
-        for stage in program.into_iter().flat_map(|p| [&p.vertex, &p.fragment]) {
-            for name in uniforms::fill_block_leaving_zero(&stage.module, &values, &stage.path)?.1 {
-                note(format!("uniform {name}: zero (the harness has no value for it)"));
-            }
-        }
-        Ok(values)
-    };
+    // The pack's custom uniforms join the standard ones, once per kind of pass.
+    let (gbuffers_values, problems) = pack.uniform_values(scene, Pass::Gbuffers);
+    let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
+    for problem in &problems {
+        note(format!("{problem} (the uniform stays zero)"));
+    }
     let snapshot_colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
         buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
 
     // Each step's pipeline, and what to count NaN and Inf in afterwards.
     let mut steps: Vec<(&str, Work, Vec<Written>)> = Vec::new();
     let mut zeroed_inputs = Vec::new();
+    // Uniforms the harness has no value for stay zero, as a loader leaves uniforms it does not set.
+    let mut zeroed_uniforms = Vec::new();
     for step in &plan.steps {
         let (work, written) = match &step.work {
             PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots } => {
-                let values = values_for(*program, Pass::Gbuffers)?;
                 let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                 let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                 // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -167,16 +158,16 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth1: &depth1,
                 };
                 let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, *program, &state, vertices, step.label.clone())?;
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, &gbuffers_values, &textures, *program, &state, vertices, step.label.clone())?;
                 if let Some(pipeline) = draw.pipeline() {
                     zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
+                    zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
                 }
                 let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), Some((*b, current[b])))).collect();
                 (Work::Geometry { draw, current, snapshots }, written)
             }
             PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
             PlannedWork::Fullscreen { program, current, into_screen } => {
-                let values = values_for(Some(program), Pass::Fullscreen)?;
                 let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
                     buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
                 let formats: BTreeMap<u8, wgpu::TextureFormat> =
@@ -185,7 +176,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 let textures =
                     BindableTextures { naming: SamplerNaming::AnyPack, harness: &harness_textures, colors: &reading, depth0: &depth0, depth1: &depth1 };
                 let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
-                let pipeline = ProgramPipeline::new(gpu, pack, program, &values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
+                let pipeline = ProgramPipeline::new(gpu, pack, program, &fullscreen_values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
+                zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
                 let written = if *into_screen {
                     vec![("screen".to_string(), None)]
                 } else {
@@ -198,6 +190,9 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             }
         };
         steps.push((step.label.as_str(), work, written));
+    }
+    for name in zeroed_uniforms {
+        note(format!("uniform {name}: zero (the harness has no value for it)"));
     }
     for input in zeroed_inputs {
         note(format!("vertex input {input}: zero (the harness's vertices do not carry it)"));
@@ -227,7 +222,10 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     for frame in 0..frames {
         let last = frame + 1 == frames;
         let mut encoder = new_encoder();
-        record_clears(&mut encoder, pack, scene, &buffers, &depth0);
+        // Both textures of every buffer, as the pack's directives say.
+        let colours: Vec<(&wgpu::Texture, [f64; 4])> =
+            buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene)))).collect();
+        record_clears(&mut encoder, &colours, &depth0);
         submit(encoder)?;
         let mut timed = 0u32;
         let mut stamp = |timestamps: bool| {
@@ -315,38 +313,4 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         timing,
         not_modelled,
     })
-}
-
-/// Clears both textures of every colour buffer as the pack's directives say, and depth to 1.
-fn record_clears(encoder: &mut wgpu::CommandEncoder, pack: &AnyPack, scene: &Scene, buffers: &BTreeMap<u8, Buffer>, depth0: &wgpu::Texture) {
-    let fog = scene.sky.fog_color;
-    let views: Vec<(u8, wgpu::TextureView)> =
-        buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (*b, view(t)))).collect();
-    let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
-        .iter()
-        .map(|(b, v)| {
-            let color = match (pack.clear_of(*b), b) {
-                (BufferClear::Color([r, g, b, a]), _) => wgpu::Color { r, g, b, a },
-                (BufferClear::Keep, _) => wgpu::Color::TRANSPARENT,
-                (BufferClear::Default, 0) => wgpu::Color { r: fog[0], g: fog[1], b: fog[2], a: 1.0 },
-                (BufferClear::Default, 1) => wgpu::Color::WHITE,
-                (BufferClear::Default, _) => wgpu::Color::TRANSPARENT,
-            };
-            Some(wgpu::RenderPassColorAttachment {
-                view: v,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(color), store: wgpu::StoreOp::Store },
-            })
-        })
-        .collect();
-    let depth_view = view(depth0);
-    for chunk in attachments.chunks(8) {
-        encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("clear"),
-            color_attachments: chunk,
-            depth_stencil_attachment: Some(depth_attachment(&depth_view, true)),
-            ..Default::default()
-        });
-    }
 }

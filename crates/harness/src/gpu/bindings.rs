@@ -428,6 +428,9 @@ pub(crate) struct ProgramPipeline {
     zero_vertex: Option<wgpu::Buffer>,
     /// Those inputs, by name.
     pub zeroed_inputs: Vec<String>,
+    /// Any pack's uniforms left zero (no value, or another type than the loader sets), by
+    /// shipped name with the reason where there is one.
+    pub zeroed_uniforms: Vec<String>,
 }
 
 impl ProgramPipeline {
@@ -449,9 +452,13 @@ impl ProgramPipeline {
         // group → binding → (visibility, entry)
         let mut groups: BTreeMap<u32, BTreeMap<u32, (wgpu::ShaderStages, Entry)>> = BTreeMap::new();
         let mut uniform_buffers = Vec::new();
-        let fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
+        let mut zeroed_uniforms = Vec::new();
+        let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
             SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
-            SamplerNaming::AnyPack => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, _)| block),
+            SamplerNaming::AnyPack => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
+                zeroed_uniforms.extend(zeroed);
+                block
+            }),
         };
         for stage in [&program.vertex, &program.fragment] {
             let visibility = match stage.stage {
@@ -632,7 +639,7 @@ impl ProgramPipeline {
                 cache: None,
             })
         }))?;
-        Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers, zero_vertex, zeroed_inputs: zeroed })
+        Ok(ProgramPipeline { pipeline, bind_groups, alternates, uniform_buffers, zero_vertex, zeroed_inputs: zeroed, zeroed_uniforms })
     }
 
     /// Rewrites the uniform blocks with `values`, for the next submission.

@@ -22,6 +22,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use crate::HarnessError;
+use crate::any_pack::BufferClear;
 use crate::images::FloatImage;
 use crate::loader::{self, Loader, Phase};
 use crate::mesh::{self, SceneMesh};
@@ -110,17 +111,6 @@ impl FrameTargets {
 
     fn bindable<'a>(&'a self, harness: &'a HarnessTextures) -> BindableTextures<'a> {
         BindableTextures { naming: SamplerNaming::OwnFrame, harness, colors: &self.colors, depth0: &self.depth0, depth1: &self.depth1 }
-    }
-}
-
-fn clear_color(buffer: u8, scene: &Scene) -> wgpu::Color {
-    match buffer {
-        0 => {
-            let f = scene.sky.fog_color;
-            wgpu::Color { r: f[0], g: f[1], b: f[2], a: 1.0 }
-        }
-        1 => wgpu::Color::WHITE,
-        _ => wgpu::Color::TRANSPARENT,
     }
 }
 
@@ -253,7 +243,10 @@ fn render_frame(
         let mut wall = Vec::new();
         gpu.checked("rendering", || -> Result<(), HarnessError> {
             let mut encoder = new_encoder();
-            record_clear(&mut encoder, &targets, scene);
+            // OptiFine's clears: colortex0 the fog colour, colortex1 white, the rest transparent.
+            let colours: Vec<(&wgpu::Texture, [f64; 4])> =
+                targets.colors.iter().map(|(b, (t, _))| (t, BufferClear::Default.colour(*b, scene))).collect();
+            record_clears(&mut encoder, &colours, &targets.depth0);
             submit(encoder)?;
             let mut timed = 0;
             for step in &steps {
@@ -302,19 +295,19 @@ fn render_frame(
     Ok((frame, runs))
 }
 
-/// Clears every colour buffer to OptiFine's clear colour (colortex0 the fog colour, colortex1
-/// white, the rest transparent black) and depth to 1, eight attachments a pass.
-fn record_clear(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, scene: &Scene) {
-    let depth0_view = view(&targets.depth0);
-    let views: Vec<(u8, wgpu::TextureView)> = targets.colors.iter().map(|(b, (t, _))| (*b, view(t))).collect();
+/// Clears each texture to its colour (RGBA) and `depth0` to 1, eight attachments a pass.
+pub(crate) fn record_clears(encoder: &mut wgpu::CommandEncoder, colours: &[(&wgpu::Texture, [f64; 4])], depth0: &wgpu::Texture) {
+    let depth0_view = view(depth0);
+    let views: Vec<(wgpu::TextureView, wgpu::Color)> =
+        colours.iter().map(|(t, [r, g, b, a])| (view(t), wgpu::Color { r: *r, g: *g, b: *b, a: *a })).collect();
     let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = views
         .iter()
-        .map(|(b, v)| {
+        .map(|(v, colour)| {
             Some(wgpu::RenderPassColorAttachment {
                 view: v,
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear_color(*b, scene)), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(*colour), store: wgpu::StoreOp::Store },
             })
         })
         .collect();
