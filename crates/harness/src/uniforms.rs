@@ -182,17 +182,6 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("sunPosition", Value::vec3(sun));
     put("moonPosition", Value::vec3(moon));
     put("shadowLightPosition", Value::vec3(if sun_world.y >= 0.0 { sun } else { moon }));
-    // The shadow camera OptiFine sets up even when nothing is drawn into the shadow map: 100
-    // blocks out towards the light that casts shadows, looking at the player, with an
-    // orthographic projection of the default shadowDistance (128 blocks; depth 0.05 to 256).
-    let light = if sun_world.y >= 0.0 { scene.sun_direction() } else { -scene.sun_direction() };
-    let up = if light.cross(DVec3::Z).length_squared() > 1e-6 { DVec3::Z } else { DVec3::X };
-    let shadow_model_view = DMat4::look_at_rh(light * 100.0, DVec3::ZERO, up);
-    let shadow_projection = DMat4::orthographic_rh_gl(-128.0, 128.0, -128.0, 128.0, 0.05, 256.0);
-    put("shadowModelView", Value::mat4(shadow_model_view));
-    put("shadowModelViewInverse", Value::mat4(shadow_model_view.inverse()));
-    put("shadowProjection", Value::mat4(shadow_projection));
-    put("shadowProjectionInverse", Value::mat4(shadow_projection.inverse()));
     put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
     put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
     put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
