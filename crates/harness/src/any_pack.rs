@@ -163,7 +163,7 @@ impl AnyPack {
     /// Reads the pack at `path` (folder or zip) and loads every program a scene can use, with
     /// the option values `choice` gives.
     pub fn load(path: &Path, loader: Loader, choice: &OptionChoice) -> Result<AnyPack, HarnessError> {
-        let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Pack(d.to_string()))?;
+        let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Io(d.message))?;
         AnyPack::from_files(&files, loader, choice)
     }
 
