@@ -17,15 +17,16 @@ use tidepack_validate::input::{Limits, PackFiles, read_pack};
 use tidepack_validate::programs::{self, find_programs};
 use tidepack_validate::SetProvider;
 
+use crate::shadow::{ShadowSettings, SunPath};
 use crate::uniforms::{self, Pass, Value};
 use crate::{HarnessError, custom_uniforms};
-use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read, resolve_any};
+use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read};
 use crate::gpu::frame::overlay_phase;
 use crate::loader::{Loader, Phase};
 use crate::mesh::{BlockIds, PackVertex, SceneMesh};
 use crate::program::{
     self, Blend, BufferFormat, CustomTexture, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, ProgramFiles, TERRAIN_CHAIN,
-    UndeclaredTargets, WATER_CHAIN, blend_modes, custom_textures, declared_format_names,
+    UndeclaredTargets, WATER_CHAIN, blend_modes, colour_buffer_number, custom_textures, declared_format_names, shadow_colour_number,
 };
 use crate::scene::{OverlayKind, Scene};
 
@@ -61,6 +62,15 @@ pub enum BufferClear {
 }
 
 impl BufferClear {
+    /// The RGBA colour shadowcolorN holds after the shadow pass's clear: white unless declared.
+    pub fn shadow_colour(self) -> [f64; 4] {
+        match self {
+            BufferClear::Color(c) => c,
+            BufferClear::Keep => [0.0; 4],
+            BufferClear::Default => [1.0; 4],
+        }
+    }
+
     /// The RGBA colour colortex`buffer` holds after the clear in `scene` (a kept buffer starts
     /// transparent black in the harness's single frame).
     pub fn colour(self, buffer: u8, scene: &Scene) -> [f64; 4] {
@@ -88,8 +98,19 @@ pub struct AnyPack {
     pub gbuffers: BTreeMap<String, LoadedProgram>,
     /// prepare*, deferred*, composite* and final, in the order the loader runs them.
     pub fullscreen: Vec<LoadedProgram>,
+    /// The shadow pass's programs the loader's chains can draw with, by name.
+    pub shadow: BTreeMap<String, LoadedProgram>,
+    /// Whether the frame starts with the shadow pass: some program reads a shadow map (what
+    /// makes OptiFine and Iris draw one) and the pack has a program to draw it with.
+    pub shadow_pass: bool,
+    pub shadow_settings: ShadowSettings,
+    /// Whether `shadow` names shadowtex1 ([`PackResources::water_shadow`]).
+    pub water_shadow: bool,
     pub formats: BTreeMap<u8, BufferFormat>,
     pub clears: BTreeMap<u8, BufferClear>,
+    /// Formats and clears of the shadow colour buffers.
+    pub shadow_formats: BTreeMap<u8, BufferFormat>,
+    pub shadow_clears: BTreeMap<u8, BufferClear>,
     /// Blend modes per program and colour buffer from shaders.properties.
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
@@ -110,6 +131,14 @@ impl PackResources for AnyPack {
 
     fn custom_textures(&self) -> &[CustomTexture] {
         &self.custom_textures
+    }
+
+    fn shadow_settings(&self) -> ShadowSettings {
+        self.shadow_settings
+    }
+
+    fn water_shadow(&self) -> bool {
+        self.water_shadow
     }
 }
 
@@ -215,6 +244,14 @@ impl AnyPack {
                 gbuffers.insert(name.to_string(), p);
             }
         }
+        let mut shadow = BTreeMap::new();
+        for name in [loader.shadow_chain(false), loader.shadow_chain(true)].concat() {
+            if !shadow.contains_key(name)
+                && let Some(p) = load(name)
+            {
+                shadow.insert(name.to_string(), p);
+            }
+        }
         let mut fullscreen = Vec::new();
         for family in FULLSCREEN_FAMILIES {
             for n in 0..100 {
@@ -229,6 +266,7 @@ impl AnyPack {
             .copied()
             .filter(|name| {
                 !gbuffers.contains_key(*name)
+                    && !shadow.contains_key(*name)
                     && !fullscreen.iter().any(|p| p.name == *name)
                     && !failed.iter().any(|(f, _)| f == name)
                     && programs::loader_of(name) == programs::Loader::OptiFine
@@ -236,27 +274,44 @@ impl AnyPack {
             .collect();
         for name in unused {
             let why = match name {
-                "shadow" => "the shadow pass is not drawn: shadowtex*/shadowcolor* are bound empty (depth 1, colour white)",
-                n if n.starts_with("shadowcomp") => "runs after the shadow pass, which is not drawn",
+                n if n.starts_with("shadowcomp") => "not run: the shadow colour buffers stay as the shadow pass drew them",
+                n if n.starts_with("shadow_") => "the loader draws the shadow pass with another program",
                 "gbuffers_skytextured" => "the scenes have no sun, moon or sky texture",
                 _ => "the scenes hold no geometry this program draws",
             };
             not_modelled.push(format!("{name}: {why}"));
         }
 
-        for program in gbuffers.values().chain(&fullscreen) {
+        let mut reads_shadow_maps = false;
+        let mut water_shadow = false;
+        let all_programs = gbuffers.values().chain(&fullscreen).map(|p| (p, SamplerNaming::AnyPack)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
+        for (program, naming) in all_programs {
             let gbuffers_program = program.name.starts_with("gbuffers_");
             for stage in [&program.vertex, &program.fragment] {
                 for (name, _) in program::texture_resources(&stage.interface) {
-                    if resolve_any(&NoCustomTextures, &name, gbuffers_program) == Ok(Source::Unbound) {
-                        not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name));
+                    water_shadow |= name == "watershadow";
+                    match naming.resolve(&NoCustomTextures, &name, gbuffers_program) {
+                        Ok(Source::Unbound) => not_modelled
+                            .push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name)),
+                        Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::AnyPack,
+                        _ => {}
                     }
                 }
             }
         }
+        let shadow_program = loader.shadow_chain(false).iter().find(|name| shadow.contains_key(**name));
+        let shadow_pass = reads_shadow_maps && shadow_program.is_some();
+        if reads_shadow_maps && shadow_program.is_none() {
+            not_modelled.push(
+                "the shadow pass without a shadow program (the game's own shading) is not drawn: shadowtex* read depth 1, shadowcolor* white".into(),
+            );
+        }
+        if !reads_shadow_maps && let Some(name) = shadow_program {
+            not_modelled.push(format!("{name}: no program reads a shadow map, so the loader draws none"));
+        }
         let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
         let mut blends = BTreeMap::new();
-        for name in gbuffers.keys().chain(fullscreen.iter().map(|p| &p.name)) {
+        for name in gbuffers.keys().chain(shadow.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
             match blend_modes(&properties, name, loader.per_buffer_blend()) {
                 Ok(modes) => {
                     blends.insert(name.clone(), modes);
@@ -281,9 +336,25 @@ impl AnyPack {
 
         let mut formats = BTreeMap::new();
         let mut clears = BTreeMap::new();
-        let programs = gbuffers.values().chain(fullscreen.iter());
-        for stage in programs.flat_map(|p| [&p.vertex, &p.fragment]) {
-            for (buffer, name) in declared_format_names(&stage.gl_text) {
+        let mut shadow_formats = BTreeMap::new();
+        let mut shadow_clears = BTreeMap::new();
+        let programs = gbuffers.values().chain(shadow.values()).chain(fullscreen.iter());
+        let stages: Vec<&program::LoadedStage> = programs.flat_map(|p| [&p.vertex, &p.fragment]).collect();
+        let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.gl_text.as_str()));
+        for stage in &stages {
+            for (buffer, name) in declared_format_names(&stage.gl_text, shadow_colour_number) {
+                match BufferFormat::stand_in(&name) {
+                    Some((format, exact)) => {
+                        if !exact {
+                            not_modelled.push(format!("shadowcolor{buffer}Format = {name}: stored as {format:?}"));
+                        }
+                        shadow_formats.insert(buffer, format);
+                    }
+                    None => not_modelled.push(format!("shadowcolor{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
+                }
+            }
+            shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
+            for (buffer, name) in declared_format_names(&stage.gl_text, colour_buffer_number) {
                 match BufferFormat::stand_in(&name) {
                     Some((format, exact)) => {
                         if !exact {
@@ -294,7 +365,7 @@ impl AnyPack {
                     None => not_modelled.push(format!("colortex{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
                 }
             }
-            clears.extend(declared_clears(&stage.gl_text));
+            clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
             for (buffer, what) in [("colortex", "MipmapEnabled"), ("shadowcolor", "MipmapEnabled"), ("shadowtex", "Mipmap")] {
                 if stage.gl_text.contains(what) && stage.gl_text.contains(buffer) {
                     let line = format!("{buffer}*{what}: mipmaps are not generated");
@@ -302,6 +373,15 @@ impl AnyPack {
                         not_modelled.push(line);
                     }
                 }
+            }
+        }
+        if shadow_pass {
+            let (drawn, multiplier) = shadow_settings.drawn_resolution();
+            if multiplier < 1.0 {
+                not_modelled.push(format!(
+                    "shadowMapResolution = {}: drawn at {drawn} (OptiFine's Shadow Quality {multiplier}x)",
+                    shadow_settings.declared_resolution
+                ));
             }
         }
         let block_ids = provider.read("block.properties").map(|t| program::block_ids(&t)).unwrap_or_default();
@@ -313,8 +393,14 @@ impl AnyPack {
             world: world.to_string(),
             gbuffers,
             fullscreen,
+            shadow,
+            shadow_pass,
+            shadow_settings,
+            water_shadow,
             formats,
             clears,
+            shadow_formats,
+            shadow_clears,
             blends,
             custom_textures,
             block_ids,
@@ -329,6 +415,29 @@ impl AnyPack {
         chain.iter().find_map(|name| self.gbuffers.get(*name))
     }
 
+    /// The shadow program drawing the opaque terrain, or with `translucent` the water.
+    pub fn resolve_shadow(&self, translucent: bool) -> Option<&LoadedProgram> {
+        self.loader.shadow_chain(translucent).iter().find_map(|name| self.shadow.get(*name))
+    }
+
+    /// The format of shadowcolor`buffer`.
+    pub fn shadow_format_of(&self, buffer: u8) -> BufferFormat {
+        self.shadow_formats.get(&buffer).copied().unwrap_or(BufferFormat::Rgba8)
+    }
+
+    pub fn shadow_clear_of(&self, buffer: u8) -> BufferClear {
+        self.shadow_clears.get(&buffer).copied().unwrap_or(BufferClear::Default)
+    }
+
+    /// Where the scene's sun puts the sun's path, named when the pack declares another tilt
+    /// (the scene's sun direction is kept: the pack's sky and shadows follow it).
+    pub fn sun_path_note(&self, scene: &Scene) -> Option<String> {
+        let declared = self.shadow_settings.sun_path_rotation?;
+        let scene_tilt = SunPath::of_sun_direction(scene.sun_direction()).rotation;
+        ((declared - scene_tilt).abs() > 0.5)
+            .then(|| format!("sunPathRotation = {declared}: the scene's sun direction fixes the sun path's tilt at {scene_tilt:.1}"))
+    }
+
     /// How `program` blends into `buffer`: its own mode from shaders.properties, else
     /// `default`.
     pub fn blend_of(&self, program: Option<&LoadedProgram>, buffer: u8, default: &Blend) -> Blend {
@@ -338,7 +447,7 @@ impl AnyPack {
     /// The uniform values of `pass` in `scene`: the harness's standard ones and the pack's
     /// custom uniforms (shaders.properties), with the problems of those that fail.
     pub fn uniform_values(&self, scene: &Scene, pass: Pass) -> (BTreeMap<String, Value>, Vec<custom_uniforms::Problem>) {
-        let mut values = uniforms::values(scene, pass);
+        let mut values = uniforms::values_with_shadow(scene, pass, &self.shadow_settings);
         let custom = custom_uniforms::evaluate(&self.properties, &values);
         values.extend(custom.uniforms);
         (values, custom.problems)
@@ -369,6 +478,11 @@ pub enum PlannedWork<'a> {
     },
     /// depthtex0 to depthtex1.
     DepthCopy,
+    /// Geometry drawn into the shadow map by a shadow program, under the shadow camera: its
+    /// render targets are shadow colour buffers, its depth buffer shadowtex0; no blending.
+    ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex] },
+    /// shadowtex0 to shadowtex1: the shadow map without translucents.
+    ShadowDepthCopy,
     /// A full-screen program: reads the current textures, draws into the other texture of each
     /// of its render targets (which then becomes current), or into the screen for final.
     Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool },
@@ -385,6 +499,8 @@ pub struct PlannedStep<'a> {
 
 /// A frame of any pack on one scene as OptiFine 1.16.5 and later draw it:
 ///
+/// 0. when the pack has one ([`AnyPack::shadow_pass`]), the shadow pass: the terrain, shadowtex0
+///    to shadowtex1, the water;
 /// 1. prepare*;
 /// 2. the sky (gbuffers_skybasic's chain, no depth written), the loader's overlays before the
 ///    terrain, the terrain (gbuffers_terrain's chain), the overlays before the water;
@@ -397,6 +513,9 @@ pub struct PlannedStep<'a> {
 pub struct FramePlan<'a> {
     /// Every colour buffer a program writes or reads, and colortex0.
     pub buffers: BTreeSet<u8>,
+    /// Every shadow colour buffer the shadow pass writes or a program reads, and shadowcolor0;
+    /// empty without a shadow pass.
+    pub shadow_buffers: BTreeSet<u8>,
     pub steps: Vec<PlannedStep<'a>>,
     /// Which texture of each buffer is current at the end.
     pub current: BTreeMap<u8, usize>,
@@ -416,7 +535,26 @@ impl<'a> FramePlan<'a> {
             }
             buffers.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, false));
         }
-        let mut plan = FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, steps: Vec::new() };
+        let mut shadow_buffers = BTreeSet::new();
+        if pack.shadow_pass {
+            shadow_buffers.insert(0);
+            shadow_buffers.extend(pack.shadow.values().flat_map(|p| p.render_targets.iter().copied()));
+            for program in pack.gbuffers.values().chain(&pack.fullscreen) {
+                for stage in [&program.vertex, &program.fragment] {
+                    for (name, _) in program::texture_resources(&stage.interface) {
+                        if let Ok(Source::ShadowColour(n)) = SamplerNaming::AnyPack.resolve(pack, &name, true) {
+                            shadow_buffers.insert(n);
+                        }
+                    }
+                }
+            }
+        }
+        let mut plan = FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, shadow_buffers, steps: Vec::new() };
+        if pack.shadow_pass {
+            plan.shadow_geometry(pack, false, &mesh.terrain, "shadow terrain");
+            plan.steps.push(PlannedStep { label: "shadowtex0 to shadowtex1".into(), work: PlannedWork::ShadowDepthCopy });
+            plan.shadow_geometry(pack, true, &mesh.translucent, "shadow water");
+        }
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
         for program in family("prepare") {
             plan.fullscreen(program, false);
@@ -461,6 +599,12 @@ impl<'a> FramePlan<'a> {
         });
     }
 
+    fn shadow_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str) {
+        if let Some(program) = pack.resolve_shadow(translucent) {
+            self.steps.push(PlannedStep { label: format!("{what} ({})", program.name), work: PlannedWork::ShadowGeometry { program, vertices } });
+        }
+    }
+
     fn overlays(&mut self, pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh, phase: Phase) {
         for (kind, vertices) in &mesh.overlay {
             if overlay_phase(pack.loader, scene, *kind) == phase {
@@ -481,8 +625,9 @@ impl<'a> FramePlan<'a> {
     }
 }
 
-/// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`.
-fn declared_clears(text: &str) -> Vec<(u8, BufferClear)> {
+/// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`, buffers
+/// numbered by `number` (colour or shadow colour buffers).
+fn declared_clears(text: &str, number: fn(&str) -> Option<u8>) -> Vec<(u8, BufferClear)> {
     let mut found = Vec::new();
     for line in text.lines() {
         let line = line.trim();
@@ -490,7 +635,7 @@ fn declared_clears(text: &str) -> Vec<(u8, BufferClear)> {
         let Some((declaration, value)) = rest.split_once('=') else { continue };
         let value = value.trim().trim_end_matches(';').trim();
         let name = declaration.split_whitespace().last().unwrap_or("");
-        if let Some(buffer) = name.strip_suffix("ClearColor").and_then(program::colour_buffer_number) {
+        if let Some(buffer) = name.strip_suffix("ClearColor").and_then(number) {
             let inner = value.strip_prefix("vec4(").and_then(|v| v.strip_suffix(')'));
             let parts: Vec<f64> = inner.map(|v| v.split(',').filter_map(|p| p.trim().trim_end_matches('f').parse().ok()).collect()).unwrap_or_default();
             let color = match parts.as_slice() {
@@ -501,7 +646,7 @@ fn declared_clears(text: &str) -> Vec<(u8, BufferClear)> {
             if let Some(color) = color {
                 found.push((buffer, BufferClear::Color(color)));
             }
-        } else if let Some(buffer) = name.strip_suffix("Clear").and_then(program::colour_buffer_number)
+        } else if let Some(buffer) = name.strip_suffix("Clear").and_then(number)
             && value == "false"
         {
             found.push((buffer, BufferClear::Keep));
@@ -543,7 +688,7 @@ mod tests {
     fn reads_clear_directives() {
         let text = "const bool colortex2Clear = false;\nconst vec4 colortex3ClearColor = vec4(1.0, 0.5, 0.0, 1.0);\nconst vec4 gaux1ClearColor = vec4(0.25);\n";
         assert_eq!(
-            declared_clears(text),
+            declared_clears(text, colour_buffer_number),
             [(2, BufferClear::Keep), (3, BufferClear::Color([1.0, 0.5, 0.0, 1.0])), (4, BufferClear::Color([0.25; 4]))]
         );
     }

@@ -22,7 +22,7 @@ use std::collections::BTreeMap;
 use half::f16;
 
 use crate::HarnessError;
-use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, colour_buffers_read};
+use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, ShadowTextures, colour_buffers_read};
 use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
 use crate::gpu::{Frame, Gpu};
@@ -114,7 +114,14 @@ impl CompositeOnly {
         let depth0 = texture("depthtex0 (R32Float)", DEPTH_AS, input);
         let depth1 = texture("depthtex1 (R32Float)", DEPTH_AS, input);
         let harness_textures = HarnessTextures::new(gpu, pack);
-        let bindable = BindableTextures { naming: SamplerNaming::OwnFrame, harness: &harness_textures, colors: &colors, depth0: &depth0, depth1: &depth1 };
+        let bindable = BindableTextures {
+            naming: SamplerNaming::OwnFrame,
+            harness: &harness_textures,
+            colors: &colors,
+            depth0: &depth0,
+            depth1: &depth1,
+            shadow: ShadowTextures::empty(&harness_textures),
+        };
         let composite = gpu.checked("composite_only", || {
             ProgramPipeline::new(gpu, pack, &pack.composite, values, PassKind::Fullscreen { width, height }, &bindable, binding)
         })??;

@@ -23,7 +23,7 @@ use tidepack_gldriver::{GlContext, GlProgram, legacy};
 use crate::HarnessError;
 use crate::any_pack::BufferClear;
 use crate::gpu::bindings::SamplerNaming;
-use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_any, resolve_in_pack, terrain_mvp, vertex_attribute_source};
+use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp, vertex_attribute_source};
 use crate::images::FloatImage;
 use crate::loader::{self, MissingProgramDraws, Phase};
 use crate::mesh::{self, PackVertex, SceneMesh, offsets};
@@ -118,10 +118,13 @@ pub(crate) struct GlHarnessTextures {
     custom: Vec<glow::Texture>,
     flat_normals: glow::Texture,
     no_specular: glow::Texture,
-    shadow_colour: glow::Texture,
-    /// A shadow map nothing was drawn into, for `sampler2D` and (comparing) `sampler2DShadow`.
-    shadow_depth: glow::Texture,
-    shadow_depth_compared: glow::Texture,
+    /// What a shadow colour buffer the frame lacks reads: the white of its clear.
+    white: glow::Texture,
+    /// A shadow map nothing was drawn into: depth 1.
+    pub(crate) empty_shadow_depth: glow::Texture,
+    /// The sampler of `sampler2DShadow` lookups: compared (`LEQUAL`), linear with
+    /// `shadowHardwareFiltering`, clamped.
+    comparison: glow::Sampler,
     unbound: glow::Texture,
 }
 
@@ -132,16 +135,17 @@ impl GlHarnessTextures {
             unsafe { make_texture(gl, glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE, tw as i32, th as i32, Some(&data), linear, repeat) }
         };
         let one_texel = |rgba: [u8; 4]| rgba8((1, 1, rgba.to_vec()), true, false);
-        let one_depth = |compared: bool| {
-            // SAFETY: the caller holds the current context.
-            unsafe {
-                let t = make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, 1, 1, Some(bytemuck::bytes_of(&1.0f32)), false, false)?;
-                if compared {
-                    gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE as i32);
-                    gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL as i32);
-                }
-                Ok::<_, HarnessError>(t)
-            }
+        // SAFETY: the caller holds the current context.
+        let comparison = unsafe {
+            let s = gl.create_sampler().map_err(gl_err("sampler"))?;
+            let filter = if pack.shadow_settings().hardware_filtering { glow::LINEAR } else { glow::NEAREST } as i32;
+            gl.sampler_parameter_i32(s, glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE as i32);
+            gl.sampler_parameter_i32(s, glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL as i32);
+            gl.sampler_parameter_i32(s, glow::TEXTURE_MIN_FILTER, filter);
+            gl.sampler_parameter_i32(s, glow::TEXTURE_MAG_FILTER, filter);
+            gl.sampler_parameter_i32(s, glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE as i32);
+            gl.sampler_parameter_i32(s, glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE as i32);
+            s
         };
         Ok(GlHarnessTextures {
             atlas: rgba8(mesh::atlas(), false, true)?,
@@ -150,9 +154,14 @@ impl GlHarnessTextures {
             custom: pack.custom_textures().iter().map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp)).collect::<Result<_, _>>()?,
             flat_normals: one_texel([128, 128, 255, 255])?,
             no_specular: one_texel([0; 4])?,
-            shadow_colour: one_texel([255; 4])?,
-            shadow_depth: one_depth(false)?,
-            shadow_depth_compared: one_depth(true)?,
+            white: one_texel([255; 4])?,
+            // SAFETY: the caller holds the current context.
+            empty_shadow_depth: unsafe {
+                let t = make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, 1, 1, Some(bytemuck::bytes_of(&1.0f32)), false, false)?;
+                read_as_shadow_map(gl, t, true);
+                t
+            },
+            comparison,
             unbound: one_texel([0; 4])?,
         })
     }
@@ -164,15 +173,16 @@ impl GlHarnessTextures {
             self.noise,
             self.flat_normals,
             self.no_specular,
-            self.shadow_colour,
-            self.shadow_depth,
-            self.shadow_depth_compared,
+            self.white,
+            self.empty_shadow_depth,
             self.unbound,
         ];
         for t in own.into_iter().chain(self.custom.iter().copied()) {
             // SAFETY: the caller holds the current context that made the texture.
             unsafe { gl.delete_texture(t) };
         }
+        // SAFETY: as above.
+        unsafe { gl.delete_sampler(self.comparison) };
     }
 }
 
@@ -183,6 +193,10 @@ pub(crate) struct Textures<'a> {
     pub colors: BTreeMap<u8, (glow::Texture, BufferFormat)>,
     pub depth0: glow::Texture,
     pub depth1: glow::Texture,
+    /// shadowtex0 and shadowtex1.
+    pub shadow_depth: [glow::Texture; 2],
+    /// The shadow colour buffers by number (one not here reads white).
+    pub shadow_colours: BTreeMap<u8, glow::Texture>,
 }
 
 /// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
@@ -238,7 +252,15 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         }
         let depth_texture = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
         let harness = GlHarnessTextures::new(gl, pack)?;
-        let textures = Textures { naming: SamplerNaming::OwnFrame, harness: &harness, colors, depth0: depth_texture()?, depth1: depth_texture()? };
+        let textures = Textures {
+            naming: SamplerNaming::OwnFrame,
+            harness: &harness,
+            colors,
+            depth0: depth_texture()?,
+            depth1: depth_texture()?,
+            shadow_depth: [harness.empty_shadow_depth; 2],
+            shadow_colours: BTreeMap::new(),
+        };
         let out = make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
 
         let fbo = gl.create_framebuffer().map_err(gl_err("framebuffer"))?;
@@ -279,7 +301,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             match program {
                 Some(program) => {
                     let compiled = compile(ctx, program, depth)?;
-                    draw_program(ctx, pack, program, &compiled, scene, Pass::Gbuffers, &uniforms::values(scene, Pass::Gbuffers), &textures, vertices)?;
+                    draw_program(ctx, pack, program, &compiled, Pass::Gbuffers, &uniforms::values(scene, Pass::Gbuffers), &textures, vertices)?;
                     compiled.delete(ctx);
                 }
                 None => draw_own_colour(ctx, pack.loader.missing_program_draws(), depth, scene, vertices)?,
@@ -328,7 +350,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         attach(&outs, None)?;
         gl.disable(glow::DEPTH_TEST);
         gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
-        draw_program(ctx, pack, &pack.composite, &composite, scene, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &fullscreen_quad())?;
+        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &fullscreen_quad())?;
         composite.delete(ctx);
         gl.finish();
 
@@ -434,6 +456,21 @@ pub(crate) unsafe fn make_texture(
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
         Ok(t)
+    }
+}
+
+/// Sets up depth texture `t` as the loaders read a shadow map through `sampler2D`: (d, d, d, 1)
+/// (Iris swizzles its shadow maps so; OptiFine's compatibility profile reads depth as
+/// luminance), filtered linearly unless `nearest` (`shadowtexNearest`).
+pub(crate) unsafe fn read_as_shadow_map(gl: &glow::Context, t: glow::Texture, nearest: bool) {
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        gl.bind_texture(glow::TEXTURE_2D, Some(t));
+        let swizzle = [glow::RED, glow::RED, glow::RED, glow::ONE].map(|c| c as i32);
+        gl.tex_parameter_i32_slice(glow::TEXTURE_2D, glow::TEXTURE_SWIZZLE_RGBA, &swizzle);
+        let filter = if nearest { glow::NEAREST } else { glow::LINEAR } as i32;
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter);
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAG_FILTER, filter);
     }
 }
 
@@ -651,10 +688,7 @@ unsafe fn set_uniforms(
             let location = gl.get_uniform_location(raw, &active.name);
             if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW) {
                 let shadow = active.utype == glow::SAMPLER_2D_SHADOW;
-                let resolved = match textures.naming {
-                    SamplerNaming::OwnFrame => resolve_in_pack(pack, &name, gbuffers),
-                    SamplerNaming::AnyPack => resolve_any(pack, &name, gbuffers),
-                };
+                let resolved = textures.naming.resolve(pack, &name, gbuffers);
                 let harness = textures.harness;
                 let texture = match resolved {
                     Ok(Source::Atlas) => harness.atlas,
@@ -663,9 +697,8 @@ unsafe fn set_uniforms(
                     Ok(Source::Custom(i)) => harness.custom[i],
                     Ok(Source::FlatNormals) => harness.flat_normals,
                     Ok(Source::NoSpecular) => harness.no_specular,
-                    Ok(Source::EmptyShadowColour) => harness.shadow_colour,
-                    Ok(Source::EmptyShadowDepth) if shadow => harness.shadow_depth_compared,
-                    Ok(Source::EmptyShadowDepth) => harness.shadow_depth,
+                    Ok(Source::ShadowColour(n)) => textures.shadow_colours.get(&n).copied().unwrap_or(harness.white),
+                    Ok(Source::ShadowDepth(n)) => textures.shadow_depth[n as usize],
                     Ok(Source::Unbound) => harness.unbound,
                     Ok(Source::Depth0) => textures.depth0,
                     Ok(Source::Depth1) => textures.depth1,
@@ -681,12 +714,13 @@ unsafe fn set_uniforms(
                         continue;
                     }
                 };
-                if shadow && !matches!(resolved, Ok(Source::EmptyShadowDepth)) {
-                    missing.push(format!("{name} is a shadow sampler; the harness compares only against the empty shadow map"));
+                if shadow && !matches!(resolved, Ok(Source::Depth0 | Source::Depth1 | Source::ShadowDepth(_))) {
+                    missing.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
                     continue;
                 }
                 gl.active_texture(glow::TEXTURE0 + unit);
                 gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                gl.bind_sampler(unit, shadow.then_some(harness.comparison));
                 gl.uniform_1_i32(location.as_ref(), unit as i32);
                 unit += 1;
                 continue;
@@ -694,7 +728,7 @@ unsafe fn set_uniforms(
             let Some(value) = values.get(&name) else {
                 // Any pack's uniforms the harness has no value for keep OpenGL's initial zero,
                 // as the wgpu path fills them with zero.
-                if textures.naming == SamplerNaming::OwnFrame {
+                if !textures.naming.is_any_pack() {
                     missing.push(name);
                 }
                 continue;
@@ -716,7 +750,6 @@ pub(crate) unsafe fn draw_program(
     pack: &dyn PackResources,
     program: &LoadedProgram,
     compiled: &Compiled,
-    scene: &Scene,
     pass: Pass,
     values: &BTreeMap<String, Value>,
     textures: &Textures,
@@ -724,7 +757,7 @@ pub(crate) unsafe fn draw_program(
 ) -> Result<(), HarnessError> {
     let gl = ctx.gl();
     let lg = ctx.legacy();
-    let gbuffers = pass == Pass::Gbuffers;
+    let gbuffers = pass != Pass::Fullscreen;
     let first = match compiled {
         Compiled::Direct(p) => p.raw,
         Compiled::Captured { capture, .. } => capture.raw,
@@ -733,18 +766,19 @@ pub(crate) unsafe fn draw_program(
     unsafe {
         gl.use_program(Some(first));
         set_uniforms(gl, pack, program, first, values, gbuffers, textures)?;
-        // Legacy matrices through the fixed-function stacks.
-        let m = uniforms::legacy_matrices(scene, pass);
-        let load = |mode: u32, matrix: glam::DMat4| {
-            (lg.matrix_mode)(mode);
-            let cols = matrix.to_cols_array().map(|v| v as f32);
-            (lg.load_matrix_f)(cols.as_ptr());
+        // Legacy matrices through the fixed-function stacks, as the wgpu path fills them.
+        let matrix = |name: &str| {
+            values.get(name).map(Value::as_f32).ok_or_else(|| HarnessError::Uniform(format!("the harness has no {name} for {}", program.name)))
         };
-        load(legacy::MODELVIEW, m.model_view);
-        load(legacy::PROJECTION, m.projection);
-        for (i, t) in m.texture.iter().enumerate() {
+        let load = |mode: u32, columns: &[f32]| {
+            (lg.matrix_mode)(mode);
+            (lg.load_matrix_f)(columns.as_ptr());
+        };
+        load(legacy::MODELVIEW, &matrix("tp_ModelViewMatrix")?);
+        load(legacy::PROJECTION, &matrix("tp_ProjectionMatrix")?);
+        for (i, columns) in matrix("tp_TextureMatrix")?.chunks_exact(16).take(2).enumerate() {
             gl.active_texture(glow::TEXTURE0 + i as u32);
-            load(legacy::TEXTURE, *t);
+            load(legacy::TEXTURE, columns);
         }
         (lg.matrix_mode)(legacy::MODELVIEW);
         gl.active_texture(glow::TEXTURE0);
@@ -793,7 +827,7 @@ pub(crate) unsafe fn draw_program(
                 }
                 // As in the wgpu path: inputs the harness's vertices lack read zero in any
                 // pack, and are an error in ours.
-                None if textures.naming == SamplerNaming::AnyPack => {
+                None if textures.naming.is_any_pack() => {
                     gl.disable_vertex_attrib_array(*location);
                     gl.vertex_attrib_4_f32(*location, 0.0, 0.0, 0.0, 0.0);
                 }

@@ -17,7 +17,7 @@ use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
-    set_blends,
+    read_as_shadow_map, set_blends,
 };
 use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::fullscreen_quad;
@@ -69,8 +69,19 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
             let format = pack.format_of(b);
             buffers.insert(b, ([colour(format)?, colour(format)?], colour(format)?, format));
         }
-        let depth = || make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
-        let (depth0, depth1) = (depth()?, depth()?);
+        let depth_of = |side_w: i32, side_h: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, side_w, side_h, None, false, false);
+        let (depth0, depth1) = (depth_of(w, h)?, depth_of(w, h)?);
+        // The shadow maps, as the wgpu path makes them: one texel each without a shadow pass.
+        let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 as i32 } else { 1 };
+        let shadow_depth = [depth_of(shadow_side, shadow_side)?, depth_of(shadow_side, shadow_side)?];
+        for t in shadow_depth {
+            read_as_shadow_map(gl, t, pack.shadow_settings.nearest);
+        }
+        let mut shadow_colours = BTreeMap::new();
+        for &b in &plan.shadow_buffers {
+            let format = internal_format(pack.shadow_format_of(b));
+            shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
+        }
         let screen = make_texture(gl, glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
         let harness = GlHarnessTextures::new(gl, pack)?;
         let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
@@ -87,6 +98,14 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         }
         gl.depth_mask(true);
         gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+        for (b, t) in &shadow_colours {
+            attach(gl, &[*t], Some(shadow_depth[0]))?;
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &pack.shadow_clear_of(*b).shadow_colour().map(|v| v as f32));
+        }
+        for depth in shadow_depth {
+            attach(gl, &[], Some(depth))?;
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+        }
         gl.disable(glow::CULL_FACE);
         gl.depth_func(glow::LEQUAL);
 
@@ -106,12 +125,17 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         };
         let (gbuffers_values, _) = pack.uniform_values(scene, Pass::Gbuffers);
         let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
+        let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
         let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, textures: &Textures, vertices: &[PackVertex]| {
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
-            let values = if pass == Pass::Gbuffers { &gbuffers_values } else { &fullscreen_values };
-            let drawn = draw_program(ctx, pack, program, compiled, scene, pass, values, textures, vertices);
+            let values = match pass {
+                Pass::Gbuffers => &gbuffers_values,
+                Pass::Fullscreen => &fullscreen_values,
+                Pass::Shadow => &shadow_values,
+            };
+            let drawn = draw_program(ctx, pack, program, compiled, pass, values, textures, vertices);
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }
@@ -147,7 +171,15 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                     match program {
                         Some(program) => {
                             // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
-                            let textures = Textures { naming: SamplerNaming::AnyPack, harness: &harness, colors: snapshots.clone(), depth0: depth1, depth1 };
+                            let textures = Textures {
+                                naming: SamplerNaming::AnyPack,
+                                harness: &harness,
+                                colors: snapshots.clone(),
+                                depth0: depth1,
+                                depth1,
+                                shadow_depth,
+                                shadow_colours: shadow_colours.clone(),
+                            };
                             let (compiled, own_range) = build(program)?;
                             draw(program, &compiled, own_range, Pass::Gbuffers, &textures, vertices)?;
                             compiled.delete(ctx);
@@ -163,6 +195,36 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                 PlannedWork::DepthCopy => {
                     gl.copy_image_sub_data(depth0, glow::TEXTURE_2D, 0, 0, 0, 0, depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
                 }
+                PlannedWork::ShadowGeometry { program, vertices } => {
+                    let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| shadow_colours[b]).collect();
+                    attach(gl, &targets, Some(shadow_depth[0]))?;
+                    set_blends(gl, &program.render_targets, &|b| pack.blend_of(Some(program), b, &Blend::Off));
+                    gl.enable(glow::DEPTH_TEST);
+                    gl.depth_mask(true);
+                    gl.viewport(0, 0, shadow_side, shadow_side);
+                    // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+                    let textures = Textures {
+                        naming: SamplerNaming::ShadowPass,
+                        harness: &harness,
+                        colors: BTreeMap::new(),
+                        depth0: depth1,
+                        depth1,
+                        shadow_depth: [harness.empty_shadow_depth; 2],
+                        shadow_colours: BTreeMap::new(),
+                    };
+                    let (compiled, own_range) = build(program)?;
+                    draw(program, &compiled, own_range, Pass::Shadow, &textures, vertices)?;
+                    compiled.delete(ctx);
+                    gl.viewport(0, 0, w, h);
+                    set_blends(gl, &program.render_targets, &|_| Blend::Off);
+                    for (b, t) in program.render_targets.iter().zip(&targets) {
+                        written.push((format!("shadowcolor{b}"), read(gl, *t, false, screen, shadow_side, shadow_side)?));
+                    }
+                }
+                PlannedWork::ShadowDepthCopy => {
+                    let [from, to] = shadow_depth;
+                    gl.copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, shadow_side, shadow_side, 1);
+                }
                 PlannedWork::Fullscreen { program, current, into_screen } => {
                     let targets: Vec<(String, glow::Texture)> = if *into_screen {
                         vec![("screen".to_string(), screen)]
@@ -173,7 +235,15 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                     attach(gl, &attachments, None)?;
                     set_blends(gl, &program.render_targets, &|b| pack.blend_of(Some(program), b, &Blend::Off));
                     gl.disable(glow::DEPTH_TEST);
-                    let textures = Textures { naming: SamplerNaming::AnyPack, harness: &harness, colors: colors_at(current), depth0, depth1 };
+                    let textures = Textures {
+                        naming: SamplerNaming::AnyPack,
+                        harness: &harness,
+                        colors: colors_at(current),
+                        depth0,
+                        depth1,
+                        shadow_depth,
+                        shadow_colours: shadow_colours.clone(),
+                    };
                     let (compiled, own_range) = build(program)?;
                     draw(program, &compiled, own_range, Pass::Fullscreen, &textures, &quad)?;
                     compiled.delete(ctx);
@@ -202,7 +272,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         gl.delete_framebuffer(fbo);
         harness.delete(gl);
-        for t in [depth0, depth1, screen].into_iter().chain(buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s])) {
+        let shadow_textures = shadow_depth.into_iter().chain(shadow_colours.values().copied());
+        for t in [depth0, depth1, screen].into_iter().chain(buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s])).chain(shadow_textures) {
             gl.delete_texture(t);
         }
         if error != glow::NO_ERROR {

@@ -22,6 +22,7 @@ pub mod loader;
 pub mod mesh;
 pub mod program;
 pub mod scene;
+pub mod shadow;
 pub mod uniforms;
 
 pub use gpu::{Frame, Gpu, PassTiming, median};

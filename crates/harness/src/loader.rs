@@ -96,6 +96,18 @@ impl Loader {
         }
     }
 
+    /// The programs that draw the opaque terrain (or, `translucent`, the water) into the shadow
+    /// map, in fallback order. OptiFine draws everything with `shadow` (its shaders.txt: the
+    /// programs shadow_solid and shadow_cutout "are not used"); Iris has shadow_solid and
+    /// shadow_water.
+    pub fn shadow_chain(self, translucent: bool) -> &'static [&'static str] {
+        match (self, translucent) {
+            (Loader::Iris, false) => &["shadow_solid", "shadow"],
+            (Loader::Iris, true) => &["shadow_water", "shadow"],
+            _ => &["shadow"],
+        }
+    }
+
     /// When `kind` is drawn. Up to Minecraft 1.12 OptiFine draws particles and rain before the
     /// water, and clouds the camera is below before the terrain; later versions draw all of
     /// them after the water. Iris draws opaque particles with the opaque world.

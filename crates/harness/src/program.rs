@@ -22,6 +22,7 @@ use tidepack_pack::specialise::{Specialisation, specialise};
 use tidepack_pack::option_sets::standard_macros;
 
 use crate::HarnessError;
+use crate::shadow::ShadowSettings;
 use crate::loader::{self, Loader};
 use crate::mesh::BlockIds;
 use crate::scene::OverlayKind;
@@ -164,6 +165,15 @@ pub trait PackResources {
     fn format_of(&self, buffer: u8) -> BufferFormat;
     /// Custom textures from shaders.properties.
     fn custom_textures(&self) -> &[CustomTexture];
+    /// The pack's shadow-map constants.
+    fn shadow_settings(&self) -> ShadowSettings {
+        ShadowSettings::default()
+    }
+    /// Whether the sampler `shadow` names shadowtex1 (without translucents): OptiFine and Iris
+    /// do so when the pack also reads `watershadow`.
+    fn water_shadow(&self) -> bool {
+        false
+    }
 }
 
 impl PackResources for LoadedPack {
@@ -649,7 +659,7 @@ pub(crate) fn colour_buffer_number(name: &str) -> Option<u8> {
 /// `const int colortexNFormat = FORMAT;` (also inside comments, as OptiFine reads them) and
 /// the legacy `/* GAUXnFORMAT:FORMAT */`.
 pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
-    declared_format_names(text)
+    declared_format_names(text, colour_buffer_number)
         .into_iter()
         .map(|(buffer, value)| {
             let format = BufferFormat::parse(&value).ok_or_else(|| {
@@ -660,15 +670,24 @@ pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, Ha
         .collect()
 }
 
-/// The buffer and format name of each `const int <buffer>Format = <FORMAT>;` line.
-pub(crate) fn declared_format_names(text: &str) -> Vec<(u8, String)> {
+/// The shadow colour buffer a name refers to: `shadowcolor` (0) or `shadowcolorN` (N < 8).
+pub(crate) fn shadow_colour_number(name: &str) -> Option<u8> {
+    match name.strip_prefix("shadowcolor")? {
+        "" => Some(0),
+        n => n.parse::<u8>().ok().filter(|n| *n < 8),
+    }
+}
+
+/// The buffer and format name of each `const int <buffer>Format = <FORMAT>;` line, buffers
+/// numbered by `number` ([`colour_buffer_number`] or [`shadow_colour_number`]).
+pub(crate) fn declared_format_names(text: &str, number: fn(&str) -> Option<u8>) -> Vec<(u8, String)> {
     let mut found = Vec::new();
     for line in text.lines() {
         let line = line.trim();
         let Some(rest) = line.strip_prefix("const int ") else { continue };
         let Some((name, value)) = rest.split_once('=') else { continue };
         let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
-        let Some(buffer) = colour_buffer_number(buffer_name) else { continue };
+        let Some(buffer) = number(buffer_name) else { continue };
         // The value ends at the `;`; a comment may follow on the line.
         found.push((buffer, value.split(';').next().unwrap_or("").trim().to_string()));
     }

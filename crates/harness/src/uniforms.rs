@@ -11,6 +11,7 @@ use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
 use crate::scene::Scene;
+use crate::shadow::{ShadowSettings, SunPath};
 use tidepack_pack::specialise::Specialisation;
 
 /// A uniform value: scalars, vectors, matrices (column-major) and arrays of them.
@@ -112,6 +113,9 @@ pub enum Pass {
     Gbuffers,
     /// Full-screen: a unit quad under an orthographic projection.
     Fullscreen,
+    /// The shadow pass: gl_ModelViewMatrix = shadowModelView, gl_ProjectionMatrix =
+    /// shadowProjection (positions relative to the camera, as in gbuffers).
+    Shadow,
 }
 
 /// Legacy matrices as the OpenGL compatibility API holds them for a pass.
@@ -128,13 +132,14 @@ pub fn lightmap_matrix() -> DMat4 {
     DMat4::from_translation(DVec3::splat(8.0 / 256.0)) * DMat4::from_scale(DVec3::new(1.0 / 256.0, 1.0 / 256.0, 1.0 / 256.0))
 }
 
-pub fn legacy_matrices(scene: &Scene, pass: Pass) -> LegacyMatrices {
+fn legacy_matrices(scene: &Scene, pass: Pass, shadow: &ShadowSettings) -> LegacyMatrices {
     let (model_view, projection) = match pass {
         Pass::Gbuffers => (scene.model_view(), scene.projection()),
         Pass::Fullscreen => (DMat4::IDENTITY, DMat4::orthographic_rh_gl(0.0, 1.0, 0.0, 1.0, -1.0, 1.0)),
+        Pass::Shadow => (shadow_model_view(scene, shadow), shadow.projection()),
     };
     let texture = match pass {
-        Pass::Gbuffers => [DMat4::IDENTITY, lightmap_matrix()],
+        Pass::Gbuffers | Pass::Shadow => [DMat4::IDENTITY, lightmap_matrix()],
         Pass::Fullscreen => [DMat4::IDENTITY, DMat4::IDENTITY],
     };
     LegacyMatrices { model_view, projection, texture }
@@ -143,9 +148,20 @@ pub fn legacy_matrices(scene: &Scene, pass: Pass) -> LegacyMatrices {
 /// `fogMode` for the game's linear distance fog.
 const GL_LINEAR: i64 = 0x2601;
 
-/// Every uniform the harness can fill for a scene and pass, by its OptiFine name; the legacy
-/// matrices under their lowered names (`tp_ModelViewMatrix`, …).
+/// `shadowModelView` in `scene` with the pack's `shadow` constants.
+fn shadow_model_view(scene: &Scene, shadow: &ShadowSettings) -> DMat4 {
+    SunPath::of_sun_direction(scene.sun_direction()).shadow_model_view(shadow.interval, scene.camera_position())
+}
+
+/// Every uniform the harness can fill for a scene and pass, by its OptiFine name, with
+/// OptiFine's default shadow camera; the legacy matrices under their lowered names
+/// (`tp_ModelViewMatrix`, …).
 pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
+    values_with_shadow(scene, pass, &ShadowSettings::default())
+}
+
+/// [`values`] for a pack whose shadow camera `shadow` describes.
+pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) -> BTreeMap<String, Value> {
     let mut v = BTreeMap::new();
     let mut put = |name: &str, value: Value| {
         v.insert(name.to_string(), value);
@@ -182,6 +198,14 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     put("sunPosition", Value::vec3(sun));
     put("moonPosition", Value::vec3(moon));
     put("shadowLightPosition", Value::vec3(if sun_world.y >= 0.0 { sun } else { moon }));
+    let sun_path = SunPath::of_sun_direction(scene.sun_direction());
+    put("sunAngle", Value::float(sun_path.sun_angle()));
+    put("shadowAngle", Value::float(sun_path.shadow_angle()));
+    let shadow_view = shadow_model_view(scene, shadow);
+    put("shadowModelView", Value::mat4(shadow_view));
+    put("shadowModelViewInverse", Value::mat4(shadow_view.inverse()));
+    put("shadowProjection", Value::mat4(shadow.projection()));
+    put("shadowProjectionInverse", Value::mat4(shadow.projection().inverse()));
     put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
     put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
     put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
@@ -206,8 +230,8 @@ pub fn values(scene: &Scene, pass: Pass) -> BTreeMap<String, Value> {
     // The game's fog is on (GL_LINEAR); the pack's programs apply it.
     put("fogMode", Value::int(GL_LINEAR));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
-    put("alphaTestRef", Value::float(if pass == Pass::Gbuffers { 0.1 } else { 0.0 }));
-    let legacy = legacy_matrices(scene, pass);
+    put("alphaTestRef", Value::float(if pass == Pass::Fullscreen { 0.0 } else { 0.1 }));
+    let legacy = legacy_matrices(scene, pass, shadow);
     let mvp = legacy.projection * legacy.model_view;
     let normal = DMat3::from_mat4(legacy.model_view).inverse().transpose();
     let mut textures = [DMat4::IDENTITY; 8];

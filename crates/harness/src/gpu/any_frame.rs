@@ -16,7 +16,8 @@ use crate::uniforms::Pass;
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, UniformBinding,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, ShadowTextures,
+    UniformBinding,
 };
 use super::geometry::GeometryDraw;
 use super::own::PassthroughPipeline;
@@ -34,8 +35,8 @@ pub struct AnyPassReport {
     pub gpu_ms: Option<f64>,
     /// Median over the frames after the first: GPU time where timestamps exist, else wall.
     pub median_ms: f64,
-    /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `screen`); normalised
-    /// formats cannot hold them.
+    /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `shadowcolor0`, `screen`);
+    /// normalised formats cannot hold them.
     pub non_finite: BTreeMap<String, usize>,
     /// The textures the pass wrote, by the same names, for comparing renderers pass by pass.
     #[serde(skip)]
@@ -77,15 +78,38 @@ struct Buffer {
     format: wgpu::TextureFormat,
 }
 
-/// A texture a step wrote, by name (`colortex2`, `screen`): a buffer's texture (buffer, index),
-/// or the screen (`None`).
-type Written = (String, Option<(u8, usize)>);
+/// A texture a step wrote.
+enum WrittenTexture {
+    /// One of a colour buffer's two textures: (buffer, index).
+    Buffer(u8, usize),
+    ShadowColour(u8),
+    Screen,
+}
+
+/// A texture a step wrote, by name (`colortex2`, `shadowcolor0`, `screen`).
+type Written = (String, WrittenTexture);
 
 enum Work<'p> {
     Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8> },
     DepthCopy,
+    ShadowGeometry(GeometryDraw),
+    ShadowDepthCopy,
     Fullscreen { program: &'p LoadedProgram, pipeline: ProgramPipeline, current: &'p BTreeMap<u8, usize>, into_screen: bool },
     ScreenCopy(PassthroughPipeline),
+}
+
+impl Work<'_> {
+    /// A texture copy, not a render pass (no timestamps).
+    fn is_copy(&self) -> bool {
+        matches!(self, Work::DepthCopy | Work::ShadowDepthCopy)
+    }
+}
+
+/// Names the sun-path tilt the scene fixes where the pack declares another.
+fn note_sun_path(pack: &AnyPack, scene: &Scene, note: &mut impl FnMut(String)) {
+    if let Some(line) = pack.sun_path_note(scene) {
+        note(line);
+    }
 }
 
 /// Renders `frames` frames of `scene` with any pack's programs, pipelines made once; returns
@@ -122,6 +146,26 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let depth1 = texture("depthtex1", DEPTH, every_use);
     let screen = texture("screen (RGBA32F)", OUT, every_use);
     let harness_textures = HarnessTextures::new(gpu, pack);
+    // The shadow maps: one texel each, cleared, when the frame has no shadow pass.
+    let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 } else { 1 };
+    let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
+    let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use);
+    let shadow_depth = [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)];
+    let shadow_depth_read = [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)];
+    let depth_as_luminance = [
+        PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[0])?,
+        PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[1])?,
+    ];
+    let mut shadow_colours = BTreeMap::new();
+    for &b in &plan.shadow_buffers {
+        let format = gpu.texture_format(pack.shadow_format_of(b))?;
+        shadow_colours.insert(b, (shadow_texture(&format!("shadowcolor{b}"), format), format));
+    }
+    let shadow = ShadowTextures {
+        depth: [&shadow_depth[0], &shadow_depth[1]],
+        depth_read: [&shadow_depth_read[0], &shadow_depth_read[1]],
+        colours: &shadow_colours,
+    };
     let quad = FullscreenQuad::new(gpu);
 
     let mut not_modelled = pack.not_modelled.clone();
@@ -133,6 +177,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     // The pack's custom uniforms join the standard ones, once per kind of pass.
     let (gbuffers_values, problems) = pack.uniform_values(scene, Pass::Gbuffers);
     let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
+    let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
+    note_sun_path(pack, scene, &mut note);
     for problem in &problems {
         note(format!("{problem} (the uniform stays zero)"));
     }
@@ -156,6 +202,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     colors: &snapshot_colors,
                     depth0: &depth1,
                     depth1: &depth1,
+                    shadow,
                 };
                 let missing = pack.loader.missing_program_draws();
                 let draw = GeometryDraw::new(gpu, pack, missing, scene, &gbuffers_values, &textures, *program, &state, vertices, step.label.clone())?;
@@ -163,30 +210,58 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
                     zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
                 }
-                let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), Some((*b, current[b])))).collect();
+                let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
                 (Work::Geometry { draw, current, snapshots }, written)
             }
             PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+            PlannedWork::ShadowGeometry { program, vertices } => {
+                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                let state = DrawState { blend_of: &blend_of, depth_write: true };
+                // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+                let textures = BindableTextures {
+                    naming: SamplerNaming::ShadowPass,
+                    harness: &harness_textures,
+                    colors: &shadow_colours,
+                    depth0: &depth1,
+                    depth1: &depth1,
+                    shadow: ShadowTextures::empty(&harness_textures),
+                };
+                let missing = pack.loader.missing_program_draws();
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, &shadow_values, &textures, Some(program), &state, vertices, step.label.clone())?;
+                if let Some(pipeline) = draw.pipeline() {
+                    zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
+                    zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+                }
+                let written = draw.buffers().iter().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(*b))).collect();
+                (Work::ShadowGeometry(draw), written)
+            }
+            PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
             PlannedWork::Fullscreen { program, current, into_screen } => {
                 let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
                     buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
                 let formats: BTreeMap<u8, wgpu::TextureFormat> =
                     if *into_screen { BTreeMap::from([(0, OUT)]) } else { buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect() };
                 let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
-                let textures =
-                    BindableTextures { naming: SamplerNaming::AnyPack, harness: &harness_textures, colors: &reading, depth0: &depth0, depth1: &depth1 };
+                let textures = BindableTextures {
+                    naming: SamplerNaming::AnyPack,
+                    harness: &harness_textures,
+                    colors: &reading,
+                    depth0: &depth0,
+                    depth1: &depth1,
+                    shadow,
+                };
                 let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
                 let pipeline = ProgramPipeline::new(gpu, pack, program, &fullscreen_values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
                 zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
                 let written = if *into_screen {
-                    vec![("screen".to_string(), None)]
+                    vec![("screen".to_string(), WrittenTexture::Screen)]
                 } else {
-                    program.render_targets.iter().map(|b| (format!("colortex{b}"), Some((*b, 1 - current[b])))).collect()
+                    program.render_targets.iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b]))).collect()
                 };
                 (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen }, written)
             }
             PlannedWork::ScreenCopy { current } => {
-                (Work::ScreenCopy(PassthroughPipeline::new(gpu, &buffers[&0].textures[*current])?), vec![("screen".to_string(), None)])
+                (Work::ScreenCopy(PassthroughPipeline::new(gpu, &buffers[&0].textures[*current])?), vec![("screen".to_string(), WrittenTexture::Screen)])
             }
         };
         steps.push((step.label.as_str(), work, written));
@@ -203,7 +278,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     // their NaN and Inf counted, after every step of the last frame only.
     let floor_target = texture("pass-through output (RGBA32F)", OUT, every_use);
     let floor = PassthroughPipeline::new(gpu, &buffers[&0].textures[plan.current[&0]])?;
-    let render_passes = steps.iter().filter(|(_, work, _)| !matches!(work, Work::DepthCopy)).count() as u32 + 1;
+    let render_passes = steps.iter().filter(|(_, work, _)| !work.is_copy()).count() as u32 + 1;
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
     });
@@ -226,6 +301,11 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         let colours: Vec<(&wgpu::Texture, [f64; 4])> =
             buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene)))).collect();
         record_clears(&mut encoder, &colours, &depth0);
+        let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
+            shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();
+        shadow_clears.extend(shadow_depth_read.iter().map(|t| (t, [1.0; 4])));
+        record_clears(&mut encoder, &shadow_clears, &shadow_depth[0]);
+        record_clears(&mut encoder, &[], &shadow_depth[1]);
         submit(encoder)?;
         let mut timed = 0u32;
         let mut stamp = |timestamps: bool| {
@@ -240,7 +320,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         let mut walls = Vec::new();
         for (label, work, written) in &steps {
             let mut encoder = new_encoder();
-            let stamps = stamp(!matches!(work, Work::DepthCopy));
+            let stamps = stamp(!work.is_copy());
             match work {
                 Work::Geometry { draw, current, snapshots } => {
                     for b in *snapshots {
@@ -250,6 +330,14 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     draw.record(&mut encoder, &|b| &buffers[&b].textures[current[&b]], &depth0, stamps);
                 }
                 Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
+                Work::ShadowGeometry(draw) => {
+                    draw.record(&mut encoder, &|b| &shadow_colours[&b].0, &shadow_depth[0], stamps);
+                    depth_as_luminance[0].record(&mut encoder, &shadow_depth_read[0], None);
+                }
+                Work::ShadowDepthCopy => {
+                    encoder.copy_texture_to_texture(shadow_depth[0].as_image_copy(), shadow_depth[1].as_image_copy(), shadow_size);
+                    encoder.copy_texture_to_texture(shadow_depth_read[0].as_image_copy(), shadow_depth_read[1].as_image_copy(), shadow_size);
+                }
                 Work::Fullscreen { program, pipeline, current, into_screen } => {
                     let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
                     pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
@@ -263,8 +351,9 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 let mut images = Vec::new();
                 for (name, texture) in written {
                     let image = match texture {
-                        None => read_texture(gpu, &screen, OUT)?,
-                        Some((b, i)) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
+                        WrittenTexture::Screen => read_texture(gpu, &screen, OUT)?,
+                        WrittenTexture::Buffer(b, i) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
+                        WrittenTexture::ShadowColour(b) => read_texture(gpu, &shadow_colours[b].0, shadow_colours[b].1)?,
                     };
                     non_finite.insert(name.clone(), image.non_finite());
                     images.push((name.clone(), image));
@@ -279,10 +368,10 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             Some(q) => Some(read_pass_ms(gpu, q, render_passes)?),
             None => None,
         };
-        // The timestamps are in order of the timed passes; the depth copy has wall time only.
+        // The timestamps are in order of the timed passes; the depth copies have wall time only.
         let mut gpu_iter = gpu_ms.iter().flatten().copied();
         for (i, (_, work, _)) in steps.iter().enumerate() {
-            let gpu_time = if matches!(work, Work::DepthCopy) { None } else { gpu_iter.next() };
+            let gpu_time = if work.is_copy() { None } else { gpu_iter.next() };
             step_ms[i].push(gpu_time.unwrap_or(walls[i]));
             if last {
                 reports[i].gpu_ms = gpu_time;

@@ -10,7 +10,9 @@ use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
 use crate::mesh::{self, offsets};
-use crate::program::{Blend, BlendFactor, LoadedProgram, LoadedStage, PackResources, colour_buffer_number, texture_resources};
+use crate::program::{
+    Blend, BlendFactor, LoadedProgram, LoadedStage, PackResources, colour_buffer_number, shadow_colour_number, texture_resources,
+};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;
@@ -36,10 +38,10 @@ pub enum Source {
     FlatNormals,
     /// The specular map of a resource pack without one: zero.
     NoSpecular,
-    /// shadowtex*: a shadow map nothing was drawn into (depth 1 everywhere).
-    EmptyShadowDepth,
-    /// shadowcolor*: a shadow colour buffer nothing was drawn into (white).
-    EmptyShadowColour,
+    /// shadowtex0 (everything the shadow pass drew) or shadowtex1 (without translucents).
+    ShadowDepth(u8),
+    /// shadowcolorN.
+    ShadowColour(u8),
     /// A name OptiFine binds nothing to: transparent black.
     Unbound,
 }
@@ -50,9 +52,27 @@ pub(crate) enum SamplerNaming {
     /// The frame of our own pack ([`resolve_in_pack`]): gbuffers programs read no colour
     /// buffer and not the depth buffer they draw into.
     OwnFrame,
-    /// Any pack ([`resolve_any`]): every name OptiFine binds, with what the frame does not
-    /// draw (the shadow pass) bound empty.
+    /// Any pack ([`resolve_any`]): every name OptiFine binds.
     AnyPack,
+    /// Any pack's shadow pass ([`resolve_in_shadow_pass`]).
+    ShadowPass,
+}
+
+impl SamplerNaming {
+    /// What `name` refers to in a program of this naming (`gbuffers` or full-screen).
+    pub(crate) fn resolve(self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+        match self {
+            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
+            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
+            SamplerNaming::ShadowPass => resolve_in_shadow_pass(pack, name),
+        }
+    }
+
+    /// Whether the programs are any pack's, whose unknown uniforms, inputs and buffer blocks read
+    /// zero (ours must provide them all).
+    pub(crate) fn is_any_pack(self) -> bool {
+        self != SamplerNaming::OwnFrame
+    }
 }
 
 /// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
@@ -71,12 +91,25 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
         ("specular", true) => Source::NoSpecular,
         ("depthtex0" | "gdepthtex", false) => Source::Depth0,
         ("depthtex0" | "gdepthtex" | "depthtex1" | "depthtex2", _) => Source::Depth1,
-        ("shadow" | "watershadow" | "shadowtex0" | "shadowtex1", _) => Source::EmptyShadowDepth,
-        ("shadowcolor" | "shadowcolor0" | "shadowcolor1", _) => Source::EmptyShadowColour,
-        _ => match colour_buffer_number(name) {
-            Some(n) => Source::Color(n),
-            None => Source::Unbound,
+        // `shadow` leaves the translucents out where the pack also reads `watershadow`.
+        ("shadow", _) => Source::ShadowDepth(if pack.water_shadow() { 1 } else { 0 }),
+        ("shadowtex0" | "watershadow", _) => Source::ShadowDepth(0),
+        ("shadowtex1", _) => Source::ShadowDepth(1),
+        _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
+            (Some(n), _) => Source::Color(n),
+            (None, Some(n)) => Source::ShadowColour(n),
+            (None, None) => Source::Unbound,
         },
+    })
+}
+
+/// Resolves a sampler name in the shadow pass: as in gbuffers programs, except that the
+/// frame's colour and depth buffers are not bound there (custom textures are), and the shadow
+/// maps read as nothing drawn, since they are being drawn.
+pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<Source, String> {
+    Ok(match resolve_any(pack, name, true)? {
+        Source::Color(_) | Source::Depth0 | Source::Depth1 => Source::Unbound,
+        source => source,
     })
 }
 
@@ -119,11 +152,7 @@ pub(crate) fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProg
         .into_iter()
         .flat_map(|stage| texture_resources(&stage.interface))
         .filter_map(|(name, _)| {
-            let source = match naming {
-                SamplerNaming::OwnFrame => resolve_in_pack(pack, &name, gbuffers),
-                SamplerNaming::AnyPack => resolve_any(pack, &name, gbuffers),
-            };
-            match source {
+            match naming.resolve(pack, &name, gbuffers) {
                 Ok(Source::Color(n)) => Some(n),
                 _ => None,
             }
@@ -176,8 +205,13 @@ pub(crate) struct HarnessTextures {
     comparison: wgpu::Sampler,
     flat_normals: wgpu::TextureView,
     no_specular: wgpu::TextureView,
-    shadow_colour: wgpu::TextureView,
-    shadow_depth: wgpu::TextureView,
+    /// What a shadow colour buffer the frame lacks reads: the white of its clear.
+    white: wgpu::TextureView,
+    /// A shadow map nothing was drawn into: depth 1 everywhere, and as `sampler2D` reads it.
+    pub(crate) empty_shadow_depth: wgpu::Texture,
+    empty_shadow_read: wgpu::Texture,
+    /// The sampler of shadow maps read through `sampler2D`: linear unless `shadowtexNearest`.
+    shadow_depth_sampler: wgpu::Sampler,
     unbound: wgpu::TextureView,
     /// Per custom texture of the pack: its view and the sampler its properties ask for.
     custom: Vec<(wgpu::TextureView, wgpu::Sampler)>,
@@ -185,8 +219,8 @@ pub(crate) struct HarnessTextures {
 
 impl HarnessTextures {
     pub(crate) fn new(gpu: &Gpu, pack: &dyn PackResources) -> HarnessTextures {
-        let upload = |label: &str, (w, h, data): (u32, u32, Vec<u8>)| {
-            let t = gpu.device.create_texture_with_data(
+        let upload_texture = |label: &str, (w, h, data): (u32, u32, Vec<u8>)| {
+            gpu.device.create_texture_with_data(
                 &gpu.queue,
                 &wgpu::TextureDescriptor {
                     label: Some(label),
@@ -200,9 +234,9 @@ impl HarnessTextures {
                 },
                 wgpu::util::TextureDataOrder::LayerMajor,
                 &data,
-            );
-            view(&t)
+            )
         };
+        let upload = |label: &str, image: (u32, u32, Vec<u8>)| view(&upload_texture(label, image));
         let sampler = |filter: wgpu::FilterMode, address: wgpu::AddressMode| {
             gpu.device.create_sampler(&wgpu::SamplerDescriptor {
                 address_mode_u: address,
@@ -225,15 +259,27 @@ impl HarnessTextures {
         let one_texel = |label: &str, rgba: [u8; 4]| upload(label, (1, 1, rgba.to_vec()));
         HarnessTextures {
             custom,
-            comparison: gpu.device.create_sampler(&wgpu::SamplerDescriptor {
-                compare: Some(wgpu::CompareFunction::LessEqual),
-                ..Default::default()
-            }),
+            // `shadowHardwareFiltering` filters the comparison's results.
+            comparison: {
+                let filter = if pack.shadow_settings().hardware_filtering { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
+                gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                    compare: Some(wgpu::CompareFunction::LessEqual),
+                    mag_filter: filter,
+                    min_filter: filter,
+                    ..Default::default()
+                })
+            },
             flat_normals: one_texel("normals (flat)", [128, 128, 255, 255]),
             no_specular: one_texel("specular (none)", [0, 0, 0, 0]),
-            shadow_colour: one_texel("shadowcolor (nothing drawn)", [255; 4]),
+            white: one_texel("shadowcolor (nothing drawn)", [255; 4]),
             unbound: one_texel("a sampler OptiFine binds nothing to", [0; 4]),
-            shadow_depth: view(&empty_depth(gpu)),
+            empty_shadow_depth: empty_depth(gpu),
+            empty_shadow_read: upload_texture("shadowtex as sampler2D reads it (nothing drawn)", (1, 1, vec![255; 4])),
+            shadow_depth_sampler: if pack.shadow_settings().nearest {
+                sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::ClampToEdge)
+            } else {
+                sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::ClampToEdge)
+            },
             atlas: upload("gtexture (mock atlas)", mesh::atlas()),
             lightmap: upload("lightmap", mesh::lightmap()),
             noise: upload("noisetex", mesh::noise(256)),
@@ -338,25 +384,50 @@ pub(crate) struct BindableTextures<'a> {
     pub colors: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     pub depth0: &'a wgpu::Texture,
     pub depth1: &'a wgpu::Texture,
+    pub shadow: ShadowTextures<'a>,
+}
+
+/// The shadow maps a program reads: shadowtex0 and shadowtex1, as depth (for `sampler2DShadow`)
+/// and as `sampler2D` reads them (RGBA32F (d, d, d, 1): wgpu has no depth swizzle), and the
+/// shadow colour buffers by number (one the frame lacks reads white).
+#[derive(Clone, Copy)]
+pub(crate) struct ShadowTextures<'a> {
+    pub depth: [&'a wgpu::Texture; 2],
+    pub depth_read: [&'a wgpu::Texture; 2],
+    pub colours: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+}
+
+/// No shadow colour buffers.
+pub(crate) static NO_SHADOW_COLOURS: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> = BTreeMap::new();
+
+impl<'a> ShadowTextures<'a> {
+    /// Shadow maps nothing was drawn into.
+    pub(crate) fn empty(harness: &'a HarnessTextures) -> ShadowTextures<'a> {
+        ShadowTextures { depth: [&harness.empty_shadow_depth; 2], depth_read: [&harness.empty_shadow_read; 2], colours: &NO_SHADOW_COLOURS }
+    }
 }
 
 impl BindableTextures<'_> {
     fn resolve(&self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-        match self.naming {
-            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
-            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
-        }
+        self.naming.resolve(pack, name, gbuffers)
     }
 
-    /// The view of `source` and whether it filters.
-    fn texture(&self, gpu: &Gpu, source: Source) -> Result<(wgpu::TextureView, bool), String> {
+    /// The view of `source` and whether it filters; `compared`: for a `sampler2DShadow`.
+    fn texture(&self, gpu: &Gpu, source: Source, compared: bool) -> Result<(wgpu::TextureView, bool), String> {
         let harness = self.harness;
         Ok(match source {
             Source::FlatNormals => (harness.flat_normals.clone(), true),
             Source::NoSpecular => (harness.no_specular.clone(), true),
-            Source::EmptyShadowColour => (harness.shadow_colour.clone(), true),
+            Source::ShadowColour(n) => match self.shadow.colours.get(&n) {
+                Some((t, format)) => (view(t), gpu.filterable(*format)),
+                None => (harness.white.clone(), true),
+            },
             Source::Unbound => (harness.unbound.clone(), true),
-            Source::EmptyShadowDepth => (harness.shadow_depth.clone(), false),
+            Source::ShadowDepth(n) if compared => (view(self.shadow.depth[n as usize]), false),
+            Source::ShadowDepth(n) => {
+                let texture = self.shadow.depth_read[n as usize];
+                (view(texture), gpu.filterable(texture.format()))
+            }
             Source::Atlas => (harness.atlas.clone(), true),
             Source::Lightmap => (harness.lightmap.clone(), true),
             Source::Noise => (harness.noise.clone(), true),
@@ -372,7 +443,8 @@ impl BindableTextures<'_> {
 
     /// The sampler OptiFine gives `source`: the atlas nearest and repeating, noise linear and
     /// repeating, the lightmap linear and clamped, buffers linear where they filter, nearest
-    /// otherwise; custom textures as their properties say.
+    /// otherwise; shadow maps as `shadowtexNearest` says; custom textures as their properties
+    /// say.
     fn sampler(&self, source: Source, filters: bool) -> wgpu::Sampler {
         let harness = self.harness;
         match source {
@@ -380,10 +452,9 @@ impl BindableTextures<'_> {
             Source::Custom(i) => harness.custom[i].1.clone(),
             Source::Atlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
-            Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::EmptyShadowColour | Source::Unbound => {
-                harness.linear_clamp.clone()
-            }
-            Source::Color(_) if filters => harness.linear_clamp.clone(),
+            Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::Unbound => harness.linear_clamp.clone(),
+            Source::Color(_) | Source::ShadowColour(_) if filters => harness.linear_clamp.clone(),
+            Source::ShadowDepth(_) => harness.shadow_depth_sampler.clone(),
             _ => harness.nearest_clamp.clone(),
         }
     }
@@ -455,7 +526,7 @@ impl ProgramPipeline {
         let mut zeroed_uniforms = Vec::new();
         let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
             SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
-            SamplerNaming::AnyPack => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
+            SamplerNaming::AnyPack | SamplerNaming::ShadowPass => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
                 zeroed_uniforms.extend(zeroed);
                 block
             }),
@@ -537,7 +608,7 @@ impl ProgramPipeline {
         });
 
         let VertexInputs { known: attributes, zeroed: zeroed_attributes, zeroed_names: zeroed } =
-            vertex_attributes(&program.vertex, textures.naming == SamplerNaming::AnyPack)?;
+            vertex_attributes(&program.vertex, textures.naming.is_any_pack())?;
         let zero_vertex = (!zeroed_attributes.is_empty()).then(|| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{} inputs the harness does not provide (zero)", program.name)),
@@ -856,7 +927,7 @@ fn stage_entries(
     let module = &stage.module;
     let mut entries = Vec::new();
     // Any pack's own buffer blocks read zero: nothing the harness runs writes them.
-    if textures.naming == SamplerNaming::AnyPack {
+    if textures.naming.is_any_pack() {
         let mut layouter = naga::proc::Layouter::default();
         if layouter.update(module.to_ctx()).is_ok() {
             for (_, global) in module.global_variables.iter() {
@@ -896,8 +967,8 @@ fn stage_entries(
             {
                 // Any pack's 3D, array, cube and integer textures are custom textures or
                 // images the harness does not make: they read an empty texture of their kind.
-                match (textures.naming, empty_texture_of(gpu, *dim, *arrayed, class)) {
-                    (SamplerNaming::AnyPack, Some((view, sample_type, dimension))) => {
+                match (textures.naming.is_any_pack(), empty_texture_of(gpu, *dim, *arrayed, class)) {
+                    (true, Some((view, sample_type, dimension))) => {
                         let filters = matches!(sample_type, wgpu::TextureSampleType::Float { filterable: true });
                         resolved.insert(name.clone(), (Source::Unbound, filters));
                         entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type, dimension)));
@@ -906,9 +977,9 @@ fn stage_entries(
                 }
                 continue;
             }
-            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source)?)));
+            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source, depth_class)?)));
             match bound {
-                Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::EmptyShadowDepth) => {
+                Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::ShadowDepth(_)) => {
                     problems.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
                 }
                 Ok((source, (view, filters))) => {

@@ -32,7 +32,7 @@ use crate::uniforms::{self, Pass};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, UniformBinding,
+    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding,
     colour_buffers_read, view,
 };
 use super::geometry::{GeometryDraw, depth_attachment};
@@ -110,7 +110,14 @@ impl FrameTargets {
     }
 
     fn bindable<'a>(&'a self, harness: &'a HarnessTextures) -> BindableTextures<'a> {
-        BindableTextures { naming: SamplerNaming::OwnFrame, harness, colors: &self.colors, depth0: &self.depth0, depth1: &self.depth1 }
+        BindableTextures {
+            naming: SamplerNaming::OwnFrame,
+            harness,
+            colors: &self.colors,
+            depth0: &self.depth0,
+            depth1: &self.depth1,
+            shadow: ShadowTextures::empty(harness),
+        }
     }
 }
 

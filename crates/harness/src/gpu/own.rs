@@ -48,6 +48,20 @@ const PASSTHROUGH_WGSL: &str = r#"
 }
 "#;
 
+/// A depth texture copied as OpenGL's compatibility profile reads it through `sampler2D`
+/// (`GL_DEPTH_TEXTURE_MODE` `GL_LUMINANCE`) and as Iris swizzles its shadow maps: (d, d, d, 1).
+const DEPTH_AS_LUMINANCE_WGSL: &str = r#"
+@group(0) @binding(0) var depth: texture_depth_2d;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let d = textureLoad(depth, vec2<i32>(p.xy), 0);
+    return vec4<f32>(d, d, d, 1.0);
+}
+"#;
+
 /// The harness's own shader for geometry the pack has no program for: the vertex colour into
 /// every colour target given.
 pub(crate) struct ColourPipeline {
@@ -135,7 +149,9 @@ impl ColourPipeline {
     }
 }
 
-/// The one-tap pass-through composite over `colortex0`, the floor composite is timed against.
+/// A one-tap copy of a texture into an [`OUT`] texture of the same size: the pass-through
+/// composite over `colortex0` the floor composite is timed against, or a depth texture read
+/// as (d, d, d, 1).
 pub(crate) struct PassthroughPipeline {
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
@@ -143,16 +159,22 @@ pub(crate) struct PassthroughPipeline {
 
 impl PassthroughPipeline {
     pub(crate) fn new(gpu: &Gpu, colortex0: &wgpu::Texture) -> Result<PassthroughPipeline, HarnessError> {
+        PassthroughPipeline::with_shader(gpu, "pass-through", PASSTHROUGH_WGSL, colortex0)
+    }
+
+    /// Copies `depth` as OpenGL's compatibility profile reads a depth texture: (d, d, d, 1).
+    pub(crate) fn depth_as_luminance(gpu: &Gpu, depth: &wgpu::Texture) -> Result<PassthroughPipeline, HarnessError> {
+        PassthroughPipeline::with_shader(gpu, "depth as (d, d, d, 1)", DEPTH_AS_LUMINANCE_WGSL, depth)
+    }
+
+    fn with_shader(gpu: &Gpu, label: &str, wgsl: &str, input: &wgpu::Texture) -> Result<PassthroughPipeline, HarnessError> {
         let device = &gpu.device;
-        let module = gpu.checked("pass-through shader", || {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("pass-through"),
-                source: wgpu::ShaderSource::Wgsl(PASSTHROUGH_WGSL.into()),
-            })
+        let module = gpu.checked(&format!("{label} shader"), || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(wgsl.into()) })
         })?;
-        let pipeline = gpu.checked("pass-through pipeline", || {
+        let pipeline = gpu.checked(&format!("{label} pipeline"), || {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("pass-through"),
+                label: Some(label),
                 layout: None,
                 vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
                 primitive: Default::default(),
@@ -168,11 +190,11 @@ impl PassthroughPipeline {
                 cache: None,
             })
         })?;
-        let bind_group = gpu.checked("pass-through bind group", || {
+        let bind_group = gpu.checked(&format!("{label} bind group"), || {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("pass-through"),
+                label: Some(label),
                 layout: &pipeline.get_bind_group_layout(0),
-                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(colortex0)) }],
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(input)) }],
             })
         })?;
         Ok(PassthroughPipeline { pipeline, bind_group })
@@ -182,7 +204,7 @@ impl PassthroughPipeline {
     pub(crate) fn record(&self, encoder: &mut wgpu::CommandEncoder, out: &wgpu::Texture, timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>) {
         let v = view(out);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("pass-through composite"),
+            label: Some("one-tap copy"),
             color_attachments: &[Some(clear_attachment(&v))],
             timestamp_writes,
             ..Default::default()
