@@ -122,6 +122,9 @@ pub struct AnyPack {
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that could not be loaded, with the reason.
     pub failed: Vec<(String, String)>,
+    /// Programs `program.<name>.enabled` turns off for the chosen options: as if the pack had
+    /// none (their fallbacks draw instead).
+    pub disabled: Vec<String>,
 }
 
 impl PackResources for AnyPack {
@@ -207,7 +210,13 @@ impl AnyPack {
         let undeclared = if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs };
         let mut not_modelled = Vec::new();
         let mut failed = Vec::new();
+        let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
+        let (disabled, problems) = disabled_programs(&properties, world, files, &options);
+        not_modelled.extend(problems);
         let mut load = |name: &str| -> Option<LoadedProgram> {
+            if disabled.iter().any(|d| d == name) {
+                return None;
+            }
             let program = present.get(name)?;
             let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
             let files = ProgramFiles {
@@ -269,6 +278,7 @@ impl AnyPack {
                     && !shadow.contains_key(*name)
                     && !fullscreen.iter().any(|p| p.name == *name)
                     && !failed.iter().any(|(f, _)| f == name)
+                    && !disabled.iter().any(|d| d == name)
                     && programs::loader_of(name) == programs::Loader::OptiFine
             })
             .collect();
@@ -309,7 +319,6 @@ impl AnyPack {
         if !reads_shadow_maps && let Some(name) = shadow_program {
             not_modelled.push(format!("{name}: no program reads a shadow map, so the loader draws none"));
         }
-        let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
         let mut blends = BTreeMap::new();
         for name in gbuffers.keys().chain(shadow.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
             match blend_modes(&properties, name, loader.per_buffer_blend()) {
@@ -324,7 +333,7 @@ impl AnyPack {
         };
         let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
-        for key in ["size.buffer.", "scale.", "flip.", "alphaTest.", "program."] {
+        for key in ["size.buffer.", "scale.", "flip.", "alphaTest."] {
             let used: Vec<&str> =
                 properties.lines().map(str::trim).filter(|l| l.starts_with(key)).filter_map(|l| l.split('=').next()).map(str::trim).collect();
             if !used.is_empty() {
@@ -405,6 +414,7 @@ impl AnyPack {
             custom_textures,
             block_ids,
             properties,
+            disabled,
             not_modelled,
             failed,
         })
@@ -625,6 +635,36 @@ impl<'a> FramePlan<'a> {
     }
 }
 
+/// The programs of `world` (`world0` or `""`) that shaders.properties turns off with
+/// `program.<name>.enabled` for `options` over the declared switches' defaults, and the
+/// entries that could not be evaluated (those programs run).
+fn disabled_programs(properties: &str, world: &str, files: &PackFiles, options: &OptionSet) -> (Vec<String>, Vec<String>) {
+    let switches: BTreeMap<String, bool> = tidepack_validate::declared_options(files)
+        .into_iter()
+        .filter_map(|(name, kind)| match (options.get(&name), kind) {
+            (Some(OptionValue::Switch(on)), _) => Some((name, *on)),
+            (_, OptionKind::Switch { default }) => Some((name, default)),
+            _ => None,
+        })
+        .collect();
+    let mut disabled = Vec::new();
+    let mut problems = Vec::new();
+    for switch in custom_uniforms::program_switches(properties) {
+        let name = match switch.program.split_once('/') {
+            Some((folder, name)) if folder == world => name,
+            Some(_) => continue,
+            None if world.is_empty() => switch.program.as_str(),
+            None => continue,
+        };
+        match custom_uniforms::evaluate_switch_expression(&switch, &switches) {
+            Ok(true) => {}
+            Ok(false) => disabled.push(name.to_string()),
+            Err(e) => problems.push(format!("shaders.properties:{}: program.{}.enabled: {e} (the program runs)", switch.line, switch.program)),
+        }
+    }
+    (disabled, problems)
+}
+
 /// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`, buffers
 /// numbered by `number` (colour or shadow colour buffers).
 fn declared_clears(text: &str, number: fn(&str) -> Option<u8>) -> Vec<(u8, BufferClear)> {
@@ -682,6 +722,30 @@ mod tests {
         assert!(unknown.contains("no option NOPE") && unknown.contains("MODE"), "{unknown}");
         assert!(choice(Some("ULTRA"), &[]).option_set(&files).unwrap_err().to_string().contains("ULTRA"));
         assert!(choice(None, &[("GLOW", "maybe")]).option_set(&files).is_err());
+    }
+
+    #[test]
+    fn program_enabled_entries_turn_programs_off_for_the_chosen_options() {
+        let vertex = b"#version 120\nvoid main() { gl_Position = ftransform(); }\n".to_vec();
+        let fragment = b"#version 120\n//#define BLOOM\n#define TAA\n#ifdef BLOOM\n#endif\n#ifdef TAA\n#endif\nvoid main() { gl_FragData[0] = vec4(1.0); }\n".to_vec();
+        let properties = b"program.composite1.enabled=BLOOM || !TAA\nprogram.world0/composite.enabled=false\nprogram.composite2.enabled=NOPE\n".to_vec();
+        let mut files = vec![("shaders.properties".to_string(), properties)];
+        for name in ["composite", "composite1", "composite2"] {
+            files.push((format!("{name}.vsh"), vertex.clone()));
+            files.push((format!("{name}.fsh"), fragment.clone()));
+        }
+        let files = tidepack_validate::input::pack_from_memory("test/shaders/", files);
+        let names = |choice: &OptionChoice| {
+            let pack = AnyPack::from_files(&files, Loader::default(), choice).unwrap();
+            (pack.fullscreen.iter().map(|p| p.name.clone()).collect::<Vec<_>>(), pack.not_modelled)
+        };
+        // BLOOM is off and TAA on by default: composite1 is off; the world0/ entry is for
+        // another folder; NOPE is no option, so composite2 runs and the entry is named.
+        let (running, not_modelled) = names(&OptionChoice::default());
+        assert_eq!(running, ["composite", "composite2"]);
+        assert!(not_modelled.iter().any(|l| l.contains("shaders.properties:3: program.composite2.enabled") && l.contains("NOPE")), "{not_modelled:?}");
+        let bloom = OptionChoice { profile: None, options: vec![("BLOOM".into(), "on".into())] };
+        assert_eq!(names(&bloom).0, ["composite", "composite1", "composite2"]);
     }
 
     #[test]

@@ -223,6 +223,60 @@ pub fn definitions(properties: &str) -> (Vec<Definition>, Vec<Problem>) {
     (defs, problems)
 }
 
+/// A `program.<program>.enabled=<expression>` entry of shaders.properties: the program (which
+/// may start with its world folder, `world0/composite2`) runs only where the expression of
+/// switch options holds; a disabled program is as if the pack had none.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProgramSwitch {
+    pub program: String,
+    pub expression: String,
+    /// 1-based line of shaders.properties where the entry starts.
+    pub line: usize,
+}
+
+/// Every `program.<program>.enabled` entry of `properties`, in file order (a key given twice
+/// keeps the later text, as for uniforms).
+pub fn program_switches(properties: &str) -> Vec<ProgramSwitch> {
+    let mut switches: Vec<ProgramSwitch> = Vec::new();
+    for (line, text) in logical_lines(properties) {
+        let (key, expression) = split_key_value(&text);
+        let Some(program) = key.strip_prefix("program.").and_then(|rest| rest.strip_suffix(".enabled")) else { continue };
+        let switch = ProgramSwitch { program: program.to_string(), expression, line };
+        match switches.iter_mut().find(|s| s.program == program) {
+            Some(earlier) => *earlier = switch,
+            None => switches.push(switch),
+        }
+    }
+    switches
+}
+
+/// Evaluates a boolean expression of switch options (`(BLOOM || SSAO) && !GODRAYS`) with the
+/// language of custom uniforms; `options` gives each switch's state. An unknown name or a
+/// result that is not a boolean is an error naming it.
+pub fn evaluate_switch_expression(switch: &ProgramSwitch, options: &BTreeMap<String, bool>) -> std::result::Result<bool, String> {
+    let current = Definition {
+        role: Role::Variable,
+        ty: DeclaredType::Bool,
+        name: String::new(),
+        key: format!("program.{}.enabled", switch.program),
+        expression: switch.expression.clone(),
+        line: switch.line,
+    };
+    let defined: BTreeMap<String, Val> = options.iter().map(|(name, on)| (name.clone(), Val::Bool(*on))).collect();
+    let standard = BTreeMap::new();
+    let failed = BTreeMap::new();
+    let lines_of = BTreeMap::new();
+    let mut rng = SplitMix64::seed_from_u64(RANDOM_SEED);
+    let value = parse(&switch.expression).and_then(|expr| {
+        let mut cx = Context { standard: &standard, defined: &defined, failed: &failed, lines_of: &lines_of, current: &current, rng: &mut rng };
+        cx.eval(&expr)
+    });
+    match value.map_err(|e| e.describe())? {
+        Val::Bool(on) => Ok(on),
+        other => Err(format!("the expression gives a {}, not a boolean", other.type_name())),
+    }
+}
+
 fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
     matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_') && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
@@ -1143,6 +1197,21 @@ fn convert(d: &Definition, v: Val) -> std::result::Result<(Val, Value), String> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn program_switches_evaluate_switch_options() {
+        let properties = "program.world0/composite4.enabled=DOF || TAA\nprogram.deferred.enabled = (BLOOM && !SSAO)\nuniform.float.x = 1\n";
+        let switches = program_switches(properties);
+        assert_eq!(switches.iter().map(|s| (s.program.as_str(), s.line)).collect::<Vec<_>>(), [("world0/composite4", 1), ("deferred", 2)]);
+        let options: BTreeMap<String, bool> =
+            [("DOF", false), ("TAA", true), ("BLOOM", true), ("SSAO", true)].into_iter().map(|(n, v)| (n.to_string(), v)).collect();
+        assert_eq!(evaluate_switch_expression(&switches[0], &options), Ok(true));
+        assert_eq!(evaluate_switch_expression(&switches[1], &options), Ok(false));
+        let unknown = ProgramSwitch { program: "composite".into(), expression: "GODRAYS".into(), line: 3 };
+        assert!(evaluate_switch_expression(&unknown, &options).unwrap_err().contains("GODRAYS"));
+        let number = ProgramSwitch { program: "composite".into(), expression: "1 + 2".into(), line: 4 };
+        assert!(evaluate_switch_expression(&number, &options).unwrap_err().contains("not a boolean"));
+    }
     use glam::{DMat4, DVec3, DVec4};
 
     fn standard() -> BTreeMap<String, Value> {

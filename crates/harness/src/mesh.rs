@@ -31,6 +31,11 @@ pub struct PackVertex {
     pub entity: [f32; 4],
     /// vaUV2 of the 1.17+ core profile: the lightmap coordinates of `uv1` as integers.
     pub lightmap: [i32; 2],
+    /// at_tangent: the direction of increasing atlas u on the face, w the handedness of
+    /// (tangent, bitangent, normal).
+    pub tangent: [f32; 4],
+    /// mc_midTexCoord: the centre of the face's sprite in the atlas (w = 1).
+    pub mid_uv: [f32; 4],
 }
 
 /// Byte offsets of the attributes of [`PackVertex`].
@@ -42,7 +47,9 @@ pub mod offsets {
     pub const UV1: u64 = 60;
     pub const ENTITY: u64 = 76;
     pub const LIGHTMAP: u64 = 92;
-    pub const STRIDE: u64 = 100;
+    pub const TANGENT: u64 = 100;
+    pub const MID_UV: u64 = 116;
+    pub const STRIDE: u64 = 132;
 }
 
 /// Sprites of the mock block atlas (`gtexture`): uv rectangles inset from the sprite edges so
@@ -105,6 +112,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
                 uv1: LIGHT,
                 entity: [-1.0, -1.0, 0.0, 0.0],
                 lightmap: LIGHT_INT,
+                ..Default::default()
             });
         }
     };
@@ -194,8 +202,12 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
                 uv1: LIGHT,
                 entity: [-1.0, -1.0, 0.0, 0.0],
                 lightmap: LIGHT_INT,
+                ..Default::default()
             });
         }
+    }
+    for vertices in [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky].into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
+        add_tangents_and_sprite_centres(vertices);
     }
     mesh
 }
@@ -218,10 +230,40 @@ fn back_to_front(mut quads: Vec<Quad>, camera: DVec3, rel: &dyn Fn(DVec3) -> [f3
                 uv1: LIGHT,
                 entity: q.entity,
                 lightmap: LIGHT_INT,
+                ..Default::default()
             });
         }
     }
     vertices
+}
+
+/// Fills each triangle's `tangent` (from how its atlas coordinates run over it, made
+/// perpendicular to the normal; any perpendicular where they do not run) and `mid_uv` (the
+/// centre of the triangle's coordinate range, which for half a quad is the sprite's).
+fn add_tangents_and_sprite_centres(vertices: &mut [PackVertex]) {
+    for triangle in vertices.chunks_exact_mut(3) {
+        let p = |v: &PackVertex| glam::Vec3::new(v.position[0], v.position[1], v.position[2]);
+        let uv = |v: &PackVertex| glam::Vec2::new(v.uv0[0], v.uv0[1]);
+        let normal = glam::Vec3::from(triangle[0].normal).normalize_or(glam::Vec3::Y);
+        let (e1, e2) = (p(&triangle[1]) - p(&triangle[0]), p(&triangle[2]) - p(&triangle[0]));
+        let (d1, d2) = (uv(&triangle[1]) - uv(&triangle[0]), uv(&triangle[2]) - uv(&triangle[0]));
+        let det = d1.x * d2.y - d2.x * d1.y;
+        let (tangent, handedness) = if det.abs() > 1e-12 {
+            let t = (e1 * d2.y - e2 * d1.y) / det;
+            let b = (e2 * d1.x - e1 * d2.x) / det;
+            let t = (t - normal * normal.dot(t)).normalize_or(normal.any_orthonormal_vector());
+            (t, if normal.cross(t).dot(b) < 0.0 { -1.0 } else { 1.0 })
+        } else {
+            (normal.any_orthonormal_vector(), 1.0)
+        };
+        let lo = uv(&triangle[0]).min(uv(&triangle[1])).min(uv(&triangle[2]));
+        let hi = uv(&triangle[0]).max(uv(&triangle[1])).max(uv(&triangle[2]));
+        let mid = (lo + hi) * 0.5;
+        for v in triangle {
+            v.tangent = [tangent.x, tangent.y, tangent.z, handedness];
+            v.mid_uv = [mid.x, mid.y, 0.0, 1.0];
+        }
+    }
 }
 
 /// The texture coordinates of corner `i` of a quad (corners in the order of [`box_faces`]).
@@ -286,4 +328,33 @@ pub fn noise(size: u32) -> (u32, u32, Vec<u8>) {
         data.push(255);
     }
     (size, size, data)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct NoIds;
+    impl BlockIds for NoIds {
+        fn id_of(&self, _: &str) -> i32 {
+            -1
+        }
+    }
+
+    #[test]
+    fn faces_carry_a_unit_tangent_along_the_atlas_u_and_their_sprite_centre() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml");
+        let mesh = build(&Scene::load(&path).unwrap(), &NoIds);
+        let white_centre = [(WHITE_SPRITE[0] + WHITE_SPRITE[2]) / 2.0, (WHITE_SPRITE[1] + WHITE_SPRITE[3]) / 2.0];
+        let water_centre = [(WATER_SPRITE[0] + WATER_SPRITE[2]) / 2.0, (WATER_SPRITE[1] + WATER_SPRITE[3]) / 2.0];
+        for v in mesh.terrain.iter().chain(&mesh.translucent) {
+            let t = glam::Vec3::new(v.tangent[0], v.tangent[1], v.tangent[2]);
+            assert!((t.length() - 1.0).abs() < 1e-5 && t.dot(glam::Vec3::from(v.normal)).abs() < 1e-5, "{v:?}");
+            assert!(v.tangent[3].abs() == 1.0);
+            assert!([white_centre, water_centre].iter().any(|c| (v.mid_uv[0] - c[0]).abs() < 1e-6 && (v.mid_uv[1] - c[1]).abs() < 1e-6), "{v:?}");
+        }
+        // The water surface: u runs along +x over each cell (sprite_corner's corner order).
+        let water = mesh.translucent.iter().find(|v| v.normal == [0.0, 1.0, 0.0]).unwrap();
+        assert_eq!(water.tangent, [1.0, 0.0, 0.0, water.tangent[3]]);
+    }
 }

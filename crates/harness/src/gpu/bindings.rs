@@ -823,6 +823,8 @@ pub fn fullscreen_quad() -> Vec<mesh::PackVertex> {
         uv1: [0.0, 0.0, 0.0, 1.0],
         entity: [-1.0, -1.0, 0.0, 0.0],
         lightmap: [0, 0],
+        tangent: [1.0, 0.0, 0.0, 1.0],
+        mid_uv: [0.5, 0.5, 0.0, 1.0],
     };
     [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().map(|&(x, y)| corner(x, y)).collect()
 }
@@ -858,6 +860,8 @@ pub fn vertex_attribute_source(name: &str) -> Option<(wgpu::VertexFormat, u64)> 
         "gl_MultiTexCoord0" => (wgpu::VertexFormat::Float32x4, offsets::UV0),
         "gl_MultiTexCoord1" => (wgpu::VertexFormat::Float32x4, offsets::UV1),
         "mc_Entity" => (wgpu::VertexFormat::Float32x4, offsets::ENTITY),
+        "at_tangent" => (wgpu::VertexFormat::Float32x4, offsets::TANGENT),
+        "mc_midTexCoord" => (wgpu::VertexFormat::Float32x4, offsets::MID_UV),
         // The 1.17+ core profile's names for the same data (positions relative to the chunk
         // at chunkOffset, which is the origin of the harness's camera-relative vertices).
         "vaPosition" => (wgpu::VertexFormat::Float32x3, offsets::POSITION),
