@@ -52,11 +52,31 @@ pub mod offsets {
     pub const STRIDE: u64 = 132;
 }
 
-/// Sprites of the mock block atlas (`gtexture`): uv rectangles inset from the sprite edges so
-/// nearest sampling never reaches a neighbour. Glass and terrain take their colour from the
-/// vertex colour over the opaque white sprite.
-pub const WATER_SPRITE: [f32; 4] = [0.0625, 0.125, 0.4375, 0.875];
-pub const WHITE_SPRITE: [f32; 4] = [0.5625, 0.125, 0.9375, 0.875];
+/// The generated block atlas (`gtexture`): a row of 16×16 sprites of our own, no game assets.
+const SPRITE: u32 = 16;
+const ATLAS_SPRITES: u32 = 8;
+
+/// The uv rectangle of sprite `index`, inset two texels from its edges so nearest sampling
+/// never reaches a neighbour.
+const fn sprite_rect(index: u32) -> [f32; 4] {
+    let width = (SPRITE * ATLAS_SPRITES) as f32;
+    let left = (index * SPRITE) as f32;
+    [(left + 2.0) / width, 2.0 / SPRITE as f32, (left + SPRITE as f32 - 2.0) / width, (SPRITE - 2) as f32 / SPRITE as f32]
+}
+
+/// Water: flat, translucent grey (the pack's colour comes from the vertex tint).
+pub const WATER_SPRITE: [f32; 4] = sprite_rect(0);
+/// Opaque white: glass panes and terrain without a block take the vertex colour as it is.
+pub const WHITE_SPRITE: [f32; 4] = sprite_rect(1);
+
+/// The blocks a scene's terrain can be made of, and their sprites in the atlas.
+pub const BLOCK_SPRITES: [(&str, u32); 5] =
+    [("minecraft:stone", 2), ("minecraft:grass_block", 3), ("minecraft:sand", 4), ("minecraft:dirt", 5), ("minecraft:oak_leaves", 6)];
+
+/// The atlas rectangle of `block`'s sprite.
+pub fn block_sprite(block: &str) -> Option<[f32; 4]> {
+    BLOCK_SPRITES.iter().find(|(name, _)| *name == block).map(|(_, index)| sprite_rect(*index))
+}
 
 /// Lightmap coordinates of everything in the scenes: no block light, full sky light.
 const LIGHT: [f32; 4] = [0.0, 240.0, 0.0, 1.0];
@@ -100,17 +120,21 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
     let mut mesh = SceneMesh::default();
 
     // Opaque terrain, lit once here (ambient + sun) so both renderers get identical colours.
-    let mut terrain_quad = |corners: [DVec3; 4], normal: DVec3, color: [f64; 3]| {
+    let mut terrain_quad = |corners: [DVec3; 4], normal: DVec3, color: [f64; 3], block: &Option<String>| {
         let light = 0.45 + 0.55 * normal.dot(sun).max(0.0);
         let c = [(color[0] * light) as f32, (color[1] * light) as f32, (color[2] * light) as f32, 1.0];
+        let (sprite, id) = match block {
+            Some(block) => (block_sprite(block).unwrap_or(WHITE_SPRITE), ids.id_of(block) as f32),
+            None => (WHITE_SPRITE, -1.0),
+        };
         for i in [0, 1, 2, 0, 2, 3] {
             mesh.terrain.push(PackVertex {
                 position: rel(corners[i]),
                 color: c,
                 normal: [normal.x as f32, normal.y as f32, normal.z as f32],
-                uv0: sprite_corner(WHITE_SPRITE, i),
+                uv0: sprite_corner(sprite, i),
                 uv1: LIGHT,
-                entity: [-1.0, -1.0, 0.0, 0.0],
+                entity: [id, -1.0, 0.0, 0.0],
                 lightmap: LIGHT_INT,
                 ..Default::default()
             });
@@ -129,13 +153,13 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
                 let shade = if (i + k) % 2 == 0 { 1.0 } else { 0.86 };
                 let color = [g.color[0] * shade, g.color[1] * shade, g.color[2] * shade];
                 let p = |x: f64, z: f64| DVec3::new(x, height(x, z), z);
-                terrain_quad([p(x0, z0), p(x0, z1), p(x1, z1), p(x1, z0)], normal, color);
+                terrain_quad([p(x0, z0), p(x0, z1), p(x1, z1), p(x1, z0)], normal, color, &g.block);
             }
         }
     }
     for b in &scene.terrain.boxes {
         for (corners, normal) in box_faces(DVec3::from(b.min), DVec3::from(b.max)) {
-            terrain_quad(corners, normal, b.color);
+            terrain_quad(corners, normal, b.color, &b.block);
         }
     }
 
@@ -287,18 +311,41 @@ fn box_faces(min: DVec3, max: DVec3) -> Vec<([DVec3; 4], DVec3)> {
     ]
 }
 
-/// The mock block atlas: 32×16 RGBA8, a water sprite (left) and a glass sprite (right), each
-/// one uniform colour (nearest sampling of a pattern would make the two renderers' texel
-/// choices at sprite edges matter).
+/// The block atlas: a row of 16×16 RGBA8 sprites from a fixed seed. Water and white are one
+/// uniform colour each (our own pack's frames and goldens draw with them, and nearest sampling
+/// of a pattern would make the two renderers' texel choices at sprite edges matter there); the
+/// blocks of [`BLOCK_SPRITES`] are noisy, leaves with transparent holes.
 pub fn atlas() -> (u32, u32, Vec<u8>) {
-    let (w, h) = (32u32, 16u32);
-    let mut data = Vec::with_capacity((w * h * 4) as usize);
-    for _y in 0..h {
-        for x in 0..w {
-            data.extend_from_slice(if x < 16 { &[204, 204, 204, 184] } else { &[255, 255, 255, 255] });
+    let (w, h) = (SPRITE * ATLAS_SPRITES, SPRITE);
+    let mut rng = SplitMix64::seed_from_u64(0xA71A5);
+    // Per sprite: base colour, texel-to-texel variation, and the share of transparent texels.
+    let sprites: [([f64; 3], f64, f64); ATLAS_SPRITES as usize] = [
+        ([0.8, 0.8, 0.8], 0.0, 0.0),     // water (alpha 184 below)
+        ([1.0, 1.0, 1.0], 0.0, 0.0),     // white
+        ([0.5, 0.5, 0.5], 0.25, 0.0),    // stone
+        ([0.36, 0.6, 0.25], 0.2, 0.0),   // grass
+        ([0.86, 0.81, 0.6], 0.12, 0.0),  // sand
+        ([0.52, 0.37, 0.26], 0.2, 0.0),  // dirt
+        ([0.3, 0.55, 0.2], 0.3, 0.3),    // oak leaves: cutout holes
+        ([1.0, 1.0, 1.0], 0.0, 0.0),     // unused
+    ];
+    let mut texels = vec![[0u8; 4]; (w * h) as usize];
+    for (index, (base, variation, holes)) in sprites.iter().enumerate() {
+        for y in 0..SPRITE {
+            for x in 0..SPRITE {
+                let shade = 1.0 - variation * (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+                let hole = (rng.next_u64() >> 11) as f64 / ((1u64 << 53) as f64) < *holes;
+                let alpha = match index {
+                    0 => 184,
+                    _ if hole => 0,
+                    _ => 255,
+                };
+                let texel = base.map(|c| (c * shade * 255.0).round() as u8);
+                texels[(y * w + index as u32 * SPRITE + x) as usize] = [texel[0], texel[1], texel[2], alpha];
+            }
         }
     }
-    (w, h, data)
+    (w, h, texels.concat())
 }
 
 /// The mock lightmap: 16×16 RGBA8, u = block light (warm), v = sky light.

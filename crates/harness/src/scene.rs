@@ -141,8 +141,13 @@ pub struct Ground {
     /// Rise per block along x and z (a beach).
     #[serde(default, deserialize_with = "exact")]
     pub slope: [f64; 2],
+    /// Tint, multiplying the block's sprite.
     #[serde(deserialize_with = "exact")]
     pub color: [f64; 3],
+    /// A block of the harness's atlas (`minecraft:sand`, …: [`crate::mesh::BLOCK_SPRITES`]),
+    /// textured and given its id from the pack's block.properties; without one, plain colour.
+    #[serde(default)]
+    pub block: Option<String>,
 }
 
 /// An axis-aligned opaque box (walls, pool sides, pillars).
@@ -153,8 +158,12 @@ pub struct BoxShape {
     pub min: [f64; 3],
     #[serde(deserialize_with = "exact")]
     pub max: [f64; 3],
+    /// Tint, multiplying the block's sprite.
     #[serde(deserialize_with = "exact")]
     pub color: [f64; 3],
+    /// As for [`Ground::block`].
+    #[serde(default)]
+    pub block: Option<String>,
 }
 
 /// A stained-glass pane: a thin box drawn with gbuffers_water.
@@ -280,6 +289,13 @@ impl Scene {
         if DVec3::from(self.sky.sun_direction).length() < 1e-9 {
             return Err("sky.sun_direction must not be zero".into());
         }
+        let blocks = self.terrain.ground.iter().map(|g| &g.block).chain(self.terrain.boxes.iter().map(|b| &b.block));
+        for block in blocks.flatten() {
+            if crate::mesh::block_sprite(block).is_none() {
+                let known: Vec<&str> = crate::mesh::BLOCK_SPRITES.iter().map(|(name, _)| *name).collect();
+                return Err(format!("block {block} is not in the harness's atlas; it has {}", known.join(", ")));
+            }
+        }
         Ok(())
     }
 
@@ -361,6 +377,14 @@ mod tests {
             let error = load_text(&text).unwrap_err();
             assert!(error.contains(field) && error.contains("edited.toml"), "{to}: {error}");
         }
+    }
+
+    #[test]
+    fn terrain_blocks_must_be_in_the_atlas() {
+        let shore = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/blocks/shore.toml")).unwrap();
+        assert!(load_text(&shore).is_ok());
+        let error = load_text(&shore.replacen("minecraft:stone", "minecraft:bedrock", 1)).unwrap_err();
+        assert!(error.contains("minecraft:bedrock") && error.contains("minecraft:sand") && error.contains("edited.toml"), "{error}");
     }
 
     #[test]

@@ -79,12 +79,14 @@ fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
     for name in ["flip_chain", "core_profile", "shadow_map"] {
-        // A depth comparison whose reference lands on a shadow-map texel's own depth flips on
-        // the last bit of the shadow coordinate: shadow_map has one such pixel per scene.
-        let allowed = if name == "shadow_map" { 1 } else { 0 };
         for loader in [Loader::default(), Loader::Iris] {
             let pack = pack(name, loader);
-            for scene_name in ["case4_above_near", "rain_over_lake"] {
+            for scene_name in ["case4_above_near", "rain_over_lake", "blocks/shore"] {
+                // Where a lookup's result jumps, the last bit of its coordinate decides: a depth
+                // comparison whose reference lands on a shadow-map texel's own depth, a nearest
+                // texel on a sprite's texel edge (shore's textured blocks). At most two such
+                // pixels; everything else within 1/255.
+                let allowed = if name == "shadow_map" || scene_name == "blocks/shore" { 2 } else { 0 };
                 let scene = scene(scene_name);
                 let mesh = mesh::build(&scene, &pack);
                 let wgpu = render_any(gpu(), &pack, &scene, &mesh, 1).unwrap_or_else(|e| panic!("{e}"));
