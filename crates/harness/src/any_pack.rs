@@ -23,15 +23,19 @@ use crate::{HarnessError, custom_uniforms};
 use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read};
 use crate::gpu::frame::overlay_phase;
 use crate::loader::{Loader, Phase};
-use crate::mesh::{BlockIds, PackVertex, SceneMesh};
+use crate::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
-    self, Blend, BufferFormat, CustomTexture, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, ProgramFiles, TERRAIN_CHAIN,
+    self, Blend, BlendFactor, BufferFormat, CustomTexture, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, ProgramFiles, TERRAIN_CHAIN,
     UndeclaredTargets, WATER_CHAIN, blend_modes, colour_buffer_number, custom_textures, declared_format_names, shadow_colour_number,
 };
 use crate::scene::{OverlayKind, Scene};
 
 /// gbuffers_skybasic and its fallbacks.
 const SKY_CHAIN: [&str; 2] = ["gbuffers_skybasic", "gbuffers_basic"];
+/// gbuffers_skytextured (the sun and the moon) and its fallbacks.
+const SKY_TEXTURED_CHAIN: [&str; 3] = ["gbuffers_skytextured", "gbuffers_textured", "gbuffers_basic"];
+/// The game's blending of the sun and the moon onto the sky: added, faded by alpha.
+const CELESTIAL_BLEND: Blend = Blend::Factors([BlendFactor::SrcAlpha, BlendFactor::One, BlendFactor::One, BlendFactor::Zero]);
 
 /// The full-screen programs OptiFine runs, by family, in frame order within each family.
 const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
@@ -242,6 +246,7 @@ impl AnyPack {
         let mut gbuffers = BTreeMap::new();
         let mut wanted: Vec<&str> = program::TERRAIN_CHAIN.to_vec();
         wanted.extend(SKY_CHAIN);
+        wanted.extend(SKY_TEXTURED_CHAIN);
         wanted.extend(program::WATER_CHAIN);
         for kind in OverlayKind::ALL {
             wanted.extend(loader.program_chain(kind));
@@ -286,7 +291,6 @@ impl AnyPack {
             let why = match name {
                 n if n.starts_with("shadowcomp") => "not run: the shadow colour buffers stay as the shadow pass drew them",
                 n if n.starts_with("shadow_") => "the loader draws the shadow pass with another program",
-                "gbuffers_skytextured" => "the scenes have no sun, moon or sky texture",
                 _ => "the scenes hold no geometry this program draws",
             };
             not_modelled.push(format!("{name}: {why}"));
@@ -308,6 +312,9 @@ impl AnyPack {
                     }
                 }
             }
+        }
+        if !SKY_TEXTURED_CHAIN.iter().any(|name| gbuffers.contains_key(*name)) {
+            not_modelled.push("the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn".into());
         }
         let shadow_program = loader.shadow_chain(false).iter().find(|name| shadow.contains_key(**name));
         let shadow_pass = reads_shadow_maps && shadow_program.is_some();
@@ -485,6 +492,10 @@ pub enum PlannedWork<'a> {
         /// Colour buffers the program samples: copied just before the draw and read from the
         /// copy (GL leaves reading a buffer being drawn into undefined).
         snapshots: BTreeSet<u8>,
+        /// What `gtexture` holds.
+        sprites: Sprites,
+        /// Whose uniform values: gbuffers, or the sun and moon's.
+        pass: Pass,
     },
     /// depthtex0 to depthtex1.
     DepthCopy,
@@ -570,15 +581,19 @@ impl<'a> FramePlan<'a> {
             plan.fullscreen(program, false);
         }
         // The sky: the game's own colour where the pack has no skybasic program.
-        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky");
+        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks);
+        if let Some(program) = pack.resolve(&SKY_TEXTURED_CHAIN) {
+            plan.geometry(pack, Some(program), &mesh.sun, CELESTIAL_BLEND, false, "sun", Sprites::Sun);
+            plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon);
+        }
         plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
-        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain");
+        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks);
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         for program in family("deferred") {
             plan.fullscreen(program, false);
         }
-        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water");
+        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks);
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
         for program in family("composite") {
             plan.fullscreen(program, false);
@@ -593,6 +608,7 @@ impl<'a> FramePlan<'a> {
         plan
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn geometry(
         &mut self,
         pack: &'a AnyPack,
@@ -601,11 +617,14 @@ impl<'a> FramePlan<'a> {
         default_blend: Blend,
         depth_write: bool,
         what: &str,
+        sprites: Sprites,
     ) {
         let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::AnyPack, true)).unwrap_or_default();
+        let pass = if sprites == Sprites::Blocks { Pass::Gbuffers } else { Pass::Celestial };
+        let current = self.current.clone();
         self.steps.push(PlannedStep {
             label: format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str())),
-            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current: self.current.clone(), snapshots },
+            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass },
         });
     }
 
@@ -619,7 +638,8 @@ impl<'a> FramePlan<'a> {
         for (kind, vertices) in &mesh.overlay {
             if overlay_phase(pack.loader, scene, *kind) == phase {
                 let program = pack.resolve(pack.loader.program_chain(*kind));
-                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, crate::loader::writes_depth(*kind), &format!("{kind:?}"));
+                let depth_write = crate::loader::writes_depth(*kind);
+                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, depth_write, &format!("{kind:?}"), Sprites::Blocks);
             }
         }
     }

@@ -121,6 +121,7 @@ impl CompositeOnly {
             depth0: &depth0,
             depth1: &depth1,
             shadow: ShadowTextures::empty(&harness_textures),
+            sprites: crate::mesh::Sprites::Blocks,
         };
         let composite = gpu.checked("composite_only", || {
             ProgramPipeline::new(gpu, pack, &pack.composite, values, PassKind::Fullscreen { width, height }, &bindable, binding)

@@ -26,7 +26,7 @@ use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp, vertex_attribute_source};
 use crate::images::FloatImage;
 use crate::loader::{self, MissingProgramDraws, Phase};
-use crate::mesh::{self, PackVertex, SceneMesh, offsets};
+use crate::mesh::{self, PackVertex, SceneMesh, Sprites, offsets};
 use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage, PackResources};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
@@ -113,6 +113,8 @@ fn gl_factor(f: BlendFactor) -> u32 {
 /// for wgpu.
 pub(crate) struct GlHarnessTextures {
     atlas: glow::Texture,
+    sun: glow::Texture,
+    moon: glow::Texture,
     lightmap: glow::Texture,
     noise: glow::Texture,
     custom: Vec<glow::Texture>,
@@ -149,6 +151,8 @@ impl GlHarnessTextures {
         };
         Ok(GlHarnessTextures {
             atlas: rgba8(mesh::atlas(), false, true)?,
+            sun: rgba8(mesh::sun(), false, true)?,
+            moon: rgba8(mesh::moon(), false, true)?,
             lightmap: rgba8(mesh::lightmap(), true, false)?,
             noise: rgba8(mesh::noise(256), true, true)?,
             custom: pack.custom_textures().iter().map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp)).collect::<Result<_, _>>()?,
@@ -169,6 +173,8 @@ impl GlHarnessTextures {
     pub(crate) unsafe fn delete(&self, gl: &glow::Context) {
         let own = [
             self.atlas,
+            self.sun,
+            self.moon,
             self.lightmap,
             self.noise,
             self.flat_normals,
@@ -197,6 +203,8 @@ pub(crate) struct Textures<'a> {
     pub shadow_depth: [glow::Texture; 2],
     /// The shadow colour buffers by number (one not here reads white).
     pub shadow_colours: BTreeMap<u8, glow::Texture>,
+    /// What `gtexture` holds.
+    pub sprites: Sprites,
 }
 
 /// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
@@ -260,6 +268,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             depth1: depth_texture()?,
             shadow_depth: [harness.empty_shadow_depth; 2],
             shadow_colours: BTreeMap::new(),
+            sprites: Sprites::Blocks,
         };
         let out = make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
 
@@ -691,7 +700,11 @@ unsafe fn set_uniforms(
                 let resolved = textures.naming.resolve(pack, &name, gbuffers);
                 let harness = textures.harness;
                 let texture = match resolved {
-                    Ok(Source::Atlas) => harness.atlas,
+                    Ok(Source::Atlas) => match textures.sprites {
+                        Sprites::Blocks => harness.atlas,
+                        Sprites::Sun => harness.sun,
+                        Sprites::Moon => harness.moon,
+                    },
                     Ok(Source::Lightmap) => harness.lightmap,
                     Ok(Source::Noise) => harness.noise,
                     Ok(Source::Custom(i)) => harness.custom[i],

@@ -22,7 +22,7 @@ use crate::gl::{
 use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::fullscreen_quad;
 use crate::images::FloatImage;
-use crate::mesh::{PackVertex, SceneMesh};
+use crate::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
 use crate::uniforms::Pass;
@@ -126,6 +126,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         let (gbuffers_values, _) = pack.uniform_values(scene, Pass::Gbuffers);
         let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
         let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
+        let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
         let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, textures: &Textures, vertices: &[PackVertex]| {
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
@@ -134,6 +135,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                 Pass::Gbuffers => &gbuffers_values,
                 Pass::Fullscreen => &fullscreen_values,
                 Pass::Shadow => &shadow_values,
+                Pass::Celestial => &celestial_values,
             };
             let drawn = draw_program(ctx, pack, program, compiled, pass, values, textures, vertices);
             if own_range && let Some(clip_control) = lg.clip_control {
@@ -151,7 +153,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         for step in &plan.steps {
             let mut written = Vec::new();
             match &step.work {
-                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots: read_buffers } => {
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots: read_buffers, sprites, pass } => {
                     for b in read_buffers {
                         let (textures, snapshot, _) = &buffers[b];
                         gl.copy_image_sub_data(textures[current[b]], glow::TEXTURE_2D, 0, 0, 0, 0, *snapshot, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
@@ -179,9 +181,10 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                                 depth1,
                                 shadow_depth,
                                 shadow_colours: shadow_colours.clone(),
+                                sprites: *sprites,
                             };
                             let (compiled, own_range) = build(program)?;
-                            draw(program, &compiled, own_range, Pass::Gbuffers, &textures, vertices)?;
+                            draw(program, &compiled, own_range, *pass, &textures, vertices)?;
                             compiled.delete(ctx);
                         }
                         None => draw_own_colour(ctx, pack.loader.missing_program_draws(), DepthMapping::Harness, scene, vertices)?,
@@ -211,6 +214,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         depth1,
                         shadow_depth: [harness.empty_shadow_depth; 2],
                         shadow_colours: BTreeMap::new(),
+                        sprites: Sprites::Blocks,
                     };
                     let (compiled, own_range) = build(program)?;
                     draw(program, &compiled, own_range, Pass::Shadow, &textures, vertices)?;
@@ -243,6 +247,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         depth1,
                         shadow_depth,
                         shadow_colours: shadow_colours.clone(),
+                        sprites: Sprites::Blocks,
                     };
                     let (compiled, own_range) = build(program)?;
                     draw(program, &compiled, own_range, Pass::Fullscreen, &textures, &quad)?;

@@ -11,6 +11,7 @@ use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
 use crate::scene::{OverlayKind, Scene};
+use crate::shadow::SunPath;
 
 /// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
 /// can ask for is here (the pipeline binds those the shader declares).
@@ -82,6 +83,15 @@ pub fn block_sprite(block: &str) -> Option<[f32; 4]> {
 const LIGHT: [f32; 4] = [0.0, 240.0, 0.0, 1.0];
 const LIGHT_INT: [i32; 2] = [0, 240];
 
+/// What `gtexture` holds for a draw: the block atlas, or the sun's or the moon's texture.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sprites {
+    #[default]
+    Blocks,
+    Sun,
+    Moon,
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct SceneMesh {
     /// Triangles; the colour is lit once here (ambient and sun).
@@ -93,6 +103,11 @@ pub struct SceneMesh {
     /// The sky as the game draws it for gbuffers_skybasic: a box around the camera in the sky
     /// colour, inside the far plane, drawn before the terrain without writing depth.
     pub sky: Vec<PackVertex>,
+    /// The sun and the moon as the game draws them for gbuffers_skytextured: a quad each, 100
+    /// blocks out on the sun's path, textured with [`sun`] and [`moon`] over their whole
+    /// texture, faded by rain.
+    pub sun: Vec<PackVertex>,
+    pub moon: Vec<PackVertex>,
 }
 
 /// Block ids the translucent geometry carries in `mc_Entity.x`.
@@ -230,7 +245,39 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             });
         }
     }
-    for vertices in [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky].into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
+    // The game's sun and moon: in the frame rotated with the sun's path, the sun a 60-block
+    // square at y = 100, the moon a 40-block one at y = -100 (vertices here already rotated, so
+    // gl_ModelViewMatrix stays gbufferModelView).
+    let path = SunPath::of_sun_direction(sun);
+    let rotation = glam::DMat3::from_rotation_y(-90f64.to_radians())
+        * glam::DMat3::from_rotation_z(path.rotation.to_radians())
+        * glam::DMat3::from_rotation_x(path.celestial_angle * std::f64::consts::TAU);
+    let alpha = (1.0 - scene.sky.rain_strength) as f32;
+    let celestial_quad = |half: f64, y: f64| -> Vec<PackVertex> {
+        let corners = [DVec3::new(-half, y, -half), DVec3::new(half, y, -half), DVec3::new(half, y, half), DVec3::new(-half, y, half)];
+        let uv = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let normal = rotation * DVec3::new(0.0, -y.signum(), 0.0);
+        [0, 1, 2, 0, 2, 3]
+            .into_iter()
+            .map(|i| {
+                let p = rotation * corners[i];
+                PackVertex {
+                    position: [p.x as f32, p.y as f32, p.z as f32, 1.0],
+                    color: [1.0, 1.0, 1.0, alpha],
+                    normal: [normal.x as f32, normal.y as f32, normal.z as f32],
+                    uv0: [uv[i][0], uv[i][1], 0.0, 1.0],
+                    uv1: LIGHT,
+                    entity: [-1.0, -1.0, 0.0, 0.0],
+                    lightmap: LIGHT_INT,
+                    ..Default::default()
+                }
+            })
+            .collect()
+    };
+    mesh.sun = celestial_quad(30.0, 100.0);
+    mesh.moon = celestial_quad(20.0, -100.0);
+    let all = [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky, &mut mesh.sun, &mut mesh.moon];
+    for vertices in all.into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
         add_tangents_and_sprite_centres(vertices);
     }
     mesh
@@ -348,6 +395,44 @@ pub fn atlas() -> (u32, u32, Vec<u8>) {
     (w, h, texels.concat())
 }
 
+/// The sun's texture: 32×32 RGBA8, a bright square in the middle quarter with a fading glow
+/// around it, black elsewhere (the game adds it onto the sky).
+pub fn sun() -> (u32, u32, Vec<u8>) {
+    celestial_texture(|d| match d {
+        d if d < 0.25 => [255, 250, 225],
+        d if d < 0.5 => {
+            let glow = (0.5 - d) * 2.0;
+            [(220.0 * glow) as u8, (200.0 * glow) as u8, (140.0 * glow) as u8]
+        }
+        _ => [0, 0, 0],
+    })
+}
+
+/// The moon's texture (full moon): 32×32 RGBA8, a grey square with darker speckles in the
+/// middle third, black elsewhere.
+pub fn moon() -> (u32, u32, Vec<u8>) {
+    let mut rng = SplitMix64::seed_from_u64(0x300D);
+    celestial_texture(move |d| {
+        let shade = 200 - (rng.next_u64() >> 59) as u8 * 6;
+        if d < 0.35 { [shade, shade, shade.saturating_add(8)] } else { [0, 0, 0] }
+    })
+}
+
+/// A 32×32 texture whose colour depends on the distance from the centre (0 at the centre, 1
+/// at the edges, square rings); alpha 255.
+fn celestial_texture(mut colour: impl FnMut(f64) -> [u8; 3]) -> (u32, u32, Vec<u8>) {
+    let size = 32u32;
+    let mut data = Vec::with_capacity((size * size * 4) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            let ring = |c: u32| ((c as f64 + 0.5) / size as f64 * 2.0 - 1.0).abs();
+            let [r, g, b] = colour(ring(x).max(ring(y)));
+            data.extend([r, g, b, 255]);
+        }
+    }
+    (size, size, data)
+}
+
 /// The mock lightmap: 16×16 RGBA8, u = block light (warm), v = sky light.
 pub fn lightmap() -> (u32, u32, Vec<u8>) {
     let mut data = Vec::with_capacity(16 * 16 * 4);
@@ -386,6 +471,20 @@ mod tests {
         fn id_of(&self, _: &str) -> i32 {
             -1
         }
+    }
+
+    #[test]
+    fn the_sun_and_the_moon_stand_100_blocks_out_on_either_side() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/blocks/shore.toml");
+        let scene = Scene::load(&path).unwrap();
+        let mesh = build(&scene, &NoIds);
+        let centre = |quad: &[PackVertex]| {
+            let sum = quad.iter().fold(glam::Vec3::ZERO, |s, v| s + glam::Vec3::new(v.position[0], v.position[1], v.position[2]));
+            (sum / quad.len() as f32).as_dvec3()
+        };
+        let sun = scene.sun_direction();
+        assert!((centre(&mesh.sun) - sun * 100.0).length() < 1e-3, "{:?}", centre(&mesh.sun));
+        assert!((centre(&mesh.moon) + sun * 100.0).length() < 1e-3, "{:?}", centre(&mesh.moon));
     }
 
     #[test]

@@ -116,6 +116,8 @@ pub enum Pass {
     /// The shadow pass: gl_ModelViewMatrix = shadowModelView, gl_ProjectionMatrix =
     /// shadowProjection (positions relative to the camera, as in gbuffers).
     Shadow,
+    /// The sun and the moon: as gbuffers, with the game's fog off (`fogMode` 0).
+    Celestial,
 }
 
 /// Legacy matrices as the OpenGL compatibility API holds them for a pass.
@@ -134,12 +136,12 @@ pub fn lightmap_matrix() -> DMat4 {
 
 fn legacy_matrices(scene: &Scene, pass: Pass, shadow: &ShadowSettings) -> LegacyMatrices {
     let (model_view, projection) = match pass {
-        Pass::Gbuffers => (scene.model_view(), scene.projection()),
+        Pass::Gbuffers | Pass::Celestial => (scene.model_view(), scene.projection()),
         Pass::Fullscreen => (DMat4::IDENTITY, DMat4::orthographic_rh_gl(0.0, 1.0, 0.0, 1.0, -1.0, 1.0)),
         Pass::Shadow => (shadow_model_view(scene, shadow), shadow.projection()),
     };
     let texture = match pass {
-        Pass::Gbuffers | Pass::Shadow => [DMat4::IDENTITY, lightmap_matrix()],
+        Pass::Gbuffers | Pass::Shadow | Pass::Celestial => [DMat4::IDENTITY, lightmap_matrix()],
         Pass::Fullscreen => [DMat4::IDENTITY, DMat4::IDENTITY],
     };
     LegacyMatrices { model_view, projection, texture }
@@ -227,8 +229,8 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("eyeBrightness", Value::ivec2(0, 240));
     put("eyeBrightnessSmooth", Value::ivec2(0, 240));
     put("hideGUI", Value::int(1));
-    // The game's fog is on (GL_LINEAR); the pack's programs apply it.
-    put("fogMode", Value::int(GL_LINEAR));
+    // The game's fog is on (GL_LINEAR), but for the sun and moon; the pack's programs apply it.
+    put("fogMode", Value::int(if pass == Pass::Celestial { 0 } else { GL_LINEAR }));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
     put("alphaTestRef", Value::float(if pass == Pass::Fullscreen { 0.0 } else { 0.1 }));
     let legacy = legacy_matrices(scene, pass, shadow);

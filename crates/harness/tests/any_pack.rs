@@ -13,6 +13,9 @@ use tidepack_harness::{Loader, Scene, gl, gl_any, images, mesh};
 mod common;
 use common::{gpu, root, scene};
 
+/// What the report says of a pack without a program for the sun and the moon.
+const NO_SUN_PROGRAM: &str = "the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn";
+
 fn pack(name: &str, loader: Loader) -> AnyPack {
     AnyPack::load(&root().join("tests/packs").join(name), loader, &OptionChoice::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
@@ -52,7 +55,7 @@ fn the_plan_runs_the_programs_in_optifines_order_and_flips_what_full_screen_pass
 fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
     let pack = pack("flip_chain", Loader::default());
     let frame = render(&pack, &scene("case4_above_near"));
-    assert!(frame.not_modelled.is_empty(), "{:?}", frame.not_modelled);
+    assert_eq!(frame.not_modelled, [NO_SUN_PROGRAM], "everything else is imitated");
     let written = |pass: &str, texture: &str| {
         let step = frame.passes.iter().find(|p| p.pass == pass).unwrap_or_else(|| panic!("no step {pass}"));
         step.images.iter().find(|(name, _)| name == texture).map(|(_, image)| image.clone()).unwrap_or_else(|| panic!("{pass} wrote no {texture}"))
@@ -83,11 +86,13 @@ fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
             let pack = pack(name, loader);
             for scene_name in ["case4_above_near", "rain_over_lake", "blocks/shore"] {
                 // Where a lookup's result jumps, the last bit of its coordinate decides: a depth
-                // comparison whose reference lands on a shadow-map texel's own depth, a nearest
-                // texel on a sprite's texel edge (shore's textured blocks). At most two such
-                // pixels; everything else within 1/255.
-                let allowed = if name == "shadow_map" || scene_name == "blocks/shore" { 2 } else { 0 };
+                // comparison whose reference lands on a shadow-map texel's own depth (where the
+                // wall meets the sand under shore's low sun), a nearest texel on a sprite's edge
+                // (shore's textured blocks). At most one pixel in 10,000 (a wrong binding or
+                // mapping moves thousands); everything else within 1/255.
                 let scene = scene(scene_name);
+                let scene_pixels = (scene.width() * scene.height()) as usize;
+                let allowed = if name == "shadow_map" || scene_name == "blocks/shore" { scene_pixels / 10_000 } else { 0 };
                 let mesh = mesh::build(&scene, &pack);
                 let wgpu = render_any(gpu(), &pack, &scene, &mesh, 1).unwrap_or_else(|e| panic!("{e}"));
                 let gl = gl_any::render_any(&ctx, &pack, &scene, &mesh).unwrap_or_else(|e| panic!("{e}"));
@@ -171,7 +176,7 @@ fn the_core_profile_gets_the_same_geometry_as_the_legacy_built_ins() {
     let scene = scene("case4_above_near");
     let legacy = render(&pack("flip_chain", Loader::default()), &scene);
     let core = render(&pack("core_profile", Loader::default()), &scene);
-    assert!(core.not_modelled.is_empty(), "{:?}", core.not_modelled);
+    assert_eq!(core.not_modelled, [NO_SUN_PROGRAM], "everything else is imitated");
     let terrain = |frame: &AnyFrame| {
         let step = frame.passes.iter().find(|p| p.pass.starts_with("terrain")).expect("a terrain step");
         step.images[0].1.clone()

@@ -9,7 +9,7 @@ use std::time::Instant;
 use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::images::FloatImage;
-use crate::mesh::SceneMesh;
+use crate::mesh::{SceneMesh, Sprites};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
 use crate::uniforms::Pass;
@@ -178,6 +178,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let (gbuffers_values, problems) = pack.uniform_values(scene, Pass::Gbuffers);
     let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
     let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
+    let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
     note_sun_path(pack, scene, &mut note);
     for problem in &problems {
         note(format!("{problem} (the uniform stays zero)"));
@@ -192,7 +193,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let mut zeroed_uniforms = Vec::new();
     for step in &plan.steps {
         let (work, written) = match &step.work {
-            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots } => {
+            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass } => {
+                let values = if *pass == Pass::Celestial { &celestial_values } else { &gbuffers_values };
                 let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                 let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                 // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -203,9 +205,10 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth0: &depth1,
                     depth1: &depth1,
                     shadow,
+                    sprites: *sprites,
                 };
                 let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, &gbuffers_values, &textures, *program, &state, vertices, step.label.clone())?;
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, values, &textures, *program, &state, vertices, step.label.clone())?;
                 if let Some(pipeline) = draw.pipeline() {
                     zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
                     zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
@@ -225,6 +228,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth0: &depth1,
                     depth1: &depth1,
                     shadow: ShadowTextures::empty(&harness_textures),
+                    sprites: Sprites::Blocks,
                 };
                 let missing = pack.loader.missing_program_draws();
                 let draw = GeometryDraw::new(gpu, pack, missing, scene, &shadow_values, &textures, Some(program), &state, vertices, step.label.clone())?;
@@ -249,6 +253,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth0: &depth0,
                     depth1: &depth1,
                     shadow,
+                    sprites: Sprites::Blocks,
                 };
                 let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
                 let pipeline = ProgramPipeline::new(gpu, pack, program, &fullscreen_values, kind, &textures, UniformBinding::ReadOnlyStorage)?;

@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
-use crate::mesh::{self, offsets};
+use crate::mesh::{self, Sprites, offsets};
 use crate::program::{
     Blend, BlendFactor, LoadedProgram, LoadedStage, PackResources, colour_buffer_number, shadow_colour_number, texture_resources,
 };
@@ -196,6 +196,8 @@ pub(crate) fn view(t: &wgpu::Texture) -> wgpu::TextureView {
 /// samplers OptiFine gives each kind.
 pub(crate) struct HarnessTextures {
     atlas: wgpu::TextureView,
+    sun: wgpu::TextureView,
+    moon: wgpu::TextureView,
     lightmap: wgpu::TextureView,
     noise: wgpu::TextureView,
     nearest_repeat: wgpu::Sampler,
@@ -280,7 +282,9 @@ impl HarnessTextures {
             } else {
                 sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::ClampToEdge)
             },
-            atlas: upload("gtexture (mock atlas)", mesh::atlas()),
+            atlas: upload("gtexture (block atlas)", mesh::atlas()),
+            sun: upload("gtexture (sun)", mesh::sun()),
+            moon: upload("gtexture (moon)", mesh::moon()),
             lightmap: upload("lightmap", mesh::lightmap()),
             noise: upload("noisetex", mesh::noise(256)),
             nearest_repeat: sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::Repeat),
@@ -385,6 +389,8 @@ pub(crate) struct BindableTextures<'a> {
     pub depth0: &'a wgpu::Texture,
     pub depth1: &'a wgpu::Texture,
     pub shadow: ShadowTextures<'a>,
+    /// What `gtexture` holds.
+    pub sprites: Sprites,
 }
 
 /// The shadow maps a program reads: shadowtex0 and shadowtex1, as depth (for `sampler2DShadow`)
@@ -428,7 +434,11 @@ impl BindableTextures<'_> {
                 let texture = self.shadow.depth_read[n as usize];
                 (view(texture), gpu.filterable(texture.format()))
             }
-            Source::Atlas => (harness.atlas.clone(), true),
+            Source::Atlas => match self.sprites {
+                Sprites::Blocks => (harness.atlas.clone(), true),
+                Sprites::Sun => (harness.sun.clone(), true),
+                Sprites::Moon => (harness.moon.clone(), true),
+            },
             Source::Lightmap => (harness.lightmap.clone(), true),
             Source::Noise => (harness.noise.clone(), true),
             Source::Custom(i) => (harness.custom[i].0.clone(), true),

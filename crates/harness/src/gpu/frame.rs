@@ -25,7 +25,7 @@ use crate::HarnessError;
 use crate::any_pack::BufferClear;
 use crate::images::FloatImage;
 use crate::loader::{self, Loader, Phase};
-use crate::mesh::{self, SceneMesh};
+use crate::mesh::{self, SceneMesh, Sprites};
 use crate::program::{Blend, LoadedPack, LoadedProgram};
 use crate::scene::{OverlayKind, Scene};
 use crate::uniforms::{self, Pass};
@@ -117,6 +117,7 @@ impl FrameTargets {
             depth0: &self.depth0,
             depth1: &self.depth1,
             shadow: ShadowTextures::empty(harness),
+            sprites: Sprites::Blocks,
         }
     }
 }

@@ -23,7 +23,7 @@ void main() {
     vec4 player = gbufferModelViewInverse * vec4(view.xyz / view.w, 1.0);
     vec4 shadowClip = shadowProjection * shadowModelView * player;
     vec3 shadowPos = shadowClip.xyz / shadowClip.w * 0.5 + 0.5;
-    float bias = 0.002;
+    float bias = 0.01;
     float lit = shadow2D(shadowtex0, vec3(shadowPos.xy, shadowPos.z - bias)).r;
     // A ramp, not a step: a step flips on the last bit at shadow edges, which no renderer fixes.
     float litWithoutWater = clamp((texture2D(shadowtex1, shadowPos.xy).r - shadowPos.z) * 50.0 + 1.0, 0.0, 1.0);
