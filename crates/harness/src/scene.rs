@@ -9,6 +9,7 @@ use glam::{DMat4, DVec3};
 use serde::Deserialize;
 
 use crate::HarnessError;
+use crate::shadow::SunPath;
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -73,9 +74,14 @@ pub struct Time {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sky {
-    /// World-space direction towards the sun (normalised by the harness).
-    #[serde(deserialize_with = "exact")]
+    /// World-space direction towards the sun (normalised by the harness). Without it the sun
+    /// stands where the game's clock puts it at `time.world_time` on a path tilted by
+    /// `sun_path_rotation`.
+    #[serde(default, deserialize_with = "exact")]
     pub sun_direction: [f64; 3],
+    /// Degrees, as a pack's `sunPathRotation`; only with the sun placed by the clock.
+    #[serde(default)]
+    pub sun_path_rotation: Option<f64>,
     #[serde(deserialize_with = "exact")]
     pub sky_color: [f64; 3],
     #[serde(deserialize_with = "exact")]
@@ -256,6 +262,7 @@ impl Scene {
             .map_err(|e| HarnessError::Scene(format!("cannot read scene {}: {e}", path.display())))?;
         let parsed: toml::Table =
             toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        let sun_given = parsed.get("sky").and_then(|sky| sky.get("sun_direction")).is_some();
         // Every float feeds a matrix, a uniform or a mesh: one NaN or infinity renders a wrong
         // picture without any error further on.
         if let Some((field, value)) = first_non_finite(&toml::Value::Table(parsed), "") {
@@ -263,6 +270,19 @@ impl Scene {
         }
         let mut scene: Scene =
             toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        match (sun_given, scene.sky.sun_path_rotation) {
+            (true, Some(_)) => {
+                return Err(HarnessError::Scene(format!(
+                    "{}: give sky.sun_direction or sky.sun_path_rotation (the sun placed by time.world_time), not both",
+                    path.display()
+                )));
+            }
+            (true, None) => {}
+            (false, rotation) => {
+                let path = SunPath::of_world_time(scene.time.world_time as i64, rotation.unwrap_or(0.0));
+                scene.sky.sun_direction = path.sun_direction().to_array();
+            }
+        }
         if scene.name.is_empty() {
             scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         }
@@ -377,6 +397,16 @@ mod tests {
             let error = load_text(&text).unwrap_err();
             assert!(error.contains(field) && error.contains("edited.toml"), "{to}: {error}");
         }
+    }
+
+    #[test]
+    fn without_a_sun_direction_the_clock_places_the_sun() {
+        let night = load_text(&std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/blocks/shore_night.toml")).unwrap()).unwrap();
+        let expected = SunPath::of_world_time(14000, 20.0).sun_direction();
+        assert!((night.sun_direction() - expected).length() < 1e-12 && night.sun_direction().y < 0.0, "{:?}", night.sun_direction());
+        let both = case4().replacen("sun_direction = [0.35, 0.85, -0.40]", "sun_direction = [0.35, 0.85, -0.40]\nsun_path_rotation = 10.0", 1);
+        let error = load_text(&both).unwrap_err();
+        assert!(error.contains("not both") && error.contains("edited.toml"), "{error}");
     }
 
     #[test]

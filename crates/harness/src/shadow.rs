@@ -162,6 +162,21 @@ impl SunPath {
         SunPath { celestial_angle: (angle / std::f64::consts::TAU).rem_euclid(1.0), rotation }
     }
 
+    /// The path on the game's clock: Minecraft's celestial angle of `world_time` (ticks; 6000 is
+    /// noon), which runs slower around noon and midnight, tilted by `rotation` degrees.
+    pub fn of_world_time(world_time: i64, rotation: f64) -> SunPath {
+        let day = (world_time.rem_euclid(24000) as f64 / 24000.0 - 0.25).rem_euclid(1.0);
+        let eased = 0.5 - (day * std::f64::consts::PI).cos() / 2.0;
+        SunPath { celestial_angle: (day * 2.0 + eased) / 3.0, rotation }
+    }
+
+    /// The world direction towards the sun (unit length).
+    pub fn sun_direction(&self) -> DVec3 {
+        let a = self.celestial_angle * std::f64::consts::TAU;
+        let r = self.rotation.to_radians();
+        DVec3::new(-a.sin(), a.cos() * r.cos(), -a.cos() * r.sin())
+    }
+
     /// `sunAngle`: 0 at sunrise, 0.25 at noon, 0.5 at sunset.
     pub fn sun_angle(&self) -> f64 {
         let c = self.celestial_angle;
@@ -217,6 +232,22 @@ mod tests {
         assert!((dawn.sun_angle() - 0.03).abs() < 1e-12 && (dawn.shadow_angle() - 0.03).abs() < 1e-12);
         let dusk_moon = SunPath { celestial_angle: 0.3, rotation: 0.0 };
         assert!((dusk_moon.sun_angle() - 0.55).abs() < 1e-12 && (dusk_moon.shadow_angle() - 0.05).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_game_clock_puts_the_sun_where_minecraft_does() {
+        // Noon overhead, sunrise (tick 0) in the east (+x) a little above the horizon (the eased
+        // angle), sunset in the west, midnight below.
+        let noon = SunPath::of_world_time(6000, 0.0);
+        assert!((noon.celestial_angle - 0.0).abs() < 1e-12 && (noon.sun_direction() - DVec3::Y).length() < 1e-12);
+        let sunrise = SunPath::of_world_time(0, 0.0);
+        assert!((sunrise.celestial_angle - 0.7845177968644246).abs() < 1e-9, "{sunrise:?}");
+        assert!(sunrise.sun_direction().x > 0.97 && sunrise.sun_direction().y > 0.2);
+        assert!(SunPath::of_world_time(12000, 0.0).sun_direction().x < -0.97);
+        assert!((SunPath::of_world_time(18000, 0.0).sun_direction() + DVec3::Y).length() < 1e-12);
+        let tilted = SunPath::of_world_time(3000, -40.0);
+        let back = SunPath::of_sun_direction(tilted.sun_direction());
+        assert!((back.celestial_angle - tilted.celestial_angle).abs() < 1e-9 && (back.rotation + 40.0).abs() < 1e-9);
     }
 
     #[test]
