@@ -39,12 +39,8 @@ fn main() {
     let names: Vec<String> = match std::env::var("PROBE_SCENES") {
         Ok(s) => s.split(',').map(str::to_string).collect(),
         Err(_) => {
-            let mut n: Vec<String> = std::fs::read_dir(root().join("tests/scenes"))
-                .unwrap()
-                .filter_map(|e| e.ok()?.path().file_stem().map(|s| s.to_string_lossy().into_owned()))
-                .collect();
-            n.sort();
-            n
+            let files = tidepack_harness::scene::scene_files(&root().join("tests/scenes")).unwrap_or_else(|e| panic!("{e}"));
+            files.iter().filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned())).collect()
         }
     };
     let nudge: Vec<f64> =

@@ -115,6 +115,9 @@ pub struct AnyPack {
     /// Formats and clears of the shadow colour buffers.
     pub shadow_formats: BTreeMap<u8, BufferFormat>,
     pub shadow_clears: BTreeMap<u8, BufferClear>,
+    /// The colour buffers each full-screen program has mipmapped before it runs
+    /// (`colortexNMipmapEnabled`), by program.
+    pub mipmaps: BTreeMap<String, BTreeSet<u8>>,
     /// Blend modes per program and colour buffer from shaders.properties.
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
@@ -382,15 +385,24 @@ impl AnyPack {
                 }
             }
             clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
-            for (buffer, what) in [("colortex", "MipmapEnabled"), ("shadowcolor", "MipmapEnabled"), ("shadowtex", "Mipmap")] {
-                if stage.gl_text.contains(what) && stage.gl_text.contains(buffer) {
-                    let line = format!("{buffer}*{what}: mipmaps are not generated");
-                    if !not_modelled.contains(&line) {
-                        not_modelled.push(line);
-                    }
-                }
+            let shadow_mipmaps = ["shadowcolor", "shadowtex", "generateShadowMipmap", "generateShadowColorMipmap"];
+            if declared_switches(&stage.gl_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {
+                not_modelled.push("mipmaps of the shadow maps are not generated".to_string());
             }
         }
+        // `colortexNMipmapEnabled` in a full-screen program: the loader makes buffer N's mipmaps
+        // just before that program runs, and the program reads them.
+        let mipmaps: BTreeMap<String, BTreeSet<u8>> = fullscreen
+            .iter()
+            .map(|p| {
+                let buffers = [&p.vertex, &p.fragment]
+                    .iter()
+                    .flat_map(|stage| declared_switches(&stage.gl_text).filter_map(|name| name.strip_suffix("MipmapEnabled").and_then(colour_buffer_number)).collect::<Vec<_>>())
+                    .collect();
+                (p.name.clone(), buffers)
+            })
+            .filter(|(_, buffers): &(String, BTreeSet<u8>)| !buffers.is_empty())
+            .collect();
         if shadow_pass {
             let (drawn, multiplier) = shadow_settings.drawn_resolution();
             if multiplier < 1.0 {
@@ -417,6 +429,7 @@ impl AnyPack {
             clears,
             shadow_formats,
             shadow_clears,
+            mipmaps,
             blends,
             custom_textures,
             block_ids,
@@ -506,7 +519,8 @@ pub enum PlannedWork<'a> {
     ShadowDepthCopy,
     /// A full-screen program: reads the current textures, draws into the other texture of each
     /// of its render targets (which then becomes current), or into the screen for final.
-    Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool },
+    /// `mipmaps`: buffers whose current texture gets its mipmaps just before, read with them.
+    Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool, mipmaps: BTreeSet<u8> },
     /// colortex0's current texture to the screen, for a pack without final.
     ScreenCopy { current: usize },
 }
@@ -537,6 +551,8 @@ pub struct FramePlan<'a> {
     /// Every shadow colour buffer the shadow pass writes or a program reads, and shadowcolor0;
     /// empty without a shadow pass.
     pub shadow_buffers: BTreeSet<u8>,
+    /// Colour buffers some program reads with mipmaps: their textures have mip chains.
+    pub mipmapped: BTreeSet<u8>,
     pub steps: Vec<PlannedStep<'a>>,
     /// Which texture of each buffer is current at the end.
     pub current: BTreeMap<u8, usize>,
@@ -570,7 +586,9 @@ impl<'a> FramePlan<'a> {
                 }
             }
         }
-        let mut plan = FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, shadow_buffers, steps: Vec::new() };
+        let mipmapped = pack.mipmaps.values().flatten().copied().filter(|b| buffers.contains(b)).collect();
+        let mut plan =
+            FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, shadow_buffers, mipmapped, steps: Vec::new() };
         if pack.shadow_pass {
             plan.shadow_geometry(pack, false, &mesh.terrain, "shadow terrain");
             plan.steps.push(PlannedStep { label: "shadowtex0 to shadowtex1".into(), work: PlannedWork::ShadowDepthCopy });
@@ -578,7 +596,7 @@ impl<'a> FramePlan<'a> {
         }
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
         for program in family("prepare") {
-            plan.fullscreen(program, false);
+            plan.fullscreen(pack, program, false);
         }
         // The sky: the game's own colour where the pack has no skybasic program.
         plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks);
@@ -591,15 +609,15 @@ impl<'a> FramePlan<'a> {
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         for program in family("deferred") {
-            plan.fullscreen(program, false);
+            plan.fullscreen(pack, program, false);
         }
         plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks);
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
         for program in family("composite") {
-            plan.fullscreen(program, false);
+            plan.fullscreen(pack, program, false);
         }
         match pack.fullscreen.iter().find(|p| is_final(p)) {
-            Some(program) => plan.fullscreen(program, true),
+            Some(program) => plan.fullscreen(pack, program, true),
             None => {
                 let current = plan.current[&0];
                 plan.steps.push(PlannedStep { label: "colortex0 to the screen (no final)".into(), work: PlannedWork::ScreenCopy { current } });
@@ -644,14 +662,15 @@ impl<'a> FramePlan<'a> {
         }
     }
 
-    fn fullscreen(&mut self, program: &'a LoadedProgram, into_screen: bool) {
+    fn fullscreen(&mut self, pack: &AnyPack, program: &'a LoadedProgram, into_screen: bool) {
         let current = self.current.clone();
         if !into_screen {
             for b in &program.render_targets {
                 self.current.insert(*b, 1 - current[b]);
             }
         }
-        self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::Fullscreen { program, current, into_screen } });
+        let mipmaps = pack.mipmaps.get(&program.name).map(|m| m.intersection(&self.buffers).copied().collect()).unwrap_or_default();
+        self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::Fullscreen { program, current, into_screen, mipmaps } });
     }
 }
 
@@ -683,6 +702,15 @@ fn disabled_programs(properties: &str, world: &str, files: &PackFiles, options: 
         }
     }
     (disabled, problems)
+}
+
+/// The names of `const bool <name> = true;` declarations.
+fn declared_switches(text: &str) -> impl Iterator<Item = &str> {
+    text.lines().filter_map(|line| {
+        let rest = line.trim().strip_prefix("const bool ")?;
+        let (name, value) = rest.split_once('=')?;
+        (value.split(';').next()?.trim() == "true").then(|| name.trim())
+    })
 }
 
 /// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`, buffers

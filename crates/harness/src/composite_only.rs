@@ -122,6 +122,7 @@ impl CompositeOnly {
             depth1: &depth1,
             shadow: ShadowTextures::empty(&harness_textures),
             sprites: crate::mesh::Sprites::Blocks,
+            mipmapped: &crate::gpu::bindings::NO_MIPMAPS,
         };
         let composite = gpu.checked("composite_only", || {
             ProgramPipeline::new(gpu, pack, &pack.composite, values, PassKind::Fullscreen { width, height }, &bindable, binding)

@@ -15,7 +15,7 @@
 //! vertex) the window depth differs from wgpu's in the last bits in about half the pixels, and
 //! composite amplifies that at a few pixels (up to 137/255; see docs/harness.md).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
@@ -205,6 +205,8 @@ pub(crate) struct Textures<'a> {
     pub shadow_colours: BTreeMap<u8, glow::Texture>,
     /// What `gtexture` holds.
     pub sprites: Sprites,
+    /// Colour buffers read with their mipmaps.
+    pub mipmapped: BTreeSet<u8>,
 }
 
 /// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
@@ -269,6 +271,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
             shadow_depth: [harness.empty_shadow_depth; 2],
             shadow_colours: BTreeMap::new(),
             sprites: Sprites::Blocks,
+            mipmapped: BTreeSet::new(),
         };
         let out = make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
 
@@ -465,6 +468,20 @@ pub(crate) unsafe fn make_texture(
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
         Ok(t)
+    }
+}
+
+/// Gives colour texture `t` (`width` x `height`, level 0 made) every further mip level.
+pub(crate) unsafe fn add_mip_levels(gl: &glow::Context, t: glow::Texture, internal: u32, width: i32, height: i32) {
+    let levels = 32 - (width.max(height).max(1) as u32).leading_zeros();
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        gl.bind_texture(glow::TEXTURE_2D, Some(t));
+        for level in 1..levels {
+            let (w, h) = ((width >> level).max(1), (height >> level).max(1));
+            gl.tex_image_2d(glow::TEXTURE_2D, level as i32, internal as i32, w, h, 0, glow::RGBA, glow::FLOAT, glow::PixelUnpackData::Slice(None));
+        }
+        gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, levels as i32 - 1);
     }
 }
 
@@ -734,6 +751,11 @@ unsafe fn set_uniforms(
                 gl.active_texture(glow::TEXTURE0 + unit);
                 gl.bind_texture(glow::TEXTURE_2D, Some(texture));
                 gl.bind_sampler(unit, shadow.then_some(harness.comparison));
+                // A colour buffer reads its mipmaps only in the programs that asked for them.
+                if let Ok(Source::Color(n)) = resolved {
+                    let filter = if textures.mipmapped.contains(&n) { glow::LINEAR_MIPMAP_LINEAR } else { glow::LINEAR };
+                    gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter as i32);
+                }
                 gl.uniform_1_i32(location.as_ref(), unit as i32);
                 unit += 1;
                 continue;

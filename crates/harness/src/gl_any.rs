@@ -8,7 +8,7 @@
 //! range, which equals the wgpu mapping up to the last bits. Those programs are named in
 //! [`GlAnyFrame::own_depth_mapping`].
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
@@ -17,7 +17,7 @@ use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
-    read_as_shadow_map, set_blends,
+    add_mip_levels, read_as_shadow_map, set_blends,
 };
 use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::fullscreen_quad;
@@ -67,7 +67,13 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         let mut buffers = BTreeMap::new();
         for &b in &plan.buffers {
             let format = pack.format_of(b);
-            buffers.insert(b, ([colour(format)?, colour(format)?], colour(format)?, format));
+            let flipped = [colour(format)?, colour(format)?];
+            if plan.mipmapped.contains(&b) {
+                for t in flipped {
+                    add_mip_levels(gl, t, internal_format(format), w, h);
+                }
+            }
+            buffers.insert(b, (flipped, colour(format)?, format));
         }
         let depth_of = |side_w: i32, side_h: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, side_w, side_h, None, false, false);
         let (depth0, depth1) = (depth_of(w, h)?, depth_of(w, h)?);
@@ -182,6 +188,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                                 shadow_depth,
                                 shadow_colours: shadow_colours.clone(),
                                 sprites: *sprites,
+                                mipmapped: BTreeSet::new(),
                             };
                             let (compiled, own_range) = build(program)?;
                             draw(program, &compiled, own_range, *pass, &textures, vertices)?;
@@ -215,6 +222,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         shadow_depth: [harness.empty_shadow_depth; 2],
                         shadow_colours: BTreeMap::new(),
                         sprites: Sprites::Blocks,
+                        mipmapped: BTreeSet::new(),
                     };
                     let (compiled, own_range) = build(program)?;
                     draw(program, &compiled, own_range, Pass::Shadow, &textures, vertices)?;
@@ -229,7 +237,11 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                     let [from, to] = shadow_depth;
                     gl.copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, shadow_side, shadow_side, 1);
                 }
-                PlannedWork::Fullscreen { program, current, into_screen } => {
+                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
+                    for b in mipmaps {
+                        gl.bind_texture(glow::TEXTURE_2D, Some(buffers[b].0[current[b]]));
+                        gl.generate_mipmap(glow::TEXTURE_2D);
+                    }
                     let targets: Vec<(String, glow::Texture)> = if *into_screen {
                         vec![("screen".to_string(), screen)]
                     } else {
@@ -248,6 +260,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         shadow_depth,
                         shadow_colours: shadow_colours.clone(),
                         sprites: Sprites::Blocks,
+                        mipmapped: mipmaps.clone(),
                     };
                     let (compiled, own_range) = build(program)?;
                     draw(program, &compiled, own_range, Pass::Fullscreen, &textures, &quad)?;

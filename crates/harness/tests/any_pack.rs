@@ -81,7 +81,7 @@ fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
 fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
-    for name in ["flip_chain", "core_profile", "shadow_map"] {
+    for name in ["flip_chain", "core_profile", "shadow_map", "mipmaps"] {
         for loader in [Loader::default(), Loader::Iris] {
             let pack = pack(name, loader);
             for scene_name in ["case4_above_near", "rain_over_lake", "blocks/shore"] {
@@ -167,6 +167,37 @@ fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
     // Without a shadow program the loader's own shading would draw the map: named, not drawn.
     assert!(!with_water.shadow_pass);
     assert!(with_water.not_modelled.iter().any(|l| l.contains("without a shadow program")), "{:?}", with_water.not_modelled);
+}
+
+#[test]
+fn a_program_that_asks_for_mipmaps_reads_them_and_the_others_do_not() {
+    let pack = pack("mipmaps", Loader::default());
+    assert_eq!(pack.mipmaps.keys().collect::<Vec<_>>(), ["composite1"]);
+    assert_eq!(pack.mipmaps["composite1"].iter().copied().collect::<Vec<_>>(), [2]);
+    let frame = render(&pack, &scene("case4_above_near"));
+    let written = |pass: &str, texture: &str| {
+        let step = frame.passes.iter().find(|p| p.pass == pass).unwrap_or_else(|| panic!("no step {pass}"));
+        step.images.iter().find(|(name, _)| name == texture).map(|(_, image)| image.clone()).unwrap_or_else(|| panic!("{pass} wrote no {texture}"))
+    };
+    // How far neighbouring pixels differ, at most, in the middle of the image (green).
+    let roughness = |image: &images::FloatImage| {
+        let (w, h) = (image.width as usize, image.height as usize);
+        let mut worst = 0f32;
+        for y in h / 4..3 * h / 4 {
+            for x in w / 4..3 * w / 4 {
+                worst = worst.max((image.pixels[y * w + x][1] - image.pixels[y * w + x + 1][1]).abs());
+            }
+        }
+        worst
+    };
+    let checker = written("composite", "colortex2");
+    let averaged = written("composite1", "colortex0");
+    assert!(roughness(&checker) > 0.3, "the checker: {}", roughness(&checker));
+    assert!(roughness(&averaged) < 0.05, "level 4 of its mipmaps: {}", roughness(&averaged));
+    // final reads colortex2 without mipmaps: the checker itself, in the screen's alpha.
+    let differing: Vec<(usize, f32, f32)> =
+        frame.image.pixels.iter().zip(&checker.pixels).enumerate().filter(|(_, (s, c))| (s[3] - c[1]).abs() > 1e-6).map(|(i, (s, c))| (i, s[3], c[1])).collect();
+    assert!(differing.is_empty(), "{} pixels differ, the first: {:?}", differing.len(), &differing[..differing.len().min(5)]);
 }
 
 #[test]

@@ -16,11 +16,11 @@ use crate::uniforms::Pass;
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, ShadowTextures,
-    UniformBinding,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, SamplerNaming,
+    ShadowTextures, UniformBinding,
 };
 use super::geometry::GeometryDraw;
-use super::own::PassthroughPipeline;
+use super::own::{MipmapPipelines, PassthroughPipeline, mip_levels};
 use super::frame::{median, record_clears};
 use super::readback::{read_pass_ms, read_texture};
 
@@ -94,7 +94,14 @@ enum Work<'p> {
     DepthCopy,
     ShadowGeometry(GeometryDraw),
     ShadowDepthCopy,
-    Fullscreen { program: &'p LoadedProgram, pipeline: ProgramPipeline, current: &'p BTreeMap<u8, usize>, into_screen: bool },
+    Fullscreen {
+        program: &'p LoadedProgram,
+        pipeline: ProgramPipeline,
+        current: &'p BTreeMap<u8, usize>,
+        into_screen: bool,
+        /// Buffers whose current texture gets its mipmaps first.
+        mipmaps: &'p BTreeSet<u8>,
+    },
     ScreenCopy(PassthroughPipeline),
 }
 
@@ -130,13 +137,17 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         | wgpu::TextureUsages::COPY_SRC
         | wgpu::TextureUsages::COPY_DST;
     let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
+    // Mipmapped buffers have full mip chains; programs draw into, and read, the first level.
+    let levels = mip_levels(scene.width(), scene.height());
     for &b in &plan.buffers {
         let format = gpu.texture_format(pack.format_of(b))?;
         let label = |what: &str| format!("colortex{b} {what}");
+        let levels = if plan.mipmapped.contains(&b) { levels } else { 1 };
+        let flipped = |what: &str| gpu.texture_with_levels(&label(what), size, format, every_use, levels);
         buffers.insert(
             b,
             Buffer {
-                textures: [texture(&label("A"), format, every_use), texture(&label("B"), format, every_use)],
+                textures: [flipped("A"), flipped("B")],
                 snapshot: texture(&label("as gbuffers read it"), format, every_use),
                 format,
             },
@@ -146,6 +157,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let depth1 = texture("depthtex1", DEPTH, every_use);
     let screen = texture("screen (RGBA32F)", OUT, every_use);
     let harness_textures = HarnessTextures::new(gpu, pack);
+    let mipmap_pipelines = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| buffers[b].format))?;
     // The shadow maps: one texel each, cleared, when the frame has no shadow pass.
     let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 } else { 1 };
     let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
@@ -206,6 +218,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth1: &depth1,
                     shadow,
                     sprites: *sprites,
+                    mipmapped: &NO_MIPMAPS,
                 };
                 let missing = pack.loader.missing_program_draws();
                 let draw = GeometryDraw::new(gpu, pack, missing, scene, values, &textures, *program, &state, vertices, step.label.clone())?;
@@ -229,6 +242,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth1: &depth1,
                     shadow: ShadowTextures::empty(&harness_textures),
                     sprites: Sprites::Blocks,
+                    mipmapped: &NO_MIPMAPS,
                 };
                 let missing = pack.loader.missing_program_draws();
                 let draw = GeometryDraw::new(gpu, pack, missing, scene, &shadow_values, &textures, Some(program), &state, vertices, step.label.clone())?;
@@ -240,7 +254,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 (Work::ShadowGeometry(draw), written)
             }
             PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
-            PlannedWork::Fullscreen { program, current, into_screen } => {
+            PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
                 let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
                     buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
                 let formats: BTreeMap<u8, wgpu::TextureFormat> =
@@ -254,6 +268,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     depth1: &depth1,
                     shadow,
                     sprites: Sprites::Blocks,
+                    mipmapped: mipmaps,
                 };
                 let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
                 let pipeline = ProgramPipeline::new(gpu, pack, program, &fullscreen_values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
@@ -263,7 +278,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 } else {
                     program.render_targets.iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b]))).collect()
                 };
-                (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen }, written)
+                (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
             }
             PlannedWork::ScreenCopy { current } => {
                 (Work::ScreenCopy(PassthroughPipeline::new(gpu, &buffers[&0].textures[*current])?), vec![("screen".to_string(), WrittenTexture::Screen)])
@@ -343,7 +358,10 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     encoder.copy_texture_to_texture(shadow_depth[0].as_image_copy(), shadow_depth[1].as_image_copy(), shadow_size);
                     encoder.copy_texture_to_texture(shadow_depth_read[0].as_image_copy(), shadow_depth_read[1].as_image_copy(), shadow_size);
                 }
-                Work::Fullscreen { program, pipeline, current, into_screen } => {
+                Work::Fullscreen { program, pipeline, current, into_screen, mipmaps } => {
+                    for b in *mipmaps {
+                        mipmap_pipelines.record(gpu, &mut encoder, &buffers[b].textures[current[b]]);
+                    }
                     let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
                     pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
                 }

@@ -188,7 +188,14 @@ pub enum UniformBinding {
     ReadOnlyStorage,
 }
 
+/// A view of `t`'s first mip level: what is drawn into, and what a program that does not ask
+/// for mipmaps reads.
 pub(crate) fn view(t: &wgpu::Texture) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor { mip_level_count: Some(1), ..Default::default() })
+}
+
+/// A view of every mip level of `t`.
+pub(crate) fn mipmapped_view(t: &wgpu::Texture) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
@@ -203,6 +210,8 @@ pub(crate) struct HarnessTextures {
     nearest_repeat: wgpu::Sampler,
     linear_repeat: wgpu::Sampler,
     linear_clamp: wgpu::Sampler,
+    /// Linear between mip levels too (`GL_LINEAR_MIPMAP_LINEAR`), for mipmapped buffers.
+    linear_mipmap_clamp: wgpu::Sampler,
     nearest_clamp: wgpu::Sampler,
     comparison: wgpu::Sampler,
     flat_normals: wgpu::TextureView,
@@ -291,6 +300,12 @@ impl HarnessTextures {
             linear_repeat: sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::Repeat),
             linear_clamp: sampler(wgpu::FilterMode::Linear, wgpu::AddressMode::ClampToEdge),
             nearest_clamp: sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::ClampToEdge),
+            linear_mipmap_clamp: gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                ..Default::default()
+            }),
         }
     }
 }
@@ -391,7 +406,12 @@ pub(crate) struct BindableTextures<'a> {
     pub shadow: ShadowTextures<'a>,
     /// What `gtexture` holds.
     pub sprites: Sprites,
+    /// Colour buffers read with their mipmaps.
+    pub mipmapped: &'a BTreeSet<u8>,
 }
+
+/// No buffers read with mipmaps.
+pub(crate) static NO_MIPMAPS: BTreeSet<u8> = BTreeSet::new();
 
 /// The shadow maps a program reads: shadowtex0 and shadowtex1, as depth (for `sampler2DShadow`)
 /// and as `sampler2D` reads them (RGBA32F (d, d, d, 1): wgpu has no depth swizzle), and the
@@ -446,7 +466,8 @@ impl BindableTextures<'_> {
             Source::Depth1 => (view(self.depth1), false),
             Source::Color(n) => {
                 let (t, format) = self.colors.get(&n).ok_or_else(|| format!("colortex{n} is not a buffer of this frame"))?;
-                (view(t), gpu.filterable(*format))
+                let filters = gpu.filterable(*format);
+                (if filters && self.mipmapped.contains(&n) { mipmapped_view(t) } else { view(t) }, filters)
             }
         })
     }
@@ -463,6 +484,7 @@ impl BindableTextures<'_> {
             Source::Atlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
             Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::Unbound => harness.linear_clamp.clone(),
+            Source::Color(n) if self.mipmapped.contains(&n) => harness.linear_mipmap_clamp.clone(),
             Source::Color(_) | Source::ShadowColour(_) if filters => harness.linear_clamp.clone(),
             Source::ShadowDepth(_) => harness.shadow_depth_sampler.clone(),
             _ => harness.nearest_clamp.clone(),

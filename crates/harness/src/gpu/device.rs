@@ -127,10 +127,22 @@ impl Gpu {
 
     /// A single-level 2D texture of `size`.
     pub(crate) fn texture(&self, label: &str, size: wgpu::Extent3d, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+        self.texture_with_levels(label, size, format, usage, 1)
+    }
+
+    /// A 2D texture of `size` with `levels` mip levels.
+    pub(crate) fn texture_with_levels(
+        &self,
+        label: &str,
+        size: wgpu::Extent3d,
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+        levels: u32,
+    ) -> wgpu::Texture {
         self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size,
-            mip_level_count: 1,
+            mip_level_count: levels,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,

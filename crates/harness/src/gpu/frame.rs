@@ -32,7 +32,7 @@ use crate::uniforms::{self, Pass};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding,
+    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding, NO_MIPMAPS,
     colour_buffers_read, view,
 };
 use super::geometry::{GeometryDraw, depth_attachment};
@@ -118,6 +118,7 @@ impl FrameTargets {
             depth1: &self.depth1,
             shadow: ShadowTextures::empty(harness),
             sprites: Sprites::Blocks,
+            mipmapped: &NO_MIPMAPS,
         }
     }
 }

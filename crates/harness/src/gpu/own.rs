@@ -1,6 +1,7 @@
 //! The harness's own shaders, for what is not the pack's: the fixed-function colour a loader
 //! draws geometry with when the pack has no program for it, and the one-tap pass-through
-//! composite that composite's cost is measured against.
+//! composite that composite's cost is measured against, and the mip levels of mipmapped
+//! buffers.
 
 use wgpu::util::DeviceExt as _;
 
@@ -213,4 +214,94 @@ impl PassthroughPipeline {
         pass.set_bind_group(0, &self.bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
+}
+
+/// Each mip level from the one above it by linear filtering at the level's texel centres: what
+/// Mesa's `glGenerateMipmap` does (a linear blit per level), so both renderers agree.
+const MIPMAP_WGSL: &str = r#"
+@group(0) @binding(0) var above: texture_2d<f32>;
+@group(0) @binding(1) var linear: sampler;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let size = max(textureDimensions(above) / 2u, vec2<u32>(1u));
+    return textureSampleLevel(above, linear, p.xy / vec2<f32>(size), 0.0);
+}
+"#;
+
+/// Makes the mip levels of textures of the given formats (`glGenerateMipmap`).
+pub(crate) struct MipmapPipelines {
+    pipelines: std::collections::HashMap<wgpu::TextureFormat, wgpu::RenderPipeline>,
+    linear: wgpu::Sampler,
+}
+
+impl MipmapPipelines {
+    pub(crate) fn new(gpu: &Gpu, formats: impl IntoIterator<Item = wgpu::TextureFormat>) -> Result<MipmapPipelines, HarnessError> {
+        let device = &gpu.device;
+        let module = gpu.checked("mipmap shader", || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some("mipmaps"), source: wgpu::ShaderSource::Wgsl(MIPMAP_WGSL.into()) })
+        })?;
+        let mut pipelines = std::collections::HashMap::new();
+        for format in formats {
+            let pipeline = gpu.checked("mipmap pipeline", || {
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("mipmaps"),
+                    layout: None,
+                    vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("fs"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            })?;
+            pipelines.insert(format, pipeline);
+        }
+        let linear = device.create_sampler(&wgpu::SamplerDescriptor {
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Ok(MipmapPipelines { pipelines, linear })
+    }
+
+    /// Records the making of every level of `texture` below the first.
+    pub(crate) fn record(&self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture) {
+        let Some(pipeline) = self.pipelines.get(&texture.format()) else { return };
+        let level = |l: u32| {
+            texture.create_view(&wgpu::TextureViewDescriptor { base_mip_level: l, mip_level_count: Some(1), ..Default::default() })
+        };
+        for l in 1..texture.mip_level_count() {
+            let (above, target) = (level(l - 1), level(l));
+            let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("mipmap level"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&above) },
+                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&self.linear) },
+                ],
+            });
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("mipmap level"),
+                color_attachments: &[Some(clear_attachment(&target))],
+                ..Default::default()
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+    }
+}
+
+/// The number of mip levels of a full chain for `width` x `height`.
+pub(crate) fn mip_levels(width: u32, height: u32) -> u32 {
+    32 - width.max(height).max(1).leading_zeros()
 }

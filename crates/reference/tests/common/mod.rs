@@ -24,13 +24,14 @@ pub fn scene(name: &str) -> Scene {
     Scene::load(&root().join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The golden scenes of our own pack (tests/scenes/*.toml; not the subfolders' scenes for
+/// released packs).
 pub fn scene_names() -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(root().join("tests/scenes"))
-        .expect("tests/scenes")
-        .filter_map(|e| e.ok()?.path().file_stem().map(|s| s.to_string_lossy().into_owned()))
-        .collect();
-    names.sort();
-    names
+    tidepack_harness::scene::scene_files(&root().join("tests/scenes"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .iter()
+        .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .collect()
 }
 
 fn gpu() -> &'static Gpu {
