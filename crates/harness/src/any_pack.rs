@@ -11,6 +11,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 use tidepack_glsl::macros::StandardMacros;
+use tidepack_pack::dialect::Dialect;
 use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::FileProvider;
 use tidepack_validate::input::{Limits, PackFiles, read_pack};
@@ -39,6 +40,17 @@ const CELESTIAL_BLEND: Blend = Blend::Factors([BlendFactor::SrcAlpha, BlendFacto
 
 /// The full-screen programs OptiFine runs, by family, in frame order within each family.
 const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
+
+/// The alpha test a loader applies to what a program draws, before shaders.properties's
+/// `alphaTest.<program>` overrides it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LoaderAlphaTest {
+    None,
+    /// Cutout terrain ([`Loader::cutout_alpha_test`]).
+    Cutout,
+    /// Water ([`Loader::default_water_alpha_test`]).
+    Water,
+}
 
 /// Resolving sampler names before the custom textures are read: a custom texture replaces a
 /// name OptiFine binds anyway, so it never turns an unbound name into a bound one.
@@ -220,7 +232,8 @@ impl AnyPack {
         let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
         let (disabled, problems) = disabled_programs(&properties, world, files, &options);
         not_modelled.extend(problems);
-        let mut load = |name: &str| -> Option<LoadedProgram> {
+        // `test`: the alpha test the loader applies to what the program draws.
+        let mut load = |name: &str, test: LoaderAlphaTest| -> Option<LoadedProgram> {
             if disabled.iter().any(|d| d == name) {
                 return None;
             }
@@ -237,7 +250,24 @@ impl AnyPack {
             if !program.compute.is_empty() {
                 not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
             }
-            match program::load_program_files(&provider, &files, &macros, None, undeclared) {
+            let loaded = program::load_program_files(&provider, &files, &macros, None, undeclared).and_then(|p| {
+                // Whether the program writes gl_FragData/gl_FragColor decides OptiFine 1.17+'s test.
+                let legacy = ["gl_FragData", "gl_FragColor"].iter().any(|o| p.fragment.gl_text.contains(o));
+                let default = match test {
+                    LoaderAlphaTest::None => return Ok(p),
+                    LoaderAlphaTest::Cutout => loader.cutout_alpha_test(legacy),
+                    LoaderAlphaTest::Water => loader.default_water_alpha_test(if legacy { Dialect::Glsl120 } else { Dialect::Glsl330 }),
+                };
+                match crate::loader::alpha_test(&properties, name, default) {
+                    Ok(Some(reference)) => program::load_program_files(&provider, &files, &macros, Some(reference), undeclared),
+                    Ok(None) => Ok(p),
+                    Err(e) => {
+                        not_modelled.push(format!("{e} (no alpha test)"));
+                        Ok(p)
+                    }
+                }
+            });
+            match loaded {
                 Ok(p) => Some(p),
                 Err(e) => {
                     failed.push((name.to_string(), e.to_string()));
@@ -247,16 +277,17 @@ impl AnyPack {
         };
 
         let mut gbuffers = BTreeMap::new();
-        let mut wanted: Vec<&str> = program::TERRAIN_CHAIN.to_vec();
-        wanted.extend(SKY_CHAIN);
-        wanted.extend(SKY_TEXTURED_CHAIN);
-        wanted.extend(program::WATER_CHAIN);
+        // A program on several chains is loaded for the first: the terrain's alpha test then
+        // holds for whatever else it draws.
+        let mut wanted: Vec<(&str, LoaderAlphaTest)> = program::TERRAIN_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Cutout)).collect();
+        wanted.extend(program::WATER_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Water)));
+        wanted.extend(SKY_CHAIN.iter().chain(&SKY_TEXTURED_CHAIN).map(|n| (*n, LoaderAlphaTest::None)));
         for kind in OverlayKind::ALL {
-            wanted.extend(loader.program_chain(kind));
+            wanted.extend(loader.program_chain(kind).iter().map(|n| (*n, LoaderAlphaTest::None)));
         }
-        for name in wanted {
+        for (name, test) in wanted {
             if !gbuffers.contains_key(name)
-                && let Some(p) = load(name)
+                && let Some(p) = load(name, test)
             {
                 gbuffers.insert(name.to_string(), p);
             }
@@ -264,7 +295,7 @@ impl AnyPack {
         let mut shadow = BTreeMap::new();
         for name in [loader.shadow_chain(false), loader.shadow_chain(true)].concat() {
             if !shadow.contains_key(name)
-                && let Some(p) = load(name)
+                && let Some(p) = load(name, LoaderAlphaTest::None)
             {
                 shadow.insert(name.to_string(), p);
             }
@@ -273,10 +304,10 @@ impl AnyPack {
         for family in FULLSCREEN_FAMILIES {
             for n in 0..100 {
                 let name = if n == 0 { family.to_string() } else { format!("{family}{n}") };
-                fullscreen.extend(load(&name));
+                fullscreen.extend(load(&name, LoaderAlphaTest::None));
             }
         }
-        fullscreen.extend(load("final"));
+        fullscreen.extend(load("final", LoaderAlphaTest::None));
 
         let unused: Vec<&str> = present
             .keys()
@@ -344,8 +375,16 @@ impl AnyPack {
         let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
         for key in ["size.buffer.", "scale.", "flip.", "alphaTest."] {
-            let used: Vec<&str> =
-                properties.lines().map(str::trim).filter(|l| l.starts_with(key)).filter_map(|l| l.split('=').next()).map(str::trim).collect();
+            // The alpha tests of the terrain's and the water's chains are imitated.
+            let imitated = |k: &str| k.strip_prefix("alphaTest.").is_some_and(|p| TERRAIN_CHAIN.contains(&p) || WATER_CHAIN.contains(&p));
+            let used: Vec<&str> = properties
+                .lines()
+                .map(str::trim)
+                .filter(|l| l.starts_with(key))
+                .filter_map(|l| l.split('=').next())
+                .map(str::trim)
+                .filter(|k| !imitated(k))
+                .collect();
             if !used.is_empty() {
                 let shown: Vec<&str> = used.iter().take(6).copied().collect();
                 let more = if used.len() > shown.len() { format!(" and {} more", used.len() - shown.len()) } else { String::new() };
@@ -794,6 +833,29 @@ mod tests {
         assert!(not_modelled.iter().any(|l| l.contains("shaders.properties:3: program.composite2.enabled") && l.contains("NOPE")), "{not_modelled:?}");
         let bloom = OptionChoice { profile: None, options: vec![("BLOOM".into(), "on".into())] };
         assert_eq!(names(&bloom).0, ["composite", "composite1", "composite2"]);
+    }
+
+    #[test]
+    fn cutout_terrain_gets_the_loaders_alpha_test() {
+        let vertex = b"#version 120\nvoid main() { gl_Position = ftransform(); }\n".to_vec();
+        let legacy = b"#version 120\nvoid main() { gl_FragData[0] = vec4(0.5); }\n".to_vec();
+        let declared = b"#version 330 compatibility\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(0.5); }\n".to_vec();
+        let tested = |fragment: &[u8], properties: &str, loader: Loader| {
+            let files = tidepack_validate::input::pack_from_memory(
+                "test/shaders/",
+                [
+                    ("gbuffers_terrain.vsh".to_string(), vertex.clone()),
+                    ("gbuffers_terrain.fsh".to_string(), fragment.to_vec()),
+                    ("shaders.properties".to_string(), properties.as_bytes().to_vec()),
+                ],
+            );
+            let pack = AnyPack::from_files(&files, loader, &OptionChoice::default()).unwrap();
+            pack.gbuffers["gbuffers_terrain"].fragment.gl_text.contains("discard")
+        };
+        assert!(tested(&legacy, "", Loader::OptiFine1_21));
+        assert!(!tested(&declared, "", Loader::OptiFine1_21), "OptiFine 1.17+ leaves declared outputs alone");
+        assert!(tested(&declared, "", Loader::OptiFine1_16_5) && tested(&declared, "", Loader::Iris));
+        assert!(!tested(&legacy, "alphaTest.gbuffers_terrain=off\n", Loader::OptiFine1_21));
     }
 
     #[test]

@@ -80,6 +80,16 @@ impl Loader {
         }
     }
 
+    /// The alpha test on cutout terrain (leaves): fixed-function `GREATER 0.1` up to 1.16.5;
+    /// from 1.17 OptiFine adds it only to programs writing `gl_FragData`/`gl_FragColor`
+    /// (`legacy_outputs`); Iris tests cutout terrain at 0.1 in every program.
+    pub fn cutout_alpha_test(self, legacy_outputs: bool) -> Option<f32> {
+        match self {
+            Loader::OptiFine1_21 if !legacy_outputs => None,
+            _ => Some(0.1),
+        }
+    }
+
     /// The programs that may draw `kind`, in fallback order: the loader uses the first the pack
     /// has. OptiFine draws particles with gbuffers_textured_lit; Iris has gbuffers_particles.
     pub fn program_chain(self, kind: OverlayKind) -> &'static [&'static str] {
@@ -146,22 +156,22 @@ impl FromStr for Loader {
     }
 }
 
-/// The alpha test that applies to gbuffers_water: `alphaTest.gbuffers_water` in
-/// shaders.properties (`off`, or `GREATER <ref>`), else the loader's default. Other functions
-/// are not imitated.
-pub fn water_alpha_test(properties: &str, loader: Loader, dialect: Dialect) -> Result<Option<f32>, String> {
+/// The alpha test that applies to `program`: `alphaTest.<program>` in shaders.properties
+/// (`off`, or `GREATER <ref>`), else the loader's `default`. Other functions are not imitated.
+pub fn alpha_test(properties: &str, program: &str, default: Option<f32>) -> Result<Option<f32>, String> {
+    let key = format!("alphaTest.{program}");
     let setting = properties.lines().map(str::trim).filter(|l| !l.starts_with('#')).find_map(|l| {
-        let (key, value) = l.split_once('=')?;
-        (key.trim() == "alphaTest.gbuffers_water").then(|| value.trim().to_string())
+        let (k, value) = l.split_once('=')?;
+        (k.trim() == key).then(|| value.trim().to_string())
     });
     match setting.as_deref() {
-        None => Ok(loader.default_water_alpha_test(dialect)),
+        None => Ok(default),
         Some("off" | "false") => Ok(None),
         Some(value) => {
             let mut words = value.split_whitespace();
             match (words.next(), words.next().and_then(|r| r.parse::<f32>().ok()), words.next()) {
                 (Some("GREATER"), Some(reference), None) => Ok(Some(reference)),
-                _ => Err(format!("alphaTest.gbuffers_water={value}: the harness imitates off and GREATER <ref> only")),
+                _ => Err(format!("{key}={value}: the harness imitates off and GREATER <ref> only")),
             }
         }
     }
@@ -188,14 +198,21 @@ mod tests {
 
     #[test]
     fn alpha_test_follows_the_properties_then_the_loader() {
+        let water = |properties: &str, loader: Loader, dialect| alpha_test(properties, "gbuffers_water", loader.default_water_alpha_test(dialect));
         let off = "alphaTest.gbuffers_water=off\n";
-        assert_eq!(water_alpha_test(off, Loader::OptiFine1_12_2, Dialect::Glsl120), Ok(None));
-        assert_eq!(water_alpha_test("", Loader::OptiFine1_12_2, Dialect::Glsl330), Ok(Some(0.1)));
-        assert_eq!(water_alpha_test("", Loader::OptiFine1_16_5, Dialect::Glsl120), Ok(None));
-        assert_eq!(water_alpha_test("", Loader::OptiFine1_21, Dialect::Glsl120), Ok(Some(0.1)));
-        assert_eq!(water_alpha_test("", Loader::OptiFine1_21, Dialect::Glsl330), Ok(None));
-        assert_eq!(water_alpha_test("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, Dialect::Glsl330), Ok(Some(0.5)));
-        assert!(water_alpha_test("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, Dialect::Glsl330).is_err());
+        assert_eq!(water(off, Loader::OptiFine1_12_2, Dialect::Glsl120), Ok(None));
+        assert_eq!(water("", Loader::OptiFine1_12_2, Dialect::Glsl330), Ok(Some(0.1)));
+        assert_eq!(water("", Loader::OptiFine1_16_5, Dialect::Glsl120), Ok(None));
+        assert_eq!(water("", Loader::OptiFine1_21, Dialect::Glsl120), Ok(Some(0.1)));
+        assert_eq!(water("", Loader::OptiFine1_21, Dialect::Glsl330), Ok(None));
+        assert_eq!(water("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, Dialect::Glsl330), Ok(Some(0.5)));
+        assert!(water("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, Dialect::Glsl330).is_err());
+        // Cutout terrain: every loader tests it, OptiFine from 1.17 only in legacy outputs.
+        assert_eq!(Loader::OptiFine1_16_5.cutout_alpha_test(false), Some(0.1));
+        assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(false), None);
+        assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(true), Some(0.1));
+        assert_eq!(Loader::Iris.cutout_alpha_test(false), Some(0.1));
+        assert_eq!(alpha_test("alphaTest.gbuffers_terrain=off", "gbuffers_terrain", Some(0.1)), Ok(None));
     }
 
     #[test]

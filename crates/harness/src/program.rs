@@ -340,7 +340,8 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
         Dialect::Glsl330 => 330,
     };
     let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
-    let water_alpha_test = loader::water_alpha_test(&properties, loader, selection.dialect).map_err(HarnessError::Unsupported)?;
+    let water_alpha_test =
+        loader::alpha_test(&properties, "gbuffers_water", loader.default_water_alpha_test(selection.dialect)).map_err(HarnessError::Unsupported)?;
     let water = load_program(&provider, "gbuffers_water", glsl_version, water_alpha_test)?;
     let composite = load_program(&provider, "composite", glsl_version, None)?;
     let mut wanted: Vec<&str> = TERRAIN_CHAIN.to_vec();
