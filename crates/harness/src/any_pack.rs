@@ -130,6 +130,9 @@ pub struct AnyPack {
     /// The colour buffers each full-screen program has mipmapped before it runs
     /// (`colortexNMipmapEnabled`), by program.
     pub mipmaps: BTreeMap<String, BTreeSet<u8>>,
+    /// `flip.<program>.<buffer>=true|false` of shaders.properties, by program (`composite_pre`
+    /// and `deferred_pre` flip before the first program of their family).
+    pub flips: BTreeMap<String, BTreeMap<u8, bool>>,
     /// Blend modes per program and colour buffer from shaders.properties.
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
@@ -374,7 +377,8 @@ impl AnyPack {
         };
         let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
-        for key in ["size.buffer.", "scale.", "flip.", "alphaTest."] {
+        let flips = flip_overrides(&properties);
+        for key in ["size.buffer.", "scale.", "alphaTest."] {
             // The alpha tests of the terrain's and the water's chains are imitated.
             let imitated = |k: &str| k.strip_prefix("alphaTest.").is_some_and(|p| TERRAIN_CHAIN.contains(&p) || WATER_CHAIN.contains(&p));
             let used: Vec<&str> = properties
@@ -469,6 +473,7 @@ impl AnyPack {
             shadow_formats,
             shadow_clears,
             mipmaps,
+            flips,
             blends,
             custom_textures,
             block_ids,
@@ -647,11 +652,13 @@ impl<'a> FramePlan<'a> {
         plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks);
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
+        plan.forced_flips(pack, "deferred_pre");
         for program in family("deferred") {
             plan.fullscreen(pack, program, false);
         }
         plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks);
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
+        plan.forced_flips(pack, "composite_pre");
         for program in family("composite") {
             plan.fullscreen(pack, program, false);
         }
@@ -685,6 +692,15 @@ impl<'a> FramePlan<'a> {
         });
     }
 
+    /// The flips `flip.<virtual>.<buffer>=true` asks for before a family of programs.
+    fn forced_flips(&mut self, pack: &AnyPack, virtual_program: &str) {
+        for (b, flip) in pack.flips.get(virtual_program).into_iter().flatten() {
+            if *flip && let Some(current) = self.current.get_mut(b) {
+                *current = 1 - *current;
+            }
+        }
+    }
+
     fn shadow_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str) {
         if let Some(program) = pack.resolve_shadow(translucent) {
             self.steps.push(PlannedStep { label: format!("{what} ({})", program.name), work: PlannedWork::ShadowGeometry { program, vertices } });
@@ -704,8 +720,14 @@ impl<'a> FramePlan<'a> {
     fn fullscreen(&mut self, pack: &AnyPack, program: &'a LoadedProgram, into_screen: bool) {
         let current = self.current.clone();
         if !into_screen {
-            for b in &program.render_targets {
-                self.current.insert(*b, 1 - current[b]);
+            // Each render target flips, unless shaders.properties says otherwise for the
+            // program; a buffer it does not write flips only when told to.
+            let overrides = pack.flips.get(&program.name);
+            for b in self.buffers.clone() {
+                let default = program.render_targets.contains(&b);
+                if overrides.and_then(|o| o.get(&b)).copied().unwrap_or(default) {
+                    self.current.insert(b, 1 - current[&b]);
+                }
             }
         }
         let mipmaps = pack.mipmaps.get(&program.name).map(|m| m.intersection(&self.buffers).copied().collect()).unwrap_or_default();
@@ -741,6 +763,18 @@ fn disabled_programs(properties: &str, world: &str, files: &PackFiles, options: 
         }
     }
     (disabled, problems)
+}
+
+/// `flip.<program>.<buffer>=true|false` lines: by program, by buffer number.
+fn flip_overrides(properties: &str) -> BTreeMap<String, BTreeMap<u8, bool>> {
+    let mut flips: BTreeMap<String, BTreeMap<u8, bool>> = BTreeMap::new();
+    for line in properties.lines().map(str::trim) {
+        let Some((key, value)) = line.split_once('=') else { continue };
+        let Some((program, buffer)) = key.trim().strip_prefix("flip.").and_then(|k| k.rsplit_once('.')) else { continue };
+        let (Some(buffer), Ok(flip)) = (colour_buffer_number(buffer), value.trim().parse::<bool>()) else { continue };
+        flips.entry(program.to_string()).or_default().insert(buffer, flip);
+    }
+    flips
 }
 
 /// The names of `const bool <name> = true;` declarations.
@@ -856,6 +890,35 @@ mod tests {
         assert!(!tested(&declared, "", Loader::OptiFine1_21), "OptiFine 1.17+ leaves declared outputs alone");
         assert!(tested(&declared, "", Loader::OptiFine1_16_5) && tested(&declared, "", Loader::Iris));
         assert!(!tested(&legacy, "alphaTest.gbuffers_terrain=off\n", Loader::OptiFine1_21));
+    }
+
+    #[test]
+    fn flip_entries_keep_or_force_the_ping_pong() {
+        let vertex = b"#version 120\nvoid main() { gl_Position = ftransform(); }\n".to_vec();
+        let writes = b"#version 120\nuniform sampler2D colortex0;\nuniform sampler2D colortex5;\nvoid main() {\n/* DRAWBUFFERS:0 */\n gl_FragData[0] = texture2D(colortex0, vec2(0.5)) + texture2D(colortex5, vec2(0.5)); }\n".to_vec();
+        let properties = b"flip.composite.colortex0=false\nflip.composite_pre.colortex5=true\nflip.composite1.gaux2 = true\n".to_vec();
+        let mut files = vec![("shaders.properties".to_string(), properties)];
+        for name in ["composite", "composite1", "composite2"] {
+            files.push((format!("{name}.vsh"), vertex.clone()));
+            files.push((format!("{name}.fsh"), writes.clone()));
+        }
+        let files = tidepack_validate::input::pack_from_memory("test/shaders/", files);
+        let pack = AnyPack::from_files(&files, Loader::default(), &OptionChoice::default()).unwrap();
+        let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap();
+        let mesh = crate::mesh::build(&scene, &pack);
+        let plan = FramePlan::new(&pack, &scene, &mesh);
+        let reads: Vec<(&str, usize, usize)> = plan
+            .steps
+            .iter()
+            .filter_map(|s| match &s.work {
+                PlannedWork::Fullscreen { program, current, .. } => Some((program.name.as_str(), current[&0], current[&5])),
+                _ => None,
+            })
+            .collect();
+        // composite_pre flips colortex5 before composite; composite writes colortex0 without a
+        // flip, so composite1 reads what composite read; composite1 flips colortex0 as it
+        // writes it, and colortex5 (gaux2) although it does not write it.
+        assert_eq!(reads, [("composite", 0, 1), ("composite1", 0, 1), ("composite2", 1, 0)]);
     }
 
     #[test]
