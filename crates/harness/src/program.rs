@@ -525,8 +525,17 @@ pub fn adapt_vertex(lowered: &str) -> Result<String, HarnessError> {
 
 /// A fragment stage with a loader's alpha test after its `main`: the fragment is discarded
 /// unless `output`'s alpha is above `reference` (OpenGL's `GREATER`).
+///
+/// `text` is shipped text as the driver compiles it, preprocessor branches and all (a pack may
+/// define `main` once per stage under `#ifdef`s, and end on `#endif`): a `#define` after the
+/// `#version` line renames whichever `main` is compiled, and the new `main` follows the last
+/// line. Lines after `#version` are numbered one further on.
 pub fn with_alpha_test(text: &str, output: &str, reference: f32) -> Result<String, HarnessError> {
-    wrap_main(text, &alpha_test_statement(output, reference))
+    let mut lines: Vec<&str> = text.lines().collect();
+    let after_version = lines.iter().position(|l| l.trim_start().starts_with("#version")).map_or(0, |i| i + 1);
+    lines.insert(after_version, "#define main tp_shipped_main");
+    let statement = alpha_test_statement(output, reference);
+    Ok(format!("{}\n#undef main\nvoid main() {{ tp_shipped_main(); {statement} }}\n", lines.join("\n")))
 }
 
 fn alpha_test_statement(output: &str, reference: f32) -> String {
@@ -848,12 +857,13 @@ mod tests {
     }
 
     #[test]
-    fn the_alpha_test_wraps_main_on_the_last_line() {
-        let text = "#version 330\nout vec4 outColor0;\nvoid main() {\n    outColor0 = vec4(0.0);\n}\n";
+    fn the_alpha_test_wraps_the_main_the_driver_compiles() {
+        // Two mains under #ifdef and an #endif on the last line, as packs sharing one file
+        // between stages write it.
+        let text = "#version 330\nout vec4 outColor0;\n#ifdef FSH\nvoid main() {\n    outColor0 = vec4(0.0);\n}\n#else\nvoid main() {}\n#endif\n";
         let tested = with_alpha_test(text, "outColor0", 0.1).unwrap();
-        assert_eq!(tested.lines().count(), text.lines().count(), "{tested}");
-        assert!(tested.contains("void tp_shipped_main() {"), "{tested}");
-        assert!(tested.ends_with("void main() { tp_shipped_main(); if (!(outColor0.a > 0.1)) { discard; } }\n"), "{tested}");
+        assert!(tested.starts_with("#version 330\n#define main tp_shipped_main\nout vec4 outColor0;\n"), "{tested}");
+        assert!(tested.ends_with("#endif\n#undef main\nvoid main() { tp_shipped_main(); if (!(outColor0.a > 0.1)) { discard; } }\n"), "{tested}");
         assert_eq!(lowered_output("layout(location = 0) out vec4 tp_FragData0; layout(location = 1) out vec4 x;", 0).as_deref(), Some("tp_FragData0"));
     }
 
