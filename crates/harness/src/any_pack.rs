@@ -403,30 +403,24 @@ impl AnyPack {
         let programs = gbuffers.values().chain(shadow.values()).chain(fullscreen.iter());
         let stages: Vec<&program::LoadedStage> = programs.flat_map(|p| [&p.vertex, &p.fragment]).collect();
         let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.gl_text.as_str()));
-        for stage in &stages {
-            for (buffer, name) in declared_format_names(&stage.gl_text, shadow_colour_number) {
+        // The declared formats of one kind of buffer (`colortex`, `shadowcolor`), stand-ins named.
+        let read_formats = |text: &str, kind: &str, number: fn(&str) -> Option<u8>, formats: &mut BTreeMap<u8, BufferFormat>, not_modelled: &mut Vec<String>| {
+            for (buffer, name) in declared_format_names(text, number) {
                 match BufferFormat::stand_in(&name) {
                     Some((format, exact)) => {
                         if !exact {
-                            not_modelled.push(format!("shadowcolor{buffer}Format = {name}: stored as {format:?}"));
-                        }
-                        shadow_formats.insert(buffer, format);
-                    }
-                    None => not_modelled.push(format!("shadowcolor{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
-                }
-            }
-            shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
-            for (buffer, name) in declared_format_names(&stage.gl_text, colour_buffer_number) {
-                match BufferFormat::stand_in(&name) {
-                    Some((format, exact)) => {
-                        if !exact {
-                            not_modelled.push(format!("colortex{buffer}Format = {name}: stored as {format:?}"));
+                            not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as {format:?}"));
                         }
                         formats.insert(buffer, format);
                     }
-                    None => not_modelled.push(format!("colortex{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
+                    None => not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
                 }
             }
+        };
+        for stage in &stages {
+            read_formats(&stage.gl_text, "shadowcolor", shadow_colour_number, &mut shadow_formats, &mut not_modelled);
+            read_formats(&stage.gl_text, "colortex", colour_buffer_number, &mut formats, &mut not_modelled);
+            shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
             clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
             let shadow_mipmaps = ["shadowcolor", "shadowtex", "generateShadowMipmap", "generateShadowColorMipmap"];
             if declared_switches(&stage.gl_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {

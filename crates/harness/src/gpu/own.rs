@@ -173,24 +173,7 @@ impl PassthroughPipeline {
         let module = gpu.checked(&format!("{label} shader"), || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(wgsl.into()) })
         })?;
-        let pipeline = gpu.checked(&format!("{label} pipeline"), || {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: None,
-                vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs"),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState { format: OUT, blend: None, write_mask: wgpu::ColorWrites::ALL })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        })?;
+        let pipeline = full_screen_triangle(gpu, label, &module, OUT)?;
         let bind_group = gpu.checked(&format!("{label} bind group"), || {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(label),
@@ -245,24 +228,7 @@ impl MipmapPipelines {
         })?;
         let mut pipelines = std::collections::HashMap::new();
         for format in formats {
-            let pipeline = gpu.checked("mipmap pipeline", || {
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("mipmaps"),
-                    layout: None,
-                    vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
-                    primitive: Default::default(),
-                    depth_stencil: None,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("fs"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-            })?;
+            let pipeline = full_screen_triangle(gpu, "mipmaps", &module, format)?;
             pipelines.insert(format, pipeline);
         }
         let linear = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -299,6 +265,29 @@ impl MipmapPipelines {
             pass.draw(0..3, 0..1);
         }
     }
+}
+
+/// A pipeline of `module`'s `vs` (a triangle over the target, no vertex buffers) and `fs` into
+/// one target of `format`, its layout from the shader.
+fn full_screen_triangle(gpu: &Gpu, label: &str, module: &wgpu::ShaderModule, format: wgpu::TextureFormat) -> Result<wgpu::RenderPipeline, HarnessError> {
+    gpu.checked(&format!("{label} pipeline"), || {
+        gpu.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            vertex: wgpu::VertexState { module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
 }
 
 /// The number of mip levels of a full chain for `width` x `height`.
