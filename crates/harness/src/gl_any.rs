@@ -75,7 +75,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
             }
             buffers.insert(b, (flipped, colour(format)?, format));
         }
-        let depth_of = |side_w: i32, side_h: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, side_w, side_h, None, false, false);
+        let depth_of =
+            |width: i32, height: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, width, height, None, false, false);
         let (depth0, depth1) = (depth_of(w, h)?, depth_of(w, h)?);
         // The shadow maps, as the wgpu path makes them: one texel each without a shadow pass.
         let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 as i32 } else { 1 };

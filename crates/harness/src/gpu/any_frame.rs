@@ -112,13 +112,6 @@ impl Work<'_> {
     }
 }
 
-/// Names the sun-path tilt the scene fixes where the pack declares another.
-fn note_sun_path(pack: &AnyPack, scene: &Scene, note: &mut impl FnMut(String)) {
-    if let Some(line) = pack.sun_path_note(scene) {
-        note(line);
-    }
-}
-
 /// Renders `frames` frames of `scene` with any pack's programs, pipelines made once; returns
 /// the last with the medians of the others' times.
 pub fn render_any(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, frames: usize) -> Result<AnyFrame, HarnessError> {
@@ -191,7 +184,9 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
     let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
     let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
-    note_sun_path(pack, scene, &mut note);
+    if let Some(line) = pack.sun_path_note(scene) {
+        note(line);
+    }
     for problem in &problems {
         note(format!("{problem} (the uniform stays zero)"));
     }
