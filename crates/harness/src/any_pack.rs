@@ -547,12 +547,14 @@ pub enum PlannedWork<'a> {
         sprites: Sprites,
         /// Whose uniform values: gbuffers, or the sun and moon's.
         pass: Pass,
+        /// `renderStage` for the draw: the `MC_RENDER_STAGE_*` name.
+        render_stage: &'static str,
     },
     /// depthtex0 to depthtex1.
     DepthCopy,
     /// Geometry drawn into the shadow map by a shadow program, under the shadow camera: its
     /// render targets are shadow colour buffers, its depth buffer shadowtex0; no blending.
-    ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex] },
+    ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex], render_stage: &'static str },
     /// shadowtex0 to shadowtex1: the shadow map without translucents.
     ShadowDepthCopy,
     /// A full-screen program: reads the current textures, draws into the other texture of each
@@ -637,20 +639,20 @@ impl<'a> FramePlan<'a> {
             plan.fullscreen(pack, program, false);
         }
         // The sky: the game's own colour where the pack has no skybasic program.
-        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks);
+        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks, "SKY");
         if let Some(program) = pack.resolve(&SKY_TEXTURED_CHAIN) {
-            plan.geometry(pack, Some(program), &mesh.sun, CELESTIAL_BLEND, false, "sun", Sprites::Sun);
-            plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon);
+            plan.geometry(pack, Some(program), &mesh.sun, CELESTIAL_BLEND, false, "sun", Sprites::Sun, "SUN");
+            plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon, "MOON");
         }
         plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
-        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks);
+        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks, "TERRAIN_SOLID");
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         plan.forced_flips(pack, "deferred_pre");
         for program in family("deferred") {
             plan.fullscreen(pack, program, false);
         }
-        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks);
+        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks, "TERRAIN_TRANSLUCENT");
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
         plan.forced_flips(pack, "composite_pre");
         for program in family("composite") {
@@ -676,13 +678,14 @@ impl<'a> FramePlan<'a> {
         depth_write: bool,
         what: &str,
         sprites: Sprites,
+        render_stage: &'static str,
     ) {
         let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::AnyPack, true)).unwrap_or_default();
         let pass = if sprites == Sprites::Blocks { Pass::Gbuffers } else { Pass::Celestial };
         let current = self.current.clone();
         self.steps.push(PlannedStep {
             label: format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str())),
-            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass },
+            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage },
         });
     }
 
@@ -697,7 +700,9 @@ impl<'a> FramePlan<'a> {
 
     fn shadow_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str) {
         if let Some(program) = pack.resolve_shadow(translucent) {
-            self.steps.push(PlannedStep { label: format!("{what} ({})", program.name), work: PlannedWork::ShadowGeometry { program, vertices } });
+            let render_stage = if translucent { "TERRAIN_TRANSLUCENT" } else { "TERRAIN_SOLID" };
+            let work = PlannedWork::ShadowGeometry { program, vertices, render_stage };
+            self.steps.push(PlannedStep { label: format!("{what} ({})", program.name), work });
         }
     }
 
@@ -706,7 +711,13 @@ impl<'a> FramePlan<'a> {
             if overlay_phase(pack.loader, scene, *kind) == phase {
                 let program = pack.resolve(pack.loader.program_chain(*kind));
                 let depth_write = crate::loader::writes_depth(*kind);
-                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, depth_write, &format!("{kind:?}"), Sprites::Blocks);
+                let stage = match kind {
+                    OverlayKind::Rain => "RAIN_SNOW",
+                    OverlayKind::Clouds => "CLOUDS",
+                    OverlayKind::Particles => "PARTICLES",
+                    OverlayKind::Hand => "HAND_TRANSLUCENT",
+                };
+                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, depth_write, &format!("{kind:?}"), Sprites::Blocks, stage);
             }
         }
     }
@@ -913,6 +924,36 @@ mod tests {
         // flip, so composite1 reads what composite read; composite1 flips colortex0 as it
         // writes it, and colortex5 (gaux2) although it does not write it.
         assert_eq!(reads, [("composite", 0, 1), ("composite1", 0, 1), ("composite2", 1, 0)]);
+    }
+
+    #[test]
+    fn each_draw_of_the_world_has_its_render_stage() {
+        let shaders = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/packs/shadow_map");
+        let pack = AnyPack::load(&shaders, Loader::default(), &OptionChoice::default()).unwrap();
+        let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/rain_over_lake.toml")).unwrap();
+        let mesh = crate::mesh::build(&scene, &pack);
+        let plan = FramePlan::new(&pack, &scene, &mesh);
+        let stages: Vec<(&str, &str)> = plan
+            .steps
+            .iter()
+            .filter_map(|s| match &s.work {
+                PlannedWork::Geometry { render_stage, .. } | PlannedWork::ShadowGeometry { render_stage, .. } => Some((s.label.as_str(), *render_stage)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            stages,
+            [
+                ("shadow terrain (shadow)", "TERRAIN_SOLID"),
+                ("shadow water (shadow)", "TERRAIN_TRANSLUCENT"),
+                ("sky (the loader's own)", "SKY"),
+                ("terrain (gbuffers_terrain)", "TERRAIN_SOLID"),
+                ("water (gbuffers_water)", "TERRAIN_TRANSLUCENT"),
+                ("Rain (the loader's own)", "RAIN_SNOW"),
+            ]
+        );
+        let values = uniforms::with_render_stage(&uniforms::values(&scene, Pass::Gbuffers), "TERRAIN_TRANSLUCENT");
+        assert_eq!(values["renderStage"], Value::int(17));
     }
 
     #[test]

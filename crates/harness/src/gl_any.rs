@@ -25,7 +25,7 @@ use crate::images::FloatImage;
 use crate::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
-use crate::uniforms::Pass;
+use crate::uniforms::{self, Pass};
 
 /// A frame of any pack from the OpenGL driver.
 #[derive(Clone, Debug)]
@@ -134,7 +134,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
         let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
         let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
-        let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, textures: &Textures, vertices: &[PackVertex]| {
+        // `render_stage`: the `MC_RENDER_STAGE_*` of the draw.
+        let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, render_stage: &str, textures: &Textures, vertices: &[PackVertex]| {
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
@@ -144,7 +145,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                 Pass::Shadow => &shadow_values,
                 Pass::Celestial => &celestial_values,
             };
-            let drawn = draw_program(ctx, pack, program, compiled, pass, values, textures, vertices);
+            let values = uniforms::with_render_stage(values, render_stage);
+            let drawn = draw_program(ctx, pack, program, compiled, pass, &values, textures, vertices);
             if own_range && let Some(clip_control) = lg.clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }
@@ -160,7 +162,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
         for step in &plan.steps {
             let mut written = Vec::new();
             match &step.work {
-                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots: read_buffers, sprites, pass } => {
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots: read_buffers, sprites, pass, render_stage } => {
                     for b in read_buffers {
                         let (textures, snapshot, _) = &buffers[b];
                         gl.copy_image_sub_data(textures[current[b]], glow::TEXTURE_2D, 0, 0, 0, 0, *snapshot, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
@@ -192,7 +194,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                                 mipmapped: BTreeSet::new(),
                             };
                             let (compiled, own_range) = build(program)?;
-                            draw(program, &compiled, own_range, *pass, &textures, vertices)?;
+                            draw(program, &compiled, own_range, *pass, render_stage, &textures, vertices)?;
                             compiled.delete(ctx);
                         }
                         None => draw_own_colour(ctx, pack.loader.missing_program_draws(), DepthMapping::Harness, scene, vertices)?,
@@ -206,7 +208,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                 PlannedWork::DepthCopy => {
                     gl.copy_image_sub_data(depth0, glow::TEXTURE_2D, 0, 0, 0, 0, depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
                 }
-                PlannedWork::ShadowGeometry { program, vertices } => {
+                PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
                     let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| shadow_colours[b]).collect();
                     attach(gl, &targets, Some(shadow_depth[0]))?;
                     set_blends(gl, &program.render_targets, &|b| pack.blend_of(Some(program), b, &Blend::Off));
@@ -226,7 +228,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         mipmapped: BTreeSet::new(),
                     };
                     let (compiled, own_range) = build(program)?;
-                    draw(program, &compiled, own_range, Pass::Shadow, &textures, vertices)?;
+                    draw(program, &compiled, own_range, Pass::Shadow, render_stage, &textures, vertices)?;
                     compiled.delete(ctx);
                     gl.viewport(0, 0, w, h);
                     set_blends(gl, &program.render_targets, &|_| Blend::Off);
@@ -264,7 +266,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                         mipmapped: mipmaps.clone(),
                     };
                     let (compiled, own_range) = build(program)?;
-                    draw(program, &compiled, own_range, Pass::Fullscreen, &textures, &quad)?;
+                    draw(program, &compiled, own_range, Pass::Fullscreen, "NONE", &textures, &quad)?;
                     compiled.delete(ctx);
                     set_blends(gl, &program.render_targets, &|_| Blend::Off);
                     for (name, t) in targets {

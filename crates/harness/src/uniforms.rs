@@ -231,6 +231,8 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("hideGUI", Value::int(1));
     // The game's fog is on (GL_LINEAR), but for the sun and moon; the pack's programs apply it.
     put("fogMode", Value::int(if pass == Pass::Celestial { 0 } else { GL_LINEAR }));
+    // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`with_render_stage`]).
+    put("renderStage", Value::int(0));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
     put("alphaTestRef", Value::float(if pass == Pass::Fullscreen { 0.0 } else { 0.1 }));
     let legacy = legacy_matrices(scene, pass, shadow);
@@ -257,6 +259,15 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("textureMatrix", Value::mat4(legacy.texture[0]));
     put("chunkOffset", Value::vec3(DVec3::ZERO));
     v
+}
+
+/// `values` with `renderStage` set to the `MC_RENDER_STAGE_*` named `stage` (`SKY`, `SUN`,
+/// `TERRAIN_SOLID`, …), as OptiFine 1.17+ and Iris set it for each kind of draw.
+pub fn with_render_stage(values: &BTreeMap<String, Value>, stage: &str) -> BTreeMap<String, Value> {
+    let number = tidepack_glsl::macros::RENDER_STAGES.iter().position(|s| *s == stage).unwrap_or(0);
+    let mut values = values.clone();
+    values.insert("renderStage".to_string(), Value::int(number as i64));
+    values
 }
 
 /// The 1.17+ core profile's names for the legacy matrices, which differ between passes:

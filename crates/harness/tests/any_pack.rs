@@ -190,6 +190,10 @@ fn a_program_that_asks_for_mipmaps_reads_them_and_the_others_do_not() {
         }
         worst
     };
+    // The terrain drew with renderStage MC_RENDER_STAGE_TERRAIN_SOLID (8) in its blue.
+    let terrain = written("terrain (gbuffers_terrain)", "colortex0");
+    let stage = terrain.pixels[(terrain.height as usize / 2) * terrain.width as usize + terrain.width as usize / 2][2];
+    assert!((stage * 255.0 - 8.0).abs() < 1e-3, "renderStage {}", stage * 255.0);
     let checker = written("composite", "colortex2");
     let averaged = written("composite1", "colortex0");
     assert!(roughness(&checker) > 0.3, "the checker: {}", roughness(&checker));

@@ -12,7 +12,7 @@ use crate::images::FloatImage;
 use crate::mesh::{SceneMesh, Sprites};
 use crate::program::{Blend, LoadedProgram, PackResources};
 use crate::scene::Scene;
-use crate::uniforms::Pass;
+use crate::uniforms::{self, Pass};
 
 use super::Gpu;
 use super::bindings::{
@@ -200,8 +200,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let mut zeroed_uniforms = Vec::new();
     for step in &plan.steps {
         let (work, written) = match &step.work {
-            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass } => {
-                let values = if *pass == Pass::Celestial { &celestial_values } else { &gbuffers_values };
+            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
+                let values = uniforms::with_render_stage(if *pass == Pass::Celestial { &celestial_values } else { &gbuffers_values }, render_stage);
                 let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                 let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                 // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -216,7 +216,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     mipmapped: &NO_MIPMAPS,
                 };
                 let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, values, &textures, *program, &state, vertices, step.label.clone())?;
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, *program, &state, vertices, step.label.clone())?;
                 if let Some(pipeline) = draw.pipeline() {
                     zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
                     zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
@@ -225,7 +225,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 (Work::Geometry { draw, current, snapshots }, written)
             }
             PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
-            PlannedWork::ShadowGeometry { program, vertices } => {
+            PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
+                let values = uniforms::with_render_stage(&shadow_values, render_stage);
                 let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
                 let state = DrawState { blend_of: &blend_of, depth_write: true };
                 // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
@@ -240,7 +241,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                     mipmapped: &NO_MIPMAPS,
                 };
                 let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, &shadow_values, &textures, Some(program), &state, vertices, step.label.clone())?;
+                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, Some(program), &state, vertices, step.label.clone())?;
                 if let Some(pipeline) = draw.pipeline() {
                     zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
                     zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
