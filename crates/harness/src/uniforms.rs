@@ -270,17 +270,26 @@ pub fn with_render_stage(values: &BTreeMap<String, Value>, stage: &str) -> BTree
     values
 }
 
-/// The 1.17+ core profile's names for the legacy matrices, which differ between passes:
-/// never folded.
-const PER_PASS: [&str; 7] =
-    ["modelViewMatrix", "modelViewMatrixInverse", "projectionMatrix", "projectionMatrixInverse", "normalMatrix", "textureMatrix", "chunkOffset"];
+/// The 1.17+ core profile's names for the legacy matrices, and `renderStage`, which differ
+/// between passes and draws: never folded.
+const PER_PASS: [&str; 8] = [
+    "modelViewMatrix",
+    "modelViewMatrixInverse",
+    "projectionMatrix",
+    "projectionMatrixInverse",
+    "normalMatrix",
+    "textureMatrix",
+    "chunkOffset",
+    "renderStage",
+];
 
 /// Uniforms that change from frame to frame while a scene is shown: never folded.
 const ANIMATION_CLOCK: [&str; 3] = ["frameTimeCounter", "frameTime", "frameCounter"];
 
 /// What `build --scene` folds: every OptiFine uniform the scene fixes (camera, matrices,
-/// sky, `isEyeInWater`, ...), but not the animation clock nor the legacy matrices under
-/// either name, which differ between passes. `label` names the scene in the folded lines.
+/// sky, `isEyeInWater`, ...), but not the animation clock, the legacy matrices under either
+/// name nor `renderStage`, which differ between passes. `label` names the scene in the folded
+/// lines.
 pub fn scene_specialisation(scene: &Scene, label: &str) -> Specialisation {
     let constants = values(scene, Pass::Fullscreen)
         .into_iter()
