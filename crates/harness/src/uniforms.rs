@@ -229,6 +229,13 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("eyeBrightness", Value::ivec2(0, 240));
     put("eyeBrightnessSmooth", Value::ivec2(0, 240));
     put("hideGUI", Value::int(1));
+    // The scenes' player holds nothing in either hand: no item of item.properties (-1), no
+    // light; and is not in a cave mood.
+    put("heldItemId", Value::int(-1));
+    put("heldItemId2", Value::int(-1));
+    put("heldBlockLightValue", Value::int(0));
+    put("heldBlockLightValue2", Value::int(0));
+    put("playerMood", Value::float(0.0));
     // The game's fog is on (GL_LINEAR), but for the sun and moon; the pack's programs apply it.
     put("fogMode", Value::int(if pass == Pass::Celestial { 0 } else { GL_LINEAR }));
     // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`with_render_stage`]).
