@@ -253,25 +253,26 @@ impl AnyPack {
             if !program.compute.is_empty() {
                 not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
             }
-            let loaded = program::load_program_files(&provider, &files, &macros, None, undeclared).and_then(|p| {
+            let alpha_test = |fragment: &str| {
                 // Whether the program writes gl_FragData/gl_FragColor decides OptiFine 1.17+'s test.
-                let legacy = ["gl_FragData", "gl_FragColor"].iter().any(|o| p.fragment.gl_text.contains(o));
+                let legacy = ["gl_FragData", "gl_FragColor"].iter().any(|o| fragment.contains(o));
                 let default = match test {
-                    LoaderAlphaTest::None => return Ok(p),
+                    LoaderAlphaTest::None => return None,
                     LoaderAlphaTest::Cutout => loader.cutout_alpha_test(legacy),
                     LoaderAlphaTest::Water => loader.default_water_alpha_test(if legacy { Dialect::Glsl120 } else { Dialect::Glsl330 }),
                 };
-                match crate::loader::alpha_test(&properties, name, default) {
-                    Ok(Some(reference)) => program::load_program_files(&provider, &files, &macros, Some(reference), undeclared),
-                    Ok(None) => Ok(p),
-                    Err(e) => {
+                // An `alphaTest.<program>` setting the harness cannot imitate leaves no test.
+                crate::loader::alpha_test(&properties, name, default).unwrap_or(None)
+            };
+            match program::load_program_files(&provider, &files, &macros, &alpha_test, undeclared) {
+                Ok(p) => {
+                    if test != LoaderAlphaTest::None
+                        && let Err(e) = crate::loader::alpha_test(&properties, name, None)
+                    {
                         not_modelled.push(format!("{e} (no alpha test)"));
-                        Ok(p)
                     }
+                    Some(p)
                 }
-            });
-            match loaded {
-                Ok(p) => Some(p),
                 Err(e) => {
                     failed.push((name.to_string(), e.to_string()));
                     None
@@ -728,10 +729,10 @@ impl<'a> FramePlan<'a> {
             // Each render target flips, unless shaders.properties says otherwise for the
             // program; a buffer it does not write flips only when told to.
             let overrides = pack.flips.get(&program.name);
-            for b in self.buffers.clone() {
-                let default = program.render_targets.contains(&b);
-                if overrides.and_then(|o| o.get(&b)).copied().unwrap_or(default) {
-                    self.current.insert(b, 1 - current[&b]);
+            for b in &self.buffers {
+                let default = program.render_targets.contains(b);
+                if overrides.and_then(|o| o.get(b)).copied().unwrap_or(default) {
+                    self.current.insert(*b, 1 - current[b]);
                 }
             }
         }

@@ -473,7 +473,7 @@ pub(crate) unsafe fn make_texture(
 
 /// Gives colour texture `t` (`width` x `height`, level 0 made) every further mip level.
 pub(crate) unsafe fn add_mip_levels(gl: &glow::Context, t: glow::Texture, internal: u32, width: i32, height: i32) {
-    let levels = 32 - (width.max(height).max(1) as u32).leading_zeros();
+    let levels = crate::gpu::own::mip_levels(width as u32, height as u32);
     // SAFETY: the caller holds the current context.
     unsafe {
         gl.bind_texture(glow::TEXTURE_2D, Some(t));

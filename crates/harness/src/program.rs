@@ -401,7 +401,7 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
 /// an alpha not above it, as a loader's alpha test would.
 fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alpha_test: Option<f32>) -> Result<LoadedProgram, HarnessError> {
     let files = ProgramFiles { name, vertex: format!("{name}.vsh"), fragment: format!("{name}.fsh") };
-    load_program_files(provider, &files, &standard_macros(glsl_version), alpha_test, UndeclaredTargets::Refuse)
+    load_program_files(provider, &files, &standard_macros(glsl_version), &|_| alpha_test, UndeclaredTargets::Refuse)
 }
 
 /// The two stage files of one program, as paths inside `shaders/`.
@@ -423,12 +423,14 @@ pub(crate) enum UndeclaredTargets {
     FirstOnly,
 }
 
-/// Loads one program from its stage files with `macros` predefined.
+/// Loads one program from its stage files with `macros` predefined. `alpha_test` gives the
+/// loader's alpha test for the fragment stage's shipped text (includes expanded): fragments
+/// whose output 0 has an alpha not above it are discarded.
 pub(crate) fn load_program_files(
     provider: &dyn FileProvider,
     files: &ProgramFiles,
     macros: &preprocess::PreprocessOptions,
-    alpha_test: Option<f32>,
+    alpha_test: &dyn Fn(&str) -> Option<f32>,
     undeclared: UndeclaredTargets,
 ) -> Result<LoadedProgram, HarnessError> {
     let name = files.name;
@@ -449,6 +451,9 @@ pub(crate) fn load_program_files(
         let path = stage.preprocessed.files[0].clone();
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
+        let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
+            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
             Stage::Fragment => {
@@ -469,9 +474,7 @@ pub(crate) fn load_program_files(
         };
         let valid = naga_check::validate_stage(&mut frontend, &adapted, provider)
             .map_err(|d| diag_error(&format!("{path} does not validate"), &d))?;
-        let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
-            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
-        if let (Stage::Fragment, Some(reference)) = (stage.stage, alpha_test) {
+        if let Some(reference) = alpha_test {
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
         }

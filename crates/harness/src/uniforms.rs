@@ -134,11 +134,13 @@ pub fn lightmap_matrix() -> DMat4 {
     DMat4::from_translation(DVec3::splat(8.0 / 256.0)) * DMat4::from_scale(DVec3::new(1.0 / 256.0, 1.0 / 256.0, 1.0 / 256.0))
 }
 
-fn legacy_matrices(scene: &Scene, pass: Pass, shadow: &ShadowSettings) -> LegacyMatrices {
+/// The legacy matrices of `pass`; the shadow pass's are `shadow_camera` (model-view,
+/// projection).
+fn legacy_matrices(scene: &Scene, pass: Pass, shadow_camera: (DMat4, DMat4)) -> LegacyMatrices {
     let (model_view, projection) = match pass {
         Pass::Gbuffers | Pass::Celestial => (scene.model_view(), scene.projection()),
         Pass::Fullscreen => (DMat4::IDENTITY, DMat4::orthographic_rh_gl(0.0, 1.0, 0.0, 1.0, -1.0, 1.0)),
-        Pass::Shadow => (shadow_model_view(scene, shadow), shadow.projection()),
+        Pass::Shadow => shadow_camera,
     };
     let texture = match pass {
         Pass::Gbuffers | Pass::Shadow | Pass::Celestial => [DMat4::IDENTITY, lightmap_matrix()],
@@ -149,11 +151,6 @@ fn legacy_matrices(scene: &Scene, pass: Pass, shadow: &ShadowSettings) -> Legacy
 
 /// `fogMode` for the game's linear distance fog.
 const GL_LINEAR: i64 = 0x2601;
-
-/// `shadowModelView` in `scene` with the pack's `shadow` constants.
-fn shadow_model_view(scene: &Scene, shadow: &ShadowSettings) -> DMat4 {
-    SunPath::of_sun_direction(scene.sun_direction()).shadow_model_view(shadow.interval, scene.camera_position())
-}
 
 /// Every uniform the harness can fill for a scene and pass, by its OptiFine name, with
 /// OptiFine's default shadow camera; the legacy matrices under their lowered names
@@ -203,11 +200,11 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     let sun_path = SunPath::of_sun_direction(scene.sun_direction());
     put("sunAngle", Value::float(sun_path.sun_angle()));
     put("shadowAngle", Value::float(sun_path.shadow_angle()));
-    let shadow_view = shadow_model_view(scene, shadow);
-    put("shadowModelView", Value::mat4(shadow_view));
-    put("shadowModelViewInverse", Value::mat4(shadow_view.inverse()));
-    put("shadowProjection", Value::mat4(shadow.projection()));
-    put("shadowProjectionInverse", Value::mat4(shadow.projection().inverse()));
+    let shadow_camera = (sun_path.shadow_model_view(shadow.interval, camera), shadow.projection());
+    put("shadowModelView", Value::mat4(shadow_camera.0));
+    put("shadowModelViewInverse", Value::mat4(shadow_camera.0.inverse()));
+    put("shadowProjection", Value::mat4(shadow_camera.1));
+    put("shadowProjectionInverse", Value::mat4(shadow_camera.1.inverse()));
     put("upPosition", Value::vec3(to_view(DVec3::new(0.0, 100.0, 0.0))));
     put("skyColor", Value::vec3(DVec3::from(scene.sky.sky_color)));
     put("fogColor", Value::vec3(DVec3::from(scene.sky.fog_color)));
@@ -242,7 +239,7 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("renderStage", Value::int(0));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
     put("alphaTestRef", Value::float(if pass == Pass::Fullscreen { 0.0 } else { 0.1 }));
-    let legacy = legacy_matrices(scene, pass, shadow);
+    let legacy = legacy_matrices(scene, pass, shadow_camera);
     let mvp = legacy.projection * legacy.model_view;
     let normal = DMat3::from_mat4(legacy.model_view).inverse().transpose();
     let mut textures = [DMat4::IDENTITY; 8];

@@ -157,10 +157,8 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use);
     let shadow_depth = [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)];
     let shadow_depth_read = [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)];
-    let depth_as_luminance = [
-        PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[0])?,
-        PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[1])?,
-    ];
+    // shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
+    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[0])?;
     let mut shadow_colours = BTreeMap::new();
     for &b in &plan.shadow_buffers {
         let format = gpu.texture_format(pack.shadow_format_of(b))?;
@@ -348,7 +346,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
                 Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
                 Work::ShadowGeometry(draw) => {
                     draw.record(&mut encoder, &|b| &shadow_colours[&b].0, &shadow_depth[0], stamps);
-                    depth_as_luminance[0].record(&mut encoder, &shadow_depth_read[0], None);
+                    depth_as_luminance.record(&mut encoder, &shadow_depth_read[0], None);
                 }
                 Work::ShadowDepthCopy => {
                     encoder.copy_texture_to_texture(shadow_depth[0].as_image_copy(), shadow_depth[1].as_image_copy(), shadow_size);

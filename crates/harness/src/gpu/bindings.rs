@@ -216,11 +216,11 @@ pub(crate) struct HarnessTextures {
     comparison: wgpu::Sampler,
     flat_normals: wgpu::TextureView,
     no_specular: wgpu::TextureView,
-    /// What a shadow colour buffer the frame lacks reads: the white of its clear.
-    white: wgpu::TextureView,
-    /// A shadow map nothing was drawn into: depth 1 everywhere, and as `sampler2D` reads it.
+    /// One white texel: what a shadow colour buffer the frame lacks reads (the white of its
+    /// clear), and a shadow map nothing was drawn into as `sampler2D` reads it (depth 1).
+    white: wgpu::Texture,
+    /// A shadow map nothing was drawn into: depth 1 everywhere.
     pub(crate) empty_shadow_depth: wgpu::Texture,
-    empty_shadow_read: wgpu::Texture,
     /// The sampler of shadow maps read through `sampler2D`: linear unless `shadowtexNearest`.
     shadow_depth_sampler: wgpu::Sampler,
     unbound: wgpu::TextureView,
@@ -282,10 +282,9 @@ impl HarnessTextures {
             },
             flat_normals: one_texel("normals (flat)", [128, 128, 255, 255]),
             no_specular: one_texel("specular (none)", [0, 0, 0, 0]),
-            white: one_texel("shadowcolor (nothing drawn)", [255; 4]),
+            white: upload_texture("white: shadowcolor and shadowtex, nothing drawn", (1, 1, vec![255; 4])),
             unbound: one_texel("a sampler OptiFine binds nothing to", [0; 4]),
             empty_shadow_depth: empty_depth(gpu),
-            empty_shadow_read: upload_texture("shadowtex as sampler2D reads it (nothing drawn)", (1, 1, vec![255; 4])),
             shadow_depth_sampler: if pack.shadow_settings().nearest {
                 sampler(wgpu::FilterMode::Nearest, wgpu::AddressMode::ClampToEdge)
             } else {
@@ -429,7 +428,7 @@ pub(crate) static NO_SHADOW_COLOURS: BTreeMap<u8, (wgpu::Texture, wgpu::TextureF
 impl<'a> ShadowTextures<'a> {
     /// Shadow maps nothing was drawn into.
     pub(crate) fn empty(harness: &'a HarnessTextures) -> ShadowTextures<'a> {
-        ShadowTextures { depth: [&harness.empty_shadow_depth; 2], depth_read: [&harness.empty_shadow_read; 2], colours: &NO_SHADOW_COLOURS }
+        ShadowTextures { depth: [&harness.empty_shadow_depth; 2], depth_read: [&harness.white; 2], colours: &NO_SHADOW_COLOURS }
     }
 }
 
@@ -446,7 +445,7 @@ impl BindableTextures<'_> {
             Source::NoSpecular => (harness.no_specular.clone(), true),
             Source::ShadowColour(n) => match self.shadow.colours.get(&n) {
                 Some((t, format)) => (view(t), gpu.filterable(*format)),
-                None => (harness.white.clone(), true),
+                None => (view(&harness.white), true),
             },
             Source::Unbound => (harness.unbound.clone(), true),
             Source::ShadowDepth(n) if compared => (view(self.shadow.depth[n as usize]), false),
