@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use tidepack_glsl::options::{OptionKind, OptionValue};
+use tidepack_loader::option_lines::{OptionKind, OptionValue};
 use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
 use tidepack_harness::uniforms::{self, Pass};
 use tidepack_harness::{Gpu, LoadedPack, PackSelection, Scene, program, render_wgpu};

@@ -7,10 +7,11 @@ use std::process::{Command, Output};
 use std::sync::Arc;
 
 use tidepack_glsl::preprocess::expand_includes;
+use tidepack_loader::macros::StandardMacros;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::ShippedPack;
 use tidepack_pack::source::PackSource;
-use tidepack_pack::{option_sets, pack_options};
+use tidepack_pack::pack_options;
 
 fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
@@ -148,12 +149,7 @@ fn glslang_accepts_every_shipped_stage() {
         for dialect in Dialect::ALL {
             let pack = ShippedPack::generate(&source, &options, dialect, &defaults).unwrap();
             let files: HashMap<String, Arc<str>> = pack.files.iter().map(|(k, v)| (k.clone(), v.text.clone())).collect();
-            let version = if dialect == Dialect::Glsl120 { 120 } else { 330 };
-            let macros: String = option_sets::standard_macros(version)
-                .predefined
-                .iter()
-                .map(|(k, v)| format!("#define {k} {v}\n"))
-                .collect();
+            let macros = StandardMacros::default().define_lines();
             for program in pack.programs() {
                 for (stage, path) in &program.stages {
                     let text = expand_includes(&files, path, &macros).unwrap();
@@ -360,7 +356,7 @@ fn bad_manifests_and_missing_sources_are_clear_errors() {
 #[test]
 fn options_properties_and_lang_agree() {
     use std::collections::BTreeSet;
-    use tidepack_glsl::options::scan;
+    use tidepack_loader::option_lines::scan;
 
     let out = tempfile::tempdir().unwrap();
     assert!(build_into(&repo_root().join("shaderpack"), out.path(), &["--dialect", "330"]).status.success());
@@ -447,9 +443,7 @@ fn build_for_a_scene_folds_its_uniforms_validates_and_measures_the_speedup() {
             .iter()
             .filter_map(|(k, v)| Some((k.strip_prefix("shaders/")?.to_string(), Arc::from(v.as_str()))))
             .collect();
-        let version = if dialect == Dialect::Glsl120 { 120 } else { 330 };
-        let macros: String =
-            option_sets::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+        let macros = StandardMacros::default().define_lines();
         let text = expand_includes(&files, "composite.fsh", &macros).unwrap();
         let file = out.path().join(format!("composite-{}.fsh", dialect.slug()));
         std::fs::write(&file, &text).unwrap();

@@ -8,9 +8,7 @@
 
 pub mod diagnostic;
 pub mod lower;
-pub mod macros;
 pub mod naga_check;
-pub mod options;
 pub mod preprocess;
 pub mod token;
 

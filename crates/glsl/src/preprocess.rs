@@ -1141,6 +1141,16 @@ impl ExprParser<'_> {
     }
 }
 
+/// A stage without `#version` is GLSL 1.10 to the driver: say so on an added first line, which
+/// the line map attributes to the entry's first line.
+pub fn assume_glsl_110(pre: &mut Preprocessed) {
+    if pre.version.is_none() && !pre.lines.is_empty() {
+        pre.text.insert_str(0, "#version 110\n");
+        pre.lines.insert(0, pre.lines[0]);
+        pre.version = Some(VersionDirective { number: 110, profile: None });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1359,5 +1369,16 @@ mod tests {
     fn self_referential_macro_stops() {
         let out = run(&[("a.fsh", "#define X X + 1\nfloat v = X;\n")]).unwrap();
         assert_eq!(out.text.lines().nth(1).unwrap(), "float v = X + 1;");
+    }
+
+    #[test]
+    fn a_stage_without_version_is_glsl_110() {
+        let files: HashMap<String, Arc<str>> =
+            [("final.fsh".to_string(), Arc::from("uniform sampler2D composite;\nvoid main() {}\n"))].into();
+        let mut pre = preprocess(&files, "final.fsh", &PreprocessOptions::default()).unwrap();
+        assume_glsl_110(&mut pre);
+        assert!(pre.text.starts_with("#version 110\nuniform sampler2D composite;\n"), "{}", pre.text);
+        assert_eq!(pre.text.lines().count(), pre.lines.len());
+        assert_eq!(pre.location(2), Some(Location::line("final.fsh", 1)));
     }
 }

@@ -7,7 +7,6 @@
 
 use std::path::PathBuf;
 
-use tidepack_harness::any_pack::OptionChoice;
 use tidepack_harness::job::{self, AnyPackJob};
 
 fn main() {
@@ -25,8 +24,7 @@ fn main() {
         let job = AnyPackJob {
             scene: PathBuf::from(scene),
             pack: path.clone(),
-            loader: Default::default(),
-            options: OptionChoice::default(),
+            configuration: Default::default(),
             out_dir: PathBuf::from(out).join(&name),
             buffers: false,
             gl: true,

@@ -1,8 +1,8 @@
-//! Any OptiFine or Iris pack, read as the loader reads it, for `tidepack render --pack`: the
-//! overworld's programs (`world0/` when the pack has that folder, which then holds all of
-//! them), preprocessed with the pack's default option values and OptiFine's standard macros,
-//! lowered and validated like our own programs ([`crate::program`]); buffer formats and clears
-//! from the sources; blend modes, custom textures and block ids from the properties files.
+//! Any OptiFine or Iris pack, read as the loader reads it ([`tidepack_loader`]), for
+//! `tidepack render --pack`: the programs of the configuration's dimension, preprocessed with
+//! the pack's option values and the loader's standard macros, lowered and validated like our own
+//! programs ([`crate::program`]); buffer formats and clears from the sources; blend modes,
+//! custom textures and block ids from the properties files.
 //!
 //! Whatever the pack uses that the harness does not imitate is listed in
 //! [`AnyPack::not_modelled`] by name: the frame is drawn without it, never silently.
@@ -10,36 +10,33 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
-use tidepack_glsl::macros::StandardMacros;
-use tidepack_pack::dialect::Dialect;
-use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
-use tidepack_glsl::preprocess::FileProvider;
-use tidepack_validate::input::{Limits, PackFiles, read_pack};
-use tidepack_validate::programs::{self, find_programs};
-use tidepack_validate::SetProvider;
+use tidepack_glsl::preprocess::PreprocessOptions;
+use tidepack_loader::buffers::{BufferClear, BufferFormat, colour_buffer_number, shadow_colour_number};
+use tidepack_loader::consts;
+use tidepack_loader::custom_uniforms;
+use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_BLEND};
+use tidepack_loader::input::{Limits, PackFiles, read_pack};
+use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_lines::{OptionKind, OptionSet, OptionValue};
+use tidepack_loader::option_space::{declared_options, property_macros};
+use tidepack_loader::programs::{self, RunBy, find_programs};
+use tidepack_loader::properties::{self, Properties};
+use tidepack_loader::shadow::{ShadowSettings, SunPath};
+use tidepack_loader::{Configuration, SetProvider};
 
-use crate::shadow::{ShadowSettings, SunPath};
-use crate::uniforms::{self, Pass, Value};
-use crate::{HarnessError, custom_uniforms};
+use crate::HarnessError;
 use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read};
 use crate::gpu::frame::overlay_phase;
-use crate::loader::{Loader, Phase};
 use crate::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
-    self, Blend, BlendFactor, BufferFormat, CustomTexture, DEFAULT_TRANSLUCENT_BLEND, LoadedProgram, PackResources, ProgramFiles, TERRAIN_CHAIN,
-    UndeclaredTargets, WATER_CHAIN, blend_modes, colour_buffer_number, custom_textures, declared_format_names, shadow_colour_number,
+    self, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
 };
-use crate::scene::{OverlayKind, Scene};
+use crate::scene::Scene;
+use crate::uniforms::{self, Pass, Value};
 
-/// gbuffers_skybasic and its fallbacks.
-const SKY_CHAIN: [&str; 2] = ["gbuffers_skybasic", "gbuffers_basic"];
-/// gbuffers_skytextured (the sun and the moon) and its fallbacks.
-const SKY_TEXTURED_CHAIN: [&str; 3] = ["gbuffers_skytextured", "gbuffers_textured", "gbuffers_basic"];
 /// The game's blending of the sun and the moon onto the sky: added, faded by alpha.
 const CELESTIAL_BLEND: Blend = Blend::Factors([BlendFactor::SrcAlpha, BlendFactor::One, BlendFactor::One, BlendFactor::Zero]);
-
-/// The full-screen programs OptiFine runs, by family, in frame order within each family.
-const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
 
 /// The alpha test a loader applies to what a program draws, before shaders.properties's
 /// `alphaTest.<program>` overrides it.
@@ -66,49 +63,13 @@ impl PackResources for NoCustomTextures {
     }
 }
 
-/// What a colour buffer is cleared to at the start of a frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum BufferClear {
-    /// colortex0: the fog colour; colortex1: white; the rest: transparent black.
-    Default,
-    /// `const vec4 colortexNClearColor = vec4(...)`.
-    Color([f64; 4]),
-    /// `const bool colortexNClear = false`: the previous frame's contents stay.
-    Keep,
-}
-
-impl BufferClear {
-    /// The RGBA colour shadowcolorN holds after the shadow pass's clear: white unless declared.
-    pub fn shadow_colour(self) -> [f64; 4] {
-        match self {
-            BufferClear::Color(c) => c,
-            BufferClear::Keep => [0.0; 4],
-            BufferClear::Default => [1.0; 4],
-        }
-    }
-
-    /// The RGBA colour colortex`buffer` holds after the clear in `scene` (a kept buffer starts
-    /// transparent black in the harness's single frame).
-    pub fn colour(self, buffer: u8, scene: &Scene) -> [f64; 4] {
-        match (self, buffer) {
-            (BufferClear::Color(c), _) => c,
-            (BufferClear::Keep, _) => [0.0; 4],
-            (BufferClear::Default, 0) => {
-                let [r, g, b] = scene.sky.fog_color;
-                [r, g, b, 1.0]
-            }
-            (BufferClear::Default, 1) => [1.0; 4],
-            (BufferClear::Default, _) => [0.0; 4],
-        }
-    }
-}
-
 #[derive(Debug)]
 pub struct AnyPack {
     /// The pack as messages name it (`Pack.zip/shaders/`).
     pub display_root: String,
     pub loader: Loader,
-    /// The folder the programs come from: `world0/` or the shaders folder itself (`""`).
+    /// The folder the programs come from: the dimension's (`world0/`) or the shaders folder
+    /// itself (`""`).
     pub world: String,
     /// gbuffers programs the scenes can draw with, by name (fallbacks resolve among these).
     pub gbuffers: BTreeMap<String, LoadedProgram>,
@@ -137,9 +98,8 @@ pub struct AnyPack {
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
     pub block_ids: HashMap<String, i32>,
-    /// shaders.properties, for the custom uniforms of each pass
-    /// ([`crate::custom_uniforms`]).
-    pub properties: String,
+    /// shaders.properties under the configuration, for the custom uniforms of each pass.
+    pub properties: Properties,
     /// What the pack uses that the frame does not imitate, one line each.
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that could not be loaded, with the reason.
@@ -173,160 +133,257 @@ impl BlockIds for AnyPack {
     }
 }
 
-/// The option values a pack is rendered with: a profile of shaders.properties, then single
-/// options (`NAME` → value as written: `on`/`off`/`true`/`false` for switches).
-#[derive(Clone, Debug, Default)]
-pub struct OptionChoice {
-    pub profile: Option<String>,
-    pub options: Vec<(String, String)>,
+/// The programs of one world folder loaded as the loader loads them, with what went wrong.
+struct ProgramLoading<'a> {
+    provider: &'a SetProvider<'a>,
+    present: BTreeMap<&'a str, &'a programs::Program>,
+    disabled: &'a [String],
+    properties: &'a Properties,
+    macros: PreprocessOptions,
+    loader: Loader,
+    not_modelled: Vec<String>,
+    failed: Vec<(String, String)>,
 }
 
-impl OptionChoice {
-    /// The option set the choice means for `files`, as OptiFine rewrites the option lines.
-    fn option_set(&self, files: &PackFiles) -> Result<OptionSet, HarnessError> {
-        let declared = tidepack_validate::declared_options(files);
-        let mut set = match &self.profile {
-            Some(name) => {
-                let properties = files.texts.get(tidepack_validate::properties::PATH).map(|t| tidepack_validate::properties::parse(t));
-                let properties = properties.unwrap_or_default();
-                tidepack_validate::properties::profile_set(&properties, name, &declared).map_err(|d| HarnessError::Pack(d.message))?.0
-            }
-            None => OptionSet::new(),
-        };
-        for (name, value) in &self.options {
-            let kind = declared.get(name).ok_or_else(|| {
-                let known: Vec<&str> = declared.keys().map(String::as_str).collect();
-                let known = if known.is_empty() { "none".to_string() } else { known.join(", ") };
-                HarnessError::Pack(format!("the pack has no option {name}; its options: {known}"))
-            })?;
-            let parsed = match kind {
-                OptionKind::Switch { .. } => match value.as_str() {
-                    "on" | "true" | "1" => OptionValue::Switch(true),
-                    "off" | "false" | "0" => OptionValue::Switch(false),
-                    _ => return Err(HarnessError::Pack(format!("{name} is a switch: set it to on or off, not {value}"))),
-                },
-                OptionKind::Value { .. } => OptionValue::Value(value.clone()),
-            };
-            set.insert(name.clone(), parsed);
+impl ProgramLoading<'_> {
+    /// Loads `name` when the pack has it and it is not turned off; `test` is the alpha test
+    /// the loader applies to what it draws.
+    fn load(&mut self, name: &str, test: LoaderAlphaTest) -> Option<LoadedProgram> {
+        if self.disabled.iter().any(|d| d == name) {
+            return None;
         }
-        Ok(set)
-    }
-}
-
-impl AnyPack {
-    /// Reads the pack at `path` (folder or zip) and loads every program a scene can use, with
-    /// the option values `choice` gives.
-    pub fn load(path: &Path, loader: Loader, choice: &OptionChoice) -> Result<AnyPack, HarnessError> {
-        let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Io(d.message))?;
-        AnyPack::from_files(&files, loader, choice)
-    }
-
-    pub fn from_files(files: &PackFiles, loader: Loader, choice: &OptionChoice) -> Result<AnyPack, HarnessError> {
-        let options = choice.option_set(files)?;
-        let provider = SetProvider::new(files, &options);
-        let all = find_programs(files.files.keys());
-        let world = if all.iter().any(|p| p.world == "world0") { "world0" } else { "" };
-        let present: BTreeMap<&str, &programs::Program> =
-            all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
-        let macros = StandardMacros::default().preprocess_options();
-        let undeclared = if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs };
-        let mut not_modelled = Vec::new();
-        let mut failed = Vec::new();
-        let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
-        let (disabled, problems) = disabled_programs(&properties, world, files, &options);
-        not_modelled.extend(problems);
-        // `test`: the alpha test the loader applies to what the program draws.
-        let mut load = |name: &str, test: LoaderAlphaTest| -> Option<LoadedProgram> {
-            if disabled.iter().any(|d| d == name) {
-                return None;
-            }
-            let program = present.get(name)?;
-            let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
-            let files = ProgramFiles {
-                name,
-                vertex: stage_file(tidepack_glsl::Stage::Vertex)?,
-                fragment: stage_file(tidepack_glsl::Stage::Fragment)?,
+        let program = self.present.get(name)?;
+        let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
+        let files =
+            ProgramFiles { name, vertex: stage_file(tidepack_glsl::Stage::Vertex)?, fragment: stage_file(tidepack_glsl::Stage::Fragment)? };
+        if !program.other_stages.is_empty() {
+            self.not_modelled.push(format!("{name}: geometry and tessellation stages ({})", program.other_stages.join(", ")));
+        }
+        if !program.compute.is_empty() {
+            self.not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
+        }
+        let (loader, properties) = (self.loader, self.properties);
+        let alpha_test = |fragment: &str| {
+            // Whether the program writes gl_FragData/gl_FragColor decides OptiFine 1.17+'s test.
+            let legacy = ["gl_FragData", "gl_FragColor"].iter().any(|o| fragment.contains(o));
+            let default = match test {
+                LoaderAlphaTest::None => return None,
+                LoaderAlphaTest::Cutout => loader.cutout_alpha_test(legacy),
+                LoaderAlphaTest::Water => loader.default_water_alpha_test(legacy),
             };
-            if !program.other_stages.is_empty() {
-                not_modelled.push(format!("{name}: geometry and tessellation stages ({})", program.other_stages.join(", ")));
-            }
-            if !program.compute.is_empty() {
-                not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
-            }
-            let alpha_test = |fragment: &str| {
-                // Whether the program writes gl_FragData/gl_FragColor decides OptiFine 1.17+'s test.
-                let legacy = ["gl_FragData", "gl_FragColor"].iter().any(|o| fragment.contains(o));
-                let default = match test {
-                    LoaderAlphaTest::None => return None,
-                    LoaderAlphaTest::Cutout => loader.cutout_alpha_test(legacy),
-                    LoaderAlphaTest::Water => loader.default_water_alpha_test(if legacy { Dialect::Glsl120 } else { Dialect::Glsl330 }),
-                };
-                // An `alphaTest.<program>` setting the harness cannot imitate leaves no test.
-                crate::loader::alpha_test(&properties, name, default).unwrap_or(None)
-            };
-            match program::load_program_files(&provider, &files, &macros, &alpha_test, undeclared) {
-                Ok(p) => {
-                    if test != LoaderAlphaTest::None
-                        && let Err(e) = crate::loader::alpha_test(&properties, name, None)
-                    {
-                        not_modelled.push(format!("{e} (no alpha test)"));
-                    }
-                    Some(p)
-                }
-                Err(e) => {
-                    failed.push((name.to_string(), e.to_string()));
-                    None
-                }
-            }
+            // An `alphaTest.<program>` setting the harness cannot imitate leaves no test.
+            directives::alpha_test(properties, name, default).unwrap_or(None)
         };
+        let undeclared = if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs };
+        match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, undeclared) {
+            Ok(p) => {
+                if test != LoaderAlphaTest::None
+                    && let Err(e) = directives::alpha_test(properties, name, None)
+                {
+                    self.not_modelled.push(format!("{e} (no alpha test)"));
+                }
+                Some(p)
+            }
+            Err(e) => {
+                self.failed.push((name.to_string(), e.to_string()));
+                None
+            }
+        }
+    }
 
-        let mut gbuffers = BTreeMap::new();
-        // A program on several chains is loaded for the first: the terrain's alpha test then
-        // holds for whatever else it draws.
-        let mut wanted: Vec<(&str, LoaderAlphaTest)> = program::TERRAIN_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Cutout)).collect();
-        wanted.extend(program::WATER_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Water)));
+    /// The gbuffers programs of every chain the scenes draw with, by name. A program on several
+    /// chains is loaded for the first: the terrain's alpha test then holds for whatever else it
+    /// draws.
+    fn gbuffers(&mut self) -> BTreeMap<String, LoadedProgram> {
+        let mut wanted: Vec<(&str, LoaderAlphaTest)> = TERRAIN_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Cutout)).collect();
+        wanted.extend(WATER_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Water)));
         wanted.extend(SKY_CHAIN.iter().chain(&SKY_TEXTURED_CHAIN).map(|n| (*n, LoaderAlphaTest::None)));
         for kind in OverlayKind::ALL {
-            wanted.extend(loader.program_chain(kind).iter().map(|n| (*n, LoaderAlphaTest::None)));
+            wanted.extend(self.loader.program_chain(kind).iter().map(|n| (*n, LoaderAlphaTest::None)));
         }
+        let mut gbuffers = BTreeMap::new();
         for (name, test) in wanted {
             if !gbuffers.contains_key(name)
-                && let Some(p) = load(name, test)
+                && let Some(p) = self.load(name, test)
             {
                 gbuffers.insert(name.to_string(), p);
             }
         }
+        gbuffers
+    }
+
+    /// The shadow programs of the loader's chains, by name.
+    fn shadow(&mut self) -> BTreeMap<String, LoadedProgram> {
         let mut shadow = BTreeMap::new();
-        for name in [loader.shadow_chain(false), loader.shadow_chain(true)].concat() {
+        for name in [self.loader.shadow_chain(false), self.loader.shadow_chain(true)].concat() {
             if !shadow.contains_key(name)
-                && let Some(p) = load(name, LoaderAlphaTest::None)
+                && let Some(p) = self.load(name, LoaderAlphaTest::None)
             {
                 shadow.insert(name.to_string(), p);
             }
         }
+        shadow
+    }
+
+    /// prepare*, deferred*, composite* and final, in the order the loader runs them.
+    fn fullscreen(&mut self) -> Vec<LoadedProgram> {
         let mut fullscreen = Vec::new();
         for family in FULLSCREEN_FAMILIES {
             for n in 0..100 {
                 let name = if n == 0 { family.to_string() } else { format!("{family}{n}") };
-                fullscreen.extend(load(&name, LoaderAlphaTest::None));
+                fullscreen.extend(self.load(&name, LoaderAlphaTest::None));
             }
         }
-        fullscreen.extend(load("final", LoaderAlphaTest::None));
+        fullscreen.extend(self.load("final", LoaderAlphaTest::None));
+        fullscreen
+    }
+}
 
-        let unused: Vec<&str> = present
-            .keys()
-            .copied()
-            .filter(|name| {
-                !gbuffers.contains_key(*name)
-                    && !shadow.contains_key(*name)
-                    && !fullscreen.iter().any(|p| p.name == *name)
-                    && !failed.iter().any(|(f, _)| f == name)
-                    && !disabled.iter().any(|d| d == name)
-                    && programs::loader_of(name) == programs::Loader::OptiFine
-            })
-            .collect();
-        for name in unused {
-            let why = match name {
+/// The formats, clears and mipmaps the programs' `const` lines declare.
+#[derive(Default)]
+struct DeclaredBuffers {
+    formats: BTreeMap<u8, BufferFormat>,
+    clears: BTreeMap<u8, BufferClear>,
+    shadow_formats: BTreeMap<u8, BufferFormat>,
+    shadow_clears: BTreeMap<u8, BufferClear>,
+    mipmaps: BTreeMap<String, BTreeSet<u8>>,
+}
+
+impl DeclaredBuffers {
+    fn read(stages: &[&LoadedStage], fullscreen: &[LoadedProgram], not_modelled: &mut Vec<String>) -> DeclaredBuffers {
+        let mut declared = DeclaredBuffers::default();
+        for stage in stages {
+            read_formats(&stage.gl_text, "shadowcolor", shadow_colour_number, &mut declared.shadow_formats, not_modelled);
+            read_formats(&stage.gl_text, "colortex", colour_buffer_number, &mut declared.formats, not_modelled);
+            declared.shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
+            declared.clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
+            let shadow_mipmaps = ["shadowcolor", "shadowtex", "generateShadowMipmap", "generateShadowColorMipmap"];
+            if declared_switches(&stage.gl_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {
+                not_modelled.push("mipmaps of the shadow maps are not generated".to_string());
+            }
+        }
+        // `colortexNMipmapEnabled` in a full-screen program: the loader makes buffer N's mipmaps
+        // just before that program runs, and the program reads them.
+        for p in fullscreen {
+            let buffers: BTreeSet<u8> = [&p.vertex, &p.fragment]
+                .iter()
+                .flat_map(|stage| declared_switches(&stage.gl_text).filter_map(|name| name.strip_suffix("MipmapEnabled").and_then(colour_buffer_number)).collect::<Vec<_>>())
+                .collect();
+            if !buffers.is_empty() {
+                declared.mipmaps.insert(p.name.clone(), buffers);
+            }
+        }
+        declared
+    }
+}
+
+/// The declared formats of one kind of buffer (`colortex`, `shadowcolor`), stand-ins named.
+fn read_formats(text: &str, kind: &str, number: fn(&str) -> Option<u8>, formats: &mut BTreeMap<u8, BufferFormat>, not_modelled: &mut Vec<String>) {
+    for (buffer, name) in declared_format_names(text, number) {
+        match BufferFormat::stand_in(&name) {
+            Some((format, exact)) => {
+                if !exact {
+                    not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as {format:?}"));
+                }
+                formats.insert(buffer, format);
+            }
+            None => not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
+        }
+    }
+}
+
+/// Which shadow maps the frame needs: whether any program reads one (what makes the loaders
+/// draw the shadow pass) and whether `shadow` names shadowtex1 (a program reads `watershadow`).
+fn shadow_map_reads(
+    gbuffers: &BTreeMap<String, LoadedProgram>,
+    fullscreen: &[LoadedProgram],
+    shadow: &BTreeMap<String, LoadedProgram>,
+    not_modelled: &mut Vec<String>,
+) -> (bool, bool) {
+    let mut reads_shadow_maps = false;
+    let mut water_shadow = false;
+    let all_programs = gbuffers.values().chain(fullscreen).map(|p| (p, SamplerNaming::AnyPack)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
+    for (program, naming) in all_programs {
+        let gbuffers_program = program.name.starts_with("gbuffers_");
+        for stage in [&program.vertex, &program.fragment] {
+            for (name, _) in program::texture_resources(&stage.interface) {
+                water_shadow |= name == "watershadow";
+                match naming.resolve(&NoCustomTextures, &name, gbuffers_program) {
+                    Ok(Source::Unbound) => {
+                        not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name))
+                    }
+                    Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::AnyPack,
+                    _ => {}
+                }
+            }
+        }
+    }
+    (reads_shadow_maps, water_shadow)
+}
+
+/// The keys of shaders.properties the frame does not imitate, grouped by prefix.
+fn unimitated_keys(properties: &Properties) -> Vec<String> {
+    let mut notes = Vec::new();
+    for key in ["size.buffer.", "scale.", "alphaTest."] {
+        // The alpha tests of the terrain's and the water's chains are imitated.
+        let imitated = |k: &str| k.strip_prefix("alphaTest.").is_some_and(|p| TERRAIN_CHAIN.contains(&p) || WATER_CHAIN.contains(&p));
+        let used: Vec<&str> = properties.with_prefix(key).map(|(_, e)| e.key.as_str()).filter(|k| !imitated(k)).collect();
+        if !used.is_empty() {
+            let shown: Vec<&str> = used.iter().take(6).copied().collect();
+            let more = if used.len() > shown.len() { format!(" and {} more", used.len() - shown.len()) } else { String::new() };
+            notes.push(format!("shaders.properties {key}*: {}{more}", shown.join(", ")));
+        }
+    }
+    notes
+}
+
+impl AnyPack {
+    /// Reads the pack at `path` (folder or zip) and loads every program a scene can use under
+    /// `configuration`.
+    pub fn load(path: &Path, configuration: &Configuration) -> Result<AnyPack, HarnessError> {
+        let files = read_pack(path, &Limits::default()).map_err(|d| HarnessError::Io(d.message))?;
+        AnyPack::from_files(&files, configuration)
+    }
+
+    pub fn from_files(files: &PackFiles, configuration: &Configuration) -> Result<AnyPack, HarnessError> {
+        let loader = configuration.loader;
+        let (options, _) = configuration.option_set_of(files).map_err(HarnessError::Pack)?;
+        let standard = StandardMacros::for_loader(loader);
+        let declared = declared_options(files);
+        let property_macros = property_macros(&standard, &declared, &options);
+        let properties_text = files.texts.get(properties::PATH).map_or("", |t| &**t);
+        let properties = Properties::parse(properties_text, &property_macros);
+        let provider = SetProvider::new(files, &options);
+        let all = find_programs(files.files.keys());
+        let has_folder = |folder: &str| files.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
+        let world = programs::world_folder(&configuration.dimension, loader, &has_folder);
+        let present: BTreeMap<&str, &programs::Program> =
+            all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
+        let mut not_modelled: Vec<String> = properties.problems.iter().map(|(line, e)| format!("shaders.properties:{line}: {e}")).collect();
+        let (disabled, problems) = disabled_programs(&properties, &world, &declared, &options);
+        not_modelled.extend(problems);
+        let mut loading = ProgramLoading {
+            provider: &provider,
+            present: present.clone(),
+            disabled: &disabled,
+            properties: &properties,
+            macros: standard.preprocess_options(),
+            loader,
+            not_modelled,
+            failed: Vec::new(),
+        };
+        let gbuffers = loading.gbuffers();
+        let shadow = loading.shadow();
+        let fullscreen = loading.fullscreen();
+        let ProgramLoading { mut not_modelled, failed, .. } = loading;
+
+        for name in present.keys() {
+            let loaded = gbuffers.contains_key(*name) || shadow.contains_key(*name) || fullscreen.iter().any(|p| p.name == *name);
+            let skipped = failed.iter().any(|(f, _)| f == name) || disabled.iter().any(|d| d == name);
+            if loaded || skipped || programs::run_by(name) != RunBy::OptiFine {
+                continue;
+            }
+            let why = match *name {
                 n if n.starts_with("shadowcomp") => "not run: the shadow colour buffers stay as the shadow pass drew them",
                 n if n.starts_with("shadow_") => "the loader draws the shadow pass with another program",
                 _ => "the scenes hold no geometry this program draws",
@@ -334,23 +391,7 @@ impl AnyPack {
             not_modelled.push(format!("{name}: {why}"));
         }
 
-        let mut reads_shadow_maps = false;
-        let mut water_shadow = false;
-        let all_programs = gbuffers.values().chain(&fullscreen).map(|p| (p, SamplerNaming::AnyPack)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
-        for (program, naming) in all_programs {
-            let gbuffers_program = program.name.starts_with("gbuffers_");
-            for stage in [&program.vertex, &program.fragment] {
-                for (name, _) in program::texture_resources(&stage.interface) {
-                    water_shadow |= name == "watershadow";
-                    match naming.resolve(&NoCustomTextures, &name, gbuffers_program) {
-                        Ok(Source::Unbound) => not_modelled
-                            .push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name)),
-                        Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::AnyPack,
-                        _ => {}
-                    }
-                }
-            }
-        }
+        let (reads_shadow_maps, water_shadow) = shadow_map_reads(&gbuffers, &fullscreen, &shadow, &mut not_modelled);
         if !SKY_TEXTURED_CHAIN.iter().any(|name| gbuffers.contains_key(*name)) {
             not_modelled.push("the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn".into());
         }
@@ -366,81 +407,23 @@ impl AnyPack {
         }
         let mut blends = BTreeMap::new();
         for name in gbuffers.keys().chain(shadow.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
-            match blend_modes(&properties, name, loader.per_buffer_blend()) {
+            match directives::blend_modes(&properties, name, loader.per_buffer_blend()) {
                 Ok(modes) => {
                     blends.insert(name.clone(), modes);
                 }
                 Err(e) => not_modelled.push(format!("{name}: {e}")),
             }
         }
-        let read_bytes = |path: &str| {
-            files.files.get(path).map(|b| b.to_vec()).ok_or_else(|| format!("{path} is not in the pack"))
-        };
+        let read_bytes = |path: &str| files.files.get(path).map(|b| b.to_vec()).ok_or_else(|| format!("{path} is not in the pack"));
         let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
-        let flips = flip_overrides(&properties);
-        for key in ["size.buffer.", "scale.", "alphaTest."] {
-            // The alpha tests of the terrain's and the water's chains are imitated.
-            let imitated = |k: &str| k.strip_prefix("alphaTest.").is_some_and(|p| TERRAIN_CHAIN.contains(&p) || WATER_CHAIN.contains(&p));
-            let used: Vec<&str> = properties
-                .lines()
-                .map(str::trim)
-                .filter(|l| l.starts_with(key))
-                .filter_map(|l| l.split('=').next())
-                .map(str::trim)
-                .filter(|k| !imitated(k))
-                .collect();
-            if !used.is_empty() {
-                let shown: Vec<&str> = used.iter().take(6).copied().collect();
-                let more = if used.len() > shown.len() { format!(" and {} more", used.len() - shown.len()) } else { String::new() };
-                not_modelled.push(format!("shaders.properties {key}*: {}{more}", shown.join(", ")));
-            }
-        }
+        let (flips, unreadable_flips) = directives::flips(&properties);
+        not_modelled.extend(unreadable_flips);
+        not_modelled.extend(unimitated_keys(&properties));
 
-        let mut formats = BTreeMap::new();
-        let mut clears = BTreeMap::new();
-        let mut shadow_formats = BTreeMap::new();
-        let mut shadow_clears = BTreeMap::new();
-        let programs = gbuffers.values().chain(shadow.values()).chain(fullscreen.iter());
-        let stages: Vec<&program::LoadedStage> = programs.flat_map(|p| [&p.vertex, &p.fragment]).collect();
+        let stages: Vec<&LoadedStage> = gbuffers.values().chain(shadow.values()).chain(fullscreen.iter()).flat_map(|p| [&p.vertex, &p.fragment]).collect();
         let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.gl_text.as_str()));
-        // The declared formats of one kind of buffer (`colortex`, `shadowcolor`), stand-ins named.
-        let read_formats = |text: &str, kind: &str, number: fn(&str) -> Option<u8>, formats: &mut BTreeMap<u8, BufferFormat>, not_modelled: &mut Vec<String>| {
-            for (buffer, name) in declared_format_names(text, number) {
-                match BufferFormat::stand_in(&name) {
-                    Some((format, exact)) => {
-                        if !exact {
-                            not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as {format:?}"));
-                        }
-                        formats.insert(buffer, format);
-                    }
-                    None => not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
-                }
-            }
-        };
-        for stage in &stages {
-            read_formats(&stage.gl_text, "shadowcolor", shadow_colour_number, &mut shadow_formats, &mut not_modelled);
-            read_formats(&stage.gl_text, "colortex", colour_buffer_number, &mut formats, &mut not_modelled);
-            shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
-            clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
-            let shadow_mipmaps = ["shadowcolor", "shadowtex", "generateShadowMipmap", "generateShadowColorMipmap"];
-            if declared_switches(&stage.gl_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {
-                not_modelled.push("mipmaps of the shadow maps are not generated".to_string());
-            }
-        }
-        // `colortexNMipmapEnabled` in a full-screen program: the loader makes buffer N's mipmaps
-        // just before that program runs, and the program reads them.
-        let mipmaps: BTreeMap<String, BTreeSet<u8>> = fullscreen
-            .iter()
-            .map(|p| {
-                let buffers = [&p.vertex, &p.fragment]
-                    .iter()
-                    .flat_map(|stage| declared_switches(&stage.gl_text).filter_map(|name| name.strip_suffix("MipmapEnabled").and_then(colour_buffer_number)).collect::<Vec<_>>())
-                    .collect();
-                (p.name.clone(), buffers)
-            })
-            .filter(|(_, buffers): &(String, BTreeSet<u8>)| !buffers.is_empty())
-            .collect();
+        let buffers = DeclaredBuffers::read(&stages, &fullscreen, &mut not_modelled);
         if shadow_pass {
             let (drawn, multiplier) = shadow_settings.drawn_resolution();
             if multiplier < 1.0 {
@@ -450,24 +433,24 @@ impl AnyPack {
                 ));
             }
         }
-        let block_ids = provider.read("block.properties").map(|t| program::block_ids(&t)).unwrap_or_default();
+        let block_ids = program::block_ids(&provider, &property_macros);
         not_modelled.sort();
         not_modelled.dedup();
         Ok(AnyPack {
             display_root: files.display_root.clone(),
             loader,
-            world: world.to_string(),
+            world,
             gbuffers,
             fullscreen,
             shadow,
             shadow_pass,
             shadow_settings,
             water_shadow,
-            formats,
-            clears,
-            shadow_formats,
-            shadow_clears,
-            mipmaps,
+            formats: buffers.formats,
+            clears: buffers.clears,
+            shadow_formats: buffers.shadow_formats,
+            shadow_clears: buffers.shadow_clears,
+            mipmaps: buffers.mipmaps,
             flips,
             blends,
             custom_textures,
@@ -533,7 +516,7 @@ impl AnyPack {
 #[derive(Debug)]
 pub enum PlannedWork<'a> {
     /// Geometry drawn by a gbuffers program, or by the loader's own colour where the chain has
-    /// none (into the buffers [`crate::loader::MissingProgramDraws`] says).
+    /// none (into the buffers [`tidepack_loader::loader::MissingProgramDraws`] says).
     Geometry {
         program: Option<&'a LoadedProgram>,
         vertices: &'a [PackVertex],
@@ -711,7 +694,7 @@ impl<'a> FramePlan<'a> {
         for (kind, vertices) in &mesh.overlay {
             if overlay_phase(pack.loader, scene, *kind) == phase {
                 let program = pack.resolve(pack.loader.program_chain(*kind));
-                let depth_write = crate::loader::writes_depth(*kind);
+                let depth_write = tidepack_loader::loader::writes_depth(*kind);
                 let stage = match kind {
                     OverlayKind::Rain => "RAIN_SNOW",
                     OverlayKind::Clouds => "CLOUDS",
@@ -744,12 +727,12 @@ impl<'a> FramePlan<'a> {
 /// The programs of `world` (`world0` or `""`) that shaders.properties turns off with
 /// `program.<name>.enabled` for `options` over the declared switches' defaults, and the
 /// entries that could not be evaluated (those programs run).
-fn disabled_programs(properties: &str, world: &str, files: &PackFiles, options: &OptionSet) -> (Vec<String>, Vec<String>) {
-    let switches: BTreeMap<String, bool> = tidepack_validate::declared_options(files)
-        .into_iter()
-        .filter_map(|(name, kind)| match (options.get(&name), kind) {
-            (Some(OptionValue::Switch(on)), _) => Some((name, *on)),
-            (_, OptionKind::Switch { default }) => Some((name, default)),
+fn disabled_programs(properties: &Properties, world: &str, declared: &BTreeMap<String, OptionKind>, options: &OptionSet) -> (Vec<String>, Vec<String>) {
+    let switches: BTreeMap<String, bool> = declared
+        .iter()
+        .filter_map(|(name, kind)| match (options.get(name), kind) {
+            (Some(OptionValue::Switch(on)), _) => Some((name.clone(), *on)),
+            (_, OptionKind::Switch { default }) => Some((name.clone(), *default)),
             _ => None,
         })
         .collect();
@@ -771,85 +754,29 @@ fn disabled_programs(properties: &str, world: &str, files: &PackFiles, options: 
     (disabled, problems)
 }
 
-/// `flip.<program>.<buffer>=true|false` lines: by program, by buffer number.
-fn flip_overrides(properties: &str) -> BTreeMap<String, BTreeMap<u8, bool>> {
-    let mut flips: BTreeMap<String, BTreeMap<u8, bool>> = BTreeMap::new();
-    for line in properties.lines().map(str::trim) {
-        let Some((key, value)) = line.split_once('=') else { continue };
-        let Some((program, buffer)) = key.trim().strip_prefix("flip.").and_then(|k| k.rsplit_once('.')) else { continue };
-        let (Some(buffer), Ok(flip)) = (colour_buffer_number(buffer), value.trim().parse::<bool>()) else { continue };
-        flips.entry(program.to_string()).or_default().insert(buffer, flip);
-    }
-    flips
-}
-
 /// The names of `const bool <name> = true;` declarations.
 fn declared_switches(text: &str) -> impl Iterator<Item = &str> {
-    text.lines().filter_map(|line| {
-        let rest = line.trim().strip_prefix("const bool ")?;
-        let (name, value) = rest.split_once('=')?;
-        (value.split(';').next()?.trim() == "true").then(|| name.trim())
-    })
+    consts::declarations(text).filter(|d| d.switch() == Some(true)).map(|d| d.name)
 }
 
 /// `const bool colortexNClear = false;` and `const vec4 colortexNClearColor = vec4(...);`, buffers
 /// numbered by `number` (colour or shadow colour buffers).
 fn declared_clears(text: &str, number: fn(&str) -> Option<u8>) -> Vec<(u8, BufferClear)> {
-    let mut found = Vec::new();
-    for line in text.lines() {
-        let line = line.trim();
-        let Some(rest) = line.strip_prefix("const ") else { continue };
-        let Some((declaration, value)) = rest.split_once('=') else { continue };
-        let value = value.trim().trim_end_matches(';').trim();
-        let name = declaration.split_whitespace().last().unwrap_or("");
-        if let Some(buffer) = name.strip_suffix("ClearColor").and_then(number) {
-            let inner = value.strip_prefix("vec4(").and_then(|v| v.strip_suffix(')'));
-            let parts: Vec<f64> = inner.map(|v| v.split(',').filter_map(|p| p.trim().trim_end_matches('f').parse().ok()).collect()).unwrap_or_default();
-            let color = match parts.as_slice() {
-                [v] => Some([*v; 4]),
-                [r, g, b, a] => Some([*r, *g, *b, *a]),
-                _ => None,
-            };
-            if let Some(color) = color {
-                found.push((buffer, BufferClear::Color(color)));
+    consts::declarations(text)
+        .filter_map(|d| {
+            if let Some(buffer) = d.name.strip_suffix("ClearColor").and_then(number) {
+                Some((buffer, BufferClear::Color(d.vec4()?)))
+            } else {
+                let buffer = d.name.strip_suffix("Clear").and_then(number)?;
+                (d.switch() == Some(false)).then_some((buffer, BufferClear::Keep))
             }
-        } else if let Some(buffer) = name.strip_suffix("Clear").and_then(number)
-            && value == "false"
-        {
-            found.push((buffer, BufferClear::Keep));
-        }
-    }
-    found
+        })
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_profile_then_single_options_choose_the_values() {
-        let files = tidepack_validate::input::pack_from_memory(
-            "test/shaders/",
-            [
-                ("composite.fsh".to_string(), b"#define MODE 1 // [1 2 3]\n#define GLOW\n#ifdef GLOW\n#endif\nvoid main() {}\n".to_vec()),
-                ("shaders.properties".to_string(), b"profile.LOW=MODE:2 !GLOW\n".to_vec()),
-            ],
-        );
-        let choice = |profile: Option<&str>, options: &[(&str, &str)]| OptionChoice {
-            profile: profile.map(str::to_string),
-            options: options.iter().map(|(n, v)| (n.to_string(), v.to_string())).collect(),
-        };
-        let low = choice(Some("LOW"), &[]).option_set(&files).unwrap();
-        assert_eq!(low.get("MODE"), Some(&OptionValue::Value("2".into())));
-        assert_eq!(low.get("GLOW"), Some(&OptionValue::Switch(false)));
-        let overridden = choice(Some("LOW"), &[("MODE", "3"), ("GLOW", "on")]).option_set(&files).unwrap();
-        assert_eq!(overridden.get("MODE"), Some(&OptionValue::Value("3".into())));
-        assert_eq!(overridden.get("GLOW"), Some(&OptionValue::Switch(true)));
-        let unknown = choice(None, &[("NOPE", "1")]).option_set(&files).unwrap_err().to_string();
-        assert!(unknown.contains("no option NOPE") && unknown.contains("MODE"), "{unknown}");
-        assert!(choice(Some("ULTRA"), &[]).option_set(&files).unwrap_err().to_string().contains("ULTRA"));
-        assert!(choice(None, &[("GLOW", "maybe")]).option_set(&files).is_err());
-    }
 
     #[test]
     fn program_enabled_entries_turn_programs_off_for_the_chosen_options() {
@@ -861,17 +788,17 @@ mod tests {
             files.push((format!("{name}.vsh"), vertex.clone()));
             files.push((format!("{name}.fsh"), fragment.clone()));
         }
-        let files = tidepack_validate::input::pack_from_memory("test/shaders/", files);
-        let names = |choice: &OptionChoice| {
-            let pack = AnyPack::from_files(&files, Loader::default(), choice).unwrap();
+        let files = tidepack_loader::input::pack_from_memory("test/shaders/", files);
+        let names = |configuration: &Configuration| {
+            let pack = AnyPack::from_files(&files, configuration).unwrap();
             (pack.fullscreen.iter().map(|p| p.name.clone()).collect::<Vec<_>>(), pack.not_modelled)
         };
         // BLOOM is off and TAA on by default: composite1 is off; the world0/ entry is for
         // another folder; NOPE is no option, so composite2 runs and the entry is named.
-        let (running, not_modelled) = names(&OptionChoice::default());
+        let (running, not_modelled) = names(&Configuration::default());
         assert_eq!(running, ["composite", "composite2"]);
         assert!(not_modelled.iter().any(|l| l.contains("shaders.properties:3: program.composite2.enabled") && l.contains("NOPE")), "{not_modelled:?}");
-        let bloom = OptionChoice { profile: None, options: vec![("BLOOM".into(), "on".into())] };
+        let bloom = Configuration { options: vec![("BLOOM".into(), "on".into())], ..Configuration::default() };
         assert_eq!(names(&bloom).0, ["composite", "composite1", "composite2"]);
     }
 
@@ -881,7 +808,7 @@ mod tests {
         let legacy = b"#version 120\nvoid main() { gl_FragData[0] = vec4(0.5); }\n".to_vec();
         let declared = b"#version 330 compatibility\nlayout(location = 0) out vec4 color;\nvoid main() { color = vec4(0.5); }\n".to_vec();
         let tested = |fragment: &[u8], properties: &str, loader: Loader| {
-            let files = tidepack_validate::input::pack_from_memory(
+            let files = tidepack_loader::input::pack_from_memory(
                 "test/shaders/",
                 [
                     ("gbuffers_terrain.vsh".to_string(), vertex.clone()),
@@ -889,7 +816,7 @@ mod tests {
                     ("shaders.properties".to_string(), properties.as_bytes().to_vec()),
                 ],
             );
-            let pack = AnyPack::from_files(&files, loader, &OptionChoice::default()).unwrap();
+            let pack = AnyPack::from_files(&files, &Configuration { loader, ..Configuration::default() }).unwrap();
             pack.gbuffers["gbuffers_terrain"].fragment.gl_text.contains("discard")
         };
         assert!(tested(&legacy, "", Loader::OptiFine1_21));
@@ -908,8 +835,8 @@ mod tests {
             files.push((format!("{name}.vsh"), vertex.clone()));
             files.push((format!("{name}.fsh"), writes.clone()));
         }
-        let files = tidepack_validate::input::pack_from_memory("test/shaders/", files);
-        let pack = AnyPack::from_files(&files, Loader::default(), &OptionChoice::default()).unwrap();
+        let files = tidepack_loader::input::pack_from_memory("test/shaders/", files);
+        let pack = AnyPack::from_files(&files, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap();
         let mesh = crate::mesh::build(&scene, &pack);
         let plan = FramePlan::new(&pack, &scene, &mesh);
@@ -930,7 +857,7 @@ mod tests {
     #[test]
     fn each_draw_of_the_world_has_its_render_stage() {
         let shaders = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/packs/shadow_map");
-        let pack = AnyPack::load(&shaders, Loader::default(), &OptionChoice::default()).unwrap();
+        let pack = AnyPack::load(&shaders, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/rain_over_lake.toml")).unwrap();
         let mesh = crate::mesh::build(&scene, &pack);
         let plan = FramePlan::new(&pack, &scene, &mesh);

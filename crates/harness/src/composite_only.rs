@@ -27,7 +27,8 @@ use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
 use crate::gpu::{Frame, Gpu};
 use crate::images::FloatImage;
-use crate::program::{BufferFormat, LoadedPack};
+use crate::program::LoadedPack;
+use tidepack_loader::buffers::BufferFormat;
 use crate::uniforms::Value;
 
 pub use crate::gpu::UniformBinding;

@@ -21,13 +21,15 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
-use crate::any_pack::BufferClear;
+use tidepack_loader::buffers::BufferClear;
 use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp, vertex_attribute_source};
 use crate::images::FloatImage;
-use crate::loader::{self, MissingProgramDraws, Phase};
+use tidepack_loader::loader::{self, MissingProgramDraws, Phase};
 use crate::mesh::{self, PackVertex, SceneMesh, Sprites, offsets};
-use crate::program::{Blend, BlendFactor, BufferFormat, LoadedPack, LoadedProgram, LoadedStage, PackResources};
+use crate::program::{LoadedPack, LoadedProgram, LoadedStage, PackResources};
+use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::directives::{Blend, BlendFactor};
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
@@ -283,7 +285,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // 1. clear
         for (b, (t, _)) in &textures.colors {
             attach(&[*t], Some(textures.depth0))?;
-            let c = BufferClear::Default.colour(*b, scene).map(|v| v as f32);
+            let c = BufferClear::Default.colour(*b, scene.sky.fog_color).map(|v| v as f32);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
         }
         gl.depth_mask(true);

@@ -23,7 +23,9 @@ use crate::gpu::bindings::SamplerNaming;
 use crate::gpu::fullscreen_quad;
 use crate::images::FloatImage;
 use crate::mesh::{PackVertex, SceneMesh, Sprites};
-use crate::program::{Blend, LoadedProgram, PackResources};
+use crate::program::{LoadedProgram, PackResources};
+use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::directives::Blend;
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass};
 
@@ -97,7 +99,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
 
         // Clear, as the wgpu path does: both textures of each buffer, depth to 1.
         for (b, (textures, _, _)) in &buffers {
-            let c = pack.clear_of(*b).colour(*b, scene).map(|v| v as f32);
+            let c = pack.clear_of(*b).colour(*b, scene.sky.fog_color).map(|v| v as f32);
             for t in textures {
                 attach(gl, &[*t], Some(depth0))?;
                 gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
@@ -152,10 +154,10 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
             }
             drawn
         };
-        let colors_at = |current: &BTreeMap<u8, usize>| -> BTreeMap<u8, (glow::Texture, crate::program::BufferFormat)> {
+        let colors_at = |current: &BTreeMap<u8, usize>| -> BTreeMap<u8, (glow::Texture, BufferFormat)> {
             buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect()
         };
-        let snapshots: BTreeMap<u8, (glow::Texture, crate::program::BufferFormat)> =
+        let snapshots: BTreeMap<u8, (glow::Texture, BufferFormat)> =
             buffers.iter().map(|(b, (_, snapshot, format))| (*b, (*snapshot, *format))).collect();
 
         let quad = fullscreen_quad();
@@ -170,8 +172,8 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
                     let drawn: Vec<u8> = match program {
                         Some(p) => p.render_targets.clone(),
                         None => match pack.loader.missing_program_draws() {
-                            crate::loader::MissingProgramDraws::FirstBufferOnly => vec![0],
-                            crate::loader::MissingProgramDraws::EveryBuffer => buffers.keys().copied().collect(),
+                            tidepack_loader::loader::MissingProgramDraws::FirstBufferOnly => vec![0],
+                            tidepack_loader::loader::MissingProgramDraws::EveryBuffer => buffers.keys().copied().collect(),
                         },
                     };
                     let targets: Vec<glow::Texture> = drawn.iter().map(|b| buffers[b].0[current[b]]).collect();

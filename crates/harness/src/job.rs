@@ -281,9 +281,8 @@ pub struct AnyPackJob {
     pub scene: PathBuf,
     /// The pack folder or zip.
     pub pack: PathBuf,
-    pub loader: Loader,
-    /// The profile and option values to render with.
-    pub options: crate::any_pack::OptionChoice,
+    /// The loader, dimension, profile and option values to render with.
+    pub configuration: tidepack_loader::Configuration,
     pub out_dir: PathBuf,
     /// Also write every colour buffer and both depth buffers as final read them.
     pub buffers: bool,
@@ -360,7 +359,7 @@ pub struct AnyPackReport {
 /// written as JSON).
 pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let scene = Scene::load(&job.scene)?;
-    let pack = crate::any_pack::AnyPack::load(&job.pack, job.loader, &job.options)?;
+    let pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
     let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh, job.frames)?;

@@ -1,5 +1,5 @@
 //! The mock-uniform harness: renders the pack's programs headless through a small imitation of
-//! a loader's pipeline in wgpu ([`gpu`]; which loader: [`loader`]), with uniforms filled by their
+//! a loader's pipeline in wgpu ([`gpu`]; which loader: [`tidepack_loader::loader`]), with uniforms filled by their
 //! OptiFine names through naga's reflection ([`uniforms`]), for scenes described in TOML
 //! ([`scene`]). The same scene can be drawn with the shipped GLSL 120/330 through a real OpenGL
 //! compatibility context ([`gl`]) to prove the lowering changes nothing.
@@ -12,22 +12,19 @@ use std::fmt;
 
 pub mod any_pack;
 pub mod composite_only;
-pub mod custom_uniforms;
 pub mod gl;
 pub mod gl_any;
 pub mod gpu;
 pub mod images;
 pub mod job;
-pub mod loader;
 pub mod mesh;
 pub mod program;
 pub mod scene;
-pub mod shadow;
 pub mod uniforms;
 
 pub use gpu::{Frame, Gpu, PassTiming, median};
 pub use images::FloatImage;
-pub use loader::Loader;
+pub use tidepack_loader::Loader;
 pub use program::{LoadedPack, PackSelection};
 pub use scene::Scene;
 

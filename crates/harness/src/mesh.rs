@@ -10,8 +10,9 @@ use glam::DVec3;
 use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
-use crate::scene::{OverlayKind, Scene};
-use crate::shadow::SunPath;
+use crate::scene::Scene;
+use tidepack_loader::loader::OverlayKind;
+use tidepack_loader::shadow::SunPath;
 
 /// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
 /// can ask for is here (the pipeline binds those the shader declares).

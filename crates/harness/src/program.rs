@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use tidepack_glsl::lower::{Interface, ResourceKind};
-use tidepack_glsl::options::{OptionKind, OptionSet, OptionValue};
+use tidepack_loader::option_lines::{OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{function_definitions, tokenize};
 use tidepack_glsl::naga_check::{self, LoweredStage};
@@ -19,13 +19,18 @@ use tidepack_pack::pack_options;
 use tidepack_pack::shipped::{ShippedPack, WithOptions};
 use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::{Specialisation, specialise};
-use tidepack_pack::option_sets::standard_macros;
+use tidepack_loader::blocks;
+use tidepack_loader::buffers::{BufferFormat, colour_buffer_number};
+use tidepack_loader::consts;
+use tidepack_loader::directives::{self, Blend, DEFAULT_TRANSLUCENT_BLEND};
+use tidepack_loader::loader::{Loader, OverlayKind, TERRAIN_CHAIN};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_space::property_macros;
+use tidepack_loader::properties::{self, Macros, Properties};
+use tidepack_loader::shadow::ShadowSettings;
 
 use crate::HarnessError;
-use crate::shadow::ShadowSettings;
-use crate::loader::{self, Loader};
 use crate::mesh::BlockIds;
-use crate::scene::OverlayKind;
 
 /// Which pack text to render.
 #[derive(Clone, Debug)]
@@ -70,95 +75,6 @@ pub struct LoadedProgram {
     pub render_targets: Vec<u8>,
 }
 
-/// A colour buffer format OptiFine accepts and the harness renders.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BufferFormat {
-    Rgba8,
-    Rgba16,
-    Rgba16F,
-    Rgba32F,
-}
-
-impl BufferFormat {
-    /// The format a pack's format name is stored in, and whether exactly: formats the harness
-    /// lacks (fewer channels, packed, signed) are stored in the RGBA format that holds every
-    /// value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F, `RGB10_A2` in RGBA16).
-    pub fn stand_in(name: &str) -> Option<(BufferFormat, bool)> {
-        if let Some(exact) = BufferFormat::parse(name) {
-            return Some((exact, true));
-        }
-        let stand_in = match name {
-            "R8" | "RG8" | "RGB5_A1" | "RGBA2" | "RGBA4" | "R3_G3_B2" | "R16" | "RG16" | "RGB10_A2" | "RGB12" | "RGBA12" => {
-                BufferFormat::Rgba16
-            }
-            "R16F" | "RG16F" | "R11F_G11F_B10F" | "RGB9_E5" => BufferFormat::Rgba16F,
-            // Signed normalised formats keep their negative values in a float buffer.
-            "R8_SNORM" | "RG8_SNORM" | "RGB8_SNORM" | "RGBA8_SNORM" | "R16_SNORM" | "RG16_SNORM" | "RGB16_SNORM" | "RGBA16_SNORM" => {
-                BufferFormat::Rgba32F
-            }
-            "R32F" | "RG32F" => BufferFormat::Rgba32F,
-            _ => return None,
-        };
-        Some((stand_in, false))
-    }
-
-    fn parse(name: &str) -> Option<BufferFormat> {
-        Some(match name {
-            "RGBA" | "RGBA8" | "RGB8" | "RGB" => BufferFormat::Rgba8,
-            "RGBA16" | "RGB16" => BufferFormat::Rgba16,
-            "RGBA16F" | "RGB16F" => BufferFormat::Rgba16F,
-            "RGBA32F" | "RGB32F" => BufferFormat::Rgba32F,
-            _ => return None,
-        })
-    }
-}
-
-/// A blend mode from shaders.properties: `off` or four factors.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Blend {
-    Off,
-    Factors([BlendFactor; 4]),
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BlendFactor {
-    Zero,
-    One,
-    SrcColor,
-    OneMinusSrcColor,
-    DstColor,
-    OneMinusDstColor,
-    SrcAlpha,
-    OneMinusSrcAlpha,
-    DstAlpha,
-    OneMinusDstAlpha,
-}
-
-impl BlendFactor {
-    fn parse(name: &str) -> Option<BlendFactor> {
-        use BlendFactor::*;
-        Some(match name {
-            "ZERO" => Zero,
-            "ONE" => One,
-            "SRC_COLOR" => SrcColor,
-            "ONE_MINUS_SRC_COLOR" => OneMinusSrcColor,
-            "DST_COLOR" => DstColor,
-            "ONE_MINUS_DST_COLOR" => OneMinusDstColor,
-            "SRC_ALPHA" => SrcAlpha,
-            "ONE_MINUS_SRC_ALPHA" => OneMinusSrcAlpha,
-            "DST_ALPHA" => DstAlpha,
-            "ONE_MINUS_DST_ALPHA" => OneMinusDstAlpha,
-            _ => return None,
-        })
-    }
-}
-
-/// gbuffers_terrain and the programs OptiFine and Iris fall back to for it, in order.
-pub const TERRAIN_CHAIN: [&str; 4] = ["gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
-
-/// gbuffers_water and its fallbacks, in order.
-pub const WATER_CHAIN: [&str; 5] = ["gbuffers_water", "gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
-
 /// What binding a program's samplers needs of its pack besides the program itself.
 pub trait PackResources {
     /// The format colortex`buffer` is stored in.
@@ -185,14 +101,6 @@ impl PackResources for LoadedPack {
         &self.custom_textures
     }
 }
-
-/// OptiFine's default blending of translucent gbuffers programs.
-pub const DEFAULT_TRANSLUCENT_BLEND: Blend = Blend::Factors([
-    BlendFactor::SrcAlpha,
-    BlendFactor::OneMinusSrcAlpha,
-    BlendFactor::One,
-    BlendFactor::OneMinusSrcAlpha,
-]);
 
 #[derive(Debug)]
 pub struct LoadedPack {
@@ -335,15 +243,17 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let mut in_force = defaults.clone();
     in_force.extend(overrides.clone());
     let provider = WithOptions::new(&pack, &overrides);
-    let glsl_version = match selection.dialect {
-        Dialect::Glsl120 => 120,
-        Dialect::Glsl330 => 330,
-    };
-    let properties = provider.read("shaders.properties").map(|t| t.to_string()).unwrap_or_default();
-    let water_alpha_test =
-        loader::alpha_test(&properties, "gbuffers_water", loader.default_water_alpha_test(selection.dialect)).map_err(HarnessError::Unsupported)?;
-    let water = load_program(&provider, "gbuffers_water", glsl_version, water_alpha_test)?;
-    let composite = load_program(&provider, "composite", glsl_version, None)?;
+    let standard = StandardMacros::for_loader(loader);
+    let declared: BTreeMap<String, OptionKind> = options.iter().map(|(name, option)| (name.clone(), option.kind.clone())).collect();
+    let property_macros = property_macros(&standard, &declared, &in_force);
+    let properties_text = provider.read(properties::PATH).map(|t| t.to_string()).unwrap_or_default();
+    let properties = Properties::parse(&properties_text, &property_macros);
+    let legacy_outputs = selection.dialect == Dialect::Glsl120;
+    let water_alpha_test = directives::alpha_test(&properties, "gbuffers_water", loader.default_water_alpha_test(legacy_outputs))
+        .map_err(HarnessError::Unsupported)?;
+    let macros = standard.preprocess_options();
+    let water = load_program(&provider, "gbuffers_water", &macros, water_alpha_test)?;
+    let composite = load_program(&provider, "composite", &macros, None)?;
     let mut wanted: Vec<&str> = TERRAIN_CHAIN.to_vec();
     for kind in OverlayKind::ALL {
         wanted.extend(loader.program_chain(kind));
@@ -351,7 +261,7 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let mut gbuffers = BTreeMap::new();
     for name in wanted {
         if !gbuffers.contains_key(name) && provider.read(&format!("{name}.fsh")).is_ok() {
-            gbuffers.insert(name.to_string(), load_program(&provider, name, glsl_version, None)?);
+            gbuffers.insert(name.to_string(), load_program(&provider, name, &macros, None)?);
         }
     }
 
@@ -362,12 +272,12 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
             formats.insert(buffer, format);
         }
     }
-    let water_blend = blend_modes(&properties, "gbuffers_water", loader.per_buffer_blend())?;
+    let water_blend = blend_modes_of(&properties, "gbuffers_water", loader)?;
     let mut gbuffers_blend = BTreeMap::new();
     for name in gbuffers.keys() {
-        gbuffers_blend.insert(name.clone(), blend_modes(&properties, name, loader.per_buffer_blend())?);
+        gbuffers_blend.insert(name.clone(), blend_modes_of(&properties, name, loader)?);
     }
-    let block_ids = provider.read("block.properties").map(|t| block_ids(&t)).unwrap_or_default();
+    let block_ids = block_ids(&provider, &property_macros);
     let read_bytes = |path: &str| match pack.binaries.get(path) {
         Some(b) => Ok(b.to_vec()),
         None => {
@@ -399,9 +309,14 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
 
 /// Loads `<name>.vsh` and `<name>.fsh`; an `alpha_test` discards fragments whose output 0 has
 /// an alpha not above it, as a loader's alpha test would.
-fn load_program(provider: &dyn FileProvider, name: &str, glsl_version: u32, alpha_test: Option<f32>) -> Result<LoadedProgram, HarnessError> {
+fn load_program(
+    provider: &dyn FileProvider,
+    name: &str,
+    macros: &preprocess::PreprocessOptions,
+    alpha_test: Option<f32>,
+) -> Result<LoadedProgram, HarnessError> {
     let files = ProgramFiles { name, vertex: format!("{name}.vsh"), fragment: format!("{name}.fsh") };
-    load_program_files(provider, &files, &standard_macros(glsl_version), &|_| alpha_test, UndeclaredTargets::Refuse)
+    load_program_files(provider, &files, macros, &|_| alpha_test, UndeclaredTargets::Refuse)
 }
 
 /// The two stage files of one program, as paths inside `shaders/`.
@@ -439,7 +354,7 @@ pub(crate) fn load_program_files(
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
         let mut p = preprocess::preprocess(provider, path, macros).map_err(|d| diag_error(path, &[d]))?;
-        tidepack_validate::assume_glsl_110(&mut p);
+        preprocess::assume_glsl_110(&mut p);
         pre.push((stage, Arc::new(p)));
     }
     let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
@@ -659,18 +574,8 @@ fn wrap_main(text: &str, epilogue: &str) -> Result<String, HarnessError> {
     Ok(out)
 }
 
-/// The colour buffer a name refers to: `colortexN` (N < 16) or one of OptiFine's legacy names
-/// for buffers 0-7 (`gcolor`, `gdepth`, `gnormal`, `composite`, `gaux1`-`gaux4`).
-pub(crate) fn colour_buffer_number(name: &str) -> Option<u8> {
-    const LEGACY: [&str; 8] = ["gcolor", "gdepth", "gnormal", "composite", "gaux1", "gaux2", "gaux3", "gaux4"];
-    match name.strip_prefix("colortex") {
-        Some(n) => n.parse::<u8>().ok().filter(|n| *n < 16),
-        None => LEGACY.iter().position(|legacy| *legacy == name).map(|n| n as u8),
-    }
-}
-
-/// `const int colortexNFormat = FORMAT;` (also inside comments, as OptiFine reads them) and
-/// the legacy `/* GAUXnFORMAT:FORMAT */`.
+/// The declared format of each colour buffer (`const int colortexNFormat = FORMAT;`); a format
+/// the harness does not store exactly is an error naming it.
 pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
     declared_format_names(text, colour_buffer_number)
         .into_iter()
@@ -683,97 +588,42 @@ pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, Ha
         .collect()
 }
 
-/// The shadow colour buffer a name refers to: `shadowcolor` (0) or `shadowcolorN` (N < 8).
-pub(crate) fn shadow_colour_number(name: &str) -> Option<u8> {
-    match name.strip_prefix("shadowcolor")? {
-        "" => Some(0),
-        n => n.parse::<u8>().ok().filter(|n| *n < 8),
-    }
-}
-
 /// The buffer and format name of each `const int <buffer>Format = <FORMAT>;` line, buffers
-/// numbered by `number` ([`colour_buffer_number`] or [`shadow_colour_number`]).
+/// numbered by `number` ([`colour_buffer_number`] or
+/// [`tidepack_loader::buffers::shadow_colour_number`]).
 pub(crate) fn declared_format_names(text: &str, number: fn(&str) -> Option<u8>) -> Vec<(u8, String)> {
-    let mut found = Vec::new();
-    for line in text.lines() {
-        let line = line.trim();
-        let Some(rest) = line.strip_prefix("const int ") else { continue };
-        let Some((name, value)) = rest.split_once('=') else { continue };
-        let Some(buffer_name) = name.trim().strip_suffix("Format") else { continue };
-        let Some(buffer) = number(buffer_name) else { continue };
-        // The value ends at the `;`; a comment may follow on the line.
-        found.push((buffer, value.split(';').next().unwrap_or("").trim().to_string()));
-    }
-    found
+    consts::declarations(text)
+        .filter(|d| d.ty == "int")
+        .filter_map(|d| Some((number(d.name.strip_suffix("Format")?)?, d.value.to_string())))
+        .collect()
 }
 
-/// `blend.<program>=` and `blend.<program>.<buffer>=` lines for one program; the per-buffer
-/// ones only for a loader that reads them.
-pub(crate) fn blend_modes(properties: &str, program: &str, per_buffer_blend: bool) -> Result<BTreeMap<u8, Blend>, HarnessError> {
-    let mut program_wide = None;
-    let mut per_buffer = BTreeMap::new();
-    for line in properties.lines() {
-        let line = line.trim();
-        if line.starts_with('#') {
-            continue;
-        }
-        let Some((key, value)) = line.split_once('=') else { continue };
-        let Some(rest) = key.trim().strip_prefix("blend.").and_then(|r| r.strip_prefix(program)) else { continue };
-        let value = value.trim();
-        let blend = if value == "off" {
-            Blend::Off
-        } else {
-            let factors: Vec<BlendFactor> = value.split_whitespace().filter_map(BlendFactor::parse).collect();
-            let factors: [BlendFactor; 4] = factors
-                .try_into()
-                .map_err(|_| HarnessError::Unsupported(format!("{key}={value}: expected off or four blend factors")))?;
-            Blend::Factors(factors)
-        };
-        if rest.is_empty() {
-            program_wide = Some(blend);
-        } else if !per_buffer_blend {
-            continue;
-        } else if let Some(buffer) = rest.strip_prefix(".colortex").and_then(|n| n.parse::<u8>().ok()) {
-            per_buffer.insert(buffer, blend);
-        } else {
-            return Err(HarnessError::Unsupported(format!("{key}: the harness reads blend.{program}.colortexN only")));
-        }
-    }
-    let mut modes = BTreeMap::new();
-    for buffer in 0..16u8 {
-        if let Some(b) = per_buffer.get(&buffer).cloned().or_else(|| program_wide.clone()) {
-            modes.insert(buffer, b);
-        }
-    }
-    Ok(modes)
+/// The blend modes of `program` as `loader` reads them; an entry it cannot imitate is an error.
+pub(crate) fn blend_modes_of(properties: &Properties, program: &str, loader: Loader) -> Result<BTreeMap<u8, Blend>, HarnessError> {
+    directives::blend_modes(properties, program, loader.per_buffer_blend()).map_err(HarnessError::Unsupported)
 }
 
-/// `texture.<stage>.<unit>=<path>` lines: the PNG `read_bytes` gives for the path, with the
-/// filter and wrap of its `.mcmeta`. Lines the harness cannot honour come back as messages
-/// naming the key, for the caller to refuse or report.
+/// The `texture.<stage>.<unit>` entries' images: the PNG `read_bytes` gives for the path, with
+/// the filter and wrap of its `.mcmeta`. Entries the harness cannot honour come back as
+/// messages naming the key, for the caller to refuse or report.
 pub(crate) fn custom_textures(
     read_bytes: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     provider: &dyn FileProvider,
-    properties: &str,
+    properties: &Properties,
 ) -> Result<(Vec<CustomTexture>, Vec<String>), HarnessError> {
     let mut found = Vec::new();
     let mut unsupported = Vec::new();
-    for line in properties.lines() {
-        let Some((key, path)) = line.trim().split_once('=') else { continue };
-        let key = key.trim();
-        let Some((stage, unit)) = key.strip_prefix("texture.").and_then(|k| k.split_once('.')) else { continue };
-        // `path` alone, or a raw texture: `path TYPE FORMAT WIDTH HEIGHT [DEPTH] PIXELFORMAT PIXELTYPE`.
-        let mut words = path.split_whitespace();
-        let path = normalise_pack_path(words.next().unwrap_or(""));
-        if !matches!(stage, "gbuffers" | "composite") {
+    for entry in directives::textures(properties) {
+        let (key, path) = (&entry.key, &entry.path);
+        if !matches!(entry.stage.as_str(), "gbuffers" | "composite") {
             unsupported.push(format!("{key}: the harness binds custom textures in gbuffers and composite programs only"));
             continue;
         }
-        if words.next().is_some() || path.ends_with(".dat") || path.contains(':') {
+        if !entry.raw.is_empty() || path.ends_with(".dat") || entry.resource {
             unsupported.push(format!("{key}={path}: only PNG textures inside the pack are read"));
             continue;
         }
-        let bytes = match read_bytes(&path) {
+        let bytes = match read_bytes(path) {
             Ok(bytes) => bytes,
             Err(e) => {
                 unsupported.push(format!("{key}: {e}"));
@@ -788,8 +638,8 @@ pub(crate) fn custom_textures(
             meta.split(&format!("\"{name}\"")).nth(1).is_some_and(|rest| rest.trim_start_matches([' ', ':']).starts_with("true"))
         };
         found.push(CustomTexture {
-            stage: stage.to_string(),
-            unit: unit.to_string(),
+            stage: entry.stage.clone(),
+            unit: entry.unit.clone(),
             path: path.clone(),
             width: decoded.width(),
             height: decoded.height(),
@@ -801,35 +651,10 @@ pub(crate) fn custom_textures(
     Ok((found, unsupported))
 }
 
-/// A texture path of shaders.properties as a path inside `shaders/`: a leading `/` dropped,
-/// `a/../b` folded (`../shaders/x` climbs out of `shaders/` and back in).
-fn normalise_pack_path(path: &str) -> String {
-    let mut parts: Vec<&str> = Vec::new();
-    for part in path.trim_start_matches('/').split('/') {
-        match part {
-            "" | "." => {}
-            ".." => {
-                parts.pop();
-            }
-            "shaders" if parts.is_empty() && path.starts_with("../") => {}
-            other => parts.push(other),
-        }
-    }
-    parts.join("/")
-}
-
-/// `block.<id>=<names>` lines.
-pub(crate) fn block_ids(properties: &str) -> HashMap<String, i32> {
-    let mut ids = HashMap::new();
-    for line in properties.lines() {
-        let Some((key, names)) = line.trim().split_once('=') else { continue };
-        let Some(id) = key.trim().strip_prefix("block.").and_then(|n| n.parse::<i32>().ok()) else { continue };
-        for name in names.split_whitespace() {
-            let full = if name.contains(':') { name.to_string() } else { format!("minecraft:{name}") };
-            ids.entry(full).or_insert(id);
-        }
-    }
-    ids
+/// A pack's block.properties read under `macros`: block name → id.
+pub(crate) fn block_ids(provider: &dyn FileProvider, macros: &Macros) -> HashMap<String, i32> {
+    let text = provider.read(blocks::BLOCK_PROPERTIES).map(|t| t.to_string()).unwrap_or_default();
+    blocks::ids(&Properties::parse(&text, macros), "block")
 }
 
 /// The shipped name of a lowered resource: the interface maps shipped names to resource kinds;
@@ -871,19 +696,9 @@ mod tests {
     }
 
     #[test]
-    fn formats_blend_and_ids_are_read() {
+    fn declared_formats_are_read_inside_comments_too() {
         let formats = declared_formats("/*\nconst int colortex4Format = RGBA16;\nconst int gaux2Format = RGBA32F;\n*/").unwrap();
         assert_eq!(formats, vec![(4, BufferFormat::Rgba16), (5, BufferFormat::Rgba32F)]);
         assert!(declared_formats("const int colortex1Format = R11F_G11F_B10F;").is_err());
-        let modes = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO\nblend.composite=off", "gbuffers_water", true).unwrap();
-        assert_eq!(modes[&4], Blend::Off);
-        assert_eq!(modes[&0], Blend::Factors([BlendFactor::One, BlendFactor::Zero, BlendFactor::One, BlendFactor::Zero]));
-        // OptiFine before 1.16.5 skips the per-buffer key: the program-wide mode covers colortex4.
-        let old = blend_modes("blend.gbuffers_water.colortex4=off\nblend.gbuffers_water=ONE ZERO ONE ZERO", "gbuffers_water", false).unwrap();
-        assert_eq!(old[&4], old[&0]);
-        let ids = block_ids("block.10008=minecraft:water flowing_water\nblock.10095=minecraft:white_stained_glass");
-        assert_eq!(ids["minecraft:water"], 10008);
-        assert_eq!(ids["minecraft:flowing_water"], 10008);
-        assert_eq!(ids["minecraft:white_stained_glass"], 10095);
     }
 }

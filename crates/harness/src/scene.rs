@@ -9,7 +9,8 @@ use glam::{DMat4, DVec3};
 use serde::Deserialize;
 
 use crate::HarnessError;
-use crate::shadow::SunPath;
+use tidepack_loader::loader::OverlayKind;
+use tidepack_loader::shadow::SunPath;
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -186,20 +187,6 @@ pub struct GlassPane {
     /// Block name looked up in the pack's block.properties for `mc_Entity.x`.
     #[serde(default = "default_glass_block")]
     pub block: String,
-}
-
-/// What an [`OverlayBox`] stands for: which programs draw it, and when (crate::loader).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[serde(rename_all = "lowercase")]
-pub enum OverlayKind {
-    Particles,
-    Clouds,
-    Rain,
-    Hand,
-}
-
-impl OverlayKind {
-    pub const ALL: [OverlayKind; 4] = [OverlayKind::Particles, OverlayKind::Clouds, OverlayKind::Rain, OverlayKind::Hand];
 }
 
 /// A box of one colour drawn as rain, clouds, a particle or the translucent hand.

@@ -11,100 +11,9 @@ use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
 use crate::scene::Scene;
-use crate::shadow::{ShadowSettings, SunPath};
+use tidepack_loader::shadow::{ShadowSettings, SunPath};
+pub use tidepack_loader::uniform_value::{Kind, Value};
 use tidepack_pack::specialise::Specialisation;
-
-/// A uniform value: scalars, vectors, matrices (column-major) and arrays of them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Value {
-    pub kind: Kind,
-    /// Columns (1 for scalars and vectors).
-    pub columns: u8,
-    /// Rows: vector size (1 for scalars).
-    pub rows: u8,
-    /// Array length, when an array.
-    pub array: Option<u32>,
-    /// Components, column-major, element after element; ints stored as their f64 value.
-    pub data: Vec<f64>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
-    Float,
-    Int,
-}
-
-impl Value {
-    pub fn float(v: f64) -> Value {
-        Value { kind: Kind::Float, columns: 1, rows: 1, array: None, data: vec![v] }
-    }
-    pub fn int(v: i64) -> Value {
-        Value { kind: Kind::Int, columns: 1, rows: 1, array: None, data: vec![v as f64] }
-    }
-    pub fn vec3(v: DVec3) -> Value {
-        Value { kind: Kind::Float, columns: 1, rows: 3, array: None, data: v.to_array().to_vec() }
-    }
-    pub fn vec4(v: DVec4) -> Value {
-        Value { kind: Kind::Float, columns: 1, rows: 4, array: None, data: v.to_array().to_vec() }
-    }
-    pub fn ivec2(x: i64, y: i64) -> Value {
-        Value { kind: Kind::Int, columns: 1, rows: 2, array: None, data: vec![x as f64, y as f64] }
-    }
-    pub fn mat4(m: DMat4) -> Value {
-        Value { kind: Kind::Float, columns: 4, rows: 4, array: None, data: m.to_cols_array().to_vec() }
-    }
-    pub fn mat3(m: DMat3) -> Value {
-        Value { kind: Kind::Float, columns: 3, rows: 3, array: None, data: m.to_cols_array().to_vec() }
-    }
-    pub fn mat4_array(ms: &[DMat4]) -> Value {
-        Value {
-            kind: Kind::Float,
-            columns: 4,
-            rows: 4,
-            array: Some(ms.len() as u32),
-            data: ms.iter().flat_map(|m| m.to_cols_array()).collect(),
-        }
-    }
-
-    /// The GLSL type this value fills.
-    pub fn glsl_type(&self) -> String {
-        let base = match (self.kind, self.columns, self.rows) {
-            (Kind::Float, 1, 1) => "float".to_string(),
-            (Kind::Int, 1, 1) => "int".to_string(),
-            (Kind::Float, 1, n) => format!("vec{n}"),
-            (Kind::Int, 1, n) => format!("ivec{n}"),
-            (_, c, r) if c == r => format!("mat{c}"),
-            (_, c, r) => format!("mat{c}x{r}"),
-        };
-        match self.array {
-            Some(n) => format!("{base}[{n}]"),
-            None => base,
-        }
-    }
-
-    /// The value as a GLSL constructor valid in GLSL 1.20 and later (`0`, `vec3(0.5, 1.0, 2.0)`),
-    /// each float written so that it parses back to the same f32 the uniform buffer holds.
-    /// `None` for arrays, which have no constructor in GLSL 1.20.
-    pub fn glsl_initialiser(&self) -> Option<String> {
-        if self.array.is_some() {
-            return None;
-        }
-        let parts: Vec<String> = match self.kind {
-            Kind::Float => self.as_f32().iter().map(|v| format!("{v:?}")).collect(),
-            Kind::Int => self.as_i32().iter().map(i32::to_string).collect(),
-        };
-        Some(if parts.len() == 1 { parts[0].clone() } else { format!("{}({})", self.glsl_type(), parts.join(", ")) })
-    }
-
-    /// Components as f32 (for OpenGL's glUniform*fv).
-    pub fn as_f32(&self) -> Vec<f32> {
-        self.data.iter().map(|&v| v as f32).collect()
-    }
-
-    pub fn as_i32(&self) -> Vec<i32> {
-        self.data.iter().map(|&v| v as i32).collect()
-    }
-}
 
 /// Which pass the values are for: the legacy matrices differ.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -268,7 +177,7 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
 /// `values` with `renderStage` set to the `MC_RENDER_STAGE_*` named `stage` (`SKY`, `SUN`,
 /// `TERRAIN_SOLID`, …), as OptiFine 1.17+ and Iris set it for each kind of draw.
 pub fn with_render_stage(values: &BTreeMap<String, Value>, stage: &str) -> BTreeMap<String, Value> {
-    let number = tidepack_glsl::macros::RENDER_STAGES.iter().position(|s| *s == stage).unwrap_or(0);
+    let number = tidepack_loader::macros::RENDER_STAGES.iter().position(|s| *s == stage).unwrap_or(0);
     let mut values = values.clone();
     values.insert("renderStage".to_string(), Value::int(number as i64));
     values

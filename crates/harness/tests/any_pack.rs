@@ -5,9 +5,12 @@
 //! 1.17+ core profile's vertex attributes and matrices, and a shadow pass read every way packs
 //! read it.
 
-use tidepack_harness::any_pack::{AnyPack, BufferClear, FramePlan, OptionChoice, PlannedWork};
+use tidepack_harness::any_pack::{AnyPack, FramePlan, PlannedWork};
+use tidepack_loader::Configuration;
+use tidepack_loader::buffers::BufferClear;
 use tidepack_harness::gpu::{AnyFrame, render_any};
-use tidepack_harness::program::{BufferFormat, PackResources as _};
+use tidepack_harness::program::PackResources as _;
+use tidepack_loader::buffers::BufferFormat;
 use tidepack_harness::{Loader, Scene, gl, gl_any, images, mesh};
 
 mod common;
@@ -17,7 +20,7 @@ use common::{gpu, root, scene};
 const NO_SUN_PROGRAM: &str = "the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn";
 
 fn pack(name: &str, loader: Loader) -> AnyPack {
-    AnyPack::load(&root().join("tests/packs").join(name), loader, &OptionChoice::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
+    AnyPack::load(&root().join("tests/packs").join(name), &Configuration { loader, ..Configuration::default() }).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn render(pack: &AnyPack, scene: &Scene) -> AnyFrame {
@@ -146,14 +149,14 @@ fn the_shadow_pass_draws_the_terrain_copies_its_depth_then_draws_the_water() {
 fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
     use tidepack_harness::gpu::bindings::{Source, resolve_any};
     let load = |composite: &str| {
-        let files = tidepack_validate::input::pack_from_memory(
+        let files = tidepack_loader::input::pack_from_memory(
             "test/shaders/",
             [
                 ("composite.fsh".to_string(), composite.as_bytes().to_vec()),
                 ("composite.vsh".to_string(), b"#version 120\nvoid main() { gl_Position = ftransform(); }\n".to_vec()),
             ],
         );
-        AnyPack::from_files(&files, Loader::default(), &OptionChoice::default()).unwrap()
+        AnyPack::from_files(&files, &Configuration::default()).unwrap()
     };
     let plain = load("#version 120\nuniform sampler2D shadow;\nvoid main() { gl_FragData[0] = texture2D(shadow, vec2(0.5)); }\n");
     let with_water = load(
@@ -232,8 +235,8 @@ fn our_shipped_pack(dialect: tidepack_pack::Dialect) -> AnyPack {
         .iter()
         .map(|(path, file)| (path.clone(), file.text.as_bytes().to_vec()))
         .chain(shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec())));
-    let files = tidepack_validate::input::pack_from_memory("Tidepack/shaders/", files);
-    AnyPack::from_files(&files, Loader::default(), &OptionChoice::default()).unwrap_or_else(|e| panic!("{e}"))
+    let files = tidepack_loader::input::pack_from_memory("Tidepack/shaders/", files);
+    AnyPack::from_files(&files, &Configuration::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]

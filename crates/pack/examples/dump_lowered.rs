@@ -2,7 +2,8 @@
 //! `cargo run -p tidepack-pack --example dump_lowered -- composite.fsh 120`
 use std::sync::Arc;
 use tidepack_glsl::{naga_check, preprocess, Stage};
-use tidepack_pack::{dialect::Dialect, option_sets, pack_options, shipped::ShippedPack, source::PackSource};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_pack::{dialect::Dialect, pack_options, shipped::ShippedPack, source::PackSource};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -11,7 +12,7 @@ fn main() {
     let options = pack_options::collect(&source).unwrap();
     let pack = ShippedPack::generate(&source, &options, dialect, &Default::default()).unwrap();
     let program = pack.programs().into_iter().find(|p| p.stages.iter().any(|(_, p)| p == path)).unwrap();
-    let macros = option_sets::standard_macros(120);
+    let macros = StandardMacros::default().preprocess_options();
     let stages: Vec<(Stage, Arc<preprocess::Preprocessed>)> = program.stages.iter().map(|(s, p)| {
         let provider: std::collections::HashMap<String, Arc<str>> = pack.files.iter().map(|(k, v)| (k.clone(), v.text.clone())).collect();
         (*s, Arc::new(preprocess::preprocess(&provider, p, &macros).unwrap()))

@@ -8,11 +8,12 @@ use std::time::Instant;
 use tidepack_glsl::preprocess::expand_includes;
 use tidepack_glsl::Stage;
 use tidepack_pack::build::generate_validated;
+use tidepack_loader::macros::StandardMacros;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::WithOptions;
 use tidepack_pack::source::PackSource;
 use tidepack_pack::option_sets::Coverage;
-use tidepack_pack::{option_sets, pack_options};
+use tidepack_pack::pack_options;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -35,8 +36,7 @@ fn main() {
     std::fs::create_dir_all(&work).unwrap();
     let mut files = Vec::new();
     for (pack, report) in &packs {
-        let version = if pack.dialect == Dialect::Glsl120 { 120 } else { 330 };
-        let macros: String = option_sets::standard_macros(version).predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+        let macros = StandardMacros::default().define_lines();
         for (i, (path, set)) in report.validated.iter().enumerate() {
             let provider = WithOptions::new(pack, set);
             let text = expand_includes(&provider, path, &macros).unwrap();

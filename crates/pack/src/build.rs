@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use tidepack_glsl::Diagnostic;
-use tidepack_glsl::options::OptionSet;
+use tidepack_loader::option_lines::OptionSet;
 
 use crate::{archive, properties};
 use crate::dialect::Dialect;

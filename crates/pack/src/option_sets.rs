@@ -24,7 +24,8 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use tidepack_glsl::Diagnostic;
-use tidepack_glsl::options::{OptionSet, OptionValue};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_lines::{OptionSet, OptionValue};
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
 use tidepack_glsl::naga_check::{self, LoweredStage};
 
@@ -122,24 +123,6 @@ impl<'a> Ticker<'a> {
     }
 }
 
-/// OptiFine's standard macros for a typical modern setup, so packs that test them validate.
-pub fn standard_macros(glsl_version: u32) -> PreprocessOptions {
-    let predefined = [
-        ("MC_VERSION", "12104"),
-        ("MC_GL_VERSION", "460"),
-        ("MC_GLSL_VERSION", &glsl_version.to_string()),
-        ("MC_OS_LINUX", "1"),
-        ("MC_GL_VENDOR_MESA", "1"),
-        ("MC_GL_RENDERER_MESA", "1"),
-        ("MC_RENDER_QUALITY", "1.0"),
-        ("MC_SHADOW_QUALITY", "1.0"),
-        ("MC_HAND_DEPTH", "0.125"),
-        ("MC_NORMAL_MAP", "1"),
-        ("MC_SPECULAR_MAP", "1"),
-    ];
-    PreprocessOptions { predefined: predefined.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect() }
-}
-
 /// Validates every program of `pack`; diagnostics point at shipped files.
 ///
 /// The default option set of every program goes first: most mistakes show there, and a
@@ -153,11 +136,7 @@ pub fn validate_pack(
     profiles: &[OptionSet],
     progress: Option<ProgressFn>,
 ) -> Result<ValidationReport, Vec<Diagnostic>> {
-    let glsl_version = match pack.dialect {
-        crate::dialect::Dialect::Glsl120 => 120,
-        crate::dialect::Dialect::Glsl330 => 330,
-    };
-    let macros = standard_macros(glsl_version);
+    let macros = StandardMacros::default().preprocess_options();
     let programs = pack.programs();
     let defaults: Vec<(&Program, OptionSet)> = programs.iter().map(|p| (p, OptionSet::new())).collect();
     let mut seen = HashMap::new();

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use tidepack_glsl::options::{self, OptionKind, OptionSet, OptionValue};
+use tidepack_loader::option_lines::{self, OptionKind, OptionSet, OptionValue};
 use tidepack_glsl::{Diagnostic, Location};
 
 use crate::manifest::line_of;
@@ -26,7 +26,7 @@ pub fn collect(source: &PackSource) -> Result<PackOptions, Vec<Diagnostic>> {
     let mut found: PackOptions = BTreeMap::new();
     let mut errors = Vec::new();
     for template in source.templates.iter().filter(|t| is_glsl(&t.path)) {
-        for decl in options::scan(&template.text) {
+        for decl in option_lines::scan(&template.text) {
             let at = Location::line(template.display_path.clone(), decl.line);
             if let Some(previous) = found.get(&decl.name) {
                 if previous.kind != decl.kind {

@@ -4,7 +4,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
-use tidepack_glsl::options::{self, OptionSet};
+use tidepack_loader::option_lines::{self, OptionSet};
 use tidepack_glsl::preprocess::FileProvider;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
@@ -76,7 +76,7 @@ impl ShippedPack {
                 &format!("shaderpack/shaders/{}", template.path),
             )
             .replace(" Edit that file, not this one.", " Edit the template, not this file.");
-            let text = options::apply(&template.text, defaults);
+            let text = option_lines::apply(&template.text, defaults);
             match dialect::generate(&template.display_path, &template.path, &text, dialect, &samplers, &header) {
                 Ok(text) => {
                     files.insert(
@@ -131,21 +131,6 @@ impl ShippedPack {
             stages.sort();
             Program { name, stages }
         }).collect()
-    }
-
-    /// Custom textures from shaders.properties: (stage, sampler unit, path inside `shaders/`),
-    /// e.g. ("composite", "colortex7", "textures/water.png").
-    pub fn custom_textures(&self) -> Vec<(String, String, String)> {
-        let Some(properties) = self.files.get("shaders.properties") else { return Vec::new() };
-        properties
-            .text
-            .lines()
-            .filter_map(|line| {
-                let (key, path) = line.split_once('=')?;
-                let (stage, unit) = key.trim().strip_prefix("texture.")?.split_once('.')?;
-                Some((stage.to_string(), unit.to_string(), path.trim().to_string()))
-            })
-            .collect()
     }
 
     /// The template location of a location in a shipped file (unchanged for generated files).
@@ -205,7 +190,7 @@ impl FileProvider for WithOptions<'_> {
             return Ok(text.clone());
         }
         let file = self.pack.files.get(path).ok_or_else(|| "no such file in the pack".to_string())?;
-        let text: Arc<str> = match options::apply(&file.text, self.set) {
+        let text: Arc<str> = match option_lines::apply(&file.text, self.set) {
             std::borrow::Cow::Borrowed(_) => file.text.clone(),
             std::borrow::Cow::Owned(s) => Arc::from(s),
         };

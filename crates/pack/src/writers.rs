@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use tidepack_glsl::options::OptionKind;
+use tidepack_loader::option_lines::OptionKind;
 
 use crate::manifest::Manifest;
 use crate::pack_options::PackOptions;

@@ -7,8 +7,8 @@
 
 use std::collections::BTreeMap;
 
-use tidepack_glsl::options::OptionValue;
-use tidepack_harness::program::BufferFormat;
+use tidepack_loader::option_lines::OptionValue;
+use tidepack_loader::buffers::BufferFormat;
 use tidepack_harness::uniforms::{self, Pass, Value};
 use tidepack_harness::{FloatImage, Frame, LoadedPack, Scene, mesh};
 

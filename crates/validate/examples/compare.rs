@@ -8,8 +8,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use tidepack_glsl::options::OptionSet;
-use tidepack_validate::{Options, Profiles, SetProvider, Status, glslang, programs, properties};
+use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::programs;
+use tidepack_loader::{Configuration, SetProvider};
+use tidepack_validate::{Options, Profiles, Status, glslang};
 
 fn profile_of(dir: &Path) -> Profiles {
     let args = std::fs::read_to_string(dir.join("args.txt")).unwrap_or_default();
@@ -30,7 +32,7 @@ fn main() {
     }
     let tmp = std::env::temp_dir().join(format!("tidepack-compare-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let defines = tidepack_glsl::macros::StandardMacros::default().define_lines();
+    let defines = tidepack_loader::macros::StandardMacros::default().define_lines();
     let (mut programs_total, mut glslang_seconds, mut glslang_programs) = (0usize, 0.0f64, 0usize);
     let mut agree_glslang = [[0usize; 2]; 2]; // [tidepack rejects][glslang rejects]
     let mut agree_mesa = [[0usize; 2]; 2];
@@ -46,10 +48,7 @@ fn main() {
         };
         let pack = &report.pack;
         let set: OptionSet = match &options.profiles {
-            Profiles::Named(name) => {
-                let props = properties::parse(pack.texts.get(properties::PATH).map_or("", |t| t));
-                properties::profile_set(&props, name, &tidepack_validate::declared_options(pack)).unwrap().0
-            }
+            Profiles::Named(name) => Configuration { profile: Some(name.clone()), ..Configuration::default() }.option_set_of(pack).unwrap().0,
             _ => OptionSet::new(),
         };
         let driver = report.driver.as_ref().unwrap();

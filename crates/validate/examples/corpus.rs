@@ -11,9 +11,11 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use tidepack_glsl::macros::StandardMacros;
-use tidepack_glsl::options::OptionSet;
-use tidepack_validate::{Loader, Options, SetProvider, Status, driver, glslang, programs};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::SetProvider;
+use tidepack_loader::programs::{self, RunBy};
+use tidepack_validate::{Options, Status, driver, glslang};
 
 #[derive(Default)]
 struct Row {
@@ -72,7 +74,7 @@ fn main() {
         let set = OptionSet::new();
         let provider = SetProvider::new(&report.pack, &set);
         for program in programs::find_programs(report.pack.files.keys()) {
-            if program.loader != Loader::OptiFine || !program.has_stages() {
+            if program.run_by != RunBy::OptiFine || !program.has_stages() {
                 continue;
             }
             let Some(ours) = report.programs.iter().find(|p| p.id == program.id()) else { continue };

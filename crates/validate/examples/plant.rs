@@ -20,9 +20,11 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use tidepack_glsl::Diagnostic;
-use tidepack_glsl::options::OptionSet;
+use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::{self, FileProvider, Preprocessed};
-use tidepack_validate::{Loader, Options, Report, SetProvider, Status, programs};
+use tidepack_loader::SetProvider;
+use tidepack_loader::programs::{self, RunBy};
+use tidepack_validate::{Options, Report, Status};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Kind {
@@ -262,7 +264,7 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
     let mut seen_lines: HashSet<(String, u32)> = HashSet::new();
     let mut seen_texts: HashSet<String> = HashSet::new();
     for program in programs::find_programs(base.pack.files.keys()) {
-        if program.loader != Loader::OptiFine || !clean.contains(&program.id()) {
+        if program.run_by != RunBy::OptiFine || !clean.contains(&program.id()) {
             continue;
         }
         for (_, path) in &program.stages {
@@ -311,7 +313,7 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
                 elapsed.as_secs_f64()
             );
             // A file OptiFine loads as a stage, or one only reached through `#include`.
-            let stage_file = programs::find_programs(std::iter::once(&path)).iter().any(|p| p.loader == Loader::OptiFine);
+            let stage_file = programs::find_programs(std::iter::once(&path)).iter().any(|p| p.run_by == RunBy::OptiFine);
             plants.push(Plant { included: !stage_file, ..plant });
         }
     }

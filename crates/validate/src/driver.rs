@@ -5,11 +5,11 @@
 
 use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
-use tidepack_glsl::macros::StandardMacros;
+use tidepack_loader::macros::StandardMacros;
 use tidepack_glsl::preprocess::expand_includes_mapped;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
-use crate::Program;
+use tidepack_loader::programs::Program;
 
 /// How the driver's verdicts compare with tidepack's, per program and option set.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -24,7 +24,7 @@ use tidepack_glsl::token::tokenize;
 use tidepack_glsl::naga_check;
 use tidepack_glsl::Stage;
 
-use crate::input::pack_from_memory;
+use tidepack_loader::input::pack_from_memory;
 use crate::{Options, Profiles};
 
 /// Fragments that reach the interesting paths quickly.
@@ -204,7 +204,7 @@ fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String>
 pub fn seeds_from(dirs: &[std::path::PathBuf]) -> Vec<SeedPack> {
     let mut seeds = Vec::new();
     for dir in dirs {
-        if let Ok(pack) = crate::input::read_pack(dir, &crate::Limits::default()) {
+        if let Ok(pack) = tidepack_loader::input::read_pack(dir, &tidepack_loader::Limits::default()) {
             seeds.push(pack.files.iter().map(|(p, b)| (p.clone(), b.to_vec())).collect());
         }
     }

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use tidepack_glsl::Stage;
 use tidepack_glsl::preprocess::{FileProvider, expand_includes};
 
-use crate::Program;
+use tidepack_loader::programs::Program;
 
 /// glslangValidator's verdict on a program's stages.
 #[derive(Clone, Debug, Default)]

@@ -11,7 +11,7 @@ use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use crate::known;
-use crate::properties::Properties;
+use tidepack_loader::directives::CustomNames;
 
 fn version_of(pre: &Preprocessed) -> u32 {
     pre.version.as_ref().map_or(110, |v| v.number)
@@ -364,10 +364,10 @@ fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
 }
 
 /// Uniforms and samplers OptiFine does not set, and known uniforms declared with another type.
-pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, props: &Properties) -> Vec<Diagnostic> {
+pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, names: &CustomNames) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     for name in lowered.interface.images.keys() {
-        if !known::is_image(name) && !props.custom_images.contains(name) {
+        if !known::is_image(name) && !names.images.contains(name) {
             let at = uniform_line(pre, name).and_then(|l| pre.location(l));
             found.push(Diagnostic::warning(
                 format!(
@@ -384,7 +384,7 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
         let at = || uniform_line(pre, name).and_then(|l| pre.location(l));
         match kind {
             ResourceKind::Texture { .. } => {
-                if !known::is_sampler(name) && !props.custom_samplers.contains(name) {
+                if !known::is_sampler(name) && !names.samplers.contains(name) {
                     found.push(Diagnostic::warning(
                         format!("`{name}` is not a sampler OptiFine binds: it silently reads texture unit 0"),
                         at(),
@@ -394,7 +394,7 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
                 }
             }
             ResourceKind::Uniform { ty } => {
-                if let Some(custom) = props.custom_uniforms.get(name) {
+                if let Some(custom) = names.uniforms.get(name) {
                     if custom != ty {
                         found.push(Diagnostic::warning(
                             format!("`{name}` is declared `{ty}` but shaders.properties defines it as `{custom}`"),

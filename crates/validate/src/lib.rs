@@ -13,33 +13,32 @@
 use std::collections::{BTreeMap, BTreeSet, HashSet};
 use std::time::Instant;
 
-use tidepack_glsl::macros::StandardMacros;
-use tidepack_glsl::options::{self, OptionKind, OptionSet};
 use tidepack_glsl::{Diagnostic, Location};
+use tidepack_loader::directives::custom_names;
+use tidepack_loader::input::{self, Limits, PackFiles};
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::option_space::{self, declared_options, property_macros};
+use tidepack_loader::programs::{self, Program, RunBy};
+use tidepack_loader::properties::{self, Properties};
+use tidepack_loader::{Configuration, Dimension, Loader, SetProvider};
 
 pub mod driver;
 pub mod fuzz;
 pub mod glslang;
-pub mod input;
 pub mod interface;
 pub mod known;
 mod messages;
 mod naga_pool;
 pub mod output;
-pub mod programs;
-pub mod properties;
 mod report;
-mod set_provider;
 mod stages;
 pub mod version_rules;
 
-pub use input::{Limits, PackFiles};
 pub use messages::unlower_names;
 pub use naga_pool::MAX_NAGA_LINES;
-pub use programs::{Loader, Program};
 pub use report::{ProgramReport, Report, Status};
-pub use set_provider::SetProvider;
-pub use stages::{assume_glsl_110, other_stage_kind};
+pub use stages::other_stage_kind;
 
 use naga_pool::{Job, JobStage};
 use stages::{check_compute, check_program, preprocess_other_stages};
@@ -60,6 +59,13 @@ pub enum Profiles {
 pub struct Options {
     pub macros: StandardMacros,
     pub profiles: Profiles,
+    /// Option values (`NAME` → value as written) set over every profile validated.
+    pub overrides: Vec<(String, String)>,
+    /// Only the programs this dimension runs (its world folder's, or the shaders folder's);
+    /// `None`: every world folder.
+    pub dimension: Option<Dimension>,
+    /// The loader whose choice of world folder `dimension` follows.
+    pub loader: Loader,
     pub limits: Limits,
     /// Worker threads for naga (at least 1).
     pub threads: usize,
@@ -72,6 +78,9 @@ impl Default for Options {
         Options {
             macros: StandardMacros::default(),
             profiles: Profiles::Defaults,
+            overrides: Vec::new(),
+            dimension: None,
+            loader: Loader::default(),
             limits: Limits::default(),
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             driver: false,
@@ -89,20 +98,6 @@ pub fn validate_path(path: &std::path::Path, options: &Options) -> Result<Report
     Ok(report)
 }
 
-/// Options declared in the pack's shader sources (first declaration wins).
-pub fn declared_options(pack: &PackFiles) -> BTreeMap<String, OptionKind> {
-    let mut found = BTreeMap::new();
-    for (path, text) in &pack.texts {
-        if path.ends_with(".properties") || path.ends_with(".lang") || path.ends_with(".txt") {
-            continue;
-        }
-        for decl in options::scan(text) {
-            found.entry(decl.name).or_insert(decl.kind);
-        }
-    }
-    found
-}
-
 /// A diagnostic with the program (index into the found programs) and option set (index into
 /// the validated sets) it was found in.
 struct Finding {
@@ -114,12 +109,14 @@ struct Finding {
 /// Validates a pack already in memory.
 pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagnostic> {
     let started = Instant::now();
-    let props = pack.texts.get(properties::PATH).map(|t| properties::parse(t)).unwrap_or_default();
     let declared = declared_options(&pack);
+    let properties_text = pack.texts.get(properties::PATH).map_or("", |t| &**t);
+    // Profiles are read under the defaults; each set's own reading decides its custom names.
+    let props = Properties::parse(properties_text, &property_macros(&options.macros, &declared, &OptionSet::new()));
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
     let mut sets: Vec<(String, OptionSet)> = Vec::new();
     let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
-        let (set, warnings) = properties::profile_set(&props, name, &declared)?;
+        let (set, warnings) = option_space::profile_set(&props, name, &declared)?;
         diagnostics.extend(warnings);
         sets.push((format!("profile {name}"), set));
         Ok(())
@@ -129,14 +126,28 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         Profiles::Named(name) => profile(name, &mut sets, &mut diagnostics)?,
         Profiles::All => {
             sets.push(("defaults".into(), OptionSet::new()));
-            for name in props.profiles.keys() {
+            for name in option_space::profiles(&props).keys() {
                 if let Err(e) = profile(name, &mut sets, &mut diagnostics) {
                     diagnostics.push(e);
                 }
             }
         }
     }
-    let programs = programs::find_programs(pack.files.keys());
+    if !options.overrides.is_empty() {
+        let configuration = Configuration { options: options.overrides.clone(), ..Configuration::default() };
+        let (overrides, _) = configuration.option_set(&props, &declared).map_err(|e| Diagnostic::error(e, None))?;
+        let named: Vec<String> = options.overrides.iter().map(|(n, v)| format!("{n}={v}")).collect();
+        for (label, set) in &mut sets {
+            set.extend(overrides.clone());
+            *label = format!("{label} with {}", named.join(" "));
+        }
+    }
+    let mut programs = programs::find_programs(pack.files.keys());
+    if let Some(dimension) = &options.dimension {
+        let has_folder = |folder: &str| pack.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
+        let world = programs::world_folder(dimension, options.loader, &has_folder);
+        programs.retain(|p| p.world == world);
+    }
     let macros = options.macros.preprocess_options();
     let mut reports: Vec<ProgramReport> = programs
         .iter()
@@ -149,13 +160,13 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 .chain(p.other_stages.iter().cloned())
                 .chain(p.compute.iter().cloned())
                 .collect(),
-            status: match &p.loader {
-                Loader::OptiFine => Status::Valid,
-                Loader::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
-                Loader::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
+            status: match &p.run_by {
+                RunBy::OptiFine => Status::Valid,
+                RunBy::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
+                RunBy::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
             },
             compile_error: false,
-            only_preprocessed: if p.loader == Loader::OptiFine && !options.driver { p.other_stages.clone() } else { Vec::new() },
+            only_preprocessed: if p.run_by == RunBy::OptiFine && !options.driver { p.other_stages.clone() } else { Vec::new() },
             diagnostics: Vec::new(),
         })
         .collect();
@@ -164,8 +175,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut seen: HashSet<(String, String)> = HashSet::new();
     for (set_index, (_, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(&pack, set);
+        let names = custom_names(&Properties::parse(properties_text, &property_macros(&options.macros, &declared, set)));
         for (index, program) in programs.iter().enumerate() {
-            if program.loader != Loader::OptiFine || !program.has_stages() {
+            if program.run_by != RunBy::OptiFine || !program.has_stages() {
                 continue;
             }
             let diags = preprocess_other_stages(program, &provider, &macros, options.driver);
@@ -178,7 +190,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 }
             };
             if !program.stages.is_empty() {
-                match check_program(program, &provider, &macros, &props) {
+                match check_program(program, &provider, &macros, &names) {
                     Ok((lowered, diags)) => {
                         found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
                         for stage in lowered {
@@ -189,7 +201,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 }
             }
             for path in &program.compute {
-                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &props);
+                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &names);
                 found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
                 if let Some(stage) = lowered {
                     push(JobStage::Compute(stage), &mut jobs);
@@ -293,7 +305,7 @@ fn run_driver(
     for (set_index, (label, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(pack, set);
         for (index, program) in programs.iter().enumerate() {
-            if program.loader != Loader::OptiFine || !program.has_stages() {
+            if program.run_by != RunBy::OptiFine || !program.has_stages() {
                 continue;
             }
             let ours = found

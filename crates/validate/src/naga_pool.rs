@@ -5,13 +5,15 @@ use std::panic::AssertUnwindSafe;
 
 use rayon::prelude::*;
 
-use tidepack_glsl::options::OptionSet;
+use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::{Diagnostic, Location};
 
 use crate::messages::clarify;
-use crate::{Finding, PackFiles, SetProvider};
+use tidepack_loader::{PackFiles, SetProvider};
+
+use crate::Finding;
 
 /// One distinct lowered stage for naga, with the program and option set that produced it.
 pub(crate) struct Job {

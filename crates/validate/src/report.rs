@@ -5,7 +5,7 @@ use std::time::Duration;
 use tidepack_glsl::Diagnostic;
 
 use crate::driver;
-use crate::input::PackFiles;
+use tidepack_loader::input::PackFiles;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Status {

@@ -3,18 +3,20 @@
 use std::sync::Arc;
 
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
-use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed};
+use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed, assume_glsl_110};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
-use crate::programs::Program;
-use crate::{interface, properties, version_rules};
+use tidepack_loader::directives::CustomNames;
+use tidepack_loader::programs::Program;
+
+use crate::{interface, version_rules};
 
 /// Preprocesses and lowers a program's stages and runs the checks that need no naga.
 pub(crate) fn check_program(
     program: &Program,
     provider: &dyn FileProvider,
     macros: &PreprocessOptions,
-    props: &properties::Properties,
+    names: &CustomNames,
 ) -> Result<(Vec<LoweredStage>, Vec<Diagnostic>), Vec<Diagnostic>> {
     let mut diags = Vec::new();
     let mut preprocessed = Vec::new();
@@ -56,7 +58,7 @@ pub(crate) fn check_program(
         if stage.stage == Stage::Fragment {
             diags.extend(interface::check_render_targets(&stage.preprocessed, stage));
         }
-        diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, props));
+        diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, names));
     }
     Ok((lowered, diags))
 }
@@ -108,7 +110,7 @@ pub(crate) fn check_compute(
     program: &str,
     provider: &dyn FileProvider,
     macros: &PreprocessOptions,
-    props: &properties::Properties,
+    names: &CustomNames,
 ) -> (Option<LoweredCompute>, Vec<Diagnostic>) {
     let mut pre = match preprocess::preprocess(provider, path, macros) {
         Ok(pre) => pre,
@@ -119,42 +121,12 @@ pub(crate) fn check_compute(
     diags.extend(version_rules::check_compute(&pre));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
-            diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, props));
+            diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, names));
             (Some(stage), diags)
         }
         Err(e) => {
             diags.push(e);
             (None, diags)
         }
-    }
-}
-
-/// A stage without `#version` is GLSL 1.10 to the driver: say so on an added first line, which
-/// the line map attributes to the entry's first line.
-pub fn assume_glsl_110(pre: &mut Preprocessed) {
-    if pre.version.is_none() && !pre.lines.is_empty() {
-        pre.text.insert_str(0, "#version 110\n");
-        pre.lines.insert(0, pre.lines[0]);
-        pre.version = Some(preprocess::VersionDirective { number: 110, profile: None });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use std::collections::HashMap;
-
-    use tidepack_glsl::preprocess::PreprocessOptions;
-
-    use super::*;
-
-    #[test]
-    fn a_stage_without_version_is_glsl_110() {
-        let files: HashMap<String, Arc<str>> =
-            [("final.fsh".to_string(), Arc::from("uniform sampler2D composite;\nvoid main() {}\n"))].into();
-        let mut pre = preprocess::preprocess(&files, "final.fsh", &PreprocessOptions::default()).unwrap();
-        assume_glsl_110(&mut pre);
-        assert!(pre.text.starts_with("#version 110\nuniform sampler2D composite;\n"), "{}", pre.text);
-        assert_eq!(pre.text.lines().count(), pre.lines.len());
-        assert_eq!(pre.location(2), Some(Location::line("final.fsh", 1)));
     }
 }

@@ -209,7 +209,7 @@ fn hostile_sources_get_diagnostics_not_panics_or_hangs() {
         ("composite5.fsh".into(), b"#version 120\n#define A A A\n#define B(x) B(x) x\nvoid main() { float f = B(A); }\n".to_vec()),
     ];
     let started = std::time::Instant::now();
-    let pack = tidepack_validate::input::pack_from_memory("hostile/shaders/", files);
+    let pack = tidepack_loader::input::pack_from_memory("hostile/shaders/", files);
     let report = tidepack_validate::validate_pack(pack, &options(Profiles::Defaults)).unwrap();
     let at = |program: &str| report.diagnostics.iter().filter(|d| d.location.as_ref().is_some_and(|l| l.path.starts_with(program))).count();
     for program in ["composite.fsh", "composite1.fsh", "composite2.fsh", "composite3.fsh", "composite4.fsh", "composite5.fsh"] {

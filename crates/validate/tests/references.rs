@@ -5,8 +5,10 @@
 
 use std::path::{Path, PathBuf};
 
-use tidepack_glsl::options::OptionSet;
-use tidepack_validate::{Options, Profiles, SetProvider, Status, glslang, programs, validate_path};
+use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::programs;
+use tidepack_loader::{Configuration, SetProvider};
+use tidepack_validate::{Options, Profiles, Status, glslang, validate_path};
 
 fn packs() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/validate");
@@ -44,17 +46,14 @@ fn mesa_agrees_with_tidepack_on_every_program() {
 
 #[test]
 fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
-    let defines = tidepack_glsl::macros::StandardMacros::default().define_lines();
+    let defines = tidepack_loader::macros::StandardMacros::default().define_lines();
     let scratch = tempfile::tempdir().unwrap();
     let (mut agree, mut total) = (0, 0);
     let mut unexplained = Vec::new();
     for dir in packs() {
         let report = validate_path(&dir, &Options { profiles: profile_of(&dir), threads: 2, ..Options::default() }).unwrap();
         let set = match profile_of(&dir) {
-            Profiles::Named(name) => {
-                let props = tidepack_validate::properties::parse(report.pack.texts.get("shaders.properties").map_or("", |t| t));
-                tidepack_validate::properties::profile_set(&props, &name, &tidepack_validate::declared_options(&report.pack)).unwrap().0
-            }
+            Profiles::Named(name) => Configuration { profile: Some(name), ..Configuration::default() }.option_set_of(&report.pack).unwrap().0,
             _ => OptionSet::new(),
         };
         let provider = SetProvider::new(&report.pack, &set);

@@ -8,7 +8,7 @@
 //! The `--driver` tests need Mesa's EGL/GL (tools/test installs them); without it they fail,
 //! they never skip.
 
-use tidepack_validate::input::pack_from_memory;
+use tidepack_loader::input::pack_from_memory;
 use tidepack_validate::{Options, Report, Status, validate_pack};
 
 fn validate(files: &[(&str, &str)], driver: bool) -> Report {

@@ -8,6 +8,7 @@ use tidepack_glsl::{Diagnostic, diagnostic};
 #[cfg(feature = "bench")]
 pub mod bench;
 pub mod build;
+pub mod configuration;
 #[cfg(feature = "render")]
 pub mod render;
 #[cfg(feature = "render")]

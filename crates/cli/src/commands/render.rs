@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use tidepack_harness::{HarnessError, Loader};
+use tidepack_harness::HarnessError;
+
+use super::configuration::ConfigurationArgs;
 use tidepack_harness::job::{self, RenderJob};
 use tidepack_pack::Dialect;
 
@@ -18,16 +20,10 @@ pub struct RenderArgs {
     /// GLSL dialect of the shipped text to render.
     #[arg(long, value_enum, default_value_t = RenderDialect::V330)]
     pub dialect: RenderDialect,
-    /// Profile whose values are the option defaults (default: the manifest's default_profile).
-    #[arg(long)]
-    pub profile: Option<String>,
-    /// Override an option (repeatable): `--set SSR_STEPS=24`, `--set FOAM=off`.
-    #[arg(long = "set", value_name = "OPTION=VALUE")]
-    pub set: Vec<String>,
-    /// The loader whose drawing to imitate: optifine-1.21, optifine-1.16.5, optifine-1.12.2,
-    /// optifine-1.8.9 or iris (docs/loaders.md says what differs).
-    #[arg(long, default_value_t = Loader::default())]
-    pub loader: Loader,
+    /// Profile, options, dimension and loader (for our pack, `--profile` names a profile of
+    /// pack.toml, whose values become the defaults; `--dimension` applies to `--pack` only).
+    #[command(flatten)]
+    pub configuration: ConfigurationArgs,
     /// Folder the PNG and JSON files are written to.
     #[arg(long, default_value = "render")]
     pub out: PathBuf,
@@ -79,26 +75,14 @@ pub enum RenderDialect {
     V330,
 }
 
-/// `--set OPTION=VALUE` arguments as pairs; `None` (after saying why) for a malformed one.
-fn option_assignments(set: &[String]) -> Option<Vec<(String, String)>> {
-    let mut options = Vec::new();
-    for assignment in set {
-        match assignment.split_once('=') {
-            Some((name, value)) if !name.trim().is_empty() => options.push((name.trim().to_string(), value.trim().to_string())),
-            _ => {
-                eprintln!("error: --set takes OPTION=VALUE, not `{assignment}`");
-                return None;
-            }
-        }
-    }
-    Some(options)
-}
-
 pub fn run(args: &RenderArgs) -> ExitCode {
     if let Some(pack) = &args.pack {
         return run_any_pack(args, pack);
     }
-    let Some(options) = option_assignments(&args.set) else { return ExitCode::from(2) };
+    let configuration = match args.configuration.configuration() {
+        Ok(c) => c,
+        Err(e) => return usage_error(&e),
+    };
     let job = RenderJob {
         scene: args.scene.clone(),
         source_dir: args.source.clone(),
@@ -106,9 +90,9 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             RenderDialect::V120 => Dialect::Glsl120,
             RenderDialect::V330 => Dialect::Glsl330,
         },
-        profile: args.profile.clone(),
-        options,
-        loader: args.loader,
+        profile: configuration.profile,
+        options: configuration.options,
+        loader: configuration.loader,
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,
@@ -144,6 +128,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+/// Prints a command-line mistake; exit code 2.
+fn usage_error(message: &str) -> ExitCode {
+    eprintln!("error: {message}");
+    ExitCode::from(2)
+}
+
 /// Prints a harness error; exit code 2 where the input or a driver is missing, 1 otherwise.
 fn failure(e: HarnessError) -> ExitCode {
     eprintln!("error: {e}");
@@ -154,12 +144,14 @@ fn failure(e: HarnessError) -> ExitCode {
 }
 
 fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
-    let Some(options) = option_assignments(&args.set) else { return ExitCode::from(2) };
+    let configuration = match args.configuration.configuration() {
+        Ok(c) => c,
+        Err(e) => return usage_error(&e),
+    };
     let job = job::AnyPackJob {
         scene: args.scene.clone(),
         pack: pack.to_path_buf(),
-        loader: args.loader,
-        options: tidepack_harness::any_pack::OptionChoice { profile: args.profile.clone(), options },
+        configuration,
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,

@@ -8,9 +8,10 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
-use tidepack_glsl::macros::{Os, StandardMacros, Vendor, parse_mc_version};
+use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_mc_version};
 use tidepack_validate::{Options, Profiles, output};
 
+use super::configuration::ConfigurationArgs;
 use super::print_diagnostics;
 
 #[derive(Args)]
@@ -21,15 +22,16 @@ pub struct ValidateArgs {
     /// How to print the diagnostics.
     #[arg(long, value_enum, default_value_t = Format::Human)]
     pub format: Format,
-    /// Validate under this profile of shaders.properties instead of the defaults.
-    #[arg(long, conflicts_with = "all_profiles")]
-    pub profile: Option<String>,
-    /// Validate under the defaults and every profile.
-    #[arg(long)]
+    /// Profile, option values, dimension (only its programs are validated; without it, every
+    /// world folder's) and loader (its standard macros and world folders).
+    #[command(flatten)]
+    pub configuration: ConfigurationArgs,
+    /// Validate under the defaults and every profile (with `--set` values over each).
+    #[arg(long, conflicts_with = "profile")]
     pub all_profiles: bool,
-    /// Minecraft version for MC_VERSION.
-    #[arg(long, default_value = "1.21.4")]
-    pub mc_version: String,
+    /// Minecraft version for MC_VERSION (default: the loader's).
+    #[arg(long)]
+    pub mc_version: Option<String>,
     /// MC_GL_VERSION (4.6 = 460).
     #[arg(long, default_value_t = 460)]
     pub gl_version: u32,
@@ -79,30 +81,37 @@ pub enum VendorArg {
 }
 
 pub fn run(args: &ValidateArgs) -> ExitCode {
-    let Some(mc_version) = parse_mc_version(&args.mc_version) else {
-        eprintln!("error: --mc-version `{}` is not a version like 1.21.4", args.mc_version);
-        return ExitCode::from(2);
+    let configuration = match args.configuration.configuration() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
     };
-    let macros = StandardMacros {
-        mc_version,
-        gl_version: args.gl_version,
-        glsl_version: args.glsl_version,
-        os: match args.os {
-            OsArg::Windows => Os::Windows,
-            OsArg::Mac => Os::Mac,
-            OsArg::Linux => Os::Linux,
-            OsArg::Other => Os::Other,
-        },
-        vendor: match args.vendor {
-            VendorArg::Amd => Vendor::Amd,
-            VendorArg::Intel => Vendor::Intel,
-            VendorArg::Mesa => Vendor::Mesa,
-            VendorArg::Nvidia => Vendor::Nvidia,
-            VendorArg::Other => Vendor::Other,
-        },
-        ..StandardMacros::default()
+    let mut macros = StandardMacros::for_loader(configuration.loader);
+    if let Some(text) = &args.mc_version {
+        let Some(mc_version) = parse_mc_version(text) else {
+            eprintln!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());
+            return ExitCode::from(2);
+        };
+        macros.mc_version = mc_version;
+    }
+    macros.gl_version = args.gl_version;
+    macros.glsl_version = args.glsl_version;
+    macros.os = match args.os {
+        OsArg::Windows => Os::Windows,
+        OsArg::Mac => Os::Mac,
+        OsArg::Linux => Os::Linux,
+        OsArg::Other => Os::Other,
     };
-    let profiles = match (&args.profile, args.all_profiles) {
+    macros.vendor = match args.vendor {
+        VendorArg::Amd => Vendor::Amd,
+        VendorArg::Intel => Vendor::Intel,
+        VendorArg::Mesa => Vendor::Mesa,
+        VendorArg::Nvidia => Vendor::Nvidia,
+        VendorArg::Other => Vendor::Other,
+    };
+    let profiles = match (&configuration.profile, args.all_profiles) {
         (Some(name), _) => Profiles::Named(name.clone()),
         (None, true) => Profiles::All,
         (None, false) => Profiles::Defaults,
@@ -118,7 +127,15 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         );
         return ExitCode::from(2);
     }
-    let options = Options { macros, profiles, driver: args.driver, ..Options::default() };
+    let options = Options {
+        macros,
+        profiles,
+        overrides: configuration.options,
+        dimension: args.configuration.dimension.clone(),
+        loader: configuration.loader,
+        driver: args.driver,
+        ..Options::default()
+    };
     let report = match tidepack_validate::validate_path(&args.path, &options) {
         Ok(report) => report,
         Err(diag) => {

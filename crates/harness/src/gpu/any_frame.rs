@@ -10,7 +10,8 @@ use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::images::FloatImage;
 use crate::mesh::{SceneMesh, Sprites};
-use crate::program::{Blend, LoadedProgram, PackResources};
+use crate::program::{LoadedProgram, PackResources};
+use tidepack_loader::directives::Blend;
 use crate::scene::Scene;
 use crate::uniforms::{self, Pass};
 
@@ -313,7 +314,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         let mut encoder = new_encoder();
         // Both textures of every buffer, as the pack's directives say.
         let colours: Vec<(&wgpu::Texture, [f64; 4])> =
-            buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene)))).collect();
+            buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color)))).collect();
         record_clears(&mut encoder, &colours, &depth0);
         let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
             shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();

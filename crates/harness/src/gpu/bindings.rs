@@ -10,9 +10,9 @@ use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
 use crate::mesh::{self, Sprites, offsets};
-use crate::program::{
-    Blend, BlendFactor, LoadedProgram, LoadedStage, PackResources, colour_buffer_number, shadow_colour_number, texture_resources,
-};
+use crate::program::{LoadedProgram, LoadedStage, PackResources, texture_resources};
+use tidepack_loader::buffers::{colour_buffer_number, shadow_colour_number};
+use tidepack_loader::directives::{Blend, BlendFactor};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;

@@ -2,7 +2,7 @@
 //! the largest resolution, and the validation-error scope every call runs in.
 
 use crate::HarnessError;
-use crate::program::BufferFormat;
+use tidepack_loader::buffers::BufferFormat;
 
 use super::readback::readback_bytes;
 

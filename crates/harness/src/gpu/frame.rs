@@ -22,12 +22,14 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use crate::HarnessError;
-use crate::any_pack::BufferClear;
+use tidepack_loader::buffers::BufferClear;
 use crate::images::FloatImage;
-use crate::loader::{self, Loader, Phase};
+use tidepack_loader::loader::{self, Loader, Phase};
 use crate::mesh::{self, SceneMesh, Sprites};
-use crate::program::{Blend, LoadedPack, LoadedProgram};
-use crate::scene::{OverlayKind, Scene};
+use crate::program::{LoadedPack, LoadedProgram};
+use tidepack_loader::directives::Blend;
+use crate::scene::Scene;
+use tidepack_loader::loader::OverlayKind;
 use crate::uniforms::{self, Pass};
 
 use super::Gpu;
@@ -254,7 +256,7 @@ fn render_frame(
             let mut encoder = new_encoder();
             // OptiFine's clears: colortex0 the fog colour, colortex1 white, the rest transparent.
             let colours: Vec<(&wgpu::Texture, [f64; 4])> =
-                targets.colors.iter().map(|(b, (t, _))| (t, BufferClear::Default.colour(*b, scene))).collect();
+                targets.colors.iter().map(|(b, (t, _))| (t, BufferClear::Default.colour(*b, scene.sky.fog_color))).collect();
             record_clears(&mut encoder, &colours, &targets.depth0);
             submit(encoder)?;
             let mut timed = 0;

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
-use crate::loader::MissingProgramDraws;
+use tidepack_loader::loader::MissingProgramDraws;
 use crate::mesh;
 use crate::program::{LoadedProgram, PackResources};
 use crate::scene::Scene;

@@ -1,14 +1,29 @@
-//! The loaders the harness imitates, and what each does differently with the programs the
-//! harness draws (clear, terrain, gbuffers_water, composite). docs/loaders.md gives the sources.
+//! The loaders and versions the toolchain models, and what each does differently with a pack's
+//! programs: which programs draw what (fallback chains), in which order, with which alpha tests
+//! and blend keys. docs/loaders.md gives the sources.
 
 use std::fmt;
 use std::str::FromStr;
 
-use tidepack_pack::dialect::Dialect;
+use serde::Deserialize;
 
-use crate::scene::OverlayKind;
+/// gbuffers_terrain and the programs OptiFine and Iris fall back to for it, in order.
+pub const TERRAIN_CHAIN: [&str; 4] = ["gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
 
-/// A loader and version whose behaviour the harness reproduces.
+/// gbuffers_water and its fallbacks, in order.
+pub const WATER_CHAIN: [&str; 5] = ["gbuffers_water", "gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
+
+/// gbuffers_skybasic and its fallbacks.
+pub const SKY_CHAIN: [&str; 2] = ["gbuffers_skybasic", "gbuffers_basic"];
+
+/// gbuffers_skytextured (the sun and the moon) and its fallbacks.
+pub const SKY_TEXTURED_CHAIN: [&str; 3] = ["gbuffers_skytextured", "gbuffers_textured", "gbuffers_basic"];
+
+/// The full-screen programs OptiFine runs, by family, in frame order within each family
+/// (`composite`, `composite1` … `composite99`), before `final`.
+pub const FULLSCREEN_FAMILIES: [&str; 3] = ["prepare", "deferred", "composite"];
+
+/// A loader and version whose behaviour the toolchain reproduces.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Loader {
     /// OptiFine for Minecraft 1.21 (HD U J1): core profile, legacy GLSL rewritten on load.
@@ -35,6 +50,21 @@ pub enum MissingProgramDraws {
     /// uses (OptiFine up to 1.16.5: fixed-function output goes to every draw buffer, and a
     /// missing program does not change the draw buffers the clear left).
     EveryBuffer,
+}
+
+/// Translucent geometry the game draws around the water whose programs and order differ between
+/// loaders: which programs draw it ([`Loader::program_chain`]), and when ([`Loader::phase`]).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[serde(rename_all = "lowercase")]
+pub enum OverlayKind {
+    Particles,
+    Clouds,
+    Rain,
+    Hand,
+}
+
+impl OverlayKind {
+    pub const ALL: [OverlayKind; 4] = [OverlayKind::Particles, OverlayKind::Clouds, OverlayKind::Rain, OverlayKind::Hand];
 }
 
 /// When the loader draws a kind of overlay geometry, relative to the terrain and the water.
@@ -70,12 +100,12 @@ impl Loader {
     /// The alpha test on gbuffers_water's output 0 when shaders.properties has no
     /// `alphaTest.gbuffers_water`: fixed-function `GREATER 0.1` up to Minecraft 1.12; none on
     /// 1.15 to 1.16.5; from 1.17 OptiFine adds `if (a < alphaTestRef) discard;` to writes of
-    /// `gl_FragData[0]` and `gl_FragColor` (the GLSL 120 dialect), not to declared outputs.
+    /// `gl_FragData[0]` and `gl_FragColor` (`legacy_outputs`), not to declared outputs.
     /// Iris draws water with the test off.
-    pub fn default_water_alpha_test(self, dialect: Dialect) -> Option<f32> {
+    pub fn default_water_alpha_test(self, legacy_outputs: bool) -> Option<f32> {
         match self {
             Loader::OptiFine1_12_2 | Loader::OptiFine1_8_9 => Some(0.1),
-            Loader::OptiFine1_21 if dialect == Dialect::Glsl120 => Some(0.1),
+            Loader::OptiFine1_21 if legacy_outputs => Some(0.1),
             Loader::OptiFine1_21 | Loader::OptiFine1_16_5 | Loader::Iris => None,
         }
     }
@@ -151,29 +181,8 @@ impl FromStr for Loader {
     fn from_str(s: &str) -> Result<Loader, String> {
         Loader::ALL.into_iter().find(|l| l.name() == s).ok_or_else(|| {
             let names: Vec<&str> = Loader::ALL.iter().map(|l| l.name()).collect();
-            format!("unknown loader {s}; the harness imitates {}", names.join(", "))
+            format!("unknown loader {s}; the loaders modelled: {}", names.join(", "))
         })
-    }
-}
-
-/// The alpha test that applies to `program`: `alphaTest.<program>` in shaders.properties
-/// (`off`, or `GREATER <ref>`), else the loader's `default`. Other functions are not imitated.
-pub fn alpha_test(properties: &str, program: &str, default: Option<f32>) -> Result<Option<f32>, String> {
-    let key = format!("alphaTest.{program}");
-    let setting = properties.lines().map(str::trim).filter(|l| !l.starts_with('#')).find_map(|l| {
-        let (k, value) = l.split_once('=')?;
-        (k.trim() == key).then(|| value.trim().to_string())
-    });
-    match setting.as_deref() {
-        None => Ok(default),
-        Some("off" | "false") => Ok(None),
-        Some(value) => {
-            let mut words = value.split_whitespace();
-            match (words.next(), words.next().and_then(|r| r.parse::<f32>().ok()), words.next()) {
-                (Some("GREATER"), Some(reference), None) => Ok(Some(reference)),
-                _ => Err(format!("{key}={value}: the harness imitates off and GREATER <ref> only")),
-            }
-        }
     }
 }
 
@@ -197,22 +206,25 @@ mod tests {
     }
 
     #[test]
-    fn alpha_test_follows_the_properties_then_the_loader() {
-        let water = |properties: &str, loader: Loader, dialect| alpha_test(properties, "gbuffers_water", loader.default_water_alpha_test(dialect));
+    fn alpha_tests_follow_the_loader() {
+        use crate::directives::alpha_test;
+        use crate::properties::Properties;
+        let water = |properties: &str, loader: Loader, legacy| {
+            alpha_test(&Properties::parse_plain(properties), "gbuffers_water", loader.default_water_alpha_test(legacy))
+        };
         let off = "alphaTest.gbuffers_water=off\n";
-        assert_eq!(water(off, Loader::OptiFine1_12_2, Dialect::Glsl120), Ok(None));
-        assert_eq!(water("", Loader::OptiFine1_12_2, Dialect::Glsl330), Ok(Some(0.1)));
-        assert_eq!(water("", Loader::OptiFine1_16_5, Dialect::Glsl120), Ok(None));
-        assert_eq!(water("", Loader::OptiFine1_21, Dialect::Glsl120), Ok(Some(0.1)));
-        assert_eq!(water("", Loader::OptiFine1_21, Dialect::Glsl330), Ok(None));
-        assert_eq!(water("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, Dialect::Glsl330), Ok(Some(0.5)));
-        assert!(water("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, Dialect::Glsl330).is_err());
+        assert_eq!(water(off, Loader::OptiFine1_12_2, true), Ok(None));
+        assert_eq!(water("", Loader::OptiFine1_12_2, false), Ok(Some(0.1)));
+        assert_eq!(water("", Loader::OptiFine1_16_5, true), Ok(None));
+        assert_eq!(water("", Loader::OptiFine1_21, true), Ok(Some(0.1)));
+        assert_eq!(water("", Loader::OptiFine1_21, false), Ok(None));
+        assert_eq!(water("alphaTest.gbuffers_water=GREATER 0.5", Loader::Iris, false), Ok(Some(0.5)));
+        assert!(water("alphaTest.gbuffers_water=LESS 0.5", Loader::Iris, false).is_err());
         // Cutout terrain: every loader tests it, OptiFine from 1.17 only in legacy outputs.
         assert_eq!(Loader::OptiFine1_16_5.cutout_alpha_test(false), Some(0.1));
         assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(false), None);
         assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(true), Some(0.1));
         assert_eq!(Loader::Iris.cutout_alpha_test(false), Some(0.1));
-        assert_eq!(alpha_test("alphaTest.gbuffers_terrain=off", "gbuffers_terrain", Some(0.1)), Ok(None));
     }
 
     #[test]

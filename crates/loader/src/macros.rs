@@ -1,7 +1,12 @@
-//! OptiFine's standard macros: what the loader defines right after each stage's `#version`
-//! line, for a configurable machine (Minecraft version, GL versions, OS, GPU vendor, settings).
+//! The standard macros: what a loader defines right after each stage's `#version` line (and
+//! for the conditionals of its properties files), for a configurable machine (Minecraft
+//! version, GL versions, OS, GPU vendor, settings) and loader ([`StandardMacros::for_loader`]:
+//! OptiFine's set, or Iris's, which adds its own names and fixes the quality settings at 1).
+//! This is the one set every part of the toolchain defines.
 
-use crate::preprocess::PreprocessOptions;
+use tidepack_glsl::preprocess::PreprocessOptions;
+
+use crate::loader::Loader;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Os {
@@ -39,7 +44,19 @@ pub struct StandardMacros {
     /// `MC_GL_<extension>` for each extension the driver has (OptiFine defines only those a
     /// shader mentions; defining all is equivalent for the preprocessor).
     pub extensions: Vec<String>,
+    /// Iris's version (`1.8.1` → 10801) when Iris loads the pack: it adds `IS_IRIS`,
+    /// `IRIS_VERSION` and its other names. `None`: OptiFine.
+    pub iris_version: Option<u32>,
 }
+
+/// The Iris version whose macros `for_loader(Loader::Iris)` defines.
+pub const IRIS_VERSION: u32 = 10801;
+
+/// Distant Horizons' material ids Iris defines as `DH_BLOCK_*`, in value order.
+pub const DH_BLOCKS: [&str; 16] = [
+    "UNKNOWN", "LEAVES", "STONE", "WOOD", "METAL", "DIRT", "LAVA", "DEEPSLATE", "SNOW", "SAND", "TERRACOTTA", "NETHER_STONE", "WATER",
+    "GRASS", "AIR", "ILLUMINATED",
+];
 
 impl Default for StandardMacros {
     fn default() -> Self {
@@ -54,6 +71,7 @@ impl Default for StandardMacros {
             hand_depth: 0.125,
             normal_and_specular_maps: true,
             extensions: COMMON_EXTENSIONS.iter().map(|e| e.to_string()).collect(),
+            iris_version: None,
         }
     }
 }
@@ -105,7 +123,20 @@ pub const RENDER_STAGES: [&str; 24] = [
 ];
 
 impl StandardMacros {
-    /// The macros in the order OptiFine defines them.
+    /// The macros `loader` defines on the default machine: its Minecraft version, and for Iris
+    /// its own names with the quality settings fixed at 1.0 as Iris fixes them.
+    pub fn for_loader(loader: Loader) -> StandardMacros {
+        let mc_version = match loader {
+            Loader::OptiFine1_21 | Loader::Iris => 12104,
+            Loader::OptiFine1_16_5 => 11605,
+            Loader::OptiFine1_12_2 => 11202,
+            Loader::OptiFine1_8_9 => 10809,
+        };
+        let iris_version = (loader == Loader::Iris).then_some(IRIS_VERSION);
+        StandardMacros { mc_version, iris_version, ..StandardMacros::default() }
+    }
+
+    /// The macros in the order the loader defines them.
     pub fn definitions(&self) -> Vec<(String, String)> {
         let mut out: Vec<(String, String)> = vec![
             ("MC_VERSION".into(), self.mc_version.to_string()),
@@ -141,6 +172,20 @@ impl StandardMacros {
         out.push(("MC_HAND_DEPTH".into(), float(self.hand_depth)));
         for (value, stage) in RENDER_STAGES.iter().enumerate() {
             out.push((format!("MC_RENDER_STAGE_{stage}"), value.to_string()));
+        }
+        if let Some(version) = self.iris_version {
+            for (name, value) in [
+                ("IRIS_VERSION", version.to_string()),
+                ("IS_IRIS", String::new()),
+                ("MAX_COLOR_BUFFERS", "16".to_string()),
+                ("IRIS_HAS_TRANSLUCENCY_SORTING", String::new()),
+                ("IRIS_TAG_SUPPORT", "2".to_string()),
+            ] {
+                out.push((name.to_string(), value));
+            }
+            for (value, block) in DH_BLOCKS.iter().enumerate() {
+                out.push((format!("DH_BLOCK_{block}"), value.to_string()));
+            }
         }
         out
     }
@@ -188,6 +233,19 @@ mod tests {
         assert_eq!(value("MC_VERSION"), Some("12104"));
         assert_eq!(value("MC_RENDER_QUALITY"), Some("1.0"));
         assert_eq!(value("MC_RENDER_STAGE_HAND_TRANSLUCENT"), Some("23"));
+    }
+
+    #[test]
+    fn each_loader_defines_its_own_names() {
+        let names = |loader| StandardMacros::for_loader(loader).definitions();
+        let value = |defs: &[(String, String)], name: &str| defs.iter().find(|(k, _)| k == name).map(|(_, v)| v.clone());
+        let iris = names(Loader::Iris);
+        assert_eq!(value(&iris, "IRIS_VERSION"), Some("10801".into()));
+        assert_eq!(value(&iris, "DH_BLOCK_WATER"), Some("12".into()));
+        assert!(value(&iris, "IS_IRIS").is_some());
+        let optifine = names(Loader::OptiFine1_12_2);
+        assert_eq!(value(&optifine, "MC_VERSION"), Some("11202".into()));
+        assert_eq!(value(&optifine, "IS_IRIS"), None);
     }
 
     #[test]

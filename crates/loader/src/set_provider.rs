@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use tidepack_glsl::options::{self, OptionSet};
+use crate::option_lines::{self, OptionSet};
 use tidepack_glsl::preprocess::FileProvider;
 
 use crate::input::PackFiles;
@@ -45,7 +45,7 @@ impl FileProvider for SetProvider<'_> {
             });
             }
         };
-        let text: Arc<str> = match options::apply(text, self.set) {
+        let text: Arc<str> = match option_lines::apply(text, self.set) {
             std::borrow::Cow::Borrowed(_) => text.clone(),
             std::borrow::Cow::Owned(t) => Arc::from(t),
         };

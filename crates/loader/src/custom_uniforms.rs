@@ -40,7 +40,8 @@ use std::fmt;
 use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
-use crate::uniforms::{Kind, Value};
+use crate::properties::Properties;
+use crate::uniform_value::{Kind, Value};
 
 /// Seed of `random()`'s generator: the ASCII bytes of "tidepack". Loaders draw from a
 /// time-seeded generator; a fixed seed makes the harness's frames reproducible.
@@ -134,11 +135,10 @@ pub struct CustomUniforms {
     pub problems: Vec<Problem>,
 }
 
-/// Evaluates every custom uniform and variable of `properties` (the text of shaders.properties,
-/// after the loader's preprocessing of `#if` lines, if any) for one frame. `standard` holds the
+/// Evaluates every custom uniform and variable of shaders.properties for one frame. `standard` holds the
 /// standard uniforms by their OptiFine names (`sunAngle`, `cameraPosition`, `worldTime`, ...);
 /// booleans such as `is_hurt` may be given as int 0/1. Never panics.
-pub fn evaluate(properties: &str, standard: &BTreeMap<String, Value>) -> CustomUniforms {
+pub fn evaluate(properties: &Properties, standard: &BTreeMap<String, Value>) -> CustomUniforms {
     let (definitions, mut problems) = definitions(properties);
     let mut out = CustomUniforms::default();
     // Every name's lines, to tell "defined further down" from "unknown".
@@ -178,15 +178,12 @@ pub fn evaluate(properties: &str, standard: &BTreeMap<String, Value>) -> CustomU
 }
 
 /// The `uniform.*` and `variable.*` entries of shaders.properties in file order, and problems
-/// with malformed keys. Java properties rules: `#`/`!` start a comment line, a line ending in
-/// an odd number of `\` continues on the next (whose leading blanks are dropped), the key ends
-/// at the first unescaped `=`, `:` or blank. A key given twice keeps its first position with
-/// the later text, as OptiFine's ordered properties map does.
-pub fn definitions(properties: &str) -> (Vec<Definition>, Vec<Problem>) {
+/// with malformed keys.
+pub fn definitions(properties: &Properties) -> (Vec<Definition>, Vec<Problem>) {
     let mut defs: Vec<Definition> = Vec::new();
     let mut problems = Vec::new();
-    for (line, text) in logical_lines(properties) {
-        let (key, value) = split_key_value(&text);
+    for entry in properties.entries() {
+        let (key, value, line) = (entry.key.clone(), entry.value.clone(), entry.line as usize);
         let (role, rest) = if let Some(rest) = key.strip_prefix("uniform.") {
             (Role::Uniform, rest)
         } else if let Some(rest) = key.strip_prefix("variable.") {
@@ -214,11 +211,7 @@ pub fn definitions(properties: &str) -> (Vec<Definition>, Vec<Problem>) {
             problems.push(Problem { key: key.clone(), line, message: format!("'{name}' is not a valid GLSL identifier") });
             continue;
         }
-        let def = Definition { role, ty, name: name.to_string(), key: key.clone(), expression: value, line };
-        match defs.iter_mut().find(|d| d.key == key) {
-            Some(earlier) => *earlier = def,
-            None => defs.push(def),
-        }
+        defs.push(Definition { role, ty, name: name.to_string(), key: key.clone(), expression: value, line });
     }
     (defs, problems)
 }
@@ -234,144 +227,64 @@ pub struct ProgramSwitch {
     pub line: usize,
 }
 
-/// Every `program.<program>.enabled` entry of `properties`, in file order (a key given twice
-/// keeps the later text, as for uniforms).
-pub fn program_switches(properties: &str) -> Vec<ProgramSwitch> {
-    let mut switches: Vec<ProgramSwitch> = Vec::new();
-    for (line, text) in logical_lines(properties) {
-        let (key, expression) = split_key_value(&text);
-        let Some(program) = key.strip_prefix("program.").and_then(|rest| rest.strip_suffix(".enabled")) else { continue };
-        let switch = ProgramSwitch { program: program.to_string(), expression, line };
-        match switches.iter_mut().find(|s| s.program == program) {
-            Some(earlier) => *earlier = switch,
-            None => switches.push(switch),
-        }
-    }
-    switches
+/// Every `program.<program>.enabled` entry of `properties`, in file order.
+pub fn program_switches(properties: &Properties) -> Vec<ProgramSwitch> {
+    properties
+        .with_prefix("program.")
+        .filter_map(|(rest, entry)| {
+            let program = rest.strip_suffix(".enabled")?;
+            Some(ProgramSwitch { program: program.to_string(), expression: entry.value.clone(), line: entry.line as usize })
+        })
+        .collect()
 }
 
 /// Evaluates a boolean expression of switch options (`(BLOOM || SSAO) && !GODRAYS`) with the
 /// language of custom uniforms; `options` gives each switch's state. An unknown name or a
 /// result that is not a boolean is an error naming it.
 pub fn evaluate_switch_expression(switch: &ProgramSwitch, options: &BTreeMap<String, bool>) -> std::result::Result<bool, String> {
-    let current = Definition {
-        role: Role::Variable,
-        ty: DeclaredType::Bool,
-        name: String::new(),
-        key: format!("program.{}.enabled", switch.program),
-        expression: switch.expression.clone(),
-        line: switch.line,
-    };
-    let defined: BTreeMap<String, Val> = options.iter().map(|(name, on)| (name.clone(), Val::Bool(*on))).collect();
-    let standard = BTreeMap::new();
-    let failed = BTreeMap::new();
-    let lines_of = BTreeMap::new();
-    let mut rng = SplitMix64::seed_from_u64(RANDOM_SEED);
-    let value = parse(&switch.expression).and_then(|expr| {
-        let mut cx = Context { standard: &standard, defined: &defined, failed: &failed, lines_of: &lines_of, current: &current, rng: &mut rng };
-        cx.eval(&expr)
-    });
-    match value.map_err(|e| e.describe())? {
+    match evaluate_with_names(&switch.expression, &format!("program.{}.enabled", switch.program), switch.line, options)? {
         Val::Bool(on) => Ok(on),
         other => Err(format!("the expression gives a {}, not a boolean", other.type_name())),
     }
 }
 
+/// Evaluates a condition of a properties file's `#if` line, its macros already substituted:
+/// `names` are the boolean names it may use (`defined_X`); a number is true when it is not
+/// zero, as in OptiFine's macro processor.
+pub fn evaluate_condition(expression: &str, names: &BTreeMap<String, bool>) -> std::result::Result<bool, String> {
+    match evaluate_with_names(expression, "#if", 0, names)? {
+        Val::Bool(on) => Ok(on),
+        Val::Num(x) => Ok(x != 0.0),
+        other => Err(format!("the condition gives a {}, not a boolean or a number", other.type_name())),
+    }
+}
+
+/// Evaluates `expression` where only the boolean `names` are defined; `key` and `line` name it
+/// in errors.
+fn evaluate_with_names(expression: &str, key: &str, line: usize, names: &BTreeMap<String, bool>) -> std::result::Result<Val, String> {
+    let current = Definition {
+        role: Role::Variable,
+        ty: DeclaredType::Bool,
+        name: String::new(),
+        key: key.to_string(),
+        expression: expression.to_string(),
+        line,
+    };
+    let defined: BTreeMap<String, Val> = names.iter().map(|(name, on)| (name.clone(), Val::Bool(*on))).collect();
+    let standard = BTreeMap::new();
+    let failed = BTreeMap::new();
+    let lines_of = BTreeMap::new();
+    let mut rng = SplitMix64::seed_from_u64(RANDOM_SEED);
+    let value = parse(expression).and_then(|expr| {
+        let mut cx = Context { standard: &standard, defined: &defined, failed: &failed, lines_of: &lines_of, current: &current, rng: &mut rng };
+        cx.eval(&expr)
+    });
+    value.map_err(|e| e.describe())
+}
+
 fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
     matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_') && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
-
-/// Logical lines (continuations joined) with the 1-based line each starts on; comments and
-/// blank lines dropped.
-fn logical_lines(text: &str) -> Vec<(usize, String)> {
-    let blank = |c: char| c == ' ' || c == '\t' || c == '\x0c';
-    let mut out = Vec::new();
-    let mut lines = text.lines().enumerate();
-    while let Some((index, raw)) = lines.next() {
-        let first = raw.trim_start_matches(blank);
-        if first.is_empty() || first.starts_with('#') || first.starts_with('!') {
-            continue;
-        }
-        let mut joined = String::new();
-        let mut current = first;
-        loop {
-            let trailing = current.len() - current.trim_end_matches('\\').len();
-            if trailing % 2 == 1 {
-                joined.push_str(&current[..current.len() - 1]);
-                match lines.next() {
-                    Some((_, next)) => current = next.trim_start_matches(blank),
-                    None => break,
-                }
-            } else {
-                joined.push_str(current);
-                break;
-            }
-        }
-        out.push((index + 1, joined));
-    }
-    out
-}
-
-/// Splits a logical line into its key and value, resolving backslash escapes in both.
-fn split_key_value(line: &str) -> (String, String) {
-    let chars: Vec<char> = line.chars().collect();
-    let mut i = 0;
-    let mut key_end = chars.len();
-    while i < chars.len() {
-        match chars[i] {
-            '\\' => i += 2,
-            '=' | ':' | ' ' | '\t' | '\x0c' => {
-                key_end = i;
-                break;
-            }
-            _ => i += 1,
-        }
-    }
-    let key_end = key_end.min(chars.len());
-    let mut j = key_end;
-    while j < chars.len() && matches!(chars[j], ' ' | '\t' | '\x0c') {
-        j += 1;
-    }
-    if j < chars.len() && matches!(chars[j], '=' | ':') {
-        j += 1;
-        while j < chars.len() && matches!(chars[j], ' ' | '\t' | '\x0c') {
-            j += 1;
-        }
-    }
-    (unescape(&chars[..key_end]), unescape(&chars[j..]).trim_end().to_string())
-}
-
-fn unescape(chars: &[char]) -> String {
-    let mut out = String::with_capacity(chars.len());
-    let mut i = 0;
-    while i < chars.len() {
-        if chars[i] != '\\' || i + 1 == chars.len() {
-            out.push(chars[i]);
-            i += 1;
-            continue;
-        }
-        let c = chars[i + 1];
-        i += 2;
-        match c {
-            't' => out.push('\t'),
-            'n' => out.push('\n'),
-            'r' => out.push('\r'),
-            'f' => out.push('\x0c'),
-            'u' => {
-                let hex: String = chars[i..chars.len().min(i + 4)].iter().collect();
-                match u32::from_str_radix(&hex, 16).ok().and_then(char::from_u32) {
-                    Some(u) if hex.len() == 4 => {
-                        out.push(u);
-                        i += 4;
-                    }
-                    _ => out.push('u'),
-                }
-            }
-            other => out.push(other),
-        }
-    }
-    out
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1201,7 +1114,7 @@ mod tests {
     #[test]
     fn program_switches_evaluate_switch_options() {
         let properties = "program.world0/composite4.enabled=DOF || TAA\nprogram.deferred.enabled = (BLOOM && !SSAO)\nuniform.float.x = 1\n";
-        let switches = program_switches(properties);
+        let switches = program_switches(&Properties::parse_plain(properties));
         assert_eq!(switches.iter().map(|s| (s.program.as_str(), s.line)).collect::<Vec<_>>(), [("world0/composite4", 1), ("deferred", 2)]);
         let options: BTreeMap<String, bool> =
             [("DOF", false), ("TAA", true), ("BLOOM", true), ("SSAO", true)].into_iter().map(|(n, v)| (n.to_string(), v)).collect();
@@ -1235,7 +1148,7 @@ mod tests {
     }
 
     fn run(properties: &str) -> CustomUniforms {
-        evaluate(properties, &standard())
+        evaluate(&Properties::parse_plain(properties), &standard())
     }
 
     fn uniform(properties: &str, name: &str) -> Value {
@@ -1307,7 +1220,7 @@ mod tests {
                     \x20\x20variable.float.d=a\\\\\n\
                     uniform.float.e = 5 \\\\\\\n\
                     + 1\n";
-        let (defs, problems) = definitions(text);
+        let (defs, problems) = definitions(&Properties::parse_plain(text));
         assert!(problems.is_empty(), "{problems:?}");
         let summary: Vec<(&str, &str, usize)> = defs.iter().map(|d| (d.name.as_str(), d.expression.as_str(), d.line)).collect();
         assert_eq!(

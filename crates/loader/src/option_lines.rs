@@ -4,6 +4,10 @@
 //! - Switch: `#define NAME // tooltip` (on) or `//#define NAME // tooltip` (off). OptiFine shows
 //!   it only when the same file tests it (`#ifdef NAME`, `#ifndef NAME`, `defined NAME`).
 //! - Value: `#define NAME 0.5 // [0.25 0.5 1.0] tooltip`. The default joins the list when missing.
+//! - `const` options: `const int shadowMapResolution = 2048; // [1024 2048 4096]` and
+//!   `const bool generateShadowMipmap = true;`, for the names OptiFine lists
+//!   ([`crate::consts::OPTION_NAMES`]). A number without a value list has no other value a
+//!   player could pick, so it is no option here.
 //!
 //! Changing an option rewrites its declaration line in place, as OptiFine does when a player
 //! picks a value; no line is added or removed.
@@ -11,7 +15,9 @@
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 
-use crate::token::{Token, TokenKind, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, tokenize};
+
+use crate::consts::{self, ConstDecl};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum OptionKind {
@@ -154,7 +160,23 @@ pub fn scan(text: &str) -> Vec<OptionDecl> {
             }
         }
     }
+    found.extend(consts::declarations(text).filter(ConstDecl::is_option).filter_map(|decl| const_option(&decl)));
     found
+}
+
+/// A `const` option line as an option; `None` for a number without a value list.
+fn const_option(decl: &ConstDecl) -> Option<OptionDecl> {
+    let (kind, tooltip) = match decl.switch() {
+        Some(default) => (OptionKind::Switch { default }, decl.comment.map_or("", |c| c[2..].trim()).to_string()),
+        None => {
+            let (mut values, tooltip) = decl.comment.and_then(value_list)?;
+            if !values.iter().any(|v| v == decl.value) {
+                values.insert(0, decl.value.to_string());
+            }
+            (OptionKind::Value { default: decl.value.to_string(), values }, tooltip)
+        }
+    };
+    Some(OptionDecl { name: decl.name.to_string(), kind, line: decl.line, tooltip })
 }
 
 /// Whether `text` tests `name` with `#ifdef`, `#ifndef` or `defined`.
@@ -178,27 +200,7 @@ pub fn apply<'t>(text: &'t str, set: &OptionSet) -> Cow<'t, str> {
             Some(b) => b.strip_suffix('\r').map_or((b, "\n"), |b| (b, "\r\n")),
             None => (line, ""),
         };
-        let rewritten = parse_define_line(body).and_then(|def| {
-            let wanted = set.get(def.name)?;
-            match (wanted, def.value) {
-                (OptionValue::Switch(on), None) => {
-                    if *on != def.commented_out {
-                        return None;
-                    }
-                    let indent = &body[..body.len() - body.trim_start().len()];
-                    let decl = body.trim_start();
-                    Some(if *on {
-                        format!("{indent}{}", decl.trim_start_matches('/').trim_start())
-                    } else {
-                        format!("{indent}//{decl}")
-                    })
-                }
-                (OptionValue::Value(v), Some(old)) if v != old.text => {
-                    Some(format!("{}{}{}", &body[..old.offset], v, &body[old.offset + old.text.len()..]))
-                }
-                _ => None,
-            }
-        });
+        let rewritten = rewrite_define_line(body, set).or_else(|| rewrite_const_line(body, set));
         match rewritten {
             Some(new_body) => {
                 changed = true;
@@ -209,6 +211,42 @@ pub fn apply<'t>(text: &'t str, set: &OptionSet) -> Cow<'t, str> {
         out.push_str(ending);
     }
     if changed { Cow::Owned(out) } else { Cow::Borrowed(text) }
+}
+
+/// `body` with a `#define` option line set as `set` wants, when that changes it.
+fn rewrite_define_line(body: &str, set: &OptionSet) -> Option<String> {
+    parse_define_line(body).and_then(|def| {
+        let wanted = set.get(def.name)?;
+        match (wanted, def.value) {
+            (OptionValue::Switch(on), None) => {
+                if *on != def.commented_out {
+                    return None;
+                }
+                let indent = &body[..body.len() - body.trim_start().len()];
+                let decl = body.trim_start();
+                Some(if *on {
+                    format!("{indent}{}", decl.trim_start_matches('/').trim_start())
+                } else {
+                    format!("{indent}//{decl}")
+                })
+            }
+            (OptionValue::Value(v), Some(old)) if v != old.text => {
+                Some(format!("{}{}{}", &body[..old.offset], v, &body[old.offset + old.text.len()..]))
+            }
+            _ => None,
+        }
+    })
+}
+
+/// `body` with a `const` option line set as `set` wants, when that changes it.
+fn rewrite_const_line(body: &str, set: &OptionSet) -> Option<String> {
+    let decl = consts::declaration(body, 0).filter(ConstDecl::is_option)?;
+    let value = match set.get(decl.name)? {
+        OptionValue::Switch(on) if decl.switch()? != *on => on.to_string(),
+        OptionValue::Value(v) if decl.switch().is_none() && v != decl.value => v.clone(),
+        _ => return None,
+    };
+    Some(format!("{}{}{}", &body[..decl.value_offset], value, &body[decl.value_offset + decl.value.len()..]))
 }
 
 #[cfg(test)]
@@ -274,6 +312,32 @@ mod tests {
         let back = scan(&out);
         assert_eq!(back[0].kind, OptionKind::Switch { default: false });
         assert_eq!(back[1].kind, OptionKind::Switch { default: true });
+    }
+
+    #[test]
+    fn const_options_of_optifines_list_are_options_too() {
+        let text = "const int shadowMapResolution = 2048; // [1024 2048 4096] Shadow size\nconst bool generateShadowMipmap = false;\nconst float sunPathRotation = -40.0;\nconst int notAnOption = 3; // [1 2 3]\nconst float sunPathRotation2 = 1.0; // [1.0 2.0]\n";
+        let found = scan(text);
+        let summary: Vec<(&str, &OptionKind)> = found.iter().map(|o| (o.name.as_str(), &o.kind)).collect();
+        assert_eq!(
+            summary,
+            [
+                ("shadowMapResolution", &OptionKind::Value { default: "2048".into(), values: vec!["1024".into(), "2048".into(), "4096".into()] }),
+                ("generateShadowMipmap", &OptionKind::Switch { default: false }),
+            ]
+        );
+        assert_eq!(found[0].tooltip, "Shadow size");
+        let set: OptionSet = [
+            ("shadowMapResolution".to_string(), OptionValue::Value("4096".into())),
+            ("generateShadowMipmap".to_string(), OptionValue::Switch(true)),
+            ("notAnOption".to_string(), OptionValue::Value("1".into())),
+        ]
+        .into();
+        let out = apply(text, &set);
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "const int shadowMapResolution = 4096; // [1024 2048 4096] Shadow size");
+        assert_eq!(lines[1], "const bool generateShadowMipmap = true;");
+        assert_eq!(lines[3], "const int notAnOption = 3; // [1 2 3]");
     }
 
     #[test]

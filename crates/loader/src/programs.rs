@@ -1,8 +1,12 @@
-//! Which files of a pack are programs, for which loader, in which world folder.
+//! Which files of a pack are programs, which loader runs them, in which world folder, and the
+//! fallbacks OptiFine follows when a program's files are absent.
 
 use std::collections::BTreeMap;
 
 use tidepack_glsl::Stage;
+
+use crate::loader::Loader;
+use crate::option_space::Dimension;
 
 /// OptiFine's gbuffers programs and the program each falls back to when its files are absent
 /// (`None`: no fallback, fixed-function rendering).
@@ -48,7 +52,7 @@ const IRIS_ONLY: [&str; 9] = [
 ];
 
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Loader {
+pub enum RunBy {
     /// OptiFine runs it.
     OptiFine,
     /// Another loader runs it; OptiFine ignores the files. The text says which and why.
@@ -58,29 +62,29 @@ pub enum Loader {
 }
 
 /// Who runs a program of this name.
-pub fn loader_of(name: &str) -> Loader {
+pub fn run_by(name: &str) -> RunBy {
     if GBUFFERS.iter().any(|(n, _)| *n == name) {
-        return Loader::OptiFine;
+        return RunBy::OptiFine;
     }
     let numbered = |base: &str| {
         name.strip_prefix(base).is_some_and(|n| n.is_empty() || (n.len() <= 2 && n.parse::<u32>().is_ok_and(|v| v >= 1 && !n.starts_with('0'))))
     };
     if NUMBERED.iter().any(|b| numbered(b)) {
-        return Loader::OptiFine;
+        return RunBy::OptiFine;
     }
     if name.starts_with("dh_") {
-        return Loader::Other("Distant Horizons (through Iris)".into());
+        return RunBy::Other("Distant Horizons (through Iris)".into());
     }
     if name.starts_with("voxy") {
-        return Loader::Other("Voxy (through Iris)".into());
+        return RunBy::Other("Voxy (through Iris)".into());
     }
     if numbered("begin") || numbered("setup") || IRIS_ONLY.contains(&name) {
-        return Loader::Other("Iris".into());
+        return RunBy::Other("Iris".into());
     }
     if matches!(name, "shadow_solid" | "shadow_cutout") {
-        return Loader::Other("nobody: OptiFine reserves the name but never runs it".into());
+        return RunBy::Other("nobody: OptiFine reserves the name but never runs it".into());
     }
-    Loader::Unknown
+    RunBy::Unknown
 }
 
 /// The program OptiFine runs for `name` in a world whose programs are `present`, following
@@ -108,7 +112,7 @@ pub struct Program {
     pub other_stages: Vec<String>,
     /// Compute files (`name.csh`, `name_a.csh` … `name_z.csh`), in the order OptiFine runs them.
     pub compute: Vec<String>,
-    pub loader: Loader,
+    pub run_by: RunBy,
 }
 
 impl Program {
@@ -140,8 +144,24 @@ impl Program {
 }
 
 /// World folders: `world0`, `world-1`, `world1`, `world7`, …
-fn is_world_folder(name: &str) -> bool {
+pub fn is_world_folder(name: &str) -> bool {
     name.strip_prefix("world").is_some_and(|n| n.strip_prefix('-').unwrap_or(n).parse::<u32>().is_ok())
+}
+
+/// The folder whose programs `loader` runs in `dimension` (`""`: the shaders folder itself),
+/// `has_folder` telling which world folders the pack has. A dimension with a folder runs only
+/// that folder's programs (an empty one runs none); without one, the shaders folder's. Iris
+/// runs a modded dimension without a folder of its own from `world0/` when there is one.
+pub fn world_folder(dimension: &Dimension, loader: Loader, has_folder: &dyn Fn(&str) -> bool) -> String {
+    let folder = dimension.folder();
+    if has_folder(folder) {
+        return folder.to_string();
+    }
+    let vanilla = matches!(folder, "world0" | "world-1" | "world1");
+    if loader == Loader::Iris && !vanilla && has_folder("world0") {
+        return "world0".to_string();
+    }
+    String::new()
 }
 
 /// Every program file of the pack's world folders (the root counts as one), grouped.
@@ -172,7 +192,7 @@ pub fn find_programs<'a>(paths: impl Iterator<Item = &'a String>) -> Vec<Program
             stages: Vec::new(),
             other_stages: Vec::new(),
             compute: Vec::new(),
-            loader: loader_of(base),
+            run_by: run_by(base),
         });
         match stage {
             Some(stage) if base == name => program.stages.push((stage, path.clone())),
@@ -199,13 +219,13 @@ mod tests {
     #[test]
     fn classifies_program_names() {
         for name in ["gbuffers_water", "composite", "composite15", "deferred99", "shadowcomp1", "prepare", "final", "shadow"] {
-            assert_eq!(loader_of(name), Loader::OptiFine, "{name}");
+            assert_eq!(run_by(name), RunBy::OptiFine, "{name}");
         }
-        assert!(matches!(loader_of("dh_terrain"), Loader::Other(l) if l.contains("Distant Horizons")));
-        assert!(matches!(loader_of("begin1"), Loader::Other(l) if l == "Iris"));
-        assert!(matches!(loader_of("gbuffers_particles"), Loader::Other(_)));
+        assert!(matches!(run_by("dh_terrain"), RunBy::Other(l) if l.contains("Distant Horizons")));
+        assert!(matches!(run_by("begin1"), RunBy::Other(l) if l == "Iris"));
+        assert!(matches!(run_by("gbuffers_particles"), RunBy::Other(_)));
         for name in ["composite100", "composite01", "gbuffers_wtaer", "common"] {
-            assert_eq!(loader_of(name), Loader::Unknown, "{name}");
+            assert_eq!(run_by(name), RunBy::Unknown, "{name}");
         }
     }
 
@@ -216,6 +236,20 @@ mod tests {
         assert_eq!(effective_program("gbuffers_hand", &present), Some("gbuffers_textured"));
         assert_eq!(effective_program("gbuffers_skybasic", &present), None);
         assert_eq!(effective_program("composite", &present), None);
+    }
+
+    #[test]
+    fn each_dimension_runs_its_folder_or_the_shaders_folder() {
+        let folders = |names: &'static [&'static str]| move |f: &str| names.contains(&f);
+        let nether = Dimension::parse("nether").unwrap();
+        let modded = Dimension::parse("world7").unwrap();
+        let both = folders(&["world0", "world-1"]);
+        assert_eq!(world_folder(&Dimension::default(), Loader::OptiFine1_21, &both), "world0");
+        assert_eq!(world_folder(&nether, Loader::OptiFine1_21, &both), "world-1");
+        assert_eq!(world_folder(&Dimension::parse("end").unwrap(), Loader::OptiFine1_21, &both), "");
+        assert_eq!(world_folder(&modded, Loader::OptiFine1_21, &both), "");
+        assert_eq!(world_folder(&modded, Loader::Iris, &both), "world0");
+        assert_eq!(world_folder(&nether, Loader::Iris, &folders(&[])), "");
     }
 
     #[test]

@@ -1,0 +1,394 @@
+//! The option space of a pack and the one way to name a point in it.
+//!
+//! A pack's options are the `#define` and `const` option lines of its shader files
+//! ([`crate::option_lines`]), its profiles the `profile.<NAME>` entries of shaders.properties.
+//! A [`Configuration`] names what a player runs: a profile, single option values, a dimension
+//! and a loader. `validate` and `render` take the same `--profile`, `--set NAME=VALUE`,
+//! `--dimension` and `--loader` and build one of these.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt;
+
+use tidepack_glsl::{Diagnostic, Location};
+
+use crate::consts;
+use crate::input::PackFiles;
+use crate::loader::Loader;
+use crate::macros::StandardMacros;
+use crate::option_lines::{self, OptionKind, OptionSet, OptionValue};
+use crate::properties::{self, Macros, Properties};
+
+/// Options declared in the pack's shader sources (the first declaration of a name wins).
+pub fn declared_options(pack: &PackFiles) -> BTreeMap<String, OptionKind> {
+    let mut found = BTreeMap::new();
+    for (path, text) in &pack.texts {
+        if path.ends_with(".properties") || path.ends_with(".lang") || path.ends_with(".txt") {
+            continue;
+        }
+        for decl in option_lines::scan(text) {
+            found.entry(decl.name).or_insert(decl.kind);
+        }
+    }
+    found
+}
+
+/// The macros a properties file's conditionals see under `set`: the loader's standard macros
+/// and every `#define` option that is on (switches) or has a value (`const` options are no
+/// macros).
+pub fn property_macros(standard: &StandardMacros, declared: &BTreeMap<String, OptionKind>, set: &OptionSet) -> Macros {
+    let mut macros: Macros = standard.definitions().into_iter().collect();
+    for (name, kind) in declared.iter().filter(|(name, _)| !consts::OPTION_NAMES.contains(&name.as_str())) {
+        match set.get(name).cloned().unwrap_or_else(|| kind.default_value()) {
+            OptionValue::Switch(true) => {
+                macros.insert(name.clone(), String::new());
+            }
+            OptionValue::Switch(false) => {}
+            OptionValue::Value(v) => {
+                macros.insert(name.clone(), v);
+            }
+        }
+    }
+    macros
+}
+
+/// The pack's shaders.properties read under `set` with `standard`'s macros (empty when the pack
+/// has none).
+pub fn pack_properties(pack: &PackFiles, standard: &StandardMacros, set: &OptionSet) -> Properties {
+    let text = pack.texts.get(properties::PATH).map_or("", |t| &**t);
+    Properties::parse(text, &property_macros(standard, &declared_options(pack), set))
+}
+
+/// The names of a pack's profiles, each with the line its entry starts on.
+pub fn profiles(props: &Properties) -> BTreeMap<String, u32> {
+    props.with_prefix("profile.").map(|(name, entry)| (name.to_string(), entry.line)).collect()
+}
+
+/// The option set of profile `name`: its own entries, and those of the profiles it names, in
+/// the order written (a later value wins). `options` are the pack's declared options; entries
+/// naming other things are reported as warnings. Every profile is resolved once, without
+/// recursion, so chains of any depth and profiles named along many paths cost their size; a
+/// cycle is an error naming it.
+pub fn profile_set(props: &Properties, name: &str, options: &BTreeMap<String, OptionKind>) -> Result<(OptionSet, Vec<Diagnostic>), Diagnostic> {
+    let entries: HashMap<&str, (&str, u32)> =
+        props.with_prefix("profile.").map(|(n, e)| (n, (e.value.as_str(), e.line))).collect();
+    if !entries.contains_key(name) {
+        let known: Vec<String> = profiles(props).into_keys().collect();
+        return Err(Diagnostic::error(
+            format!("no profile `{name}` in shaders.properties (profiles: {})", if known.is_empty() { "none".into() } else { known.join(", ") }),
+            None,
+        ));
+    }
+    let mut resolved: HashMap<&str, OptionSet> = HashMap::new();
+    let mut warnings = Vec::new();
+    // Depth-first with an explicit stack; `path` holds the profiles being resolved.
+    let mut path: Vec<&str> = vec![name];
+    while let Some(&current) = path.last() {
+        let (value, line) = entries[current];
+        let pending = value.split_whitespace().filter_map(|e| e.strip_prefix("profile.")).find(|other| !resolved.contains_key(other));
+        match pending {
+            Some(other) if path.contains(&other) => {
+                let cycle: Vec<&str> = path[path.iter().position(|p| *p == other).unwrap_or(0)..].to_vec();
+                return Err(Diagnostic::error(
+                    format!("profile cycle: {} -> {other}", cycle.join(" -> ")),
+                    Some(Location::line(properties::PATH, line)),
+                ));
+            }
+            Some(other) if !entries.contains_key(other) => {
+                return Err(Diagnostic::error(
+                    format!("profile `{current}` names profile `{other}`, which shaders.properties does not define"),
+                    Some(Location::line(properties::PATH, line)),
+                ));
+            }
+            Some(other) => path.push(other),
+            None => {
+                let set = own_entries(current, value, line, options, &resolved, &mut warnings);
+                resolved.insert(current, set);
+                path.pop();
+            }
+        }
+    }
+    Ok((resolved.remove(name).unwrap_or_default(), warnings))
+}
+
+/// The set one profile's entries make, the profiles it names already in `resolved`.
+fn own_entries(
+    name: &str,
+    value: &str,
+    line: u32,
+    options: &BTreeMap<String, OptionKind>,
+    resolved: &HashMap<&str, OptionSet>,
+    warnings: &mut Vec<Diagnostic>,
+) -> OptionSet {
+    let at = || Some(Location::line(properties::PATH, line));
+    let mut set = OptionSet::new();
+    for entry in value.split_whitespace() {
+        if let Some(other) = entry.strip_prefix("profile.") {
+            set.extend(resolved.get(other).cloned().unwrap_or_default());
+            continue;
+        }
+        if entry.starts_with("!program.") || entry.starts_with("program.") {
+            continue;
+        }
+        let (option, value) = match entry.split_once([':', '=']) {
+            Some((o, v)) => (o, Some(v)),
+            None => (entry.trim_start_matches('!'), None),
+        };
+        match (options.get(option), value) {
+            (Some(OptionKind::Switch { .. }), None) => {
+                set.insert(option.to_string(), OptionValue::Switch(!entry.starts_with('!')));
+            }
+            (Some(OptionKind::Value { values, .. }), Some(v)) => {
+                if !values.iter().any(|x| x == v) {
+                    warnings.push(Diagnostic::warning(
+                        format!("profile `{name}` sets {option} to `{v}`, which is not among its values [{}]", values.join(" ")),
+                        at(),
+                    ));
+                }
+                set.insert(option.to_string(), OptionValue::Value(v.to_string()));
+            }
+            (Some(_), _) => warnings.push(Diagnostic::warning(
+                format!("profile `{name}`: `{entry}` does not match how {option} is declared (switch or value)"),
+                at(),
+            )),
+            (None, _) => {
+                warnings.push(Diagnostic::warning(format!("profile `{name}` sets `{option}`, which no shader file declares as an option"), at()))
+            }
+        }
+    }
+    set
+}
+
+/// Which world folder a player is in (the overworld by default): `world0`, `world-1` (the
+/// nether), `world1` (the end) or a modded dimension's `worldN`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Dimension(String);
+
+impl Default for Dimension {
+    fn default() -> Dimension {
+        Dimension("world0".into())
+    }
+}
+
+impl Dimension {
+    /// The folder name, `world0`, `world-1`, `world1`, …
+    pub fn folder(&self) -> &str {
+        &self.0
+    }
+
+    /// Reads `overworld`, `nether`, `end` or a folder name (`world7`).
+    pub fn parse(text: &str) -> Result<Dimension, String> {
+        let folder = match text {
+            "overworld" => "world0",
+            "nether" => "world-1",
+            "end" => "world1",
+            other if crate::programs::is_world_folder(other) => other,
+            other => return Err(format!("unknown dimension `{other}`: overworld, nether, end or a world folder such as world7")),
+        };
+        Ok(Dimension(folder.to_string()))
+    }
+}
+
+impl fmt::Display for Dimension {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.folder() {
+            "world0" => f.write_str("overworld"),
+            "world-1" => f.write_str("nether"),
+            "world1" => f.write_str("end"),
+            other => f.write_str(other),
+        }
+    }
+}
+
+/// What a player runs: the option values (a profile, then single options), the dimension and
+/// the loader.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Configuration {
+    pub profile: Option<String>,
+    /// `NAME` → value as written (`on`/`off`/`true`/`false` for switches), in order.
+    pub options: Vec<(String, String)>,
+    pub dimension: Dimension,
+    pub loader: Loader,
+}
+
+impl Configuration {
+    /// The option set this configuration means for a pack with `declared` options and
+    /// properties `props`: the profile's values, then each single option. An unknown profile
+    /// or option, or a value the option does not offer, is an error naming what there is.
+    pub fn option_set(&self, props: &Properties, declared: &BTreeMap<String, OptionKind>) -> Result<(OptionSet, Vec<Diagnostic>), String> {
+        let (mut set, warnings) = match &self.profile {
+            Some(name) => profile_set(props, name, declared).map_err(|d| d.message)?,
+            None => (OptionSet::new(), Vec::new()),
+        };
+        for (name, value) in &self.options {
+            let kind = declared.get(name).ok_or_else(|| {
+                let known: Vec<&str> = declared.keys().map(String::as_str).collect();
+                let known = if known.is_empty() { "none".to_string() } else { known.join(", ") };
+                format!("the pack has no option {name}; its options: {known}")
+            })?;
+            let parsed = match kind {
+                OptionKind::Switch { .. } => match value.as_str() {
+                    "on" | "true" | "1" => OptionValue::Switch(true),
+                    "off" | "false" | "0" => OptionValue::Switch(false),
+                    _ => return Err(format!("{name} is a switch: set it to on or off, not {value}")),
+                },
+                OptionKind::Value { values, .. } if values.contains(value) => OptionValue::Value(value.clone()),
+                OptionKind::Value { values, .. } => return Err(format!("{name} takes one of {}, not {value}", values.join(", "))),
+            };
+            set.insert(name.clone(), parsed);
+        }
+        Ok((set, warnings))
+    }
+
+    /// [`Configuration::option_set`] for `pack`, its properties read under its defaults with the
+    /// configuration's loader's macros.
+    pub fn option_set_of(&self, pack: &PackFiles) -> Result<(OptionSet, Vec<Diagnostic>), String> {
+        let props = pack_properties(pack, &StandardMacros::for_loader(self.loader), &OptionSet::new());
+        self.option_set(&props, &declared_options(pack))
+    }
+
+    /// The command-line arguments that name this configuration
+    /// (`--profile LOW --set BLOOM=off --dimension nether --loader iris`); empty for the defaults.
+    pub fn arguments(&self) -> String {
+        let mut words = Vec::new();
+        if let Some(p) = &self.profile {
+            words.push(format!("--profile {p}"));
+        }
+        for (name, value) in &self.options {
+            words.push(format!("--set {name}={value}"));
+        }
+        if self.dimension != Dimension::default() {
+            words.push(format!("--dimension {}", self.dimension));
+        }
+        if self.loader != Loader::default() {
+            words.push(format!("--loader {}", self.loader));
+        }
+        words.join(" ")
+    }
+}
+
+/// `NAME=VALUE` arguments of `--set` as pairs; an error names a malformed one.
+pub fn parse_assignments(arguments: &[String]) -> Result<Vec<(String, String)>, String> {
+    arguments
+        .iter()
+        .map(|assignment| match assignment.split_once('=') {
+            Some((name, value)) if !name.trim().is_empty() => Ok((name.trim().to_string(), value.trim().to_string())),
+            _ => Err(format!("--set takes OPTION=VALUE, not `{}`", assignment.escape_debug())),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options() -> BTreeMap<String, OptionKind> {
+        [
+            ("SHADOWS".to_string(), OptionKind::Switch { default: true }),
+            ("WAVES".to_string(), OptionKind::Switch { default: false }),
+            ("QUALITY".to_string(), OptionKind::Value { default: "2".into(), values: vec!["1".into(), "2".into()] }),
+        ]
+        .into()
+    }
+
+    #[test]
+    fn profiles_follow_their_entries_in_order() {
+        let props = Properties::parse_plain("profile.LOW=!SHADOWS QUALITY:1 \\\n  profile.BASE\nprofile.BASE=WAVES\nprofile.HIGH=profile.LOW QUALITY=2 SHADOWS\n");
+        let (set, warnings) = profile_set(&props, "LOW", &options()).unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(set["SHADOWS"], OptionValue::Switch(false));
+        assert_eq!(set["WAVES"], OptionValue::Switch(true));
+        assert_eq!(set["QUALITY"], OptionValue::Value("1".into()));
+        let (high, _) = profile_set(&props, "HIGH", &options()).unwrap();
+        assert_eq!(high["QUALITY"], OptionValue::Value("2".into()));
+        assert_eq!(high["SHADOWS"], OptionValue::Switch(true));
+        assert!(profile_set(&props, "NONE", &options()).is_err());
+    }
+
+    #[test]
+    fn cycles_and_unknown_options_are_reported() {
+        let props = Properties::parse_plain("profile.A=profile.B\nprofile.B=profile.A TYPO\n");
+        let err = profile_set(&props, "A", &BTreeMap::new()).unwrap_err();
+        assert!(err.message.contains("cycle") && err.message.contains("A -> B -> A"), "{err}");
+        let props = Properties::parse_plain("profile.A=TYPO\n");
+        let (_, warnings) = profile_set(&props, "A", &BTreeMap::new()).unwrap();
+        assert_eq!(warnings[0].location.as_ref().unwrap().line, 1);
+        let props = Properties::parse_plain("profile.A=profile.MISSING\n");
+        assert!(profile_set(&props, "A", &BTreeMap::new()).unwrap_err().message.contains("MISSING"));
+    }
+
+    #[test]
+    fn deep_chains_and_many_paths_resolve_once_each() {
+        let mut chain = String::new();
+        for i in 0..20_000 {
+            chain.push_str(&format!("profile.P{i}=profile.P{} WAVES\n", i + 1));
+        }
+        chain.push_str("profile.P20000=SHADOWS\n");
+        let (set, _) = profile_set(&Properties::parse_plain(&chain), "P0", &options()).unwrap();
+        assert_eq!(set.len(), 2);
+        // Forty levels, each naming both profiles of the next: 2^40 paths, 80 profiles.
+        let mut lattice = String::new();
+        for i in 0..40 {
+            lattice.push_str(&format!("profile.A{i}=profile.A{n} profile.B{n}\nprofile.B{i}=profile.A{n} profile.B{n}\n", n = i + 1));
+        }
+        lattice.push_str("profile.A40=WAVES\nprofile.B40=!SHADOWS\n");
+        let (set, _) = profile_set(&Properties::parse_plain(&lattice), "A0", &options()).unwrap();
+        assert_eq!(set["WAVES"], OptionValue::Switch(true));
+    }
+
+    #[test]
+    fn a_configuration_names_its_values_and_refuses_unknown_ones() {
+        let props = Properties::parse_plain("profile.LOW=QUALITY:1 !SHADOWS\n");
+        let config = |profile: Option<&str>, options: &[(&str, &str)]| Configuration {
+            profile: profile.map(str::to_string),
+            options: options.iter().map(|(n, v)| (n.to_string(), v.to_string())).collect(),
+            ..Configuration::default()
+        };
+        let (set, _) = config(Some("LOW"), &[("QUALITY", "2"), ("SHADOWS", "on")]).option_set(&props, &options()).unwrap();
+        assert_eq!(set["QUALITY"], OptionValue::Value("2".into()));
+        assert_eq!(set["SHADOWS"], OptionValue::Switch(true));
+        let unknown = config(None, &[("NOPE", "1")]).option_set(&props, &options()).unwrap_err();
+        assert!(unknown.contains("no option NOPE") && unknown.contains("QUALITY"), "{unknown}");
+        assert!(config(None, &[("QUALITY", "7")]).option_set(&props, &options()).unwrap_err().contains("one of 1, 2"));
+        assert!(config(None, &[("SHADOWS", "maybe")]).option_set(&props, &options()).is_err());
+        assert!(config(Some("ULTRA"), &[]).option_set(&props, &options()).unwrap_err().contains("ULTRA"));
+        let mut nether = config(Some("LOW"), &[("WAVES", "on")]);
+        nether.dimension = Dimension::parse("nether").unwrap();
+        nether.loader = Loader::Iris;
+        assert_eq!(nether.arguments(), "--profile LOW --set WAVES=on --dimension nether --loader iris");
+    }
+
+    #[test]
+    fn a_pack_files_configuration_reads_its_profiles_and_options() {
+        let files = crate::input::pack_from_memory(
+            "test/shaders/",
+            [
+                ("composite.fsh".to_string(), b"#define MODE 1 // [1 2 3]\n#define GLOW\n#ifdef GLOW\n#endif\nvoid main() {}\n".to_vec()),
+                ("shaders.properties".to_string(), b"#ifdef IS_IRIS\nprofile.LOW=MODE:3\n#else\nprofile.LOW=MODE:2 !GLOW\n#endif\n".to_vec()),
+            ],
+        );
+        let low = Configuration { profile: Some("LOW".into()), ..Configuration::default() };
+        let (set, _) = low.option_set_of(&files).unwrap();
+        assert_eq!(set.get("MODE"), Some(&OptionValue::Value("2".into())));
+        assert_eq!(set.get("GLOW"), Some(&OptionValue::Switch(false)));
+        let iris = Configuration { loader: Loader::Iris, ..low };
+        assert_eq!(iris.option_set_of(&files).unwrap().0.get("MODE"), Some(&OptionValue::Value("3".into())));
+    }
+
+    #[test]
+    fn property_macros_hold_the_standard_macros_and_the_options_in_force() {
+        let set: OptionSet = [("WAVES".to_string(), OptionValue::Switch(true)), ("SHADOWS".to_string(), OptionValue::Switch(false))].into();
+        let macros = property_macros(&StandardMacros::default(), &options(), &set);
+        assert_eq!(macros.get("WAVES").map(String::as_str), Some(""));
+        assert!(!macros.contains_key("SHADOWS"));
+        assert_eq!(macros.get("QUALITY").map(String::as_str), Some("2"));
+        assert!(macros.contains_key("MC_VERSION"));
+    }
+
+    #[test]
+    fn dimensions_by_name_and_folder() {
+        assert_eq!(Dimension::parse("end").unwrap().folder(), "world1");
+        assert_eq!(Dimension::parse("world7").unwrap().to_string(), "world7");
+        assert_eq!(Dimension::default().folder(), "world0");
+        assert!(Dimension::parse("moon").unwrap_err().contains("overworld, nether, end"));
+    }
+}
