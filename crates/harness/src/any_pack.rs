@@ -26,13 +26,12 @@ use tidepack_loader::shadow::{ShadowSettings, SunPath};
 use tidepack_loader::{Configuration, SetProvider};
 
 use crate::HarnessError;
-use crate::gpu::bindings::{SamplerNaming, Source, colour_buffers_read};
-use crate::gpu::frame::overlay_phase;
-use crate::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
+use crate::samplers::{SamplerNaming, Source, colour_buffers_read};
+use tidepack_scene::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
     self, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
 };
-use crate::scene::Scene;
+use tidepack_scene::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
 /// The game's blending of the sun and the moon onto the sky: added, faded by alpha.
@@ -692,7 +691,7 @@ impl<'a> FramePlan<'a> {
 
     fn overlays(&mut self, pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh, phase: Phase) {
         for (kind, vertices) in &mesh.overlay {
-            if overlay_phase(pack.loader, scene, *kind) == phase {
+            if scene.overlay_phase(pack.loader, *kind) == phase {
                 let program = pack.resolve(pack.loader.program_chain(*kind));
                 let depth_write = tidepack_loader::loader::writes_depth(*kind);
                 let stage = match kind {
@@ -838,7 +837,7 @@ mod tests {
         let files = tidepack_loader::input::pack_from_memory("test/shaders/", files);
         let pack = AnyPack::from_files(&files, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap();
-        let mesh = crate::mesh::build(&scene, &pack);
+        let mesh = tidepack_scene::mesh::build(&scene, &pack);
         let plan = FramePlan::new(&pack, &scene, &mesh);
         let reads: Vec<(&str, usize, usize)> = plan
             .steps
@@ -859,7 +858,7 @@ mod tests {
         let shaders = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/packs/shadow_map");
         let pack = AnyPack::load(&shaders, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/rain_over_lake.toml")).unwrap();
-        let mesh = crate::mesh::build(&scene, &pack);
+        let mesh = tidepack_scene::mesh::build(&scene, &pack);
         let plan = FramePlan::new(&pack, &scene, &mesh);
         let stages: Vec<(&str, &str)> = plan
             .steps

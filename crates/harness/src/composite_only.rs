@@ -22,7 +22,8 @@ use std::collections::BTreeMap;
 use half::f16;
 
 use crate::HarnessError;
-use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, SamplerNaming, ShadowTextures, colour_buffers_read};
+use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures};
+use crate::samplers::{SamplerNaming, colour_buffers_read};
 use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
 use crate::gpu::{Frame, Gpu};
@@ -122,7 +123,7 @@ impl CompositeOnly {
             depth0: &depth0,
             depth1: &depth1,
             shadow: ShadowTextures::empty(&harness_textures),
-            sprites: crate::mesh::Sprites::Blocks,
+            sprites: tidepack_scene::mesh::Sprites::Blocks,
             mipmapped: &crate::gpu::bindings::NO_MIPMAPS,
         };
         let composite = gpu.checked("composite_only", || {

@@ -22,15 +22,14 @@ use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
 use tidepack_loader::buffers::BufferClear;
-use crate::gpu::bindings::SamplerNaming;
-use crate::gpu::{Source, fullscreen_quad, overlay_phase, resolve_in_pack, terrain_mvp, vertex_attribute_source};
+use crate::samplers::{SamplerNaming, Source, resolve_in_pack};
 use crate::images::FloatImage;
 use tidepack_loader::loader::{self, MissingProgramDraws, Phase};
-use crate::mesh::{self, PackVertex, SceneMesh, Sprites, offsets};
+use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, SceneMesh, Sprites, offsets};
 use crate::program::{LoadedPack, LoadedProgram, LoadedStage, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::{Blend, BlendFactor};
-use crate::scene::Scene;
+use tidepack_scene::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
 
 /// A frame from the OpenGL driver.
@@ -112,7 +111,8 @@ fn gl_factor(f: BlendFactor) -> u32 {
 }
 
 /// The harness's own textures in OpenGL, as [`crate::gpu::bindings::HarnessTextures`] has them
-/// for wgpu.
+/// for wgpu. A copy names the same textures.
+#[derive(Clone)]
 pub(crate) struct GlHarnessTextures {
     atlas: glow::Texture,
     sun: glow::Texture,
@@ -329,7 +329,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         // Rain, clouds, particles and the hand drawn when the loader draws them.
         let draw_overlays = |phase: Phase| -> Result<(), HarnessError> {
             for (kind, vertices) in &mesh.overlay {
-                if overlay_phase(pack.loader, scene, *kind) != phase {
+                if scene.overlay_phase(pack.loader, *kind) != phase {
                     continue;
                 }
                 let program = pack.resolve(pack.loader.program_chain(*kind));
@@ -364,7 +364,7 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         attach(&outs, None)?;
         gl.disable(glow::DEPTH_TEST);
         gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
-        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &fullscreen_quad())?;
+        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &mesh::fullscreen_quad())?;
         composite.delete(ctx);
         gl.finish();
 
@@ -410,7 +410,7 @@ pub(crate) unsafe fn draw_own_colour(
     // SAFETY: the caller holds the current context; the vertex data outlives the draw.
     unsafe {
         gl.use_program(Some(own.raw));
-        gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &terrain_mvp(scene));
+        gl.uniform_matrix_4_f32_slice(gl.get_uniform_location(own.raw, "mvp").as_ref(), false, &scene.terrain_mvp());
         let vbo = gl.create_buffer().map_err(gl_err("buffer"))?;
         gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
         gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, bytemuck::cast_slice(vertices), glow::STATIC_DRAW);
@@ -475,7 +475,7 @@ pub(crate) unsafe fn make_texture(
 
 /// Gives colour texture `t` (`width` x `height`, level 0 made) every further mip level.
 pub(crate) unsafe fn add_mip_levels(gl: &glow::Context, t: glow::Texture, internal: u32, width: i32, height: i32) {
-    let levels = crate::gpu::own::mip_levels(width as u32, height as u32);
+    let levels = tidepack_loader::buffers::mip_levels(width as u32, height as u32);
     // SAFETY: the caller holds the current context.
     unsafe {
         gl.bind_texture(glow::TEXTURE_2D, Some(t));
@@ -850,15 +850,12 @@ pub(crate) unsafe fn draw_program(
             if name.starts_with("gl_") {
                 continue;
             }
-            match vertex_attribute_source(name) {
+            match mesh::attribute_source(name) {
                 Some((format, offset)) => {
                     gl.enable_vertex_attrib_array(*location);
                     match format {
-                        wgpu::VertexFormat::Sint32x2 => gl.vertex_attrib_pointer_i32(*location, 2, glow::INT, stride, offset as i32),
-                        _ => {
-                            let components = (format.size() / 4) as i32;
-                            gl.vertex_attrib_pointer_f32(*location, components, glow::FLOAT, false, stride, offset as i32);
-                        }
+                        AttributeFormat::Sint32x2 => gl.vertex_attrib_pointer_i32(*location, 2, glow::INT, stride, offset as i32),
+                        _ => gl.vertex_attrib_pointer_f32(*location, format.components(), glow::FLOAT, false, stride, offset as i32),
                     }
                     generic.push(*location);
                 }

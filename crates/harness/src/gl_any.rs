@@ -19,15 +19,15 @@ use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
     add_mip_levels, read_as_shadow_map, set_blends,
 };
-use crate::gpu::bindings::SamplerNaming;
-use crate::gpu::fullscreen_quad;
+use crate::samplers::SamplerNaming;
 use crate::images::FloatImage;
-use crate::mesh::{PackVertex, SceneMesh, Sprites};
+use tidepack_scene::mesh::{self, PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::Blend;
-use crate::scene::Scene;
-use crate::uniforms::{self, Pass};
+use tidepack_scene::scene::Scene;
+use crate::uniforms::{self, Pass, Value};
+use tidepack_loader::loader::MissingProgramDraws;
 
 /// A frame of any pack from the OpenGL driver.
 #[derive(Clone, Debug)]
@@ -58,250 +58,359 @@ pub fn render_any(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMe
     frame
 }
 
+/// A colour buffer in OpenGL: its two textures, the snapshot gbuffers programs read, its format.
+type GlBuffer = ([glow::Texture; 2], glow::Texture, BufferFormat);
+
+/// One frame of the plan in OpenGL: the textures and framebuffer it draws with, the uniform
+/// values of each kind of pass, and the programs drawn with OpenGL's own depth range.
+struct GlPlanFrame<'a> {
+    ctx: &'a GlContext,
+    pack: &'a AnyPack,
+    scene: &'a Scene,
+    w: i32,
+    h: i32,
+    buffers: BTreeMap<u8, GlBuffer>,
+    depth0: glow::Texture,
+    depth1: glow::Texture,
+    shadow_side: i32,
+    shadow_depth: [glow::Texture; 2],
+    shadow_colours: BTreeMap<u8, glow::Texture>,
+    screen: glow::Texture,
+    harness: GlHarnessTextures,
+    fbo: glow::Framebuffer,
+    /// The uniform values of each kind of pass.
+    values: Vec<(Pass, BTreeMap<String, Value>)>,
+    own_depth_mapping: Vec<String>,
+}
+
 fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlAnyFrame, HarnessError> {
-    let gl = ctx.gl();
-    let lg = ctx.legacy();
     let plan = FramePlan::new(pack, scene, mesh);
-    let (w, h) = (scene.width() as i32, scene.height() as i32);
-    // SAFETY: every call below is on the context current on this thread, with objects it made.
+    // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
-        let colour = |format| make_texture(gl, internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false);
-        let mut buffers = BTreeMap::new();
-        for &b in &plan.buffers {
-            let format = pack.format_of(b);
-            let flipped = [colour(format)?, colour(format)?];
-            if plan.mipmapped.contains(&b) {
-                for t in flipped {
-                    add_mip_levels(gl, t, internal_format(format), w, h);
-                }
-            }
-            buffers.insert(b, (flipped, colour(format)?, format));
-        }
-        let depth_of =
-            |width: i32, height: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, width, height, None, false, false);
-        let (depth0, depth1) = (depth_of(w, h)?, depth_of(w, h)?);
-        // The shadow maps, as the wgpu path makes them: one texel each without a shadow pass.
-        let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 as i32 } else { 1 };
-        let shadow_depth = [depth_of(shadow_side, shadow_side)?, depth_of(shadow_side, shadow_side)?];
-        for t in shadow_depth {
-            read_as_shadow_map(gl, t, pack.shadow_settings.nearest);
-        }
-        let mut shadow_colours = BTreeMap::new();
-        for &b in &plan.shadow_buffers {
-            let format = internal_format(pack.shadow_format_of(b));
-            shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
-        }
-        let screen = make_texture(gl, glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
-        let harness = GlHarnessTextures::new(gl, pack)?;
-        let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
-        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-        gl.viewport(0, 0, w, h);
-
-        // Clear, as the wgpu path does: both textures of each buffer, depth to 1.
-        for (b, (textures, _, _)) in &buffers {
-            let c = pack.clear_of(*b).colour(*b, scene.sky.fog_color).map(|v| v as f32);
-            for t in textures {
-                attach(gl, &[*t], Some(depth0))?;
-                gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
-            }
-        }
-        gl.depth_mask(true);
-        gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-        for (b, t) in &shadow_colours {
-            attach(gl, &[*t], Some(shadow_depth[0]))?;
-            gl.clear_buffer_f32_slice(glow::COLOR, 0, &pack.shadow_clear_of(*b).shadow_colour().map(|v| v as f32));
-        }
-        for depth in shadow_depth {
-            attach(gl, &[], Some(depth))?;
-            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-        }
-        gl.disable(glow::CULL_FACE);
-        gl.depth_func(glow::LEQUAL);
-
-        let read_colour = |t: glow::Texture| read(gl, t, false, screen, w, h);
+        let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan)?;
+        frame.clear()?;
+        let quad = mesh::fullscreen_quad();
         let mut steps = Vec::new();
-        let mut own_depth_mapping = Vec::new();
-        // Compiles with the harness's depth mapping where the outputs allow it.
-        let mut build = |program: &LoadedProgram| -> Result<(Compiled, bool), HarnessError> {
-            match compile(ctx, program, DepthMapping::Harness) {
-                Ok(c) => Ok((c, false)),
-                Err(HarnessError::Unsupported(_)) => {
-                    own_depth_mapping.push(program.name.clone());
-                    Ok((compile(ctx, program, DepthMapping::OpenGl)?, true))
+        for step in &plan.steps {
+            let written = match &step.work {
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
+                    let draw = GeometryStep { program: *program, vertices, default_blend, depth_write: *depth_write, sprites: *sprites, pass: *pass, render_stage };
+                    frame.geometry(&draw, current, snapshots)?
                 }
-                Err(e) => Err(e),
+                PlannedWork::DepthCopy => {
+                    frame.copy(frame.depth0, frame.depth1, frame.w, frame.h);
+                    Vec::new()
+                }
+                PlannedWork::ShadowGeometry { program, vertices, render_stage } => frame.shadow_geometry(program, vertices, render_stage)?,
+                PlannedWork::ShadowDepthCopy => {
+                    frame.copy(frame.shadow_depth[0], frame.shadow_depth[1], frame.shadow_side, frame.shadow_side);
+                    Vec::new()
+                }
+                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => frame.fullscreen(program, current, *into_screen, mipmaps, &quad)?,
+                PlannedWork::ScreenCopy { current } => frame.screen_copy(*current)?,
+            };
+            steps.push((step.label.clone(), written));
+        }
+        frame.finish(steps)
+    }
+}
+
+/// A geometry step of the plan, as drawn in OpenGL.
+struct GeometryStep<'s> {
+    program: Option<&'s LoadedProgram>,
+    vertices: &'s [PackVertex],
+    default_blend: &'s Blend,
+    depth_write: bool,
+    sprites: Sprites,
+    pass: Pass,
+    render_stage: &'s str,
+}
+
+impl<'a> GlPlanFrame<'a> {
+    /// The frame's textures, as the wgpu path makes them.
+    unsafe fn new(ctx: &'a GlContext, pack: &'a AnyPack, scene: &'a Scene, plan: &FramePlan) -> Result<GlPlanFrame<'a>, HarnessError> {
+        let gl = ctx.gl();
+        let (w, h) = (scene.width() as i32, scene.height() as i32);
+        unsafe {
+            let colour = |format| make_texture(gl, internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false);
+            let mut buffers = BTreeMap::new();
+            for &b in &plan.buffers {
+                let format = pack.format_of(b);
+                let flipped = [colour(format)?, colour(format)?];
+                if plan.mipmapped.contains(&b) {
+                    for t in flipped {
+                        add_mip_levels(gl, t, internal_format(format), w, h);
+                    }
+                }
+                buffers.insert(b, (flipped, colour(format)?, format));
             }
-        };
-        let (gbuffers_values, _) = pack.uniform_values(scene, Pass::Gbuffers);
-        let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
-        let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
-        let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
-        // `render_stage`: the `MC_RENDER_STAGE_*` of the draw.
-        let draw = |program: &LoadedProgram, compiled: &Compiled, own_range: bool, pass: Pass, render_stage: &str, textures: &Textures, vertices: &[PackVertex]| {
-            if own_range && let Some(clip_control) = lg.clip_control {
+            let depth_of =
+                |width: i32, height: i32| make_texture(gl, glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, width, height, None, false, false);
+            // The shadow maps, as the wgpu path makes them: one texel each without a shadow pass.
+            let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 as i32 } else { 1 };
+            let shadow_depth = [depth_of(shadow_side, shadow_side)?, depth_of(shadow_side, shadow_side)?];
+            for t in shadow_depth {
+                read_as_shadow_map(gl, t, pack.shadow_settings.nearest);
+            }
+            let mut shadow_colours = BTreeMap::new();
+            for &b in &plan.shadow_buffers {
+                let format = internal_format(pack.shadow_format_of(b));
+                shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
+            }
+            let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
+            let values = [Pass::Gbuffers, Pass::Fullscreen, Pass::Shadow, Pass::Celestial].into_iter().map(|pass| (pass, pack.uniform_values(scene, pass).0)).collect();
+            Ok(GlPlanFrame {
+                ctx,
+                pack,
+                scene,
+                w,
+                h,
+                buffers,
+                depth0: depth_of(w, h)?,
+                depth1: depth_of(w, h)?,
+                shadow_side,
+                shadow_depth,
+                shadow_colours,
+                screen: make_texture(gl, glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
+                harness: GlHarnessTextures::new(gl, pack)?,
+                fbo,
+                values,
+                own_depth_mapping: Vec::new(),
+            })
+        }
+    }
+
+    /// Clears as the wgpu path does: both textures of each buffer, depth to 1, the shadow maps.
+    unsafe fn clear(&self) -> Result<(), HarnessError> {
+        let gl = self.ctx.gl();
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            gl.viewport(0, 0, self.w, self.h);
+            for (b, (textures, _, _)) in &self.buffers {
+                let c = self.pack.clear_of(*b).colour(*b, self.scene.sky.fog_color).map(|v| v as f32);
+                for t in textures {
+                    attach(gl, &[*t], Some(self.depth0))?;
+                    gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
+                }
+            }
+            gl.depth_mask(true);
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            for (b, t) in &self.shadow_colours {
+                attach(gl, &[*t], Some(self.shadow_depth[0]))?;
+                gl.clear_buffer_f32_slice(glow::COLOR, 0, &self.pack.shadow_clear_of(*b).shadow_colour().map(|v| v as f32));
+            }
+            for depth in self.shadow_depth {
+                attach(gl, &[], Some(depth))?;
+                gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            }
+            gl.disable(glow::CULL_FACE);
+            gl.depth_func(glow::LEQUAL);
+        }
+        Ok(())
+    }
+
+    /// `from` copied into `to` (depth copies).
+    unsafe fn copy(&self, from: glow::Texture, to: glow::Texture, w: i32, h: i32) {
+        // SAFETY: both textures are this frame's.
+        unsafe { self.ctx.gl().copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1) };
+    }
+
+    unsafe fn read_colour(&self, t: glow::Texture) -> Result<FloatImage, HarnessError> {
+        // SAFETY: `t` and the scratch screen are this frame's, of the frame's size.
+        unsafe { read(self.ctx.gl(), t, false, self.screen, self.w, self.h) }
+    }
+
+    /// Compiles `program` with the harness's depth mapping where the outputs allow it.
+    fn build(&mut self, program: &LoadedProgram) -> Result<(Compiled, bool), HarnessError> {
+        match compile(self.ctx, program, DepthMapping::Harness) {
+            Ok(c) => Ok((c, false)),
+            Err(HarnessError::Unsupported(_)) => {
+                self.own_depth_mapping.push(program.name.clone());
+                Ok((compile(self.ctx, program, DepthMapping::OpenGl)?, true))
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Compiles, draws and deletes `program` with the uniform values of `pass` and its
+    /// `MC_RENDER_STAGE_*`.
+    unsafe fn draw(&mut self, program: &LoadedProgram, pass: Pass, render_stage: &str, textures: &Textures, vertices: &[PackVertex]) -> Result<(), HarnessError> {
+        let (compiled, own_range) = self.build(program)?;
+        let clip_control = self.ctx.legacy().clip_control.filter(|_| own_range);
+        let of_pass = self.values.iter().find(|(p, _)| *p == pass).map(|(_, v)| v);
+        let values = uniforms::with_render_stage(of_pass.expect("values for every kind of pass"), render_stage);
+        // SAFETY: the program was compiled on this context; the textures are this frame's.
+        let drawn = unsafe {
+            if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
-            let values = match pass {
-                Pass::Gbuffers => &gbuffers_values,
-                Pass::Fullscreen => &fullscreen_values,
-                Pass::Shadow => &shadow_values,
-                Pass::Celestial => &celestial_values,
-            };
-            let values = uniforms::with_render_stage(values, render_stage);
-            let drawn = draw_program(ctx, pack, program, compiled, pass, &values, textures, vertices);
-            if own_range && let Some(clip_control) = lg.clip_control {
+            let drawn = draw_program(self.ctx, self.pack, program, &compiled, pass, &values, textures, vertices);
+            if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }
             drawn
         };
-        let colors_at = |current: &BTreeMap<u8, usize>| -> BTreeMap<u8, (glow::Texture, BufferFormat)> {
-            buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect()
-        };
-        let snapshots: BTreeMap<u8, (glow::Texture, BufferFormat)> =
-            buffers.iter().map(|(b, (_, snapshot, format))| (*b, (*snapshot, *format))).collect();
+        compiled.delete(self.ctx);
+        drawn
+    }
 
-        let quad = fullscreen_quad();
-        for step in &plan.steps {
-            let mut written = Vec::new();
-            match &step.work {
-                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots: read_buffers, sprites, pass, render_stage } => {
-                    for b in read_buffers {
-                        let (textures, snapshot, _) = &buffers[b];
-                        gl.copy_image_sub_data(textures[current[b]], glow::TEXTURE_2D, 0, 0, 0, 0, *snapshot, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
-                    }
-                    let drawn: Vec<u8> = match program {
-                        Some(p) => p.render_targets.clone(),
-                        None => match pack.loader.missing_program_draws() {
-                            tidepack_loader::loader::MissingProgramDraws::FirstBufferOnly => vec![0],
-                            tidepack_loader::loader::MissingProgramDraws::EveryBuffer => buffers.keys().copied().collect(),
-                        },
-                    };
-                    let targets: Vec<glow::Texture> = drawn.iter().map(|b| buffers[b].0[current[b]]).collect();
-                    attach(gl, &targets, Some(depth0))?;
-                    set_blends(gl, &drawn, &|b| pack.blend_of(*program, b, default_blend));
-                    gl.enable(glow::DEPTH_TEST);
-                    gl.depth_mask(*depth_write);
-                    match program {
-                        Some(program) => {
-                            // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
-                            let textures = Textures {
-                                naming: SamplerNaming::AnyPack,
-                                harness: &harness,
-                                colors: snapshots.clone(),
-                                depth0: depth1,
-                                depth1,
-                                shadow_depth,
-                                shadow_colours: shadow_colours.clone(),
-                                sprites: *sprites,
-                                mipmapped: BTreeSet::new(),
-                            };
-                            let (compiled, own_range) = build(program)?;
-                            draw(program, &compiled, own_range, *pass, render_stage, &textures, vertices)?;
-                            compiled.delete(ctx);
-                        }
-                        None => draw_own_colour(ctx, pack.loader.missing_program_draws(), DepthMapping::Harness, scene, vertices)?,
-                    }
-                    set_blends(gl, &drawn, &|_| Blend::Off);
-                    gl.depth_mask(true);
-                    for (b, t) in drawn.iter().zip(&targets) {
-                        written.push((format!("colortex{b}"), read_colour(*t)?));
-                    }
-                }
-                PlannedWork::DepthCopy => {
-                    gl.copy_image_sub_data(depth0, glow::TEXTURE_2D, 0, 0, 0, 0, depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
-                }
-                PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
-                    let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| shadow_colours[b]).collect();
-                    attach(gl, &targets, Some(shadow_depth[0]))?;
-                    set_blends(gl, &program.render_targets, &|b| pack.blend_of(Some(program), b, &Blend::Off));
-                    gl.enable(glow::DEPTH_TEST);
-                    gl.depth_mask(true);
-                    gl.viewport(0, 0, shadow_side, shadow_side);
-                    // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
-                    let textures = Textures {
-                        naming: SamplerNaming::ShadowPass,
-                        harness: &harness,
-                        colors: BTreeMap::new(),
-                        depth0: depth1,
-                        depth1,
-                        shadow_depth: [harness.empty_shadow_depth; 2],
-                        shadow_colours: BTreeMap::new(),
-                        sprites: Sprites::Blocks,
-                        mipmapped: BTreeSet::new(),
-                    };
-                    let (compiled, own_range) = build(program)?;
-                    draw(program, &compiled, own_range, Pass::Shadow, render_stage, &textures, vertices)?;
-                    compiled.delete(ctx);
-                    gl.viewport(0, 0, w, h);
-                    set_blends(gl, &program.render_targets, &|_| Blend::Off);
-                    for (b, t) in program.render_targets.iter().zip(&targets) {
-                        written.push((format!("shadowcolor{b}"), read(gl, *t, false, screen, shadow_side, shadow_side)?));
-                    }
-                }
-                PlannedWork::ShadowDepthCopy => {
-                    let [from, to] = shadow_depth;
-                    gl.copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, shadow_side, shadow_side, 1);
-                }
-                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
-                    for b in mipmaps {
-                        gl.bind_texture(glow::TEXTURE_2D, Some(buffers[b].0[current[b]]));
-                        gl.generate_mipmap(glow::TEXTURE_2D);
-                    }
-                    let targets: Vec<(String, glow::Texture)> = if *into_screen {
-                        vec![("screen".to_string(), screen)]
-                    } else {
-                        program.render_targets.iter().map(|b| (format!("colortex{b}"), buffers[b].0[1 - current[b]])).collect()
-                    };
-                    let attachments: Vec<glow::Texture> = targets.iter().map(|(_, t)| *t).collect();
-                    attach(gl, &attachments, None)?;
-                    set_blends(gl, &program.render_targets, &|b| pack.blend_of(Some(program), b, &Blend::Off));
-                    gl.disable(glow::DEPTH_TEST);
+    /// A gbuffers draw (or the loader's own colour where the chain has no program), after the
+    /// buffers it samples are copied to their snapshots.
+    unsafe fn geometry(&mut self, step: &GeometryStep, current: &BTreeMap<u8, usize>, snapshots: &BTreeSet<u8>) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+        let gl = self.ctx.gl();
+        let (w, h) = (self.w, self.h);
+        unsafe {
+            for b in snapshots {
+                let (textures, snapshot, _) = &self.buffers[b];
+                gl.copy_image_sub_data(textures[current[b]], glow::TEXTURE_2D, 0, 0, 0, 0, *snapshot, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+            }
+            let drawn: Vec<u8> = match step.program {
+                Some(p) => p.render_targets.clone(),
+                None => match self.pack.loader.missing_program_draws() {
+                    MissingProgramDraws::FirstBufferOnly => vec![0],
+                    MissingProgramDraws::EveryBuffer => self.buffers.keys().copied().collect(),
+                },
+            };
+            let targets: Vec<glow::Texture> = drawn.iter().map(|b| self.buffers[b].0[current[b]]).collect();
+            attach(gl, &targets, Some(self.depth0))?;
+            set_blends(gl, &drawn, &|b| self.pack.blend_of(step.program, b, step.default_blend));
+            gl.enable(glow::DEPTH_TEST);
+            gl.depth_mask(step.depth_write);
+            match step.program {
+                Some(program) => {
+                    // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
+                    let harness = self.harness.clone();
                     let textures = Textures {
                         naming: SamplerNaming::AnyPack,
                         harness: &harness,
-                        colors: colors_at(current),
-                        depth0,
-                        depth1,
-                        shadow_depth,
-                        shadow_colours: shadow_colours.clone(),
-                        sprites: Sprites::Blocks,
-                        mipmapped: mipmaps.clone(),
+                        colors: self.buffers.iter().map(|(b, (_, snapshot, format))| (*b, (*snapshot, *format))).collect(),
+                        depth0: self.depth1,
+                        depth1: self.depth1,
+                        shadow_depth: self.shadow_depth,
+                        shadow_colours: self.shadow_colours.clone(),
+                        sprites: step.sprites,
+                        mipmapped: BTreeSet::new(),
                     };
-                    let (compiled, own_range) = build(program)?;
-                    draw(program, &compiled, own_range, Pass::Fullscreen, "NONE", &textures, &quad)?;
-                    compiled.delete(ctx);
-                    set_blends(gl, &program.render_targets, &|_| Blend::Off);
-                    for (name, t) in targets {
-                        written.push((name, read_colour(t)?));
-                    }
+                    self.draw(program, step.pass, step.render_stage, &textures, step.vertices)?;
                 }
-                PlannedWork::ScreenCopy { current } => {
-                    let read_fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
-                    gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(read_fbo));
-                    gl.framebuffer_texture_2d(glow::READ_FRAMEBUFFER, glow::COLOR_ATTACHMENT0, glow::TEXTURE_2D, Some(buffers[&0].0[*current]), 0);
-                    gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(fbo));
-                    attach(gl, &[screen], None)?;
-                    gl.blit_framebuffer(0, 0, w, h, 0, 0, w, h, glow::COLOR_BUFFER_BIT, glow::NEAREST);
-                    gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-                    gl.delete_framebuffer(read_fbo);
-                    written.push(("screen".to_string(), read_colour(screen)?));
-                }
+                None => draw_own_colour(self.ctx, self.pack.loader.missing_program_draws(), DepthMapping::Harness, self.scene, step.vertices)?,
             }
-            steps.push((step.label.clone(), written));
+            set_blends(gl, &drawn, &|_| Blend::Off);
+            gl.depth_mask(true);
+            drawn.iter().zip(&targets).map(|(b, t)| Ok((format!("colortex{b}"), self.read_colour(*t)?))).collect()
         }
-        gl.finish();
-        let image = read_colour(screen)?;
-        let error = gl.get_error();
-        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        gl.delete_framebuffer(fbo);
-        harness.delete(gl);
-        let shadow_textures = shadow_depth.into_iter().chain(shadow_colours.values().copied());
-        for t in [depth0, depth1, screen].into_iter().chain(buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s])).chain(shadow_textures) {
-            gl.delete_texture(t);
+    }
+
+    /// A shadow program's draw into the shadow map, at the shadow map's size.
+    unsafe fn shadow_geometry(&mut self, program: &LoadedProgram, vertices: &[PackVertex], render_stage: &str) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+        let gl = self.ctx.gl();
+        let side = self.shadow_side;
+        unsafe {
+            let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| self.shadow_colours[b]).collect();
+            attach(gl, &targets, Some(self.shadow_depth[0]))?;
+            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            gl.enable(glow::DEPTH_TEST);
+            gl.depth_mask(true);
+            gl.viewport(0, 0, side, side);
+            // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+            let harness = self.harness.clone();
+            let textures = Textures {
+                naming: SamplerNaming::ShadowPass,
+                harness: &harness,
+                colors: BTreeMap::new(),
+                depth0: self.depth1,
+                depth1: self.depth1,
+                shadow_depth: [harness.empty_shadow_depth; 2],
+                shadow_colours: BTreeMap::new(),
+                sprites: Sprites::Blocks,
+                mipmapped: BTreeSet::new(),
+            };
+            self.draw(program, Pass::Shadow, render_stage, &textures, vertices)?;
+            gl.viewport(0, 0, self.w, self.h);
+            set_blends(gl, &program.render_targets, &|_| Blend::Off);
+            program.render_targets.iter().zip(&targets).map(|(b, t)| Ok((format!("shadowcolor{b}"), read(gl, *t, false, self.screen, side, side)?))).collect()
         }
-        if error != glow::NO_ERROR {
-            return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
+    }
+
+    /// A full-screen program drawing into the other texture of each of its targets (or the
+    /// screen), its mipmapped buffers' chains made first.
+    unsafe fn fullscreen(
+        &mut self,
+        program: &LoadedProgram,
+        current: &BTreeMap<u8, usize>,
+        into_screen: bool,
+        mipmaps: &BTreeSet<u8>,
+        quad: &[PackVertex],
+    ) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+        let gl = self.ctx.gl();
+        unsafe {
+            for b in mipmaps {
+                gl.bind_texture(glow::TEXTURE_2D, Some(self.buffers[b].0[current[b]]));
+                gl.generate_mipmap(glow::TEXTURE_2D);
+            }
+            let targets: Vec<(String, glow::Texture)> = if into_screen {
+                vec![("screen".to_string(), self.screen)]
+            } else {
+                program.render_targets.iter().map(|b| (format!("colortex{b}"), self.buffers[b].0[1 - current[b]])).collect()
+            };
+            let attachments: Vec<glow::Texture> = targets.iter().map(|(_, t)| *t).collect();
+            attach(gl, &attachments, None)?;
+            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            gl.disable(glow::DEPTH_TEST);
+            let harness = self.harness.clone();
+            let textures = Textures {
+                naming: SamplerNaming::AnyPack,
+                harness: &harness,
+                colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
+                depth0: self.depth0,
+                depth1: self.depth1,
+                shadow_depth: self.shadow_depth,
+                shadow_colours: self.shadow_colours.clone(),
+                sprites: Sprites::Blocks,
+                mipmapped: mipmaps.clone(),
+            };
+            self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
+            set_blends(gl, &program.render_targets, &|_| Blend::Off);
+            targets.into_iter().map(|(name, t)| Ok((name, self.read_colour(t)?))).collect()
         }
-        Ok(GlAnyFrame { image, steps, own_depth_mapping })
+    }
+
+    /// colortex0's current texture blitted to the screen, for a pack without final.
+    unsafe fn screen_copy(&self, current: usize) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+        let gl = self.ctx.gl();
+        let (w, h) = (self.w, self.h);
+        unsafe {
+            let read_fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
+            gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(read_fbo));
+            gl.framebuffer_texture_2d(glow::READ_FRAMEBUFFER, glow::COLOR_ATTACHMENT0, glow::TEXTURE_2D, Some(self.buffers[&0].0[current]), 0);
+            gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(self.fbo));
+            attach(gl, &[self.screen], None)?;
+            gl.blit_framebuffer(0, 0, w, h, 0, 0, w, h, glow::COLOR_BUFFER_BIT, glow::NEAREST);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            gl.delete_framebuffer(read_fbo);
+            Ok(vec![("screen".to_string(), self.read_colour(self.screen)?)])
+        }
+    }
+
+    /// The screen read back, every object deleted, and the driver's error state checked.
+    unsafe fn finish(self, steps: Vec<(String, Vec<(String, FloatImage)>)>) -> Result<GlAnyFrame, HarnessError> {
+        let gl = self.ctx.gl();
+        unsafe {
+            gl.finish();
+            let image = self.read_colour(self.screen)?;
+            let error = gl.get_error();
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            gl.delete_framebuffer(self.fbo);
+            self.harness.delete(gl);
+            let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().copied());
+            let buffers = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
+            for t in [self.depth0, self.depth1, self.screen].into_iter().chain(buffers).chain(shadow_textures) {
+                gl.delete_texture(t);
+            }
+            if error != glow::NO_ERROR {
+                return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
+            }
+            Ok(GlAnyFrame { image, steps, own_depth_mapping: self.own_depth_mapping })
+        }
     }
 }

@@ -12,8 +12,9 @@ use tidepack_pack::Dialect;
 use crate::gpu::{self, PassTiming};
 use crate::images::{self, FloatImage};
 use crate::program::{self, LoadedPack, PackSelection};
-use crate::scene::Scene;
-use crate::{Gpu, HarnessError, Loader, gl, mesh, uniforms};
+use tidepack_scene::scene::Scene;
+use crate::{Gpu, HarnessError, Loader, gl, uniforms};
+use tidepack_scene::mesh;
 
 /// What to render and where to put it.
 #[derive(Clone, Debug)]

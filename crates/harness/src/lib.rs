@@ -17,16 +17,15 @@ pub mod gl_any;
 pub mod gpu;
 pub mod images;
 pub mod job;
-pub mod mesh;
 pub mod program;
-pub mod scene;
+pub mod samplers;
 pub mod uniforms;
 
 pub use gpu::{Frame, Gpu, PassTiming, median};
 pub use images::FloatImage;
 pub use tidepack_loader::Loader;
 pub use program::{LoadedPack, PackSelection};
-pub use scene::Scene;
+pub use tidepack_scene::{Scene, mesh, scene};
 
 /// This process's resident set size in MiB (Linux `/proc/self/status` VmRSS), if readable: the
 /// memory figure the bench and the stress sweep report.
@@ -71,6 +70,12 @@ impl fmt::Display for HarnessError {
 }
 
 impl std::error::Error for HarnessError {}
+
+impl From<tidepack_scene::SceneError> for HarnessError {
+    fn from(e: tidepack_scene::SceneError) -> HarnessError {
+        HarnessError::Scene(e.0)
+    }
+}
 
 /// Renders a scene with wgpu: builds the mesh with the pack's block ids and runs the frame.
 pub fn render_wgpu(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, passthrough: bool) -> Result<Frame, HarnessError> {

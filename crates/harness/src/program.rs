@@ -30,7 +30,7 @@ use tidepack_loader::properties::{self, Macros, Properties};
 use tidepack_loader::shadow::ShadowSettings;
 
 use crate::HarnessError;
-use crate::mesh::BlockIds;
+use tidepack_scene::mesh::BlockIds;
 
 /// Which pack text to render.
 #[derive(Clone, Debug)]

@@ -10,7 +10,7 @@ use glam::{DMat3, DMat4, DVec3, DVec4};
 use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
-use crate::scene::Scene;
+use tidepack_scene::scene::Scene;
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
 pub use tidepack_loader::uniform_value::{Kind, Value};
 use tidepack_pack::specialise::Specialisation;

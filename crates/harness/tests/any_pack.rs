@@ -147,7 +147,7 @@ fn the_shadow_pass_draws_the_terrain_copies_its_depth_then_draws_the_water() {
 
 #[test]
 fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
-    use tidepack_harness::gpu::bindings::{Source, resolve_any};
+    use tidepack_harness::samplers::{Source, resolve_any};
     let load = |composite: &str| {
         let files = tidepack_loader::input::pack_from_memory(
             "test/shaders/",

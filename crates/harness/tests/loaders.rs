@@ -1,4 +1,4 @@
-//! The pack as each imitated loader draws it (crates/harness/src/loader.rs, docs/loaders.md):
+//! The pack as each imitated loader draws it (crates/loader/src/loader.rs, docs/loaders.md):
 //! water shaded where it lies, nothing else changed, in both dialects. Each loader differs in
 //! how it reads shaders.properties (per-buffer blend modes), the alpha test it puts on the
 //! translucent layer, and where it draws what the pack has no program for.

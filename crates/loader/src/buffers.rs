@@ -19,6 +19,12 @@ pub fn shadow_colour_number(name: &str) -> Option<u8> {
     }
 }
 
+/// The number of mip levels of a full chain for `width` x `height`, as a buffer with
+/// `colortexNMipmapEnabled` gets them.
+pub fn mip_levels(width: u32, height: u32) -> u32 {
+    32 - width.max(height).max(1).leading_zeros()
+}
+
 /// A colour buffer format the renderers store a buffer in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BufferFormat {

@@ -811,25 +811,8 @@ impl Context<'_> {
                 Err(ExprError::new(at, format!("{name}() takes {n} argument{}, found {}", if n == 1 { "" } else { "s" }, args.len())))
             }
         };
-        // smooth() needs to see whether its first argument is a literal id before evaluation.
         if name == "smooth" {
-            let target = match args.len() {
-                1 => 0,
-                // (id, value) or (id, value, fade) when the first argument is a constant id;
-                // otherwise (value, fade) / (value, fadeIn, fadeOut).
-                2 | 3 if matches!(args[0], Expr::Number(_)) => 1,
-                2 | 3 => 0,
-                4 => 1,
-                n => return Err(err(format!("smooth() takes 1 to 4 arguments, found {n}"))),
-            };
-            let values = self.eval_all(args)?;
-            for (i, v) in values.iter().enumerate() {
-                if !matches!(v, Val::Num(_)) {
-                    return Err(err(format!("argument {} of smooth() must be a float, found {}", i + 1, v.type_name())));
-                }
-            }
-            // One frame: the smoothed value starts at its target.
-            return Ok(values[target].clone());
+            return self.smooth(at, args);
         }
         let values = self.eval_all(args)?;
         let numbers = |fname: &str| -> Result<Vec<f64>> {
@@ -846,39 +829,10 @@ impl Context<'_> {
             arity(n)?;
             map_numeric(&values, f).map_err(|m| ExprError::new(at, format!("{name}(): {m}")))
         };
+        if let Some((count, f)) = numeric_function(name, args.len()) {
+            return per_component(count, f);
+        }
         match name {
-            "sin" => per_component(1, |x| x[0].sin()),
-            "cos" => per_component(1, |x| x[0].cos()),
-            "tan" => per_component(1, |x| x[0].tan()),
-            "asin" => per_component(1, |x| x[0].asin()),
-            "acos" => per_component(1, |x| x[0].acos()),
-            "atan" if args.len() == 2 => per_component(2, |x| x[0].atan2(x[1])),
-            "atan" => per_component(1, |x| x[0].atan()),
-            "atan2" => per_component(2, |x| x[0].atan2(x[1])),
-            "torad" | "radians" => per_component(1, |x| x[0].to_radians()),
-            "todeg" | "degrees" => per_component(1, |x| x[0].to_degrees()),
-            "abs" => per_component(1, |x| x[0].abs()),
-            "floor" => per_component(1, |x| x[0].floor()),
-            "ceil" => per_component(1, |x| x[0].ceil()),
-            "exp" => per_component(1, |x| x[0].exp()),
-            "exp2" => per_component(1, |x| x[0].exp2()),
-            "exp10" => per_component(1, |x| 10f64.powf(x[0])),
-            "frac" => per_component(1, |x| x[0] - x[0].floor()),
-            "log" if args.len() == 2 => per_component(2, |x| x[1].ln() / x[0].ln()),
-            "log" => per_component(1, |x| x[0].ln()),
-            "log2" => per_component(1, |x| x[0].log2()),
-            "log10" => per_component(1, |x| x[0].log10()),
-            "pow" => per_component(2, |x| x[0].powf(x[1])),
-            // Java's Math.round: halves go up.
-            "round" => per_component(1, |x| (x[0] + 0.5).floor()),
-            "signum" | "sign" => per_component(1, |x| signum(x[0])),
-            "sqrt" => per_component(1, |x| x[0].sqrt()),
-            "fmod" => per_component(2, |x| ((x[0] % x[1]) + x[1]) % x[1]),
-            "clamp" => per_component(3, |x| x[0].min(x[2]).max(x[1])),
-            "lerp" => per_component(3, |x| x[1] + (x[2] - x[1]) * x[0]),
-            "mix" => per_component(3, |x| x[0] + (x[1] - x[0]) * x[2]),
-            // Iris's name for GLSL's step(edge, x).
-            "edge" => per_component(2, |x| if x[1] < x[0] { 0.0 } else { 1.0 }),
             "min" | "max" => {
                 if args.len() < 2 {
                     return Err(err(format!("{name}() takes at least 2 arguments, found {}", args.len())));
@@ -940,6 +894,29 @@ impl Context<'_> {
             "vec4" => construct(4, &values).map_err(err),
             _ => Err(err(format!("unknown function '{name}()'"))),
         }
+    }
+
+    /// `smooth()`, for one frame: its value starts at its target. Whether its first argument is
+    /// a literal id decides which argument the target is, so it is looked at before evaluation.
+    fn smooth(&mut self, at: usize, args: &[Expr]) -> Result<Val> {
+        let err = |m: String| ExprError::new(at, m);
+        let target = match args.len() {
+            1 => 0,
+            // (id, value) or (id, value, fade) when the first argument is a constant id;
+            // otherwise (value, fade) / (value, fadeIn, fadeOut).
+            2 | 3 if matches!(args[0], Expr::Number(_)) => 1,
+            2 | 3 => 0,
+            4 => 1,
+            n => return Err(err(format!("smooth() takes 1 to 4 arguments, found {n}"))),
+        };
+        let values = self.eval_all(args)?;
+        for (i, v) in values.iter().enumerate() {
+            if !matches!(v, Val::Num(_)) {
+                return Err(err(format!("argument {} of smooth() must be a float, found {}", i + 1, v.type_name())));
+            }
+        }
+        // One frame: the smoothed value starts at its target.
+        Ok(values[target].clone())
     }
 
     fn eval_all(&mut self, args: &[Expr]) -> Result<Vec<Val>> {
@@ -1105,6 +1082,47 @@ fn convert(d: &Definition, v: Val) -> std::result::Result<(Val, Value), String> 
             ty.name()
         )),
     }
+}
+
+/// The functions that apply per component to numbers: argument count and function, by name
+/// (`args`: how many the call has, for the names that take one or two).
+fn numeric_function(name: &str, args: usize) -> Option<(usize, fn(&[f64]) -> f64)> {
+    let function: (usize, fn(&[f64]) -> f64) = match name {
+        "sin" => (1, |x| x[0].sin()),
+        "cos" => (1, |x| x[0].cos()),
+        "tan" => (1, |x| x[0].tan()),
+        "asin" => (1, |x| x[0].asin()),
+        "acos" => (1, |x| x[0].acos()),
+        "atan" if args == 2 => (2, |x| x[0].atan2(x[1])),
+        "atan" => (1, |x| x[0].atan()),
+        "atan2" => (2, |x| x[0].atan2(x[1])),
+        "torad" | "radians" => (1, |x| x[0].to_radians()),
+        "todeg" | "degrees" => (1, |x| x[0].to_degrees()),
+        "abs" => (1, |x| x[0].abs()),
+        "floor" => (1, |x| x[0].floor()),
+        "ceil" => (1, |x| x[0].ceil()),
+        "exp" => (1, |x| x[0].exp()),
+        "exp2" => (1, |x| x[0].exp2()),
+        "exp10" => (1, |x| 10f64.powf(x[0])),
+        "frac" => (1, |x| x[0] - x[0].floor()),
+        "log" if args == 2 => (2, |x| x[1].ln() / x[0].ln()),
+        "log" => (1, |x| x[0].ln()),
+        "log2" => (1, |x| x[0].log2()),
+        "log10" => (1, |x| x[0].log10()),
+        "pow" => (2, |x| x[0].powf(x[1])),
+        // Java's Math.round: halves go up.
+        "round" => (1, |x| (x[0] + 0.5).floor()),
+        "signum" | "sign" => (1, |x| signum(x[0])),
+        "sqrt" => (1, |x| x[0].sqrt()),
+        "fmod" => (2, |x| ((x[0] % x[1]) + x[1]) % x[1]),
+        "clamp" => (3, |x| x[0].min(x[2]).max(x[1])),
+        "lerp" => (3, |x| x[1] + (x[2] - x[1]) * x[0]),
+        "mix" => (3, |x| x[0] + (x[1] - x[0]) * x[2]),
+        // Iris's name for GLSL's step(edge, x).
+        "edge" => (2, |x| if x[1] < x[0] { 0.0 } else { 1.0 }),
+        _ => return None,
+    };
+    Some(function)
 }
 
 #[cfg(test)]

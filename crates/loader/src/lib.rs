@@ -7,7 +7,7 @@
 //! files as the loader hands them to its preprocessor under one option set) with the loader's
 //! [`macros`] → [`programs`] (which files are programs, per world folder, who runs them,
 //! fallbacks) and [`loader`] (what each loader and version draws with what, in which order).
-//! Around the GLSL: [`properties`] (the one reader of `.properties` files, conditionals
+//! Around the GLSL: the uniforms and samplers the loaders set ([`known`]), [`properties`] (the one reader of `.properties` files, conditionals
 //! included), what shaders.properties directs ([`directives`], [`custom_uniforms`]),
 //! block.properties ([`blocks`]), the buffers' names, formats and clears ([`buffers`]) and the
 //! shadow pass's settings and camera ([`shadow`]).
@@ -18,6 +18,7 @@ pub mod consts;
 pub mod custom_uniforms;
 pub mod directives;
 pub mod input;
+pub mod known;
 pub mod loader;
 pub mod macros;
 pub mod option_lines;

@@ -10,7 +10,7 @@ use tidepack_glsl::token::{TokenKind, brace_depths, tokenize};
 use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
-use crate::known;
+use tidepack_loader::known;
 use tidepack_loader::directives::CustomNames;
 
 fn version_of(pre: &Preprocessed) -> u32 {

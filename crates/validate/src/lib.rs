@@ -27,7 +27,6 @@ pub mod driver;
 pub mod fuzz;
 pub mod glslang;
 pub mod interface;
-pub mod known;
 mod messages;
 mod naga_pool;
 pub mod output;

@@ -9,19 +9,21 @@ use std::time::Instant;
 use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
 use crate::images::FloatImage;
-use crate::mesh::{SceneMesh, Sprites};
+use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::directives::Blend;
-use crate::scene::Scene;
-use crate::uniforms::{self, Pass};
+use tidepack_scene::scene::Scene;
+use crate::uniforms::{self, Pass, Value};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, SamplerNaming,
-    ShadowTextures, UniformBinding,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, ShadowTextures,
+    UniformBinding,
 };
 use super::geometry::GeometryDraw;
-use super::own::{MipmapPipelines, PassthroughPipeline, mip_levels};
+use super::own::{MipmapPipelines, PassthroughPipeline};
+use crate::samplers::SamplerNaming;
+use tidepack_loader::buffers::mip_levels;
 use super::frame::{median, record_clears};
 use super::readback::{read_pass_ms, read_texture};
 
@@ -121,178 +123,339 @@ pub fn render_any(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, fr
     gpu.checked("frame", || render_any_checked(gpu, pack, scene, mesh, frames))?
 }
 
+/// Every way a frame's textures are used: drawn into, sampled, copied from and to.
+fn every_use() -> wgpu::TextureUsages {
+    wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST
+}
+
+/// The textures of one frame of the plan: each colour buffer's two and its snapshot, the depth
+/// buffers, the screen and the shadow maps.
+struct FrameTextures {
+    size: wgpu::Extent3d,
+    buffers: BTreeMap<u8, Buffer>,
+    /// The snapshots, as gbuffers programs bind the colour buffers.
+    snapshots: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+    depth0: wgpu::Texture,
+    depth1: wgpu::Texture,
+    screen: wgpu::Texture,
+    shadow_size: wgpu::Extent3d,
+    shadow_depth: [wgpu::Texture; 2],
+    /// The shadow maps as `sampler2D` reads them (depth as luminance).
+    shadow_depth_read: [wgpu::Texture; 2],
+    shadow_colours: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+}
+
+impl FrameTextures {
+    fn new(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<FrameTextures, HarnessError> {
+        let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
+        let texture = |label: &str, format| gpu.texture(label, size, format, every_use());
+        let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
+        // Mipmapped buffers have full mip chains; programs draw into, and read, the first level.
+        let levels = mip_levels(scene.width(), scene.height());
+        for &b in &plan.buffers {
+            let format = gpu.texture_format(pack.format_of(b))?;
+            let label = |what: &str| format!("colortex{b} {what}");
+            let levels = if plan.mipmapped.contains(&b) { levels } else { 1 };
+            let flipped = |what: &str| gpu.texture_with_levels(&label(what), size, format, every_use(), levels);
+            buffers.insert(b, Buffer { textures: [flipped("A"), flipped("B")], snapshot: texture(&label("as gbuffers read it"), format), format });
+        }
+        let snapshots = buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
+        // The shadow maps: one texel each, cleared, when the frame has no shadow pass.
+        let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 } else { 1 };
+        let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
+        let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use());
+        let mut shadow_colours = BTreeMap::new();
+        for &b in &plan.shadow_buffers {
+            let format = gpu.texture_format(pack.shadow_format_of(b))?;
+            shadow_colours.insert(b, (shadow_texture(&format!("shadowcolor{b}"), format), format));
+        }
+        Ok(FrameTextures {
+            size,
+            buffers,
+            snapshots,
+            depth0: texture("depthtex0", DEPTH),
+            depth1: texture("depthtex1", DEPTH),
+            screen: texture("screen (RGBA32F)", OUT),
+            shadow_size,
+            shadow_depth: [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)],
+            shadow_depth_read: [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)],
+            shadow_colours,
+        })
+    }
+
+    fn shadow(&self) -> ShadowTextures<'_> {
+        ShadowTextures {
+            depth: [&self.shadow_depth[0], &self.shadow_depth[1]],
+            depth_read: [&self.shadow_depth_read[0], &self.shadow_depth_read[1]],
+            colours: &self.shadow_colours,
+        }
+    }
+
+    /// Every texture cleared as the pack's directives say, at the start of a frame.
+    fn record_clears(&self, encoder: &mut wgpu::CommandEncoder, pack: &AnyPack, scene: &Scene) {
+        let colours: Vec<(&wgpu::Texture, [f64; 4])> = self
+            .buffers
+            .iter()
+            .flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color))))
+            .collect();
+        record_clears(encoder, &colours, &self.depth0);
+        let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
+            self.shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();
+        shadow_clears.extend(self.shadow_depth_read.iter().map(|t| (t, [1.0; 4])));
+        record_clears(encoder, &shadow_clears, &self.shadow_depth[0]);
+        record_clears(encoder, &[], &self.shadow_depth[1]);
+    }
+
+    /// The texture a step wrote, read back.
+    fn read(&self, gpu: &Gpu, texture: &WrittenTexture) -> Result<FloatImage, HarnessError> {
+        match texture {
+            WrittenTexture::Screen => read_texture(gpu, &self.screen, OUT),
+            WrittenTexture::Buffer(b, i) => read_texture(gpu, &self.buffers[b].textures[*i], self.buffers[b].format),
+            WrittenTexture::ShadowColour(b) => read_texture(gpu, &self.shadow_colours[b].0, self.shadow_colours[b].1),
+        }
+    }
+}
+
+/// The uniform values of each kind of pass: the standard ones and the pack's custom uniforms.
+struct PassValues {
+    gbuffers: BTreeMap<String, Value>,
+    fullscreen: BTreeMap<String, Value>,
+    shadow: BTreeMap<String, Value>,
+    celestial: BTreeMap<String, Value>,
+}
+
+/// The plan's steps with their pipelines, what each writes, and what the pipelines left at zero.
+struct PreparedSteps<'p> {
+    steps: Vec<(&'p str, Work<'p>, Vec<Written>)>,
+    zeroed_inputs: Vec<String>,
+    zeroed_uniforms: Vec<String>,
+}
+
+impl<'p> PreparedSteps<'p> {
+    fn new(gpu: &Gpu, pack: &AnyPack, scene: &Scene, plan: &'p FramePlan, textures: &FrameTextures, harness: &HarnessTextures, values: &PassValues) -> Result<Self, HarnessError> {
+        let mut prepared = PreparedSteps { steps: Vec::new(), zeroed_inputs: Vec::new(), zeroed_uniforms: Vec::new() };
+        for step in &plan.steps {
+            let (work, written) = match &step.work {
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
+                    let values = uniforms::with_render_stage(if *pass == Pass::Celestial { &values.celestial } else { &values.gbuffers }, render_stage);
+                    let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
+                    let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
+                    // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
+                    let bindable = BindableTextures {
+                        naming: SamplerNaming::AnyPack,
+                        harness,
+                        colors: &textures.snapshots,
+                        depth0: &textures.depth1,
+                        depth1: &textures.depth1,
+                        shadow: textures.shadow(),
+                        sprites: *sprites,
+                        mipmapped: &NO_MIPMAPS,
+                    };
+                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
+                    let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
+                    (Work::Geometry { draw, current, snapshots }, written)
+                }
+                PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+                PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
+                    let values = uniforms::with_render_stage(&values.shadow, render_stage);
+                    let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                    let state = DrawState { blend_of: &blend_of, depth_write: true };
+                    // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+                    let bindable = BindableTextures {
+                        naming: SamplerNaming::ShadowPass,
+                        harness,
+                        colors: &textures.shadow_colours,
+                        depth0: &textures.depth1,
+                        depth1: &textures.depth1,
+                        shadow: ShadowTextures::empty(harness),
+                        sprites: Sprites::Blocks,
+                        mipmapped: &NO_MIPMAPS,
+                    };
+                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, Some(program), &state, vertices, &step.label)?;
+                    let written = draw.buffers().iter().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(*b))).collect();
+                    (Work::ShadowGeometry(draw), written)
+                }
+                PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
+                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
+                    let pipeline = prepared.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
+                    let written = if *into_screen {
+                        vec![("screen".to_string(), WrittenTexture::Screen)]
+                    } else {
+                        program.render_targets.iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b]))).collect()
+                    };
+                    (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
+                }
+                PlannedWork::ScreenCopy { current } => {
+                    let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
+                    (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
+                }
+            };
+            prepared.steps.push((step.label.as_str(), work, written));
+        }
+        Ok(prepared)
+    }
+
+    /// A geometry step's draw, its zeroed inputs and uniforms noted.
+    #[allow(clippy::too_many_arguments)]
+    fn geometry(
+        &mut self,
+        gpu: &Gpu,
+        pack: &AnyPack,
+        scene: &Scene,
+        values: &BTreeMap<String, Value>,
+        bindable: &BindableTextures,
+        program: Option<&LoadedProgram>,
+        state: &DrawState,
+        vertices: &[PackVertex],
+        label: &str,
+    ) -> Result<GeometryDraw, HarnessError> {
+        let missing = pack.loader.missing_program_draws();
+        let draw = GeometryDraw::new(gpu, pack, missing, scene, values, bindable, program, state, vertices, label.to_string())?;
+        if let Some(pipeline) = draw.pipeline() {
+            self.zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
+            self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+        }
+        Ok(draw)
+    }
+
+    /// A full-screen step's pipeline, reading the buffers' current textures.
+    #[allow(clippy::too_many_arguments)]
+    fn fullscreen(
+        &mut self,
+        gpu: &Gpu,
+        pack: &AnyPack,
+        textures: &FrameTextures,
+        harness: &HarnessTextures,
+        values: &BTreeMap<String, Value>,
+        program: &LoadedProgram,
+        current: &BTreeMap<u8, usize>,
+        into_screen: bool,
+        mipmaps: &BTreeSet<u8>,
+    ) -> Result<ProgramPipeline, HarnessError> {
+        let buffers = &textures.buffers;
+        let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
+            buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
+        let formats: BTreeMap<u8, wgpu::TextureFormat> =
+            if into_screen { BTreeMap::from([(0, OUT)]) } else { buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect() };
+        let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+        let bindable = BindableTextures {
+            naming: SamplerNaming::AnyPack,
+            harness,
+            colors: &reading,
+            depth0: &textures.depth0,
+            depth1: &textures.depth1,
+            shadow: textures.shadow(),
+            sprites: Sprites::Blocks,
+            mipmapped: mipmaps,
+        };
+        let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
+        let pipeline = ProgramPipeline::new(gpu, pack, program, values, kind, &bindable, UniformBinding::ReadOnlyStorage)?;
+        self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+        Ok(pipeline)
+    }
+}
+
+/// What recording a step needs besides its work: the frame's textures and the harness's own
+/// pipelines.
+struct Recorder<'r> {
+    gpu: &'r Gpu,
+    textures: &'r FrameTextures,
+    mipmaps: &'r MipmapPipelines,
+    depth_as_luminance: &'r PassthroughPipeline,
+    quad: &'r FullscreenQuad,
+}
+
+impl Recorder<'_> {
+    fn record(&self, encoder: &mut wgpu::CommandEncoder, work: &Work, stamps: Option<wgpu::RenderPassTimestampWrites<'_>>) {
+        let t = self.textures;
+        match work {
+            Work::Geometry { draw, current, snapshots } => {
+                for b in *snapshots {
+                    let buffer = &t.buffers[b];
+                    encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), t.size);
+                }
+                draw.record(encoder, &|b| &t.buffers[&b].textures[current[&b]], &t.depth0, stamps);
+            }
+            Work::DepthCopy => encoder.copy_texture_to_texture(t.depth0.as_image_copy(), t.depth1.as_image_copy(), t.size),
+            Work::ShadowGeometry(draw) => {
+                draw.record(encoder, &|b| &t.shadow_colours[&b].0, &t.shadow_depth[0], stamps);
+                self.depth_as_luminance.record(encoder, &t.shadow_depth_read[0], None);
+            }
+            Work::ShadowDepthCopy => {
+                encoder.copy_texture_to_texture(t.shadow_depth[0].as_image_copy(), t.shadow_depth[1].as_image_copy(), t.shadow_size);
+                encoder.copy_texture_to_texture(t.shadow_depth_read[0].as_image_copy(), t.shadow_depth_read[1].as_image_copy(), t.shadow_size);
+            }
+            Work::Fullscreen { program, pipeline, current, into_screen, mipmaps } => {
+                for b in *mipmaps {
+                    self.mipmaps.record(self.gpu, encoder, &t.buffers[b].textures[current[b]]);
+                }
+                let target = |b: u8| if *into_screen { &t.screen } else { &t.buffers[&b].textures[1 - current[&b]] };
+                pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, self.quad, stamps);
+            }
+            Work::ScreenCopy(copy) => copy.record(encoder, &t.screen, stamps),
+        }
+    }
+}
+
 fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, frames: usize) -> Result<AnyFrame, HarnessError> {
-    let device = &gpu.device;
     let plan = FramePlan::new(pack, scene, mesh);
-    let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
-    let texture = |label: &str, format, usage| gpu.texture(label, size, format, usage);
-    let every_use = wgpu::TextureUsages::RENDER_ATTACHMENT
-        | wgpu::TextureUsages::TEXTURE_BINDING
-        | wgpu::TextureUsages::COPY_SRC
-        | wgpu::TextureUsages::COPY_DST;
-    let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
-    // Mipmapped buffers have full mip chains; programs draw into, and read, the first level.
-    let levels = mip_levels(scene.width(), scene.height());
-    for &b in &plan.buffers {
-        let format = gpu.texture_format(pack.format_of(b))?;
-        let label = |what: &str| format!("colortex{b} {what}");
-        let levels = if plan.mipmapped.contains(&b) { levels } else { 1 };
-        let flipped = |what: &str| gpu.texture_with_levels(&label(what), size, format, every_use, levels);
-        buffers.insert(
-            b,
-            Buffer {
-                textures: [flipped("A"), flipped("B")],
-                snapshot: texture(&label("as gbuffers read it"), format, every_use),
-                format,
-            },
-        );
-    }
-    let depth0 = texture("depthtex0", DEPTH, every_use);
-    let depth1 = texture("depthtex1", DEPTH, every_use);
-    let screen = texture("screen (RGBA32F)", OUT, every_use);
+    let textures = FrameTextures::new(gpu, pack, &plan, scene)?;
     let harness_textures = HarnessTextures::new(gpu, pack);
-    let mipmap_pipelines = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| buffers[b].format))?;
-    // The shadow maps: one texel each, cleared, when the frame has no shadow pass.
-    let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 } else { 1 };
-    let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
-    let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use);
-    let shadow_depth = [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)];
-    let shadow_depth_read = [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)];
+    let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
     // shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
-    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &shadow_depth[0])?;
-    let mut shadow_colours = BTreeMap::new();
-    for &b in &plan.shadow_buffers {
-        let format = gpu.texture_format(pack.shadow_format_of(b))?;
-        shadow_colours.insert(b, (shadow_texture(&format!("shadowcolor{b}"), format), format));
-    }
-    let shadow = ShadowTextures {
-        depth: [&shadow_depth[0], &shadow_depth[1]],
-        depth_read: [&shadow_depth_read[0], &shadow_depth_read[1]],
-        colours: &shadow_colours,
-    };
+    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
     let quad = FullscreenQuad::new(gpu);
 
     let mut not_modelled = pack.not_modelled.clone();
-    let mut note = |line: String| {
-        if !not_modelled.contains(&line) {
-            not_modelled.push(line);
-        }
-    };
     // The pack's custom uniforms join the standard ones, once per kind of pass.
-    let (gbuffers_values, problems) = pack.uniform_values(scene, Pass::Gbuffers);
-    let (fullscreen_values, _) = pack.uniform_values(scene, Pass::Fullscreen);
-    let (shadow_values, _) = pack.uniform_values(scene, Pass::Shadow);
-    let (celestial_values, _) = pack.uniform_values(scene, Pass::Celestial);
-    if let Some(line) = pack.sun_path_note(scene) {
-        note(line);
-    }
-    for problem in &problems {
-        note(format!("{problem} (the uniform stays zero)"));
-    }
-    let snapshot_colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
-        buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
+    let (gbuffers, problems) = pack.uniform_values(scene, Pass::Gbuffers);
+    let values = PassValues {
+        gbuffers,
+        fullscreen: pack.uniform_values(scene, Pass::Fullscreen).0,
+        shadow: pack.uniform_values(scene, Pass::Shadow).0,
+        celestial: pack.uniform_values(scene, Pass::Celestial).0,
+    };
+    not_modelled.extend(pack.sun_path_note(scene));
+    not_modelled.extend(problems.iter().map(|problem| format!("{problem} (the uniform stays zero)")));
+    let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values)?;
+    not_modelled.extend(prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}: zero (the harness has no value for it)")));
+    not_modelled.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}: zero (the harness's vertices do not carry it)")));
 
-    // Each step's pipeline, and what to count NaN and Inf in afterwards.
-    let mut steps: Vec<(&str, Work, Vec<Written>)> = Vec::new();
-    let mut zeroed_inputs = Vec::new();
-    // Uniforms the harness has no value for stay zero, as a loader leaves uniforms it does not set.
-    let mut zeroed_uniforms = Vec::new();
-    for step in &plan.steps {
-        let (work, written) = match &step.work {
-            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
-                let values = uniforms::with_render_stage(if *pass == Pass::Celestial { &celestial_values } else { &gbuffers_values }, render_stage);
-                let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
-                let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
-                // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
-                let textures = BindableTextures {
-                    naming: SamplerNaming::AnyPack,
-                    harness: &harness_textures,
-                    colors: &snapshot_colors,
-                    depth0: &depth1,
-                    depth1: &depth1,
-                    shadow,
-                    sprites: *sprites,
-                    mipmapped: &NO_MIPMAPS,
-                };
-                let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, *program, &state, vertices, step.label.clone())?;
-                if let Some(pipeline) = draw.pipeline() {
-                    zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
-                    zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
-                }
-                let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
-                (Work::Geometry { draw, current, snapshots }, written)
-            }
-            PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
-            PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
-                let values = uniforms::with_render_stage(&shadow_values, render_stage);
-                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
-                let state = DrawState { blend_of: &blend_of, depth_write: true };
-                // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
-                let textures = BindableTextures {
-                    naming: SamplerNaming::ShadowPass,
-                    harness: &harness_textures,
-                    colors: &shadow_colours,
-                    depth0: &depth1,
-                    depth1: &depth1,
-                    shadow: ShadowTextures::empty(&harness_textures),
-                    sprites: Sprites::Blocks,
-                    mipmapped: &NO_MIPMAPS,
-                };
-                let missing = pack.loader.missing_program_draws();
-                let draw = GeometryDraw::new(gpu, pack, missing, scene, &values, &textures, Some(program), &state, vertices, step.label.clone())?;
-                if let Some(pipeline) = draw.pipeline() {
-                    zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
-                    zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
-                }
-                let written = draw.buffers().iter().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(*b))).collect();
-                (Work::ShadowGeometry(draw), written)
-            }
-            PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
-            PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
-                let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
-                    buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
-                let formats: BTreeMap<u8, wgpu::TextureFormat> =
-                    if *into_screen { BTreeMap::from([(0, OUT)]) } else { buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect() };
-                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
-                let textures = BindableTextures {
-                    naming: SamplerNaming::AnyPack,
-                    harness: &harness_textures,
-                    colors: &reading,
-                    depth0: &depth0,
-                    depth1: &depth1,
-                    shadow,
-                    sprites: Sprites::Blocks,
-                    mipmapped: mipmaps,
-                };
-                let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
-                let pipeline = ProgramPipeline::new(gpu, pack, program, &fullscreen_values, kind, &textures, UniformBinding::ReadOnlyStorage)?;
-                zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
-                let written = if *into_screen {
-                    vec![("screen".to_string(), WrittenTexture::Screen)]
-                } else {
-                    program.render_targets.iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b]))).collect()
-                };
-                (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
-            }
-            PlannedWork::ScreenCopy { current } => {
-                (Work::ScreenCopy(PassthroughPipeline::new(gpu, &buffers[&0].textures[*current])?), vec![("screen".to_string(), WrittenTexture::Screen)])
-            }
-        };
-        steps.push((step.label.as_str(), work, written));
+    let recorder = Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, quad: &quad };
+    let (passes, timing) = run_frames(&recorder, pack, scene, &plan, &prepared.steps, frames)?;
+    let mut images = BTreeMap::new();
+    for (b, buffer) in &textures.buffers {
+        images.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
     }
-    for name in zeroed_uniforms {
-        note(format!("uniform {name}: zero (the harness has no value for it)"));
-    }
-    for input in zeroed_inputs {
-        note(format!("vertex input {input}: zero (the harness's vertices do not carry it)"));
-    }
+    not_modelled.sort();
+    not_modelled.dedup();
+    Ok(AnyFrame {
+        image: read_texture(gpu, &textures.screen, OUT)?,
+        buffers: images,
+        depth0: read_texture(gpu, &textures.depth0, DEPTH)?,
+        depth1: read_texture(gpu, &textures.depth1, DEPTH)?,
+        passes,
+        timing,
+        not_modelled,
+    })
+}
 
-    // Run `frames` frames, each followed by a one-tap pass-through of colortex0 to a texture of
-    // its own (the floor the frame's cost is measured against); the textures are read back, and
-    // their NaN and Inf counted, after every step of the last frame only.
-    let floor_target = texture("pass-through output (RGBA32F)", OUT, every_use);
-    let floor = PassthroughPipeline::new(gpu, &buffers[&0].textures[plan.current[&0]])?;
+/// Runs `frames` frames of the prepared steps, each followed by a one-tap pass-through of
+/// colortex0 to a texture of its own (the floor the frame's cost is measured against); the
+/// textures are read back, and their NaN and Inf counted, after every step of the last frame
+/// only.
+fn run_frames(
+    recorder: &Recorder,
+    pack: &AnyPack,
+    scene: &Scene,
+    plan: &FramePlan,
+    steps: &[(&str, Work, Vec<Written>)],
+    frames: usize,
+) -> Result<(Vec<AnyPassReport>, FrameTiming), HarnessError> {
+    let (gpu, textures) = (recorder.gpu, recorder.textures);
+    let device = &gpu.device;
+    let floor_target = gpu.texture("pass-through output (RGBA32F)", textures.size, OUT, every_use());
+    let floor = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[plan.current[&0]])?;
     let render_passes = steps.iter().filter(|(_, work, _)| !work.is_copy()).count() as u32 + 1;
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
@@ -312,15 +475,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     for frame in 0..frames {
         let last = frame + 1 == frames;
         let mut encoder = new_encoder();
-        // Both textures of every buffer, as the pack's directives say.
-        let colours: Vec<(&wgpu::Texture, [f64; 4])> =
-            buffers.iter().flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color)))).collect();
-        record_clears(&mut encoder, &colours, &depth0);
-        let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
-            shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();
-        shadow_clears.extend(shadow_depth_read.iter().map(|t| (t, [1.0; 4])));
-        record_clears(&mut encoder, &shadow_clears, &shadow_depth[0]);
-        record_clears(&mut encoder, &[], &shadow_depth[1]);
+        textures.record_clears(&mut encoder, pack, scene);
         submit(encoder)?;
         let mut timed = 0u32;
         let mut stamp = |timestamps: bool| {
@@ -333,46 +488,16 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
             })
         };
         let mut walls = Vec::new();
-        for (label, work, written) in &steps {
+        for (label, work, written) in steps {
             let mut encoder = new_encoder();
-            let stamps = stamp(!work.is_copy());
-            match work {
-                Work::Geometry { draw, current, snapshots } => {
-                    for b in *snapshots {
-                        let buffer = &buffers[b];
-                        encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), size);
-                    }
-                    draw.record(&mut encoder, &|b| &buffers[&b].textures[current[&b]], &depth0, stamps);
-                }
-                Work::DepthCopy => encoder.copy_texture_to_texture(depth0.as_image_copy(), depth1.as_image_copy(), size),
-                Work::ShadowGeometry(draw) => {
-                    draw.record(&mut encoder, &|b| &shadow_colours[&b].0, &shadow_depth[0], stamps);
-                    depth_as_luminance.record(&mut encoder, &shadow_depth_read[0], None);
-                }
-                Work::ShadowDepthCopy => {
-                    encoder.copy_texture_to_texture(shadow_depth[0].as_image_copy(), shadow_depth[1].as_image_copy(), shadow_size);
-                    encoder.copy_texture_to_texture(shadow_depth_read[0].as_image_copy(), shadow_depth_read[1].as_image_copy(), shadow_size);
-                }
-                Work::Fullscreen { program, pipeline, current, into_screen, mipmaps } => {
-                    for b in *mipmaps {
-                        mipmap_pipelines.record(gpu, &mut encoder, &buffers[b].textures[current[b]]);
-                    }
-                    let target = |b: u8| if *into_screen { &screen } else { &buffers[&b].textures[1 - current[&b]] };
-                    pipeline.record_fullscreen_into(&mut encoder, program, &target, wgpu::LoadOp::Load, &quad, stamps);
-                }
-                Work::ScreenCopy(copy) => copy.record(&mut encoder, &screen, stamps),
-            }
+            recorder.record(&mut encoder, work, stamp(!work.is_copy()));
             let wall_ms = submit(encoder)?;
             walls.push(wall_ms);
             if last {
                 let mut non_finite = BTreeMap::new();
                 let mut images = Vec::new();
                 for (name, texture) in written {
-                    let image = match texture {
-                        WrittenTexture::Screen => read_texture(gpu, &screen, OUT)?,
-                        WrittenTexture::Buffer(b, i) => read_texture(gpu, &buffers[b].textures[*i], buffers[b].format)?,
-                        WrittenTexture::ShadowColour(b) => read_texture(gpu, &shadow_colours[b].0, shadow_colours[b].1)?,
-                    };
+                    let image = textures.read(gpu, texture)?;
                     non_finite.insert(name.clone(), image.non_finite());
                     images.push((name.clone(), image));
                 }
@@ -403,21 +528,5 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
         report.median_ms = settled(samples);
     }
     let frame_ms: Vec<f64> = (0..frames).map(|f| step_ms.iter().map(|s| s[f]).sum()).collect();
-    let timing = FrameTiming { frames, frame_ms: settled(&frame_ms), passthrough_ms: settled(&floor_ms) };
-
-    let mut images = BTreeMap::new();
-    for (b, buffer) in &buffers {
-        images.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
-    }
-    not_modelled.sort();
-    not_modelled.dedup();
-    Ok(AnyFrame {
-        image: read_texture(gpu, &screen, OUT)?,
-        buffers: images,
-        depth0: read_texture(gpu, &depth0, DEPTH)?,
-        depth1: read_texture(gpu, &depth1, DEPTH)?,
-        passes: reports,
-        timing,
-        not_modelled,
-    })
+    Ok((reports, FrameTiming { frames, frame_ms: settled(&frame_ms), passthrough_ms: settled(&floor_ms) }))
 }

@@ -1,5 +1,5 @@
-//! One program as a wgpu pipeline: what its sampler names refer to under OptiFine's naming,
-//! the bind groups that give it those textures and its uniform blocks (filled by reflection),
+//! One program as a wgpu pipeline: the bind groups that give its sampler names the textures
+//! [`crate::samplers`] resolves them to and its uniform blocks (filled by reflection),
 //! its vertex attributes, blend and depth state. The whole-frame renderer ([`super::frame`]) and
 //! the composite-only runner ([`crate::composite_only`]) both build their programs here.
 
@@ -8,11 +8,12 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use wgpu::util::DeviceExt as _;
 
-use crate::HarnessError;
-use crate::mesh::{self, Sprites, offsets};
-use crate::program::{LoadedProgram, LoadedStage, PackResources, texture_resources};
-use tidepack_loader::buffers::{colour_buffer_number, shadow_colour_number};
 use tidepack_loader::directives::{Blend, BlendFactor};
+use tidepack_scene::mesh::{self, AttributeFormat, Sprites, offsets};
+
+use crate::HarnessError;
+use crate::program::{LoadedProgram, LoadedStage, PackResources};
+use crate::samplers::{SamplerNaming, Source};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;
@@ -22,143 +23,6 @@ use super::Gpu;
 pub(crate) const OUT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The depth buffer gbuffers programs test and write.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-
-/// What a sampler name in a program refers to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Source {
-    Atlas,
-    Lightmap,
-    Noise,
-    Color(u8),
-    Depth0,
-    Depth1,
-    /// A custom texture of the pack (index into [`PackResources::custom_textures`]).
-    Custom(usize),
-    /// The normal map of a resource pack without one: flat, (0.5, 0.5, 1).
-    FlatNormals,
-    /// The specular map of a resource pack without one: zero.
-    NoSpecular,
-    /// shadowtex0 (everything the shadow pass drew) or shadowtex1 (without translucents).
-    ShadowDepth(u8),
-    /// shadowcolorN.
-    ShadowColour(u8),
-    /// A name OptiFine binds nothing to: transparent black.
-    Unbound,
-}
-
-/// How sampler names resolve.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SamplerNaming {
-    /// The frame of our own pack ([`resolve_in_pack`]): gbuffers programs read no colour
-    /// buffer and not the depth buffer they draw into.
-    OwnFrame,
-    /// Any pack ([`resolve_any`]): every name OptiFine binds.
-    AnyPack,
-    /// Any pack's shadow pass ([`resolve_in_shadow_pass`]).
-    ShadowPass,
-}
-
-impl SamplerNaming {
-    /// What `name` refers to in a program of this naming (`gbuffers` or full-screen).
-    pub(crate) fn resolve(self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-        match self {
-            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
-            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
-            SamplerNaming::ShadowPass => resolve_in_shadow_pass(pack, name),
-        }
-    }
-
-    /// Whether the programs are any pack's, whose unknown uniforms, inputs and buffer blocks read
-    /// zero (ours must provide them all).
-    pub(crate) fn is_any_pack(self) -> bool {
-        self != SamplerNaming::OwnFrame
-    }
-}
-
-/// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
-/// buffers are read as they stood before the draw, and depthtex0 (the buffer being drawn
-/// into) is read as depthtex1; a name OptiFine binds nothing to reads transparent black.
-pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-    let stage = if gbuffers { "gbuffers" } else { "composite" };
-    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
-        return Ok(Source::Custom(i));
-    }
-    Ok(match (name, gbuffers) {
-        ("noisetex", _) => Source::Noise,
-        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
-        ("lightmap", true) => Source::Lightmap,
-        ("normals", true) => Source::FlatNormals,
-        ("specular", true) => Source::NoSpecular,
-        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
-        ("depthtex0" | "gdepthtex" | "depthtex1" | "depthtex2", _) => Source::Depth1,
-        // `shadow` leaves the translucents out where the pack also reads `watershadow`.
-        ("shadow", _) => Source::ShadowDepth(if pack.water_shadow() { 1 } else { 0 }),
-        ("shadowtex0" | "watershadow", _) => Source::ShadowDepth(0),
-        ("shadowtex1", _) => Source::ShadowDepth(1),
-        _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
-            (Some(n), _) => Source::Color(n),
-            (None, Some(n)) => Source::ShadowColour(n),
-            (None, None) => Source::Unbound,
-        },
-    })
-}
-
-/// Resolves a sampler name in the shadow pass: as in gbuffers programs, except that the
-/// frame's colour and depth buffers are not bound there (custom textures are), and the shadow
-/// maps read as nothing drawn, since they are being drawn.
-pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<Source, String> {
-    Ok(match resolve_any(pack, name, true)? {
-        Source::Color(_) | Source::Depth0 | Source::Depth1 => Source::Unbound,
-        source => source,
-    })
-}
-
-/// Resolves a sampler name, custom textures of the pack first.
-pub fn resolve_in_pack(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-    let stage = if gbuffers { "gbuffers" } else { "composite" };
-    match pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
-        Some(i) => Ok(Source::Custom(i)),
-        None => resolve_sampler(name, gbuffers),
-    }
-}
-
-/// Resolves a shipped sampler name for a program (`gbuffers` or full-screen).
-pub fn resolve_sampler(name: &str, gbuffers: bool) -> Result<Source, String> {
-    let color = colour_buffer_number(name);
-    Ok(match (name, gbuffers) {
-        ("noisetex", _) => Source::Noise,
-        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
-        ("lightmap", true) => Source::Lightmap,
-        ("depthtex1" | "depthtex2", _) => Source::Depth1,
-        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
-        ("depthtex0" | "gdepthtex", true) => {
-            return Err(format!("{name} is the depth buffer gbuffers_water draws into; read depthtex1 there"));
-        }
-        _ => match color {
-            Some(n) if !gbuffers => Source::Color(n),
-            Some(n) => {
-                return Err(format!(
-                    "{name} (colortex{n}) is not readable in gbuffers programs of this pipeline (nothing wrote it before translucents)"
-                ));
-            }
-            None => return Err(format!("sampler {name} is not one the harness provides")),
-        },
-    })
-}
-
-/// The colour buffers a program samples, its sampler names resolved under `naming`.
-pub(crate) fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming, gbuffers: bool) -> BTreeSet<u8> {
-    [&program.vertex, &program.fragment]
-        .into_iter()
-        .flat_map(|stage| texture_resources(&stage.interface))
-        .filter_map(|(name, _)| {
-            match naming.resolve(pack, &name, gbuffers) {
-                Ok(Source::Color(n)) => Some(n),
-                _ => None,
-            }
-        })
-        .collect()
-}
 
 /// `module` with every `uniform` global moved to read-only storage. Types, member offsets and
 /// bindings are unchanged, so the bytes [`uniforms::fill_block`] lays out read the same.
@@ -833,7 +697,7 @@ pub(crate) struct FullscreenQuad {
 
 impl FullscreenQuad {
     pub(crate) fn new(gpu: &Gpu) -> FullscreenQuad {
-        let quad = fullscreen_quad();
+        let quad = mesh::fullscreen_quad();
         let vertices = gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("full-screen quad"),
             contents: bytemuck::cast_slice(&quad),
@@ -841,23 +705,6 @@ impl FullscreenQuad {
         });
         FullscreenQuad { vertices, count: quad.len() as u32 }
     }
-}
-
-/// The full-screen quad OptiFine draws: x, y in 0..1 under an orthographic projection,
-/// texture coordinates 0..1, as two triangles.
-pub fn fullscreen_quad() -> Vec<mesh::PackVertex> {
-    let corner = |x: f32, y: f32| mesh::PackVertex {
-        position: [x, y, 0.0, 1.0],
-        color: [1.0; 4],
-        normal: [0.0, 0.0, 1.0],
-        uv0: [x, y, 0.0, 1.0],
-        uv1: [0.0, 0.0, 0.0, 1.0],
-        entity: [-1.0, -1.0, 0.0, 0.0],
-        lightmap: [0, 0],
-        tangent: [1.0, 0.0, 0.0, 1.0],
-        mid_uv: [0.5, 0.5, 0.0, 1.0],
-    };
-    [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().map(|&(x, y)| corner(x, y)).collect()
 }
 
 pub(crate) fn wgpu_blend(blend: &Blend) -> Option<wgpu::BlendState> {
@@ -882,26 +729,14 @@ pub(crate) fn wgpu_blend(blend: &Blend) -> Option<wgpu::BlendState> {
     }
 }
 
-/// The vertex attributes of [`mesh::PackVertex`] a stage declares, by its shipped input names.
-pub fn vertex_attribute_source(name: &str) -> Option<(wgpu::VertexFormat, u64)> {
-    Some(match name {
-        "gl_Vertex" => (wgpu::VertexFormat::Float32x4, offsets::POSITION),
-        "gl_Color" => (wgpu::VertexFormat::Float32x4, offsets::COLOR),
-        "gl_Normal" => (wgpu::VertexFormat::Float32x3, offsets::NORMAL),
-        "gl_MultiTexCoord0" => (wgpu::VertexFormat::Float32x4, offsets::UV0),
-        "gl_MultiTexCoord1" => (wgpu::VertexFormat::Float32x4, offsets::UV1),
-        "mc_Entity" => (wgpu::VertexFormat::Float32x4, offsets::ENTITY),
-        "at_tangent" => (wgpu::VertexFormat::Float32x4, offsets::TANGENT),
-        "mc_midTexCoord" => (wgpu::VertexFormat::Float32x4, offsets::MID_UV),
-        // The 1.17+ core profile's names for the same data (positions relative to the chunk
-        // at chunkOffset, which is the origin of the harness's camera-relative vertices).
-        "vaPosition" => (wgpu::VertexFormat::Float32x3, offsets::POSITION),
-        "vaColor" => (wgpu::VertexFormat::Float32x4, offsets::COLOR),
-        "vaNormal" => (wgpu::VertexFormat::Float32x3, offsets::NORMAL),
-        "vaUV0" => (wgpu::VertexFormat::Float32x2, offsets::UV0),
-        "vaUV2" => (wgpu::VertexFormat::Sint32x2, offsets::LIGHTMAP),
-        _ => return None,
-    })
+/// The wgpu format of a vertex attribute.
+fn vertex_format(format: AttributeFormat) -> wgpu::VertexFormat {
+    match format {
+        AttributeFormat::Float32x2 => wgpu::VertexFormat::Float32x2,
+        AttributeFormat::Float32x3 => wgpu::VertexFormat::Float32x3,
+        AttributeFormat::Float32x4 => wgpu::VertexFormat::Float32x4,
+        AttributeFormat::Sint32x2 => wgpu::VertexFormat::Sint32x2,
+    }
 }
 
 /// A vertex stage's inputs bound to vertex buffers.
@@ -919,8 +754,8 @@ struct VertexInputs {
 fn vertex_attributes(stage: &LoadedStage, zero_unknown: bool) -> Result<VertexInputs, HarnessError> {
     let VertexInputs { mut known, mut zeroed, mut zeroed_names } = VertexInputs::default();
     for (name, location) in &stage.interface.inputs {
-        if let Some((format, offset)) = vertex_attribute_source(name) {
-            known.push(wgpu::VertexAttribute { format, offset, shader_location: *location });
+        if let Some((format, offset)) = mesh::attribute_source(name) {
+            known.push(wgpu::VertexAttribute { format: vertex_format(format), offset, shader_location: *location });
         } else if zero_unknown {
             let format = match input_scalar_kind(&stage.module, *location) {
                 Some(naga::ScalarKind::Sint) => wgpu::VertexFormat::Sint32x4,

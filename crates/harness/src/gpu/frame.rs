@@ -24,19 +24,19 @@ use std::time::Instant;
 use crate::HarnessError;
 use tidepack_loader::buffers::BufferClear;
 use crate::images::FloatImage;
-use tidepack_loader::loader::{self, Loader, Phase};
-use crate::mesh::{self, SceneMesh, Sprites};
+use tidepack_loader::loader::{self, Phase};
+use tidepack_scene::mesh::{self, SceneMesh, Sprites};
 use crate::program::{LoadedPack, LoadedProgram};
 use tidepack_loader::directives::Blend;
-use crate::scene::Scene;
-use tidepack_loader::loader::OverlayKind;
+use tidepack_scene::scene::Scene;
 use crate::uniforms::{self, Pass};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, SamplerNaming, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding, NO_MIPMAPS,
-    colour_buffers_read, view,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding, NO_MIPMAPS,
+    view,
 };
+use crate::samplers::{SamplerNaming, colour_buffers_read};
 use super::geometry::{GeometryDraw, depth_attachment};
 use super::own::PassthroughPipeline;
 use super::readback::{read_pass_ms, read_texture};
@@ -199,7 +199,7 @@ fn render_frame(
         let program = pack.resolve(pack.loader.program_chain(*kind));
         let state = DrawState { blend_of: &|b| pack.gbuffers_blend_of(program, b), depth_write: loader::writes_depth(*kind) };
         let label = format!("{kind:?} ({})", program.map_or("the loader's own", |p| p.name.as_str()));
-        overlays.entry(overlay_phase(pack.loader, scene, *kind)).or_default().push(geometry(program, &state, vertices, label)?);
+        overlays.entry(scene.overlay_phase(pack.loader, *kind)).or_default().push(geometry(program, &state, vertices, label)?);
     }
     let composite = ProgramPipeline::new(
         gpu,
@@ -332,13 +332,6 @@ pub(crate) fn record_clears(encoder: &mut wgpu::CommandEncoder, colours: &[(&wgp
     }
 }
 
-/// When the loader draws a scene's boxes of `kind`.
-pub(crate) fn overlay_phase(loader: Loader, scene: &Scene, kind: OverlayKind) -> Phase {
-    let boxes = scene.overlay.iter().filter(|o| o.kind == kind);
-    let camera_below = boxes.clone().all(|o| o.min[1] > scene.camera.position[1]);
-    let opaque = boxes.clone().all(|o| o.color[3] >= 1.0);
-    loader.phase(kind, camera_below, opaque)
-}
 
 
 

@@ -7,9 +7,9 @@ use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
 use tidepack_loader::loader::MissingProgramDraws;
-use crate::mesh;
+use tidepack_scene::mesh;
 use crate::program::{LoadedProgram, PackResources};
-use crate::scene::Scene;
+use tidepack_scene::scene::Scene;
 use crate::uniforms::Value;
 
 use super::Gpu;

@@ -19,10 +19,8 @@ pub mod geometry;
 pub mod own;
 pub mod readback;
 
-pub use bindings::{Source, UniformBinding, fullscreen_quad, resolve_any, resolve_in_pack, resolve_sampler, vertex_attribute_source};
+pub use bindings::UniformBinding;
 pub use device::{Gpu, VULKAN_PACKAGE};
 pub use any_frame::{AnyFrame, AnyPassReport, FrameTiming, render_any};
 pub use frame::{Frame, PassTiming, median, render, render_repeated};
-pub(crate) use frame::overlay_phase;
-pub use own::terrain_mvp;
 pub use readback::read_texture;

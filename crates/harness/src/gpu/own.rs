@@ -6,8 +6,8 @@
 use wgpu::util::DeviceExt as _;
 
 use crate::HarnessError;
-use crate::mesh::offsets;
-use crate::scene::Scene;
+use tidepack_scene::mesh::offsets;
+use tidepack_scene::scene::Scene;
 
 use super::Gpu;
 use super::bindings::{DEPTH, OUT, clear_attachment, view};
@@ -70,11 +70,6 @@ pub(crate) struct ColourPipeline {
     bind_group: wgpu::BindGroup,
 }
 
-/// The model-view-projection the terrain shader uses (f64, then f32), shared with the GL path.
-pub fn terrain_mvp(scene: &Scene) -> [f32; 16] {
-    (scene.projection() * scene.model_view()).to_cols_array().map(|v| v as f32)
-}
-
 impl ColourPipeline {
     pub(crate) fn new(
         gpu: &Gpu,
@@ -93,7 +88,7 @@ impl ColourPipeline {
             .iter()
             .map(|&(format, blend)| Some(wgpu::ColorTargetState { format, blend, write_mask: wgpu::ColorWrites::ALL }))
             .collect();
-        let mvp: Vec<u8> = terrain_mvp(scene).iter().flat_map(|v| v.to_le_bytes()).collect();
+        let mvp: Vec<u8> = scene.terrain_mvp().iter().flat_map(|v| v.to_le_bytes()).collect();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("terrain uniforms"),
             contents: &mvp,
@@ -288,9 +283,4 @@ fn full_screen_triangle(gpu: &Gpu, label: &str, module: &wgpu::ShaderModule, for
             cache: None,
         })
     })
-}
-
-/// The number of mip levels of a full chain for `width` x `height`.
-pub(crate) fn mip_levels(width: u32, height: u32) -> u32 {
-    32 - width.max(height).max(1).leading_zeros()
 }

@@ -8,9 +8,14 @@ use std::path::{Path, PathBuf};
 use glam::{DMat4, DVec3};
 use serde::Deserialize;
 
-use crate::HarnessError;
-use tidepack_loader::loader::OverlayKind;
+use crate::SceneError;
+use tidepack_loader::loader::{Loader, OverlayKind, Phase};
 use tidepack_loader::shadow::SunPath;
+
+/// The blocks a scene's terrain can be made of, and their sprites in the block atlas
+/// ([`crate::mesh::atlas`]).
+pub const BLOCK_SPRITES: [(&str, u32); 5] =
+    [("minecraft:stone", 2), ("minecraft:grass_block", 3), ("minecraft:sand", 4), ("minecraft:dirt", 5), ("minecraft:oak_leaves", 6)];
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -151,7 +156,7 @@ pub struct Ground {
     /// Tint, multiplying the block's sprite.
     #[serde(deserialize_with = "exact")]
     pub color: [f64; 3],
-    /// A block of the harness's atlas (`minecraft:sand`, …: [`crate::mesh::BLOCK_SPRITES`]),
+    /// A block of the harness's atlas (`minecraft:sand`, …: [`BLOCK_SPRITES`]),
     /// textured and given its id from the pack's block.properties; without one, plain colour.
     #[serde(default)]
     pub block: Option<String>,
@@ -235,8 +240,8 @@ fn first_non_finite(value: &toml::Value, path: &str) -> Option<(String, f64)> {
 }
 
 /// The scene files (`*.toml`) of a folder, sorted by name.
-pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, HarnessError> {
-    let entries = std::fs::read_dir(dir).map_err(|e| HarnessError::Scene(format!("cannot read {}: {e}", dir.display())))?;
+pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| SceneError(format!("cannot read {}: {e}", dir.display())))?;
     let mut files: Vec<PathBuf> =
         entries.filter_map(|e| Some(e.ok()?.path())).filter(|p| p.extension().is_some_and(|x| x == "toml")).collect();
     files.sort();
@@ -244,22 +249,36 @@ pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, HarnessError> {
 }
 
 impl Scene {
-    pub fn load(path: &Path) -> Result<Scene, HarnessError> {
+    /// When `loader` draws the scene's boxes of `kind`.
+    pub fn overlay_phase(&self, loader: Loader, kind: OverlayKind) -> Phase {
+        let boxes = self.overlay.iter().filter(|o| o.kind == kind);
+        let camera_below = boxes.clone().all(|o| o.min[1] > self.camera.position[1]);
+        let opaque = boxes.clone().all(|o| o.color[3] >= 1.0);
+        loader.phase(kind, camera_below, opaque)
+    }
+
+    /// The model-view-projection of the harness's own terrain shader (f64, then f32), the same
+    /// for both renderers.
+    pub fn terrain_mvp(&self) -> [f32; 16] {
+        (self.projection() * self.model_view()).to_cols_array().map(|v| v as f32)
+    }
+
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let text = std::fs::read_to_string(path)
-            .map_err(|e| HarnessError::Scene(format!("cannot read scene {}: {e}", path.display())))?;
+            .map_err(|e| SceneError(format!("cannot read scene {}: {e}", path.display())))?;
         let parsed: toml::Table =
-            toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+            toml::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
         let sun_given = parsed.get("sky").and_then(|sky| sky.get("sun_direction")).is_some();
         // Every float feeds a matrix, a uniform or a mesh: one NaN or infinity renders a wrong
         // picture without any error further on.
         if let Some((field, value)) = first_non_finite(&toml::Value::Table(parsed), "") {
-            return Err(HarnessError::Scene(format!("{}: {field} is {value}; scene values must be finite numbers", path.display())));
+            return Err(SceneError(format!("{}: {field} is {value}; scene values must be finite numbers", path.display())));
         }
         let mut scene: Scene =
-            toml::from_str(&text).map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+            toml::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
         match (sun_given, scene.sky.sun_path_rotation) {
             (true, Some(_)) => {
-                return Err(HarnessError::Scene(format!(
+                return Err(SceneError(format!(
                     "{}: give sky.sun_direction or sky.sun_path_rotation (the sun placed by time.world_time), not both",
                     path.display()
                 )));
@@ -273,7 +292,7 @@ impl Scene {
         if scene.name.is_empty() {
             scene.name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         }
-        scene.check().map_err(|e| HarnessError::Scene(format!("{}: {e}", path.display())))?;
+        scene.check().map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
         Ok(scene)
     }
 
@@ -298,8 +317,8 @@ impl Scene {
         }
         let blocks = self.terrain.ground.iter().map(|g| &g.block).chain(self.terrain.boxes.iter().map(|b| &b.block));
         for block in blocks.flatten() {
-            if crate::mesh::block_sprite(block).is_none() {
-                let known: Vec<&str> = crate::mesh::BLOCK_SPRITES.iter().map(|(name, _)| *name).collect();
+            if !BLOCK_SPRITES.iter().any(|(name, _)| name == block) {
+                let known: Vec<&str> = BLOCK_SPRITES.iter().map(|(name, _)| *name).collect();
                 return Err(format!("block {block} is not in the harness's atlas; it has {}", known.join(", ")));
             }
         }

@@ -10,7 +10,7 @@ use glam::DVec3;
 use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
-use crate::scene::Scene;
+use crate::scene::{BLOCK_SPRITES, Scene};
 use tidepack_loader::loader::OverlayKind;
 use tidepack_loader::shadow::SunPath;
 
@@ -70,10 +70,6 @@ const fn sprite_rect(index: u32) -> [f32; 4] {
 pub const WATER_SPRITE: [f32; 4] = sprite_rect(0);
 /// Opaque white: glass panes and terrain without a block take the vertex colour as it is.
 pub const WHITE_SPRITE: [f32; 4] = sprite_rect(1);
-
-/// The blocks a scene's terrain can be made of, and their sprites in the atlas.
-pub const BLOCK_SPRITES: [(&str, u32); 5] =
-    [("minecraft:stone", 2), ("minecraft:grass_block", 3), ("minecraft:sand", 4), ("minecraft:dirt", 5), ("minecraft:oak_leaves", 6)];
 
 /// The atlas rectangle of `block`'s sprite.
 pub fn block_sprite(block: &str) -> Option<[f32; 4]> {
@@ -461,6 +457,65 @@ pub fn noise(size: u32) -> (u32, u32, Vec<u8>) {
         data.push(255);
     }
     (size, size, data)
+}
+
+/// The format of one [`PackVertex`] attribute as a vertex stage reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AttributeFormat {
+    Float32x2,
+    Float32x3,
+    Float32x4,
+    Sint32x2,
+}
+
+impl AttributeFormat {
+    /// Components per vertex.
+    pub fn components(self) -> i32 {
+        match self {
+            AttributeFormat::Float32x2 | AttributeFormat::Sint32x2 => 2,
+            AttributeFormat::Float32x3 => 3,
+            AttributeFormat::Float32x4 => 4,
+        }
+    }
+}
+
+/// Where a vertex stage's input of this shipped name is in [`PackVertex`], and its format.
+pub fn attribute_source(name: &str) -> Option<(AttributeFormat, u64)> {
+    Some(match name {
+        "gl_Vertex" => (AttributeFormat::Float32x4, offsets::POSITION),
+        "gl_Color" => (AttributeFormat::Float32x4, offsets::COLOR),
+        "gl_Normal" => (AttributeFormat::Float32x3, offsets::NORMAL),
+        "gl_MultiTexCoord0" => (AttributeFormat::Float32x4, offsets::UV0),
+        "gl_MultiTexCoord1" => (AttributeFormat::Float32x4, offsets::UV1),
+        "mc_Entity" => (AttributeFormat::Float32x4, offsets::ENTITY),
+        "at_tangent" => (AttributeFormat::Float32x4, offsets::TANGENT),
+        "mc_midTexCoord" => (AttributeFormat::Float32x4, offsets::MID_UV),
+        // The 1.17+ core profile's names for the same data (positions relative to the chunk
+        // at chunkOffset, which is the origin of the harness's camera-relative vertices).
+        "vaPosition" => (AttributeFormat::Float32x3, offsets::POSITION),
+        "vaColor" => (AttributeFormat::Float32x4, offsets::COLOR),
+        "vaNormal" => (AttributeFormat::Float32x3, offsets::NORMAL),
+        "vaUV0" => (AttributeFormat::Float32x2, offsets::UV0),
+        "vaUV2" => (AttributeFormat::Sint32x2, offsets::LIGHTMAP),
+        _ => return None,
+    })
+}
+
+/// The full-screen quad OptiFine draws: x, y in 0..1 under an orthographic projection,
+/// texture coordinates 0..1, as two triangles.
+pub fn fullscreen_quad() -> Vec<PackVertex> {
+    let corner = |x: f32, y: f32| PackVertex {
+        position: [x, y, 0.0, 1.0],
+        color: [1.0; 4],
+        normal: [0.0, 0.0, 1.0],
+        uv0: [x, y, 0.0, 1.0],
+        uv1: [0.0, 0.0, 0.0, 1.0],
+        entity: [-1.0, -1.0, 0.0, 0.0],
+        lightmap: [0, 0],
+        tangent: [1.0, 0.0, 0.0, 1.0],
+        mid_uv: [0.5, 0.5, 0.0, 1.0],
+    };
+    [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().map(|&(x, y)| corner(x, y)).collect()
 }
 
 #[cfg(test)]

@@ -1,0 +1,147 @@
+//! What a program's sampler names refer to, as the loaders bind them: the frame's colour and
+//! depth buffers, the shadow maps, the game's textures, a pack's custom textures, or nothing.
+//! Both renderers bind by this; it holds no GPU object.
+
+use std::collections::BTreeSet;
+
+use tidepack_loader::buffers::{colour_buffer_number, shadow_colour_number};
+
+use crate::program::{LoadedProgram, PackResources, texture_resources};
+
+/// What a sampler name in a program refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    Atlas,
+    Lightmap,
+    Noise,
+    Color(u8),
+    Depth0,
+    Depth1,
+    /// A custom texture of the pack (index into [`PackResources::custom_textures`]).
+    Custom(usize),
+    /// The normal map of a resource pack without one: flat, (0.5, 0.5, 1).
+    FlatNormals,
+    /// The specular map of a resource pack without one: zero.
+    NoSpecular,
+    /// shadowtex0 (everything the shadow pass drew) or shadowtex1 (without translucents).
+    ShadowDepth(u8),
+    /// shadowcolorN.
+    ShadowColour(u8),
+    /// A name OptiFine binds nothing to: transparent black.
+    Unbound,
+}
+
+/// How sampler names resolve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerNaming {
+    /// The frame of our own pack ([`resolve_in_pack`]): gbuffers programs read no colour
+    /// buffer and not the depth buffer they draw into.
+    OwnFrame,
+    /// Any pack ([`resolve_any`]): every name OptiFine binds.
+    AnyPack,
+    /// Any pack's shadow pass ([`resolve_in_shadow_pass`]).
+    ShadowPass,
+}
+
+impl SamplerNaming {
+    /// What `name` refers to in a program of this naming (`gbuffers` or full-screen).
+    pub fn resolve(self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+        match self {
+            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
+            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
+            SamplerNaming::ShadowPass => resolve_in_shadow_pass(pack, name),
+        }
+    }
+
+    /// Whether the programs are any pack's, whose unknown uniforms, inputs and buffer blocks read
+    /// zero (ours must provide them all).
+    pub fn is_any_pack(self) -> bool {
+        self != SamplerNaming::OwnFrame
+    }
+}
+
+/// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
+/// buffers are read as they stood before the draw, and depthtex0 (the buffer being drawn
+/// into) is read as depthtex1; a name OptiFine binds nothing to reads transparent black.
+pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+    let stage = if gbuffers { "gbuffers" } else { "composite" };
+    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
+        return Ok(Source::Custom(i));
+    }
+    Ok(match (name, gbuffers) {
+        ("noisetex", _) => Source::Noise,
+        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
+        ("lightmap", true) => Source::Lightmap,
+        ("normals", true) => Source::FlatNormals,
+        ("specular", true) => Source::NoSpecular,
+        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
+        ("depthtex0" | "gdepthtex" | "depthtex1" | "depthtex2", _) => Source::Depth1,
+        // `shadow` leaves the translucents out where the pack also reads `watershadow`.
+        ("shadow", _) => Source::ShadowDepth(if pack.water_shadow() { 1 } else { 0 }),
+        ("shadowtex0" | "watershadow", _) => Source::ShadowDepth(0),
+        ("shadowtex1", _) => Source::ShadowDepth(1),
+        _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
+            (Some(n), _) => Source::Color(n),
+            (None, Some(n)) => Source::ShadowColour(n),
+            (None, None) => Source::Unbound,
+        },
+    })
+}
+
+/// Resolves a sampler name in the shadow pass: as in gbuffers programs, except that the
+/// frame's colour and depth buffers are not bound there (custom textures are), and the shadow
+/// maps read as nothing drawn, since they are being drawn.
+pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<Source, String> {
+    Ok(match resolve_any(pack, name, true)? {
+        Source::Color(_) | Source::Depth0 | Source::Depth1 => Source::Unbound,
+        source => source,
+    })
+}
+
+/// Resolves a sampler name, custom textures of the pack first.
+pub fn resolve_in_pack(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+    let stage = if gbuffers { "gbuffers" } else { "composite" };
+    match pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
+        Some(i) => Ok(Source::Custom(i)),
+        None => resolve_sampler(name, gbuffers),
+    }
+}
+
+/// Resolves a shipped sampler name for a program (`gbuffers` or full-screen).
+pub fn resolve_sampler(name: &str, gbuffers: bool) -> Result<Source, String> {
+    let color = colour_buffer_number(name);
+    Ok(match (name, gbuffers) {
+        ("noisetex", _) => Source::Noise,
+        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
+        ("lightmap", true) => Source::Lightmap,
+        ("depthtex1" | "depthtex2", _) => Source::Depth1,
+        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
+        ("depthtex0" | "gdepthtex", true) => {
+            return Err(format!("{name} is the depth buffer gbuffers_water draws into; read depthtex1 there"));
+        }
+        _ => match color {
+            Some(n) if !gbuffers => Source::Color(n),
+            Some(n) => {
+                return Err(format!(
+                    "{name} (colortex{n}) is not readable in gbuffers programs of this pipeline (nothing wrote it before translucents)"
+                ));
+            }
+            None => return Err(format!("sampler {name} is not one the harness provides")),
+        },
+    })
+}
+
+/// The colour buffers a program samples, its sampler names resolved under `naming`.
+pub fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming, gbuffers: bool) -> BTreeSet<u8> {
+    [&program.vertex, &program.fragment]
+        .into_iter()
+        .flat_map(|stage| texture_resources(&stage.interface))
+        .filter_map(|(name, _)| {
+            match naming.resolve(pack, &name, gbuffers) {
+                Ok(Source::Color(n)) => Some(n),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
