@@ -136,3 +136,25 @@ fn expressions_too_long_for_naga_are_errors_not_crashes() {
         assert!(error["message"].as_str().unwrap().contains("operators"), "{error}");
     }
 }
+
+#[test]
+fn a_configuration_is_named_as_render_names_it() {
+    let (_dir, pack) = pack_with_fragment(
+        "#version 120\n//#define GLOW\n#ifdef GLOW\nfloat glow() { return glowStrength; }\n#endif\nvoid main() { gl_FragData[0] = vec4(1.0); }\n",
+    );
+    let path = pack.to_str().unwrap();
+    assert_eq!(validate(&[path]).status.code(), Some(0));
+    let out = validate(&[path, "--set", "GLOW=on", "--loader", "iris"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("glowStrength"), "{}", text(&out.stderr));
+    for (args, needle) in [
+        (&["--set", "GLOW=maybe"][..], "on or off"),
+        (&["--set", "NOPE=1"][..], "no option NOPE"),
+        (&["--set", "=1"][..], "OPTION=VALUE"),
+        (&["--dimension", "moon"][..], "overworld, nether, end"),
+    ] {
+        let out = validate(&[&[path][..], args].concat());
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", text(&out.stderr));
+        assert!(text(&out.stderr).contains(needle), "{args:?}: {}", text(&out.stderr));
+    }
+}

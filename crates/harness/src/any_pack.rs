@@ -354,8 +354,7 @@ impl AnyPack {
         let properties = Properties::parse(properties_text, &property_macros);
         let provider = SetProvider::new(files, &options);
         let all = find_programs(files.files.keys());
-        let has_folder = |folder: &str| files.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
-        let world = programs::world_folder(&configuration.dimension, loader, &has_folder);
+        let world = files.world_folder(&configuration.dimension, loader);
         let present: BTreeMap<&str, &programs::Program> =
             all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
         let mut not_modelled: Vec<String> = properties.problems.iter().map(|(line, e)| format!("shaders.properties:{line}: {e}")).collect();

@@ -351,6 +351,18 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
         draw_overlays(Phase::AfterWater)?;
 
         // 5. composite, into the RGBA32F output for colortex0
+        draw_composite(ctx, pack, scene, &textures, out, depth)?;
+        finish_frame(gl, textures, out, fbo, &harness, w, h)
+    }
+}
+
+/// Our composite into `out` (colortex0), its other targets into textures of their own that
+/// are deleted after the draw.
+unsafe fn draw_composite(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, textures: &Textures, out: glow::Texture, depth: DepthMapping) -> Result<(), HarnessError> {
+    let gl = ctx.gl();
+    let (w, h) = (scene.width() as i32, scene.height() as i32);
+    // SAFETY: on the context current on this thread, with textures of this frame.
+    unsafe {
         let composite = compile(ctx, &pack.composite, depth)?;
         let mut outs = Vec::new();
         for b in &pack.composite.render_targets {
@@ -358,16 +370,26 @@ fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneM
                 out
             } else {
                 let format = textures.colors.get(b).map_or(BufferFormat::Rgba8, |c| c.1);
-                make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, false, false)?
+                make_texture(gl, internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, false, false)?
             });
         }
-        attach(&outs, None)?;
+        attach(gl, &outs, None)?;
         gl.disable(glow::DEPTH_TEST);
         gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
-        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), &textures, &mesh::fullscreen_quad())?;
+        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), textures, &mesh::fullscreen_quad())?;
         composite.delete(ctx);
         gl.finish();
+        for t in outs.into_iter().filter(|t| *t != out) {
+            gl.delete_texture(t);
+        }
+    }
+    Ok(())
+}
 
+/// The frame read back, its objects deleted, and the driver's error state checked.
+unsafe fn finish_frame(gl: &glow::Context, textures: Textures, out: glow::Texture, fbo: glow::Framebuffer, harness: &GlHarnessTextures, w: i32, h: i32) -> Result<GlFrame, HarnessError> {
+    // SAFETY: on the context current on this thread, with objects of this frame.
+    unsafe {
         let read = |t: glow::Texture, is_depth: bool| read(gl, t, is_depth, out, w, h);
         let image = read(out, false)?;
         let mut images = BTreeMap::new();

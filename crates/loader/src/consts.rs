@@ -58,6 +58,9 @@ pub struct ConstDecl<'t> {
     pub value_offset: usize,
     /// The `//` comment after the `;`, if any, with its slashes.
     pub comment: Option<&'t str>,
+    /// Whether code follows the `;` on the line (OptiFine's settings patterns allow it, its
+    /// option patterns do not).
+    pub code_after: bool,
     /// 1-based line.
     pub line: u32,
 }
@@ -67,8 +70,7 @@ pub fn declarations(text: &str) -> impl Iterator<Item = ConstDecl<'_>> {
     text.lines().enumerate().filter_map(|(index, line)| declaration(line, index as u32 + 1))
 }
 
-/// The declaration `line` holds: `const`, a type, a name, `=`, a value up to the first `;`,
-/// then nothing but blanks and an optional `//` comment.
+/// The declaration `line` holds: `const`, a type, a name, `=`, a value up to the first `;`.
 pub fn declaration(line: &str, number: u32) -> Option<ConstDecl<'_>> {
     let rest = line.trim_start().strip_prefix("const")?;
     if !rest.starts_with([' ', '\t']) {
@@ -80,17 +82,14 @@ pub fn declaration(line: &str, number: u32) -> Option<ConstDecl<'_>> {
     let rest = rest.trim_start().strip_prefix('=')?;
     let (value_part, after) = rest.split_once(';')?;
     let after = after.trim();
-    let comment = match after {
-        "" => None,
-        c if c.starts_with("//") => Some(c),
-        _ => return None,
-    };
+    let comment = after.starts_with("//").then_some(after);
+    let code_after = !after.is_empty() && comment.is_none();
     let value = value_part.trim();
     if value.is_empty() {
         return None;
     }
     let value_offset = line.len() - rest.len() + (value_part.len() - value_part.trim_start().len());
-    Some(ConstDecl { ty, name, value, value_offset, comment, line: number })
+    Some(ConstDecl { ty, name, value, value_offset, comment, code_after, line: number })
 }
 
 /// A GLSL identifier at the start of `text`, and what follows it.
@@ -128,7 +127,8 @@ impl ConstDecl<'_> {
     /// Whether OptiFine shows this declaration as an option: a listed name, a `bool` or an
     /// `int`/`float` with a plain number.
     pub fn is_option(&self) -> bool {
-        OPTION_NAMES.contains(&self.name)
+        !self.code_after
+            && OPTION_NAMES.contains(&self.name)
             && match self.ty {
                 "bool" => self.switch().is_some(),
                 "int" | "float" => {
@@ -150,16 +150,24 @@ mod tests {
                     const int colortex2Format = RGBA16F;\n\
                     const vec4 colortex3ClearColor = vec4(1.0, 0.5, 0.0, 1.0);\n\
                     const bool colortex4Clear = false;\n\
-                    const float x = 1.0; float y;\n\
+                    const float shadowDistance = 96.0; float y;\n\
                     constant int z = 1;\n\
                     float notconst = 1.0;\n";
         let found: Vec<(&str, &str, u32)> = declarations(text).map(|d| (d.name, d.value, d.line)).collect();
         assert_eq!(
             found,
-            [("shadowMapResolution", "2048", 1), ("colortex2Format", "RGBA16F", 2), ("colortex3ClearColor", "vec4(1.0, 0.5, 0.0, 1.0)", 3), ("colortex4Clear", "false", 4)]
+            [
+                ("shadowMapResolution", "2048", 1),
+                ("colortex2Format", "RGBA16F", 2),
+                ("colortex3ClearColor", "vec4(1.0, 0.5, 0.0, 1.0)", 3),
+                ("colortex4Clear", "false", 4),
+                ("shadowDistance", "96.0", 5)
+            ]
         );
         let all: Vec<ConstDecl> = declarations(text).collect();
         assert!(all[0].is_option() && !all[1].is_option());
+        // A setting may have code after it; an option may not.
+        assert!(all[4].code_after && !all[4].is_option());
         assert_eq!(all[0].comment, Some("// [1024 2048]"));
         assert_eq!(all[2].vec4(), Some([1.0, 0.5, 0.0, 1.0]));
         assert_eq!(all[3].switch(), Some(false));

@@ -11,6 +11,9 @@ use std::sync::Arc;
 
 use tidepack_glsl::{Diagnostic, Location};
 
+use crate::loader::Loader;
+use crate::option_space::Dimension;
+
 /// Limits on what is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
@@ -51,6 +54,14 @@ pub struct PackFiles {
     /// What reading the pack found: skipped entries (warnings) and entries that could not be
     /// read (errors).
     pub warnings: Vec<Diagnostic>,
+}
+
+impl PackFiles {
+    /// The world folder whose programs `loader` runs in `dimension` (`""`: the shaders folder).
+    pub fn world_folder(&self, dimension: &Dimension, loader: Loader) -> String {
+        let has_folder = |folder: &str| self.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
+        crate::programs::world_folder(dimension, loader, &has_folder)
+    }
 }
 
 /// Extensions read as text.

@@ -118,13 +118,18 @@ fn parse_define_line(line: &str) -> Option<DefineLine<'_>> {
     Some(DefineLine { commented_out: false, name: name.text, value, comment })
 }
 
-/// Splits `// [a b c] tooltip` into the list and the tooltip.
+/// Splits `// tooltip [a b c] more` into the list and the tooltip: OptiFine takes the first
+/// `[...]` anywhere in the comment and the rest of the comment as the tooltip.
 fn value_list(comment: &str) -> Option<(Vec<String>, String)> {
-    let body = comment.strip_prefix("//")?.trim_start();
-    let inner = body.strip_prefix('[')?;
-    let close = inner.find(']')?;
-    let values = inner[..close].split_whitespace().map(str::to_string).collect();
-    Some((values, inner[close + 1..].trim().to_string()))
+    let body = comment.strip_prefix("//")?;
+    let open = body.find('[')?;
+    let close = open + body[open..].find(']')?;
+    let values: Vec<String> = body[open + 1..close].split_whitespace().map(str::to_string).collect();
+    if values.is_empty() {
+        return None;
+    }
+    let tooltip = format!("{} {}", body[..open].trim(), body[close + 1..].trim());
+    Some((values, tooltip.trim().to_string()))
 }
 
 /// The options OptiFine would show for one source file.
@@ -259,6 +264,7 @@ mod tests {
 #define STRENGTH 0.5 // [0.25 0.5 1.0] How strong
 #define STEPS 8 // [4 16] Steps
 #define OFFSET -0.5 // [-1.0 -0.5 0.0]
+#define MODE 0 // Timelapse mode [0 1 2]
 #define BLOCK_WATER 10008
 #define UNTESTED
 #ifdef WAVES
@@ -287,10 +293,12 @@ mod tests {
                     &OptionKind::Value { default: "-0.5".into(), values: vec!["-1.0".into(), "-0.5".into(), "0.0".into()] },
                     5
                 ),
+                ("MODE", &OptionKind::Value { default: "0".into(), values: vec!["0".into(), "1".into(), "2".into()] }, 6),
             ]
         );
         assert_eq!(found[0].tooltip, "Moving water");
         assert_eq!(found[2].tooltip, "How strong");
+        assert_eq!(found[5].tooltip, "Timelapse mode");
     }
 
     #[test]

@@ -4,9 +4,9 @@
 //! 1. Conditional lines, as OptiFine's macro processor runs them before anything else reads
 //!    the file: `#define`, `#undef`, `#ifdef`, `#ifndef`, `#if`, `#elif`, `#else`, `#endif`
 //!    over the loader's standard macros and the configuration's `#define` options. `#if`
-//!    conditions substitute macro values and evaluate in OptiFine's expression language
-//!    ([`crate::custom_uniforms::evaluate_condition`]); a condition that does not evaluate is
-//!    false, as in OptiFine, and is reported. Lines of inactive branches are dropped; other
+//!    conditions substitute macro values, read a name that is no macro as 0, and evaluate in
+//!    OptiFine's expression language ([`crate::custom_uniforms::evaluate_condition`]); a
+//!    condition that does not evaluate is false, as in OptiFine, and is reported. Lines of inactive branches are dropped; other
 //!    lines starting with `#` are comments.
 //! 2. Java's properties syntax on the lines that remain: `#` and `!` start a comment line, a
 //!    line ending in an odd number of `\` continues on the next (whose leading blanks are
@@ -170,12 +170,31 @@ fn evaluate_directive(condition: &str, macros: &Macros) -> Result<bool, String> 
         let Some((start, end, value)) = first_macro(&text, macros) else {
             let defined: BTreeMap<String, bool> =
                 identifiers(&text).filter_map(|(_, name)| name.strip_prefix("defined_").map(|m| (name.to_string(), macros.contains_key(m)))).collect();
-            return evaluate_condition(&text, &defined);
+            return evaluate_condition(&unknown_names_as_zero(&text), &defined);
         };
         let value = if value.is_empty() { "1" } else { value };
         text = format!("{} {value} {}", &text[..start], &text[end..]);
     }
     Err(format!("more than {MAX_SUBSTITUTIONS} macro substitutions"))
+}
+
+/// `text` with every name that is no macro, no `defined_X` and no function call replaced by
+/// `0`, as OptiFine's macro resolver values an unknown name (it warns and reads 0).
+fn unknown_names_as_zero(text: &str) -> String {
+    let mut out = String::new();
+    let mut last = 0;
+    for (at, name) in identifiers(text) {
+        let end = at + name.len();
+        let call = text[end..].trim_start().starts_with('(');
+        if call || name.starts_with("defined_") || name == "true" || name == "false" {
+            continue;
+        }
+        out.push_str(&text[last..at]);
+        out.push('0');
+        last = end;
+    }
+    out.push_str(&text[last..]);
+    out
 }
 
 /// `defined X` and `defined ( X )` written as the single name `defined_X`.
@@ -385,6 +404,13 @@ mod tests {
         assert_eq!(keys(&p), [("y", "2", 4)]);
         assert_eq!(p.problems.len(), 1);
         assert_eq!(p.problems[0].0, 1);
+    }
+
+    #[test]
+    fn a_name_that_is_no_macro_reads_zero() {
+        let p = Properties::parse_plain("#if TIMELAPSE_MODE == 0\nx=1\n#endif\n#if max(UNSET, 2) > 1\ny=1\n#endif\n");
+        assert_eq!(keys(&p), [("x", "1", 2), ("y", "1", 5)]);
+        assert!(p.problems.is_empty(), "{:?}", p.problems);
     }
 
     #[test]

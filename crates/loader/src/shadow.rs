@@ -6,6 +6,8 @@
 
 use glam::{DMat4, DVec3};
 
+use crate::consts;
+
 /// The near and far planes of both loaders' shadow projection.
 const NEAR: f64 = 0.05;
 const FAR: f64 = 256.0;
@@ -60,7 +62,7 @@ impl ShadowSettings {
         for text in texts {
             for line in text.lines() {
                 let line = line.trim();
-                if let Some((name, value)) = const_declaration(line).or_else(|| legacy_property(line)) {
+                if let Some((name, value)) = consts::declaration(line, 0).map(|d| (d.name, d.value)).or_else(|| legacy_property(line)) {
                     settings.apply(name, value);
                 }
             }
@@ -121,15 +123,6 @@ impl ShadowSettings {
             None => DMat4::orthographic_rh_gl(-self.distance, self.distance, -self.distance, self.distance, NEAR, FAR),
         }
     }
-}
-
-/// `const <type> <name> = <value>;` → (name, value).
-fn const_declaration(line: &str) -> Option<(&str, &str)> {
-    let rest = line.strip_prefix("const ")?;
-    let (declaration, value) = rest.split_once('=')?;
-    let name = declaration.split_whitespace().nth(1)?;
-    let value = value.split(';').next()?.trim();
-    Some((name, value))
 }
 
 /// `/* SHADOWRES:2048 */` → ("SHADOWRES", "2048").

@@ -17,7 +17,7 @@ use tidepack_glsl::{Diagnostic, Location};
 use tidepack_loader::directives::custom_names;
 use tidepack_loader::input::{self, Limits, PackFiles};
 use tidepack_loader::macros::StandardMacros;
-use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::option_lines::{OptionKind, OptionSet};
 use tidepack_loader::option_space::{self, declared_options, property_macros};
 use tidepack_loader::programs::{self, Program, RunBy};
 use tidepack_loader::properties::{self, Properties};
@@ -105,6 +105,46 @@ struct Finding {
     diagnostic: Diagnostic,
 }
 
+/// The option sets to validate under, labelled: the defaults, a profile or every profile
+/// (`options.profiles`), each with `options.overrides` over it. Profile warnings join
+/// `diagnostics`; an unknown profile, option or value is an error.
+fn option_sets(
+    props: &Properties,
+    declared: &BTreeMap<String, OptionKind>,
+    options: &Options,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Result<Vec<(String, OptionSet)>, Diagnostic> {
+    let mut sets: Vec<(String, OptionSet)> = Vec::new();
+    let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
+        let (set, warnings) = option_space::profile_set(props, name, declared)?;
+        diagnostics.extend(warnings);
+        sets.push((format!("profile {name}"), set));
+        Ok(())
+    };
+    match &options.profiles {
+        Profiles::Defaults => sets.push(("defaults".into(), OptionSet::new())),
+        Profiles::Named(name) => profile(name, &mut sets, diagnostics)?,
+        Profiles::All => {
+            sets.push(("defaults".into(), OptionSet::new()));
+            for name in option_space::profiles(props).keys() {
+                if let Err(e) = profile(name, &mut sets, diagnostics) {
+                    diagnostics.push(e);
+                }
+            }
+        }
+    }
+    if !options.overrides.is_empty() {
+        let configuration = Configuration { options: options.overrides.clone(), ..Configuration::default() };
+        let (overrides, _) = configuration.option_set(props, declared).map_err(|e| Diagnostic::error(e, None))?;
+        let named: Vec<String> = options.overrides.iter().map(|(n, v)| format!("{n}={v}")).collect();
+        for (label, set) in &mut sets {
+            set.extend(overrides.clone());
+            *label = format!("{label} with {}", named.join(" "));
+        }
+    }
+    Ok(sets)
+}
+
 /// Validates a pack already in memory.
 pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagnostic> {
     let started = Instant::now();
@@ -113,38 +153,12 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     // Profiles are read under the defaults; each set's own reading decides its custom names.
     let props = Properties::parse(properties_text, &property_macros(&options.macros, &declared, &OptionSet::new()));
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
-    let mut sets: Vec<(String, OptionSet)> = Vec::new();
-    let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
-        let (set, warnings) = option_space::profile_set(&props, name, &declared)?;
-        diagnostics.extend(warnings);
-        sets.push((format!("profile {name}"), set));
-        Ok(())
-    };
-    match &options.profiles {
-        Profiles::Defaults => sets.push(("defaults".into(), OptionSet::new())),
-        Profiles::Named(name) => profile(name, &mut sets, &mut diagnostics)?,
-        Profiles::All => {
-            sets.push(("defaults".into(), OptionSet::new()));
-            for name in option_space::profiles(&props).keys() {
-                if let Err(e) = profile(name, &mut sets, &mut diagnostics) {
-                    diagnostics.push(e);
-                }
-            }
-        }
-    }
-    if !options.overrides.is_empty() {
-        let configuration = Configuration { options: options.overrides.clone(), ..Configuration::default() };
-        let (overrides, _) = configuration.option_set(&props, &declared).map_err(|e| Diagnostic::error(e, None))?;
-        let named: Vec<String> = options.overrides.iter().map(|(n, v)| format!("{n}={v}")).collect();
-        for (label, set) in &mut sets {
-            set.extend(overrides.clone());
-            *label = format!("{label} with {}", named.join(" "));
-        }
-    }
+    // OptiFine takes a conditional line it cannot evaluate as false and says so in its log.
+    diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(problem.clone(), Some(Location::line(properties::PATH, *line)))));
+    let sets = option_sets(&props, &declared, options, &mut diagnostics)?;
     let mut programs = programs::find_programs(pack.files.keys());
     if let Some(dimension) = &options.dimension {
-        let has_folder = |folder: &str| pack.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
-        let world = programs::world_folder(dimension, options.loader, &has_folder);
+        let world = pack.world_folder(dimension, options.loader);
         programs.retain(|p| p.world == world);
     }
     let macros = options.macros.preprocess_options();

@@ -382,6 +382,159 @@ enum Entry {
     Sampler(wgpu::Sampler, wgpu::SamplerBindingType),
 }
 
+/// Every binding of `program`'s stages, by group and binding: its textures and samplers
+/// ([`stage_entries`]) and each stage's uniform block filled from `values`; with the uniform
+/// buffers by stage and, for any pack, the uniforms left zero.
+#[allow(clippy::type_complexity)]
+fn binding_entries(
+    gpu: &Gpu,
+    pack: &dyn PackResources,
+    program: &LoadedProgram,
+    values: &BTreeMap<String, Value>,
+    gbuffers: bool,
+    textures: &BindableTextures,
+) -> Result<(BindingGroups, Vec<(tidepack_glsl::Stage, wgpu::Buffer)>, Vec<String>), HarnessError> {
+    let device = &gpu.device;
+    let mut groups: BindingGroups = BTreeMap::new();
+    let mut uniform_buffers = Vec::new();
+    let mut zeroed_uniforms = Vec::new();
+    let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
+        SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
+        SamplerNaming::AnyPack | SamplerNaming::ShadowPass => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
+            zeroed_uniforms.extend(zeroed);
+            block
+        }),
+    };
+    for stage in [&program.vertex, &program.fragment] {
+        let visibility = match stage.stage {
+            tidepack_glsl::Stage::Vertex => wgpu::ShaderStages::VERTEX,
+            tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
+        };
+        let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
+        if let Some(block) = fill(&stage.module, values, &stage.path)? {
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(&format!("{} uniforms", stage.path)),
+                contents: &block.bytes,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            });
+            uniform_buffers.push((stage.stage, buffer.clone()));
+            entries.push((block.group, block.binding, Entry::Uniform(buffer)));
+        }
+        for (group, binding, entry) in entries {
+            if groups.entry(group).or_default().insert(binding, (visibility, entry)).is_some() {
+                return Err(HarnessError::Pack(format!("{}: binding {group}.{binding} used twice", stage.path)));
+            }
+        }
+    }
+    Ok((groups, uniform_buffers, zeroed_uniforms))
+}
+
+/// Bindings by group, then binding: the stages that see each and what is bound.
+type BindingGroups = BTreeMap<u32, BTreeMap<u32, (wgpu::ShaderStages, Entry)>>;
+
+/// The bind group layouts and bind groups of `groups`, every group number up to the highest
+/// (an unused one empty); uniform blocks bound as read-only storage where `storage`.
+fn bind_groups(device: &wgpu::Device, name: &str, mut groups: BindingGroups, storage: bool) -> (Vec<wgpu::BindGroupLayout>, Vec<wgpu::BindGroup>) {
+    let max_group = groups.keys().copied().max().map_or(0, |g| g + 1);
+    let mut layouts = Vec::new();
+    let mut bind_groups = Vec::new();
+    for g in 0..max_group {
+        let entries = groups.remove(&g).unwrap_or_default();
+        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = entries
+            .iter()
+            .map(|(binding, (visibility, entry))| wgpu::BindGroupLayoutEntry {
+                binding: *binding,
+                visibility: *visibility,
+                ty: match entry {
+                    Entry::Uniform(_) => wgpu::BindingType::Buffer {
+                        ty: if storage { wgpu::BufferBindingType::Storage { read_only: true } } else { wgpu::BufferBindingType::Uniform },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    Entry::Storage(_, read_only) => wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: *read_only },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    Entry::Texture(_, sample_type, view_dimension) => wgpu::BindingType::Texture {
+                        sample_type: *sample_type,
+                        view_dimension: *view_dimension,
+                        multisampled: false,
+                    },
+                    Entry::Sampler(_, ty) => wgpu::BindingType::Sampler(*ty),
+                },
+                count: None,
+            })
+            .collect();
+        let label = format!("{name} set {g}");
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&label), entries: &layout_entries });
+        let group_entries: Vec<wgpu::BindGroupEntry> = entries
+            .iter()
+            .map(|(binding, (_, entry))| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: match entry {
+                    Entry::Uniform(b) | Entry::Storage(b, _) => b.as_entire_binding(),
+                    Entry::Texture(v, ..) => wgpu::BindingResource::TextureView(v),
+                    Entry::Sampler(s, _) => wgpu::BindingResource::Sampler(s),
+                },
+            })
+            .collect();
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(&label), layout: &layout, entries: &group_entries });
+        layouts.push(layout);
+        bind_groups.push(group);
+    }
+    (layouts, bind_groups)
+}
+
+/// The colour targets of `program`'s render targets in `kind`, and the alternate textures a
+/// [`PassKind::Fullscreen`] program writes besides colortex0.
+#[allow(clippy::type_complexity)]
+fn color_targets(
+    gpu: &Gpu,
+    pack: &dyn PackResources,
+    program: &LoadedProgram,
+    kind: &PassKind,
+    textures: &BindableTextures,
+) -> Result<(Vec<Option<wgpu::ColorTargetState>>, BTreeMap<u8, wgpu::Texture>), HarnessError> {
+    let mut alternates = BTreeMap::new();
+    let mut color_targets = Vec::new();
+    for (location, &b) in program.render_targets.iter().enumerate() {
+        // A target the fragment stage has no output for is left as it is.
+        let location = location as u32;
+        let write_mask = match program.fragment.narrow_outputs.get(&location) {
+            _ if !program.fragment.interface.outputs.contains_key(&location) => wgpu::ColorWrites::empty(),
+            Some(1) => wgpu::ColorWrites::RED,
+            Some(2) => wgpu::ColorWrites::RED | wgpu::ColorWrites::GREEN,
+            Some(3) => wgpu::ColorWrites::COLOR,
+            _ => wgpu::ColorWrites::ALL,
+        };
+        let (format, blend) = match kind {
+            PassKind::Gbuffers(state) => {
+                let (_, format) = textures.colors.get(&b).ok_or_else(|| {
+                    HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
+                })?;
+                (*format, wgpu_blend(&(state.blend_of)(b)))
+            }
+            PassKind::FullscreenInto { formats, blend_of } => {
+                let format = formats.get(&b).ok_or_else(|| {
+                    HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
+                })?;
+                (*format, wgpu_blend(&blend_of(b)))
+            }
+            PassKind::Fullscreen { .. } if b == 0 => (OUT, None),
+            PassKind::Fullscreen { width, height } => {
+                let format = gpu.texture_format(pack.format_of(b))?;
+                let size = wgpu::Extent3d { width: *width, height: *height, depth_or_array_layers: 1 };
+                let t = gpu.texture(&format!("colortex{b} alternate"), size, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
+                alternates.insert(b, t);
+                (format, None)
+            }
+        };
+        color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask }));
+    }
+    Ok((color_targets, alternates))
+}
+
 /// One program of the pack as a wgpu pipeline with its bind groups.
 pub(crate) struct ProgramPipeline {
     pub pipeline: wgpu::RenderPipeline,
@@ -415,86 +568,8 @@ impl ProgramPipeline {
         let device = &gpu.device;
         let gbuffers = matches!(kind, PassKind::Gbuffers(_));
         let storage = uniform_binding == UniformBinding::ReadOnlyStorage;
-        // group → binding → (visibility, entry)
-        let mut groups: BTreeMap<u32, BTreeMap<u32, (wgpu::ShaderStages, Entry)>> = BTreeMap::new();
-        let mut uniform_buffers = Vec::new();
-        let mut zeroed_uniforms = Vec::new();
-        let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
-            SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
-            SamplerNaming::AnyPack | SamplerNaming::ShadowPass => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
-                zeroed_uniforms.extend(zeroed);
-                block
-            }),
-        };
-        for stage in [&program.vertex, &program.fragment] {
-            let visibility = match stage.stage {
-                tidepack_glsl::Stage::Vertex => wgpu::ShaderStages::VERTEX,
-                tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
-            };
-            let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
-            if let Some(block) = fill(&stage.module, values, &stage.path)? {
-                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(&format!("{} uniforms", stage.path)),
-                    contents: &block.bytes,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                });
-                uniform_buffers.push((stage.stage, buffer.clone()));
-                entries.push((block.group, block.binding, Entry::Uniform(buffer)));
-            }
-            for (group, binding, entry) in entries {
-                if groups.entry(group).or_default().insert(binding, (visibility, entry)).is_some() {
-                    return Err(HarnessError::Pack(format!("{}: binding {group}.{binding} used twice", stage.path)));
-                }
-            }
-        }
-        let max_group = groups.keys().copied().max().map_or(0, |g| g + 1);
-        let mut layouts = Vec::new();
-        let mut bind_groups = Vec::new();
-        for g in 0..max_group {
-            let entries = groups.remove(&g).unwrap_or_default();
-            let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = entries
-                .iter()
-                .map(|(binding, (visibility, entry))| wgpu::BindGroupLayoutEntry {
-                    binding: *binding,
-                    visibility: *visibility,
-                    ty: match entry {
-                        Entry::Uniform(_) => wgpu::BindingType::Buffer {
-                            ty: if storage { wgpu::BufferBindingType::Storage { read_only: true } } else { wgpu::BufferBindingType::Uniform },
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        Entry::Storage(_, read_only) => wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Storage { read_only: *read_only },
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        Entry::Texture(_, sample_type, view_dimension) => wgpu::BindingType::Texture {
-                            sample_type: *sample_type,
-                            view_dimension: *view_dimension,
-                            multisampled: false,
-                        },
-                        Entry::Sampler(_, ty) => wgpu::BindingType::Sampler(*ty),
-                    },
-                    count: None,
-                })
-                .collect();
-            let label = format!("{} set {g}", program.name);
-            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(&label), entries: &layout_entries });
-            let group_entries: Vec<wgpu::BindGroupEntry> = entries
-                .iter()
-                .map(|(binding, (_, entry))| wgpu::BindGroupEntry {
-                    binding: *binding,
-                    resource: match entry {
-                        Entry::Uniform(b) | Entry::Storage(b, _) => b.as_entire_binding(),
-                        Entry::Texture(v, ..) => wgpu::BindingResource::TextureView(v),
-                        Entry::Sampler(s, _) => wgpu::BindingResource::Sampler(s),
-                    },
-                })
-                .collect();
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(&label), layout: &layout, entries: &group_entries });
-            layouts.push(layout);
-            bind_groups.push(group);
-        }
+        let (groups, uniform_buffers, zeroed_uniforms) = binding_entries(gpu, pack, program, values, gbuffers, textures)?;
+        let (layouts, bind_groups) = bind_groups(device, &program.name, groups, storage);
         let layout_refs: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(Some).collect();
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&program.name),
@@ -511,42 +586,7 @@ impl ProgramPipeline {
                 usage: wgpu::BufferUsages::VERTEX,
             })
         });
-        let mut alternates = BTreeMap::new();
-        let mut color_targets = Vec::new();
-        for (location, &b) in program.render_targets.iter().enumerate() {
-            // A target the fragment stage has no output for is left as it is.
-            let location = location as u32;
-            let write_mask = match program.fragment.narrow_outputs.get(&location) {
-                _ if !program.fragment.interface.outputs.contains_key(&location) => wgpu::ColorWrites::empty(),
-                Some(1) => wgpu::ColorWrites::RED,
-                Some(2) => wgpu::ColorWrites::RED | wgpu::ColorWrites::GREEN,
-                Some(3) => wgpu::ColorWrites::COLOR,
-                _ => wgpu::ColorWrites::ALL,
-            };
-            let (format, blend) = match &kind {
-                PassKind::Gbuffers(state) => {
-                    let (_, format) = textures.colors.get(&b).ok_or_else(|| {
-                        HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
-                    })?;
-                    (*format, wgpu_blend(&(state.blend_of)(b)))
-                }
-                PassKind::FullscreenInto { formats, blend_of } => {
-                    let format = formats.get(&b).ok_or_else(|| {
-                        HarnessError::Unsupported(format!("{} writes colortex{b}, which is not a buffer of this frame", program.name))
-                    })?;
-                    (*format, wgpu_blend(&blend_of(b)))
-                }
-                PassKind::Fullscreen { .. } if b == 0 => (OUT, None),
-                PassKind::Fullscreen { width, height } => {
-                    let format = gpu.texture_format(pack.format_of(b))?;
-                    let size = wgpu::Extent3d { width: *width, height: *height, depth_or_array_layers: 1 };
-                    let t = gpu.texture(&format!("colortex{b} alternate"), size, format, wgpu::TextureUsages::RENDER_ATTACHMENT);
-                    alternates.insert(b, t);
-                    (format, None)
-                }
-            };
-            color_targets.push(Some(wgpu::ColorTargetState { format, blend, write_mask }));
-        }
+        let (color_targets, alternates) = color_targets(gpu, pack, program, &kind, textures)?;
         let shader_module = |stage: &LoadedStage| {
             let module = if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() };
             without_panics(&stage.path, || {

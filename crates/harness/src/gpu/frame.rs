@@ -178,7 +178,6 @@ fn render_frame(
     passthrough: bool,
     frames: usize,
 ) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
-    let device = &gpu.device;
     let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
     let targets = FrameTargets::new(gpu, pack, size)?;
     let harness_textures = HarnessTextures::new(gpu, pack);
@@ -222,8 +221,40 @@ fn render_frame(
         .chain([Step::Composite])
         .chain(copy_pipeline.as_ref().map(Step::Passthrough))
         .collect();
-    // Every step but the depth copy is a render pass, timed by GPU timestamps where the
-    // adapter has them; each step also by the wall clock.
+    let runs = run_steps(gpu, pack, scene, &targets, &steps, &composite, &quad, frames)?;
+    let timings = runs.last().cloned().unwrap_or_default();
+
+    let mut images = BTreeMap::new();
+    for (b, (t, format)) in &targets.colors {
+        images.insert(*b, read_texture(gpu, t, *format)?);
+    }
+    let frame = Frame {
+        image: read_texture(gpu, &targets.out, OUT)?,
+        buffers: images,
+        depth0: read_texture(gpu, &targets.depth0, DEPTH)?,
+        depth1: read_texture(gpu, &targets.depth1, DEPTH)?,
+        passthrough: if passthrough { Some(read_texture(gpu, &targets.passthrough, OUT)?) } else { None },
+        timings,
+    };
+    Ok((frame, runs))
+}
+
+/// Runs the frame's steps `frames` times after OptiFine's clears; each run's pass timings,
+/// every step but the depth copy a render pass timed by GPU timestamps where the adapter has
+/// them, each step also by the wall clock.
+#[allow(clippy::too_many_arguments)]
+fn run_steps(
+    gpu: &Gpu,
+    pack: &LoadedPack,
+    scene: &Scene,
+    targets: &FrameTargets,
+    steps: &[Step],
+    composite: &ProgramPipeline,
+    quad: &FullscreenQuad,
+    frames: usize,
+) -> Result<Vec<Vec<PassTiming>>, HarnessError> {
+    let device = &gpu.device;
+    let size = targets.depth0.size();
     let render_passes = steps.iter().filter(|s| !matches!(s, Step::DepthCopy)).count() as u32;
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -260,14 +291,14 @@ fn render_frame(
             record_clears(&mut encoder, &colours, &targets.depth0);
             submit(encoder)?;
             let mut timed = 0;
-            for step in &steps {
+            for step in steps {
                 let mut encoder = new_encoder();
                 let stamp = if matches!(step, Step::DepthCopy) { None } else { stamps(timed) };
                 timed += u32::from(stamp.is_some());
                 match step {
                     Step::Geometry(draw) => draw.record(&mut encoder, &|b| &targets.colors[&b].0, &targets.depth0, stamp),
                     Step::DepthCopy => encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size),
-                    Step::Composite => composite.record_fullscreen(&mut encoder, &pack.composite, &targets.out, &quad, stamp),
+                    Step::Composite => composite.record_fullscreen(&mut encoder, &pack.composite, &targets.out, quad, stamp),
                     Step::Passthrough(p) => p.record(&mut encoder, &targets.passthrough, stamp),
                 }
                 wall.push(submit(encoder)?);
@@ -289,21 +320,7 @@ fn render_frame(
             .collect();
         runs.push(timings);
     }
-    let timings = runs.last().cloned().unwrap_or_default();
-
-    let mut images = BTreeMap::new();
-    for (b, (t, format)) in &targets.colors {
-        images.insert(*b, read_texture(gpu, t, *format)?);
-    }
-    let frame = Frame {
-        image: read_texture(gpu, &targets.out, OUT)?,
-        buffers: images,
-        depth0: read_texture(gpu, &targets.depth0, DEPTH)?,
-        depth1: read_texture(gpu, &targets.depth1, DEPTH)?,
-        passthrough: if passthrough { Some(read_texture(gpu, &targets.passthrough, OUT)?) } else { None },
-        timings,
-    };
-    Ok((frame, runs))
+    Ok(runs)
 }
 
 /// Clears each texture to its colour (RGBA) and `depth0` to 1, eight attachments a pass.
