@@ -225,12 +225,27 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             .collect();
         mesh.overlay.push((kind, back_to_front(quads, local_camera, &rel)));
     }
+    mesh.sky = sky_box(scene);
+    let (sun_quad, moon_quad) = sun_and_moon(scene);
+    mesh.sun = sun_quad;
+    mesh.moon = moon_quad;
+    let all = [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky, &mut mesh.sun, &mut mesh.moon];
+    for vertices in all.into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
+        add_tangents_and_sprite_centres(vertices);
+    }
+    mesh
+}
+
+/// The sky: a box in the sky colour around the camera, inside the far plane, seen from inside.
+fn sky_box(scene: &Scene) -> Vec<PackVertex> {
+    let camera = scene.camera_position();
+    let mut sky = Vec::new();
     let reach = 0.5 * scene.camera.far;
     let [r, g, b] = scene.sky.sky_color.map(|c| c as f32);
     for (corners, normal) in box_faces(camera - DVec3::splat(reach), camera + DVec3::splat(reach)) {
         for i in [0, 1, 2, 0, 2, 3] {
             let p = corners[i] - camera;
-            mesh.sky.push(PackVertex {
+            sky.push(PackVertex {
                 position: [p.x as f32, p.y as f32, p.z as f32, 1.0],
                 color: [r, g, b, 1.0],
                 normal: [-normal.x as f32, -normal.y as f32, -normal.z as f32],
@@ -242,10 +257,15 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             });
         }
     }
+    sky
+}
+
+/// The sun and the moon as the game draws them.
+fn sun_and_moon(scene: &Scene) -> (Vec<PackVertex>, Vec<PackVertex>) {
     // The game's sun and moon: in the frame rotated with the sun's path, the sun a 60-block
     // square at y = 100, the moon a 40-block one at y = -100 (vertices here already rotated, so
     // gl_ModelViewMatrix stays gbufferModelView).
-    let path = SunPath::of_sun_direction(sun);
+    let path = SunPath::of_sun_direction(scene.sun_direction());
     let rotation = glam::DMat3::from_rotation_y(-90f64.to_radians())
         * glam::DMat3::from_rotation_z(path.rotation.to_radians())
         * glam::DMat3::from_rotation_x(path.celestial_angle * std::f64::consts::TAU);
@@ -271,13 +291,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             })
             .collect()
     };
-    mesh.sun = celestial_quad(30.0, 100.0);
-    mesh.moon = celestial_quad(20.0, -100.0);
-    let all = [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky, &mut mesh.sun, &mut mesh.moon];
-    for vertices in all.into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
-        add_tangents_and_sprite_centres(vertices);
-    }
-    mesh
+    (celestial_quad(30.0, 100.0), celestial_quad(20.0, -100.0))
 }
 
 /// Triangles of `quads` sorted back to front by centre distance from `camera`; ties keep their
