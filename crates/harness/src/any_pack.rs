@@ -18,7 +18,6 @@ use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::macros::StandardMacros;
-use tidepack_loader::option_lines::{OptionKind, OptionSet, OptionValue};
 use tidepack_loader::option_space::{declared_options, property_macros};
 use tidepack_loader::programs::{self, RunBy, find_programs};
 use tidepack_loader::properties::{self, Properties};
@@ -358,7 +357,7 @@ impl AnyPack {
         let present: BTreeMap<&str, &programs::Program> =
             all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
         let mut not_modelled: Vec<String> = properties.problems.iter().map(|(line, e)| format!("shaders.properties:{line}: {e}")).collect();
-        let (disabled, problems) = disabled_programs(&properties, &world, &declared, &options);
+        let (disabled, problems) = programs::disabled_programs(&properties, &world, &declared, &options);
         not_modelled.extend(problems);
         let mut loading = ProgramLoading {
             provider: &provider,
@@ -720,36 +719,6 @@ impl<'a> FramePlan<'a> {
         let mipmaps = pack.mipmaps.get(&program.name).map(|m| m.intersection(&self.buffers).copied().collect()).unwrap_or_default();
         self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::Fullscreen { program, current, into_screen, mipmaps } });
     }
-}
-
-/// The programs of `world` (`world0` or `""`) that shaders.properties turns off with
-/// `program.<name>.enabled` for `options` over the declared switches' defaults, and the
-/// entries that could not be evaluated (those programs run).
-fn disabled_programs(properties: &Properties, world: &str, declared: &BTreeMap<String, OptionKind>, options: &OptionSet) -> (Vec<String>, Vec<String>) {
-    let switches: BTreeMap<String, bool> = declared
-        .iter()
-        .filter_map(|(name, kind)| match (options.get(name), kind) {
-            (Some(OptionValue::Switch(on)), _) => Some((name.clone(), *on)),
-            (_, OptionKind::Switch { default }) => Some((name.clone(), *default)),
-            _ => None,
-        })
-        .collect();
-    let mut disabled = Vec::new();
-    let mut problems = Vec::new();
-    for switch in custom_uniforms::program_switches(properties) {
-        let name = match switch.program.split_once('/') {
-            Some((folder, name)) if folder == world => name,
-            Some(_) => continue,
-            None if world.is_empty() => switch.program.as_str(),
-            None => continue,
-        };
-        match custom_uniforms::evaluate_switch_expression(&switch, &switches) {
-            Ok(true) => {}
-            Ok(false) => disabled.push(name.to_string()),
-            Err(e) => problems.push(format!("shaders.properties:{}: program.{}.enabled: {e} (the program runs)", switch.line, switch.program)),
-        }
-    }
-    (disabled, problems)
 }
 
 /// The names of `const bool <name> = true;` declarations.

@@ -6,7 +6,9 @@ use std::collections::BTreeMap;
 use tidepack_glsl::Stage;
 
 use crate::loader::Loader;
+use crate::option_lines::{OptionKind, OptionSet, OptionValue};
 use crate::option_space::Dimension;
+use crate::properties::Properties;
 
 /// OptiFine's gbuffers programs and the program each falls back to when its files are absent
 /// (`None`: no fallback, fixed-function rendering).
@@ -210,6 +212,36 @@ pub fn find_programs<'a>(paths: impl Iterator<Item = &'a String>) -> Vec<Program
         p.compute.sort();
     }
     programs
+}
+
+/// The programs of `world` (`world0`, or `""` for the shaders folder) that shaders.properties turns off with
+/// `program.<name>.enabled` for `options` over the declared switches' defaults, and the
+/// entries that could not be evaluated (those programs run).
+pub fn disabled_programs(properties: &Properties, world: &str, declared: &BTreeMap<String, OptionKind>, options: &OptionSet) -> (Vec<String>, Vec<String>) {
+    let switches: BTreeMap<String, bool> = declared
+        .iter()
+        .filter_map(|(name, kind)| match (options.get(name), kind) {
+            (Some(OptionValue::Switch(on)), _) => Some((name.clone(), *on)),
+            (_, OptionKind::Switch { default }) => Some((name.clone(), *default)),
+            _ => None,
+        })
+        .collect();
+    let mut disabled = Vec::new();
+    let mut problems = Vec::new();
+    for switch in crate::custom_uniforms::program_switches(properties) {
+        let name = match switch.program.split_once('/') {
+            Some((folder, name)) if folder == world => name,
+            Some(_) => continue,
+            None if world.is_empty() => switch.program.as_str(),
+            None => continue,
+        };
+        match crate::custom_uniforms::evaluate_switch_expression(&switch, &switches) {
+            Ok(true) => {}
+            Ok(false) => disabled.push(name.to_string()),
+            Err(e) => problems.push(format!("shaders.properties:{}: program.{}.enabled: {e} (the program runs)", switch.line, switch.program)),
+        }
+    }
+    (disabled, problems)
 }
 
 #[cfg(test)]

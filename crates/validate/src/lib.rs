@@ -186,11 +186,29 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut found: Vec<Finding> = Vec::new();
     let mut jobs: Vec<Job> = Vec::new();
     let mut seen: HashSet<(String, String)> = HashSet::new();
+    // Per program, the option sets under which `program.<name>.enabled` turns it off.
+    let mut turned_off = vec![0usize; programs.len()];
     for (set_index, (_, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(&pack, set);
-        let names = custom_names(&Properties::parse(properties_text, &property_macros(&options.macros, &declared, set)));
+        let set_properties = Properties::parse(properties_text, &property_macros(&options.macros, &declared, set));
+        let names = custom_names(&set_properties);
+        // `program.<name>.enabled` entries turn programs off under this set, per world folder.
+        let mut disabled: BTreeMap<&str, Vec<String>> = BTreeMap::new();
         for (index, program) in programs.iter().enumerate() {
             if program.run_by != RunBy::OptiFine || !program.has_stages() {
+                continue;
+            }
+            let off = disabled.entry(program.world.as_str()).or_insert_with(|| {
+                let (off, problems) = programs::disabled_programs(&set_properties, &program.world, &declared, set);
+                for problem in problems.into_iter().map(|p| Diagnostic::warning(p, None)) {
+                    if !diagnostics.contains(&problem) {
+                        diagnostics.push(problem);
+                    }
+                }
+                off
+            });
+            if off.contains(&program.name) {
+                turned_off[index] += 1;
                 continue;
             }
             let diags = preprocess_other_stages(program, &provider, &macros, options.driver);
@@ -220,6 +238,12 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                     push(JobStage::Compute(stage), &mut jobs);
                 }
             }
+        }
+    }
+    for (report, off) in reports.iter_mut().zip(&turned_off) {
+        if *off == sets.len() && report.status == Status::Valid {
+            let key = format!("program.{}.enabled", report.id);
+            report.status = Status::Skipped(format!("turned off by {key} in shaders.properties under every option set validated"));
         }
     }
     let stages_validated = jobs.len();

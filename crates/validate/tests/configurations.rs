@@ -106,3 +106,21 @@ fn a_conditional_line_that_does_not_evaluate_is_a_warning_at_its_line() {
     let warning = report.diagnostics.iter().find(|d| d.location.as_ref().is_some_and(|l| l.path == "shaders.properties" && l.line == 2));
     assert!(warning.is_some_and(|w| !w.is_error() && w.message.contains("taken as false")), "{:#?}", report.diagnostics);
 }
+
+#[test]
+fn a_program_switched_off_is_validated_only_where_it_runs() {
+    let broken = "#version 120\n//#define BLOOM\n#ifdef BLOOM\n#endif\nvoid main() { gl_FragData[0] = vec4(missingBloom); }\n";
+    let files = [
+        ("composite.vsh", VERTEX),
+        ("composite.fsh", "#version 120\nvoid main() { gl_FragData[0] = vec4(1.0); }\n"),
+        ("composite1.vsh", VERTEX),
+        ("composite1.fsh", broken),
+        ("shaders.properties", "program.composite1.enabled=BLOOM\n"),
+    ];
+    let defaults = validate(&files, Options::default()).unwrap();
+    assert!(errors(&defaults).is_empty(), "{:?}", errors(&defaults));
+    let skipped = defaults.programs.iter().find(|p| p.id == "composite1").unwrap();
+    assert!(matches!(&skipped.status, tidepack_validate::Status::Skipped(why) if why.contains("program.composite1.enabled")), "{:?}", skipped.status);
+    let on = validate(&files, Options { overrides: vec![("BLOOM".into(), "on".into())], ..Options::default() }).unwrap();
+    assert!(errors(&on).iter().any(|e| e.contains("missingBloom")), "{:?}", errors(&on));
+}
