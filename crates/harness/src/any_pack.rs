@@ -507,6 +507,38 @@ impl AnyPack {
     }
 }
 
+/// The uniform values of each kind of pass of a frame: the standard ones and the pack's
+/// custom uniforms, computed once for both renderers.
+pub struct PassValues {
+    pub gbuffers: BTreeMap<String, Value>,
+    pub fullscreen: BTreeMap<String, Value>,
+    pub shadow: BTreeMap<String, Value>,
+    pub celestial: BTreeMap<String, Value>,
+}
+
+impl PassValues {
+    /// The values of every pass in `scene`, with the problems of the custom uniforms that fail.
+    pub fn of(pack: &AnyPack, scene: &Scene) -> (PassValues, Vec<custom_uniforms::Problem>) {
+        let (gbuffers, problems) = pack.uniform_values(scene, Pass::Gbuffers);
+        let values = PassValues {
+            gbuffers,
+            fullscreen: pack.uniform_values(scene, Pass::Fullscreen).0,
+            shadow: pack.uniform_values(scene, Pass::Shadow).0,
+            celestial: pack.uniform_values(scene, Pass::Celestial).0,
+        };
+        (values, problems)
+    }
+
+    pub fn of_pass(&self, pass: Pass) -> &BTreeMap<String, Value> {
+        match pass {
+            Pass::Gbuffers => &self.gbuffers,
+            Pass::Fullscreen => &self.fullscreen,
+            Pass::Shadow => &self.shadow,
+            Pass::Celestial => &self.celestial,
+        }
+    }
+}
+
 /// What one step of a frame does, in terms of the pack's programs and the frame's buffers.
 /// Every colour buffer has two textures; `current` says which of each a step reads (and, for
 /// geometry, draws into).

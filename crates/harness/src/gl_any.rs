@@ -14,7 +14,7 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
+use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
     add_mip_levels, read_as_shadow_map, set_blends,
@@ -26,7 +26,7 @@ use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::{self, Pass};
 use tidepack_loader::loader::MissingProgramDraws;
 
 /// A frame of any pack from the OpenGL driver.
@@ -78,8 +78,7 @@ struct GlPlanFrame<'a> {
     screen: glow::Texture,
     harness: GlHarnessTextures,
     fbo: glow::Framebuffer,
-    /// The uniform values of each kind of pass.
-    values: Vec<(Pass, BTreeMap<String, Value>)>,
+    values: PassValues,
     own_depth_mapping: Vec<String>,
 }
 
@@ -158,7 +157,7 @@ impl<'a> GlPlanFrame<'a> {
                 shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
             }
             let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
-            let values = [Pass::Gbuffers, Pass::Fullscreen, Pass::Shadow, Pass::Celestial].into_iter().map(|pass| (pass, pack.uniform_values(scene, pass).0)).collect();
+            let values = PassValues::of(pack, scene).0;
             Ok(GlPlanFrame {
                 ctx,
                 pack,
@@ -237,8 +236,7 @@ impl<'a> GlPlanFrame<'a> {
     unsafe fn draw(&mut self, program: &LoadedProgram, pass: Pass, render_stage: &str, textures: &Textures, vertices: &[PackVertex]) -> Result<(), HarnessError> {
         let (compiled, own_range) = self.build(program)?;
         let clip_control = self.ctx.legacy().clip_control.filter(|_| own_range);
-        let of_pass = self.values.iter().find(|(p, _)| *p == pass).map(|(_, v)| v);
-        let values = uniforms::with_render_stage(of_pass.expect("values for every kind of pass"), render_stage);
+        let values = uniforms::with_render_stage(self.values.of_pass(pass), render_stage);
         // SAFETY: the program was compiled on this context; the textures are this frame's.
         let drawn = unsafe {
             if let Some(clip_control) = clip_control {

@@ -7,13 +7,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, FramePlan, PlannedWork};
+use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork};
 use crate::images::FloatImage;
 use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::{self, Value};
 
 use super::Gpu;
 use super::bindings::{
@@ -216,14 +216,6 @@ impl FrameTextures {
     }
 }
 
-/// The uniform values of each kind of pass: the standard ones and the pack's custom uniforms.
-struct PassValues {
-    gbuffers: BTreeMap<String, Value>,
-    fullscreen: BTreeMap<String, Value>,
-    shadow: BTreeMap<String, Value>,
-    celestial: BTreeMap<String, Value>,
-}
-
 /// The plan's steps with their pipelines, what each writes, and what the pipelines left at zero.
 struct PreparedSteps<'p> {
     steps: Vec<(&'p str, Work<'p>, Vec<Written>)>,
@@ -237,7 +229,7 @@ impl<'p> PreparedSteps<'p> {
         for step in &plan.steps {
             let (work, written) = match &step.work {
                 PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
-                    let values = uniforms::with_render_stage(if *pass == Pass::Celestial { &values.celestial } else { &values.gbuffers }, render_stage);
+                    let values = uniforms::with_render_stage(values.of_pass(*pass), render_stage);
                     let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                     let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                     // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -407,14 +399,7 @@ fn render_any_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh
     let quad = FullscreenQuad::new(gpu);
 
     let mut not_modelled = pack.not_modelled.clone();
-    // The pack's custom uniforms join the standard ones, once per kind of pass.
-    let (gbuffers, problems) = pack.uniform_values(scene, Pass::Gbuffers);
-    let values = PassValues {
-        gbuffers,
-        fullscreen: pack.uniform_values(scene, Pass::Fullscreen).0,
-        shadow: pack.uniform_values(scene, Pass::Shadow).0,
-        celestial: pack.uniform_values(scene, Pass::Celestial).0,
-    };
+    let (values, problems) = PassValues::of(pack, scene);
     not_modelled.extend(pack.sun_path_note(scene));
     not_modelled.extend(problems.iter().map(|problem| format!("{problem} (the uniform stays zero)")));
     let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values)?;
