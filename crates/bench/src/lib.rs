@@ -285,7 +285,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     let mut references: BTreeMap<String, ReferenceImage> = BTreeMap::new();
     for (name, scene) in &scenes {
         bar.set_message(format!("reference {name}"));
-        let frame = render_wgpu(&gpu, &base_pack, scene, false).map_err(err)?;
+        let frame = render_wgpu(&gpu, &base_pack, scene).map_err(err)?;
         let inputs = tidepack_reference::harness::inputs(&base_pack, scene, &frame)?;
         let mut image = tidepack_reference::render(&inputs, &settings, config.reference_stride)?;
         fill_strided(&mut image, config.reference_stride);
@@ -350,7 +350,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 }
             };
             let pack = own.as_ref().map_or(&set.pack, |(pack, _)| pack);
-            let frame = render_wgpu(&gpu, pack, scene, false).map_err(err)?;
+            let frame = render_wgpu(&gpu, pack, scene).map_err(err)?;
             let (error, map) = metrics::error(&frame.image, &references[name]);
             if set.run.kind == "profile" {
                 let file = format!("heatmaps/{name}-{}.png", set.run.name);

@@ -43,7 +43,7 @@ fn render_writes_the_image_and_a_report() {
     assert!(report["adapter"]["name"].as_str().is_some_and(|n| !n.is_empty()), "{json}");
     assert!(report["adapter"]["backend"].is_string() && report["adapter"]["device_type"].is_string());
     let passes = report["passes"].as_array().expect("passes");
-    for pass in ["terrain", "gbuffers_water", "composite", "pass-through composite"] {
+    for pass in ["terrain (gbuffers_textured_lit)", "water (gbuffers_water)", "composite", "pass-through composite"] {
         let p = passes.iter().find(|p| p["pass"] == pass).unwrap_or_else(|| panic!("no {pass} in {json}"));
         assert!(p["ms"].as_f64().is_some_and(|ms| ms >= 0.0), "{json}");
     }

@@ -4,14 +4,14 @@
 //!
 //!     cargo run --release -p tidepack-harness --example gl_probe
 //!
-//! PROBE_SCENES=a,b (default: all)  PROBE_DIALECT=120|330  PROBE_GL_DEPTH=1 (OpenGL's own depth
-//! conventions, `gl::DepthMapping::OpenGl`)  PROBE_NUDGE=dx,dy,dz (camera offset in blocks)
+//! PROBE_SCENES=a,b (default: all)  PROBE_DIALECT=120|330  PROBE_NUDGE=dx,dy,dz (camera offset
+//! in blocks)
 //! PROBE_IMAGE_BITS=1 (also count output pixels differing at all, and by more than 0.1/255).
 
 use std::path::{Path, PathBuf};
 
 use tidepack_harness::images::{self, FloatImage};
-use tidepack_harness::{Gpu, PackSelection, Scene, gl, mesh, program, render_wgpu};
+use tidepack_harness::{Gpu, PackSelection, Scene, gl, program, render_gl, render_wgpu};
 use tidepack_pack::Dialect;
 
 fn root() -> PathBuf {
@@ -46,7 +46,6 @@ fn main() {
     let nudge: Vec<f64> =
         std::env::var("PROBE_NUDGE").map(|s| s.split(',').map(|v| v.parse().unwrap()).collect()).unwrap_or(vec![0.0; 3]);
     let dialect = if std::env::var("PROBE_DIALECT").as_deref() == Ok("120") { Dialect::Glsl120 } else { Dialect::Glsl330 };
-    let mapping = if std::env::var("PROBE_GL_DEPTH").is_ok() { gl::DepthMapping::OpenGl } else { gl::DepthMapping::Harness };
     let pack = program::load(&PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] }).unwrap();
     let gpu = Gpu::new().unwrap();
     let ctx = gl::context().unwrap();
@@ -56,9 +55,9 @@ fn main() {
         for (i, d) in nudge.iter().enumerate() {
             s.camera.position[i] += d;
         }
-        let w = render_wgpu(&gpu, &pack, &s, false).unwrap();
-        let g = gl::render_with(&ctx, &pack, &s, &mesh::build(&s, &pack), mapping).unwrap();
-        println!("{name} ({dialect}, {mapping:?}, camera nudged by {nudge:?}):");
+        let w = render_wgpu(&gpu, &pack, &s).unwrap();
+        let g = render_gl(&ctx, &pack, &s).unwrap();
+        println!("{name} ({dialect}, camera nudged by {nudge:?}):");
         differing("depth1", &w.depth1, &g.depth1, 0.0);
         let d0 = differing("depth0", &w.depth0, &g.depth0, 0.0);
         for (b, img) in &w.buffers {

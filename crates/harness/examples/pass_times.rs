@@ -16,10 +16,11 @@
 
 use std::path::{Path, PathBuf};
 
-use tidepack_harness::{Gpu, PackSelection, Scene, gpu, mesh, program};
+use tidepack_harness::{Gpu, PackSelection, Scene, program, render_wgpu_repeated};
 use tidepack_pack::Dialect;
 
-const PASSES: [&str; 4] = ["terrain", "gbuffers_water", "composite", "pass-through composite"];
+/// The steps timed, by the start of their label in the frame plan.
+const PASSES: [&str; 3] = ["terrain", "water", "composite"];
 
 fn main() {
     let mut frames = 9usize;
@@ -79,17 +80,16 @@ fn main() {
     println!("|---|---:|---:|---:|---:|---:|");
     for path in scenes {
         let scene = Scene::load(&path).unwrap_or_else(|e| fail(&e.to_string())).with_resolution(width, height);
-        let mesh = mesh::build(&scene, &pack);
         // Pipelines are made once; frame 0 (with llvmpipe's lazy shader compilation) is the warm-up.
-        let (_, runs) = gpu::render_repeated(&gpu, &pack, &scene, &mesh, true, frames + 1)
-            .unwrap_or_else(|e| fail(&format!("{}: {e}", scene.name)));
-        let mut samples: Vec<Vec<f64>> = vec![Vec::new(); PASSES.len()];
-        for timings in &runs[1..] {
-            for (k, pass) in PASSES.iter().enumerate() {
-                let t = timings.iter().find(|t| t.pass == *pass).unwrap_or_else(|| fail(&format!("no {pass} timing")));
-                samples[k].push(t.gpu_ms.unwrap_or(t.wall_ms));
-            }
-        }
+        let frame = render_wgpu_repeated(&gpu, &pack, &scene, frames + 1).unwrap_or_else(|e| fail(&format!("{}: {e}", scene.name)));
+        let mut samples: Vec<Vec<f64>> = PASSES
+            .iter()
+            .map(|pass| {
+                let step = frame.passes.iter().find(|p| p.pass.starts_with(pass)).unwrap_or_else(|| fail(&format!("no {pass} step")));
+                step.samples_ms[1..].to_vec()
+            })
+            .collect();
+        samples.push(frame.timing.passthrough_samples_ms[1..].to_vec());
         let m: Vec<f64> = samples.iter().map(|s| tidepack_harness::median(s)).collect();
         println!(
             "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} |",

@@ -300,7 +300,7 @@ fn shadow_map_reads(
 ) -> (bool, bool) {
     let mut reads_shadow_maps = false;
     let mut water_shadow = false;
-    let all_programs = gbuffers.values().chain(fullscreen).map(|p| (p, SamplerNaming::AnyPack)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
+    let all_programs = gbuffers.values().chain(fullscreen).map(|p| (p, SamplerNaming::Frame)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
     for (program, naming) in all_programs {
         let gbuffers_program = program.name.starts_with("gbuffers_");
         for stage in [&program.vertex, &program.fragment] {
@@ -310,7 +310,7 @@ fn shadow_map_reads(
                     Ok(Source::Unbound) => {
                         not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name))
                     }
-                    Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::AnyPack,
+                    Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::Frame,
                     _ => {}
                 }
             }
@@ -571,8 +571,10 @@ pub enum PlannedWork<'a> {
     /// shadowtex0 to shadowtex1: the shadow map without translucents.
     ShadowDepthCopy,
     /// A full-screen program: reads the current textures, draws into the other texture of each
-    /// of its render targets (which then becomes current), or into the screen for final.
-    /// `mipmaps`: buffers whose current texture gets its mipmaps just before, read with them.
+    /// of its render targets (which then becomes current); with `into_screen`, colortex0's
+    /// output goes to the screen instead (final, or [`ScreenOutput::Unrounded`]), and colortex0
+    /// does not flip. `mipmaps`: buffers whose current texture gets its mipmaps just before,
+    /// read with them.
     Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool, mipmaps: BTreeSet<u8> },
     /// colortex0's current texture to the screen, for a pack without final.
     ScreenCopy { current: usize },
@@ -583,6 +585,20 @@ pub struct PlannedStep<'a> {
     /// `terrain (gbuffers_terrain)`, `composite1`, `depth copy`, …
     pub label: String,
     pub work: PlannedWork<'a>,
+}
+
+/// What the screen shows when the pack has no final.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScreenOutput {
+    /// colortex0 copied to the screen, as the loader does: the screen holds what colortex0's
+    /// format can.
+    #[default]
+    AsLoader,
+    /// The last full-screen program writing colortex0 draws that output straight into the
+    /// RGBA32F screen, so its values, NaN and Inf reach the readback unrounded: what the
+    /// measurements of our own pack (reference error, stress) read. colortex0 keeps what the
+    /// geometry drew.
+    Unrounded,
 }
 
 /// A frame of any pack on one scene as OptiFine 1.16.5 and later draw it:
@@ -596,7 +612,7 @@ pub struct PlannedStep<'a> {
 /// 4. deferred*;
 /// 5. the water and glass (gbuffers_water's chain), the overlays after the water;
 /// 6. composite*;
-/// 7. final into the screen, or colortex0 copied there.
+/// 7. final into the screen, or colortex0 copied there ([`ScreenOutput`]).
 #[derive(Debug)]
 pub struct FramePlan<'a> {
     /// Every colour buffer a program writes or reads, and colortex0.
@@ -612,18 +628,18 @@ pub struct FramePlan<'a> {
 }
 
 impl<'a> FramePlan<'a> {
-    pub fn new(pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh) -> FramePlan<'a> {
+    pub fn new(pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh, screen: ScreenOutput) -> FramePlan<'a> {
         let is_final = |p: &LoadedProgram| p.name == "final";
         let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
         for program in pack.gbuffers.values() {
             buffers.extend(program.render_targets.iter().copied());
-            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, true));
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, true));
         }
         for program in &pack.fullscreen {
             if !is_final(program) {
                 buffers.extend(program.render_targets.iter().copied());
             }
-            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::AnyPack, false));
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, false));
         }
         let mut shadow_buffers = BTreeSet::new();
         if pack.shadow_pass {
@@ -632,7 +648,7 @@ impl<'a> FramePlan<'a> {
             for program in pack.gbuffers.values().chain(&pack.fullscreen) {
                 for stage in [&program.vertex, &program.fragment] {
                     for (name, _) in program::texture_resources(&stage.interface) {
-                        if let Ok(Source::ShadowColour(n)) = SamplerNaming::AnyPack.resolve(pack, &name, true) {
+                        if let Ok(Source::ShadowColour(n)) = SamplerNaming::Frame.resolve(pack, &name, true) {
                             shadow_buffers.insert(n);
                         }
                     }
@@ -668,11 +684,19 @@ impl<'a> FramePlan<'a> {
         plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks, "TERRAIN_TRANSLUCENT");
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
         plan.forced_flips(pack, "composite_pre");
-        for program in family("composite") {
-            plan.fullscreen(pack, program, false);
+        let composites: Vec<&LoadedProgram> = family("composite").collect();
+        let final_program = pack.fullscreen.iter().find(|p| is_final(p));
+        // Without final, the last composite writing colortex0 may draw it into the screen.
+        let last_into_screen = match (final_program, screen) {
+            (None, ScreenOutput::Unrounded) => composites.iter().rposition(|p| p.render_targets.contains(&0)),
+            _ => None,
+        };
+        for (i, program) in composites.into_iter().enumerate() {
+            plan.fullscreen(pack, program, last_into_screen == Some(i));
         }
-        match pack.fullscreen.iter().find(|p| is_final(p)) {
+        match final_program {
             Some(program) => plan.fullscreen(pack, program, true),
+            None if last_into_screen.is_some() => {}
             None => {
                 let current = plan.current[&0];
                 plan.steps.push(PlannedStep { label: "colortex0 to the screen (no final)".into(), work: PlannedWork::ScreenCopy { current } });
@@ -693,7 +717,7 @@ impl<'a> FramePlan<'a> {
         sprites: Sprites,
         render_stage: &'static str,
     ) {
-        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::AnyPack, true)).unwrap_or_default();
+        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::Frame, true)).unwrap_or_default();
         let pass = if sprites == Sprites::Blocks { Pass::Gbuffers } else { Pass::Celestial };
         let current = self.current.clone();
         self.steps.push(PlannedStep {
@@ -737,15 +761,14 @@ impl<'a> FramePlan<'a> {
 
     fn fullscreen(&mut self, pack: &AnyPack, program: &'a LoadedProgram, into_screen: bool) {
         let current = self.current.clone();
-        if !into_screen {
-            // Each render target flips, unless shaders.properties says otherwise for the
-            // program; a buffer it does not write flips only when told to.
-            let overrides = pack.flips.get(&program.name);
-            for b in &self.buffers {
-                let default = program.render_targets.contains(b);
-                if overrides.and_then(|o| o.get(b)).copied().unwrap_or(default) {
-                    self.current.insert(*b, 1 - current[b]);
-                }
+        // Each render target flips, unless shaders.properties says otherwise for the program; a
+        // buffer it does not write flips only when told to. Final flips nothing, and a program
+        // drawing colortex0 into the screen leaves colortex0 as it was.
+        let overrides = pack.flips.get(&program.name);
+        for b in self.buffers.iter().filter(|_| program.name != "final") {
+            let default = program.render_targets.contains(b);
+            if !(into_screen && *b == 0) && overrides.and_then(|o| o.get(b)).copied().unwrap_or(default) {
+                self.current.insert(*b, 1 - current[b]);
             }
         }
         let mipmaps = pack.mipmaps.get(&program.name).map(|m| m.intersection(&self.buffers).copied().collect()).unwrap_or_default();
@@ -838,7 +861,7 @@ mod tests {
         let pack = AnyPack::from_files(&files, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap();
         let mesh = tidepack_scene::mesh::build(&scene, &pack);
-        let plan = FramePlan::new(&pack, &scene, &mesh);
+        let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
         let reads: Vec<(&str, usize, usize)> = plan
             .steps
             .iter()
@@ -859,7 +882,7 @@ mod tests {
         let pack = AnyPack::load(&shaders, &Configuration::default()).unwrap();
         let scene = Scene::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/rain_over_lake.toml")).unwrap();
         let mesh = tidepack_scene::mesh::build(&scene, &pack);
-        let plan = FramePlan::new(&pack, &scene, &mesh);
+        let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
         let stages: Vec<(&str, &str)> = plan
             .steps
             .iter()

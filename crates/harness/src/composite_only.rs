@@ -28,7 +28,7 @@ use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
 use crate::gpu::{Frame, Gpu};
 use crate::images::FloatImage;
-use crate::program::LoadedPack;
+use crate::program::{LoadedPack, PackResources as _};
 use tidepack_loader::buffers::BufferFormat;
 use crate::uniforms::Value;
 
@@ -103,21 +103,21 @@ impl CompositeOnly {
         let texture = |label: &str, format, usage| gpu.texture(label, wgpu::Extent3d { width, height, depth_or_array_layers: 1 }, format, usage);
         let input = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let output = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let mut buffers = colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false);
+        let mut buffers = colour_buffers_read(&pack.pack, pack.composite(), SamplerNaming::Frame, false);
         buffers.insert(0);
         let mut colors = BTreeMap::new();
         let mut formats = BTreeMap::new();
         for b in buffers {
-            let format = pack.format_of(b);
+            let format = pack.pack.format_of(b);
             let wgpu_format = gpu.texture_format(format)?;
             colors.insert(b, (texture(&format!("colortex{b}"), wgpu_format, input), wgpu_format));
             formats.insert(b, format);
         }
         let depth0 = texture("depthtex0 (R32Float)", DEPTH_AS, input);
         let depth1 = texture("depthtex1 (R32Float)", DEPTH_AS, input);
-        let harness_textures = HarnessTextures::new(gpu, pack);
+        let harness_textures = HarnessTextures::new(gpu, &pack.pack);
         let bindable = BindableTextures {
-            naming: SamplerNaming::OwnFrame,
+            naming: SamplerNaming::Frame,
             harness: &harness_textures,
             colors: &colors,
             depth0: &depth0,
@@ -127,8 +127,9 @@ impl CompositeOnly {
             mipmapped: &crate::gpu::bindings::NO_MIPMAPS,
         };
         let composite = gpu.checked("composite_only", || {
-            ProgramPipeline::new(gpu, pack, &pack.composite, values, PassKind::Fullscreen { width, height }, &bindable, binding)
+            ProgramPipeline::new(gpu, &pack.pack, pack.composite(), values, PassKind::Fullscreen { width, height }, &bindable, binding)
         })??;
+        crate::complete(&composite.zeroed_uniforms)?;
         let passthrough = PassthroughPipeline::new(gpu, &colors[&0].0)?;
         Ok(CompositeOnly {
             width,
@@ -168,7 +169,7 @@ impl CompositeOnly {
         self.upload(gpu, pack, g, values)?;
         gpu.checked("composite_only", || {
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            self.composite.record_fullscreen(&mut encoder, &pack.composite, &self.out, &self.quad, None);
+            self.composite.record_fullscreen(&mut encoder, pack.composite(), &self.out, &self.quad, None);
             gpu.queue.submit([encoder.finish()]);
         })?;
         read_texture(gpu, &self.out, OUT)
@@ -199,7 +200,7 @@ impl CompositeOnly {
                 gpu.checked("composite_only timing", || {
                     let mut encoder = gpu.device.create_command_encoder(&Default::default());
                     if pass == 0 {
-                        self.composite.record_fullscreen(&mut encoder, &pack.composite, &self.out, &self.quad, stamps);
+                        self.composite.record_fullscreen(&mut encoder, pack.composite(), &self.out, &self.quad, stamps);
                     } else {
                         self.passthrough.record(&mut encoder, &self.passthrough_out, stamps);
                     }
@@ -262,6 +263,6 @@ impl CompositeOnly {
             check(name, image)?;
             write(texture, bytemuck::cast_slice(&image.pixels.iter().map(|p| p[0]).collect::<Vec<f32>>()), 4);
         }
-        self.composite.write_uniforms(gpu, &pack.composite, values)
+        self.composite.write_uniforms(gpu, pack.composite(), values)
     }
 }

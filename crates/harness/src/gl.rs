@@ -1,9 +1,10 @@
-//! The same frame through a real OpenGL driver: the shipped GLSL 120/330 text (includes
-//! expanded, as OptiFine hands it to the driver) compiled by Mesa's compatibility context,
-//! legacy built-ins fed through the fixed-function API (matrix stacks, client-state arrays),
-//! `mc_Entity` bound with glBindAttribLocation, `outColorN` with glBindFragDataLocation.
-//! Inputs are identical to the wgpu path: the same mesh, textures, uniform values, blend
-//! modes and buffer formats. Buffers are in OpenGL's own orientation (row 0 at the bottom).
+//! What drawing through a real OpenGL driver takes, for [`crate::gl_frame`]: the shipped GLSL
+//! 120/330 text (includes expanded, as OptiFine hands it to the driver) compiled by Mesa's
+//! compatibility context, legacy built-ins fed through the fixed-function API (matrix stacks,
+//! client-state arrays), `mc_Entity` bound with glBindAttribLocation, `outColorN` with
+//! glBindFragDataLocation; the harness's textures, blend state, read-back. Inputs are identical
+//! to the wgpu path: the same mesh, textures, uniform values, blend modes and buffer formats.
+//! Buffers are in OpenGL's own orientation (row 0 at the bottom).
 //!
 //! Depth is mapped as the wgpu path maps it ([`DepthMapping::Harness`], the default): every
 //! program's vertex stage runs unchanged and its outputs are recorded bit for bit with transform
@@ -21,25 +22,15 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
-use tidepack_loader::buffers::BufferClear;
-use crate::samplers::{SamplerNaming, Source, resolve_in_pack};
+use crate::samplers::{SamplerNaming, Source};
 use crate::images::FloatImage;
-use tidepack_loader::loader::{self, MissingProgramDraws, Phase};
-use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, SceneMesh, Sprites, offsets};
-use crate::program::{LoadedPack, LoadedProgram, LoadedStage, PackResources};
+use tidepack_loader::loader::MissingProgramDraws;
+use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
+use crate::program::{LoadedProgram, LoadedStage, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::{Blend, BlendFactor};
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
-
-/// A frame from the OpenGL driver.
-#[derive(Clone, Debug)]
-pub struct GlFrame {
-    pub image: FloatImage,
-    pub buffers: BTreeMap<u8, FloatImage>,
-    pub depth0: FloatImage,
-    pub depth1: FloatImage,
-}
+use crate::uniforms::{Pass, Value};
 
 /// Opens the headless OpenGL context, or says which Debian packages are missing.
 pub fn context() -> Result<GlContext, HarnessError> {
@@ -209,207 +200,6 @@ pub(crate) struct Textures<'a> {
     pub sprites: Sprites,
     /// Colour buffers read with their mipmaps.
     pub mipmapped: BTreeSet<u8>,
-}
-
-/// Renders `scene` with the shipped text through OpenGL, depth mapped as the wgpu path maps it.
-pub fn render(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlFrame, HarnessError> {
-    render_with(ctx, pack, scene, mesh, DepthMapping::Harness)
-}
-
-/// Renders `scene` with the shipped text through OpenGL and the given depth mapping.
-pub fn render_with(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, depth: DepthMapping) -> Result<GlFrame, HarnessError> {
-    let clip_control = ctx.legacy().clip_control;
-    if depth == DepthMapping::Harness {
-        let Some(clip_control) = clip_control else {
-            return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
-        };
-        // SAFETY: ctx is current on this thread; the calls take no pointers.
-        unsafe {
-            clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
-            (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
-        }
-    }
-    let frame = render_frame(ctx, pack, scene, mesh, depth);
-    if let (DepthMapping::Harness, Some(clip_control)) = (depth, clip_control) {
-        // SAFETY: ctx is current on this thread; the calls take no pointers.
-        unsafe {
-            clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
-            (ctx.legacy().provoking_vertex)(legacy::LAST_VERTEX_CONVENTION);
-        }
-    }
-    frame
-}
-
-fn render_frame(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, depth: DepthMapping) -> Result<GlFrame, HarnessError> {
-    let gl = ctx.gl();
-    let (w, h) = (scene.width() as i32, scene.height() as i32);
-    // SAFETY: every call below is on the context current on this thread, with objects it made.
-    unsafe {
-        let make_texture = |internal, format, ty, width, height, data: Option<&[u8]>, linear, repeat| {
-            make_texture(gl, internal, format, ty, width, height, data, linear, repeat)
-        };
-        // Buffers, as in the wgpu path.
-        let mut buffers: std::collections::BTreeSet<u8> = [0].into();
-        buffers.extend(pack.water.render_targets.iter().copied());
-        buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
-        for (name, _) in crate::program::texture_resources(&pack.composite.fragment.interface) {
-            if let Ok(Source::Color(n)) = resolve_in_pack(pack, &name, false) {
-                buffers.insert(n);
-            }
-        }
-        let mut colors = BTreeMap::new();
-        for b in buffers {
-            let format = pack.format_of(b);
-            colors.insert(b, (make_texture(internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false)?, format));
-        }
-        let depth_texture = || make_texture(glow::DEPTH_COMPONENT32F, glow::DEPTH_COMPONENT, glow::FLOAT, w, h, None, false, false);
-        let harness = GlHarnessTextures::new(gl, pack)?;
-        let textures = Textures {
-            naming: SamplerNaming::OwnFrame,
-            harness: &harness,
-            colors,
-            depth0: depth_texture()?,
-            depth1: depth_texture()?,
-            shadow_depth: [harness.empty_shadow_depth; 2],
-            shadow_colours: BTreeMap::new(),
-            sprites: Sprites::Blocks,
-            mipmapped: BTreeSet::new(),
-        };
-        let out = make_texture(glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?;
-
-        let fbo = gl.create_framebuffer().map_err(gl_err("framebuffer"))?;
-        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-        gl.viewport(0, 0, w, h);
-        let attach = |attachments: &[glow::Texture], depth: Option<glow::Texture>| attach(gl, attachments, depth);
-
-        // 1. clear
-        for (b, (t, _)) in &textures.colors {
-            attach(&[*t], Some(textures.depth0))?;
-            let c = BufferClear::Default.colour(*b, scene.sky.fog_color).map(|v| v as f32);
-            gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
-        }
-        gl.depth_mask(true);
-        gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-        gl.enable(glow::DEPTH_TEST);
-        gl.depth_func(glow::LEQUAL);
-        gl.disable(glow::CULL_FACE);
-
-        // Geometry drawn by a gbuffers program, or by the harness's own colour shader where the
-        // pack has no program of the chain (into the buffers the loader would draw into).
-        let draw_geometry = |program: Option<&LoadedProgram>,
-                             blend_of: &dyn Fn(u8) -> Blend,
-                             depth_write: bool,
-                             vertices: &[PackVertex]|
-         -> Result<(), HarnessError> {
-            let buffers: Vec<u8> = match program {
-                Some(p) => p.render_targets.clone(),
-                None => match pack.loader.missing_program_draws() {
-                    MissingProgramDraws::FirstBufferOnly => vec![0],
-                    MissingProgramDraws::EveryBuffer => textures.colors.keys().copied().collect(),
-                },
-            };
-            let targets: Vec<glow::Texture> = buffers.iter().map(|b| textures.colors[b].0).collect();
-            attach(&targets, Some(textures.depth0))?;
-            set_blends(gl, &buffers, blend_of);
-            gl.depth_mask(depth_write);
-            match program {
-                Some(program) => {
-                    let compiled = compile(ctx, program, depth)?;
-                    draw_program(ctx, pack, program, &compiled, Pass::Gbuffers, &uniforms::values(scene, Pass::Gbuffers), &textures, vertices)?;
-                    compiled.delete(ctx);
-                }
-                None => draw_own_colour(ctx, pack.loader.missing_program_draws(), depth, scene, vertices)?,
-            }
-            for i in 0..8 {
-                gl.disable_draw_buffer(glow::BLEND, i);
-            }
-            gl.depth_mask(true);
-            Ok(())
-        };
-        // Rain, clouds, particles and the hand drawn when the loader draws them.
-        let draw_overlays = |phase: Phase| -> Result<(), HarnessError> {
-            for (kind, vertices) in &mesh.overlay {
-                if scene.overlay_phase(pack.loader, *kind) != phase {
-                    continue;
-                }
-                let program = pack.resolve(pack.loader.program_chain(*kind));
-                draw_geometry(program, &|b| pack.gbuffers_blend_of(program, b), loader::writes_depth(*kind), vertices)?;
-            }
-            Ok(())
-        };
-
-        draw_overlays(Phase::BeforeTerrain)?;
-        // 2. terrain, with blending off
-        draw_geometry(pack.terrain_program(), &|_| Blend::Off, true, &mesh.terrain)?;
-        draw_overlays(Phase::BeforeWater)?;
-
-        // 3. depth copy
-        gl.copy_image_sub_data(textures.depth0, glow::TEXTURE_2D, 0, 0, 0, 0, textures.depth1, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
-
-        // 4. gbuffers_water
-        draw_geometry(Some(&pack.water), &|b| pack.blend_of(b), true, &mesh.translucent)?;
-        draw_overlays(Phase::AfterWater)?;
-
-        // 5. composite, into the RGBA32F output for colortex0
-        draw_composite(ctx, pack, scene, &textures, out, depth)?;
-        finish_frame(gl, textures, out, fbo, &harness, w, h)
-    }
-}
-
-/// Our composite into `out` (colortex0), its other targets into textures of their own that
-/// are deleted after the draw.
-unsafe fn draw_composite(ctx: &GlContext, pack: &LoadedPack, scene: &Scene, textures: &Textures, out: glow::Texture, depth: DepthMapping) -> Result<(), HarnessError> {
-    let gl = ctx.gl();
-    let (w, h) = (scene.width() as i32, scene.height() as i32);
-    // SAFETY: on the context current on this thread, with textures of this frame.
-    unsafe {
-        let composite = compile(ctx, &pack.composite, depth)?;
-        let mut outs = Vec::new();
-        for b in &pack.composite.render_targets {
-            outs.push(if *b == 0 {
-                out
-            } else {
-                let format = textures.colors.get(b).map_or(BufferFormat::Rgba8, |c| c.1);
-                make_texture(gl, internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, false, false)?
-            });
-        }
-        attach(gl, &outs, None)?;
-        gl.disable(glow::DEPTH_TEST);
-        gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.0; 4]);
-        draw_program(ctx, pack, &pack.composite, &composite, Pass::Fullscreen, &uniforms::values(scene, Pass::Fullscreen), textures, &mesh::fullscreen_quad())?;
-        composite.delete(ctx);
-        gl.finish();
-        for t in outs.into_iter().filter(|t| *t != out) {
-            gl.delete_texture(t);
-        }
-    }
-    Ok(())
-}
-
-/// The frame read back, its objects deleted, and the driver's error state checked.
-unsafe fn finish_frame(gl: &glow::Context, textures: Textures, out: glow::Texture, fbo: glow::Framebuffer, harness: &GlHarnessTextures, w: i32, h: i32) -> Result<GlFrame, HarnessError> {
-    // SAFETY: on the context current on this thread, with objects of this frame.
-    unsafe {
-        let read = |t: glow::Texture, is_depth: bool| read(gl, t, is_depth, out, w, h);
-        let image = read(out, false)?;
-        let mut images = BTreeMap::new();
-        for (b, (t, _)) in &textures.colors {
-            images.insert(*b, read(*t, false)?);
-        }
-        let depth0 = read(textures.depth0, true)?;
-        let depth1 = read(textures.depth1, true)?;
-        let error = gl.get_error();
-        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        gl.delete_framebuffer(fbo);
-        harness.delete(gl);
-        for t in [textures.depth0, textures.depth1, out].into_iter().chain(textures.colors.values().map(|c| c.0)) {
-            gl.delete_texture(t);
-        }
-        if error != glow::NO_ERROR {
-            return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
-        }
-        Ok(GlFrame { image, buffers: images, depth0, depth1 })
-    }
 }
 
 /// Draws `vertices` in their vertex colour with the harness's colour shader: what a loader
@@ -784,14 +574,9 @@ unsafe fn set_uniforms(
                 unit += 1;
                 continue;
             }
-            let Some(value) = values.get(&name) else {
-                // Any pack's uniforms the harness has no value for keep OpenGL's initial zero,
-                // as the wgpu path fills them with zero.
-                if !textures.naming.is_any_pack() {
-                    missing.push(name);
-                }
-                continue;
-            };
+            // Uniforms the harness has no value for keep OpenGL's initial zero, as the wgpu
+            // path fills them with zero.
+            let Some(value) = values.get(&name) else { continue };
             set_uniform(gl, location.as_ref(), active.utype, value)
                 .map_err(|m| HarnessError::Uniform(format!("{} (OpenGL): uniform {name}: {m}", program.name)))?;
         }
@@ -881,13 +666,11 @@ pub(crate) unsafe fn draw_program(
                     }
                     generic.push(*location);
                 }
-                // As in the wgpu path: inputs the harness's vertices lack read zero in any
-                // pack, and are an error in ours.
-                None if textures.naming.is_any_pack() => {
+                // As in the wgpu path: inputs the harness's vertices lack read zero.
+                None => {
                     gl.disable_vertex_attrib_array(*location);
                     gl.vertex_attrib_4_f32(*location, 0.0, 0.0, 0.0, 0.0);
                 }
-                None => return Err(HarnessError::Unsupported(format!("vertex input {name}"))),
             }
         }
         // Captured: the vertex stage alone, its outputs recorded, nothing rasterised.

@@ -9,11 +9,12 @@ use std::path::PathBuf;
 use serde::Serialize;
 use tidepack_pack::Dialect;
 
-use crate::gpu::{self, PassTiming};
+use crate::gpu::{self, StepReport};
 use crate::images::{self, FloatImage};
 use crate::program::{self, LoadedPack, PackSelection};
 use tidepack_scene::scene::Scene;
 use crate::{Gpu, HarnessError, Loader, gl, uniforms};
+use crate::any_pack::ScreenOutput;
 use tidepack_scene::mesh;
 
 /// What to render and where to put it.
@@ -153,28 +154,18 @@ pub fn specialisation_speedup(
     frames: usize,
 ) -> Result<SpecialisationReport, HarnessError> {
     let spec = uniforms::scene_specialisation(scene, scene_label);
-    let specialised = program::load_for(selection, Some(&spec), general.loader)?;
-    let (general_mesh, specialised_mesh) = (mesh::build(scene, general), mesh::build(scene, &specialised));
+    let specialised = program::load_for(selection, Some(&spec), general.loader())?;
     const ROUNDS: usize = 3;
     let per_round = frames.div_ceil(ROUNDS).max(1);
     let (mut general_ms, mut specialised_ms, mut passthrough_ms) = (Vec::new(), Vec::new(), Vec::new());
     let mut images = (None, None);
     for _ in 0..ROUNDS {
-        for (pack, mesh, samples, image) in [
-            (general, &general_mesh, &mut general_ms, &mut images.0),
-            (&specialised, &specialised_mesh, &mut specialised_ms, &mut images.1),
-        ] {
-            let (frame, runs) = gpu::render_repeated(gpu, pack, scene, mesh, true, per_round + 1)?;
-            for timings in &runs[1..] {
-                for t in timings {
-                    let ms = t.gpu_ms.unwrap_or(t.wall_ms);
-                    match t.pass.as_str() {
-                        "composite" => samples.push(ms),
-                        "pass-through composite" => passthrough_ms.push(ms),
-                        _ => {}
-                    }
-                }
-            }
+        for (pack, samples, image) in [(general, &mut general_ms, &mut images.0), (&specialised, &mut specialised_ms, &mut images.1)] {
+            let frame = crate::render_wgpu_repeated(gpu, pack, scene, per_round + 1)?;
+            // The first frame of each round pays for llvmpipe's lazy shader compilation.
+            let composite = frame.passes.iter().find(|p| p.pass == "composite").ok_or_else(|| HarnessError::Pack("no composite pass".into()))?;
+            samples.extend_from_slice(&composite.samples_ms[1..]);
+            passthrough_ms.extend_from_slice(&frame.timing.passthrough_samples_ms[1..]);
             *image = Some(frame.image);
         }
     }
@@ -204,7 +195,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     };
     let pack = program::load_for(&selection, None, job.loader)?;
     let gpu = Gpu::new()?;
-    let frame = crate::render_wgpu(&gpu, &pack, &scene, true)?;
+    let frame = crate::render_wgpu(&gpu, &pack, &scene)?;
 
     let stem = file_stem(&scene.name);
     std::fs::create_dir_all(&job.out_dir)
@@ -228,7 +219,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
     }
     let gl = if job.gl {
         let ctx = gl::context()?;
-        let gl_frame = gl::render(&ctx, &pack, &scene, &mesh::build(&scene, &pack))?;
+        let gl_frame = crate::render_gl(&ctx, &pack, &scene)?;
         write(".gl", &gl_frame.image)?;
         Some(GlComparison {
             renderer: ctx.info().to_string(),
@@ -245,16 +236,17 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         None
     };
 
-    let passes: Vec<PassReport> = frame.timings.iter().map(pass_report).collect();
-    let time_of = |name: &str| passes.iter().find(|p| p.pass == name).map(|p| p.ms);
-    let ratio = match (time_of("composite"), time_of("pass-through composite")) {
-        (Some(c), Some(p)) if p > 0.0 => Some(c / p),
+    let mut passes: Vec<PassReport> = frame.passes.iter().map(pass_report).collect();
+    let passthrough_ms = frame.timing.passthrough_ms;
+    passes.push(PassReport { pass: PASSTHROUGH.into(), ms: passthrough_ms, gpu_ms: gpu.timestamps.then_some(passthrough_ms), wall_ms: passthrough_ms });
+    let ratio = match passes.iter().find(|p| p.pass == "composite") {
+        Some(c) if passthrough_ms > 0.0 => Some(c.ms / passthrough_ms),
         _ => None,
     };
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = RenderReport {
-        rendered: RenderedScene::new(&scene, &job.scene, pack.loader, &gpu),
+        rendered: RenderedScene::new(&scene, &job.scene, pack.loader(), &gpu),
         dialect: match job.dialect {
             Dialect::Glsl120 => "120",
             Dialect::Glsl330 => "330",
@@ -322,7 +314,7 @@ pub struct GlStepComparison {
 
 /// The OpenGL frame of any pack against the wgpu frame.
 #[derive(Clone, Debug, Serialize)]
-pub struct GlAnyComparison {
+pub struct GlStepsComparison {
     pub renderer: String,
     pub steps: Vec<GlStepComparison>,
     /// Programs OpenGL drew with its own depth range (outputs transform feedback cannot record).
@@ -341,7 +333,7 @@ pub struct AnyPackReport {
     /// The folder the programs came from (`world0` or `""`).
     pub world: String,
     /// Each pass as it ran, in frame order, with its NaN and Inf counts.
-    pub passes: Vec<crate::gpu::AnyPassReport>,
+    pub passes: Vec<crate::gpu::StepReport>,
     /// The frame against the one-tap pass-through composite, measured in the same run.
     pub timing: crate::gpu::FrameTiming,
     pub expected: Option<ExpectedScreen>,
@@ -351,7 +343,7 @@ pub struct AnyPackReport {
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that did not load, with why.
     pub failed_programs: Vec<(String, String)>,
-    pub gl: Option<GlAnyComparison>,
+    pub gl: Option<GlStepsComparison>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
 }
@@ -363,10 +355,10 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
-    let frame = crate::gpu::render_any(&gpu, &pack, &scene, &mesh, job.frames)?;
+    let frame = gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames)?;
     let gl = if job.gl {
         let ctx = gl::context()?;
-        Some((ctx.info().to_string(), crate::gl_any::render_any(&ctx, &pack, &scene, &mesh)))
+        Some((ctx.info().to_string(), crate::gl_frame::render(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader)))
     } else {
         None
     };
@@ -402,7 +394,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         }
         // The driver refusing a program is a finding about the pack, reported with the frame.
         Some((renderer, Err(HarnessError::Gl(refused)))) => {
-            Some(GlAnyComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: Some(refused) })
+            Some(GlStepsComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: Some(refused) })
         }
         Some((_, Err(e))) => return Err(e),
         None => None,
@@ -434,7 +426,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
 }
 
 /// The OpenGL frame's textures against the wgpu frame's, step by step.
-fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_any::GlAnyFrame) -> Result<GlAnyComparison, HarnessError> {
+fn compare_steps(renderer: String, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame) -> Result<GlStepsComparison, HarnessError> {
     if wgpu.passes.len() != gl.steps.len() {
         return Err(HarnessError::Gl(format!("the OpenGL frame ran {} steps, the wgpu frame {}", gl.steps.len(), wgpu.passes.len())));
     }
@@ -449,7 +441,7 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::AnyFrame, gl: &crate::gl_a
         }
         steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255 });
     }
-    Ok(GlAnyComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
+    Ok(GlStepsComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
 }
 
 /// Writes an RGBA8 image beside the screen: (file suffix, width, height, pixels top row first).
@@ -486,9 +478,12 @@ fn compare_with_blessed(
 }
 
 
-fn pass_report(t: &PassTiming) -> PassReport {
-    PassReport { pass: t.pass.clone(), ms: t.gpu_ms.unwrap_or(t.wall_ms), gpu_ms: t.gpu_ms, wall_ms: t.wall_ms }
+fn pass_report(step: &StepReport) -> PassReport {
+    PassReport { pass: step.pass.clone(), ms: step.median_ms, gpu_ms: step.gpu_ms, wall_ms: step.wall_ms }
 }
+
+/// The report's name of the one-tap pass-through of colortex0 each frame is timed against.
+const PASSTHROUGH: &str = "pass-through composite";
 
 /// Timed frames per pack behind `render --specialise`.
 const SPECIALISATION_FRAMES: usize = 9;

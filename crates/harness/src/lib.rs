@@ -13,7 +13,7 @@ use std::fmt;
 pub mod any_pack;
 pub mod composite_only;
 pub mod gl;
-pub mod gl_any;
+pub mod gl_frame;
 pub mod gpu;
 pub mod images;
 pub mod job;
@@ -21,7 +21,7 @@ pub mod program;
 pub mod samplers;
 pub mod uniforms;
 
-pub use gpu::{Frame, Gpu, PassTiming, median};
+pub use gpu::{Frame, Gpu, StepReport, median};
 pub use images::FloatImage;
 pub use tidepack_loader::Loader;
 pub use program::{LoadedPack, PackSelection};
@@ -77,8 +77,32 @@ impl From<tidepack_scene::SceneError> for HarnessError {
     }
 }
 
-/// Renders a scene with wgpu: builds the mesh with the pack's block ids and runs the frame.
-pub fn render_wgpu(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, passthrough: bool) -> Result<Frame, HarnessError> {
-    let mesh = mesh::build(scene, pack);
-    gpu::render(gpu, pack, scene, &mesh, passthrough)
+/// Renders one frame of `scene` with our pack through wgpu ([`gpu::render`]).
+pub fn render_wgpu(gpu: &Gpu, pack: &LoadedPack, scene: &Scene) -> Result<Frame, HarnessError> {
+    render_wgpu_repeated(gpu, pack, scene, 1)
+}
+
+/// Renders `frames` frames of `scene` with our pack through wgpu, pipelines made once, for
+/// timing (see [`gpu::FrameTiming`]). The screen holds composite's output unrounded
+/// ([`any_pack::ScreenOutput::Unrounded`]); every uniform and vertex input the programs
+/// declare must have a value from the harness.
+pub fn render_wgpu_repeated(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, frames: usize) -> Result<Frame, HarnessError> {
+    let frame = gpu::render(gpu, &pack.pack, scene, &pack.mesh(scene), any_pack::ScreenOutput::Unrounded, frames)?;
+    complete(&frame.zeroed)?;
+    Ok(frame)
+}
+
+/// Renders one frame of `scene` with our pack's shipped text through OpenGL, as
+/// [`render_wgpu`] does through wgpu.
+pub fn render_gl(ctx: &tidepack_gldriver::GlContext, pack: &LoadedPack, scene: &Scene) -> Result<gl_frame::GlFrame, HarnessError> {
+    gl_frame::render(ctx, &pack.pack, scene, &pack.mesh(scene), any_pack::ScreenOutput::Unrounded)
+}
+
+/// Our pack's programs read only what the harness provides: a uniform or vertex input left
+/// at zero is an error.
+pub(crate) fn complete(zeroed: &[String]) -> Result<(), HarnessError> {
+    match zeroed {
+        [] => Ok(()),
+        names => Err(HarnessError::Uniform(format!("the harness has no value for {}", names.join(", ")))),
+    }
 }

@@ -1,36 +1,37 @@
-//! The pack's programs as the harness renders them: the shipped text of one dialect, under a
-//! profile and option overrides, preprocessed, lowered and validated by naga (the wgpu path),
-//! and the same shipped text with its includes expanded (the OpenGL path). Also what OptiFine
-//! reads from the pack around the GLSL: render targets, buffer formats, blend modes from
-//! shaders.properties, block ids from block.properties.
+//! A program as the harness renders it: the shipped text preprocessed, lowered and validated
+//! by naga (the wgpu path), and the same text with its includes expanded (the OpenGL path).
+//! Also our own pack ([`LoadedPack`]): one dialect of it generated under a profile and option
+//! overrides and read as any pack is ([`crate::any_pack`]).
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use tidepack_glsl::lower::{Interface, ResourceKind};
-use tidepack_loader::option_lines::{OptionKind, OptionSet, OptionValue};
+use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{function_definitions, tokenize};
-use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::{Diagnostic, Stage};
+use tidepack_loader::blocks;
+use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::consts;
+use tidepack_loader::directives;
+use tidepack_loader::input;
+use tidepack_loader::loader::Loader;
+use tidepack_loader::option_lines::OptionSet;
+use tidepack_loader::option_space::Configuration;
+use tidepack_loader::properties::{Macros, Properties};
+use tidepack_loader::shadow::ShadowSettings;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
-use tidepack_pack::shipped::{ShippedPack, WithOptions};
+use tidepack_pack::shipped::ShippedPack;
 use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::{Specialisation, specialise};
-use tidepack_loader::blocks;
-use tidepack_loader::buffers::{BufferFormat, colour_buffer_number};
-use tidepack_loader::consts;
-use tidepack_loader::directives::{self, Blend, DEFAULT_TRANSLUCENT_BLEND};
-use tidepack_loader::loader::{Loader, OverlayKind, TERRAIN_CHAIN};
-use tidepack_loader::macros::StandardMacros;
-use tidepack_loader::option_space::property_macros;
-use tidepack_loader::properties::{self, Macros, Properties};
-use tidepack_loader::shadow::ShadowSettings;
+use tidepack_scene::mesh::{self, SceneMesh};
+use tidepack_scene::scene::Scene;
 
 use crate::HarnessError;
-use tidepack_scene::mesh::BlockIds;
+use crate::any_pack::AnyPack;
 
 /// Which pack text to render.
 #[derive(Clone, Debug)]
@@ -92,44 +93,18 @@ pub trait PackResources {
     }
 }
 
-impl PackResources for LoadedPack {
-    fn format_of(&self, buffer: u8) -> BufferFormat {
-        LoadedPack::format_of(self, buffer)
-    }
-
-    fn custom_textures(&self) -> &[CustomTexture] {
-        &self.custom_textures
-    }
-}
-
+/// Our own pack, generated from its sources and read as the loader reads what ships: its
+/// frames are drawn from [`LoadedPack::pack`] like any other pack's.
 #[derive(Debug)]
 pub struct LoadedPack {
     pub dialect: Dialect,
     pub profile: String,
     /// The option values in force (profile, then overrides).
     pub options: OptionSet,
-    pub water: LoadedProgram,
-    pub composite: LoadedProgram,
-    /// The pack's programs for the terrain and for what is drawn after the water, by name:
-    /// those in [`TERRAIN_CHAIN`] and in the loader's chains for each overlay kind.
-    pub gbuffers: BTreeMap<String, LoadedProgram>,
-    /// Blend modes of each program in `gbuffers`, per colour buffer, as the loader reads them.
-    pub gbuffers_blend: BTreeMap<String, BTreeMap<u8, Blend>>,
-    /// Declared colour buffer formats (`const int colortexNFormat = ...;`).
-    pub formats: BTreeMap<u8, BufferFormat>,
-    /// The loader whose behaviour the frame imitates.
-    pub loader: Loader,
-    /// Blend mode of gbuffers_water per colour buffer, as the loader reads shaders.properties.
-    pub water_blend: BTreeMap<u8, Blend>,
-    /// The alpha test on gbuffers_water's output 0 (discard unless alpha > this), if any;
-    /// compiled into the fragment stage of both renderers.
-    pub water_alpha_test: Option<f32>,
-    /// block.properties: block name → id.
-    pub block_ids: HashMap<String, i32>,
-    /// Custom textures from shaders.properties (`texture.<stage>.<unit>=<path>`).
-    pub custom_textures: Vec<CustomTexture>,
     /// Uniforms folded into constants ([`load_specialised`]); empty for the general pack.
     pub folded_uniforms: Vec<String>,
+    /// The shipped files as the loader reads them under the selected options.
+    pub pack: AnyPack,
 }
 
 /// A texture the pack binds itself to a sampler unit.
@@ -151,45 +126,38 @@ pub struct CustomTexture {
 }
 
 impl LoadedPack {
+    /// The loader whose frame is drawn.
+    pub fn loader(&self) -> Loader {
+        self.pack.loader
+    }
+
+    pub fn water(&self) -> &LoadedProgram {
+        &self.pack.gbuffers["gbuffers_water"]
+    }
+
     pub fn format_of(&self, buffer: u8) -> BufferFormat {
-        self.formats.get(&buffer).copied().unwrap_or(BufferFormat::Rgba8)
-    }
-
-    pub fn blend_of(&self, buffer: u8) -> Blend {
-        self.water_blend.get(&buffer).cloned().unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
-    }
-
-    /// The first program of `chain` the pack has: what the loader draws with.
-    pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
-        chain.iter().find_map(|name| self.gbuffers.get(*name))
-    }
-
-    /// What opaque terrain is drawn with; none draws it as the loader itself would.
-    pub fn terrain_program(&self) -> Option<&LoadedProgram> {
-        self.resolve(&TERRAIN_CHAIN)
-    }
-
-    /// The blend mode of a program in `gbuffers` for one colour buffer: its own from
-    /// shaders.properties, else (also where the pack has no program) the game's for
-    /// translucent geometry.
-    pub fn gbuffers_blend_of(&self, program: Option<&LoadedProgram>, buffer: u8) -> Blend {
-        program
-            .and_then(|p| self.gbuffers_blend.get(&p.name))
-            .and_then(|m| m.get(&buffer))
-            .cloned()
-            .unwrap_or(DEFAULT_TRANSLUCENT_BLEND)
+        self.pack.format_of(buffer)
     }
 
     /// The custom texture bound to a sampler name in a gbuffers or full-screen program.
     pub fn custom_texture(&self, name: &str, gbuffers: bool) -> Option<&CustomTexture> {
         let stage = if gbuffers { "gbuffers" } else { "composite" };
-        self.custom_textures.iter().find(|t| t.stage == stage && t.unit == name)
+        self.pack.custom_textures.iter().find(|t| t.stage == stage && t.unit == name)
     }
-}
 
-impl BlockIds for LoadedPack {
-    fn id_of(&self, block: &str) -> i32 {
-        self.block_ids.get(block).copied().unwrap_or(-1)
+    pub fn composite(&self) -> &LoadedProgram {
+        self.pack.fullscreen.iter().find(|p| p.name == "composite").expect("our pack has composite")
+    }
+
+    /// The geometry of `scene` as our pack's scenes are drawn: everything but the sky box, the
+    /// sun and the moon, so the sky keeps OptiFine's clear colour (the fog colour) that the
+    /// water's reference model and golden images assume.
+    pub fn mesh(&self, scene: &Scene) -> SceneMesh {
+        let mut mesh = mesh::build(scene, &self.pack);
+        for sky in [&mut mesh.sky, &mut mesh.sun, &mut mesh.moon] {
+            sky.clear();
+        }
+        mesh
     }
 }
 
@@ -198,7 +166,7 @@ fn diag_error(context: &str, diagnostics: &[Diagnostic]) -> HarnessError {
     HarnessError::Pack(format!("{context}:\n{}", list.join("\n")))
 }
 
-/// Generates the pack in the selected dialect and loads gbuffers_water and composite.
+/// Generates the pack in the selected dialect and reads it as the default loader does.
 pub fn load(selection: &PackSelection) -> Result<LoadedPack, HarnessError> {
     load_specialised(selection, None)
 }
@@ -209,114 +177,36 @@ pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Speci
     load_for(selection, specialisation, Loader::default())
 }
 
-/// [`load_specialised`], for the frame a given loader would draw.
+/// [`load_specialised`], for the frame a given loader would draw: the pack is generated with
+/// the profile's values as its defaults, and the option overrides are applied to the shipped
+/// text as the loader applies a player's choices.
 pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisation>, loader: Loader) -> Result<LoadedPack, HarnessError> {
     let source = PackSource::load(&selection.source_dir).map_err(|d| diag_error("cannot read the pack", &[d]))?;
     let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
     let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults =
         pack_options::profile_set(&source, &options, &profile).map_err(|d| diag_error("unknown profile", &[d]))?;
-    let mut pack = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
+    let mut shipped = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
         .map_err(|d| diag_error("the pack does not generate", &d))?;
     if let Some(spec) = specialisation {
-        specialise(&mut pack, spec);
+        specialise(&mut shipped, spec);
     }
-    let mut overrides = OptionSet::new();
-    for (name, value) in &selection.options {
-        let Some(option) = options.get(name) else {
-            let known: Vec<&str> = options.keys().map(String::as_str).collect();
-            return Err(HarnessError::Pack(format!("no option named {name}; the pack has {}", known.join(", "))));
-        };
-        let parsed = match &option.kind {
-            OptionKind::Switch { .. } => match value.as_str() {
-                "on" | "true" | "1" => OptionValue::Switch(true),
-                "off" | "false" | "0" => OptionValue::Switch(false),
-                _ => return Err(HarnessError::Pack(format!("{name} is a switch: set it to on or off, not {value}"))),
-            },
-            OptionKind::Value { values, .. } if values.contains(value) => OptionValue::Value(value.clone()),
-            OptionKind::Value { values, .. } => {
-                return Err(HarnessError::Pack(format!("{name} takes one of {}, not {value}", values.join(", "))));
-            }
-        };
-        overrides.insert(name.clone(), parsed);
+    let texts = shipped.files.iter().map(|(path, file)| (path.clone(), file.text.as_bytes().to_vec()));
+    let binaries = shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec()));
+    let files = input::pack_from_memory("shaders/", texts.chain(binaries));
+    let configuration = Configuration { options: selection.options.clone(), loader, ..Configuration::default() };
+    let (overrides, _) = configuration.option_set_of(&files).map_err(HarnessError::Pack)?;
+    let pack = AnyPack::from_files(&files, &configuration)?;
+    if !pack.failed.is_empty() {
+        let failed: Vec<String> = pack.failed.iter().map(|(name, why)| format!("{name}: {why}")).collect();
+        return Err(HarnessError::Pack(failed.join("\n")));
     }
-    let mut in_force = defaults.clone();
-    in_force.extend(overrides.clone());
-    let provider = WithOptions::new(&pack, &overrides);
-    let standard = StandardMacros::for_loader(loader);
-    let declared: BTreeMap<String, OptionKind> = options.iter().map(|(name, option)| (name.clone(), option.kind.clone())).collect();
-    let property_macros = property_macros(&standard, &declared, &in_force);
-    let properties_text = provider.read(properties::PATH).map(|t| t.to_string()).unwrap_or_default();
-    let properties = Properties::parse(&properties_text, &property_macros);
-    let legacy_outputs = selection.dialect == Dialect::Glsl120;
-    let water_alpha_test = directives::alpha_test(&properties, "gbuffers_water", loader.default_water_alpha_test(legacy_outputs))
-        .map_err(HarnessError::Unsupported)?;
-    let macros = standard.preprocess_options();
-    let water = load_program(&provider, "gbuffers_water", &macros, water_alpha_test)?;
-    let composite = load_program(&provider, "composite", &macros, None)?;
-    let mut wanted: Vec<&str> = TERRAIN_CHAIN.to_vec();
-    for kind in OverlayKind::ALL {
-        wanted.extend(loader.program_chain(kind));
+    if !pack.gbuffers.contains_key("gbuffers_water") || !pack.fullscreen.iter().any(|p| p.name == "composite") {
+        return Err(HarnessError::Pack("the pack has no gbuffers_water or no composite program".into()));
     }
-    let mut gbuffers = BTreeMap::new();
-    for name in wanted {
-        if !gbuffers.contains_key(name) && provider.read(&format!("{name}.fsh")).is_ok() {
-            gbuffers.insert(name.to_string(), load_program(&provider, name, &macros, None)?);
-        }
-    }
-
-    let mut formats = BTreeMap::new();
-    let other_stages = gbuffers.values().flat_map(|p| [&p.vertex, &p.fragment]);
-    for stage in [&water.vertex, &water.fragment, &composite.vertex, &composite.fragment].into_iter().chain(other_stages) {
-        for (buffer, format) in declared_formats(&stage.gl_text)? {
-            formats.insert(buffer, format);
-        }
-    }
-    let water_blend = blend_modes_of(&properties, "gbuffers_water", loader)?;
-    let mut gbuffers_blend = BTreeMap::new();
-    for name in gbuffers.keys() {
-        gbuffers_blend.insert(name.clone(), blend_modes_of(&properties, name, loader)?);
-    }
-    let block_ids = block_ids(&provider, &property_macros);
-    let read_bytes = |path: &str| match pack.binaries.get(path) {
-        Some(b) => Ok(b.to_vec()),
-        None => {
-            let on_disk = selection.source_dir.join("shaders").join(path);
-            std::fs::read(&on_disk).map_err(|e| format!("{path} is neither generated nor at {} ({e})", on_disk.display()))
-        }
-    };
-    let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
-    if !unsupported.is_empty() {
-        return Err(HarnessError::Unsupported(unsupported.join("; ")));
-    }
-    Ok(LoadedPack {
-        dialect: selection.dialect,
-        profile,
-        options: in_force,
-        water,
-        composite,
-        gbuffers,
-        gbuffers_blend,
-        formats,
-        loader,
-        water_blend,
-        water_alpha_test,
-        block_ids,
-        custom_textures,
-        folded_uniforms: pack.folded_uniforms.clone(),
-    })
-}
-
-/// Loads `<name>.vsh` and `<name>.fsh`; an `alpha_test` discards fragments whose output 0 has
-/// an alpha not above it, as a loader's alpha test would.
-fn load_program(
-    provider: &dyn FileProvider,
-    name: &str,
-    macros: &preprocess::PreprocessOptions,
-    alpha_test: Option<f32>,
-) -> Result<LoadedProgram, HarnessError> {
-    let files = ProgramFiles { name, vertex: format!("{name}.vsh"), fragment: format!("{name}.fsh") };
-    load_program_files(provider, &files, macros, &|_| alpha_test, UndeclaredTargets::Refuse)
+    let mut in_force = defaults;
+    in_force.extend(overrides);
+    Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
 /// The two stage files of one program, as paths inside `shaders/`.
@@ -329,8 +219,6 @@ pub(crate) struct ProgramFiles<'a> {
 /// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum UndeclaredTargets {
-    /// Nowhere: the pack must say (our own pack always does).
-    Refuse,
     /// Every buffer it has an output for, output N to colortexN (OptiFine: all used buffers;
     /// outputs not written are undefined there, untouched here).
     Outputs,
@@ -409,26 +297,9 @@ pub(crate) fn load_program_files(
     let vertex = stages.pop().expect("two stages");
     let render_targets = match (declared_targets, undeclared) {
         (Some(buffers), _) => buffers,
-        (None, UndeclaredTargets::Refuse) => {
-            return Err(HarnessError::Pack(format!(
-                "{} declares no RENDERTARGETS or DRAWBUFFERS; OptiFine and Iris disagree on the default",
-                files.fragment
-            )));
-        }
         (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
         (None, UndeclaredTargets::FirstOnly) => vec![0],
     };
-    // Our own programs must give every output its buffer; loaders drop the outputs of any
-    // pack's programs past the buffers listed.
-    for location in fragment.interface.outputs.keys().filter(|_| undeclared == UndeclaredTargets::Refuse) {
-        if *location as usize >= render_targets.len() {
-            return Err(HarnessError::Pack(format!(
-                "{} writes output {location} but its render targets list only {} buffers",
-                files.fragment,
-                render_targets.len()
-            )));
-        }
-    }
     Ok(LoadedProgram { name: name.to_string(), vertex, fragment, render_targets })
 }
 
@@ -574,20 +445,6 @@ fn wrap_main(text: &str, epilogue: &str) -> Result<String, HarnessError> {
     Ok(out)
 }
 
-/// The declared format of each colour buffer (`const int colortexNFormat = FORMAT;`); a format
-/// the harness does not store exactly is an error naming it.
-pub(crate) fn declared_formats(text: &str) -> Result<Vec<(u8, BufferFormat)>, HarnessError> {
-    declared_format_names(text, colour_buffer_number)
-        .into_iter()
-        .map(|(buffer, value)| {
-            let format = BufferFormat::parse(&value).ok_or_else(|| {
-                HarnessError::Unsupported(format!("colortex{buffer}Format = {value}: the harness renders RGBA8, RGBA16, RGBA16F and RGBA32F buffers"))
-            })?;
-            Ok((buffer, format))
-        })
-        .collect()
-}
-
 /// The buffer and format name of each `const int <buffer>Format = <FORMAT>;` line, buffers
 /// numbered by `number` ([`colour_buffer_number`] or
 /// [`tidepack_loader::buffers::shadow_colour_number`]).
@@ -596,11 +453,6 @@ pub(crate) fn declared_format_names(text: &str, number: fn(&str) -> Option<u8>) 
         .filter(|d| d.ty == "int")
         .filter_map(|d| Some((number(d.name.strip_suffix("Format")?)?, d.value.to_string())))
         .collect()
-}
-
-/// The blend modes of `program` as `loader` reads them; an entry it cannot imitate is an error.
-pub(crate) fn blend_modes_of(properties: &Properties, program: &str, loader: Loader) -> Result<BTreeMap<u8, Blend>, HarnessError> {
-    directives::blend_modes(properties, program, loader.per_buffer_blend()).map_err(HarnessError::Unsupported)
 }
 
 /// The `texture.<stage>.<unit>` entries' images: the PNG `read_bytes` gives for the path, with
@@ -697,8 +549,8 @@ mod tests {
 
     #[test]
     fn declared_formats_are_read_inside_comments_too() {
-        let formats = declared_formats("/*\nconst int colortex4Format = RGBA16;\nconst int gaux2Format = RGBA32F;\n*/").unwrap();
-        assert_eq!(formats, vec![(4, BufferFormat::Rgba16), (5, BufferFormat::Rgba32F)]);
-        assert!(declared_formats("const int colortex1Format = R11F_G11F_B10F;").is_err());
+        let text = "/*\nconst int colortex4Format = RGBA16;\nconst int gaux2Format = RGBA32F;\n*/";
+        let formats = declared_format_names(text, tidepack_loader::buffers::colour_buffer_number);
+        assert_eq!(formats, vec![(4, "RGBA16".to_string()), (5, "RGBA32F".to_string())]);
     }
 }

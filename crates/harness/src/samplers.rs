@@ -34,12 +34,10 @@ pub enum Source {
 /// How sampler names resolve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SamplerNaming {
-    /// The frame of our own pack ([`resolve_in_pack`]): gbuffers programs read no colour
-    /// buffer and not the depth buffer they draw into.
-    OwnFrame,
-    /// Any pack ([`resolve_any`]): every name OptiFine binds.
-    AnyPack,
-    /// Any pack's shadow pass ([`resolve_in_shadow_pass`]).
+    /// The frame's gbuffers and full-screen programs ([`resolve_any`]): every name OptiFine
+    /// binds.
+    Frame,
+    /// The shadow pass's programs ([`resolve_in_shadow_pass`]).
     ShadowPass,
 }
 
@@ -47,16 +45,9 @@ impl SamplerNaming {
     /// What `name` refers to in a program of this naming (`gbuffers` or full-screen).
     pub fn resolve(self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
         match self {
-            SamplerNaming::OwnFrame => resolve_in_pack(pack, name, gbuffers),
-            SamplerNaming::AnyPack => resolve_any(pack, name, gbuffers),
+            SamplerNaming::Frame => resolve_any(pack, name, gbuffers),
             SamplerNaming::ShadowPass => resolve_in_shadow_pass(pack, name),
         }
-    }
-
-    /// Whether the programs are any pack's, whose unknown uniforms, inputs and buffer blocks read
-    /// zero (ours must provide them all).
-    pub fn is_any_pack(self) -> bool {
-        self != SamplerNaming::OwnFrame
     }
 }
 
@@ -95,39 +86,6 @@ pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<So
     Ok(match resolve_any(pack, name, true)? {
         Source::Color(_) | Source::Depth0 | Source::Depth1 => Source::Unbound,
         source => source,
-    })
-}
-
-/// Resolves a sampler name, custom textures of the pack first.
-pub fn resolve_in_pack(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-    let stage = if gbuffers { "gbuffers" } else { "composite" };
-    match pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
-        Some(i) => Ok(Source::Custom(i)),
-        None => resolve_sampler(name, gbuffers),
-    }
-}
-
-/// Resolves a shipped sampler name for a program (`gbuffers` or full-screen).
-pub fn resolve_sampler(name: &str, gbuffers: bool) -> Result<Source, String> {
-    let color = colour_buffer_number(name);
-    Ok(match (name, gbuffers) {
-        ("noisetex", _) => Source::Noise,
-        ("gtexture" | "texture" | "tex", true) => Source::Atlas,
-        ("lightmap", true) => Source::Lightmap,
-        ("depthtex1" | "depthtex2", _) => Source::Depth1,
-        ("depthtex0" | "gdepthtex", false) => Source::Depth0,
-        ("depthtex0" | "gdepthtex", true) => {
-            return Err(format!("{name} is the depth buffer gbuffers_water draws into; read depthtex1 there"));
-        }
-        _ => match color {
-            Some(n) if !gbuffers => Source::Color(n),
-            Some(n) => {
-                return Err(format!(
-                    "{name} (colortex{n}) is not readable in gbuffers programs of this pipeline (nothing wrote it before translucents)"
-                ));
-            }
-            None => return Err(format!("sampler {name} is not one the harness provides")),
-        },
     })
 }
 

@@ -31,8 +31,8 @@ fn switching_the_early_outs_off_leaves_the_picture() {
     let without = program::load(&selection(vec![("EARLY_OUTS".into(), "off".into())])).unwrap_or_else(|e| panic!("{e}"));
     for path in &scenes {
         let scene = Scene::load(path).unwrap_or_else(|e| panic!("{e}"));
-        let a = render_wgpu(&gpu, &with, &scene, false).unwrap_or_else(|e| panic!("{e}"));
-        let b = render_wgpu(&gpu, &without, &scene, false).unwrap_or_else(|e| panic!("{e}"));
+        let a = render_wgpu(&gpu, &with, &scene).unwrap_or_else(|e| panic!("{e}"));
+        let b = render_wgpu(&gpu, &without, &scene).unwrap_or_else(|e| panic!("{e}"));
         let over = images::count_differing(&a.image, &b.image, 2.0 / 255.0);
         let share = over as f64 / a.image.pixels.len() as f64;
         assert!(

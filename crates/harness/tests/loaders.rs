@@ -4,7 +4,7 @@
 //! translucent layer, and where it draws what the pack has no program for.
 
 use tidepack_harness::program::{self, PackSelection};
-use tidepack_harness::{Frame, LoadedPack, Loader, gl, images, mesh, render_wgpu};
+use tidepack_harness::{Frame, LoadedPack, Loader, gl, images, render_wgpu};
 use tidepack_pack::Dialect;
 
 mod common;
@@ -27,7 +27,7 @@ fn for_every_loader(scenes: &[&str], check: impl Fn(Loader, Dialect, &[(String, 
             let pack = pack(loader, dialect);
             let frames: Vec<(String, Frame)> = scenes
                 .iter()
-                .map(|&name| (name.to_string(), render_wgpu(gpu(), &pack, &scene(name), false).unwrap_or_else(|e| panic!("{loader} {name}: {e}"))))
+                .map(|&name| (name.to_string(), render_wgpu(gpu(), &pack, &scene(name)).unwrap_or_else(|e| panic!("{loader} {name}: {e}"))))
                 .collect();
             if let Err(why) = check(loader, dialect, &frames) {
                 failures.push(format!("{loader} ({dialect:?}): {why}"));
@@ -68,7 +68,7 @@ fn only_water_is_shaded_with_every_loader() {
     let water: Vec<Vec<bool>> = scenes
         .iter()
         .map(|&name| {
-            let frame = render_wgpu(gpu(), &default_pack, &scene(name), false).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let frame = render_wgpu(gpu(), &default_pack, &scene(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
             frame.buffers[&4].pixels.iter().map(|p| p[0] > 0.04).collect()
         })
         .collect();
@@ -99,7 +99,7 @@ fn rain_clouds_and_the_hand_stay_over_the_shaded_water() {
         for (name, frame) in frames {
             let mut bare = scene(name);
             bare.overlay.clear();
-            let base = render_wgpu(gpu(), &pack, &bare, false).map_err(|e| e.to_string())?;
+            let base = render_wgpu(gpu(), &pack, &bare).map_err(|e| e.to_string())?;
             let over = &frame.buffers[&3];
             let covered: Vec<usize> = (0..over.pixels.len())
                 .filter(|&i| over.pixels[i][3] > 0.0 && base.buffers[&4].pixels[i][0] > 0.875)
@@ -164,7 +164,7 @@ fn opengl_and_wgpu_agree_for_every_loader() {
         let pack = pack(loader, dialect);
         for (name, frame) in frames {
             let s = scene(name);
-            let gl_frame = gl::render(&ctx, &pack, &s, &mesh::build(&s, &pack)).map_err(|e| format!("{name}: {e}"))?;
+            let gl_frame = tidepack_harness::render_gl(&ctx, &pack, &s).map_err(|e| format!("{name}: {e}"))?;
             let over = images::count_differing(&frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
             if over > 0 {
                 let max = images::max_channel_difference(&frame.image, &gl_frame.image);

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use tidepack_harness::images::{self, FloatImage};
-use tidepack_harness::{Frame, LoadedPack, PackSelection, Scene, gl, mesh, program, render_wgpu};
+use tidepack_harness::{Frame, LoadedPack, PackSelection, Scene, gl, program, render_wgpu};
 use tidepack_pack::Dialect;
 
 mod common;
@@ -39,7 +39,7 @@ fn frames() -> &'static BTreeMap<String, Frame> {
         scene_names()
             .into_iter()
             .map(|name| {
-                let frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &scene(&name), false)
+                let frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &scene(&name))
                     .unwrap_or_else(|e| panic!("{name}: {e}"));
                 (name, frame)
             })
@@ -94,7 +94,7 @@ fn every_scene_renders_finite() {
     for (name, frame) in frames() {
         let bad = frame.image.non_finite();
         assert_eq!(bad, 0, "{name}: {bad} pixels of the RGBA32F composite output are NaN or Inf");
-        assert!(frame.timings.iter().any(|t| t.pass == "composite"), "{name}: no composite timing");
+        assert!(frame.passes.iter().any(|p| p.pass == "composite"), "{name}: no composite pass");
     }
 }
 
@@ -186,7 +186,7 @@ fn glass_scene_without_glass() -> &'static Frame {
     FRAME.get_or_init(|| {
         let mut s = scene("glass");
         s.glass.clear();
-        render_wgpu(gpu(), pack(Dialect::Glsl330), &s, false).unwrap_or_else(|e| panic!("{e}"))
+        render_wgpu(gpu(), pack(Dialect::Glsl330), &s).unwrap_or_else(|e| panic!("{e}"))
     })
 }
 
@@ -214,7 +214,7 @@ fn glass_pixels_with_no_water_behind_pass_through() {
     // The same scene without water: no glass pixel may change.
     let mut dry_scene = scene("glass");
     dry_scene.water = None;
-    let dry_frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &dry_scene, false).unwrap_or_else(|e| panic!("{e}"));
+    let dry_frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &dry_scene).unwrap_or_else(|e| panic!("{e}"));
     let glass: Vec<usize> = (0..dry_frame.image.pixels.len()).filter(|&i| is_glass(&dry_frame, i)).collect();
     assert!(glass.len() > 5000, "the dry glass scene should show the panes, got {} pixels", glass.len());
     let changed = glass.iter().filter(|&&i| !same(dry_frame.image.pixels[i], dry_frame.buffers[&0].pixels[i])).count();
@@ -264,8 +264,8 @@ fn glass_over_water_shows_the_tint_and_no_surface_effects() {
 #[test]
 fn the_same_scene_twice_gives_the_same_bytes() {
     let s = scene("case4_above_near");
-    let a = render_wgpu(gpu(), pack(Dialect::Glsl330), &s, false).unwrap_or_else(|e| panic!("{e}"));
-    let b = render_wgpu(gpu(), pack(Dialect::Glsl330), &s, false).unwrap_or_else(|e| panic!("{e}"));
+    let a = render_wgpu(gpu(), pack(Dialect::Glsl330), &s).unwrap_or_else(|e| panic!("{e}"));
+    let b = render_wgpu(gpu(), pack(Dialect::Glsl330), &s).unwrap_or_else(|e| panic!("{e}"));
     let bits = |f: &FloatImage| f.pixels.iter().flat_map(|p| p.map(f32::to_bits)).collect::<Vec<u32>>();
     assert!(bits(&a.image) == bits(&b.image), "two renders of one scene differ");
     assert_eq!(a.image.to_rgba8_top_first(), b.image.to_rgba8_top_first());
@@ -275,7 +275,7 @@ fn the_same_scene_twice_gives_the_same_bytes() {
 fn a_uniform_the_harness_cannot_fill_is_an_error_naming_it() {
     let mut values = tidepack_harness::uniforms::values(&scene("case4_above_near"), tidepack_harness::uniforms::Pass::Fullscreen);
     values.remove("gbufferProjectionInverse");
-    let module = &pack(Dialect::Glsl330).composite.fragment.module;
+    let module = &pack(Dialect::Glsl330).composite().fragment.module;
     let err = tidepack_harness::uniforms::fill_block(module, &values, "composite.fsh").err().expect("must fail");
     assert!(err.to_string().contains("gbufferProjectionInverse"), "{err}");
 }
@@ -394,9 +394,9 @@ fn opengl_and_wgpu_agree_on_every_scene() {
             let wgpu_frame = if dialect == Dialect::Glsl330 {
                 frames()[&name].clone()
             } else {
-                render_wgpu(gpu(), pack(dialect), &s, false).unwrap_or_else(|e| panic!("{name}: {e}"))
+                render_wgpu(gpu(), pack(dialect), &s).unwrap_or_else(|e| panic!("{name}: {e}"))
             };
-            let gl_frame = gl::render(&ctx, pack(dialect), &s, &mesh::build(&s, pack(dialect)))
+            let gl_frame = tidepack_harness::render_gl(&ctx, pack(dialect), &s)
                 .unwrap_or_else(|e| panic!("{name} ({dialect}): {e}"));
             assert_eq!(gl_frame.image.non_finite(), 0, "{name}: NaN/Inf from OpenGL");
             let max = images::max_channel_difference(&wgpu_frame.image, &gl_frame.image);
@@ -439,8 +439,8 @@ fn the_glint_follows_the_light() {
     })
     .unwrap_or_else(|e| panic!("{e}"));
     let peak = |s: &Scene| -> f32 {
-        let on = render_wgpu(gpu(), pack(Dialect::Glsl330), s, false).unwrap_or_else(|e| panic!("{e}"));
-        let off = render_wgpu(gpu(), &without, s, false).unwrap_or_else(|e| panic!("{e}"));
+        let on = render_wgpu(gpu(), pack(Dialect::Glsl330), s).unwrap_or_else(|e| panic!("{e}"));
+        let off = render_wgpu(gpu(), &without, s).unwrap_or_else(|e| panic!("{e}"));
         on.image.pixels.iter().zip(&off.image.pixels).map(|(a, b)| (0..3).map(|c| a[c] - b[c]).fold(0.0f32, f32::max)).fold(0.0, f32::max)
     };
     let day = scene("case4_above_near");

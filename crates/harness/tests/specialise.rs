@@ -25,8 +25,8 @@ fn every_scene_renders_the_same_specialised_as_general() {
             let specialised = program::load_specialised(&selection, Some(&spec)).unwrap_or_else(|e| panic!("{e}"));
             assert!(specialised.folded_uniforms.contains(&"isEyeInWater".to_string()), "{:?}", specialised.folded_uniforms);
             assert!(!specialised.folded_uniforms.contains(&"frameTimeCounter".to_string()));
-            let a = render_wgpu(&gpu, &general, &scene, false).unwrap_or_else(|e| panic!("{e}"));
-            let b = render_wgpu(&gpu, &specialised, &scene, false).unwrap_or_else(|e| panic!("{e}"));
+            let a = render_wgpu(&gpu, &general, &scene).unwrap_or_else(|e| panic!("{e}"));
+            let b = render_wgpu(&gpu, &specialised, &scene).unwrap_or_else(|e| panic!("{e}"));
             let over = images::count_differing(&a.image, &b.image, 1.0 / 255.0);
             assert_eq!(
                 over,

@@ -28,7 +28,7 @@ fn main() {
     .expect("pack");
     let gpu = Gpu::new().expect("gpu");
     let scene = Scene::load(&root.join("tests/scenes/case4_above_near.toml")).expect("scene").with_resolution(32, 18);
-    let frame = render_wgpu(&gpu, &pack, &scene, false).expect("frame");
+    let frame = render_wgpu(&gpu, &pack, &scene).expect("frame");
     let g = GBuffers::from_frame(&frame);
     let values = uniforms::values(&scene, Pass::Fullscreen);
     // TP_UNIFORM_BINDING=uniform: the blocks as declared, the binding whose per-draw
@@ -45,9 +45,8 @@ fn main() {
     if mode == "frames" {
         // Whole harness frames as the bench renders them: pipelines made per call, 8 frames.
         let big = Scene::load(&root.join("tests/scenes/case4_above_near.toml")).expect("scene").with_resolution(640, 360);
-        let mesh = tidepack_harness::mesh::build(&big, &pack);
         for i in 1..=n {
-            tidepack_harness::gpu::render_repeated(&gpu, &pack, &big, &mesh, true, 8).expect("frames");
+            tidepack_harness::render_wgpu_repeated(&gpu, &pack, &big, 8).expect("frames");
             println!("{i} calls of 8 frames, RSS {:.1} MiB", rss());
         }
         return;

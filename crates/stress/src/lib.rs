@@ -561,7 +561,7 @@ pub fn run(opts: &StressOptions, progress: &mut dyn FnMut(&str)) -> Result<Stres
 
     let mut bases = Vec::new();
     for (name, scene) in base_scenes(opts)? {
-        let frame = render_wgpu(&gpu, &pack, &scene, false).map_err(|e| format!("{name}: {e}"))?;
+        let frame = render_wgpu(&gpu, &pack, &scene).map_err(|e| format!("{name}: {e}"))?;
         bases.push(Base { name, scene, gbuffers: GBuffers::from_frame(&frame) });
     }
     progress(&format!("{} base scenes rendered in {:.1} s", bases.len(), started.elapsed().as_secs_f64()));

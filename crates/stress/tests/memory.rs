@@ -21,7 +21,7 @@ fn setup(width: u32, height: u32) -> (Gpu, LoadedPack, Scene, GBuffers) {
         .unwrap_or_else(|e| panic!("{e}"));
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
     let scene = Scene::load(&root().join("tests/scenes/case4_above_near.toml")).unwrap_or_else(|e| panic!("{e}")).with_resolution(width, height);
-    let frame = render_wgpu(&gpu, &pack, &scene, false).unwrap_or_else(|e| panic!("{e}"));
+    let frame = render_wgpu(&gpu, &pack, &scene).unwrap_or_else(|e| panic!("{e}"));
     let g = GBuffers::from_frame(&frame);
     (gpu, pack, scene, g)
 }
@@ -38,7 +38,7 @@ fn storage_binding_gives_the_uniform_bindings_image_and_the_harness_frames() {
     let uniform = CompositeOnly::with_binding(&gpu, &pack, 32, 18, &values, UniformBinding::Uniform).unwrap();
     let a = storage.render(&gpu, &pack, &g, &values).unwrap();
     let b = uniform.render(&gpu, &pack, &g, &values).unwrap();
-    let frame = render_wgpu(&gpu, &pack, &scene, false).unwrap();
+    let frame = render_wgpu(&gpu, &pack, &scene).unwrap();
     for (i, ((p, q), r)) in a.pixels.iter().zip(&b.pixels).zip(&frame.image.pixels).enumerate() {
         assert_eq!(p.map(f32::to_bits), q.map(f32::to_bits), "pixel {i}: storage {p:?} vs uniform {q:?}");
         assert_eq!(p.map(f32::to_bits), r.map(f32::to_bits), "pixel {i}: composite_only {p:?} vs harness frame {r:?}");

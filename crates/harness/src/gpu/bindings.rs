@@ -398,12 +398,11 @@ fn binding_entries(
     let mut groups: BindingGroups = BTreeMap::new();
     let mut uniform_buffers = Vec::new();
     let mut zeroed_uniforms = Vec::new();
-    let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| match textures.naming {
-        SamplerNaming::OwnFrame => uniforms::fill_block(module, values, path),
-        SamplerNaming::AnyPack | SamplerNaming::ShadowPass => uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
+    let mut fill = |module: &naga::Module, values: &BTreeMap<String, Value>, path: &str| {
+        uniforms::fill_block_leaving_zero(module, values, path).map(|(block, zeroed)| {
             zeroed_uniforms.extend(zeroed);
             block
-        }),
+        })
     };
     for stage in [&program.vertex, &program.fragment] {
         let visibility = match stage.stage {
@@ -578,7 +577,7 @@ impl ProgramPipeline {
         });
 
         let VertexInputs { known: attributes, zeroed: zeroed_attributes, zeroed_names: zeroed } =
-            vertex_attributes(&program.vertex, textures.naming.is_any_pack())?;
+            vertex_attributes(&program.vertex);
         let zero_vertex = (!zeroed_attributes.is_empty()).then(|| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{} inputs the harness does not provide (zero)", program.name)),
@@ -791,12 +790,12 @@ struct VertexInputs {
 
 /// The vertex inputs a stage declares; those the harness's vertices lack are an error unless
 /// `zero_unknown`.
-fn vertex_attributes(stage: &LoadedStage, zero_unknown: bool) -> Result<VertexInputs, HarnessError> {
+fn vertex_attributes(stage: &LoadedStage) -> VertexInputs {
     let VertexInputs { mut known, mut zeroed, mut zeroed_names } = VertexInputs::default();
     for (name, location) in &stage.interface.inputs {
         if let Some((format, offset)) = mesh::attribute_source(name) {
             known.push(wgpu::VertexAttribute { format: vertex_format(format), offset, shader_location: *location });
-        } else if zero_unknown {
+        } else {
             let format = match input_scalar_kind(&stage.module, *location) {
                 Some(naga::ScalarKind::Sint) => wgpu::VertexFormat::Sint32x4,
                 Some(naga::ScalarKind::Uint) => wgpu::VertexFormat::Uint32x4,
@@ -804,15 +803,9 @@ fn vertex_attributes(stage: &LoadedStage, zero_unknown: bool) -> Result<VertexIn
             };
             zeroed.push(wgpu::VertexAttribute { format, offset: 0, shader_location: *location });
             zeroed_names.push(name.clone());
-        } else {
-            return Err(HarnessError::Unsupported(format!(
-                "{} reads vertex input {name}, which the harness does not provide (it has gl_Vertex, gl_Color, gl_Normal, \
-                 gl_MultiTexCoord0, gl_MultiTexCoord1, mc_Entity)",
-                stage.path
-            )));
         }
     }
-    Ok(VertexInputs { known, zeroed, zeroed_names })
+    VertexInputs { known, zeroed, zeroed_names }
 }
 
 /// The scalar kind of the vertex entry point's input at `location`.
@@ -837,7 +830,7 @@ fn stage_entries(
     let module = &stage.module;
     let mut entries = Vec::new();
     // Any pack's own buffer blocks read zero: nothing the harness runs writes them.
-    if textures.naming.is_any_pack() {
+    {
         let mut layouter = naga::proc::Layouter::default();
         if layouter.update(module.to_ctx()).is_ok() {
             for (_, global) in module.global_variables.iter() {
@@ -877,13 +870,13 @@ fn stage_entries(
             {
                 // Any pack's 3D, array, cube and integer textures are custom textures or
                 // images the harness does not make: they read an empty texture of their kind.
-                match (textures.naming.is_any_pack(), empty_texture_of(gpu, *dim, *arrayed, class)) {
-                    (true, Some((view, sample_type, dimension))) => {
+                match empty_texture_of(gpu, *dim, *arrayed, class) {
+                    Some((view, sample_type, dimension)) => {
                         let filters = matches!(sample_type, wgpu::TextureSampleType::Float { filterable: true });
                         resolved.insert(name.clone(), (Source::Unbound, filters));
                         entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type, dimension)));
                     }
-                    _ => problems.push(format!("texture {name} is not a plain sampler2D")),
+                    None => problems.push(format!("texture {name} is not a plain sampler2D")),
                 }
                 continue;
             }

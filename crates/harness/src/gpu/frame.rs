@@ -1,20 +1,9 @@
-//! The wgpu renderer: a small imitation of OptiFine's pipeline for one frame.
-//!
-//! 1. clear: every colour buffer to OptiFine's clear colour (colortex0 fog colour, colortex1
-//!    white, the rest transparent black), depth to 1;
-//! 2. terrain: the pack's terrain program (the first of gbuffers_terrain's fallback chain it
-//!    has) draws the opaque geometry into its render targets and depthtex0; a pack with none
-//!    gets the harness's own terrain shader, which writes colortex0, or every colour buffer
-//!    where the loader draws a missing program into every draw buffer (OptiFine up to 1.16.5;
-//!    [`crate::loader`]);
-//! 3. depthtex0 is copied to depthtex1 (depth without translucents);
-//! 4. gbuffers_water: the pack's program draws water and glass, blended as the loader reads
-//!    shaders.properties and alpha-tested as the loader does, into its render targets and
-//!    depthtex0;
-//! 5. composite: the pack's program full-screen into colortex0's alternate buffer, here an
-//!    RGBA32F target so NaN and Inf survive to the readback;
-//! 6. optionally a one-tap pass-through composite into the same kind of target, the floor
-//!    the composite's cost is measured against.
+//! A frame of any pack, ours included ([`crate::any_pack::FramePlan`]), through wgpu, step
+//! by step: each step's pipeline is built against the textures current at its turn. The
+//! screen is RGBA32F, so NaN and Inf survive. Frames can be repeated for timing, each followed
+//! by a one-tap pass-through of colortex0, the floor a frame's cost is measured against;
+//! after each step of the last frame the textures it wrote are read back and their NaN and Inf
+//! counted.
 //!
 //! Buffers are stored in OpenGL orientation (row 0 at the bottom): the vertex shaders flip y.
 
@@ -22,23 +11,23 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use crate::HarnessError;
-use tidepack_loader::buffers::BufferClear;
+use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::images::FloatImage;
-use tidepack_loader::loader::{self, Phase};
-use tidepack_scene::mesh::{self, SceneMesh, Sprites};
-use crate::program::{LoadedPack, LoadedProgram};
+use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
+use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass};
+use crate::uniforms::{self, Value};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures, UniformBinding, NO_MIPMAPS,
-    view,
+    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, ShadowTextures,
+    UniformBinding, view,
 };
-use crate::samplers::{SamplerNaming, colour_buffers_read};
 use super::geometry::{GeometryDraw, depth_attachment};
-use super::own::PassthroughPipeline;
+use super::own::{MipmapPipelines, PassthroughPipeline};
+use crate::samplers::SamplerNaming;
+use tidepack_loader::buffers::mip_levels;
 use super::readback::{read_pass_ms, read_texture};
 
 /// Median of pass times (NaN for none): what every timing report of the harness quotes.
@@ -53,274 +42,512 @@ pub fn median(samples: &[f64]) -> f64 {
     }
 }
 
-/// Time of one pass.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct PassTiming {
+/// One pass of the frame as it ran.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct StepReport {
+    /// `terrain (gbuffers_terrain)`, `composite1`, `depth copy`, …
     pub pass: String,
-    /// GPU time from timestamps, when the adapter has them (render passes only).
-    pub gpu_ms: Option<f64>,
-    /// Wall time from submit to completion.
+    /// Wall time of the last frame's step.
     pub wall_ms: f64,
+    /// GPU time from timestamps, when the adapter has them (last frame).
+    pub gpu_ms: Option<f64>,
+    /// Median over the frames after the first: GPU time where timestamps exist, else wall.
+    pub median_ms: f64,
+    /// The time of every frame's step, the same kind of time as `median_ms`.
+    pub samples_ms: Vec<f64>,
+    /// NaN and Inf texels in each buffer the pass wrote (`colortex2`, `shadowcolor0`, `screen`);
+    /// normalised formats cannot hold them.
+    pub non_finite: BTreeMap<String, usize>,
+    /// The textures the pass wrote, by the same names, for comparing renderers pass by pass.
+    #[serde(skip)]
+    pub images: Vec<(String, FloatImage)>,
 }
 
-/// One rendered frame, every image bottom row first.
+/// What a frame costs against the one-tap pass-through composite, in the same run.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FrameTiming {
+    /// Frames rendered; medians leave out the first (llvmpipe compiles shaders at first use).
+    pub frames: usize,
+    /// Median of the sum of every step's time.
+    pub frame_ms: f64,
+    /// Median time of the one-tap pass-through of colortex0.
+    pub passthrough_ms: f64,
+    /// The pass-through's time in every frame.
+    pub passthrough_samples_ms: Vec<f64>,
+}
+
+/// A frame of any pack.
 #[derive(Clone, Debug)]
 pub struct Frame {
-    /// Composite's output, read back from an RGBA32F target.
+    /// The screen: what final wrote, bottom row first.
     pub image: FloatImage,
-    /// The colour buffers before composite (colortex0 = the scene composite reads).
+    /// Each colour buffer's current texture when final ran.
     pub buffers: BTreeMap<u8, FloatImage>,
     pub depth0: FloatImage,
     pub depth1: FloatImage,
-    /// Output of the pass-through composite, when it ran.
-    pub passthrough: Option<FloatImage>,
-    pub timings: Vec<PassTiming>,
+    pub passes: Vec<StepReport>,
+    pub timing: FrameTiming,
+    /// What the pack uses that this frame did not imitate: the pack's own list, and the
+    /// uniforms and vertex inputs left at zero.
+    pub not_modelled: Vec<String>,
+    /// The uniforms and vertex inputs the harness has no value for, left at zero.
+    pub zeroed: Vec<String>,
 }
 
-/// The frame's buffers.
-struct FrameTargets {
-    colors: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+/// A colour buffer's two textures and which is current.
+struct Buffer {
+    textures: [wgpu::Texture; 2],
+    /// The copy gbuffers programs sample.
+    snapshot: wgpu::Texture,
+    format: wgpu::TextureFormat,
+}
+
+/// A texture a step wrote.
+enum WrittenTexture {
+    /// One of a colour buffer's two textures: (buffer, index).
+    Buffer(u8, usize),
+    ShadowColour(u8),
+    Screen,
+}
+
+/// A texture a step wrote, by name (`colortex2`, `shadowcolor0`, `screen`).
+type Written = (String, WrittenTexture);
+
+enum Work<'p> {
+    Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8> },
+    DepthCopy,
+    ShadowGeometry(GeometryDraw),
+    ShadowDepthCopy,
+    Fullscreen {
+        program: &'p LoadedProgram,
+        pipeline: ProgramPipeline,
+        current: &'p BTreeMap<u8, usize>,
+        into_screen: bool,
+        /// Buffers whose current texture gets its mipmaps first.
+        mipmaps: &'p BTreeSet<u8>,
+    },
+    ScreenCopy(PassthroughPipeline),
+}
+
+impl Work<'_> {
+    /// A texture copy, not a render pass (no timestamps).
+    fn is_copy(&self) -> bool {
+        matches!(self, Work::DepthCopy | Work::ShadowDepthCopy)
+    }
+}
+
+/// Renders `frames` frames of `scene` with the pack's programs, pipelines made once; returns
+/// the last with the medians of the others' times. Every wgpu validation error becomes a
+/// [`HarnessError::Wgpu`].
+pub fn render(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput, frames: usize) -> Result<Frame, HarnessError> {
+    gpu.check_resolution(scene.width(), scene.height())
+        .map_err(|e| HarnessError::Scene(format!("scene {}: {e}", scene.name)))?;
+    gpu.checked("frame", || render_checked(gpu, pack, scene, mesh, screen, frames))?
+}
+
+/// Every way a frame's textures are used: drawn into, sampled, copied from and to.
+fn every_use() -> wgpu::TextureUsages {
+    wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST
+}
+
+/// The textures of one frame of the plan: each colour buffer's two and its snapshot, the depth
+/// buffers, the screen and the shadow maps.
+struct FrameTextures {
+    size: wgpu::Extent3d,
+    buffers: BTreeMap<u8, Buffer>,
+    /// The snapshots, as gbuffers programs bind the colour buffers.
+    snapshots: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     depth0: wgpu::Texture,
     depth1: wgpu::Texture,
-    /// Composite's colortex0 output.
-    out: wgpu::Texture,
-    passthrough: wgpu::Texture,
+    screen: wgpu::Texture,
+    shadow_size: wgpu::Extent3d,
+    shadow_depth: [wgpu::Texture; 2],
+    /// The shadow maps as `sampler2D` reads them (depth as luminance).
+    shadow_depth_read: [wgpu::Texture; 2],
+    shadow_colours: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
 }
 
-impl FrameTargets {
-    /// Every colour buffer a program writes or composite reads, in its declared format.
-    fn new(gpu: &Gpu, pack: &LoadedPack, size: wgpu::Extent3d) -> Result<FrameTargets, HarnessError> {
-        let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
-        buffers.extend(pack.water.render_targets.iter().copied());
-        buffers.extend(pack.gbuffers.values().flat_map(|p| p.render_targets.iter().copied()));
-        buffers.extend(colour_buffers_read(pack, &pack.composite, SamplerNaming::OwnFrame, false));
-        let texture = |label: &str, format, usage| gpu.texture(label, size, format, usage);
-        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let mut colors = BTreeMap::new();
-        for b in buffers {
+impl FrameTextures {
+    fn new(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<FrameTextures, HarnessError> {
+        let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
+        let texture = |label: &str, format| gpu.texture(label, size, format, every_use());
+        let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
+        // Mipmapped buffers have full mip chains; programs draw into, and read, the first level.
+        let levels = mip_levels(scene.width(), scene.height());
+        for &b in &plan.buffers {
             let format = gpu.texture_format(pack.format_of(b))?;
-            colors.insert(b, (texture(&format!("colortex{b}"), format, attachment | wgpu::TextureUsages::TEXTURE_BINDING), format));
+            let label = |what: &str| format!("colortex{b} {what}");
+            let levels = if plan.mipmapped.contains(&b) { levels } else { 1 };
+            let flipped = |what: &str| gpu.texture_with_levels(&label(what), size, format, every_use(), levels);
+            buffers.insert(b, Buffer { textures: [flipped("A"), flipped("B")], snapshot: texture(&label("as gbuffers read it"), format), format });
         }
-        let depth = attachment | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-        Ok(FrameTargets {
-            colors,
-            depth0: texture("depthtex0", DEPTH, depth),
-            depth1: texture("depthtex1", DEPTH, depth),
-            out: texture("composite output (colortex0 alternate, RGBA32F)", OUT, attachment),
-            passthrough: texture("pass-through output", OUT, attachment),
+        let snapshots = buffers.iter().map(|(b, buffer)| (*b, (buffer.snapshot.clone(), buffer.format))).collect();
+        // The shadow maps: one texel each, cleared, when the frame has no shadow pass.
+        let shadow_side = if pack.shadow_pass { pack.shadow_settings.drawn_resolution().0 } else { 1 };
+        let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
+        let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use());
+        let mut shadow_colours = BTreeMap::new();
+        for &b in &plan.shadow_buffers {
+            let format = gpu.texture_format(pack.shadow_format_of(b))?;
+            shadow_colours.insert(b, (shadow_texture(&format!("shadowcolor{b}"), format), format));
+        }
+        Ok(FrameTextures {
+            size,
+            buffers,
+            snapshots,
+            depth0: texture("depthtex0", DEPTH),
+            depth1: texture("depthtex1", DEPTH),
+            screen: texture("screen (RGBA32F)", OUT),
+            shadow_size,
+            shadow_depth: [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)],
+            shadow_depth_read: [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)],
+            shadow_colours,
         })
     }
 
-    fn bindable<'a>(&'a self, harness: &'a HarnessTextures) -> BindableTextures<'a> {
-        BindableTextures {
-            naming: SamplerNaming::OwnFrame,
+    fn shadow(&self) -> ShadowTextures<'_> {
+        ShadowTextures {
+            depth: [&self.shadow_depth[0], &self.shadow_depth[1]],
+            depth_read: [&self.shadow_depth_read[0], &self.shadow_depth_read[1]],
+            colours: &self.shadow_colours,
+        }
+    }
+
+    /// Every texture cleared as the pack's directives say, at the start of a frame.
+    fn record_clears(&self, encoder: &mut wgpu::CommandEncoder, pack: &AnyPack, scene: &Scene) {
+        let colours: Vec<(&wgpu::Texture, [f64; 4])> = self
+            .buffers
+            .iter()
+            .flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color))))
+            .collect();
+        record_clears(encoder, &colours, &self.depth0);
+        let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
+            self.shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();
+        shadow_clears.extend(self.shadow_depth_read.iter().map(|t| (t, [1.0; 4])));
+        record_clears(encoder, &shadow_clears, &self.shadow_depth[0]);
+        record_clears(encoder, &[], &self.shadow_depth[1]);
+    }
+
+    /// The texture a step wrote, read back.
+    fn read(&self, gpu: &Gpu, texture: &WrittenTexture) -> Result<FloatImage, HarnessError> {
+        match texture {
+            WrittenTexture::Screen => read_texture(gpu, &self.screen, OUT),
+            WrittenTexture::Buffer(b, i) => read_texture(gpu, &self.buffers[b].textures[*i], self.buffers[b].format),
+            WrittenTexture::ShadowColour(b) => read_texture(gpu, &self.shadow_colours[b].0, self.shadow_colours[b].1),
+        }
+    }
+}
+
+/// The plan's steps with their pipelines, what each writes, and what the pipelines left at zero.
+struct PreparedSteps<'p> {
+    steps: Vec<(&'p str, Work<'p>, Vec<Written>)>,
+    zeroed_inputs: Vec<String>,
+    zeroed_uniforms: Vec<String>,
+}
+
+impl<'p> PreparedSteps<'p> {
+    fn new(gpu: &Gpu, pack: &AnyPack, scene: &Scene, plan: &'p FramePlan, textures: &FrameTextures, harness: &HarnessTextures, values: &PassValues) -> Result<Self, HarnessError> {
+        let mut prepared = PreparedSteps { steps: Vec::new(), zeroed_inputs: Vec::new(), zeroed_uniforms: Vec::new() };
+        for step in &plan.steps {
+            let (work, written) = match &step.work {
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
+                    let values = uniforms::with_render_stage(values.of_pass(*pass), render_stage);
+                    let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
+                    let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
+                    // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
+                    let bindable = BindableTextures {
+                        naming: SamplerNaming::Frame,
+                        harness,
+                        colors: &textures.snapshots,
+                        depth0: &textures.depth1,
+                        depth1: &textures.depth1,
+                        shadow: textures.shadow(),
+                        sprites: *sprites,
+                        mipmapped: &NO_MIPMAPS,
+                    };
+                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
+                    let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
+                    (Work::Geometry { draw, current, snapshots }, written)
+                }
+                PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+                PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
+                    let values = uniforms::with_render_stage(&values.shadow, render_stage);
+                    let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                    let state = DrawState { blend_of: &blend_of, depth_write: true };
+                    // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+                    let bindable = BindableTextures {
+                        naming: SamplerNaming::ShadowPass,
+                        harness,
+                        colors: &textures.shadow_colours,
+                        depth0: &textures.depth1,
+                        depth1: &textures.depth1,
+                        shadow: ShadowTextures::empty(harness),
+                        sprites: Sprites::Blocks,
+                        mipmapped: &NO_MIPMAPS,
+                    };
+                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, Some(program), &state, vertices, &step.label)?;
+                    let written = draw.buffers().iter().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(*b))).collect();
+                    (Work::ShadowGeometry(draw), written)
+                }
+                PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
+                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
+                    let pipeline = prepared.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
+                    let written = program
+                        .render_targets
+                        .iter()
+                        .map(|b| match (*into_screen, *b) {
+                            (true, 0) => ("screen".to_string(), WrittenTexture::Screen),
+                            _ => (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b])),
+                        })
+                        .collect();
+                    (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
+                }
+                PlannedWork::ScreenCopy { current } => {
+                    let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
+                    (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
+                }
+            };
+            prepared.steps.push((step.label.as_str(), work, written));
+        }
+        Ok(prepared)
+    }
+
+    /// A geometry step's draw, its zeroed inputs and uniforms noted.
+    #[allow(clippy::too_many_arguments)]
+    fn geometry(
+        &mut self,
+        gpu: &Gpu,
+        pack: &AnyPack,
+        scene: &Scene,
+        values: &BTreeMap<String, Value>,
+        bindable: &BindableTextures,
+        program: Option<&LoadedProgram>,
+        state: &DrawState,
+        vertices: &[PackVertex],
+        label: &str,
+    ) -> Result<GeometryDraw, HarnessError> {
+        let missing = pack.loader.missing_program_draws();
+        let draw = GeometryDraw::new(gpu, pack, missing, scene, values, bindable, program, state, vertices, label.to_string())?;
+        if let Some(pipeline) = draw.pipeline() {
+            self.zeroed_inputs.extend(pipeline.zeroed_inputs.iter().cloned());
+            self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+        }
+        Ok(draw)
+    }
+
+    /// A full-screen step's pipeline, reading the buffers' current textures.
+    #[allow(clippy::too_many_arguments)]
+    fn fullscreen(
+        &mut self,
+        gpu: &Gpu,
+        pack: &AnyPack,
+        textures: &FrameTextures,
+        harness: &HarnessTextures,
+        values: &BTreeMap<String, Value>,
+        program: &LoadedProgram,
+        current: &BTreeMap<u8, usize>,
+        into_screen: bool,
+        mipmaps: &BTreeSet<u8>,
+    ) -> Result<ProgramPipeline, HarnessError> {
+        let buffers = &textures.buffers;
+        let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
+            buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
+        let mut formats: BTreeMap<u8, wgpu::TextureFormat> = buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect();
+        if into_screen {
+            formats.insert(0, OUT);
+        }
+        let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+        let bindable = BindableTextures {
+            naming: SamplerNaming::Frame,
             harness,
-            colors: &self.colors,
-            depth0: &self.depth0,
-            depth1: &self.depth1,
-            shadow: ShadowTextures::empty(harness),
+            colors: &reading,
+            depth0: &textures.depth0,
+            depth1: &textures.depth1,
+            shadow: textures.shadow(),
             sprites: Sprites::Blocks,
-            mipmapped: &NO_MIPMAPS,
+            mipmapped: mipmaps,
+        };
+        let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
+        let pipeline = ProgramPipeline::new(gpu, pack, program, values, kind, &bindable, UniformBinding::ReadOnlyStorage)?;
+        self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+        Ok(pipeline)
+    }
+}
+
+/// What recording a step needs besides its work: the frame's textures and the harness's own
+/// pipelines.
+struct Recorder<'r> {
+    gpu: &'r Gpu,
+    textures: &'r FrameTextures,
+    mipmaps: &'r MipmapPipelines,
+    depth_as_luminance: &'r PassthroughPipeline,
+    quad: &'r FullscreenQuad,
+}
+
+impl Recorder<'_> {
+    fn record(&self, encoder: &mut wgpu::CommandEncoder, work: &Work, stamps: Option<wgpu::RenderPassTimestampWrites<'_>>) {
+        let t = self.textures;
+        match work {
+            Work::Geometry { draw, current, snapshots } => {
+                for b in *snapshots {
+                    let buffer = &t.buffers[b];
+                    encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), t.size);
+                }
+                draw.record(encoder, &|b| &t.buffers[&b].textures[current[&b]], &t.depth0, stamps);
+            }
+            Work::DepthCopy => encoder.copy_texture_to_texture(t.depth0.as_image_copy(), t.depth1.as_image_copy(), t.size),
+            Work::ShadowGeometry(draw) => {
+                draw.record(encoder, &|b| &t.shadow_colours[&b].0, &t.shadow_depth[0], stamps);
+                self.depth_as_luminance.record(encoder, &t.shadow_depth_read[0], None);
+            }
+            Work::ShadowDepthCopy => {
+                encoder.copy_texture_to_texture(t.shadow_depth[0].as_image_copy(), t.shadow_depth[1].as_image_copy(), t.shadow_size);
+                encoder.copy_texture_to_texture(t.shadow_depth_read[0].as_image_copy(), t.shadow_depth_read[1].as_image_copy(), t.shadow_size);
+            }
+            Work::Fullscreen { program, pipeline, current, into_screen, mipmaps } => {
+                for b in *mipmaps {
+                    self.mipmaps.record(self.gpu, encoder, &t.buffers[b].textures[current[b]]);
+                }
+                let target = |b: u8| if *into_screen && b == 0 { &t.screen } else { &t.buffers[&b].textures[1 - current[&b]] };
+                pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, self.quad, stamps);
+            }
+            Work::ScreenCopy(copy) => copy.record(encoder, &t.screen, stamps),
         }
     }
 }
 
-/// Renders one frame of `scene` with the pack's programs. Every wgpu validation error becomes
-/// a [`HarnessError::Wgpu`].
-pub fn render(gpu: &Gpu, pack: &LoadedPack, scene: &Scene, mesh: &SceneMesh, passthrough: bool) -> Result<Frame, HarnessError> {
-    Ok(render_repeated(gpu, pack, scene, mesh, passthrough, 1)?.0)
-}
-
-/// Renders `frames` frames of `scene` with pipelines, buffers and textures made once, for
-/// timing: returns the last frame and the pass times of every frame. The first frame's times
-/// include the driver's lazy shader compilation (llvmpipe compiles fragment shader variants at
-/// the first draw); later frames time the passes alone.
-pub fn render_repeated(
-    gpu: &Gpu,
-    pack: &LoadedPack,
-    scene: &Scene,
-    mesh: &SceneMesh,
-    passthrough: bool,
-    frames: usize,
-) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
-    gpu.check_resolution(scene.width(), scene.height()).map_err(|e| match e {
-        HarnessError::Scene(why) => HarnessError::Scene(format!("scene {}: {why}", scene.name)),
-        other => other,
-    })?;
-    gpu.checked("frame", || render_frame(gpu, pack, scene, mesh, passthrough, frames.max(1)))?
-}
-
-/// One step of the frame after the clear, each its own submission.
-enum Step<'a> {
-    Geometry(&'a GeometryDraw),
-    /// depthtex0 to depthtex1: depth without translucents.
-    DepthCopy,
-    Composite,
-    Passthrough(&'a PassthroughPipeline),
-}
-
-impl Step<'_> {
-    fn label(&self) -> &str {
-        match self {
-            Step::Geometry(draw) => &draw.label,
-            Step::DepthCopy => "depth copy",
-            Step::Composite => "composite",
-            Step::Passthrough(_) => "pass-through composite",
-        }
-    }
-}
-
-fn render_frame(
-    gpu: &Gpu,
-    pack: &LoadedPack,
-    scene: &Scene,
-    mesh: &SceneMesh,
-    passthrough: bool,
-    frames: usize,
-) -> Result<(Frame, Vec<Vec<PassTiming>>), HarnessError> {
-    let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
-    let targets = FrameTargets::new(gpu, pack, size)?;
+fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput, frames: usize) -> Result<Frame, HarnessError> {
+    let plan = FramePlan::new(pack, scene, mesh, screen);
+    let textures = FrameTextures::new(gpu, pack, &plan, scene)?;
     let harness_textures = HarnessTextures::new(gpu, pack);
-    let bindable = targets.bindable(&harness_textures);
-    let gbuffers_values = uniforms::values(scene, Pass::Gbuffers);
-    let geometry = |program: Option<&LoadedProgram>, state: &DrawState, vertices: &[mesh::PackVertex], label: String| {
-        GeometryDraw::new(gpu, pack, pack.loader.missing_program_draws(), scene, &gbuffers_values, &bindable, program, state, vertices, label)
-    };
-
-    let no_blend = |_| Blend::Off;
-    // Opaque terrain is drawn with blending off.
-    let terrain = geometry(pack.terrain_program(), &DrawState { blend_of: &no_blend, depth_write: true }, &mesh.terrain, "terrain".into())?;
-    let water_state = DrawState { blend_of: &|b| pack.blend_of(b), depth_write: true };
-    let water = geometry(Some(&pack.water), &water_state, &mesh.translucent, "gbuffers_water".into())?;
-    // Rain, clouds, particles and the hand, grouped by when the loader draws them.
-    let mut overlays: BTreeMap<Phase, Vec<GeometryDraw>> = BTreeMap::new();
-    for (kind, vertices) in &mesh.overlay {
-        let program = pack.resolve(pack.loader.program_chain(*kind));
-        let state = DrawState { blend_of: &|b| pack.gbuffers_blend_of(program, b), depth_write: loader::writes_depth(*kind) };
-        let label = format!("{kind:?} ({})", program.map_or("the loader's own", |p| p.name.as_str()));
-        overlays.entry(scene.overlay_phase(pack.loader, *kind)).or_default().push(geometry(program, &state, vertices, label)?);
-    }
-    let composite = ProgramPipeline::new(
-        gpu,
-        pack,
-        &pack.composite,
-        &uniforms::values(scene, Pass::Fullscreen),
-        PassKind::Fullscreen { width: size.width, height: size.height },
-        &bindable,
-        UniformBinding::ReadOnlyStorage,
-    )?;
-    let copy_pipeline = if passthrough { Some(PassthroughPipeline::new(gpu, &targets.colors[&0].0)?) } else { None };
+    let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
+    // shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
+    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
     let quad = FullscreenQuad::new(gpu);
 
-    let phase = |p: Phase| overlays.get(&p).into_iter().flatten().map(Step::Geometry);
-    let steps: Vec<Step> = phase(Phase::BeforeTerrain)
-        .chain([Step::Geometry(&terrain)])
-        .chain(phase(Phase::BeforeWater))
-        .chain([Step::DepthCopy, Step::Geometry(&water)])
-        .chain(phase(Phase::AfterWater))
-        .chain([Step::Composite])
-        .chain(copy_pipeline.as_ref().map(Step::Passthrough))
-        .collect();
-    let runs = run_steps(gpu, pack, scene, &targets, &steps, &composite, &quad, frames)?;
-    let timings = runs.last().cloned().unwrap_or_default();
+    let mut not_modelled = pack.not_modelled.clone();
+    let (values, problems) = PassValues::of(pack, scene);
+    not_modelled.extend(pack.sun_path_note(scene));
+    not_modelled.extend(problems.iter().map(|problem| format!("{problem} (the uniform stays zero)")));
+    let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values)?;
+    let mut zeroed: Vec<String> = prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}")).collect();
+    zeroed.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}")));
+    zeroed.sort();
+    zeroed.dedup();
+    not_modelled.extend(prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}: zero (the harness has no value for it)")));
+    not_modelled.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}: zero (the harness's vertices do not carry it)")));
 
+    let recorder = Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, quad: &quad };
+    let (passes, timing) = run_frames(&recorder, pack, scene, &plan, &prepared.steps, frames)?;
     let mut images = BTreeMap::new();
-    for (b, (t, format)) in &targets.colors {
-        images.insert(*b, read_texture(gpu, t, *format)?);
+    for (b, buffer) in &textures.buffers {
+        images.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
     }
-    let frame = Frame {
-        image: read_texture(gpu, &targets.out, OUT)?,
+    not_modelled.sort();
+    not_modelled.dedup();
+    Ok(Frame {
+        image: read_texture(gpu, &textures.screen, OUT)?,
         buffers: images,
-        depth0: read_texture(gpu, &targets.depth0, DEPTH)?,
-        depth1: read_texture(gpu, &targets.depth1, DEPTH)?,
-        passthrough: if passthrough { Some(read_texture(gpu, &targets.passthrough, OUT)?) } else { None },
-        timings,
-    };
-    Ok((frame, runs))
+        depth0: read_texture(gpu, &textures.depth0, DEPTH)?,
+        depth1: read_texture(gpu, &textures.depth1, DEPTH)?,
+        passes,
+        timing,
+        not_modelled,
+        zeroed,
+    })
 }
 
-/// Runs the frame's steps `frames` times after OptiFine's clears; each run's pass timings,
-/// every step but the depth copy a render pass timed by GPU timestamps where the adapter has
-/// them, each step also by the wall clock.
-#[allow(clippy::too_many_arguments)]
-fn run_steps(
-    gpu: &Gpu,
-    pack: &LoadedPack,
+/// Runs `frames` frames of the prepared steps, each followed by a one-tap pass-through of
+/// colortex0 to a texture of its own (the floor the frame's cost is measured against); the
+/// textures are read back, and their NaN and Inf counted, after every step of the last frame
+/// only.
+fn run_frames(
+    recorder: &Recorder,
+    pack: &AnyPack,
     scene: &Scene,
-    targets: &FrameTargets,
-    steps: &[Step],
-    composite: &ProgramPipeline,
-    quad: &FullscreenQuad,
+    plan: &FramePlan,
+    steps: &[(&str, Work, Vec<Written>)],
     frames: usize,
-) -> Result<Vec<Vec<PassTiming>>, HarnessError> {
+) -> Result<(Vec<StepReport>, FrameTiming), HarnessError> {
+    let (gpu, textures) = (recorder.gpu, recorder.textures);
     let device = &gpu.device;
-    let size = targets.depth0.size();
-    let render_passes = steps.iter().filter(|s| !matches!(s, Step::DepthCopy)).count() as u32;
+    let floor_target = gpu.texture("pass-through output (RGBA32F)", textures.size, OUT, every_use());
+    let floor = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[plan.current[&0]])?;
+    let render_passes = steps.iter().filter(|(_, work, _)| !work.is_copy()).count() as u32 + 1;
     let queries = gpu.timestamps.then(|| {
-        device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("pass timestamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: render_passes * 2,
-        })
+        device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
     });
-    let stamps = |i: u32| {
-        queries.as_ref().map(|q| wgpu::RenderPassTimestampWrites {
-            query_set: q,
-            beginning_of_pass_write_index: Some(2 * i),
-            end_of_pass_write_index: Some(2 * i + 1),
-        })
-    };
+    let new_encoder = || device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
     let submit = |encoder: wgpu::CommandEncoder| -> Result<f64, HarnessError> {
         let started = Instant::now();
         gpu.queue.submit([encoder.finish()]);
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
         Ok(started.elapsed().as_secs_f64() * 1000.0)
     };
-    let new_encoder = || device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-
-    let mut runs: Vec<Vec<PassTiming>> = Vec::new();
-    for _ in 0..frames {
-        let mut wall = Vec::new();
-        gpu.checked("rendering", || -> Result<(), HarnessError> {
-            let mut encoder = new_encoder();
-            // OptiFine's clears: colortex0 the fog colour, colortex1 white, the rest transparent.
-            let colours: Vec<(&wgpu::Texture, [f64; 4])> =
-                targets.colors.iter().map(|(b, (t, _))| (t, BufferClear::Default.colour(*b, scene.sky.fog_color))).collect();
-            record_clears(&mut encoder, &colours, &targets.depth0);
-            submit(encoder)?;
-            let mut timed = 0;
-            for step in steps {
-                let mut encoder = new_encoder();
-                let stamp = if matches!(step, Step::DepthCopy) { None } else { stamps(timed) };
-                timed += u32::from(stamp.is_some());
-                match step {
-                    Step::Geometry(draw) => draw.record(&mut encoder, &|b| &targets.colors[&b].0, &targets.depth0, stamp),
-                    Step::DepthCopy => encoder.copy_texture_to_texture(targets.depth0.as_image_copy(), targets.depth1.as_image_copy(), size),
-                    Step::Composite => composite.record_fullscreen(&mut encoder, &pack.composite, &targets.out, quad, stamp),
-                    Step::Passthrough(p) => p.record(&mut encoder, &targets.passthrough, stamp),
-                }
-                wall.push(submit(encoder)?);
-            }
-            Ok(())
-        })??;
-        let mut gpu_ms = match &queries {
-            Some(q) => read_pass_ms(gpu, q, render_passes)?.into_iter(),
-            None => Vec::new().into_iter(),
-        };
-        let timings = steps
-            .iter()
-            .zip(wall)
-            .map(|(step, wall_ms)| PassTiming {
-                pass: step.label().to_string(),
-                gpu_ms: if matches!(step, Step::DepthCopy) { None } else { gpu_ms.next() },
-                wall_ms,
+    let frames = frames.max(1);
+    let mut reports: Vec<StepReport> = Vec::new();
+    // Per frame: each step's time (GPU where timestamps exist, else wall) and the floor's.
+    let mut step_ms: Vec<Vec<f64>> = vec![Vec::new(); steps.len()];
+    let mut floor_ms = Vec::new();
+    for frame in 0..frames {
+        let last = frame + 1 == frames;
+        let mut encoder = new_encoder();
+        textures.record_clears(&mut encoder, pack, scene);
+        submit(encoder)?;
+        let mut timed = 0u32;
+        let mut stamp = |timestamps: bool| {
+            let q = queries.as_ref().filter(|_| timestamps)?;
+            timed += 1;
+            Some(wgpu::RenderPassTimestampWrites {
+                query_set: q,
+                beginning_of_pass_write_index: Some(2 * (timed - 1)),
+                end_of_pass_write_index: Some(2 * (timed - 1) + 1),
             })
-            .collect();
-        runs.push(timings);
+        };
+        let mut walls = Vec::new();
+        for (label, work, written) in steps {
+            let mut encoder = new_encoder();
+            recorder.record(&mut encoder, work, stamp(!work.is_copy()));
+            let wall_ms = submit(encoder)?;
+            walls.push(wall_ms);
+            if last {
+                let mut non_finite = BTreeMap::new();
+                let mut images = Vec::new();
+                for (name, texture) in written {
+                    let image = textures.read(gpu, texture)?;
+                    non_finite.insert(name.clone(), image.non_finite());
+                    images.push((name.clone(), image));
+                }
+                reports.push(StepReport { pass: label.to_string(), wall_ms, gpu_ms: None, median_ms: 0.0, samples_ms: Vec::new(), non_finite, images });
+            }
+        }
+        let mut encoder = new_encoder();
+        floor.record(&mut encoder, &floor_target, stamp(true));
+        walls.push(submit(encoder)?);
+        let gpu_ms = match &queries {
+            Some(q) => Some(read_pass_ms(gpu, q, render_passes)?),
+            None => None,
+        };
+        // The timestamps are in order of the timed passes; the depth copies have wall time only.
+        let mut gpu_iter = gpu_ms.iter().flatten().copied();
+        for (i, (_, work, _)) in steps.iter().enumerate() {
+            let gpu_time = if work.is_copy() { None } else { gpu_iter.next() };
+            step_ms[i].push(gpu_time.unwrap_or(walls[i]));
+            if last {
+                reports[i].gpu_ms = gpu_time;
+            }
+        }
+        floor_ms.push(gpu_iter.next().unwrap_or(walls[steps.len()]));
     }
-    Ok(runs)
+    // The first frame pays for llvmpipe's lazy shader compilation: medians leave it out.
+    let settled = |samples: &[f64]| median(if samples.len() > 1 { &samples[1..] } else { samples });
+    for (report, samples) in reports.iter_mut().zip(&step_ms) {
+        report.median_ms = settled(samples);
+        report.samples_ms = samples.clone();
+    }
+    let frame_ms: Vec<f64> = (0..frames).map(|f| step_ms.iter().map(|s| s[f]).sum()).collect();
+    let timing = FrameTiming { frames, frame_ms: settled(&frame_ms), passthrough_ms: settled(&floor_ms), passthrough_samples_ms: floor_ms };
+    Ok((reports, timing))
 }
 
 /// Clears each texture to its colour (RGBA) and `depth0` to 1, eight attachments a pass.
@@ -348,7 +575,3 @@ pub(crate) fn record_clears(encoder: &mut wgpu::CommandEncoder, colours: &[(&wgp
         });
     }
 }
-
-
-
-

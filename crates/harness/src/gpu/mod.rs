@@ -5,13 +5,12 @@
 //! - [`bindings`]: one program of the pack as a pipeline, its sampler names resolved as
 //!   OptiFine names them and bound with its uniform blocks; used by the frame and by
 //!   [`crate::composite_only`] alike;
-//! - [`frame`]: a whole frame of our own pack as the loader draws it, pass by pass;
-//! - [`any_frame`]: a whole frame of any pack ([`crate::any_pack`]), pass by pass;
+//! - [`frame`]: a whole frame of any pack, ours included ([`crate::any_pack::FramePlan`]),
+//!   step by step;
 //! - [`geometry`]: one gbuffers draw, by the pack's program or the loader's own colour;
 //! - [`own`]: the harness's own shaders (a loader's fixed-function colour, the pass-through);
 //! - [`readback`]: textures and timestamps back to the CPU.
 
-pub mod any_frame;
 pub mod bindings;
 pub mod device;
 pub mod frame;
@@ -21,6 +20,5 @@ pub mod readback;
 
 pub use bindings::UniformBinding;
 pub use device::{Gpu, VULKAN_PACKAGE};
-pub use any_frame::{AnyFrame, AnyPassReport, FrameTiming, render_any};
-pub use frame::{Frame, PassTiming, median, render, render_repeated};
+pub use frame::{Frame, FrameTiming, StepReport, median, render};
 pub use readback::read_texture;

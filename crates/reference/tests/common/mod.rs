@@ -56,7 +56,7 @@ pub fn pack(profile: &str) -> &'static LoadedPack {
 
 /// A scene rendered by the harness with the pack at a profile.
 pub fn frame(scene_name: &str, profile: &str) -> Frame {
-    render_wgpu(gpu(), pack(profile), &scene(scene_name), false).unwrap_or_else(|e| panic!("{scene_name} at {profile}: {e}"))
+    render_wgpu(gpu(), pack(profile), &scene(scene_name)).unwrap_or_else(|e| panic!("{scene_name} at {profile}: {e}"))
 }
 
 /// The pack's option values as the reference's settings (`WATER_TEXTURE_SLOPE_RANGE` from the

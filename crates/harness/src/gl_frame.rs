@@ -1,12 +1,12 @@
-//! Any pack's frame ([`crate::any_pack::FramePlan`]) through Mesa's OpenGL, the shipped text
-//! as the driver compiles it, step by step as [`crate::gpu::any_frame`] runs it with wgpu, so
+//! A frame of any pack, ours included ([`crate::any_pack::FramePlan`]), through Mesa's OpenGL, the shipped text
+//! as the driver compiles it, step by step as [`crate::gpu::frame`] runs it with wgpu, so
 //! the two can be compared texture by texture after every step.
 //!
 //! Depth is mapped as the wgpu path maps it ([`DepthMapping::Harness`]) for every program
 //! whose vertex outputs transform feedback can record (floats, perspective); a program with
 //! other outputs (`flat` integers) is linked as shipped and drawn with OpenGL's own depth
 //! range, which equals the wgpu mapping up to the last bits. Those programs are named in
-//! [`GlAnyFrame::own_depth_mapping`].
+//! [`GlFrame::own_depth_mapping`].
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -14,7 +14,7 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork};
+use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
     add_mip_levels, read_as_shadow_map, set_blends,
@@ -29,18 +29,23 @@ use tidepack_scene::scene::Scene;
 use crate::uniforms::{self, Pass};
 use tidepack_loader::loader::MissingProgramDraws;
 
-/// A frame of any pack from the OpenGL driver.
+/// A frame from the OpenGL driver, every image bottom row first.
 #[derive(Clone, Debug)]
-pub struct GlAnyFrame {
+pub struct GlFrame {
+    /// The screen.
     pub image: FloatImage,
+    /// Each colour buffer's current texture at the end of the frame.
+    pub buffers: BTreeMap<u8, FloatImage>,
+    pub depth0: FloatImage,
+    pub depth1: FloatImage,
     /// Per step, in plan order: the textures it wrote, named as the wgpu path names them.
     pub steps: Vec<(String, Vec<(String, FloatImage)>)>,
     /// Programs drawn with OpenGL's depth range (see the module doc).
     pub own_depth_mapping: Vec<String>,
 }
 
-/// Renders `scene` with any pack's shipped text through OpenGL.
-pub fn render_any(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlAnyFrame, HarnessError> {
+/// Renders `scene` with the pack's shipped text through OpenGL.
+pub fn render(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput) -> Result<GlFrame, HarnessError> {
     let Some(clip_control) = ctx.legacy().clip_control else {
         return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
     };
@@ -49,7 +54,7 @@ pub fn render_any(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMe
         clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
         (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
     }
-    let frame = render_plan(ctx, pack, scene, mesh);
+    let frame = render_plan(ctx, pack, scene, mesh, screen);
     // SAFETY: as above.
     unsafe {
         clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
@@ -82,8 +87,8 @@ struct GlPlanFrame<'a> {
     own_depth_mapping: Vec<String>,
 }
 
-fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh) -> Result<GlAnyFrame, HarnessError> {
-    let plan = FramePlan::new(pack, scene, mesh);
+fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput) -> Result<GlFrame, HarnessError> {
+    let plan = FramePlan::new(pack, scene, mesh, screen);
     // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
         let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan)?;
@@ -110,7 +115,7 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh)
             };
             steps.push((step.label.clone(), written));
         }
-        frame.finish(steps)
+        frame.finish(steps, &plan.current)
     }
 }
 
@@ -279,7 +284,7 @@ impl<'a> GlPlanFrame<'a> {
                     // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
                     let harness = self.harness.clone();
                     let textures = Textures {
-                        naming: SamplerNaming::AnyPack,
+                        naming: SamplerNaming::Frame,
                         harness: &harness,
                         colors: self.buffers.iter().map(|(b, (_, snapshot, format))| (*b, (*snapshot, *format))).collect(),
                         depth0: self.depth1,
@@ -346,18 +351,21 @@ impl<'a> GlPlanFrame<'a> {
                 gl.bind_texture(glow::TEXTURE_2D, Some(self.buffers[b].0[current[b]]));
                 gl.generate_mipmap(glow::TEXTURE_2D);
             }
-            let targets: Vec<(String, glow::Texture)> = if into_screen {
-                vec![("screen".to_string(), self.screen)]
-            } else {
-                program.render_targets.iter().map(|b| (format!("colortex{b}"), self.buffers[b].0[1 - current[b]])).collect()
-            };
+            let targets: Vec<(String, glow::Texture)> = program
+                .render_targets
+                .iter()
+                .map(|b| match (into_screen, *b) {
+                    (true, 0) => ("screen".to_string(), self.screen),
+                    _ => (format!("colortex{b}"), self.buffers[b].0[1 - current[b]]),
+                })
+                .collect();
             let attachments: Vec<glow::Texture> = targets.iter().map(|(_, t)| *t).collect();
             attach(gl, &attachments, None)?;
             set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
             let textures = Textures {
-                naming: SamplerNaming::AnyPack,
+                naming: SamplerNaming::Frame,
                 harness: &harness,
                 colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
                 depth0: self.depth0,
@@ -391,24 +399,30 @@ impl<'a> GlPlanFrame<'a> {
     }
 
     /// The screen read back, every object deleted, and the driver's error state checked.
-    unsafe fn finish(self, steps: Vec<(String, Vec<(String, FloatImage)>)>) -> Result<GlAnyFrame, HarnessError> {
+    unsafe fn finish(self, steps: Vec<(String, Vec<(String, FloatImage)>)>, current: &BTreeMap<u8, usize>) -> Result<GlFrame, HarnessError> {
         let gl = self.ctx.gl();
         unsafe {
             gl.finish();
             let image = self.read_colour(self.screen)?;
+            let mut buffers = BTreeMap::new();
+            for (b, (textures, _, _)) in &self.buffers {
+                buffers.insert(*b, self.read_colour(textures[current[b]])?);
+            }
+            let depth0 = read(gl, self.depth0, true, self.screen, self.w, self.h)?;
+            let depth1 = read(gl, self.depth1, true, self.screen, self.w, self.h)?;
             let error = gl.get_error();
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
             gl.delete_framebuffer(self.fbo);
             self.harness.delete(gl);
             let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().copied());
-            let buffers = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
-            for t in [self.depth0, self.depth1, self.screen].into_iter().chain(buffers).chain(shadow_textures) {
+            let buffer_textures = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
+            for t in [self.depth0, self.depth1, self.screen].into_iter().chain(buffer_textures).chain(shadow_textures) {
                 gl.delete_texture(t);
             }
             if error != glow::NO_ERROR {
                 return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
             }
-            Ok(GlAnyFrame { image, steps, own_depth_mapping: self.own_depth_mapping })
+            Ok(GlFrame { image, buffers, depth0, depth1, steps, own_depth_mapping: self.own_depth_mapping })
         }
     }
 }
