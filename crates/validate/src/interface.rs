@@ -102,7 +102,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                             format!(
                                 "fragment input `{}` is read at {} but {vertex_path} does not declare it: GLSL wants every input that is read written by the previous stage (stated as a link error from GLSL 4.20 on); Mesa links it under #version {version} (it refuses it only from 4.20 and in 1.10/1.20), stricter drivers may not",
                                 input.name,
-                                fragment.location(read_at).map_or_else(|| format!("line {read_at}"), |l| format!("{}:{}", l.path, l.line)),
+                                crate::glsl_rules::place(fragment, read_at),
                             ),
                             at,
                         )

@@ -32,6 +32,7 @@ mod naga_pool;
 pub mod output;
 mod report;
 mod stages;
+pub mod glsl_rules;
 pub mod version_rules;
 
 pub use messages::unlower_names;
@@ -256,7 +257,18 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         }
         diagnostics.push(diag);
     }
-    found.extend(naga_pool::run_naga(&jobs, &pack, &sets, options.threads));
+    // naga's error at a line where a GLSL rule already named the mistake says the same in
+    // naga's words: the rule's message stands alone.
+    let explained: HashSet<(String, u32)> = found
+        .iter()
+        .filter(|f| f.diagnostic.is_error())
+        .filter_map(|f| f.diagnostic.location.as_ref().map(|l| (l.path.clone(), l.line)))
+        .collect();
+    let naga_findings = naga_pool::run_naga(&jobs, &pack, &sets, options.threads);
+    found.extend(naga_findings.into_iter().filter(|f| {
+        let at = f.diagnostic.location.as_ref().map(|l| (l.path.clone(), l.line));
+        !(f.diagnostic.is_error() && at.is_some_and(|at| explained.contains(&at)))
+    }));
     let driver_summary = if options.driver {
         let mut unsupported = Vec::new();
         let summary = run_driver(&programs, &pack, &sets, options, &mut found, &mut unsupported)?;

@@ -9,7 +9,7 @@ use tidepack_glsl::{Diagnostic, Location, Stage};
 use tidepack_loader::directives::CustomNames;
 use tidepack_loader::programs::Program;
 
-use crate::{interface, version_rules};
+use crate::{glsl_rules, interface, version_rules};
 
 /// Preprocesses and lowers a program's stages and runs the checks that need no naga.
 pub(crate) fn check_program(
@@ -26,6 +26,7 @@ pub(crate) fn check_program(
                 assume_glsl_110(&mut pre);
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(version_rules::check(&pre, *stage));
+                diags.extend(glsl_rules::check(&pre, *stage));
                 preprocessed.push((*stage, Arc::new(pre)));
             }
             Err(e) => {

@@ -17,10 +17,13 @@ use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Stage};
 
+use crate::glsl_rules::{Globals, code_tokens, place};
+
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
+const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
 
 /// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
 /// these names.
@@ -85,6 +88,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let lod = extensions.contains(TEXTURE_LOD) || gpu4;
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let globals = Globals::read(&code_tokens(&tokens), stage);
     let mut found: Vec<Diagnostic> = Vec::new();
     let mut warnings: Vec<Diagnostic> = Vec::new();
     let mut reported: BTreeSet<(String, u32)> = BTreeSet::new();
@@ -132,12 +136,16 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
             local_constant = true;
         } else if t.is_punct(";") {
             local_constant = false;
-        } else if local_constant && number < 420 && t.kind == TokenKind::Ident && parameters.contains(t.text) {
+        } else if let Some(what) = (local_constant && number < 420 && t.kind == TokenKind::Ident)
+            .then(|| runtime_value(t.text, &parameters, &globals))
+            .flatten()
+        {
             if reported.insert((t.text.to_string(), t.line)) {
                 found.push(Diagnostic::error(
                     format!(
-                        "a local `const` must be initialised with a constant expression before GLSL 4.20, and the parameter \
-                         `{}` is not one (Mesa refuses it in `{shown_version}`); drop `const` or use #version 420",
+                        "a local `const` must be initialised with a constant expression before GLSL 4.20, and the {what} \
+                         `{}` is not one (Mesa: \"initializer of const variable must be a constant expression\" in \
+                         `{shown_version}`); drop `const` or use #version 420",
                         t.text
                     ),
                     pre.location(t.line),
@@ -213,6 +221,9 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     if number >= 130 {
         found.extend(hidden_builtin_calls(pre, &sig));
     }
+    if (130..400).contains(&number) && !extensions.contains(GPU_SHADER5) {
+        found.extend(int_literals_for_uints(pre, &sig, &shown_version));
+    }
     found.extend(warnings);
     found
 }
@@ -246,12 +257,70 @@ fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<
             && let Some(&(_, declared_at)) = declared.iter().find(|(name, _)| *name == t.text)
             && reported.insert(t.line)
         {
-            let at = pre.location(declared_at).map_or_else(|| format!("line {declared_at}"), |l| format!("{}:{}", l.path, l.line));
+            let at = place(pre, declared_at);
             let hint = if t.text == "texture" { " (OptiFine binds the atlas as `gtexture` and `tex` too)" } else { "" };
             found.push(Diagnostic::error(
                 format!(
                     "`{0}` is a variable here (declared at {at}), which hides the built-in function {0}() from GLSL 1.30 on: this call names no function (Mesa: \"no function with name '{0}'\"); rename the variable{hint}",
                     t.text
+                ),
+                pre.location(t.line),
+            ));
+        }
+    }
+    found
+}
+
+/// What `name` is when it is no constant: a parameter of the function, a uniform or an input.
+fn runtime_value(name: &str, parameters: &BTreeSet<&str>, globals: &Globals) -> Option<&'static str> {
+    if parameters.contains(name) {
+        Some("parameter")
+    } else if globals.uniforms.contains_key(name) || globals.samplers.contains_key(name) {
+        Some("uniform")
+    } else if globals.inputs.contains_key(name) {
+        Some("input")
+    } else {
+        None
+    }
+}
+
+/// An int literal (`3`, not `3u`) where a `uint` variable is assigned, initialised, compared or
+/// computed with: GLSL converts int to uint implicitly only from 4.00 (or with
+/// `GL_ARB_gpu_shader5`); Mesa: "could not implicitly convert".
+fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>], shown_version: &str) -> Vec<Diagnostic> {
+    const OPERATORS: [&str; 22] = [
+        "=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "+", "-", "*", "/", "%", "<", ">", "<=", ">=", "==", "!=", "&", "|",
+    ];
+    // An int literal: decimal, octal or hex digits and no suffix.
+    let is_int_literal = |t: &tidepack_glsl::token::Token<'_>| {
+        let hex = t.text.strip_prefix("0x").or_else(|| t.text.strip_prefix("0X"));
+        t.kind == TokenKind::Number
+            && match hex {
+                Some(digits) => !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_hexdigit()),
+                None => t.text.bytes().all(|b| b.is_ascii_digit()),
+            }
+    };
+    let uints: BTreeSet<&str> =
+        sig.windows(2).filter(|w| w[0].is_ident("uint") && w[1].kind == TokenKind::Ident).map(|w| w[1].text).collect();
+    let mut found = Vec::new();
+    let mut reported = BTreeSet::new();
+    for (k, t) in sig.iter().enumerate() {
+        if t.kind != TokenKind::Ident || !uints.contains(t.text) || k > 0 && sig[k - 1].is_punct(".") {
+            continue;
+        }
+        // `n = 3`, `n += 3`, `n > 3`, and `3 * n` (the literal a whole operand: no `.` or call after it).
+        let after = sig.get(k + 1).copied().zip(sig.get(k + 2).copied()).filter(|(op, lit)| OPERATORS.contains(&op.text) && is_int_literal(lit));
+        let after = after.filter(|_| !sig.get(k + 3).is_some_and(|n| matches!(n.text, "." | "(" | "[")));
+        let before = k.checked_sub(2).map(|p| (sig[p + 1], sig[p])).filter(|(op, lit)| {
+            OPERATORS[9..].contains(&op.text) && is_int_literal(lit) && !(k >= 3 && matches!(sig[k - 3].text, "." | "*" | "/" | "%"))
+        });
+        let Some((op, literal)) = after.or(before) else { continue };
+        if reported.insert(t.line) {
+            found.push(Diagnostic::error(
+                format!(
+                    "`{} {} {}` mixes the uint `{}` with the int literal {}: before GLSL 4.00 nothing converts int to uint \
+                     implicitly (Mesa: \"could not implicitly convert\" in `{shown_version}`; NVIDIA accepts it); write {}u",
+                    t.text, op.text, literal.text, t.text, literal.text, literal.text
                 ),
                 pre.location(t.line),
             ));
@@ -284,16 +353,21 @@ fn function_parameters<'a>(from: &[&tidepack_glsl::token::Token<'a>]) -> BTreeSe
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use std::collections::HashMap;
     use std::sync::Arc;
     use tidepack_glsl::preprocess::{PreprocessOptions, preprocess};
 
-    fn errors(src: &str, stage: Stage) -> Vec<String> {
+    /// What `rules` finds in `src` as file `a.fsh`, as `line: message`.
+    pub(crate) fn found_by(rules: fn(&Preprocessed, Stage) -> Vec<Diagnostic>, src: &str, stage: Stage) -> Vec<String> {
         let files: HashMap<String, Arc<str>> = [("a.fsh".to_string(), Arc::from(src))].into();
         let pre = preprocess(&files, "a.fsh", &PreprocessOptions::default()).unwrap();
-        check(&pre, stage).iter().map(|d| format!("{}: {}", d.location.as_ref().unwrap().line, d.message)).collect()
+        rules(&pre, stage).iter().map(|d| format!("{}: {}", d.location.as_ref().unwrap().line, d.message)).collect()
+    }
+
+    fn errors(src: &str, stage: Stage) -> Vec<String> {
+        found_by(check, src, stage)
     }
 
     #[test]
@@ -309,6 +383,27 @@ mod tests {
         assert!(errors(with_extensions, Stage::Fragment).is_empty());
         assert!(errors("#version 120\nvoid main() { vec4 c = texture2DLod(s, v, 0.0); }\n", Stage::Vertex).is_empty());
         assert!(errors("#version 120\nfloat f(in float x, out float y) { y = x; return x; }\n", Stage::Vertex).is_empty());
+    }
+
+    #[test]
+    fn a_local_const_takes_constants_only_before_420() {
+        let src = "#version 150 compatibility\nuniform float viewWidth;\nin vec2 uv;\nvoid main() {\n const float pixel = 1.0 / viewWidth;\n const vec2 at = uv;\n const float k = 2.0;\n gl_FragData[0] = vec4(at * pixel * k, 0.0, 1.0);\n}\n";
+        let found = errors(src, Stage::Fragment);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(found[0].starts_with("5: a local `const` must be initialised") && found[0].contains("the uniform `viewWidth`"), "{found:?}");
+        assert!(found[1].starts_with("6: ") && found[1].contains("the input `uv`"), "{found:?}");
+        assert!(errors(&src.replace("#version 150 compatibility", "#version 420 compatibility"), Stage::Fragment).is_empty());
+    }
+
+    #[test]
+    fn int_literals_do_not_become_uints_before_400() {
+        let src = "#version 330 compatibility\nuniform uint frame;\nout vec4 color;\nvoid main() {\n uint n = 3;\n n += 1u;\n if (n > 2) n = frame;\n uint m = n * 2u + frame % 4u;\n color = vec4(float(m) + float(2 * n));\n}\n";
+        let found = errors(src, Stage::Fragment);
+        assert_eq!(found.len(), 3, "{found:?}");
+        assert!(found[0].starts_with("5: `n = 3` mixes the uint `n` with the int literal 3"), "{found:?}");
+        assert!(found[1].starts_with("7: `n > 2`"), "{found:?}");
+        assert!(found[2].starts_with("9: `n * 2`"), "{found:?}");
+        assert!(errors(&src.replace("#version 330 compatibility", "#version 400 compatibility"), Stage::Fragment).is_empty());
     }
 
     #[test]

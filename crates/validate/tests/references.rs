@@ -74,8 +74,10 @@ fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
             // for `texture2DLod` in a fragment shader where GL_EXT_gpu_shader4 (which it lacks)
             // brings it too, and compiles stages alone, so
             // it cannot see a vertex/fragment mismatch; it accepts `#extension` after code and
-            // converts return values before GLSL 4.20, both of which Mesa refuses, and it asks
-            // for `flat` on integer fragment inputs but not on the members of an input block.
+            // converts return values before GLSL 4.20, both of which Mesa refuses, it lets a
+            // fragment shader write gl_FragData beside its own `out` variables, which Mesa
+            // refuses, and it asks for `flat` on integer fragment inputs but not on the members
+            // of an input block.
             let stricter = verdict.rejects
                 && verdict.errors.iter().all(|e| e.contains("line continuation")
                         || e.contains("missing #endif")
@@ -86,6 +88,7 @@ fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
             let lenient = !verdict.rejects
                 && report.diagnostics.iter().any(|d| d.message.contains("#extension after code")
                     || d.message.contains("converts return values only")
+                    || d.message.contains("and its own output")
                     || (d.message.contains("must be qualified `flat`")
                         && d.message.split('`').nth(1).is_some_and(|input| input.contains('.'))));
             if !(stricter || link_only || lenient) {
