@@ -28,6 +28,29 @@ pub(crate) struct Job {
 /// naga's complaint about a vertex stage that does not write `gl_Position`.
 const POSITION_REQUIRED: &str = "must return a `@builtin(position)` output";
 
+/// A vertex stage that never writes `gl_Position`, in GLSL's terms: before GLSL 1.40 drivers
+/// refuse it (Mesa's link: "vertex shader does not write to `gl_Position'"), from 1.40 on they
+/// accept it and the program draws nothing, as a pack's program that only discards may want.
+fn position_not_written(pre: &Preprocessed) -> Diagnostic {
+    let version = pre.version.as_ref().map_or(110, |v| v.number);
+    let main_line = pre.text.lines().position(|l| l.contains("void main")).map_or(1, |i| i as u32 + 1);
+    let at = pre.location(main_line);
+    if version < 140 {
+        Diagnostic::error(
+            format!(
+                "this vertex shader never writes gl_Position, which GLSL {version} requires: the program fails to link (Mesa: \
+                 \"vertex shader does not write to `gl_Position'\"); write it, or declare GLSL 1.40 or later"
+            ),
+            at,
+        )
+    } else {
+        Diagnostic::warning(
+            format!("this vertex shader never writes gl_Position, so the program draws nothing (drivers accept it in GLSL {version})"),
+            at,
+        )
+    }
+}
+
 pub(crate) enum JobStage {
     Graphics(LoweredStage),
     Compute(LoweredCompute),
@@ -93,6 +116,7 @@ fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, s
         Ok(Err(diags)) => diags
             .into_iter()
             .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
+            .map(|d| if d.message.contains(POSITION_REQUIRED) { position_not_written(job.stage.preprocessed()) } else { d })
             .map(|d| finding(clarify(d)))
             .collect(),
         Err(panic) => {

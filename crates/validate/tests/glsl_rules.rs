@@ -9,7 +9,11 @@ use tidepack_validate::{Options, Report, Status, validate_pack};
 const VERTEX: &str = "#version 120\nvarying vec2 uv;\nvoid main() { gl_Position = ftransform(); uv = gl_MultiTexCoord0.xy; }\n";
 
 fn validate(fragment: &str) -> Report {
-    let files = [("composite.vsh", VERTEX), ("composite.fsh", fragment)];
+    validate_program(VERTEX, fragment)
+}
+
+fn validate_program(vertex: &str, fragment: &str) -> Report {
+    let files = [("composite.vsh", vertex), ("composite.fsh", fragment)];
     let pack = pack_from_memory("test/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
     validate_pack(pack, &Options { threads: 2, driver: true, ..Options::default() }).unwrap()
 }
@@ -54,4 +58,17 @@ fn what_drivers_accept_passes() {
     assert!(errors(&report).is_empty(), "{:#?}", errors(&report));
     let driver = report.driver.as_ref().expect("the driver ran");
     assert_eq!(driver.both_accept, 1);
+}
+
+#[test]
+fn a_vertex_shader_may_leave_gl_position_unwritten_from_glsl_140() {
+    let vertex = "#version 150 compatibility\nout vec2 uv;\nvoid main() {\n uv = gl_MultiTexCoord0.xy;\n}\n";
+    let fragment = "#version 150 compatibility\nin vec2 uv;\nvoid main() { gl_FragData[0] = vec4(uv, 0.0, 1.0); }\n";
+    let report = validate_program(vertex, fragment);
+    assert!(errors(&report).is_empty(), "{:#?}", errors(&report));
+    let warned = report.diagnostics.iter().any(|d| {
+        !d.is_error() && d.message.contains("never writes gl_Position") && d.location.as_ref().is_some_and(|l| l.path == "composite.vsh" && l.line == 3)
+    });
+    assert!(warned, "{:#?}", report.diagnostics);
+    assert_eq!(report.driver.as_ref().expect("the driver ran").both_accept, 1);
 }
