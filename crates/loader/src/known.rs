@@ -1,5 +1,8 @@
-//! The uniforms and samplers OptiFine sets, by name (OptiFine's `shaders.txt`). A name not here
-//! compiles and links but OptiFine never sets it: a uniform reads 0, a sampler reads unit 0.
+//! The uniforms and samplers OptiFine sets, by name (OptiFine's `shaders.txt`), and those Iris
+//! sets besides (Iris's `uniforms/` sources). A name not here compiles and links but the loader
+//! never sets it: a uniform reads 0, a sampler reads unit 0.
+
+use crate::loader::Loader;
 
 /// Uniforms and their GLSL types.
 pub const UNIFORMS: &[(&str, &str)] = &[
@@ -34,9 +37,48 @@ pub const SAMPLERS: &[&str] = &[
     "colortex14", "colortex15", "shadowcolor", "shadowcolor0", "shadowcolor1", "noisetex",
 ];
 
+/// Uniforms Iris sets that OptiFine does not, and their GLSL types (Iris's `bool` ones are set
+/// with glUniform1i, so an `int` declaration reads them too).
+pub const IRIS_UNIFORMS: &[(&str, &str)] = &[
+    ("biome", "int"), ("biome_category", "int"), ("biome_precipitation", "int"), ("rainfall", "float"), ("temperature", "float"),
+    ("cameraPositionFract", "vec3"), ("cameraPositionInt", "ivec3"), ("previousCameraPositionFract", "vec3"),
+    ("previousCameraPositionInt", "ivec3"), ("constantMood", "float"), ("currentRenderedItemId", "int"), ("dhFarPlane", "float"),
+    ("dhNearPlane", "float"), ("dhRenderDistance", "int"), ("dhProjection", "mat4"), ("dhProjectionInverse", "mat4"),
+    ("dhPreviousProjection", "mat4"), ("gtextureSize", "ivec2"), ("isRightHanded", "bool"), ("is_burning", "bool"),
+    ("is_hurt", "bool"), ("is_invisible", "bool"), ("is_on_ground", "bool"), ("is_sneaking", "bool"), ("is_sprinting", "bool"),
+    ("pi", "float"), ("heldBlockLightColor", "vec3"), ("heldBlockLightColor2", "vec3"), ("ambientLight", "float"),
+    ("bedrockLevel", "int"), ("cloudHeight", "float"), ("cloudTime", "float"), ("currentColorSpace", "int"),
+    ("currentPlayerAir", "float"), ("currentPlayerArmor", "float"), ("currentPlayerHealth", "float"),
+    ("currentPlayerHunger", "float"), ("maxPlayerAir", "float"), ("maxPlayerArmor", "float"), ("maxPlayerHealth", "float"),
+    ("maxPlayerHunger", "float"), ("currentSelectedBlockId", "int"), ("currentSelectedBlockPos", "vec3"), ("eyePosition", "vec3"),
+    ("firstPersonCamera", "bool"), ("hasCeiling", "bool"), ("hasSkylight", "bool"), ("heightLimit", "int"),
+    ("logicalHeightLimit", "int"), ("isSpectator", "bool"), ("lightningBoltPosition", "vec4"), ("playerBodyVector", "vec3"),
+    ("playerLookVector", "vec3"), ("relativeEyePosition", "vec3"), ("thunderStrength", "float"), ("currentDate", "ivec3"),
+    ("currentTime", "ivec3"), ("currentYearTime", "ivec2"),
+];
+
+/// Samplers Iris binds that OptiFine does not: Distant Horizons' depth buffers.
+pub const IRIS_SAMPLERS: &[&str] = &["dhDepthTex", "dhDepthTex0", "dhDepthTex1"];
+
 /// The type OptiFine sets for a known uniform.
 pub fn uniform_type(name: &str) -> Option<&'static str> {
     UNIFORMS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// The type `loader` sets for a uniform it knows.
+pub fn uniform_type_for(name: &str, loader: Loader) -> Option<&'static str> {
+    let iris = || IRIS_UNIFORMS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t);
+    uniform_type(name).or_else(|| if loader == Loader::Iris { iris() } else { None })
+}
+
+/// Whether `loader` binds a sampler of this name.
+pub fn is_sampler_for(name: &str, loader: Loader) -> bool {
+    is_sampler(name) || (loader == Loader::Iris && IRIS_SAMPLERS.contains(&name))
+}
+
+/// The loader's name as messages give it.
+pub fn loader_name(loader: Loader) -> &'static str {
+    if loader == Loader::Iris { "Iris" } else { "OptiFine" }
 }
 
 /// Image names OptiFine and Iris bind for `imageLoad`/`imageStore` (`colorimg0-15`,

@@ -11,6 +11,7 @@ use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use tidepack_loader::known;
+use tidepack_loader::loader::Loader;
 use tidepack_loader::directives::CustomNames;
 
 fn version_of(pre: &Preprocessed) -> u32 {
@@ -363,8 +364,9 @@ fn uniform_line(pre: &Preprocessed, name: &str) -> Option<u32> {
     None
 }
 
-/// Uniforms and samplers OptiFine does not set, and known uniforms declared with another type.
-pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, names: &CustomNames) -> Vec<Diagnostic> {
+/// Uniforms and samplers `loader` does not set, and known uniforms declared with another type.
+pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &str, names: &CustomNames, loader: Loader) -> Vec<Diagnostic> {
+    let who = known::loader_name(loader);
     let mut found = Vec::new();
     for name in lowered.interface.images.keys() {
         if !known::is_image(name) && !names.images.contains(name) {
@@ -384,9 +386,9 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
         let at = || uniform_line(pre, name).and_then(|l| pre.location(l));
         match kind {
             ResourceKind::Texture { .. } => {
-                if !known::is_sampler(name) && !names.samplers.contains(name) {
+                if !known::is_sampler_for(name, loader) && !names.samplers.contains(name) {
                     found.push(Diagnostic::warning(
-                        format!("`{name}` is not a sampler OptiFine binds: it silently reads texture unit 0"),
+                        format!("`{name}` is not a sampler {who} binds: it silently reads texture unit 0"),
                         at(),
                     ));
                 } else if let Some(why) = known::sampler_unavailable(program, name) {
@@ -401,17 +403,17 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
                             at(),
                         ));
                     }
-                } else if let Some(expected) = known::uniform_type(name) {
-                    // glUniform1i sets a bool uniform too.
-                    if expected != ty && !(expected == "int" && ty == "bool") {
+                } else if let Some(expected) = known::uniform_type_for(name, loader) {
+                    // glUniform1i sets a bool uniform, and an int one where the loader sets a bool.
+                    if expected != ty && !(matches!((expected, ty.as_str()), ("int", "bool") | ("bool", "int"))) {
                         found.push(Diagnostic::warning(
-                            format!("`{name}` is declared `{ty}` but OptiFine sets it as `{expected}`: it is never set"),
+                            format!("`{name}` is declared `{ty}` but {who} sets it as `{expected}`: it is never set"),
                             at(),
                         ));
                     }
                 } else {
                     found.push(Diagnostic::warning(
-                        format!("`{name}` is not a uniform OptiFine sets: it silently reads 0"),
+                        format!("`{name}` is not a uniform {who} sets: it silently reads 0"),
                         at(),
                     ));
                 }

@@ -222,7 +222,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 }
             };
             if !program.stages.is_empty() {
-                match check_program(program, &provider, &macros, &names) {
+                match check_program(program, &provider, &macros, &names, options.loader) {
                     Ok((lowered, diags)) => {
                         found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
                         for stage in lowered {
@@ -233,7 +233,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 }
             }
             for path in &program.compute {
-                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &names);
+                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &names, options.loader);
                 found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
                 if let Some(stage) = lowered {
                     push(JobStage::Compute(stage), &mut jobs);

@@ -7,6 +7,7 @@ use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preproces
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use tidepack_loader::directives::CustomNames;
+use tidepack_loader::loader::Loader;
 use tidepack_loader::programs::Program;
 
 use crate::{glsl_rules, interface, version_rules};
@@ -17,6 +18,7 @@ pub(crate) fn check_program(
     provider: &dyn FileProvider,
     macros: &PreprocessOptions,
     names: &CustomNames,
+    loader: Loader,
 ) -> Result<(Vec<LoweredStage>, Vec<Diagnostic>), Vec<Diagnostic>> {
     let mut diags = Vec::new();
     let mut preprocessed = Vec::new();
@@ -59,7 +61,7 @@ pub(crate) fn check_program(
         if stage.stage == Stage::Fragment {
             diags.extend(interface::check_render_targets(&stage.preprocessed, stage));
         }
-        diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, names));
+        diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, names, loader));
     }
     Ok((lowered, diags))
 }
@@ -112,6 +114,7 @@ pub(crate) fn check_compute(
     provider: &dyn FileProvider,
     macros: &PreprocessOptions,
     names: &CustomNames,
+    loader: Loader,
 ) -> (Option<LoweredCompute>, Vec<Diagnostic>) {
     let mut pre = match preprocess::preprocess(provider, path, macros) {
         Ok(pre) => pre,
@@ -122,7 +125,7 @@ pub(crate) fn check_compute(
     diags.extend(version_rules::check_compute(&pre));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
-            diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, names));
+            diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, names, loader));
             (Some(stage), diags)
         }
         Err(e) => {

@@ -124,3 +124,23 @@ fn a_program_switched_off_is_validated_only_where_it_runs() {
     let on = validate(&files, Options { overrides: vec![("BLOOM".into(), "on".into())], ..Options::default() }).unwrap();
     assert!(errors(&on).iter().any(|e| e.contains("missingBloom")), "{:?}", errors(&on));
 }
+
+#[test]
+fn iris_uniforms_are_known_under_iris_only() {
+    let fragment = "#version 120
+uniform float currentPlayerHealth;
+uniform bool is_sneaking;
+uniform sampler2D dhDepthTex0;
+void main() { gl_FragData[0] = vec4(currentPlayerHealth + float(is_sneaking) + texture2D(dhDepthTex0, vec2(0.5)).r); }
+";
+    let files = [("composite.vsh", VERTEX), ("composite.fsh", fragment)];
+    let unknown = |report: &Report| -> Vec<String> {
+        report.diagnostics.iter().filter(|d| d.message.contains("silently reads")).map(|d| d.message.clone()).collect()
+    };
+    let optifine = unknown(&validate(&files, Options::default()).unwrap());
+    assert_eq!(optifine.len(), 3, "{optifine:?}");
+    assert!(optifine.iter().all(|m| m.contains("OptiFine")), "{optifine:?}");
+    let iris = Options { loader: tidepack_loader::Loader::Iris, ..Options::default() };
+    let iris = unknown(&validate(&files, iris).unwrap());
+    assert!(iris.is_empty(), "{iris:?}");
+}
