@@ -158,9 +158,17 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(problem.clone(), Some(Location::line(properties::PATH, *line)))));
     let sets = option_sets(&props, &declared, options, &mut diagnostics)?;
     let mut programs = programs::find_programs(pack.files.keys());
+    let mut dimension_without_programs = None;
     if let Some(dimension) = &options.dimension {
         let world = pack.world_folder(dimension, options.loader);
+        let elsewhere = !programs.is_empty();
         programs.retain(|p| p.world == world);
+        if programs.is_empty() && elsewhere {
+            let folder = if world.is_empty() { "shaders/".to_string() } else { format!("shaders/{world}/") };
+            dimension_without_programs = Some(format!(
+                "in the {dimension} the loader runs the programs of {folder}, and the pack has none there: that dimension is drawn without shaders"
+            ));
+        }
     }
     let macros = options.macros.preprocess_options();
     let mut reports: Vec<ProgramReport> = programs
@@ -248,7 +256,10 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         }
     }
     let stages_validated = jobs.len();
-    if !reports.iter().any(|r| r.status == Status::Valid) && !found.iter().any(|f| f.diagnostic.is_error()) {
+    if let Some(message) = dimension_without_programs {
+        // A pack may shade some dimensions only: nothing to check is the answer here.
+        diagnostics.push(Diagnostic::warning(message, None));
+    } else if !reports.iter().any(|r| r.status == Status::Valid) && !found.iter().any(|f| f.diagnostic.is_error()) {
         // A CI check that checked nothing must not pass.
         let skipped: Vec<String> = reports.iter().map(|r| r.id.clone()).collect();
         let mut diag = Diagnostic::error("no program that OptiFine runs was found, so nothing was validated", None);

@@ -144,3 +144,16 @@ void main() { gl_FragData[0] = vec4(currentPlayerHealth + float(is_sneaking) + t
     let iris = unknown(&validate(&files, iris).unwrap());
     assert!(iris.is_empty(), "{iris:?}");
 }
+
+#[test]
+fn a_dimension_the_pack_does_not_shade_is_a_warning_not_an_error() {
+    let fragment = "#version 120\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
+    let files = [("world0/composite.vsh", VERTEX), ("world0/composite.fsh", fragment)];
+    let nether = Options { dimension: Some(Dimension::parse("nether").unwrap()), ..Options::default() };
+    let report = validate(&files, nether).unwrap();
+    assert!(errors(&report).is_empty(), "{:?}", errors(&report));
+    assert!(report.diagnostics.iter().any(|d| d.message.contains("drawn without shaders") && d.message.contains("shaders/")), "{:?}", report.diagnostics);
+    // A pack with no programs at all still fails: nothing was checked.
+    let empty = validate(&[("shaders.properties", "")], Options { dimension: Some(Dimension::parse("nether").unwrap()), ..Options::default() }).unwrap();
+    assert!(!errors(&empty).is_empty());
+}
