@@ -13,7 +13,7 @@
 //! picks a value; no line is added or removed.
 
 use std::borrow::Cow;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_glsl::token::{Token, TokenKind, tokenize};
 
@@ -132,15 +132,21 @@ fn value_list(comment: &str) -> Option<(Vec<String>, String)> {
     Some((values, tooltip.trim().to_string()))
 }
 
-/// The options OptiFine would show for one source file.
+/// The options OptiFine would show for one source file read alone.
 pub fn scan(text: &str) -> Vec<OptionDecl> {
+    scan_tested(text, &tested_names(text))
+}
+
+/// The options of one source file, a `#define NAME` line counting as a switch where `tested`
+/// (the names the files it is read with test, [`tested_names`]) holds the name.
+pub fn scan_tested(text: &str, tested: &BTreeSet<String>) -> Vec<OptionDecl> {
     let mut found = Vec::new();
     for (index, line) in text.lines().enumerate() {
         let Some(def) = parse_define_line(line) else { continue };
         let line_no = index as u32 + 1;
         match def.value {
             None => {
-                if !is_tested_in(text, def.name) {
+                if !tested.contains(def.name) {
                     continue;
                 }
                 let tooltip = def.comment.map_or("", |c| c[2..].trim()).to_string();
@@ -184,13 +190,18 @@ fn const_option(decl: &ConstDecl) -> Option<OptionDecl> {
     Some(OptionDecl { name: decl.name.to_string(), kind, line: decl.line, tooltip })
 }
 
-/// Whether `text` tests `name` with `#ifdef`, `#ifndef` or `defined`.
-fn is_tested_in(text: &str, name: &str) -> bool {
-    let Ok(tokens) = tokenize(text) else { return false };
-    let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    sig.windows(2).any(|w| {
-        (w[0].is_ident("ifdef") || w[0].is_ident("ifndef") || w[0].is_ident("defined")) && w[1].is_ident(name)
-    }) || sig.windows(3).any(|w| w[0].is_ident("defined") && w[1].is_punct("(") && w[2].is_ident(name))
+/// The names `text` tests with `#ifdef NAME` or `#ifndef NAME` alone on a line: what makes a
+/// `#define NAME` line a switch for OptiFine and Iris. `#if defined NAME` does not count, nor a
+/// test with anything after the name.
+pub fn tested_names(text: &str) -> BTreeSet<String> {
+    text.lines()
+        .filter_map(|line| {
+            let line = line.trim();
+            let rest = line.strip_prefix("#ifdef").or_else(|| line.strip_prefix("#ifndef"))?;
+            let name = rest.strip_prefix([' ', '\t'])?.trim();
+            (!name.is_empty() && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')).then(|| name.to_string())
+        })
+        .collect()
 }
 
 /// Rewrites the declaration lines of the options in `set`, keeping every line in place.
@@ -267,12 +278,18 @@ mod tests {
 #define MODE 0 // Timelapse mode [0 1 2]
 #define BLOCK_WATER 10008
 #define UNTESTED
+#define COMMENTED_TEST
 #ifdef WAVES
 #endif
-#if defined(FOAM)
+#ifndef FOAM
+#endif
+#if defined(UNTESTED)
+#endif
+#ifdef COMMENTED_TEST // a test with more on its line is no reference (Iris, after OptiFine)
 #endif
 ";
 
+    /// Only `#ifdef NAME` and `#ifndef NAME` alone on a line make a `#define NAME` a switch.
     #[test]
     fn scans_switches_and_values_like_optifine() {
         let found = scan(SETTINGS);

@@ -6,9 +6,10 @@
 //! and a loader. `validate` and `render` take the same `--profile`, `--set NAME=VALUE`,
 //! `--dimension` and `--loader` and build one of these.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 
+use tidepack_glsl::preprocess::resolve_include;
 use tidepack_glsl::{Diagnostic, Location};
 
 use crate::consts;
@@ -18,18 +19,56 @@ use crate::macros::StandardMacros;
 use crate::option_lines::{self, OptionKind, OptionSet, OptionValue};
 use crate::properties::{self, Macros, Properties};
 
-/// Options declared in the pack's shader sources (the first declaration of a name wins).
+/// Options declared in the pack's shader sources (the first declaration of a name wins). A
+/// `#define NAME` line is a switch when a file it is read with tests the name: every file
+/// connected to it by `#include`s, in either direction, as Iris groups them (OptiFine reads
+/// each program with its includes spliced in).
 pub fn declared_options(pack: &PackFiles) -> BTreeMap<String, OptionKind> {
+    let sources: Vec<(&String, &str)> = pack
+        .texts
+        .iter()
+        .filter(|(path, _)| !(path.ends_with(".properties") || path.ends_with(".lang") || path.ends_with(".txt")))
+        .map(|(path, text)| (path, &**text))
+        .collect();
+    let components = include_components(&sources);
+    let mut tested: BTreeMap<usize, BTreeSet<String>> = BTreeMap::new();
+    for (i, (_, text)) in sources.iter().enumerate() {
+        tested.entry(components[i]).or_default().extend(option_lines::tested_names(text));
+    }
     let mut found = BTreeMap::new();
-    for (path, text) in &pack.texts {
-        if path.ends_with(".properties") || path.ends_with(".lang") || path.ends_with(".txt") {
-            continue;
-        }
-        for decl in option_lines::scan(text) {
+    for (i, (_, text)) in sources.iter().enumerate() {
+        for decl in option_lines::scan_tested(text, &tested[&components[i]]) {
             found.entry(decl.name).or_insert(decl.kind);
         }
     }
     found
+}
+
+/// For each source, the smallest index of the sources its `#include "…"` lines connect it to.
+fn include_components(sources: &[(&String, &str)]) -> Vec<usize> {
+    let index: BTreeMap<&str, usize> = sources.iter().enumerate().map(|(i, (path, _))| (path.as_str(), i)).collect();
+    let mut parent: Vec<usize> = (0..sources.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for (i, (path, text)) in sources.iter().enumerate() {
+        for line in text.lines() {
+            let Some(target) = line.trim().strip_prefix("#include").and_then(|r| r.trim().strip_prefix('"')).and_then(|r| r.split('"').next()) else {
+                continue;
+            };
+            if let Ok(resolved) = resolve_include(path, target)
+                && let Some(&j) = index.get(resolved.as_str())
+            {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    (0..sources.len()).map(|i| root(&mut parent, i)).collect()
 }
 
 /// The macros a properties file's conditionals see under `set`: the loader's standard macros
@@ -280,6 +319,21 @@ pub fn parse_assignments(arguments: &[String]) -> Result<Vec<(String, String)>, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_switch_is_tested_anywhere_its_includes_connect_it() {
+        let files = [
+            ("lib/settings.glsl", "//#define GODRAYS\n#define LONELY\n"),
+            ("lib/rays.glsl", "#ifdef GODRAYS\n#endif\n"),
+            ("composite.fsh", "#include \"/lib/settings.glsl\"\n#include \"lib/rays.glsl\"\nvoid main() {}\n"),
+            ("final.fsh", "#ifdef LONELY\n#endif\nvoid main() {}\n"),
+        ];
+        let pack = crate::input::pack_from_memory("p/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
+        let declared = declared_options(&pack);
+        assert_eq!(declared.get("GODRAYS"), Some(&OptionKind::Switch { default: false }), "{declared:?}");
+        // final.fsh tests LONELY but includes nothing that declares it.
+        assert!(!declared.contains_key("LONELY"), "{declared:?}");
+    }
 
     fn options() -> BTreeMap<String, OptionKind> {
         [
