@@ -53,6 +53,25 @@ const IRIS_ONLY: [&str; 9] = [
     "gbuffers_line_translucent",
 ];
 
+/// Shadow programs Iris runs for parts of the shadow pass (each falling back to `shadow`).
+const IRIS_SHADOW: [&str; 6] = ["shadow_solid", "shadow_cutout", "shadow_water", "shadow_entities", "shadow_lightning", "shadow_block"];
+
+/// Whether `loader` runs a program of this name, as far as `validate` checks it: OptiFine's
+/// programs, and under Iris also its finer gbuffers and shadow programs and its `begin`/`setup`
+/// compute passes (Iris's `ProgramId`). Distant Horizons' `dh_*` programs are left out: Iris
+/// rewrites their vertex stages (declaring `dhMaterialId`, replacing the legacy built-ins),
+/// which is not imitated, so their text alone does not say whether Iris compiles them.
+pub fn runs(name: &str, loader: Loader) -> bool {
+    run_by(name) == RunBy::OptiFine
+        || (loader == Loader::Iris
+            && (IRIS_ONLY.contains(&name) || IRIS_SHADOW.contains(&name) || numbered(name, "begin") || numbered(name, "setup")))
+}
+
+/// Whether `name` is `base` or `base1` … `base99`.
+fn numbered(name: &str, base: &str) -> bool {
+    name.strip_prefix(base).is_some_and(|n| n.is_empty() || (n.len() <= 2 && n.parse::<u32>().is_ok_and(|v| v >= 1 && !n.starts_with('0'))))
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RunBy {
     /// OptiFine runs it.
@@ -68,10 +87,7 @@ pub fn run_by(name: &str) -> RunBy {
     if GBUFFERS.iter().any(|(n, _)| *n == name) {
         return RunBy::OptiFine;
     }
-    let numbered = |base: &str| {
-        name.strip_prefix(base).is_some_and(|n| n.is_empty() || (n.len() <= 2 && n.parse::<u32>().is_ok_and(|v| v >= 1 && !n.starts_with('0'))))
-    };
-    if NUMBERED.iter().any(|b| numbered(b)) {
+    if NUMBERED.iter().any(|b| numbered(name, b)) {
         return RunBy::OptiFine;
     }
     if name.starts_with("dh_") {
@@ -80,7 +96,7 @@ pub fn run_by(name: &str) -> RunBy {
     if name.starts_with("voxy") {
         return RunBy::Other("Voxy (through Iris)".into());
     }
-    if numbered("begin") || numbered("setup") || IRIS_ONLY.contains(&name) {
+    if numbered(name, "begin") || numbered(name, "setup") || IRIS_ONLY.contains(&name) {
         return RunBy::Other("Iris".into());
     }
     if matches!(name, "shadow_solid" | "shadow_cutout") {

@@ -183,12 +183,12 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 .chain(p.compute.iter().cloned())
                 .collect(),
             status: match &p.run_by {
-                RunBy::OptiFine => Status::Valid,
-                RunBy::Other(who) => Status::Skipped(format!("run by {who}; not validated")),
-                RunBy::Unknown => Status::Skipped("no loader runs a program of this name; not validated".into()),
+                _ if programs::runs(&p.name, options.loader) => Status::Valid,
+                RunBy::Other(who) => Status::Skipped(format!("run by {who}; not validated under {}", options.loader)),
+                _ => Status::Skipped("no loader runs a program of this name; not validated".into()),
             },
             compile_error: false,
-            only_preprocessed: if p.run_by == RunBy::OptiFine && !options.driver { p.other_stages.clone() } else { Vec::new() },
+            only_preprocessed: if programs::runs(&p.name, options.loader) && !options.driver { p.other_stages.clone() } else { Vec::new() },
             diagnostics: Vec::new(),
         })
         .collect();
@@ -204,7 +204,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         // `program.<name>.enabled` entries turn programs off under this set, per world folder.
         let mut disabled: BTreeMap<&str, Vec<String>> = BTreeMap::new();
         for (index, program) in programs.iter().enumerate() {
-            if program.run_by != RunBy::OptiFine || !program.has_stages() {
+            if !programs::runs(&program.name, options.loader) || !program.has_stages() {
                 continue;
             }
             let off = disabled.entry(program.world.as_str()).or_insert_with(|| {
@@ -262,7 +262,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     } else if !reports.iter().any(|r| r.status == Status::Valid) && !found.iter().any(|f| f.diagnostic.is_error()) {
         // A CI check that checked nothing must not pass.
         let skipped: Vec<String> = reports.iter().map(|r| r.id.clone()).collect();
-        let mut diag = Diagnostic::error("no program that OptiFine runs was found, so nothing was validated", None);
+        let mut diag = Diagnostic::error(format!("no program that {} runs was found, so nothing was validated", options.loader), None);
         if !skipped.is_empty() {
             diag = diag.with_note(format!("found only programs other loaders run: {}", skipped.join(", ")));
         }
@@ -365,7 +365,7 @@ fn run_driver(
     for (set_index, (label, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(pack, set);
         for (index, program) in programs.iter().enumerate() {
-            if program.run_by != RunBy::OptiFine || !program.has_stages() {
+            if !programs::runs(&program.name, options.loader) || !program.has_stages() {
                 continue;
             }
             let ours = found

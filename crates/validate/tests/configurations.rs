@@ -157,3 +157,15 @@ fn a_dimension_the_pack_does_not_shade_is_a_warning_not_an_error() {
     let empty = validate(&[("shaders.properties", "")], Options { dimension: Some(Dimension::parse("nether").unwrap()), ..Options::default() }).unwrap();
     assert!(!errors(&empty).is_empty());
 }
+
+#[test]
+fn iris_programs_are_validated_under_iris() {
+    let fragment = "#version 120\nvoid main() { gl_FragData[0] = vec4(undeclaredTint); }\n";
+    let files = [("gbuffers_terrain_cutout.vsh", VERTEX), ("gbuffers_terrain_cutout.fsh", fragment), ("composite.vsh", VERTEX), ("composite.fsh", "#version 120\nvoid main() { gl_FragData[0] = vec4(1.0); }\n")];
+    let status = |report: &Report| report.programs.iter().find(|p| p.id == "gbuffers_terrain_cutout").map(|p| p.status.clone());
+    let optifine = validate(&files, Options::default()).unwrap();
+    assert!(matches!(status(&optifine), Some(tidepack_validate::Status::Skipped(_))), "{:?}", status(&optifine));
+    let iris = validate(&files, Options { loader: tidepack_loader::Loader::Iris, ..Options::default() }).unwrap();
+    assert_eq!(status(&iris), Some(tidepack_validate::Status::Invalid));
+    assert!(errors(&iris).iter().any(|e| e.contains("undeclaredTint") && e.contains("gbuffers_terrain_cutout.fsh:2")), "{:?}", errors(&iris));
+}
