@@ -64,9 +64,11 @@ impl PackFiles {
     }
 }
 
-/// Extensions read as text.
-const TEXT_EXTENSIONS: [&str; 13] =
-    ["vsh", "fsh", "gsh", "csh", "tcs", "tes", "glsl", "inc", "h", "hlsl", "properties", "lang", "txt"];
+/// Extensions read as text: the stage files, the include extensions packs use (`.glsl`,
+/// `.inc`, `.frag`, `.vert`, …), properties and language files.
+const TEXT_EXTENSIONS: [&str; 17] = [
+    "vsh", "fsh", "gsh", "csh", "tcs", "tes", "glsl", "inc", "h", "hlsl", "frag", "vert", "geom", "comp", "properties", "lang", "txt",
+];
 
 fn is_text(path: &str) -> bool {
     path.rsplit_once('.').is_some_and(|(_, ext)| TEXT_EXTENSIONS.contains(&ext.to_ascii_lowercase().as_str()))

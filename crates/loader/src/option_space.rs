@@ -325,12 +325,15 @@ mod tests {
         let files = [
             ("lib/settings.glsl", "//#define GODRAYS\n#define LONELY\n"),
             ("lib/rays.glsl", "#ifdef GODRAYS\n#endif\n"),
-            ("composite.fsh", "#include \"/lib/settings.glsl\"\n#include \"lib/rays.glsl\"\nvoid main() {}\n"),
+            ("lib/bloom.frag", "//#define BLOOM\n"),
+            ("composite.fsh", "#include \"/lib/settings.glsl\"\n#include \"lib/rays.glsl\"\n#include \"lib/bloom.frag\"\n#ifdef BLOOM\n#endif\nvoid main() {}\n"),
             ("final.fsh", "#ifdef LONELY\n#endif\nvoid main() {}\n"),
         ];
         let pack = crate::input::pack_from_memory("p/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
         let declared = declared_options(&pack);
         assert_eq!(declared.get("GODRAYS"), Some(&OptionKind::Switch { default: false }), "{declared:?}");
+        // Included files of any GLSL extension are read for options too.
+        assert_eq!(declared.get("BLOOM"), Some(&OptionKind::Switch { default: false }), "{declared:?}");
         // final.fsh tests LONELY but includes nothing that declares it.
         assert!(!declared.contains_key("LONELY"), "{declared:?}");
     }

@@ -195,8 +195,8 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut found: Vec<Finding> = Vec::new();
     let mut jobs: Vec<Job> = Vec::new();
     let mut seen: HashSet<(String, String)> = HashSet::new();
-    // Per program, the option sets under which `program.<name>.enabled` turns it off.
-    let mut turned_off = vec![0usize; programs.len()];
+    // (program, option set) pairs under which `program.<name>.enabled` turns the program off.
+    let mut off_under: HashSet<(usize, usize)> = HashSet::new();
     for (set_index, (_, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(&pack, set);
         let set_properties = Properties::parse(properties_text, &property_macros(&options.macros, &declared, set));
@@ -217,7 +217,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 off
             });
             if off.contains(&program.name) {
-                turned_off[index] += 1;
+                off_under.insert((index, set_index));
                 continue;
             }
             let diags = preprocess_other_stages(program, &provider, &macros, options.driver);
@@ -249,8 +249,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             }
         }
     }
-    for (report, off) in reports.iter_mut().zip(&turned_off) {
-        if *off == sets.len() && report.status == Status::Valid {
+    for (index, report) in reports.iter_mut().enumerate() {
+        let off = off_under.iter().filter(|(program, _)| *program == index).count();
+        if off == sets.len() && report.status == Status::Valid {
             let key = format!("program.{}.enabled", report.id);
             report.status = Status::Skipped(format!("turned off by {key} in shaders.properties under every option set validated"));
         }
@@ -282,7 +283,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     }));
     let driver_summary = if options.driver {
         let mut unsupported = Vec::new();
-        let summary = run_driver(&programs, &pack, &sets, options, &mut found, &mut unsupported)?;
+        let summary = run_driver(&programs, &pack, &sets, &off_under, options, &mut found, &mut unsupported)?;
         for (program, path) in unsupported {
             if !reports[program].only_preprocessed.contains(&path) {
                 reports[program].only_preprocessed.push(path);
@@ -352,10 +353,12 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
 
 /// Compiles every validated program with the OpenGL driver, adds its errors to `found` and
 /// compares verdicts.
+#[allow(clippy::too_many_arguments)]
 fn run_driver(
     programs: &[Program],
     pack: &PackFiles,
     sets: &[(String, OptionSet)],
+    off_under: &HashSet<(usize, usize)>,
     options: &Options,
     found: &mut Vec<Finding>,
     unsupported: &mut Vec<(usize, String)>,
@@ -365,7 +368,7 @@ fn run_driver(
     for (set_index, (label, set)) in sets.iter().enumerate() {
         let provider = SetProvider::new(pack, set);
         for (index, program) in programs.iter().enumerate() {
-            if !programs::runs(&program.name, options.loader) || !program.has_stages() {
+            if !programs::runs(&program.name, options.loader) || !program.has_stages() || off_under.contains(&(index, set_index)) {
                 continue;
             }
             let ours = found

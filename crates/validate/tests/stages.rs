@@ -405,3 +405,20 @@ fn fuzzing_compute_and_geometry_stages_finds_no_crash() {
         stats.findings.iter().map(|(what, input)| format!("{what}\n--- input ---\n{}", String::from_utf8_lossy(input))).collect();
     assert_eq!(stats.crashes + stats.invariant_failures, 0, "{}", findings.join("\n\n"));
 }
+
+#[test]
+fn the_driver_skips_a_program_turned_off_as_validate_does() {
+    let vertex = "#version 120\nvoid main() { gl_Position = ftransform(); }\n";
+    let off = "#version 120\n#error \"turn this program off without colored lights\"\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
+    let files = [
+        ("composite.vsh", vertex),
+        ("composite.fsh", "#version 120\nvoid main() { gl_FragData[0] = vec4(1.0); }\n"),
+        ("composite1.vsh", vertex),
+        ("composite1.fsh", off),
+        ("shaders.properties", "program.composite1.enabled=false\n"),
+    ];
+    let report = validate(&files, true);
+    assert!(matches!(status(&report, "composite1"), Status::Skipped(_)), "{:?}", status(&report, "composite1"));
+    let driver = report.driver.as_ref().expect("the driver ran");
+    assert!(driver.only_driver_rejects.is_empty() && driver.both_accept == 1, "{driver:?}{}", show(&report));
+}
