@@ -27,7 +27,7 @@ pub(crate) fn check_program(
             Ok(mut pre) => {
                 assume_glsl_110(&mut pre);
                 diags.extend(pre.warnings.iter().cloned());
-                diags.extend(version_rules::check(&pre, *stage));
+                diags.extend(version_rules::check(&pre, *stage, loader));
                 diags.extend(glsl_rules::check(&pre, *stage));
                 preprocessed.push((*stage, Arc::new(pre)));
             }

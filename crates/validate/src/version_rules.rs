@@ -18,6 +18,7 @@ use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Stage};
 
 use crate::glsl_rules::{Globals, code_tokens, place};
+use tidepack_loader::loader::Loader;
 
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
@@ -75,7 +76,7 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
 
 /// Errors a driver gives for constructs the stage's `#version` does not have, and warnings for
 /// the ones only some drivers accept.
-pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
+pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
     let core = number >= 140 && version.profile.as_deref() != Some("compatibility");
@@ -219,7 +220,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
         }
     }
     if number >= 130 {
-        found.extend(hidden_builtin_calls(pre, &sig));
+        found.extend(hidden_builtin_calls(pre, &sig, loader));
     }
     if (130..400).contains(&number) && !extensions.contains(GPU_SHADER5) {
         found.extend(int_literals_for_uints(pre, &sig, &shown_version));
@@ -232,7 +233,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
 /// declared (`uniform sampler2D texture;`, OptiFine's old atlas name): the variable hides the
 /// built-in from that scope on, so the call names no function (Mesa: "no function with name
 /// 'texture'"). naga never sees it, since the lowering renames the sampler.
-fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>]) -> Vec<Diagnostic> {
+fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>], loader: Loader) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     let mut declared: Vec<(&str, u32)> = Vec::new();
     let mut reported: BTreeSet<u32> = BTreeSet::new();
@@ -245,7 +246,10 @@ fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<
             ")" => parens -= 1,
             _ => {}
         }
-        if t.kind != TokenKind::Ident || !GLSL130_FUNCTIONS.contains(&t.text) {
+        // Iris renames a sampler named `texture` to `gtexture` where it is not called, so the
+        // built-in stays visible there.
+        let renamed_by_loader = loader == Loader::Iris && t.text == "texture";
+        if t.kind != TokenKind::Ident || !GLSL130_FUNCTIONS.contains(&t.text) || renamed_by_loader {
             continue;
         }
         let previous = k.checked_sub(1).map(|p| sig[p]);
@@ -258,7 +262,7 @@ fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<
             && reported.insert(t.line)
         {
             let at = place(pre, declared_at);
-            let hint = if t.text == "texture" { " (OptiFine binds the atlas as `gtexture` and `tex` too)" } else { "" };
+            let hint = if t.text == "texture" { " (OptiFine binds the atlas as `gtexture` and `tex` too; Iris renames a sampler called `texture` to `gtexture` by itself)" } else { "" };
             found.push(Diagnostic::error(
                 format!(
                     "`{0}` is a variable here (declared at {at}), which hides the built-in function {0}() from GLSL 1.30 on: this call names no function (Mesa: \"no function with name '{0}'\"); rename the variable{hint}",
@@ -367,7 +371,7 @@ pub(crate) mod tests {
     }
 
     fn errors(src: &str, stage: Stage) -> Vec<String> {
-        found_by(check, src, stage)
+        found_by(|pre, stage| check(pre, stage, Loader::default()), src, stage)
     }
 
     #[test]
@@ -383,6 +387,15 @@ pub(crate) mod tests {
         assert!(errors(with_extensions, Stage::Fragment).is_empty());
         assert!(errors("#version 120\nvoid main() { vec4 c = texture2DLod(s, v, 0.0); }\n", Stage::Vertex).is_empty());
         assert!(errors("#version 120\nfloat f(in float x, out float y) { y = x; return x; }\n", Stage::Vertex).is_empty());
+    }
+
+    #[test]
+    fn a_sampler_named_texture_hides_the_built_in_except_under_iris() {
+        let src = "#version 330 compatibility\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragData[0] = texture(texture, uv); }\n";
+        let found = errors(src, Stage::Fragment);
+        assert!(found.len() == 1 && found[0].starts_with("4: `texture` is a variable here"), "{found:?}");
+        let iris = found_by(|pre, stage| check(pre, stage, Loader::Iris), src, Stage::Fragment);
+        assert!(iris.is_empty(), "{iris:?}");
     }
 
     #[test]
