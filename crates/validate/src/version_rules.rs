@@ -88,8 +88,8 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     // GL_EXT_gpu_shader4 brings the `Lod` lookups to fragment shaders too.
     let lod = extensions.contains(TEXTURE_LOD) || gpu4;
     let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
-    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    let globals = Globals::read(&code_tokens(&tokens), stage);
+    let sig = code_tokens(&tokens);
+    let globals = Globals::read(&sig, stage);
     let mut found: Vec<Diagnostic> = Vec::new();
     let mut warnings: Vec<Diagnostic> = Vec::new();
     let mut reported: BTreeSet<(String, u32)> = BTreeSet::new();
@@ -101,25 +101,10 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     let function_ends: BTreeSet<usize> = function_definitions(&sig).iter().map(|f| f.close).collect();
     let mut depth = 0i32;
     let mut parens = 0i32;
-    let mut line_start = true;
-    let mut prev_line = 0;
     // Parameters of the function being read, and whether a local `const` declaration is open.
     let mut parameters: BTreeSet<&str> = BTreeSet::new();
     let mut local_constant = false;
     for (k, t) in sig.iter().enumerate() {
-        if t.line != prev_line {
-            line_start = true;
-            prev_line = t.line;
-        }
-        let directive = line_start && t.is_punct("#");
-        line_start = false;
-        if directive {
-            // Skip the rest of a directive line (#version, #extension).
-            continue;
-        }
-        if sig[..k].last().is_some_and(|p| p.is_punct("#") && p.line == t.line) {
-            continue;
-        }
         match t.text {
             "{" => depth += 1,
             "}" => depth -= 1,
