@@ -198,7 +198,8 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let (overrides, _) = configuration.option_set_of(&files).map_err(HarnessError::Pack)?;
     let pack = AnyPack::from_files(&files, &configuration)?;
     if !pack.failed.is_empty() {
-        let failed: Vec<String> = pack.failed.iter().map(|(name, why)| format!("{name}: {why}")).collect();
+        // Each reason is a harness error's text, which names the program's file already.
+        let failed: Vec<&str> = pack.failed.iter().map(|(_, why)| why.strip_prefix("pack: ").unwrap_or(why)).collect();
         return Err(HarnessError::Pack(failed.join("\n")));
     }
     if !pack.gbuffers.contains_key("gbuffers_water") || !pack.fullscreen.iter().any(|p| p.name == "composite") {
