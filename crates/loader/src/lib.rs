@@ -15,6 +15,7 @@
 pub mod blocks;
 pub mod buffers;
 pub mod consts;
+pub mod coverage;
 pub mod custom_uniforms;
 pub mod directives;
 pub mod input;

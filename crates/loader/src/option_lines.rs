@@ -79,6 +79,10 @@ struct DefineLine<'a> {
 }
 
 fn parse_define_line(line: &str) -> Option<DefineLine<'_>> {
+    // Most lines are code: decided without tokenizing.
+    if !line.contains("define") {
+        return None;
+    }
     let tokens = tokenize(line).ok()?;
     let sig: Vec<Token<'_>> = tokens.iter().copied().filter(|t| t.kind != TokenKind::Whitespace).collect();
     // `//#define X` tokenizes as one line comment: look inside it.

@@ -1,20 +1,6 @@
-//! Validation of every program under the option sets that change its text.
-//!
-//! Which options matter is discovered, not declared: a program's stages are preprocessed with
-//! the default values, the options the preprocessor consulted become relevant, and sets are
-//! drawn from the relevant options' values; options found only under some of those sets join
-//! and the search repeats until it is closed. Which sets:
-//! - all combinations of the relevant options, when there are at most
-//!   [`MAX_EXHAUSTIVE_SETS`];
-//! - otherwise, every combination of the options the program tests in conditionals
-//!   ([`Coverage::Exhaustive`], or [`Coverage::Pairwise`] while that product is at most
-//!   [`MAX_PAIRWISE_PRODUCT`]), with options that are only substituted as values varied one
-//!   at a time;
-//! - under [`Coverage::Pairwise`] with more tested combinations: a covering array in which
-//!   every pair of values of any two tested options appears together in some set, plus every
-//!   profile.
-//!
-//! Every set is preprocessed and lowered; identical lowered texts are validated by naga once.
+//! Validation of every program under the option sets that change its text: the covering sets
+//! of [`tidepack_loader::coverage`], each preprocessed and lowered; identical lowered texts are
+//! validated by naga once.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -24,51 +10,15 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use tidepack_glsl::Diagnostic;
+use tidepack_loader::coverage::{self, Consulted, CoveringSets};
+pub use tidepack_loader::coverage::{Coverage, SetsCovered};
 use tidepack_loader::macros::StandardMacros;
-use tidepack_loader::option_lines::{OptionSet, OptionValue};
+use tidepack_loader::option_lines::{OptionKind, OptionSet};
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
 use tidepack_glsl::naga_check::{self, LoweredStage};
 
 use crate::pack_options::PackOptions;
 use crate::shipped::{Program, ShippedPack, WithOptions};
-
-/// Largest product of all relevant options validated in full.
-pub const MAX_EXHAUSTIVE_SETS: usize = 4096;
-/// Largest product of the tested options that [`Coverage::Pairwise`] still validates in full.
-pub const MAX_PAIRWISE_PRODUCT: usize = 256;
-
-/// How many option combinations to validate when they are too many for all of them.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Coverage {
-    /// Every combination of the options each program tests.
-    Exhaustive,
-    /// Every pair of values of any two tested options, and every profile.
-    #[default]
-    Pairwise,
-}
-
-/// What the validated sets of a program cover, weakest last.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum SetsCovered {
-    /// Every combination of every option the program reads.
-    AllCombinations,
-    /// Every combination of the options it tests; substituted values one at a time.
-    TestedCombinations,
-    /// Every pair of tested option values, and the profiles.
-    Pairs,
-}
-
-impl SetsCovered {
-    pub fn describe(self) -> &'static str {
-        match self {
-            SetsCovered::AllCombinations => "every combination of the options each program reads",
-            SetsCovered::TestedCombinations => {
-                "every combination of the options each program tests, substituted values one at a time"
-            }
-            SetsCovered::Pairs => "every pair of values of the options each program tests, and every profile",
-        }
-    }
-}
 
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ValidationReport {
@@ -147,10 +97,11 @@ pub fn validate_pack(
     }
     let mut report = ValidationReport { programs: programs.len(), ..Default::default() };
     let mut all_sets = Vec::new();
+    let kinds: BTreeMap<String, OptionKind> = options.iter().map(|(name, option)| (name.clone(), option.kind.clone())).collect();
     let searched = Ticker::new(progress, "programs' option sets found", programs.len());
     for program in &programs {
-        match option_sets(pack, program, options, &macros, coverage, profiles) {
-            Ok(ProgramSets { sets, covered, read }) => {
+        match option_sets(pack, program, &kinds, &macros, coverage, profiles) {
+            Ok(CoveringSets { sets, covered, read }) => {
                 report.covered = report.covered.max(Some(covered));
                 report.option_sets += sets.len();
                 report.options_read.extend(read);
@@ -362,198 +313,37 @@ fn run_set(
     program.stages.iter().map(|(_, path)| preprocess::preprocess(&provider, path, macros).map(Arc::new)).collect()
 }
 
-/// The option sets of a program, what they cover, and the options its text depends on.
-struct ProgramSets {
-    sets: Vec<OptionSet>,
-    covered: SetsCovered,
-    read: BTreeSet<String>,
-}
-
 /// An error of the option-set search and the set that showed it, boxed so that the common `Ok`
 /// result stays small.
 type SetFailure = Box<(Diagnostic, OptionSet)>;
 
-/// The option sets of a program (see the module docs).
+/// The covering sets of a program, each candidate set preprocessed in parallel.
 fn option_sets(
     pack: &ShippedPack,
     program: &Program,
-    options: &PackOptions,
+    kinds: &BTreeMap<String, OptionKind>,
     macros: &PreprocessOptions,
     coverage: Coverage,
     profiles: &[OptionSet],
-) -> Result<ProgramSets, SetFailure> {
-    let mut relevant: BTreeSet<String> = BTreeSet::new();
-    let mut tested: BTreeSet<String> = BTreeSet::new();
-    let mut explored: BTreeSet<OptionSet> = BTreeSet::new();
-    loop {
-        let (sets, covered) = enumerate(&relevant, &tested, options, coverage, profiles);
-        let fresh: Vec<&OptionSet> = sets.iter().filter(|s| !explored.contains(*s)).collect();
-        let consulted: Vec<_> = fresh.par_iter().map(|set| {
-            let stages = run_set(pack, program, set, macros).map_err(|d| Box::new((d, (*set).clone())))?;
-            let mut names = (BTreeSet::new(), BTreeSet::new());
-            for pre in &stages {
-                names.0.extend(pre.consulted_macros.iter().filter(|n| options.contains_key(*n)).cloned());
-                names.1.extend(pre.tested_macros.iter().filter(|n| options.contains_key(*n)).cloned());
-            }
-            Ok::<_, SetFailure>(names)
-        }).collect();
-        let mut grew = false;
-        for result in consulted {
-            let (all, in_conditionals) = result?;
-            for name in all {
-                grew |= relevant.insert(name);
-            }
-            for name in in_conditionals {
-                grew |= tested.insert(name);
-            }
-        }
-        explored.extend(fresh.into_iter().cloned());
-        if !grew {
-            return Ok(ProgramSets { sets, covered, read: relevant });
-        }
-    }
-}
-
-/// The option sets for the relevant options. Options at their default are left out of a set,
-/// so a set means the same whichever options are relevant.
-fn enumerate(
-    relevant: &BTreeSet<String>,
-    tested: &BTreeSet<String>,
-    options: &PackOptions,
-    coverage: Coverage,
-    profiles: &[OptionSet],
-) -> (Vec<OptionSet>, SetsCovered) {
-    let choices = |name: &String| -> Vec<Option<OptionValue>> {
-        let kind = &options[name].kind;
-        let default = kind.default_value();
-        kind.all_values().into_iter().map(|v| (v != default).then_some(v)).collect()
-    };
-    let set_of = |names: &[&String], row: &[usize]| -> OptionSet {
-        names
-            .iter()
-            .zip(row)
-            .filter_map(|(name, &i)| Some(((*name).clone(), choices(name)[i].clone()?)))
-            .collect()
-    };
-    let all: Vec<&String> = relevant.iter().collect();
-    let sizes = |names: &[&String]| names.iter().map(|n| choices(n).len()).collect::<Vec<_>>();
-    if sizes(&all).iter().product::<usize>() <= MAX_EXHAUSTIVE_SETS {
-        let sets = product(&sizes(&all)).iter().map(|row| set_of(&all, row)).collect();
-        return (sets, SetsCovered::AllCombinations);
-    }
-    let structural: Vec<&String> = relevant.iter().filter(|n| tested.contains(*n)).collect();
-    let structural_sizes = sizes(&structural);
-    let all_tested = coverage == Coverage::Exhaustive
-        || structural_sizes.iter().product::<usize>() <= MAX_PAIRWISE_PRODUCT;
-    let (rows, covered) = if all_tested {
-        (product(&structural_sizes), SetsCovered::TestedCombinations)
-    } else {
-        (pairwise(&structural_sizes), SetsCovered::Pairs)
-    };
-    let mut sets: Vec<OptionSet> = rows.iter().map(|row| set_of(&structural, row)).collect();
-    for name in relevant.iter().filter(|n| !tested.contains(*n)) {
-        for value in choices(name).into_iter().flatten() {
-            sets.push([(name.clone(), value)].into());
-        }
-    }
-    if covered == SetsCovered::Pairs {
-        for profile in profiles {
-            let set: OptionSet = profile
-                .iter()
-                .filter(|(name, value)| relevant.contains(*name) && options[*name].kind.default_value() != **value)
-                .map(|(k, v)| (k.clone(), v.clone()))
-                .collect();
-            sets.push(set);
-        }
-    }
-    sets.sort();
-    sets.dedup();
-    (sets, covered)
-}
-
-/// Every combination of indices below `sizes`.
-fn product(sizes: &[usize]) -> Vec<Vec<usize>> {
-    let mut rows = vec![Vec::new()];
-    for &size in sizes {
-        rows = rows.into_iter().flat_map(|row| (0..size).map(move |v| [row.clone(), vec![v]].concat())).collect();
-    }
-    rows
-}
-
-/// A covering array of strength 2: rows of indices below `sizes` such that every pair of
-/// values of any two positions appears in some row. Greedy and deterministic: each row starts
-/// from an uncovered pair and fills the other positions with the value covering most pairs.
-fn pairwise(sizes: &[usize]) -> Vec<Vec<usize>> {
-    let n = sizes.len();
-    let mut uncovered: BTreeSet<(usize, usize, usize, usize)> = BTreeSet::new();
-    for a in 0..n {
-        for b in a + 1..n {
-            for va in 0..sizes[a] {
-                for vb in 0..sizes[b] {
-                    uncovered.insert((a, va, b, vb));
+) -> Result<CoveringSets, SetFailure> {
+    coverage::covering_sets(kinds, coverage, profiles, |sets| {
+        sets.par_iter()
+            .map(|set| {
+                let stages = run_set(pack, program, set, macros).map_err(|d| Box::new((d, (*set).clone())))?;
+                let mut names = Consulted::default();
+                for pre in &stages {
+                    names.read.extend(pre.consulted_macros.iter().cloned());
+                    names.tested.extend(pre.tested_macros.iter().cloned());
                 }
-            }
-        }
-    }
-    // The all-defaults row first: index 0 is each option's default.
-    let mut rows = vec![vec![0; n]];
-    remove_covered(&mut uncovered, &rows[0]);
-    while let Some(&(a, va, b, vb)) = uncovered.iter().next() {
-        let mut row: Vec<Option<usize>> = vec![None; n];
-        row[a] = Some(va);
-        row[b] = Some(vb);
-        for position in 0..n {
-            if row[position].is_some() {
-                continue;
-            }
-            let gain = |value: usize| {
-                row.iter()
-                    .enumerate()
-                    .filter_map(|(other, v)| Some((other, (*v)?)))
-                    .filter(|&(other, v)| {
-                        let key = if other < position { (other, v, position, value) } else { (position, value, other, v) };
-                        uncovered.contains(&key)
-                    })
-                    .count()
-            };
-            let best = (0..sizes[position]).max_by_key(|&v| (gain(v), std::cmp::Reverse(v))).unwrap_or(0);
-            row[position] = Some(best);
-        }
-        let row: Vec<usize> = row.into_iter().map(|v| v.unwrap_or(0)).collect();
-        remove_covered(&mut uncovered, &row);
-        rows.push(row);
-    }
-    rows
-}
-
-fn remove_covered(uncovered: &mut BTreeSet<(usize, usize, usize, usize)>, row: &[usize]) {
-    for a in 0..row.len() {
-        for b in a + 1..row.len() {
-            uncovered.remove(&(a, row[a], b, row[b]));
-        }
-    }
+                Ok(names)
+            })
+            .collect()
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn pairwise_covers_every_pair_with_few_rows() {
-        let sizes = [2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 3, 2];
-        let rows = pairwise(&sizes);
-        for a in 0..sizes.len() {
-            for b in a + 1..sizes.len() {
-                for va in 0..sizes[a] {
-                    for vb in 0..sizes[b] {
-                        assert!(rows.iter().any(|r| r[a] == va && r[b] == vb), "pair ({a}={va}, {b}={vb}) uncovered");
-                    }
-                }
-            }
-        }
-        assert_eq!(rows[0], vec![0; sizes.len()]);
-        assert!(rows.len() <= 16, "{} rows", rows.len());
-    }
 
     #[test]
     fn progress_reports_every_phase_to_its_end() {
@@ -573,11 +363,5 @@ mod tests {
         }
         assert!(seen.iter().any(|(p, done, _)| p == "stages validated by naga" && *done == report.stages_validated));
         assert!(report.options_read.contains("CAUSTICS") && report.options_read.contains("SSR_STEPS"), "{:?}", report.options_read);
-    }
-
-    #[test]
-    fn product_lists_every_combination() {
-        assert_eq!(product(&[2, 3]).len(), 6);
-        assert_eq!(product(&[]), vec![Vec::<usize>::new()]);
     }
 }

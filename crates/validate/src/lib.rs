@@ -10,11 +10,15 @@
 //! terms by `messages` → here: diagnostics located in the pack's files, each once, in a
 //! [`Report`].
 
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::Instant;
 
+use rayon::prelude::*;
+use sha2::{Digest, Sha256};
+
 use tidepack_glsl::{Diagnostic, Location};
-use tidepack_loader::directives::custom_names;
+use tidepack_glsl::preprocess::PreprocessOptions;
+use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
@@ -23,6 +27,8 @@ use tidepack_loader::programs::{self, Program, RunBy};
 use tidepack_loader::properties::{self, Properties};
 use tidepack_loader::{Configuration, Dimension, Loader, SetProvider};
 
+mod cache;
+mod configurations;
 pub mod driver;
 pub mod fuzz;
 pub mod glslang;
@@ -38,8 +44,12 @@ pub mod version_rules;
 pub use messages::unlower_names;
 pub use naga_pool::MAX_NAGA_LINES;
 pub use report::{ProgramReport, Report, Status};
+pub use configurations::{PlanSummary, Shard};
 pub use stages::other_stage_kind;
+pub use tidepack_loader::coverage::{Coverage, SetsCovered};
 
+use cache::Cache;
+use configurations::{Pair, Reader, SetTable};
 use naga_pool::{Job, JobStage};
 use stages::{check_compute, check_program, preprocess_other_stages};
 
@@ -53,6 +63,9 @@ pub enum Profiles {
     Named(String),
     /// The defaults and every profile.
     All,
+    /// The defaults, every profile, and each program under the covering sets of the options
+    /// its text depends on ([`tidepack_loader::coverage`]).
+    Covering(Coverage),
 }
 
 #[derive(Clone, Debug)]
@@ -71,6 +84,10 @@ pub struct Options {
     pub threads: usize,
     /// Also compile every program with the real OpenGL driver (see [`driver`]).
     pub driver: bool,
+    /// Keep each pair's findings in this folder across runs (see [`cache`]).
+    pub cache: Option<std::path::PathBuf>,
+    /// Validate only this share of the distinct program texts.
+    pub shard: Option<Shard>,
 }
 
 impl Default for Options {
@@ -84,6 +101,8 @@ impl Default for Options {
             limits: Limits::default(),
             threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
             driver: false,
+            cache: None,
+            shard: None,
         }
     }
 }
@@ -106,15 +125,16 @@ struct Finding {
     diagnostic: Diagnostic,
 }
 
-/// The option sets to validate under, labelled: the defaults, a profile or every profile
-/// (`options.profiles`), each with `options.overrides` over it. Profile warnings join
+/// The option sets to validate every program under, labelled: the defaults, a profile or every
+/// profile (`options.profiles`), each with `options.overrides` over it, and the overrides'
+/// own set. Profile warnings join
 /// `diagnostics`; an unknown profile, option or value is an error.
 fn option_sets(
     props: &Properties,
     declared: &BTreeMap<String, OptionKind>,
     options: &Options,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Result<Vec<(String, OptionSet)>, Diagnostic> {
+) -> Result<(Vec<(String, OptionSet)>, OptionSet), Diagnostic> {
     let mut sets: Vec<(String, OptionSet)> = Vec::new();
     let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
         let (set, warnings) = option_space::profile_set(props, name, declared)?;
@@ -125,7 +145,7 @@ fn option_sets(
     match &options.profiles {
         Profiles::Defaults => sets.push(("defaults".into(), OptionSet::new())),
         Profiles::Named(name) => profile(name, &mut sets, diagnostics)?,
-        Profiles::All => {
+        Profiles::All | Profiles::Covering(_) => {
             sets.push(("defaults".into(), OptionSet::new()));
             for name in option_space::profiles(props).keys() {
                 if let Err(e) = profile(name, &mut sets, diagnostics) {
@@ -134,16 +154,17 @@ fn option_sets(
             }
         }
     }
+    let mut overrides = OptionSet::new();
     if !options.overrides.is_empty() {
         let configuration = Configuration { options: options.overrides.clone(), ..Configuration::default() };
-        let (overrides, _) = configuration.option_set(props, declared).map_err(|e| Diagnostic::error(e, None))?;
+        (overrides, _) = configuration.option_set(props, declared).map_err(|e| Diagnostic::error(e, None))?;
         let named: Vec<String> = options.overrides.iter().map(|(n, v)| format!("{n}={v}")).collect();
         for (label, set) in &mut sets {
             set.extend(overrides.clone());
             *label = format!("{label} with {}", named.join(" "));
         }
     }
-    Ok(sets)
+    Ok((sets, overrides))
 }
 
 /// Validates a pack already in memory.
@@ -156,7 +177,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
     // OptiFine takes a conditional line it cannot evaluate as false and says so in its log.
     diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(problem.clone(), Some(Location::line(properties::PATH, *line)))));
-    let sets = option_sets(&props, &declared, options, &mut diagnostics)?;
+    let (sets, overrides) = option_sets(&props, &declared, options, &mut diagnostics)?;
     let mut programs = programs::find_programs(pack.files.keys());
     let mut dimension_without_programs = None;
     if let Some(dimension) = &options.dimension {
@@ -192,71 +213,140 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             diagnostics: Vec::new(),
         })
         .collect();
+    let runnable: Vec<usize> =
+        (0..programs.len()).filter(|&i| programs::runs(&programs[i].name, options.loader) && programs[i].has_stages()).collect();
+    let cache = options.cache.as_deref().map(Cache::open).transpose()?;
+    let covering = match options.profiles {
+        Profiles::Covering(coverage) => Some(coverage),
+        _ => None,
+    };
+    let dedup = covering.is_some() || cache.is_some() || options.shard.is_some();
+    let pool = naga_pool::worker_pool(options.threads);
+    let reader = Reader::new(&pack, properties_text, &declared, &options.macros, &macros);
+    let mut table = SetTable::new(sets);
+    let (pairs, plan) =
+        pool.install(|| configurations::plan(&reader, &programs, &runnable, &mut table, covering, &overrides, dedup, options.shard));
+    let sets = table.sets;
+    // Per set: the names shaders.properties declares and the programs it turns off per world
+    // folder (`program.<name>.enabled`).
+    let worlds: BTreeSet<&str> = runnable.iter().map(|&i| programs[i].world.as_str()).collect();
+    let contexts: Vec<SetContext> = pool.install(|| {
+        sets.par_iter()
+            .map(|(_, set)| {
+                let properties = Properties::parse(properties_text, &property_macros(&options.macros, &declared, set));
+                let mut problems = Vec::new();
+                let disabled = worlds
+                    .iter()
+                    .map(|world| {
+                        let (off, found) = programs::disabled_programs(&properties, world, &declared, set);
+                        problems.extend(found);
+                        (world.to_string(), off)
+                    })
+                    .collect();
+                SetContext { names: custom_names(&properties), disabled, problems }
+            })
+            .collect()
+    });
+    for problem in contexts.iter().flat_map(|c| &c.problems).map(|p| Diagnostic::warning(p.clone(), None)) {
+        if !diagnostics.contains(&problem) {
+            diagnostics.push(problem);
+        }
+    }
     let mut found: Vec<Finding> = Vec::new();
-    let mut jobs: Vec<Job> = Vec::new();
-    let mut seen: HashSet<(String, String)> = HashSet::new();
     // (program, option set) pairs under which `program.<name>.enabled` turns the program off.
     let mut off_under: HashSet<(usize, usize)> = HashSet::new();
-    for (set_index, (_, set)) in sets.iter().enumerate() {
-        let provider = SetProvider::new(&pack, set);
-        let set_properties = Properties::parse(properties_text, &property_macros(&options.macros, &declared, set));
-        let names = custom_names(&set_properties);
-        // `program.<name>.enabled` entries turn programs off under this set, per world folder.
-        let mut disabled: BTreeMap<&str, Vec<String>> = BTreeMap::new();
-        for (index, program) in programs.iter().enumerate() {
-            if !programs::runs(&program.name, options.loader) || !program.has_stages() {
-                continue;
-            }
-            let off = disabled.entry(program.world.as_str()).or_insert_with(|| {
-                let (off, problems) = programs::disabled_programs(&set_properties, &program.world, &declared, set);
-                for problem in problems.into_iter().map(|p| Diagnostic::warning(p, None)) {
-                    if !diagnostics.contains(&problem) {
-                        diagnostics.push(problem);
+    // Distinct lowered stages by digest of path and text, as indices into `stage_findings`.
+    let mut seen_stages: HashMap<[u8; 32], usize> = HashMap::new();
+    let mut stage_findings: Vec<Vec<Diagnostic>> = Vec::new();
+    // naga's error at a line where a GLSL rule already named the mistake says the same in
+    // naga's words: the rule's message stands alone.
+    let mut explained: HashSet<(String, u32)> = HashSet::new();
+    let mut stages_validated = 0;
+    let chunk_size = 16 * options.threads.max(1);
+    for chunk in pairs.chunks(chunk_size) {
+        let checked: Vec<Checked> = pool.install(|| {
+            chunk
+                .par_iter()
+                .map(|pair| {
+                    let program = &programs[pair.program];
+                    let (_, set) = &sets[pair.set];
+                    let context = &contexts[pair.set];
+                    if context.disabled.get(&program.world).is_some_and(|off| off.contains(&program.name)) {
+                        return Checked::Off;
                     }
+                    let key = cache.as_ref().zip(pair.fingerprint).map(|(_, f)| cache::key(options.loader, options.driver, &f, set));
+                    if let Some(diagnostics) = cache.as_ref().zip(key).and_then(|(cache, key)| cache.get(&key)) {
+                        return Checked::Cached(diagnostics);
+                    }
+                    let provider = SetProvider::new(&pack, set);
+                    let (diagnostics, stages) = check_pair(program, &provider, &macros, &context.names, options);
+                    Checked::Fresh { key, diagnostics, stages }
+                })
+                .collect()
+        });
+        let mut jobs: Vec<Job> = Vec::new();
+        let mut to_store: Vec<(cache::Key, Vec<Diagnostic>, Vec<usize>)> = Vec::new();
+        for (pair, result) in chunk.iter().zip(checked) {
+            let finding = |diagnostic| Finding { program: pair.program, set: pair.set, diagnostic };
+            match result {
+                Checked::Off => {
+                    off_under.insert((pair.program, pair.set));
                 }
-                off
-            });
-            if off.contains(&program.name) {
-                off_under.insert((index, set_index));
-                continue;
-            }
-            let diags = preprocess_other_stages(program, &provider, &macros, options.driver);
-            found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
-            let position_optional = !program.other_stages.is_empty();
-            let mut push = |stage: JobStage, jobs: &mut Vec<Job>| {
-                let path = stage.preprocessed().files[0].clone();
-                if seen.insert((path, stage.text().to_string())) {
-                    jobs.push(Job { stage, set: set_index, program: index, position_optional });
-                }
-            };
-            if !program.stages.is_empty() {
-                match check_program(program, &provider, &macros, &names, options.loader) {
-                    Ok((lowered, diags)) => {
-                        found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
-                        for stage in lowered {
-                            push(JobStage::Graphics(stage), &mut jobs);
+                Checked::Cached(diagnostics) => found.extend(diagnostics.into_iter().map(finding)),
+                Checked::Fresh { key, diagnostics, stages } => {
+                    explained.extend(
+                        diagnostics.iter().filter(|d| d.is_error()).filter_map(|d| d.location.as_ref().map(|l| (l.path.clone(), l.line))),
+                    );
+                    let mut stage_ids = Vec::new();
+                    for stage in stages {
+                        let digest: [u8; 32] = Sha256::new()
+                            .chain_update(stage.preprocessed().files[0].as_bytes())
+                            .chain_update([0])
+                            .chain_update(stage.text().as_bytes())
+                            .finalize()
+                            .into();
+                        let next = stage_findings.len() + jobs.len();
+                        let id = *seen_stages.entry(digest).or_insert(next);
+                        if id == next {
+                            let position_optional = !programs[pair.program].other_stages.is_empty();
+                            jobs.push(Job { stage, set: pair.set, program: pair.program, position_optional });
                         }
+                        stage_ids.push(id);
                     }
-                    Err(diags) => found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic })),
+                    if let Some(key) = key {
+                        to_store.push((key, diagnostics.clone(), stage_ids));
+                    }
+                    found.extend(diagnostics.into_iter().map(finding));
                 }
             }
-            for path in &program.compute {
-                let (lowered, diags) = check_compute(path, &program.name, &provider, &macros, &names, options.loader);
-                found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
-                if let Some(stage) = lowered {
-                    push(JobStage::Compute(stage), &mut jobs);
-                }
+        }
+        stages_validated += jobs.len();
+        for (job, findings) in jobs.iter().zip(naga_pool::run_naga(&pool, &jobs, &pack, &sets)) {
+            let kept: Vec<Diagnostic> = findings
+                .into_iter()
+                .filter(|d| {
+                    let at = d.location.as_ref().map(|l| (l.path.clone(), l.line));
+                    !(d.is_error() && at.is_some_and(|at| explained.contains(&at)))
+                })
+                .collect();
+            found.extend(kept.iter().cloned().map(|diagnostic| Finding { program: job.program, set: job.set, diagnostic }));
+            stage_findings.push(kept);
+        }
+        if let Some(cache) = &cache {
+            for (key, mut diagnostics, stage_ids) in to_store {
+                diagnostics.extend(stage_ids.iter().flat_map(|&id| stage_findings[id].iter().cloned()));
+                cache.put(&key, &diagnostics);
             }
         }
     }
     for (index, report) in reports.iter_mut().enumerate() {
+        let planned = pairs.iter().filter(|p| p.program == index).count();
         let off = off_under.iter().filter(|(program, _)| *program == index).count();
-        if off == sets.len() && report.status == Status::Valid {
+        if planned > 0 && off == planned && report.status == Status::Valid {
             let key = format!("program.{}.enabled", report.id);
             report.status = Status::Skipped(format!("turned off by {key} in shaders.properties under every option set validated"));
         }
     }
-    let stages_validated = jobs.len();
     if let Some(message) = dimension_without_programs {
         // A pack may shade some dimensions only: nothing to check is the answer here.
         diagnostics.push(Diagnostic::warning(message, None));
@@ -269,21 +359,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         }
         diagnostics.push(diag);
     }
-    // naga's error at a line where a GLSL rule already named the mistake says the same in
-    // naga's words: the rule's message stands alone.
-    let explained: HashSet<(String, u32)> = found
-        .iter()
-        .filter(|f| f.diagnostic.is_error())
-        .filter_map(|f| f.diagnostic.location.as_ref().map(|l| (l.path.clone(), l.line)))
-        .collect();
-    let naga_findings = naga_pool::run_naga(&jobs, &pack, &sets, options.threads);
-    found.extend(naga_findings.into_iter().filter(|f| {
-        let at = f.diagnostic.location.as_ref().map(|l| (l.path.clone(), l.line));
-        !(f.diagnostic.is_error() && at.is_some_and(|at| explained.contains(&at)))
-    }));
     let driver_summary = if options.driver {
         let mut unsupported = Vec::new();
-        let summary = run_driver(&programs, &pack, &sets, &off_under, options, &mut found, &mut unsupported)?;
+        let summary = run_driver(&programs, &pack, &sets, &pairs, &off_under, options, &mut found, &mut unsupported)?;
         for (program, path) in unsupported {
             if !reports[program].only_preprocessed.contains(&path) {
                 reports[program].only_preprocessed.push(path);
@@ -318,8 +396,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             _ => format!("in programs {}", ids.join(", ")),
         };
         if sets.len() > 1 || sets.iter().any(|(_, set)| !set.is_empty()) {
-            let labels: Vec<&str> = in_sets.iter().map(|&s| sets[s].0.as_str()).collect();
-            context.push_str(&format!(" with {}", labels.join(", ")));
+            context.push_str(&format!(" with {}", sets_named(&sets, &in_sets)));
         }
         seen_in.push((diag.with_note(context), in_programs));
     }
@@ -345,10 +422,70 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         programs: reports,
         diagnostics,
         option_sets: sets.into_iter().map(|(label, _)| label).collect(),
+        plan,
         stages_validated,
         elapsed: started.elapsed(),
         driver: driver_summary,
     })
+}
+
+/// The option sets a diagnostic was seen under, for its note: the few with the fewest options
+/// first (the shortest command line that shows it), then how many more.
+fn sets_named(sets: &[(String, OptionSet)], in_sets: &BTreeSet<usize>) -> String {
+    const SHOWN: usize = 3;
+    let mut named: Vec<usize> = in_sets.iter().copied().collect();
+    named.sort_by_key(|&s| (sets[s].1.len(), s));
+    let mut text = named.iter().take(SHOWN).map(|&s| sets[s].0.as_str()).collect::<Vec<_>>().join(", ");
+    if named.len() > SHOWN {
+        text.push_str(&format!(" and {} other option sets", named.len() - SHOWN));
+    }
+    text
+}
+
+/// Where a pair's checks stand before naga.
+enum Checked {
+    /// `program.<name>.enabled` turns the program off under the set.
+    Off,
+    /// Found in the cache: everything the pair gave.
+    Cached(Vec<Diagnostic>),
+    /// Checked now: the diagnostics so far and the lowered stages for naga, with the pair's
+    /// cache key when there is a cache.
+    Fresh { key: Option<cache::Key>, diagnostics: Vec<Diagnostic>, stages: Vec<JobStage> },
+}
+
+/// What shaders.properties says under one option set.
+struct SetContext {
+    names: CustomNames,
+    /// Program names turned off, per world folder.
+    disabled: BTreeMap<String, Vec<String>>,
+    problems: Vec<String>,
+}
+
+/// Preprocesses, lowers and checks every stage of a program under one set (naga aside).
+fn check_pair(
+    program: &Program,
+    provider: &SetProvider,
+    macros: &PreprocessOptions,
+    names: &CustomNames,
+    options: &Options,
+) -> (Vec<Diagnostic>, Vec<JobStage>) {
+    let mut diagnostics = preprocess_other_stages(program, provider, macros, options.driver);
+    let mut stages = Vec::new();
+    if !program.stages.is_empty() {
+        match check_program(program, provider, macros, names, options.loader) {
+            Ok((lowered, diags)) => {
+                diagnostics.extend(diags);
+                stages.extend(lowered.into_iter().map(JobStage::Graphics));
+            }
+            Err(diags) => diagnostics.extend(diags),
+        }
+    }
+    for path in &program.compute {
+        let (lowered, diags) = check_compute(path, &program.name, provider, macros, names, options.loader);
+        diagnostics.extend(diags);
+        stages.extend(lowered.map(JobStage::Compute));
+    }
+    (diagnostics, stages)
 }
 
 /// Compiles every validated program with the OpenGL driver, adds its errors to `found` and
@@ -358,6 +495,7 @@ fn run_driver(
     programs: &[Program],
     pack: &PackFiles,
     sets: &[(String, OptionSet)],
+    pairs: &[Pair],
     off_under: &HashSet<(usize, usize)>,
     options: &Options,
     found: &mut Vec<Finding>,
@@ -365,10 +503,12 @@ fn run_driver(
 ) -> Result<driver::DriverSummary, Diagnostic> {
     let gl = driver::Driver::new(&options.macros)?;
     let mut summary = driver::DriverSummary { driver: gl.describe(), ..Default::default() };
-    for (set_index, (label, set)) in sets.iter().enumerate() {
+    for &Pair { program: index, set: set_index, .. } in pairs {
+        let (label, set) = &sets[set_index];
+        let program = &programs[index];
         let provider = SetProvider::new(pack, set);
-        for (index, program) in programs.iter().enumerate() {
-            if !programs::runs(&program.name, options.loader) || !program.has_stages() || off_under.contains(&(index, set_index)) {
+        {
+            if off_under.contains(&(index, set_index)) {
                 continue;
             }
             let ours = found

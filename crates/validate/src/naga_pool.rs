@@ -13,8 +13,6 @@ use tidepack_glsl::{Diagnostic, Location};
 use crate::messages::clarify;
 use tidepack_loader::{PackFiles, SetProvider};
 
-use crate::Finding;
-
 /// One distinct lowered stage for naga, with the program and option set that produced it.
 pub(crate) struct Job {
     pub stage: JobStage,
@@ -80,23 +78,24 @@ pub const MAX_NAGA_LINES: usize = 40_000;
 /// Stack of each naga worker: naga's parser and validator recurse once per nesting level.
 const WORKER_STACK_BYTES: usize = 64 << 20;
 
-/// Validates the jobs with naga on `threads` workers; the findings come in the order of `jobs`.
-pub(crate) fn run_naga(jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], threads: usize) -> Vec<Finding> {
-    let workers = threads.max(1).min(jobs.len().max(1));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(workers)
+/// The worker threads of a validation: `threads` of them (at least 1), with stacks deep enough
+/// for naga and the preprocessor.
+pub(crate) fn worker_pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
         .stack_size(WORKER_STACK_BYTES)
         .build()
-        .expect("start naga's worker threads");
+        .expect("start the validation's worker threads")
+}
+
+/// Validates the jobs with naga on `pool`; each job's diagnostics, in the order of `jobs`.
+pub(crate) fn run_naga(pool: &rayon::ThreadPool, jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Vec<Diagnostic>> {
     // One naga front-end per rayon job, reused for the stages it takes.
-    let found: Vec<Vec<Finding>> =
-        pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect());
-    found.into_iter().flatten().collect()
+    pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect())
 }
 
 /// One job through naga; a panic inside naga becomes a warning that the stage was not checked.
-fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Finding> {
-    let finding = |diagnostic| Finding { program: job.program, set: job.set, diagnostic };
+fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Diagnostic> {
     let provider = SetProvider::new(pack, &sets[job.set].1);
     let entry = &job.stage.preprocessed().files[0];
     let lines = job.stage.text().lines().count();
@@ -105,7 +104,7 @@ fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, s
             format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
             Some(Location::line(entry.clone(), 1)),
         );
-        return vec![finding(diag)];
+        return vec![diag];
     }
     let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
         JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),
@@ -117,7 +116,7 @@ fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, s
             .into_iter()
             .filter(|d| !(job.position_optional && d.message.contains(POSITION_REQUIRED)))
             .map(|d| if d.message.contains(POSITION_REQUIRED) { position_not_written(job.stage.preprocessed()) } else { d })
-            .map(|d| finding(clarify(d)))
+            .map(clarify)
             .collect(),
         Err(panic) => {
             // The front-end may be left half-way through a parse.
@@ -136,7 +135,7 @@ fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, s
                 ),
                 Some(Location::line(entry.clone(), 1)),
             );
-            vec![finding(diag)]
+            vec![diag]
         }
     }
 }

@@ -112,11 +112,29 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
         )
         .unwrap();
     }
+    let plan = &report.plan;
+    if let Some(covered) = plan.covered {
+        writeln!(
+            summary,
+            "  option sets cover {}: {} program texts considered, {} identical to another set's",
+            covered.describe(),
+            plan.considered,
+            plan.identical
+        )
+        .unwrap();
+    }
+    if plan.other_shards > 0 {
+        writeln!(summary, "  this shard: {} program texts left to the other shards", plan.other_shards).unwrap();
+    }
+    const LISTED: usize = 4;
+    let mut sets = report.option_sets.iter().take(LISTED).cloned().collect::<Vec<_>>().join(", ");
+    if report.option_sets.len() > LISTED {
+        sets.push_str(&format!(", and {} more", report.option_sets.len() - LISTED));
+    }
     writeln!(
         summary,
-        "{root}: {validated} programs under {} ({}), {} distinct stages validated in {:.2} s: {invalid} invalid; {} errors, {} warnings",
+        "{root}: {validated} programs under {} ({sets}), {} distinct stages validated in {:.2} s: {invalid} invalid; {} errors, {} warnings",
         if report.option_sets.len() == 1 { "1 option set".to_string() } else { format!("{} option sets", report.option_sets.len()) },
-        report.option_sets.join(", "),
         report.stages_validated,
         report.elapsed.as_secs_f64(),
         report.errors(),
@@ -166,6 +184,14 @@ struct JsonDriver<'a> {
 struct JsonSummary<'a> {
     pack: &'a str,
     option_sets: &'a [String],
+    /// With `--covering`: what the sets cover.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    covered: Option<&'static str>,
+    /// (program, option set) pairs considered, and those skipped as identical to another.
+    program_texts_considered: usize,
+    program_texts_identical: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    program_texts_in_other_shards: Option<usize>,
     stages_validated: usize,
     errors: usize,
     warnings: usize,
@@ -223,6 +249,10 @@ pub fn json(report: &Report) -> String {
     let summary = JsonSummary {
         pack: &report.pack.display_root,
         option_sets: &report.option_sets,
+        covered: report.plan.covered.map(|c| c.describe()),
+        program_texts_considered: report.plan.considered,
+        program_texts_identical: report.plan.identical,
+        program_texts_in_other_shards: (report.plan.other_shards > 0).then_some(report.plan.other_shards),
         stages_validated: report.stages_validated,
         errors: report.errors(),
         warnings: report.warnings(),

@@ -38,6 +38,8 @@ pub struct Report {
     pub diagnostics: Vec<Diagnostic>,
     /// Labels of the option sets validated (`defaults`, `profile LOW`).
     pub option_sets: Vec<String>,
+    /// How the (program, option set) pairs were chosen.
+    pub plan: crate::PlanSummary,
     /// Distinct lowered stages naga validated.
     pub stages_validated: usize,
     pub elapsed: Duration,

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_mc_version};
-use tidepack_validate::{Options, Profiles, output};
+use tidepack_validate::{Coverage, Options, Profiles, Shard, output};
 
 use super::configuration::ConfigurationArgs;
 use super::print_diagnostics;
@@ -29,6 +29,21 @@ pub struct ValidateArgs {
     /// Validate under the defaults and every profile (with `--set` values over each).
     #[arg(long, conflicts_with = "profile")]
     pub all_profiles: bool,
+    /// Validate what players can pick: the defaults, every profile, and each program under a
+    /// covering set of the options its text depends on (every pair of values of the options
+    /// it tests; every combination where they are few). `--set` values stay fixed.
+    #[arg(long, conflicts_with = "profile")]
+    pub covering: bool,
+    /// With `--covering`: every combination of the options each program tests, however many.
+    #[arg(long, requires = "covering")]
+    pub exhaustive: bool,
+    /// Keep what each program gave under each option set in this folder, and reuse it on the
+    /// next run where the program's text is the same (for CI caches).
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
+    /// Validate only part K of N of the distinct program texts (a CI matrix job each).
+    #[arg(long, value_name = "K/N", value_parser = Shard::parse)]
+    pub shard: Option<Shard>,
     /// Minecraft version for MC_VERSION (default: the loader's).
     #[arg(long)]
     pub mc_version: Option<String>,
@@ -111,10 +126,11 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         VendorArg::Nvidia => Vendor::Nvidia,
         VendorArg::Other => Vendor::Other,
     };
-    let profiles = match (&configuration.profile, args.all_profiles) {
-        (Some(name), _) => Profiles::Named(name.clone()),
-        (None, true) => Profiles::All,
-        (None, false) => Profiles::Defaults,
+    let profiles = match (&configuration.profile, args.covering, args.all_profiles) {
+        (Some(name), _, _) => Profiles::Named(name.clone()),
+        (None, true, _) => Profiles::Covering(if args.exhaustive { Coverage::Exhaustive } else { Coverage::Pairwise }),
+        (None, false, true) => Profiles::All,
+        (None, false, false) => Profiles::Defaults,
     };
     if args.path.join("pack.toml").is_file() && args.path.join("shaders").is_dir() {
         // tidepack's own template source: the build writes lib/generated.glsl,
@@ -134,6 +150,8 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         dimension: args.configuration.dimension.clone(),
         loader: configuration.loader,
         driver: args.driver,
+        cache: args.cache.clone(),
+        shard: args.shard,
         ..Options::default()
     };
     let report = match tidepack_validate::validate_path(&args.path, &options) {

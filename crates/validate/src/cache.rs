@@ -1,0 +1,111 @@
+//! `--cache DIR`: what a (program, option set) pair gave, kept across runs under a key of
+//! everything the verdict depends on, so that CI validates only what changed.
+//!
+//! The key digests tidepack's version, the loader, `--driver`, the program's
+//! [`Fingerprint`](crate::configurations::Fingerprint) (its expanded text, so the standard
+//! macros too) and the option set; one JSON file per key. A file that cannot be read or parsed is a miss, and
+//! writes go through a temporary file renamed into place, so that parallel CI jobs sharing the
+//! folder never see half a file.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use tidepack_glsl::{Diagnostic, Location, Severity};
+use tidepack_loader::Loader;
+use tidepack_loader::option_lines::OptionSet;
+
+use crate::configurations::Fingerprint;
+
+/// Cache entries are named by this digest in hex.
+pub(crate) type Key = [u8; 32];
+
+/// The key of a pair's findings under `loader`, with or without `--driver` (which changes
+/// what is said of stages naga cannot read).
+pub(crate) fn key(loader: Loader, driver: bool, fingerprint: &Fingerprint, set: &OptionSet) -> Key {
+    let mut hasher = Sha256::new();
+    hasher.update(concat!("tidepack-validate ", env!("CARGO_PKG_VERSION"), "\0").as_bytes());
+    hasher.update(format!("{loader}\0{driver}").as_bytes());
+    hasher.update(fingerprint);
+    for (name, value) in set {
+        hasher.update(format!("\0{name}={value}").as_bytes());
+    }
+    hasher.finalize().into()
+}
+
+#[derive(Serialize, Deserialize)]
+struct Entry {
+    diagnostics: Vec<StoredDiagnostic>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredDiagnostic {
+    error: bool,
+    message: String,
+    path: Option<String>,
+    line: u32,
+    columns: Option<(usize, usize)>,
+    notes: Vec<String>,
+}
+
+impl From<&Diagnostic> for StoredDiagnostic {
+    fn from(d: &Diagnostic) -> Self {
+        StoredDiagnostic {
+            error: d.is_error(),
+            message: d.message.clone(),
+            path: d.location.as_ref().map(|l| l.path.clone()),
+            line: d.location.as_ref().map_or(0, |l| l.line),
+            columns: d.location.as_ref().and_then(|l| l.columns.as_ref().map(|c| (c.start, c.end))),
+            notes: d.notes.clone(),
+        }
+    }
+}
+
+impl From<StoredDiagnostic> for Diagnostic {
+    fn from(d: StoredDiagnostic) -> Self {
+        Diagnostic {
+            severity: if d.error { Severity::Error } else { Severity::Warning },
+            message: d.message,
+            location: d.path.map(|path| Location { path, line: d.line, columns: d.columns.map(|(start, end)| start..end) }),
+            notes: d.notes,
+        }
+    }
+}
+
+/// A folder of cache entries.
+pub(crate) struct Cache {
+    dir: PathBuf,
+}
+
+impl Cache {
+    /// Opens (creating if need be) the folder; an error names it.
+    pub fn open(dir: &Path) -> Result<Cache, Diagnostic> {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| Diagnostic::error(format!("--cache {}: cannot create the folder: {e}", dir.display()), None))?;
+        Ok(Cache { dir: dir.to_path_buf() })
+    }
+
+    fn path(&self, key: &Key) -> PathBuf {
+        let hex: String = key.iter().map(|b| format!("{b:02x}")).collect();
+        self.dir.join(format!("{hex}.json"))
+    }
+
+    /// The diagnostics stored under `key`, if any.
+    pub fn get(&self, key: &Key) -> Option<Vec<Diagnostic>> {
+        let text = std::fs::read_to_string(self.path(key)).ok()?;
+        let entry: Entry = serde_json::from_str(&text).ok()?;
+        Some(entry.diagnostics.into_iter().map(Diagnostic::from).collect())
+    }
+
+    /// Stores `diagnostics` under `key`. A failure to write only loses the entry.
+    pub fn put(&self, key: &Key, diagnostics: &[Diagnostic]) {
+        let entry = Entry { diagnostics: diagnostics.iter().map(StoredDiagnostic::from).collect() };
+        let Ok(text) = serde_json::to_string(&entry) else { return };
+        let path = self.path(key);
+        let temporary = path.with_extension(format!("{}.tmp", std::process::id()));
+        if std::fs::write(&temporary, text).is_ok() && std::fs::rename(&temporary, &path).is_err() {
+            let _ = std::fs::remove_file(&temporary);
+        }
+    }
+}
