@@ -9,11 +9,17 @@
 //!   [`MAX_EXHAUSTIVE_SETS`];
 //! - otherwise, every combination of the options the program tests in conditionals
 //!   ([`Coverage::Exhaustive`], or [`Coverage::Pairwise`] while that product is at most
-//!   [`MAX_PAIRWISE_PRODUCT`]), with options that are only substituted as values varied one
-//!   at a time;
+//!   [`MAX_PAIRWISE_PRODUCT`]), with options that are only substituted as values tried once
+//!   each (see below);
 //! - under [`Coverage::Pairwise`] with more tested combinations: a covering array in which
 //!   every pair of values of any two tested options appears together in some set, plus every
 //!   profile.
+//!
+//! Past the exhaustive limit, a value option's values can be narrowed to [`representatives`]:
+//! those on either side of each number its conditionals compare it with, where the rest of
+//! its values only change numbers substituted into the text. Values that do not pair (of
+//! options only substituted, and tested options' other values) are tried once per kind of
+//! literal (int, float, zero, negative, each word), many options in one set.
 //!
 //! Options at their default are left out of a set, so a set means the same whichever options
 //! are relevant, and the empty set is the defaults.
@@ -82,6 +88,7 @@ pub struct CoveringSets {
 /// through `consult`. Its first error stops the search.
 pub fn covering_sets<E>(
     kinds: &BTreeMap<String, OptionKind>,
+    representatives: &Representatives,
     coverage: Coverage,
     profiles: &[OptionSet],
     mut consult: impl FnMut(&[&OptionSet]) -> Result<Vec<Consulted>, E>,
@@ -90,7 +97,7 @@ pub fn covering_sets<E>(
     let mut tested: BTreeSet<String> = BTreeSet::new();
     let mut explored: BTreeSet<OptionSet> = BTreeSet::new();
     loop {
-        let (sets, covered) = enumerate(&relevant, &tested, kinds, coverage, profiles);
+        let (sets, covered) = enumerate(&relevant, &tested, kinds, representatives, coverage, profiles);
         let fresh: Vec<&OptionSet> = sets.iter().filter(|s| !explored.contains(*s)).collect();
         let mut grew = false;
         for names in consult(&fresh)? {
@@ -108,11 +115,104 @@ pub fn covering_sets<E>(
     }
 }
 
+/// Per value option, the values its conditionals can tell apart (see [`representatives`]);
+/// an option not listed pairs with all its values.
+pub type Representatives = BTreeMap<String, Vec<OptionValue>>;
+
+/// The representatives of each numeric value option in `sources`: its default, its smallest
+/// and largest values, and for each number on a `#if`, `#elif` or `#define` line that names
+/// the option, that number and the nearest values below and above it. Every interval between
+/// those numbers then has a value, so a comparison of the option with any of them (`X == 0`,
+/// `X > 2`) takes each outcome it can in some set. An option on a line whose numbers are not
+/// all literals it could be compared with (another value option on the same line, a
+/// non-numeric value) keeps all its values.
+pub fn representatives<'t>(kinds: &BTreeMap<String, OptionKind>, sources: impl IntoIterator<Item = &'t str>) -> Representatives {
+    let numeric: BTreeMap<&str, Vec<(f64, &String)>> = kinds
+        .iter()
+        .filter_map(|(name, kind)| match kind {
+            OptionKind::Value { values, .. } => {
+                let parsed: Option<Vec<(f64, &String)>> = values.iter().map(|v| number(v).map(|n| (n, v))).collect();
+                Some((name.as_str(), parsed?))
+            }
+            OptionKind::Switch { .. } => None,
+        })
+        .collect();
+    let mut literals: BTreeMap<&str, Vec<f64>> = BTreeMap::new();
+    let mut unnarrowed: BTreeSet<&str> = BTreeSet::new();
+    for text in sources {
+        for line in text.lines() {
+            let line = line.trim_start();
+            let Some(directive) = line.strip_prefix('#') else { continue };
+            let directive = directive.trim_start();
+            if !["if", "elif", "define"].iter().any(|d| directive.starts_with(d)) {
+                continue;
+            }
+            let code = directive.split("//").next().unwrap_or_default();
+            let words: Vec<&str> = code.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.')).filter(|w| !w.is_empty()).collect();
+            let named: Vec<&str> = words.iter().copied().filter(|w| numeric.contains_key(w)).collect();
+            if named.is_empty() {
+                continue;
+            }
+            // `#define X 4 // [2 4 8]` declares X: its own numbers are its values.
+            let declares = directive.starts_with("define") && words.get(1).is_some_and(|w| named.first() == Some(w)) && named.len() == 1;
+            if declares {
+                continue;
+            }
+            let numbers: Vec<f64> = words.iter().filter_map(|w| number(w)).collect();
+            for name in &named {
+                if named.len() > 1 {
+                    unnarrowed.insert(name);
+                }
+                literals.entry(name).or_default().extend(&numbers);
+            }
+        }
+    }
+    let mut found = Representatives::new();
+    for (name, values) in &numeric {
+        if unnarrowed.contains(name) {
+            continue;
+        }
+        let Some(OptionKind::Value { default, .. }) = kinds.get(*name) else { continue };
+        let mut sorted = values.clone();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut chosen: BTreeSet<&String> = [default].into();
+        chosen.extend(sorted.first().map(|v| v.1));
+        chosen.extend(sorted.last().map(|v| v.1));
+        for &c in literals.get(name).into_iter().flatten() {
+            chosen.extend(sorted.iter().rev().find(|v| v.0 < c).map(|v| v.1));
+            chosen.extend(sorted.iter().find(|v| v.0 == c).map(|v| v.1));
+            chosen.extend(sorted.iter().find(|v| v.0 > c).map(|v| v.1));
+        }
+        if chosen.len() < values.len() {
+            found.insert(name.to_string(), chosen.into_iter().map(|v| OptionValue::Value(v.clone())).collect());
+        }
+    }
+    found
+}
+
+/// The kind of literal an option value is, as substituted into GLSL: an int, a float, negative
+/// or zero (which array sizes and divisions tell apart), or a word, which stands only for
+/// itself.
+fn literal_form(value: &OptionValue) -> String {
+    let OptionValue::Value(text) = value else { return value.to_string() };
+    let Some(n) = number(text) else { return format!("word {text}") };
+    let float = text.contains(['.', 'e', 'E']) || text.ends_with(['f', 'F']);
+    let sign = if n == 0.0 { "zero" } else if n < 0.0 { "negative" } else { "positive" };
+    format!("{} {sign}", if float { "float" } else { "int" })
+}
+
+/// A GLSL number as written in an option value or a condition (`2`, `0.5`, `-1`, `1.0f`).
+fn number(text: &str) -> Option<f64> {
+    let trimmed = text.trim_end_matches(['f', 'F', 'u', 'U']);
+    trimmed.parse::<f64>().ok().filter(|n| n.is_finite())
+}
+
 /// The option sets for the relevant options.
 fn enumerate(
     relevant: &BTreeSet<String>,
     tested: &BTreeSet<String>,
     kinds: &BTreeMap<String, OptionKind>,
+    representatives: &Representatives,
     coverage: Coverage,
     profiles: &[OptionSet],
 ) -> (Vec<OptionSet>, SetsCovered) {
@@ -135,8 +235,16 @@ fn enumerate(
         let sets = product(&sizes(&all)).iter().map(|row| set_of(&all, row)).collect();
         return (sets, SetsCovered::AllCombinations);
     }
+    // Tested options combine through their representatives; their other values join the
+    // substituted ones, one at a time.
+    let narrowed = |name: &String| -> Vec<Option<OptionValue>> {
+        match representatives.get(name) {
+            Some(values) => choices(name).into_iter().filter(|v| v.as_ref().is_none_or(|v| values.contains(v))).collect(),
+            None => choices(name),
+        }
+    };
     let structural: Vec<&String> = relevant.iter().filter(|n| tested.contains(*n)).collect();
-    let structural_sizes = sizes(&structural);
+    let structural_sizes: Vec<usize> = structural.iter().map(|n| narrowed(n).len()).collect();
     let tested_product = structural_sizes.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
     let all_tested = coverage == Coverage::Exhaustive || tested_product.is_some_and(|n| n <= MAX_PAIRWISE_PRODUCT);
     let (rows, covered) = if all_tested {
@@ -144,11 +252,30 @@ fn enumerate(
     } else {
         (pairwise(&structural_sizes), SetsCovered::Pairs)
     };
-    let mut sets: Vec<OptionSet> = rows.iter().map(|row| set_of(&structural, row)).collect();
-    for name in relevant.iter().filter(|n| !tested.contains(*n)) {
-        for value in choices(name).into_iter().flatten() {
-            sets.push([(name.clone(), value)].into());
+    let mut sets: Vec<OptionSet> = rows
+        .iter()
+        .map(|row| structural.iter().zip(row).filter_map(|(name, &i)| Some(((*name).clone(), narrowed(name)[i].clone()?))).collect())
+        .collect();
+    // Values that do not pair, as few sets as the option with the most of them needs: the
+    // k-th set gives every such option its k-th value. One value per kind of literal stands
+    // for the others (substituted, they differ only by a number of the same form).
+    let mut singles: Vec<(&String, Vec<OptionValue>)> = Vec::new();
+    for name in relevant {
+        let paired = if tested.contains(name) { narrowed(name) } else { vec![None] };
+        let mut forms: BTreeSet<String> = BTreeSet::new();
+        let values: Vec<OptionValue> = choices(name)
+            .into_iter()
+            .filter(|v| !paired.contains(v))
+            .flatten()
+            .filter(|v| forms.insert(literal_form(v)))
+            .collect();
+        if !values.is_empty() {
+            singles.push((name, values));
         }
+    }
+    let rows_of_singles = singles.iter().map(|(_, values)| values.len()).max().unwrap_or(0);
+    for k in 0..rows_of_singles {
+        sets.push(singles.iter().filter_map(|(name, values)| Some(((*name).clone(), values.get(k)?.clone()))).collect());
     }
     if covered == SetsCovered::Pairs {
         for profile in profiles {
@@ -264,7 +391,7 @@ mod tests {
     fn the_search_finds_options_behind_other_options() {
         let kinds: BTreeMap<String, OptionKind> = [("A".to_string(), switch(false)), ("B".to_string(), switch(false))].into();
         let mut seen = Vec::new();
-        let found = covering_sets::<()>(&kinds, Coverage::Pairwise, &[], |sets| {
+        let found = covering_sets::<()>(&kinds, &Representatives::new(), Coverage::Pairwise, &[], |sets| {
             seen.extend(sets.iter().map(|s| (*s).clone()));
             Ok(sets
                 .iter()
@@ -285,19 +412,64 @@ mod tests {
         assert_eq!(seen.len(), 4, "no set is consulted twice: {seen:?}");
     }
 
-    /// Past the exhaustive limit, values only substituted into the text vary one at a time.
+    /// Past the exhaustive limit, values only substituted into the text are tried once per kind
+    /// of literal, several options in one set.
     #[test]
-    fn substituted_values_vary_one_at_a_time() {
+    fn substituted_values_are_tried_once_per_kind_of_literal() {
         let values: Vec<String> = (0..20).map(|v| v.to_string()).collect();
         let value = || OptionKind::Value { default: "0".into(), values: values.clone() };
         let kinds: BTreeMap<String, OptionKind> =
             [("X".to_string(), value()), ("Y".to_string(), value()), ("Z".to_string(), value())].into();
-        let found = covering_sets::<()>(&kinds, Coverage::Pairwise, &[], |sets| {
+        let found = covering_sets::<()>(&kinds, &Representatives::new(), Coverage::Pairwise, &[], |sets| {
             let names: BTreeSet<String> = ["X", "Y", "Z"].map(String::from).into();
             Ok(sets.iter().map(|_| Consulted { read: names.clone(), tested: BTreeSet::new() }).collect())
         })
         .unwrap();
         assert_eq!(found.covered, SetsCovered::TestedCombinations);
-        assert_eq!(found.sets.len(), 1 + 3 * 19);
+        // The defaults, then one set with each option at 1: every other value is a positive int.
+        assert_eq!(found.sets.len(), 2, "{:?}", found.sets);
+        let mixed = OptionKind::Value { default: "1.0".into(), values: ["0.5", "1.0", "2", "0", "-1", "-2", "4"].map(String::from).to_vec() };
+        let forms: BTreeSet<String> = mixed.all_values().iter().filter(|v| v.to_string() != "1.0").map(literal_form).collect();
+        assert_eq!(forms.len(), 4, "float, positive int, zero, negative: {forms:?}");
+    }
+
+    /// `DOF_DEPTH == 0` and `LUT > 0` tell apart two kinds of value each: those pair, the
+    /// others are each tried once.
+    #[test]
+    fn compared_values_pair_through_representatives() {
+        let listed = |default: &str, values: &[&str]| OptionKind::Value {
+            default: default.into(),
+            values: values.iter().map(|v| v.to_string()).collect(),
+        };
+        let depths: Vec<String> = (0..30).map(|v| (2 * v).to_string()).collect();
+        let luts: Vec<String> = (0..21).map(|v| v.to_string()).collect();
+        let kinds: BTreeMap<String, OptionKind> = [
+            ("DOF_DEPTH".to_string(), listed("0", &depths.iter().map(String::as_str).collect::<Vec<_>>())),
+            ("LUT".to_string(), listed("0", &luts.iter().map(String::as_str).collect::<Vec<_>>())),
+            ("BOTH".to_string(), listed("1", &["1", "2", "3", "4"])),
+            ("WORDS".to_string(), listed("low", &["low", "mid", "high"])),
+        ]
+        .into();
+        let source = "#define DOF_DEPTH 0 // [0 2 4]\n#if DOF_DEPTH == 0\n#endif\n  #if LUT > 0 // 7 in a comment\n#endif\n#if BOTH > LUT\n#endif\n";
+        let found = representatives(&kinds, [source]);
+        let values = |name: &str| found[name].iter().map(|v| v.to_string()).collect::<Vec<_>>();
+        assert_eq!(values("DOF_DEPTH"), ["0", "2", "58"]);
+        assert!(!found.contains_key("LUT"), "compared with another option: every value");
+        assert!(!found.contains_key("BOTH"));
+        assert!(!found.contains_key("WORDS"), "not numbers");
+        let alone = representatives(&kinds, ["#if DOF_DEPTH == 0\n#endif\n#if LUT > 0\n#endif\n"]);
+        assert_eq!(alone["LUT"].iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["0", "1", "20"]);
+        // Both tested, and a substituted STEPS too many for every combination.
+        let mut kinds = kinds;
+        kinds.insert("STEPS".into(), listed("1", &["1", "2", "3", "4", "5", "6", "7", "8", "9", "10"]));
+        let found = covering_sets::<()>(&kinds, &alone, Coverage::Pairwise, &[], |sets| {
+            let tested: BTreeSet<String> = ["DOF_DEPTH", "LUT"].map(String::from).into();
+            let read: BTreeSet<String> = ["DOF_DEPTH", "LUT", "STEPS"].map(String::from).into();
+            Ok(sets.iter().map(|_| Consulted { read: read.clone(), tested: tested.clone() }).collect())
+        })
+        .unwrap();
+        assert_eq!(found.covered, SetsCovered::TestedCombinations);
+        // 3 × 3 pairs; the other values of all three are positive ints: one more set.
+        assert_eq!(found.sets.len(), 3 * 3 + 1, "{:?}", found.sets);
     }
 }

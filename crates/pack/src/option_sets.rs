@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use tidepack_glsl::Diagnostic;
-use tidepack_loader::coverage::{self, Consulted, CoveringSets};
+use tidepack_loader::coverage::{self, Consulted, CoveringSets, Representatives};
 pub use tidepack_loader::coverage::{Coverage, SetsCovered};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
@@ -326,7 +326,8 @@ fn option_sets(
     coverage: Coverage,
     profiles: &[OptionSet],
 ) -> Result<CoveringSets, SetFailure> {
-    coverage::covering_sets(kinds, coverage, profiles, |sets| {
+    // Our own pack's options are few: every value pairs.
+    coverage::covering_sets(kinds, &Representatives::new(), coverage, profiles, |sets| {
         sets.par_iter()
             .map(|set| {
                 let stages = run_set(pack, program, set, macros).map_err(|d| Box::new((d, (*set).clone())))?;

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 
 use tidepack_glsl::preprocess::{self, PreprocessOptions};
-use tidepack_loader::coverage::{self, Consulted, Coverage, SetsCovered};
+use tidepack_loader::coverage::{self, Consulted, Coverage, Representatives, SetsCovered};
 use tidepack_loader::directives::custom_names;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
 use tidepack_loader::option_space::property_macros;
@@ -185,6 +185,10 @@ pub(crate) fn plan(
     let profiles: Vec<OptionSet> = table.sets.iter().map(|(_, set)| set.clone()).collect();
     let free: BTreeMap<String, OptionKind> =
         reader.declared.iter().filter(|(name, _)| !overrides.contains_key(*name)).map(|(k, v)| (k.clone(), v.clone())).collect();
+    let representatives = match covering {
+        Some(_) => coverage::representatives(&free, reader.pack.texts.values().map(|t| &**t)),
+        None => Representatives::new(),
+    };
     // Per program: its sets with their fingerprints, in the order they were found.
     type Found = (Vec<(OptionSet, Option<Fingerprint>)>, Option<SetsCovered>);
     let per_program: Vec<Found> = runnable
@@ -200,7 +204,7 @@ pub(crate) fn plan(
                 .collect();
             if let Some(coverage) = covering {
                 let mut fingerprints: HashMap<OptionSet, Fingerprint> = HashMap::new();
-                let result = coverage::covering_sets::<std::convert::Infallible>(&free, coverage, &profiles, |sets| {
+                let result = coverage::covering_sets::<std::convert::Infallible>(&free, &representatives, coverage, &profiles, |sets| {
                     Ok(sets
                         .iter()
                         .map(|set| {
