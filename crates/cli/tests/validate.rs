@@ -158,3 +158,30 @@ fn a_configuration_is_named_as_render_names_it() {
         assert!(text(&out.stderr).contains(needle), "{args:?}: {}", text(&out.stderr));
     }
 }
+
+/// A mistake behind one toggle: the defaults pass, `--covering` fails and prints the `--set`
+/// line that shows it; a shard and a cache folder work from the command line.
+#[test]
+fn covering_finds_a_mistake_behind_a_toggle_and_says_how_to_show_it() {
+    let (_dir, pack) = pack_with_fragment(
+        "#version 120\n//#define GLOW // Glow\n#ifdef GLOW\nfloat glow() { return glowAmount; }\n#endif\nvoid main() { gl_FragColor = vec4(1.0); }\n",
+    );
+    let path = pack.to_str().unwrap();
+    assert_eq!(validate(&[path]).status.code(), Some(0));
+    let out = validate(&[path, "--covering"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("final.fsh:4") && stderr.contains("shown with: --set GLOW=on"), "{stderr}");
+    assert!(text(&out.stdout).contains("option sets cover every combination"), "{}", text(&out.stdout));
+    let cache = _dir.path().join("cache");
+    for _ in 0..2 {
+        let out = validate(&[path, "--covering", "--cache", cache.to_str().unwrap(), "--format", "json"]);
+        assert_eq!(out.status.code(), Some(1));
+    }
+    assert!(std::fs::read_dir(&cache).unwrap().count() > 0, "the cache folder holds entries");
+    let shards: Vec<i32> = ["1/2", "2/2"].iter().map(|s| validate(&[path, "--covering", "--shard", s]).status.code().unwrap()).collect();
+    assert!(shards.contains(&1), "one shard holds the failing text: {shards:?}");
+    let out = validate(&[path, "--covering", "--shard", "3/2"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("K/N"), "{}", text(&out.stderr));
+}

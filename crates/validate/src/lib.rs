@@ -371,6 +371,8 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     } else {
         None
     };
+    let reproductions =
+        if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
     // One diagnostic per distinct message and place, noting every program and option set it
     // was seen in, keyed by message and sorted by place so that the report reads file by file.
     let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
@@ -389,7 +391,10 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         entry.2.insert(set);
     }
     let mut seen_in: Vec<(Diagnostic, BTreeSet<usize>)> = diagnostics.drain(..).map(|d| (d, BTreeSet::new())).collect();
-    for (diag, in_programs, in_sets) in distinct.into_values() {
+    for (key, (mut diag, in_programs, in_sets)) in distinct {
+        if let Some(set) = reproductions.get(&key) {
+            diag = diag.with_note(format!("shown with: {}", configurations::label_of(set)));
+        }
         let ids: Vec<String> = in_programs.iter().map(|&p| programs[p].id()).collect();
         let mut context = match ids.as_slice() {
             [one] => format!("in program {one}"),
@@ -427,6 +432,73 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         elapsed: started.elapsed(),
         driver: driver_summary,
     })
+}
+
+/// Most errors a covering run reduces to the options they need.
+const MAX_REDUCED_ERRORS: usize = 64;
+
+/// For each distinct error (by its text) the defaults do not show, the fewest `--set` options
+/// found to show it: its smallest set, reduced by dropping options in halves, then quarters, …
+/// while the program still gives the same error (at the same place).
+fn reproductions(
+    found: &[Finding],
+    programs: &[Program],
+    pack: &PackFiles,
+    sets: &[(String, OptionSet)],
+    contexts: &[SetContext],
+    macros: &PreprocessOptions,
+    options: &Options,
+) -> BTreeMap<String, OptionSet> {
+    let under_defaults: HashSet<String> =
+        found.iter().filter(|f| sets[f.set].1.is_empty()).map(|f| f.diagnostic.to_string()).collect();
+    // Per distinct error: the finding with the smallest set.
+    let mut smallest: BTreeMap<String, usize> = BTreeMap::new();
+    for (index, f) in found.iter().enumerate() {
+        let key = f.diagnostic.to_string();
+        if !f.diagnostic.is_error() || under_defaults.contains(&key) {
+            continue;
+        }
+        let entry = smallest.entry(key).or_insert(index);
+        if sets[f.set].1.len() < sets[found[*entry].set].1.len() {
+            *entry = index;
+        }
+    }
+    let chosen: Vec<usize> = smallest.into_values().take(MAX_REDUCED_ERRORS).collect();
+    let reduced: Vec<(usize, OptionSet)> = chosen
+        .par_iter()
+        .map(|&index| {
+            let f = &found[index];
+            let program = &programs[f.program];
+            let shows = |set: &OptionSet| {
+                let provider = SetProvider::new(pack, set);
+                let (diagnostics, stages) = check_pair(program, &provider, macros, &contexts[f.set].names, options);
+                let same = |d: &Diagnostic| d.message == f.diagnostic.message && d.location == f.diagnostic.location;
+                diagnostics.iter().any(same) || {
+                    let jobs: Vec<Job> = stages.into_iter().map(|stage| Job { stage, set: 0, program: 0, position_optional: !program.other_stages.is_empty() }).collect();
+                    let mut frontend = tidepack_glsl::naga_check::Frontend::default();
+                    jobs.iter().any(|job| naga_pool::check_one(&mut frontend, job, pack, set).iter().any(same))
+                }
+            };
+            let mut needed: Vec<(String, tidepack_loader::option_lines::OptionValue)> =
+                sets[f.set].1.iter().map(|(k, v)| (k.clone(), v.clone())).collect();
+            let mut chunk = needed.len().div_ceil(2);
+            while chunk >= 1 && !needed.is_empty() {
+                let mut start = 0;
+                while start < needed.len() {
+                    let end = (start + chunk).min(needed.len());
+                    let trial: OptionSet = needed[..start].iter().chain(&needed[end..]).cloned().collect();
+                    if shows(&trial) {
+                        needed.drain(start..end);
+                    } else {
+                        start = end;
+                    }
+                }
+                chunk /= 2;
+            }
+            (index, needed.into_iter().collect())
+        })
+        .collect();
+    reduced.into_iter().map(|(index, set)| (found[index].diagnostic.to_string(), set)).collect()
 }
 
 /// The option sets a diagnostic was seen under, for its note: the few with the fewest options

@@ -94,9 +94,14 @@ pub(crate) fn run_naga(pool: &rayon::ThreadPool, jobs: &[Job], pack: &PackFiles,
     pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect())
 }
 
-/// One job through naga; a panic inside naga becomes a warning that the stage was not checked.
 fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Diagnostic> {
-    let provider = SetProvider::new(pack, &sets[job.set].1);
+    check_one(frontend, job, pack, &sets[job.set].1)
+}
+
+/// One job through naga under `set`; a panic inside naga becomes a warning that the stage was
+/// not checked.
+pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, set: &OptionSet) -> Vec<Diagnostic> {
+    let provider = SetProvider::new(pack, set);
     let entry = &job.stage.preprocessed().files[0];
     let lines = job.stage.text().lines().count();
     if lines > MAX_NAGA_LINES {

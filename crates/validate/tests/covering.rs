@@ -91,6 +91,10 @@ fn the_covering_sets_find_mistakes_behind_toggles_pairs_and_nested_options() {
     assert!(pair.contains("FOG_STYLE=2") && pair.contains("--set FOG=off"), "{pair}");
     let nested = one("noiseAmount");
     assert!(nested.contains("composite.fsh:14") && nested.contains("FOG_NOISE=on") && nested.contains("FOG_STYLE=3"), "{nested}");
+    // Each is reduced to the options it needs, whatever else its sets held.
+    assert!(godrays.contains("shown with: --set GODRAYS=on\n"), "{godrays}");
+    assert!(pair.contains("shown with: --set FOG=off --set FOG_STYLE=2\n"), "{pair}");
+    assert!(nested.contains("shown with: --set FOG_NOISE=on --set FOG_STYLE=3\n"), "{nested}");
 }
 
 #[test]
