@@ -19,6 +19,17 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
+    if let Some(value) = ["NaN", "infinite"].into_iter().find(|v| diag.message.contains(&format!("Float literal is {v}"))) {
+        // naga refuses a constant that folds to NaN or infinity; GLSL compilers fold it and
+        // compile (Mesa does), and the value reaches whatever reads it.
+        let value = if value == "NaN" { "NaN" } else { "infinite" };
+        diag.severity = Severity::Warning;
+        diag.message = format!(
+            "a constant expression here is {value} (such as 0.0 / 0.0 from option values): drivers compile it and the \
+             value is {value} wherever it is used; naga stops here, so the rest of this stage is not checked"
+        );
+        return diag;
+    }
     if diag.message.contains("Unable to operate on image class Sampled { kind: Uint")
         || diag.message.contains("Unable to operate on image class Sampled { kind: Sint")
     {
