@@ -37,6 +37,66 @@ impl fmt::Display for Location {
     }
 }
 
+/// Families of OpenGL drivers, told apart by what their GLSL compilers accept: Mesa (Linux's
+/// open drivers), AMD's (as strict as glslang's front end), Intel's, NVIDIA's (which accepts
+/// much that the specification forbids) and macOS's (OpenGL 4.1 core at most).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Drivers(u8);
+
+impl Drivers {
+    pub const NONE: Drivers = Drivers(0);
+    pub const MESA: Drivers = Drivers(1);
+    pub const AMD: Drivers = Drivers(2);
+    pub const INTEL: Drivers = Drivers(4);
+    pub const NVIDIA: Drivers = Drivers(8);
+    pub const MACOS: Drivers = Drivers(16);
+    pub const ALL: Drivers = Drivers(31);
+    /// Every family but NVIDIA's: what the specification forbids and NVIDIA's compiler lets by.
+    pub const ALL_BUT_NVIDIA: Drivers = Drivers(31 & !8);
+    const NAMES: [(Drivers, &'static str); 5] =
+        [(Drivers::MESA, "mesa"), (Drivers::AMD, "amd"), (Drivers::INTEL, "intel"), (Drivers::NVIDIA, "nvidia"), (Drivers::MACOS, "macos")];
+
+    pub const fn union(self, other: Drivers) -> Drivers {
+        Drivers(self.0 | other.0)
+    }
+
+    pub const fn intersection(self, other: Drivers) -> Drivers {
+        Drivers(self.0 & other.0)
+    }
+
+    pub const fn without(self, other: Drivers) -> Drivers {
+        Drivers(self.0 & !other.0)
+    }
+
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The lower-case names (`mesa`, `amd`, `intel`, `nvidia`, `macos`), in that order.
+    pub fn names(self) -> Vec<&'static str> {
+        Drivers::NAMES.iter().filter(|(d, _)| self.intersection(*d) == *d).map(|(_, n)| *n).collect()
+    }
+
+    /// Reads a comma-separated list of names, or `all`.
+    pub fn parse(text: &str) -> Result<Drivers, String> {
+        let mut found = Drivers::NONE;
+        for word in text.split(',').map(str::trim).filter(|w| !w.is_empty()) {
+            if word == "all" {
+                found = Drivers::ALL;
+                continue;
+            }
+            let Some((d, _)) = Drivers::NAMES.iter().find(|(_, n)| *n == word) else {
+                return Err(format!("unknown driver `{}`: mesa, amd, intel, nvidia, macos or all", word.escape_debug()));
+            };
+            found = found.union(*d);
+        }
+        if found.is_empty() {
+            return Err("name at least one driver: mesa, amd, intel, nvidia, macos or all".into());
+        }
+        Ok(found)
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
     pub severity: Severity,
@@ -44,15 +104,24 @@ pub struct Diagnostic {
     pub location: Option<Location>,
     /// Further context, each printed as a `= note:` line.
     pub notes: Vec<String>,
+    /// The drivers whose compilers refuse what this says: every family for an error unless a
+    /// rule knows better, none for a warning.
+    pub refused_by: Drivers,
 }
 
 impl Diagnostic {
     pub fn error(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Error, message: message.into(), location, notes: Vec::new() }
+        Diagnostic { severity: Severity::Error, message: message.into(), location, notes: Vec::new(), refused_by: Drivers::ALL }
     }
 
     pub fn warning(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Warning, message: message.into(), location, notes: Vec::new() }
+        Diagnostic { severity: Severity::Warning, message: message.into(), location, notes: Vec::new(), refused_by: Drivers::NONE }
+    }
+
+    /// The same diagnostic, said to be refused by `drivers` only.
+    pub fn refused_by(mut self, drivers: Drivers) -> Self {
+        self.refused_by = drivers;
+        self
     }
 
     pub fn with_note(mut self, note: impl Into<String>) -> Self {

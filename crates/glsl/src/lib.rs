@@ -12,5 +12,5 @@ pub mod naga_check;
 pub mod preprocess;
 pub mod token;
 
-pub use diagnostic::{Diagnostic, Location, Severity};
+pub use diagnostic::{Diagnostic, Drivers, Location, Severity};
 pub use lower::Stage;

@@ -1,7 +1,7 @@
 //! `--cache DIR`: what a (program, option set) pair gave, kept across runs under a key of
 //! everything the verdict depends on, so that CI validates only what changed.
 //!
-//! The key digests tidepack's version, the loader, `--driver`, the program's
+//! The key digests tidepack's build (version, and its executable's size and time), the loader, `--driver`, the program's
 //! [`Fingerprint`](crate::configurations::Fingerprint) (its expanded text, so the standard
 //! macros too) and the option set; one JSON file per key. A file that cannot be read or parsed is a miss, and
 //! writes go through a temporary file renamed into place, so that parallel CI jobs sharing the
@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use tidepack_glsl::{Diagnostic, Location, Severity};
+use tidepack_glsl::{Diagnostic, Drivers, Location, Severity};
 use tidepack_loader::Loader;
 use tidepack_loader::option_lines::OptionSet;
 
@@ -21,11 +21,24 @@ use crate::configurations::Fingerprint;
 /// Cache entries are named by this digest in hex.
 pub(crate) type Key = [u8; 32];
 
+/// Which build of tidepack runs: its version, and the size and time of its executable, so that
+/// a rebuilt tidepack does not read what another build found.
+fn build_identity() -> String {
+    let executable = std::env::current_exe().and_then(std::fs::metadata).ok();
+    let stamp = executable.map(|m| {
+        let modified = m.modified().ok().and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok()).map_or(0, |d| d.as_nanos());
+        format!("{} {modified}", m.len())
+    });
+    format!("tidepack-validate {} {}", env!("CARGO_PKG_VERSION"), stamp.unwrap_or_default())
+}
+
 /// The key of a pair's findings under `loader`, with or without `--driver` (which changes
 /// what is said of stages naga cannot read).
 pub(crate) fn key(loader: Loader, driver: bool, fingerprint: &Fingerprint, set: &OptionSet) -> Key {
+    static BUILD: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     let mut hasher = Sha256::new();
-    hasher.update(concat!("tidepack-validate ", env!("CARGO_PKG_VERSION"), "\0").as_bytes());
+    hasher.update(BUILD.get_or_init(build_identity).as_bytes());
+    hasher.update([0]);
     hasher.update(format!("{loader}\0{driver}").as_bytes());
     hasher.update(fingerprint);
     for (name, value) in set {
@@ -47,6 +60,7 @@ struct StoredDiagnostic {
     line: u32,
     columns: Option<(usize, usize)>,
     notes: Vec<String>,
+    refused_by: Vec<String>,
 }
 
 impl From<&Diagnostic> for StoredDiagnostic {
@@ -58,6 +72,7 @@ impl From<&Diagnostic> for StoredDiagnostic {
             line: d.location.as_ref().map_or(0, |l| l.line),
             columns: d.location.as_ref().and_then(|l| l.columns.as_ref().map(|c| (c.start, c.end))),
             notes: d.notes.clone(),
+            refused_by: d.refused_by.names().into_iter().map(String::from).collect(),
         }
     }
 }
@@ -69,6 +84,7 @@ impl From<StoredDiagnostic> for Diagnostic {
             message: d.message,
             location: d.path.map(|path| Location { path, line: d.line, columns: d.columns.map(|(start, end)| start..end) }),
             notes: d.notes,
+            refused_by: Drivers::parse(&d.refused_by.join(",")).unwrap_or(Drivers::NONE),
         }
     }
 }

@@ -16,7 +16,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Diagnostic, Drivers, Location};
 use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
@@ -88,7 +88,14 @@ pub struct Options {
     pub cache: Option<std::path::PathBuf>,
     /// Validate only this share of the distinct program texts.
     pub shard: Option<Shard>,
+    /// The drivers whose refusals are errors; an error only others refuse becomes a warning,
+    /// and one only macOS refuses is left out unless macOS is a target.
+    pub target: Drivers,
 }
+
+/// The default `--target`: every family that runs OpenGL 4.6. macOS (4.1 at most) is a target
+/// only when asked for, since most packs need more.
+pub const DEFAULT_TARGET: Drivers = Drivers::ALL.without(Drivers::MACOS);
 
 impl Default for Options {
     fn default() -> Self {
@@ -103,6 +110,7 @@ impl Default for Options {
             driver: false,
             cache: None,
             shard: None,
+            target: DEFAULT_TARGET,
         }
     }
 }
@@ -371,6 +379,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     } else {
         None
     };
+    found = in_target(found, options.target);
     let reproductions =
         if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
     // One diagnostic per distinct message and place, noting every program and option set it
@@ -432,6 +441,46 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         elapsed: started.elapsed(),
         driver: driver_summary,
     })
+}
+
+/// The findings as `target` sees them: an error no target driver refuses becomes a warning
+/// naming who does, except one only macOS refuses, which is left out when macOS is not a
+/// target; an error some drivers accept says which.
+fn in_target(found: Vec<Finding>, target: Drivers) -> Vec<Finding> {
+    let named = |drivers: Drivers| {
+        drivers
+            .names()
+            .iter()
+            .map(|n| match *n {
+                "mesa" => "Mesa",
+                "amd" => "AMD",
+                "intel" => "Intel",
+                "nvidia" => "NVIDIA",
+                _ => "macOS",
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    found
+        .into_iter()
+        .filter_map(|mut f| {
+            let refused = f.diagnostic.refused_by;
+            if !f.diagnostic.is_error() || refused == Drivers::ALL {
+                return Some(f);
+            }
+            if refused.intersection(target).is_empty() {
+                if refused == Drivers::MACOS {
+                    return None;
+                }
+                f.diagnostic.severity = tidepack_glsl::Severity::Warning;
+                f.diagnostic = f.diagnostic.with_note(format!("only {} refuse this, and --target leaves them out", named(refused)));
+                return Some(f);
+            }
+            let accept = Drivers::ALL.without(refused);
+            f.diagnostic = f.diagnostic.with_note(format!("refused by {}; {} accepts it", named(refused), named(accept)));
+            Some(f)
+        })
+        .collect()
 }
 
 /// Most errors a covering run reduces to the options they need.
@@ -585,7 +634,13 @@ fn run_driver(
             }
             let ours = found
                 .iter()
-                .any(|f| f.program == index && f.set == set_index && f.diagnostic.is_error() && !driver::is_loader_level(&f.diagnostic));
+                .any(|f| {
+                    f.program == index
+                        && f.set == set_index
+                        && f.diagnostic.is_error()
+                        && !f.diagnostic.refused_by.intersection(Drivers::MESA).is_empty()
+                        && !driver::is_loader_level(&f.diagnostic)
+                });
             let name = if sets.len() > 1 { format!("{} ({label})", program.id()) } else { program.id() };
             for diag in gl.unsupported(program) {
                 if let Some(at) = &diag.location {

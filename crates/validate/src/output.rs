@@ -157,6 +157,9 @@ struct JsonDiagnostic<'a> {
     /// 1-based.
     column: Option<usize>,
     notes: &'a [String],
+    /// The driver families whose compilers refuse it (`mesa`, `amd`, `intel`, `nvidia`,
+    /// `macos`); empty for a warning about something no driver refuses.
+    refused_by: Vec<&'static str>,
 }
 
 #[derive(Serialize)]
@@ -218,6 +221,7 @@ pub fn json(report: &Report) -> String {
             line: d.location.as_ref().map(|l| l.line),
             column: d.location.as_ref().and_then(|l| l.columns.as_ref()).map(|c| c.start + 1),
             notes: &d.notes,
+            refused_by: d.refused_by.names(),
         })
         .collect();
     let programs = report

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed, assume_glsl_110};
-use tidepack_glsl::{Diagnostic, Location, Stage};
+use tidepack_glsl::{Diagnostic, Drivers, Location, Stage};
 
 use tidepack_loader::directives::CustomNames;
 use tidepack_loader::loader::Loader;
@@ -27,8 +27,9 @@ pub(crate) fn check_program(
             Ok(mut pre) => {
                 assume_glsl_110(&mut pre);
                 diags.extend(pre.warnings.iter().cloned());
-                diags.extend(version_rules::check(&pre, *stage, loader));
-                diags.extend(glsl_rules::check(&pre, *stage));
+                diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
+                diags.extend(glsl_rules::check(&pre, *stage).into_iter().map(lenient_on_nvidia));
+                diags.extend(macos_refusals(&pre, false));
                 preprocessed.push((*stage, Arc::new(pre)));
             }
             Err(e) => {
@@ -64,6 +65,48 @@ pub(crate) fn check_program(
         diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, names, loader));
     }
     Ok((lowered, diags))
+}
+
+/// What the specification forbids and NVIDIA's compiler lets by: the version rules and the
+/// GLSL rules, which name constructs NVIDIA's driver compiles (reported on pack trackers as
+/// "works on NVIDIA only").
+fn lenient_on_nvidia(diag: Diagnostic) -> Diagnostic {
+    if diag.is_error() { diag.refused_by(Drivers::ALL_BUT_NVIDIA) } else { diag }
+}
+
+/// Highest GLSL version macOS compiles: its OpenGL stops at 4.1 core.
+const MACOS_GLSL: u32 = 410;
+
+/// What macOS's OpenGL 4.1 refuses in a stage: a `#version` above 410, compute shaders (4.3),
+/// shader storage blocks and images (4.3 and 4.2). Errors for macOS only.
+fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    let version_line = pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1);
+    let entry = || pre.location(version_line).or_else(|| Some(Location::line(pre.files[0].clone(), 1)));
+    let macos = |message: String, at: Option<Location>| Diagnostic::error(message, at).refused_by(Drivers::MACOS);
+    if compute {
+        found.push(macos("compute shaders need OpenGL 4.3; macOS stops at 4.1, so this pass does not run there".into(), entry()));
+    }
+    if let Some(version) = pre.version.as_ref().filter(|v| v.number > MACOS_GLSL) {
+        found.push(macos(
+            format!("`#version {}` is above {MACOS_GLSL}, the highest macOS compiles (OpenGL 4.1 core): the program does not load there", version.number),
+            entry(),
+        ));
+        return found;
+    }
+    let Ok(tokens) = tidepack_glsl::token::tokenize(&pre.text) else { return found };
+    let significant: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    for (k, t) in significant.iter().enumerate() {
+        let storage_block = t.is_ident("buffer") && significant.get(k + 1).is_some_and(|n| n.kind == tidepack_glsl::token::TokenKind::Ident);
+        let image = t.kind == tidepack_glsl::token::TokenKind::Ident
+            && ["image", "iimage", "uimage"].iter().any(|p| t.text.strip_prefix(p).is_some_and(|rest| rest.starts_with(['1', '2', '3', 'C', 'B'])));
+        if storage_block || image {
+            let what = if storage_block { "shader storage blocks (`buffer`) need OpenGL 4.3" } else { "images need OpenGL 4.2" };
+            found.push(macos(format!("{what}; macOS stops at 4.1, so the program does not load there"), pre.location(t.line)));
+            break;
+        }
+    }
+    found
 }
 
 /// The kind of stage of a geometry or tessellation file, for messages.
@@ -122,7 +165,8 @@ pub(crate) fn check_compute(
     };
     assume_glsl_110(&mut pre);
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
-    diags.extend(version_rules::check_compute(&pre));
+    diags.extend(version_rules::check_compute(&pre).map(lenient_on_nvidia));
+    diags.extend(macos_refusals(&pre, true));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
             diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, names, loader));

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
+use tidepack_glsl::Drivers;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_mc_version};
 use tidepack_validate::{Coverage, Options, Profiles, Shard, output};
@@ -63,6 +64,12 @@ pub struct ValidateArgs {
     /// headless) and report where it disagrees with tidepack.
     #[arg(long)]
     pub driver: bool,
+    /// The drivers whose refusals are errors, comma-separated: mesa, amd, intel, nvidia, macos
+    /// or all. An error only other drivers refuse is a warning saying who does; macOS's
+    /// refusals (OpenGL 4.1: no `#version` above 410, compute, storage blocks or images) are
+    /// checked only when it is named.
+    #[arg(long, value_name = "DRIVERS", value_parser = Drivers::parse, default_value = "mesa,amd,intel,nvidia")]
+    pub target: Drivers,
     /// Exit 1 on warnings too (unknown uniforms, unlisted outputs, …), not only on errors.
     #[arg(long)]
     pub deny_warnings: bool,
@@ -152,6 +159,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         driver: args.driver,
         cache: args.cache.clone(),
         shard: args.shard,
+        target: args.target,
         ..Options::default()
     };
     let report = match tidepack_validate::validate_path(&args.path, &options) {
