@@ -353,6 +353,11 @@ impl VaryingLayout {
     }
 }
 
+/// `int`, `uint` and their vectors.
+fn is_integer_type(ty: &str) -> bool {
+    matches!(ty, "int" | "uint") || ["ivec", "uvec"].iter().any(|p| ty.starts_with(p))
+}
+
 /// A varying as a stage declares it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VaryingDecl {
@@ -902,9 +907,16 @@ impl<'a> Lowering<'_, 'a> {
                             self.matrix_varyings.push((name.to_string(), column_ty, columns));
                             continue;
                         }
+                        // An integer vertex output need not be `flat` from GLSL 1.50 on (the
+                        // fragment input says so, and drivers match it); naga wants it on both.
+                        let flat = if self.stage == Stage::Vertex && is_integer_type(decl.ty) && !decl.qualifiers.contains(&"flat") {
+                            "flat "
+                        } else {
+                            ""
+                        };
                         write!(
                             text,
-                            "layout(location = {location}) {}{direction} {} {name}{}; ",
+                            "layout(location = {location}) {flat}{}{direction} {} {name}{}; ",
                             decl.interpolation(),
                             decl.ty,
                             naga_dimensions(suffix)
@@ -1041,8 +1053,7 @@ impl<'a> Lowering<'_, 'a> {
     /// GLSL 1.30 §4.3.4: fragment inputs of an integer type must be `flat` (Mesa and glslang
     /// refuse the stage); naga would make them flat by itself.
     fn integer_input_must_be_flat(&self, at: usize, ty: &str, name: &str) -> Result<(), LowerError> {
-        let integer = matches!(ty, "int" | "uint") || ["ivec", "uvec"].iter().any(|p| ty.starts_with(p));
-        if integer && self.version >= 130 {
+        if is_integer_type(ty) && self.version >= 130 {
             return Err(self.err(
                 at,
                 format!("fragment input `{name}` is an integer ({ty}) and must be qualified `flat` (GLSL 1.30 §4.3.4; drivers refuse the shader)"),

@@ -7,8 +7,14 @@
 //! every kind of mistake insert one line after a seeded choice of such a line, validate again,
 //! and restore the file. Only errors the unmodified pack did not have count.
 //!
+//! With `--behind-toggle`, each mistake sits behind a switch of its own, off by default
+//! (`//#define PLANTED_TOGGLE` then `#ifdef PLANTED_TOGGLE`), as a mistake behind one menu toggle
+//! does in released packs: the defaults never see it, and the packs are validated with
+//! `--covering` (through a cache folder, so only the programs a plant touches are validated
+//! again).
+//!
 //! `cargo run --release -p tidepack-validate --example plant -- [--seed N] [--per-kind N]
-//! [--threads N] PACK_DIR...` (tools/plant runs it over packs of a folder). Packs are copied to a
+//! [--threads N] [--behind-toggle] PACK_DIR...` (tools/plant runs it over packs of a folder). Packs are copied to a
 //! temporary folder: the originals are never written.
 
 use rand_core::{Rng as _, SeedableRng};
@@ -24,7 +30,7 @@ use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::{self, FileProvider, Preprocessed};
 use tidepack_loader::SetProvider;
 use tidepack_loader::programs::{self, RunBy};
-use tidepack_validate::{Options, Report, Status};
+use tidepack_validate::{Coverage, Options, Profiles, Report, Status};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Kind {
@@ -189,6 +195,7 @@ fn main() {
     let mut seed = 1u64;
     let mut per_kind = 1usize;
     let mut threads = 2usize;
+    let mut behind_toggle = false;
     let mut dirs: Vec<PathBuf> = Vec::new();
     while let Some(arg) = args.next() {
         let mut number = |name: &str| -> u64 {
@@ -201,15 +208,25 @@ fn main() {
             "--seed" => seed = number("--seed"),
             "--per-kind" => per_kind = number("--per-kind") as usize,
             "--threads" => threads = number("--threads").max(1) as usize,
+            "--behind-toggle" => behind_toggle = true,
             _ => dirs.push(PathBuf::from(arg)),
         }
     }
     if dirs.is_empty() {
-        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] PACK_DIR...");
+        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] [--behind-toggle] PACK_DIR...");
         std::process::exit(2);
     }
-    let options = Options { threads, ..Options::default() };
     let scratch = tempfile::tempdir().expect("temporary folder");
+    let options = if behind_toggle {
+        Options {
+            threads,
+            profiles: Profiles::Covering(Coverage::Pairwise),
+            cache: Some(scratch.path().join("findings")),
+            ..Options::default()
+        }
+    } else {
+        Options { threads, ..Options::default() }
+    };
     let mut plants: Vec<Plant> = Vec::new();
     let mut skipped: Vec<String> = Vec::new();
     for dir in &dirs {
@@ -220,7 +237,7 @@ fn main() {
             skipped.push(format!("{pack}: cannot copy ({e})"));
             continue;
         }
-        match plant_pack(&pack, &copy, &options, seed, per_kind) {
+        match plant_pack(&pack, &copy, &options, seed, per_kind, behind_toggle) {
             Ok(mut found) => plants.append(&mut found),
             Err(why) => {
                 eprintln!("{pack}: {why}");
@@ -246,7 +263,13 @@ fn copy_dir(from: &Path, to: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
-fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: usize) -> Result<Vec<Plant>, String> {
+/// The lines that put a planted line behind a switch of its own, off by default; the planted
+/// line is the third.
+fn behind_a_toggle(text: &str) -> String {
+    format!("//#define PLANTED_TOGGLE // planted mistake, off by default\n#ifdef PLANTED_TOGGLE\n{text}\n#endif")
+}
+
+fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: usize, behind_toggle: bool) -> Result<Vec<Plant>, String> {
     let started = Instant::now();
     let base = tidepack_validate::validate_path(root, options).map_err(|e| e.to_string())?;
     eprintln!("{pack}: unmodified in {:.1} s, {} errors", started.elapsed().as_secs_f64(), base.errors());
@@ -291,15 +314,17 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
             };
             let file = root.join("shaders").join(&path);
             let original = std::fs::read(&file).map_err(|e| format!("{path}: {e}"))?;
-            let modified = insert_line(&original, line, &text);
+            let inserted = if behind_toggle { behind_a_toggle(&text) } else { text.clone() };
+            let modified = insert_line(&original, line, &inserted);
             std::fs::write(&file, &modified).map_err(|e| format!("{path}: {e}"))?;
             let started = Instant::now();
             let result = tidepack_validate::validate_path(root, options);
             let elapsed = started.elapsed();
             std::fs::write(&file, &original).map_err(|e| format!("{path}: cannot restore: {e}"))?;
-            let planted_line = line + 1;
+            let planted_line = if behind_toggle { line + 3 } else { line + 1 };
             let accepted = accepted_lines(kind, &String::from_utf8_lossy(&modified), planted_line);
-            let plant = judge(pack, kind, program, path.clone(), planted_line, text, &accepted, &base, result, elapsed);
+            let inserted_lines = inserted.lines().count() as u32;
+            let plant = judge(pack, kind, program, path.clone(), planted_line, (line, inserted_lines), text, &accepted, &base, result, elapsed);
             eprintln!(
                 "{pack}: {} at {}:{} -> {} ({:.1} s)",
                 kind.name(),
@@ -787,6 +812,8 @@ fn judge(
     program: String,
     path: String,
     line: u32,
+    // The line the planted lines went after, and how many went in.
+    (after, inserted): (u32, u32),
     text: String,
     accepted: &[u32],
     base: &Report,
@@ -816,13 +843,13 @@ fn judge(
             return plant;
         }
     };
-    // The unmodified pack's errors, with lines after the planted one moved down by one.
+    // The unmodified pack's errors, with lines after the planted ones moved down.
     let known: HashSet<(String, Option<(String, u32)>)> = base
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
         .map(|d| {
-            let loc = d.location.as_ref().map(|l| (l.path.clone(), if l.path == path && l.line >= line { l.line + 1 } else { l.line }));
+            let loc = d.location.as_ref().map(|l| (l.path.clone(), if l.path == path && l.line > after { l.line + inserted } else { l.line }));
             (d.message.clone(), loc)
         })
         .collect();

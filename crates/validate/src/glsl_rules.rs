@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
-use tidepack_glsl::{Diagnostic, Stage};
+use tidepack_glsl::{Diagnostic, Drivers, Stage};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 const RESERVED: [&str; 35] = [
@@ -37,6 +37,8 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     let sig: Vec<&Token> = code_tokens(&tokens);
     let version = pre.version.as_ref().map_or(110, |v| v.number);
     let globals = Globals::read(&sig, stage);
+    // What these rules name, NVIDIA's compiler lets by (reported on pack trackers as "works on
+    // NVIDIA only"); a syntax error every compiler refuses.
     let mut found = Vec::new();
     found.extend(reserved_words(pre, &sig, version));
     found.extend(missing_returns(pre, &sig));
@@ -44,6 +46,26 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     found.extend(shadow_lookups(pre, &sig, &globals));
     if stage == Stage::Fragment {
         found.extend(mixed_outputs(pre, &sig, &globals));
+    }
+    let mut found: Vec<Diagnostic> =
+        found.into_iter().map(|d| if d.is_error() { d.refused_by(Drivers::ALL_BUT_NVIDIA) } else { d }).collect();
+    found.extend(empty_operands_after_commas(pre, &sig));
+    found
+}
+
+/// A `,` with nothing after it before `;` or `)`: a syntax error every compiler reports
+/// (Mesa: "syntax error, unexpected ';'"), which naga's parser lets by. An option value with a
+/// stray comma in its list (`// [.0, .2 .4]`) substitutes one.
+fn empty_operands_after_commas(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    let mut lines = std::collections::BTreeSet::new();
+    for pair in sig.windows(2) {
+        if pair[0].is_punct(",") && (pair[1].is_punct(";") || pair[1].is_punct(")")) && lines.insert(pair[0].line) {
+            found.push(Diagnostic::error(
+                format!("`,` with no expression after it, before `{}`: a syntax error (Mesa: \"syntax error, unexpected '{}'\")", pair[1].text, pair[1].text),
+                pre.location(pair[0].line),
+            ));
+        }
     }
     found
 }

@@ -167,3 +167,17 @@ fn exhaustive_coverage_tries_every_combination_of_tested_options() {
     let report = validate(&files(), Options { profiles: Profiles::Covering(Coverage::Exhaustive), ..covering() });
     assert_eq!(errors(&report).len(), 3, "{:#?}", errors(&report));
 }
+
+/// A stray comma in a value list (`[.0, .2 .5]`, as a released pack ships it) is a value a
+/// player can pick: the covering sets try it, and the substituted comma is a syntax error.
+#[test]
+fn a_stray_comma_in_a_value_list_is_found_where_the_value_lands() {
+    let fragment = "#version 120\n#define BLOOM_AMOUNT .5 // [.0, .2 .5]\nuniform sampler2D colortex0;\nvoid main() {\n    vec4 glow = texture2D(colortex0, vec2(0.5));\n    gl_FragData[0] = glow * BLOOM_AMOUNT;\n}\n";
+    let files = [("composite.vsh", VERTEX), ("composite.fsh", fragment)];
+    assert!(errors(&validate(&files, Options::default())).is_empty());
+    let report = validate(&files, covering());
+    let found = errors(&report);
+    assert_eq!(found.len(), 1, "{found:#?}");
+    assert!(found[0].contains("composite.fsh:6") && found[0].contains("`,` with no expression after it"), "{}", found[0]);
+    assert!(found[0].contains("shown with: --set BLOOM_AMOUNT=.0,"), "{}", found[0]);
+}
