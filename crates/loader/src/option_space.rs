@@ -197,6 +197,27 @@ fn own_entries(
     set
 }
 
+/// The options a player can change in the shader options menu: the names the `screen` and
+/// `screen.<name>` entries list, or every option when a list holds `*` (the options no other
+/// screen shows) or when there is no `screen` entry at all (OptiFine then lists every option
+/// on its main screen). An option on no screen keeps its default for players.
+pub fn menu_options(props: &Properties, declared: &BTreeMap<String, OptionKind>) -> BTreeMap<String, OptionKind> {
+    let Some(main) = props.get("screen") else { return declared.clone() };
+    let lists = std::iter::once(main.value.as_str()).chain(
+        props.with_prefix("screen.").filter(|(rest, _)| *rest != "columns" && !rest.ends_with(".columns")).map(|(_, e)| e.value.as_str()),
+    );
+    let mut shown: BTreeSet<&str> = BTreeSet::new();
+    for list in lists {
+        for word in list.split_whitespace() {
+            if word == "*" {
+                return declared.clone();
+            }
+            shown.insert(word);
+        }
+    }
+    declared.iter().filter(|(name, _)| shown.contains(name.as_str())).map(|(k, v)| (k.clone(), v.clone())).collect()
+}
+
 /// Which world folder a player is in (the overworld by default): `world0`, `world-1` (the
 /// nether), `world1` (the end) or a modded dimension's `worldN`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -314,6 +335,21 @@ pub fn parse_assignments(arguments: &[String]) -> Result<Vec<(String, String)>, 
             _ => Err(format!("--set takes OPTION=VALUE, not `{}`", assignment.escape_debug())),
         })
         .collect()
+}
+
+#[cfg(test)]
+mod menu_tests {
+    use super::*;
+
+    #[test]
+    fn the_menu_shows_what_the_screens_list() {
+        let declared: BTreeMap<String, OptionKind> =
+            ["BLOOM", "FSH", "FOG", "SHADOWS"].iter().map(|n| (n.to_string(), OptionKind::Switch { default: true })).collect();
+        let names = |props: &str| menu_options(&Properties::parse_plain(props), &declared).into_keys().collect::<Vec<_>>();
+        assert_eq!(names(""), ["BLOOM", "FOG", "FSH", "SHADOWS"], "no screen: every option");
+        assert_eq!(names("screen = BLOOM [ATMOSPHERE] <empty>\nscreen.ATMOSPHERE = FOG\nscreen.columns = 2\n"), ["BLOOM", "FOG"]);
+        assert_eq!(names("screen = BLOOM [MORE]\nscreen.MORE = *\n"), ["BLOOM", "FOG", "FSH", "SHADOWS"]);
+    }
 }
 
 #[cfg(test)]

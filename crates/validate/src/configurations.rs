@@ -14,7 +14,7 @@ use tidepack_glsl::preprocess::{self, PreprocessOptions};
 use tidepack_loader::coverage::{self, Consulted, Coverage, Representatives, SetsCovered};
 use tidepack_loader::directives::custom_names;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
-use tidepack_loader::option_space::property_macros;
+use tidepack_loader::option_space::{menu_options, property_macros};
 use tidepack_loader::programs::Program;
 use tidepack_loader::properties::Properties;
 use tidepack_loader::{PackFiles, SetProvider};
@@ -167,7 +167,7 @@ pub struct PlanSummary {
 }
 
 /// The pairs to validate. `global` sets apply to every program in `runnable`; with
-/// `covering`, each program also gets its covering sets (each with `overrides` over it, the
+/// `covering`, each program also gets the covering sets of the options the menu shows (each with `overrides` over it, the
 /// options `overrides` names held fixed). With `dedup` (which `covering` and `shard` need),
 /// pairs are fingerprinted and a repeat of a program's text is dropped.
 #[allow(clippy::too_many_arguments)]
@@ -183,8 +183,10 @@ pub(crate) fn plan(
 ) -> (Vec<Pair>, PlanSummary) {
     let global: Vec<usize> = (0..table.sets.len()).collect();
     let profiles: Vec<OptionSet> = table.sets.iter().map(|(_, set)| set.clone()).collect();
+    // What a player can pick: the options the menu shows, but those `--set` holds fixed.
+    let defaults = Properties::parse(reader.properties_text, &property_macros(reader.standard, reader.declared, &OptionSet::new()));
     let free: BTreeMap<String, OptionKind> =
-        reader.declared.iter().filter(|(name, _)| !overrides.contains_key(*name)).map(|(k, v)| (k.clone(), v.clone())).collect();
+        menu_options(&defaults, reader.declared).into_iter().filter(|(name, _)| !overrides.contains_key(name)).collect();
     let representatives = match covering {
         Some(_) => coverage::representatives(&free, reader.pack.texts.values().map(|t| &**t)),
         None => Representatives::new(),

@@ -293,7 +293,8 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 .collect()
         });
         let mut jobs: Vec<Job> = Vec::new();
-        let mut to_store: Vec<(cache::Key, Vec<Diagnostic>, Vec<usize>)> = Vec::new();
+        // Fresh pairs: the pair, its cache key, what it gave before naga, its stages' ids.
+        let mut fresh: Vec<(Pair, Option<cache::Key>, Vec<Diagnostic>, Vec<usize>)> = Vec::new();
         for (pair, result) in chunk.iter().zip(checked) {
             let finding = |diagnostic| Finding { program: pair.program, set: pair.set, diagnostic };
             match result {
@@ -317,19 +318,16 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                         let id = *seen_stages.entry(digest).or_insert(next);
                         if id == next {
                             let position_optional = !programs[pair.program].other_stages.is_empty();
-                            jobs.push(Job { stage, set: pair.set, program: pair.program, position_optional });
+                            jobs.push(Job { stage, set: pair.set, position_optional });
                         }
                         stage_ids.push(id);
                     }
-                    if let Some(key) = key {
-                        to_store.push((key, diagnostics.clone(), stage_ids));
-                    }
-                    found.extend(diagnostics.into_iter().map(finding));
+                    fresh.push((*pair, key, diagnostics, stage_ids));
                 }
             }
         }
         stages_validated += jobs.len();
-        for (job, findings) in jobs.iter().zip(naga_pool::run_naga(&pool, &jobs, &pack, &sets)) {
+        for findings in naga_pool::run_naga(&pool, &jobs, &pack, &sets) {
             let kept: Vec<Diagnostic> = findings
                 .into_iter()
                 .filter(|d| {
@@ -337,14 +335,16 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                     !(d.is_error() && at.is_some_and(|at| explained.contains(&at)))
                 })
                 .collect();
-            found.extend(kept.iter().cloned().map(|diagnostic| Finding { program: job.program, set: job.set, diagnostic }));
             stage_findings.push(kept);
         }
-        if let Some(cache) = &cache {
-            for (key, mut diagnostics, stage_ids) in to_store {
-                diagnostics.extend(stage_ids.iter().flat_map(|&id| stage_findings[id].iter().cloned()));
+        // naga's findings of a stage belong to every pair that has the stage, whichever pair
+        // gave it first.
+        for (pair, key, mut diagnostics, stage_ids) in fresh {
+            diagnostics.extend(stage_ids.iter().flat_map(|&id| stage_findings[id].iter().cloned()));
+            if let Some((cache, key)) = cache.as_ref().zip(key) {
                 cache.put(&key, &diagnostics);
             }
+            found.extend(diagnostics.into_iter().map(|diagnostic| Finding { program: pair.program, set: pair.set, diagnostic }));
         }
     }
     for (index, report) in reports.iter_mut().enumerate() {
@@ -379,9 +379,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     } else {
         None
     };
-    found = in_target(found, options.target);
-    let reproductions =
+    let mut reproductions =
         if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
+    found = in_target(found, options.target, &mut reproductions);
     // One diagnostic per distinct message and place, noting every program and option set it
     // was seen in, keyed by message and sorted by place so that the report reads file by file.
     let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
@@ -446,7 +446,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
 /// The findings as `target` sees them: an error no target driver refuses becomes a warning
 /// naming who does, except one only macOS refuses, which is left out when macOS is not a
 /// target; an error some drivers accept says which.
-fn in_target(found: Vec<Finding>, target: Drivers) -> Vec<Finding> {
+fn in_target(found: Vec<Finding>, target: Drivers, reproductions: &mut BTreeMap<String, OptionSet>) -> Vec<Finding> {
     let named = |drivers: Drivers| {
         drivers
             .names()
@@ -464,23 +464,35 @@ fn in_target(found: Vec<Finding>, target: Drivers) -> Vec<Finding> {
     found
         .into_iter()
         .filter_map(|mut f| {
-            let refused = f.diagnostic.refused_by;
-            if !f.diagnostic.is_error() || refused == Drivers::ALL {
-                return Some(f);
+            let before = f.diagnostic.to_string();
+            if !in_target_one(&mut f, target, &named) {
+                return None;
             }
-            if refused.intersection(target).is_empty() {
-                if refused == Drivers::MACOS {
-                    return None;
-                }
-                f.diagnostic.severity = tidepack_glsl::Severity::Warning;
-                f.diagnostic = f.diagnostic.with_note(format!("only {} refuse this, and --target leaves them out", named(refused)));
-                return Some(f);
+            if let Some(set) = reproductions.get(&before).cloned() {
+                reproductions.insert(f.diagnostic.to_string(), set);
             }
-            let accept = Drivers::ALL.without(refused);
-            f.diagnostic = f.diagnostic.with_note(format!("refused by {}; {} accepts it", named(refused), named(accept)));
             Some(f)
         })
         .collect()
+}
+
+/// [`in_target`] for one finding: `false` if it is left out.
+fn in_target_one(f: &mut Finding, target: Drivers, named: &dyn Fn(Drivers) -> String) -> bool {
+    let refused = f.diagnostic.refused_by;
+    if !f.diagnostic.is_error() || refused == Drivers::ALL {
+        return true;
+    }
+    if refused.intersection(target).is_empty() {
+        if refused == Drivers::MACOS {
+            return false;
+        }
+        f.diagnostic.severity = tidepack_glsl::Severity::Warning;
+        f.diagnostic.notes.push(format!("only {} refuse this, and --target leaves them out", named(refused)));
+        return true;
+    }
+    let accept = Drivers::ALL.without(refused);
+    f.diagnostic.notes.push(format!("refused by {}; {} accepts it", named(refused), named(accept)));
+    true
 }
 
 /// Most errors a covering run reduces to the options they need.
@@ -521,9 +533,11 @@ fn reproductions(
             let shows = |set: &OptionSet| {
                 let provider = SetProvider::new(pack, set);
                 let (diagnostics, stages) = check_pair(program, &provider, macros, &contexts[f.set].names, options);
-                let same = |d: &Diagnostic| d.message == f.diagnostic.message && d.location == f.diagnostic.location;
+                // The whole diagnostic: naga's errors without a line differ only in the note
+                // that names their file.
+                let same = |d: &Diagnostic| *d == f.diagnostic;
                 diagnostics.iter().any(same) || {
-                    let jobs: Vec<Job> = stages.into_iter().map(|stage| Job { stage, set: 0, program: 0, position_optional: !program.other_stages.is_empty() }).collect();
+                    let jobs: Vec<Job> = stages.into_iter().map(|stage| Job { stage, set: 0, position_optional: !program.other_stages.is_empty() }).collect();
                     let mut frontend = tidepack_glsl::naga_check::Frontend::default();
                     jobs.iter().any(|job| naga_pool::check_one(&mut frontend, job, pack, set).iter().any(same))
                 }

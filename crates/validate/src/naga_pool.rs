@@ -13,11 +13,10 @@ use tidepack_glsl::{Diagnostic, Location};
 use crate::messages::clarify;
 use tidepack_loader::{PackFiles, SetProvider};
 
-/// One distinct lowered stage for naga, with the program and option set that produced it.
+/// One distinct lowered stage for naga, with the option set that produced it.
 pub(crate) struct Job {
     pub stage: JobStage,
     pub set: usize,
-    pub program: usize,
     /// A vertex stage followed by a geometry or tessellation stage need not write
     /// `gl_Position`, which naga requires of every vertex stage.
     pub position_optional: bool,

@@ -181,3 +181,16 @@ fn a_stray_comma_in_a_value_list_is_found_where_the_value_lands() {
     assert!(found[0].contains("composite.fsh:6") && found[0].contains("`,` with no expression after it"), "{}", found[0]);
     assert!(found[0].contains("shown with: --set BLOOM_AMOUNT=.0,"), "{}", found[0]);
 }
+
+/// Players pick only what the menu shows: with screens listed, an option on none of them
+/// (a stage's own `#define FSH`, tested by the file it includes) keeps its default.
+#[test]
+fn options_on_no_screen_keep_their_defaults() {
+    let mut files = files();
+    files.push(("shaders.properties", "screen = FOG FOG_STYLE FOG_NOISE\n"));
+    let report = validate(&files, covering());
+    let found = errors(&report);
+    assert!(!found.iter().any(|e| e.contains("undeclaredStrength")), "GODRAYS is on no screen: {found:#?}");
+    assert_eq!(found.len(), 2, "{found:#?}");
+    assert!(!report.option_sets.iter().any(|s| s.contains("GODRAYS")), "{:?}", report.option_sets);
+}
