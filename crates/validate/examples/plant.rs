@@ -11,7 +11,7 @@
 //! (`//#define PLANTED_TOGGLE` then `#ifdef PLANTED_TOGGLE`), as a mistake behind one menu toggle
 //! does in released packs: the defaults never see it, and the packs are validated with
 //! `--covering` (through a cache folder, so only the programs a plant touches are validated
-//! again).
+//! again). An unterminated `#if` is not planted then: the toggle's `#endif` would close it.
 //!
 //! `cargo run --release -p tidepack-validate --example plant -- [--seed N] [--per-kind N]
 //! [--threads N] [--behind-toggle] PACK_DIR...` (tools/plant runs it over packs of a folder). Packs are copied to a
@@ -306,6 +306,10 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
     eprintln!("{pack}: {} clean programs, {} stages, {} anchor lines", clean.len(), stages.len(), anchors.len());
     let mut plants = Vec::new();
     for kind in KINDS {
+        // The toggle's own `#endif` would close a planted unterminated `#if`.
+        if behind_toggle && kind == Kind::UnterminatedIf {
+            continue;
+        }
         for round in 0..per_kind {
             let mut rng = Rng::new(seed ^ fnv(pack) ^ ((kind as u64) << 32) ^ round as u64);
             let Some((path, line, text, program)) = choose(kind, &mut rng, &stages, &anchors, &base, &provider, &macros) else {
