@@ -269,7 +269,25 @@ fn behind_a_toggle(text: &str) -> String {
     format!("//#define PLANTED_TOGGLE // planted mistake, off by default\n#ifdef PLANTED_TOGGLE\n{text}\n#endif")
 }
 
+/// shaders.properties with `PLANTED_TOGGLE` on the main screen, where a player can reach it
+/// (unchanged when there is no `screen` entry: every option is on the menu then).
+fn toggle_on_the_menu(properties: &str) -> String {
+    let mut lines: Vec<String> = properties.lines().map(str::to_string).collect();
+    let Some(mut main) = lines.iter().position(|l| l.trim_start().strip_prefix("screen").is_some_and(|r| r.trim_start().starts_with('='))) else {
+        return properties.to_string();
+    };
+    while lines[main].trim_end().ends_with('\\') && main + 1 < lines.len() {
+        main += 1;
+    }
+    lines[main].push_str(" PLANTED_TOGGLE");
+    lines.join("\n") + "\n"
+}
+
 fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: usize, behind_toggle: bool) -> Result<Vec<Plant>, String> {
+    let properties = root.join("shaders/shaders.properties");
+    if behind_toggle && let Ok(text) = std::fs::read_to_string(&properties) {
+        std::fs::write(&properties, toggle_on_the_menu(&text)).map_err(|e| format!("shaders.properties: {e}"))?;
+    }
     let started = Instant::now();
     let base = tidepack_validate::validate_path(root, options).map_err(|e| e.to_string())?;
     eprintln!("{pack}: unmodified in {:.1} s, {} errors", started.elapsed().as_secs_f64(), base.errors());
