@@ -174,13 +174,51 @@ pub fn emit(
                 source_of(&loc.path).map(|text| files.add(loc.path.clone(), text))
             });
             match id.and_then(|id| Some((id, span_of(files.get(id).ok()?.source(), loc)?))) {
-                Some((id, span)) => out = out.with_labels(vec![Label::primary(id, span)]),
+                Some((id, span)) => {
+                    let source = files.get(id).map_or("", |f| f.source().as_str());
+                    match long_line_window(source, loc.line, span.clone()) {
+                        Some((window, span, note)) => {
+                            let id = files.add(loc.path.clone(), window);
+                            out = out.with_labels(vec![Label::primary(id, span)]);
+                            out.notes.push(note);
+                        }
+                        None => out = out.with_labels(vec![Label::primary(id, span)]),
+                    }
+                }
                 None => out.message = format!("{loc}: {}", diag.message),
             }
         }
         term::emit_to_write_style(writer, &config, &files, &out).map_err(std::io::Error::other)?;
     }
     Ok(())
+}
+
+/// Longest line a snippet shows whole; a longer one is cut to a window around the span.
+const MAX_SNIPPET_LINE_BYTES: usize = 200;
+
+/// For a span on a line longer than [`MAX_SNIPPET_LINE_BYTES`] (a minified include, a line of
+/// bad bytes): a stand-in source holding only a window of that line at the same line number,
+/// the span within it, and a note saying which bytes are shown.
+fn long_line_window(text: &str, line: u32, span: Range<usize>) -> Option<(String, Range<usize>, String)> {
+    let start = line_start(text, line)?;
+    let end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    if end - start <= MAX_SNIPPET_LINE_BYTES {
+        return None;
+    }
+    let floor = |mut i: usize| {
+        while !text.is_char_boundary(i) {
+            i -= 1;
+        }
+        i
+    };
+    let from = floor(span.start.saturating_sub(MAX_SNIPPET_LINE_BYTES / 4).max(start));
+    let to = floor((from + MAX_SNIPPET_LINE_BYTES).min(end));
+    let mut window = "\n".repeat(line as usize - 1);
+    let offset = window.len();
+    window.push_str(&text[from..to]);
+    let span = offset + span.start.clamp(from, to) - from..offset + span.end.clamp(from, to) - from;
+    let note = format!("line {line} is {} bytes long: the snippet shows bytes {}..{} of it", end - start, from - start, to - start);
+    Some((window, span, note))
 }
 
 /// Byte range in `text` of a location: its columns, or the line without leading indentation.
@@ -220,6 +258,20 @@ mod tests {
         let text = String::from_utf8(out.into_inner()).unwrap();
         assert!(text.contains("lib/water.glsl:2:3"), "{text}");
         assert!(text.contains("foo = 1;"), "{text}");
+    }
+
+    #[test]
+    fn a_long_line_is_shown_as_a_window_around_the_span() {
+        let line = format!("{}oops{}", "a+".repeat(500_000), "+b".repeat(500_000));
+        let text = format!("first\n{line}\n");
+        let at = 6 + 1_000_000;
+        let diag = Diagnostic::error("unknown identifier `oops`", Some(Location { path: "lib/min.glsl".into(), line: 2, columns: Some(at - 6..at - 2) }));
+        let mut out = NoColor::new(Vec::new());
+        emit(&mut out, &[diag], &|_| Some(text.clone())).unwrap();
+        let shown = String::from_utf8(out.into_inner()).unwrap();
+        assert!(shown.len() < 2_000, "{} bytes", shown.len());
+        assert!(shown.contains("lib/min.glsl:2:") && shown.contains("oops") && shown.contains("^^^^"), "{shown}");
+        assert!(shown.contains("line 2 is 2000004 bytes long"), "{shown}");
     }
 
     #[test]

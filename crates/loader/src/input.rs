@@ -5,7 +5,7 @@
 //! entries (zip bombs by size or compression ratio, symbolic links, unreadable entries).
 
 use std::collections::BTreeMap;
-use std::io::Read;
+use std::io::{Read, Seek};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -32,7 +32,7 @@ impl Default for Limits {
     fn default() -> Self {
         Limits {
             max_file_bytes: 16 << 20,
-            max_total_bytes: 512 << 20,
+            max_total_bytes: 256 << 20,
             max_ratio: 200,
             ratio_floor_bytes: 1 << 20,
             max_entries: 100_000,
@@ -82,6 +82,9 @@ pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> 
     let shown = path.display().to_string();
     if meta.is_dir() {
         read_folder(path, "", limits, &mut raw, 0)?;
+    } else if !meta.is_file() {
+        // Opening a named pipe or a device would block or read without end.
+        return Err(Diagnostic::error(format!("{} is neither a folder nor a regular file (a zip)", path.display()), None));
     } else {
         let file = std::fs::File::open(path)
             .map_err(|e| Diagnostic::error(format!("cannot open {}: {e}", path.display()), None))?;
@@ -132,10 +135,32 @@ pub fn pack_from_memory(display_root: &str, files: impl IntoIterator<Item = (Str
     pack
 }
 
-/// UTF-8 text without a byte-order mark; other bytes are replaced, with a warning at the line
-/// of the first one.
+/// UTF-8 text without a byte-order mark, a lone carriage return read as a line end (GLSL ends
+/// lines with CR, LF or CR LF, and OptiFine reads packs line by line); other bytes are replaced,
+/// with a warning at the line of the first one.
 fn decode(path: &str, bytes: &[u8]) -> (Arc<str>, Option<Diagnostic>) {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let (text, warning) = decode_utf8(path, bytes);
+    if !text.contains('\r') {
+        return (text, warning);
+    }
+    let mut unified = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        unified.push(if c == '\r' && chars.peek() != Some(&'\n') { '\n' } else { c });
+    }
+    (Arc::from(unified), warning)
+}
+
+/// The size `bytes` takes once decoded: replacement characters take three bytes each.
+fn decoded_len(bytes: &[u8]) -> u64 {
+    match std::str::from_utf8(bytes) {
+        Ok(_) => bytes.len() as u64,
+        Err(_) => String::from_utf8_lossy(bytes).len() as u64,
+    }
+}
+
+fn decode_utf8(path: &str, bytes: &[u8]) -> (Arc<str>, Option<Diagnostic>) {
     match std::str::from_utf8(bytes) {
         Ok(text) => (Arc::from(text), None),
         Err(e) => {
@@ -180,10 +205,36 @@ impl RawEntries {
         self.warnings.push(Diagnostic::error(format!("cannot read `{}`: {why}", name.escape_debug()), None));
     }
 
-    /// Counts what keeping `bytes` of the file at `path` costs: text files are kept twice, as
-    /// bytes and decoded.
-    fn account(&mut self, path: &str, bytes: u64) {
-        self.total += if is_text(path) { 2 * bytes } else { bytes };
+    /// Whether a file of `size` bytes at `path` may still fit the budget for the whole pack;
+    /// says why not. Text is kept twice, as bytes and decoded.
+    fn fits(&mut self, name: &str, path: &str, size: u64, limits: &Limits) -> bool {
+        let cost = if is_text(path) { 2 * size } else { size };
+        let fits = self.total + cost <= limits.max_total_bytes;
+        if !fits {
+            self.too_large(name, format!("the pack exceeds its budget of {} MiB in all", limits.max_total_bytes >> 20));
+        }
+        fits
+    }
+
+    /// Keeps the file if what it costs, decoded (a bad UTF-8 byte becomes three), fits the
+    /// budget for the whole pack.
+    fn keep(&mut self, name: &str, path: String, bytes: Vec<u8>, limits: &Limits) {
+        let cost = bytes.len() as u64 + if is_text(&path) { decoded_len(&bytes) } else { 0 };
+        if self.total + cost > limits.max_total_bytes {
+            self.too_large(name, format!("the pack exceeds its budget of {} MiB in all, decoded", limits.max_total_bytes >> 20));
+            return;
+        }
+        self.total += cost;
+        self.files.insert(path, Arc::from(bytes));
+    }
+
+    /// A file whose data is damaged: shader text nobody can check fails the pack.
+    fn damaged(&mut self, name: &str, why: String) {
+        if is_text(name) {
+            self.unreadable(name, why);
+        } else {
+            self.skip(name, why);
+        }
     }
 }
 
@@ -213,17 +264,17 @@ fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, dep
                 raw.too_large(&path, format!("{size} bytes, more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
                 continue;
             }
-            let cost = if is_text(&path) { 2 * size } else { size };
-            if raw.total + cost > limits.max_total_bytes {
-                raw.too_large(&path, format!("the pack exceeds {} MiB in all", limits.max_total_bytes >> 20));
+            if !raw.fits(&path, &path, size, limits) {
                 continue;
             }
-            match std::fs::read(entry.path()) {
-                Ok(bytes) => {
-                    raw.account(&path, bytes.len() as u64);
-                    raw.files.insert(path, Arc::from(bytes));
+            // The file may have grown since its size was read: never read past the limit.
+            let mut bytes = Vec::with_capacity(size.min(1 << 20) as usize);
+            match std::fs::File::open(entry.path()).and_then(|f| f.take(limits.max_file_bytes + 1).read_to_end(&mut bytes)) {
+                Ok(_) if bytes.len() as u64 > limits.max_file_bytes => {
+                    raw.too_large(&path, format!("more than the {} MiB limit for one file", limits.max_file_bytes >> 20));
                 }
-                Err(e) => raw.skip(&path, format!("cannot read: {e}")),
+                Ok(_) => raw.keep(&path.clone(), path, bytes, limits),
+                Err(e) => raw.damaged(&path, format!("{e}")),
             }
         }
     }
@@ -251,9 +302,19 @@ fn safe_entry_name(name: &str) -> Result<String, &'static str> {
     Ok(parts.join("/"))
 }
 
-fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, raw: &mut RawEntries) -> Result<(), Diagnostic> {
-    let mut archive = zip::ZipArchive::new(reader)
-        .map_err(|e| Diagnostic::error(format!("{shown} is neither a folder nor a readable zip: {e}"), None))?;
+fn read_zip<R: Read + Seek>(mut reader: R, shown: &str, limits: &Limits, raw: &mut RawEntries) -> Result<(), Diagnostic> {
+    let unreadable = |e: zip::result::ZipError| Diagnostic::error(format!("{shown} is neither a folder nor a readable zip: {e}"), None);
+    let duplicates = {
+        let archive = zip::ZipArchive::new(&mut reader).map_err(unreadable)?;
+        archive.has_duplicate_names().then(|| archive.central_directory_start())
+    };
+    if let Some(start) = duplicates {
+        for (name, count) in duplicate_names(&mut reader, start) {
+            let message = format!("`{}` appears {count} times in the zip; loaders read only the last copy, as this check does", name.escape_debug());
+            raw.warnings.push(Diagnostic::warning(message, None));
+        }
+    }
+    let mut archive = zip::ZipArchive::new(reader).map_err(unreadable)?;
     if archive.len() > limits.max_entries {
         return Err(Diagnostic::error(format!("{shown} has {} entries, more than {}: not read", archive.len(), limits.max_entries), None));
     }
@@ -266,7 +327,9 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
             let why = if raw_entry.encrypted() {
                 Some("encrypted (OptiFine cannot read it either)".to_string())
             } else if !matches!(method, zip::CompressionMethod::Stored | zip::CompressionMethod::Deflated) {
-                Some(format!("compressed with {method:?}, which tidepack does not read (OptiFine reads only stored and deflated entries); re-zip the pack with deflate"))
+                #[allow(deprecated)] // The method's number is what names an unsupported one.
+                let method = zip::CompressionMethod::name_from_u16(method.to_u16());
+                Some(format!("compressed with {method}, which tidepack does not read (OptiFine reads only stored and deflated entries); re-zip the pack with deflate"))
             } else {
                 None
             };
@@ -301,7 +364,9 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
             }
         };
         if entry.is_symlink() {
-            raw.skip(&name, "symbolic link".into());
+            // Loaders read an entry's data whatever its Unix mode: a link's data is its target.
+            let why = "a symbolic link entry: loaders read the link's target path as the file's text".to_string();
+            raw.damaged(&name, why);
             continue;
         }
         let (size, compressed) = (entry.size(), entry.compressed_size());
@@ -313,27 +378,42 @@ fn read_zip<R: Read + std::io::Seek>(reader: R, shown: &str, limits: &Limits, ra
             raw.too_large(&name, format!("compression ratio {}:1 looks like a zip bomb", size / compressed.max(1)));
             continue;
         }
-        let cost = if is_text(&path) { 2 * size } else { size };
-        if raw.total + cost > limits.max_total_bytes {
-            raw.too_large(&name, format!("the pack exceeds {} MiB uncompressed in all", limits.max_total_bytes >> 20));
+        if !raw.fits(&name, &path, size, limits) {
             continue;
         }
         // The header's size may lie: never read more than the limit.
         let mut bytes = Vec::with_capacity(size.min(1 << 20) as usize);
         match (&mut entry).take(limits.max_file_bytes + 1).read_to_end(&mut bytes) {
             Ok(_) if bytes.len() as u64 > limits.max_file_bytes || bytes.len() as u64 != size => {
-                raw.skip(&name, format!("its data ({}+ bytes) does not match the size its header claims ({size})", bytes.len()));
+                let why = format!("the zip is damaged: the entry's data ({}+ bytes) does not match the size its header claims ({size})", bytes.len());
+                raw.damaged(&name, why);
             }
-            Ok(_) => {
-                raw.account(&path, bytes.len() as u64);
-                if raw.files.insert(path.clone(), Arc::from(bytes)).is_some() {
-                    raw.warnings.push(Diagnostic::warning(format!("`{path}` appears twice in the zip; the last copy is used"), None));
-                }
-            }
-            Err(e) => raw.skip(&name, format!("cannot decompress: {e}")),
+            Ok(_) => raw.keep(&name, path, bytes, limits),
+            Err(e) => raw.damaged(&name, format!("the zip is damaged: {e}")),
         }
     }
     Ok(())
+}
+
+/// Names the central directory holds more than once, with their counts. The zip reader keeps
+/// the last entry of each name, as Java's readers do, so the others are never read.
+fn duplicate_names<R: Read + Seek>(reader: &mut R, start: u64) -> Vec<(String, usize)> {
+    use std::io::SeekFrom;
+    const CENTRAL_HEADER: [u8; 4] = [0x50, 0x4b, 0x01, 0x02];
+    let mut directory = Vec::new();
+    if reader.seek(SeekFrom::Start(start)).is_err() || reader.take(64 << 20).read_to_end(&mut directory).is_err() {
+        return Vec::new();
+    }
+    let mut counts: BTreeMap<Vec<u8>, usize> = BTreeMap::new();
+    let mut at = 0;
+    while directory.len() >= at + 46 && directory[at..at + 4] == CENTRAL_HEADER {
+        let field = |offset: usize| usize::from(u16::from_le_bytes([directory[at + offset], directory[at + offset + 1]]));
+        let (name_len, extra_len, comment_len) = (field(28), field(30), field(32));
+        let Some(name) = directory.get(at + 46..at + 46 + name_len) else { break };
+        *counts.entry(name.to_vec()).or_default() += 1;
+        at += 46 + name_len + extra_len + comment_len;
+    }
+    counts.into_iter().filter(|(_, n)| *n > 1).map(|(name, n)| (String::from_utf8_lossy(&name).into_owned(), n)).collect()
 }
 
 /// `shaders/` at the root, inside exactly one wrapper folder, or the input is the `shaders`
@@ -415,6 +495,94 @@ mod tests {
         assert!(err.message.contains("left out") && err.message.contains("shaders/composite.fsh"), "{}", err.message);
     }
 
+    fn stored_zip_of(entries: &[(&str, &[u8])]) -> Vec<u8> {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        let mut zip = zip::ZipWriter::new(&mut buf);
+        for (name, data) in entries {
+            let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+            zip.start_file(*name, options).unwrap();
+            zip.write_all(data).unwrap();
+        }
+        zip.finish().unwrap();
+        buf.into_inner()
+    }
+
+    fn read(data: Vec<u8>) -> RawEntries {
+        let mut raw = RawEntries::default();
+        read_zip(std::io::Cursor::new(data), "t.zip", &Limits::default(), &mut raw).unwrap();
+        raw
+    }
+
+    fn replace_all(data: &mut [u8], from: &[u8], to: &[u8]) {
+        for i in 0..data.len() - from.len() {
+            if &data[i..i + from.len()] == from {
+                data[i..i + to.len()].copy_from_slice(to);
+            }
+        }
+    }
+
+    #[test]
+    fn a_damaged_program_fails_the_pack() {
+        let mut data = stored_zip_of(&[("shaders/composite.fsh", b"void main() { gl_FragColor = vec4(1.0); }\n")]);
+        replace_all(&mut data, b"gl_FragColor", b"GL_FragColor");
+        let raw = read(data);
+        assert!(raw.files.is_empty());
+        assert!(raw.warnings[0].is_error() && raw.warnings[0].message.contains("the zip is damaged"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn a_symbolic_link_program_fails_the_pack() {
+        let mut buf = std::io::Cursor::new(Vec::new());
+        let mut zip = zip::ZipWriter::new(&mut buf);
+        zip.add_symlink("shaders/composite.fsh", "../../../etc/passwd", zip::write::SimpleFileOptions::default()).unwrap();
+        zip.finish().unwrap();
+        let raw = read(buf.into_inner());
+        assert!(raw.files.is_empty());
+        assert!(raw.warnings[0].is_error() && raw.warnings[0].message.contains("symbolic link"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn a_name_twice_in_the_zip_is_named() {
+        let mut data = stored_zip_of(&[("shaders/composite.fsh", b"first\n"), ("shaders/compositX.fsh", b"second\n")]);
+        replace_all(&mut data, b"compositX", b"composite");
+        let raw = read(data);
+        assert_eq!(&*raw.files["shaders/composite.fsh"], b"second\n");
+        assert!(raw.warnings[0].message.contains("`shaders/composite.fsh` appears 2 times"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn unsupported_compression_is_named() {
+        let mut data = stored_zip_of(&[("shaders/composite.fsh", b"void main() {}\n")]);
+        // Method 12 (bzip2) in the local header (offset 8) and the central header (offset 10).
+        data[8] = 12;
+        let central = (0..data.len() - 4).find(|&i| data[i..i + 4] == [0x50, 0x4b, 0x01, 0x02]).unwrap();
+        data[central + 10] = 12;
+        let raw = read(data);
+        assert!(raw.warnings[0].is_error() && raw.warnings[0].message.contains("compressed with Bzip2"), "{:?}", raw.warnings);
+    }
+
+    #[test]
+    fn bad_utf8_counts_decoded_against_the_budget() {
+        let bad = vec![0xFFu8; 1 << 20];
+        let limits = Limits { max_total_bytes: 3 << 20, ratio_floor_bytes: u64::MAX, ..Limits::default() };
+        let mut raw = RawEntries::default();
+        // 1 MiB of bad bytes decodes to 3 MiB: 4 MiB in all, over the 3 MiB budget.
+        read_zip(std::io::Cursor::new(zip_of(&[("shaders/a.glsl", &bad)])), "t.zip", &limits, &mut raw).unwrap();
+        assert!(raw.files.is_empty());
+        assert!(raw.warnings[0].is_error() && raw.warnings[0].message.contains("budget"), "{:?}", raw.warnings);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_named_pipe_is_refused_without_opening_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let pipe = dir.path().join("pack.zip");
+        let status = std::process::Command::new("mkfifo").arg(&pipe).status().unwrap();
+        assert!(status.success());
+        let err = read_pack(&pipe, &Limits::default()).unwrap_err();
+        assert!(err.message.contains("neither a folder nor a regular file"), "{}", err.message);
+    }
+
     #[test]
     fn garbage_is_unreadable_input() {
         let mut raw = RawEntries::default();
@@ -442,5 +610,11 @@ mod tests {
         let (text, warning) = decode("a.fsh", b"\xEF\xBB\xBFvoid main() {}\n");
         assert_eq!(&*text, "void main() {}\n");
         assert!(warning.is_none());
+    }
+
+    #[test]
+    fn a_lone_carriage_return_ends_a_line() {
+        let (text, _) = decode("a.fsh", b"#version 120\rvoid main() {}\r\n// end\r");
+        assert_eq!(&*text, "#version 120\nvoid main() {}\r\n// end\n");
     }
 }
