@@ -1090,7 +1090,7 @@ impl<'a> Lowering<'_, 'a> {
         let qualifiers: String = decl.qualifiers.iter().filter(|q| **q != "const").map(|q| format!("{q} ")).collect();
         for ((name, suffix), initializer) in decl.names.iter().zip(&decl.initializers) {
             let Some((equals, end)) = *initializer else { continue };
-            if suffix.contains("[]") {
+            if suffix.contains("[]") || self.is_literal_expression(equals + 1, end) {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
@@ -1098,6 +1098,18 @@ impl<'a> Lowering<'_, 'a> {
             self.replace(end, end + 1, format!("; }}{after}"));
             self.global_initializers.push(name.to_string());
         }
+    }
+
+    /// Whether the tokens in `start..end` are built of literals, operators and GLSL's own type
+    /// constructors only (`vec3(0.5, 1.0, 0.0) * 2.0`): an initializer naga takes as written.
+    /// Moving every initializer into a function of its own would cost naga one copy of every
+    /// global per function.
+    fn is_literal_expression(&self, start: usize, end: usize) -> bool {
+        self.tokens[start..end].iter().filter(|t| !t.is_trivia()).all(|t| match t.kind {
+            TokenKind::Number => true,
+            TokenKind::Ident => matches!(t.text, "true" | "false") || is_builtin_type(t.text),
+            _ => ["(", ")", ",", "+", "-", "*", "/"].iter().any(|p| t.is_punct(p)),
+        })
     }
 
     /// Drops `const` from declarations whose initializer naga cannot fold (a `?:`, a built-in of

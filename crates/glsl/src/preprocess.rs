@@ -847,6 +847,10 @@ fn group_is_empty(lines: &[LogicalLine<'_, '_>], index: usize) -> bool {
     false
 }
 
+/// The desktop GLSL versions, and the GLSL ES ones: drivers refuse any other `#version`.
+const GLSL_VERSIONS: [u32; 13] = [110, 120, 130, 140, 150, 330, 400, 410, 420, 430, 440, 450, 460];
+const GLSL_ES_VERSIONS: [u32; 4] = [100, 300, 310, 320];
+
 fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
     let sig: Vec<_> = args.iter().filter(|t| !t.is_trivia()).collect();
     let number = sig
@@ -859,6 +863,12 @@ fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
         Some([p]) if matches!(p.text, "core" | "compatibility" | "es") => Some(p.text.to_string()),
         Some(_) => return Err("#version profile must be core, compatibility or es".into()),
     };
+    let es = matches!(profile.as_deref(), Some("es")) || number == 100;
+    let known: &[u32] = if es { &GLSL_ES_VERSIONS } else { &GLSL_VERSIONS };
+    if !known.contains(&number) {
+        let list: Vec<String> = known.iter().map(u32::to_string).collect();
+        return Err(format!("#version {number} is not a GLSL{} version (there are {})", if es { " ES" } else { "" }, list.join(", ")));
+    }
     Ok(VersionDirective { number, profile })
 }
 
@@ -1182,6 +1192,15 @@ mod tests {
 
     fn run(list: &[(&str, &str)]) -> Result<Preprocessed, Diagnostic> {
         preprocess(&files(list), list[0].0, &PreprocessOptions::default())
+    }
+
+    #[test]
+    fn a_version_no_glsl_has_is_an_error() {
+        let err = run(&[("a.fsh", "#version 9999 compatibility\nvoid main() {}\n")]).unwrap_err();
+        assert!(err.message.contains("#version 9999 is not a GLSL version"), "{}", err.message);
+        assert_eq!(err.location.unwrap().line, 1);
+        assert!(run(&[("a.fsh", "#version 300 es\nvoid main() {}\n")]).is_ok());
+        assert!(run(&[("a.fsh", "#version 300\nvoid main() {}\n")]).unwrap_err().message.contains("not a GLSL version"));
     }
 
     #[test]

@@ -53,17 +53,23 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     found
 }
 
-/// A `,` with nothing after it before `;` or `)`: a syntax error every compiler reports
-/// (Mesa: "syntax error, unexpected ';'"), which naga's parser lets by. An option value with a
-/// stray comma in its list (`// [.0, .2 .4]`) substitutes one.
+/// A `,` or an assignment with nothing after it before `;`, `,` or `)` (`f(a, )`,
+/// `float a = ;`): a syntax error every compiler reports (Mesa: "syntax error, unexpected
+/// ';'"). naga's parser lets the comma by and reports the other in terms of its IR. An option
+/// value with a stray comma in its list (`// [.0, .2 .4]`) substitutes one.
 fn empty_operands_after_commas(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagnostic> {
+    const ASSIGNMENTS: [&str; 11] = ["=", "+=", "-=", "*=", "/=", "%=", "<<=", ">>=", "&=", "|=", "^="];
     let mut found = Vec::new();
     let mut lines = std::collections::BTreeSet::new();
     for pair in sig.windows(2) {
-        if pair[0].is_punct(",") && (pair[1].is_punct(";") || pair[1].is_punct(")")) && lines.insert(pair[0].line) {
+        let (before, after) = (pair[0], pair[1]);
+        let comma = before.is_punct(",") && (after.is_punct(";") || after.is_punct(")"));
+        let assignment = ASSIGNMENTS.iter().any(|op| before.is_punct(op)) && [";", ",", ")"].iter().any(|p| after.is_punct(p));
+        if (comma || assignment) && lines.insert(before.line) {
+            let what = if comma { "`,` with no expression after it" } else { "an assignment with no value" };
             found.push(Diagnostic::error(
-                format!("`,` with no expression after it, before `{}`: a syntax error (Mesa: \"syntax error, unexpected '{}'\")", pair[1].text, pair[1].text),
-                pre.location(pair[0].line),
+                format!("{what}, before `{}`: a syntax error (Mesa: \"syntax error, unexpected '{}'\")", after.text, after.text),
+                pre.location(before.line),
             ));
         }
     }

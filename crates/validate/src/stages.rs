@@ -28,6 +28,7 @@ pub(crate) fn check_program(
                 assume_glsl_110(&mut pre);
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
+                diags.extend(version_rules::unknown_extensions(&pre));
                 diags.extend(glsl_rules::check(&pre, *stage));
                 diags.extend(macos_refusals(&pre, false));
                 preprocessed.push((*stage, Arc::new(pre)));
@@ -166,6 +167,7 @@ pub(crate) fn check_compute(
     assume_glsl_110(&mut pre);
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
     diags.extend(version_rules::check_compute(&pre).map(lenient_on_nvidia));
+    diags.extend(version_rules::unknown_extensions(&pre));
     diags.extend(macos_refusals(&pre, true));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {

@@ -15,7 +15,7 @@ use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
-use tidepack_glsl::{Diagnostic, Stage};
+use tidepack_glsl::{Diagnostic, Drivers, Stage};
 
 use crate::glsl_rules::{Globals, code_tokens, place};
 use tidepack_loader::loader::Loader;
@@ -57,6 +57,49 @@ fn enabled_extensions(text: &str) -> BTreeSet<String> {
         {
             found.insert(name.to_string());
         }
+    }
+    found
+}
+
+/// The extension names GLSL compilers know: the union of the tables of Mesa's GLSL compiler
+/// and glslang, one per line.
+const KNOWN_EXTENSIONS: &str = include_str!("glsl_extensions.txt");
+
+/// `#extension` lines naming an extension no compiler knows (a typo, or one made up): with
+/// `require` an error, since drivers refuse to compile the stage (Mesa: "extension `…` unsupported
+/// in … shader"); with `enable` or `warn` a warning, since drivers only warn and go on. A
+/// vendor's own driver may know more names of that vendor's than the tables do, so it is not
+/// among the drivers said to refuse it.
+pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    for (index, line) in pre.text.lines().enumerate() {
+        let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
+        let (["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..]) = words.as_slice() else { continue };
+        let at = pre.location(index as u32 + 1);
+        if *name == "all" {
+            if matches!(*behaviour, "require" | "enable") {
+                found.push(Diagnostic::error(format!("`#extension all : {behaviour}` is not allowed: `all` takes only `warn` or `disable`"), at));
+            }
+            continue;
+        }
+        if *behaviour == "disable" || KNOWN_EXTENSIONS.lines().any(|known| known == *name) {
+            continue;
+        }
+        let vendor = name.strip_prefix("GL_").and_then(|rest| rest.split('_').next()).unwrap_or("");
+        let own_driver = match vendor {
+            "NV" | "NVX" => Drivers::NVIDIA,
+            "AMD" | "ATI" => Drivers::AMD,
+            "INTEL" => Drivers::INTEL,
+            "APPLE" => Drivers::MACOS,
+            _ => Drivers::NONE,
+        };
+        let message = format!("`{name}` is an extension no GLSL compiler knows (Mesa's and glslang's tables): a misspelling?");
+        found.push(match *behaviour {
+            "require" => Diagnostic::error(message, at)
+                .with_note("with `require`, drivers that do not have it refuse the shader")
+                .refused_by(Drivers::ALL.without(own_driver)),
+            _ => Diagnostic::warning(message, at).with_note(format!("with `{behaviour}`, drivers only warn")),
+        });
     }
     found
 }
@@ -357,6 +400,20 @@ pub(crate) mod tests {
 
     fn errors(src: &str, stage: Stage) -> Vec<String> {
         found_by(|pre, stage| check(pre, stage, Loader::default()), src, stage)
+    }
+
+    #[test]
+    fn unknown_extensions_are_refused_by_every_driver_but_their_vendors() {
+        let src = "#version 120\n#extension GL_NOPE_not_an_extension : require\n#extension GL_NV_private_thing : require\n\
+                   #extension GL_EXT_made_up : warn\n#extension GL_EXT_gpu_shader4 : require\n#extension all : warn\nvoid main() {}\n";
+        let files: HashMap<String, Arc<str>> = [("a.fsh".to_string(), Arc::from(src))].into();
+        let pre = preprocess(&files, "a.fsh", &PreprocessOptions::default()).unwrap();
+        let found = unknown_extensions(&pre);
+        let lines: Vec<(u32, bool, Drivers)> = found.iter().map(|d| (d.location.as_ref().unwrap().line, d.is_error(), d.refused_by)).collect();
+        assert_eq!(lines.len(), 3, "{found:?}");
+        assert_eq!(lines[0], (2, true, Drivers::ALL));
+        assert_eq!(lines[1], (3, true, Drivers::ALL.without(Drivers::NVIDIA)));
+        assert_eq!((lines[2].0, lines[2].1), (4, false));
     }
 
     #[test]

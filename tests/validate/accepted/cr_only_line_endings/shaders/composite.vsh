@@ -1,0 +1,1 @@
+#version 120// Saved with classic Mac line ends: one CR between lines.varying vec2 uv;void main() {    gl_Position = ftransform();    uv = gl_MultiTexCoord0.xy;}
