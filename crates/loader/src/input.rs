@@ -90,6 +90,18 @@ pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> 
             .map_err(|e| Diagnostic::error(format!("cannot open {}: {e}", path.display()), None))?;
         read_zip(file, &shown, limits, &mut raw)?;
     }
+    into_pack(raw, &shown, !meta.is_dir())
+}
+
+/// Reads a zipped pack held in memory (`shown` names it in messages).
+pub fn read_zip_bytes(bytes: &[u8], shown: &str, limits: &Limits) -> Result<PackFiles, Diagnostic> {
+    let mut raw = RawEntries::default();
+    read_zip(std::io::Cursor::new(bytes), shown, limits, &mut raw)?;
+    into_pack(raw, shown, true)
+}
+
+/// The pack's `shaders/` folder out of everything read, its text decoded.
+fn into_pack(raw: RawEntries, shown: &str, archive: bool) -> Result<PackFiles, Diagnostic> {
     let root = find_shaders_root(&raw.files).ok_or_else(|| {
         // Entries left out for their size or name may be the pack's whole shaders/ folder.
         let unread: Vec<&str> = raw.warnings.iter().map(|d| d.message.as_str()).collect();
@@ -102,7 +114,7 @@ pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> 
     })?;
     let mut pack = PackFiles {
         display_root: format!("{}/{root}", shown.trim_end_matches('/')),
-        archive: !meta.is_dir(),
+        archive,
         warnings: raw.warnings,
         ..Default::default()
     };

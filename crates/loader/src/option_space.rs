@@ -102,51 +102,100 @@ pub fn profiles(props: &Properties) -> BTreeMap<String, u32> {
     props.with_prefix("profile.").map(|(name, entry)| (name.to_string(), entry.line)).collect()
 }
 
+/// Most option entries the profiles of a pack may resolve to, all profiles together: each
+/// profile holds a copy of the sets of the profiles it names, so a long chain of large
+/// profiles would otherwise grow with the square of its length.
+pub const MAX_PROFILE_ENTRIES: usize = 1_000_000;
+
 /// The option set of profile `name`: its own entries, and those of the profiles it names, in
 /// the order written (a later value wins). `options` are the pack's declared options; entries
-/// naming other things are reported as warnings. Every profile is resolved once, without
-/// recursion, so chains of any depth and profiles named along many paths cost their size; a
-/// cycle is an error naming it.
+/// naming other things are reported as warnings. A cycle is an error naming it.
 pub fn profile_set(props: &Properties, name: &str, options: &BTreeMap<String, OptionKind>) -> Result<(OptionSet, Vec<Diagnostic>), Diagnostic> {
-    let entries: HashMap<&str, (&str, u32)> =
-        props.with_prefix("profile.").map(|(n, e)| (n, (e.value.as_str(), e.line))).collect();
-    if !entries.contains_key(name) {
-        let known: Vec<String> = profiles(props).into_keys().collect();
-        return Err(Diagnostic::error(
-            format!("no profile `{name}` in shaders.properties (profiles: {})", if known.is_empty() { "none".into() } else { known.join(", ") }),
-            None,
-        ));
+    ProfileResolver::new(props, options).resolve(name)
+}
+
+/// Resolves profiles, each once however many profiles name it and in whatever order they
+/// are asked for, without recursion, so chains of any depth cost their size.
+pub struct ProfileResolver<'p> {
+    entries: HashMap<&'p str, (&'p str, u32)>,
+    options: &'p BTreeMap<String, OptionKind>,
+    resolved: HashMap<&'p str, OptionSet>,
+    /// Profiles whose resolution failed, with the error.
+    failed: HashMap<&'p str, Diagnostic>,
+    entries_resolved: usize,
+}
+
+impl<'p> ProfileResolver<'p> {
+    pub fn new(props: &'p Properties, options: &'p BTreeMap<String, OptionKind>) -> Self {
+        let entries = props.with_prefix("profile.").map(|(n, e)| (n, (e.value.as_str(), e.line))).collect();
+        ProfileResolver { entries, options, resolved: HashMap::new(), failed: HashMap::new(), entries_resolved: 0 }
     }
-    let mut resolved: HashMap<&str, OptionSet> = HashMap::new();
-    let mut warnings = Vec::new();
-    // Depth-first with an explicit stack; `path` holds the profiles being resolved.
-    let mut path: Vec<&str> = vec![name];
-    while let Some(&current) = path.last() {
-        let (value, line) = entries[current];
-        let pending = value.split_whitespace().filter_map(|e| e.strip_prefix("profile.")).find(|other| !resolved.contains_key(other));
-        match pending {
-            Some(other) if path.contains(&other) => {
-                let cycle: Vec<&str> = path[path.iter().position(|p| *p == other).unwrap_or(0)..].to_vec();
-                return Err(Diagnostic::error(
-                    format!("profile cycle: {} -> {other}", cycle.join(" -> ")),
-                    Some(Location::line(properties::PATH, line)),
-                ));
+
+    /// Profile `name`'s set and the warnings its own entries and those of the profiles first
+    /// resolved here give (a profile's warnings are given once, by the first call that
+    /// resolves it).
+    pub fn resolve(&mut self, name: &str) -> Result<(OptionSet, Vec<Diagnostic>), Diagnostic> {
+        let Some((&name, _)) = self.entries.get_key_value(name) else {
+            let mut known: Vec<&str> = self.entries.keys().copied().collect();
+            known.sort_unstable();
+            return Err(Diagnostic::error(
+                format!("no profile `{name}` in shaders.properties (profiles: {})", if known.is_empty() { "none".into() } else { known.join(", ") }),
+                None,
+            ));
+        };
+        let mut warnings = Vec::new();
+        // Depth-first with an explicit stack; `path` holds the profiles being resolved.
+        let mut path: Vec<&str> = vec![name];
+        while let Some(&current) = path.last() {
+            if let Some(error) = self.failed.get(current) {
+                let error = error.clone();
+                for p in path {
+                    self.failed.insert(p, error.clone());
+                }
+                return Err(error);
             }
-            Some(other) if !entries.contains_key(other) => {
-                return Err(Diagnostic::error(
-                    format!("profile `{current}` names profile `{other}`, which shaders.properties does not define"),
-                    Some(Location::line(properties::PATH, line)),
-                ));
-            }
-            Some(other) => path.push(other),
-            None => {
-                let set = own_entries(current, value, line, options, &resolved, &mut warnings);
-                resolved.insert(current, set);
-                path.pop();
+            let (value, line) = self.entries[current];
+            let at = Some(Location::line(properties::PATH, line));
+            let pending = value.split_whitespace().filter_map(|e| e.strip_prefix("profile.")).find(|other| !self.resolved.contains_key(other));
+            let error = match pending {
+                Some(other) if path.contains(&other) => {
+                    let cycle: Vec<&str> = path[path.iter().position(|p| *p == other).unwrap_or(0)..].to_vec();
+                    Some(Diagnostic::error(format!("profile cycle: {} -> {other}", cycle.join(" -> ")), at))
+                }
+                Some(other) => match self.entries.get_key_value(other) {
+                    Some((&other, _)) => {
+                        path.push(other);
+                        None
+                    }
+                    None => Some(Diagnostic::error(
+                        format!("profile `{current}` names profile `{other}`, which shaders.properties does not define"),
+                        at,
+                    )),
+                },
+                None => {
+                    let set = own_entries(current, value, line, self.options, &self.resolved, &mut warnings);
+                    self.entries_resolved += set.len();
+                    if self.entries_resolved > MAX_PROFILE_ENTRIES {
+                        Some(Diagnostic::error(
+                            format!("the profiles resolve to more than {MAX_PROFILE_ENTRIES} option entries in all (the budget for profiles); profile `{current}` is not read"),
+                            at,
+                        ))
+                    } else {
+                        self.resolved.insert(current, set);
+                        path.pop();
+                        None
+                    }
+                }
+            };
+            if let Some(error) = error {
+                for p in path {
+                    self.failed.insert(p, error.clone());
+                }
+                return Err(error);
             }
         }
+        Ok((self.resolved[name].clone(), warnings))
     }
-    Ok((resolved.remove(name).unwrap_or_default(), warnings))
 }
 
 /// The set one profile's entries make, the profiles it names already in `resolved`.
@@ -395,6 +444,39 @@ mod tests {
         assert_eq!(high["QUALITY"], OptionValue::Value("2".into()));
         assert_eq!(high["SHADOWS"], OptionValue::Switch(true));
         assert!(profile_set(&props, "NONE", &options()).is_err());
+    }
+
+    #[test]
+    fn every_profile_of_a_deep_chain_resolves_with_the_work_shared() {
+        let chain: String = (0..20_000).map(|i| format!("profile.P{i}=profile.P{} SHADOWS\n", i + 1)).collect::<String>() + "profile.P20000=!WAVES\n";
+        let props = Properties::parse_plain(&chain);
+        let options = options();
+        let mut resolver = ProfileResolver::new(&props, &options);
+        for name in profiles(&props).keys() {
+            let (set, _) = resolver.resolve(name).unwrap();
+            assert_eq!(set.get("WAVES"), Some(&OptionValue::Switch(false)), "{name}");
+        }
+    }
+
+    #[test]
+    fn a_broken_profile_is_one_error_for_every_profile_naming_it() {
+        let props = Properties::parse_plain("profile.A=profile.B\nprofile.B=profile.C\nprofile.D=profile.B\n");
+        let options = options();
+        let mut resolver = ProfileResolver::new(&props, &options);
+        let errors: Vec<Diagnostic> = ["A", "B", "D"].iter().map(|p| resolver.resolve(p).unwrap_err()).collect();
+        assert!(errors.iter().all(|e| *e == errors[0]), "{errors:?}");
+        assert!(errors[0].message.contains("`B` names profile `C`"), "{}", errors[0].message);
+    }
+
+    #[test]
+    fn profiles_past_the_budget_are_refused_naming_it() {
+        let options: BTreeMap<String, OptionKind> =
+            (0..2_000).map(|i| (format!("O{i}"), OptionKind::Switch { default: false })).collect();
+        let all: String = (0..2_000).map(|i| format!(" O{i}")).collect();
+        let chain: String = (0..600).map(|i| format!("profile.P{i}=profile.P{}{all}\n", i + 1)).collect::<String>() + "profile.P600=\n";
+        let props = Properties::parse_plain(&chain);
+        let err = profile_set(&props, "P0", &options).unwrap_err();
+        assert!(err.message.contains("budget for profiles"), "{}", err.message);
     }
 
     #[test]

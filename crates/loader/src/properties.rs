@@ -18,7 +18,7 @@
 //! values; packs write conditionals that read the same both ways, and that substitution is not
 //! imitated.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use crate::custom_uniforms::evaluate_condition;
 
@@ -41,6 +41,8 @@ pub struct Entry {
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Properties {
     entries: Vec<Entry>,
+    /// Position of each key in `entries`.
+    index: HashMap<String, usize>,
     /// Conditional lines that did not evaluate (taken as false), with their line.
     pub problems: Vec<(u32, String)>,
 }
@@ -56,15 +58,18 @@ impl Properties {
     pub fn parse(text: &str, macros: &Macros) -> Properties {
         let (active, problems) = active_lines(text, macros);
         let mut entries: Vec<Entry> = Vec::new();
+        let mut index: HashMap<String, usize> = HashMap::new();
         for (line, logical) in logical_lines(&active) {
             let (key, value) = split_key_value(&logical);
-            let entry = Entry { key, value, line };
-            match entries.iter_mut().find(|e| e.key == entry.key) {
-                Some(earlier) => *earlier = entry,
-                None => entries.push(entry),
+            match index.get(&key) {
+                Some(&at) => entries[at] = Entry { key, value, line },
+                None => {
+                    index.insert(key.clone(), entries.len());
+                    entries.push(Entry { key, value, line });
+                }
             }
         }
-        Properties { entries, problems }
+        Properties { entries, index, problems }
     }
 
     /// Reads `text` with no macro defined: every `#ifdef` false, every `#ifndef` true.
@@ -77,7 +82,7 @@ impl Properties {
     }
 
     pub fn get(&self, key: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.key == key)
+        self.index.get(key).map(|&at| &self.entries[at])
     }
 
     /// The entries whose key starts with `prefix`, with the rest of the key.

@@ -266,8 +266,14 @@ impl Scene {
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| SceneError(format!("cannot read scene {}: {e}", path.display())))?;
+        Scene::parse(&text, path)
+    }
+
+    /// A scene from the text of its TOML file; `path` names it in messages and gives the
+    /// scene's name when the file has none.
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let parsed: toml::Table =
-            toml::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+            toml::from_str(text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
         let sun_given = parsed.get("sky").and_then(|sky| sky.get("sun_direction")).is_some();
         // Every float feeds a matrix, a uniform or a mesh: one NaN or infinity renders a wrong
         // picture without any error further on.
@@ -275,7 +281,7 @@ impl Scene {
             return Err(SceneError(format!("{}: {field} is {value}; scene values must be finite numbers", path.display())));
         }
         let mut scene: Scene =
-            toml::from_str(&text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
+            toml::from_str(text).map_err(|e| SceneError(format!("{}: {e}", path.display())))?;
         match (sun_given, scene.sky.sun_path_rotation) {
             (true, Some(_)) => {
                 return Err(SceneError(format!(

@@ -133,6 +133,10 @@ struct Finding {
     diagnostic: Diagnostic,
 }
 
+/// Most profiles `--all-profiles` validates; a player picks among a handful, and each is
+/// validated as a set of its own.
+pub const MAX_PROFILES_VALIDATED: usize = 1000;
+
 /// The option sets to validate every program under, labelled: the defaults, a profile or every
 /// profile (`options.profiles`), each with `options.overrides` over it, and the overrides'
 /// own set. Profile warnings join
@@ -144,20 +148,36 @@ fn option_sets(
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Result<(Vec<(String, OptionSet)>, OptionSet), Diagnostic> {
     let mut sets: Vec<(String, OptionSet)> = Vec::new();
-    let profile = |name: &str, sets: &mut Vec<(String, OptionSet)>, diagnostics: &mut Vec<Diagnostic>| -> Result<(), Diagnostic> {
-        let (set, warnings) = option_space::profile_set(props, name, declared)?;
-        diagnostics.extend(warnings);
-        sets.push((format!("profile {name}"), set));
-        Ok(())
-    };
+    let mut resolver = option_space::ProfileResolver::new(props, declared);
     match &options.profiles {
         Profiles::Defaults => sets.push(("defaults".into(), OptionSet::new())),
-        Profiles::Named(name) => profile(name, &mut sets, diagnostics)?,
+        Profiles::Named(name) => {
+            let (set, warnings) = resolver.resolve(name)?;
+            diagnostics.extend(warnings);
+            sets.push((format!("profile {name}"), set));
+        }
         Profiles::All | Profiles::Covering(_) => {
             sets.push(("defaults".into(), OptionSet::new()));
-            for name in option_space::profiles(props).keys() {
-                if let Err(e) = profile(name, &mut sets, diagnostics) {
-                    diagnostics.push(e);
+            let names: Vec<String> = option_space::profiles(props).into_keys().collect();
+            if names.len() > MAX_PROFILES_VALIDATED {
+                diagnostics.push(Diagnostic::error(
+                    format!(
+                        "shaders.properties defines {} profiles, more than the {MAX_PROFILES_VALIDATED} validated (the budget for profiles); none is validated",
+                        names.len()
+                    ),
+                    None,
+                ));
+            } else {
+                for name in names {
+                    match resolver.resolve(&name) {
+                        Ok((set, warnings)) => {
+                            diagnostics.extend(warnings);
+                            sets.push((format!("profile {name}"), set));
+                        }
+                        // Profiles that name a broken one share its error: say it once.
+                        Err(e) if diagnostics.contains(&e) => {}
+                        Err(e) => diagnostics.push(e),
+                    }
                 }
             }
         }

@@ -74,6 +74,20 @@ impl JobStage {
 /// comes near (the largest known stages have a few thousand lines).
 pub const MAX_NAGA_LINES: usize = 40_000;
 
+/// Most function definitions times global declarations a stage naga is given may have:
+/// naga's GLSL front-end gives every function its own copy of every global, so its memory
+/// grows with the product (2,500 of each take 760 MiB). Released packs stay far below.
+pub const MAX_NAGA_FUNCTIONS_TIMES_GLOBALS: usize = 2_000_000;
+
+/// The function definitions and the global declarations (top-level `;`) of a lowered stage.
+fn functions_and_globals(text: &str) -> (usize, usize) {
+    let Ok(tokens) = tidepack_glsl::token::tokenize(text) else { return (0, 0) };
+    let functions = tidepack_glsl::token::function_definitions(&tokens).len();
+    let depths = tidepack_glsl::token::brace_depths(&tokens);
+    let globals = tokens.iter().zip(&depths).filter(|(t, depth)| **depth == 0 && t.is_punct(";")).count();
+    (functions, globals)
+}
+
 /// Stack of each naga worker: naga's parser and validator recurse once per nesting level.
 const WORKER_STACK_BYTES: usize = 64 << 20;
 
@@ -106,6 +120,17 @@ pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &P
     if lines > MAX_NAGA_LINES {
         let diag = Diagnostic::warning(
             format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
+            Some(Location::line(entry.clone(), 1)),
+        );
+        return vec![diag];
+    }
+    let (functions, globals) = functions_and_globals(job.stage.text());
+    if functions.saturating_mul(globals) > MAX_NAGA_FUNCTIONS_TIMES_GLOBALS {
+        let diag = Diagnostic::warning(
+            format!(
+                "not validated: {functions} functions times {globals} global declarations after preprocessing, more than the \
+                 {MAX_NAGA_FUNCTIONS_TIMES_GLOBALS} naga is given (its memory grows with the product)"
+            ),
             Some(Location::line(entry.clone(), 1)),
         );
         return vec![diag];
