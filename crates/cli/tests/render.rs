@@ -51,17 +51,28 @@ fn render_writes_the_image_and_a_report() {
 }
 
 #[test]
-fn a_bad_option_is_an_error() {
+fn a_bad_option_is_a_usage_error_shown_on_one_line() {
     let out = tempfile::tempdir().unwrap();
     let output = Command::new(env!("CARGO_BIN_EXE_tidepack"))
-        .args(["render", "tests/scenes/case1_above_dry.toml", "--set", "NO_SUCH_OPTION=1", "--out"])
+        .args(["render", "tests/scenes/case1_above_dry.toml", "--set", "NO_SUCH_OPTION=1", "--set", "FOAM=x\r\nerror: forged\x1b[2J", "--out"])
         .arg(out.path())
         .current_dir(repo_root())
         .output()
         .expect("run tidepack");
-    assert!(!output.status.success());
-    assert!(String::from_utf8_lossy(&output.stderr).contains("NO_SUCH_OPTION"));
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("NO_SUCH_OPTION"), "{stderr}");
     assert!(!out.path().join("case1_above_dry.png").exists());
+    let output = Command::new(env!("CARGO_BIN_EXE_tidepack"))
+        .args(["render", "tests/scenes/case1_above_dry.toml", "--set", "FOAM=x\r\nerror: forged\x1b[2J", "--out"])
+        .arg(out.path())
+        .current_dir(repo_root())
+        .output()
+        .expect("run tidepack");
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("x^M^Jerror: forged^[[2J") && !stderr.contains('\x1b') && !stderr.contains('\r'), "{stderr}");
+    assert_eq!(stderr.lines().filter(|l| l.starts_with("error")).count(), 1, "{stderr}");
 }
 
 /// Writes a pack of `files` (paths inside `shaders/`) into a new temporary folder.

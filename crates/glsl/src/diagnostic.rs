@@ -7,6 +7,8 @@ use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
 use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor::WriteColor};
 
+use crate::terminal;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
     Warning,
@@ -168,24 +170,27 @@ pub fn emit(
             Severity::Warning => codespan_reporting::diagnostic::Severity::Warning,
             Severity::Error => codespan_reporting::diagnostic::Severity::Error,
         };
-        let mut out = CsDiagnostic::new(severity).with_message(&diag.message).with_notes(diag.notes.clone());
+        let mut out = CsDiagnostic::new(severity)
+            .with_message(terminal::block(&diag.message))
+            .with_notes(diag.notes.iter().map(|n| terminal::block(n)).collect());
         if let Some(loc) = &diag.location {
-            let id = *ids.entry(loc.path.clone()).or_insert_with(|| {
-                source_of(&loc.path).map(|text| files.add(loc.path.clone(), text))
-            });
+            let shown_path = terminal::line(&loc.path);
+            let id = *ids
+                .entry(loc.path.clone())
+                .or_insert_with(|| source_of(&loc.path).map(|text| files.add(shown_path.clone(), terminal::source(&text))));
             match id.and_then(|id| Some((id, span_of(files.get(id).ok()?.source(), loc)?))) {
                 Some((id, span)) => {
                     let source = files.get(id).map_or("", |f| f.source().as_str());
                     match long_line_window(source, loc.line, span.clone()) {
                         Some((window, span, note)) => {
-                            let id = files.add(loc.path.clone(), window);
+                            let id = files.add(shown_path, window);
                             out = out.with_labels(vec![Label::primary(id, span)]);
                             out.notes.push(note);
                         }
                         None => out = out.with_labels(vec![Label::primary(id, span)]),
                     }
                 }
-                None => out.message = format!("{loc}: {}", diag.message),
+                None => out.message = format!("{}: {}", Location { path: shown_path, ..loc.clone() }, out.message),
             }
         }
         term::emit_to_write_style(writer, &config, &files, &out).map_err(std::io::Error::other)?;

@@ -10,6 +10,7 @@ pub mod diagnostic;
 pub mod lower;
 pub mod naga_check;
 pub mod preprocess;
+pub mod terminal;
 pub mod token;
 
 pub use diagnostic::{Diagnostic, Drivers, Location, Severity};

@@ -345,7 +345,7 @@ impl AnyPack {
 
     pub fn from_files(files: &PackFiles, configuration: &Configuration) -> Result<AnyPack, HarnessError> {
         let loader = configuration.loader;
-        let (options, _) = configuration.option_set_of(files).map_err(HarnessError::Pack)?;
+        let (options, _) = configuration.option_set_of(files).map_err(HarnessError::Configuration)?;
         let standard = StandardMacros::for_loader(loader);
         let declared = declared_options(files);
         let property_macros = property_macros(&standard, &declared, &options);

@@ -42,6 +42,8 @@ pub enum HarnessError {
     /// No headless OpenGL (names the Debian packages).
     NoGlDriver(String),
     Scene(String),
+    /// A `--profile`, `--set` or other part of the configuration the pack does not have.
+    Configuration(String),
     /// The pack does not generate, preprocess, lower or validate.
     Pack(String),
     /// A uniform, sampler or input the shaders declare that the harness cannot fill.
@@ -59,6 +61,7 @@ impl fmt::Display for HarnessError {
         match self {
             HarnessError::NoAdapter(m) | HarnessError::NoGlDriver(m) => f.write_str(m),
             HarnessError::Scene(m) => write!(f, "scene: {m}"),
+            HarnessError::Configuration(m) => f.write_str(m),
             HarnessError::Pack(m) => write!(f, "pack: {m}"),
             HarnessError::Uniform(m) => write!(f, "{m}"),
             HarnessError::Unsupported(m) => write!(f, "not supported by the harness: {m}"),

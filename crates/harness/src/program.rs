@@ -185,7 +185,7 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
     let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
     let defaults =
-        pack_options::profile_set(&source, &options, &profile).map_err(|d| diag_error("unknown profile", &[d]))?;
+        pack_options::profile_set(&source, &options, &profile).map_err(|d| HarnessError::Configuration(d.message))?;
     let mut shipped = ShippedPack::generate(&source, &options, selection.dialect, &defaults)
         .map_err(|d| diag_error("the pack does not generate", &d))?;
     if let Some(spec) = specialisation {
@@ -195,7 +195,7 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let binaries = shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec()));
     let files = input::pack_from_memory("shaders/", texts.chain(binaries));
     let configuration = Configuration { options: selection.options.clone(), loader, ..Configuration::default() };
-    let (overrides, _) = configuration.option_set_of(&files).map_err(HarnessError::Pack)?;
+    let (overrides, _) = configuration.option_set_of(&files).map_err(HarnessError::Configuration)?;
     let pack = AnyPack::from_files(&files, &configuration)?;
     if !pack.failed.is_empty() {
         // Each reason is a harness error's text, which names the program's file already.
@@ -483,9 +483,7 @@ pub(crate) fn custom_textures(
                 continue;
             }
         };
-        let decoded = image::load_from_memory(&bytes)
-            .map_err(|e| HarnessError::Pack(format!("{key}: {path} is not a readable image: {e}")))?
-            .to_rgba8();
+        let decoded = decode_within_budget(&bytes).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
         let meta = provider.read(&format!("{path}.mcmeta")).map(|t| t.to_string()).unwrap_or_default();
         let flag = |name: &str| {
             meta.split(&format!("\"{name}\"")).nth(1).is_some_and(|rest| rest.trim_start_matches([' ', ':']).starts_with("true"))
@@ -502,6 +500,24 @@ pub(crate) fn custom_textures(
         });
     }
     Ok((found, unsupported))
+}
+
+/// Most pixels a custom texture may have: 4096², 64 MiB decoded as RGBA8.
+pub const MAX_CUSTOM_TEXTURE_PIXELS: u64 = 4096 * 4096;
+
+/// Decodes an image whose header's size is within [`MAX_CUSTOM_TEXTURE_PIXELS`], read before
+/// anything is decoded; the decoder's own allocations are held to the same budget.
+fn decode_within_budget(bytes: &[u8]) -> Result<image::RgbaImage, String> {
+    let reader = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| format!("is not a readable image: {e}"));
+    let (width, height) = reader()?.into_dimensions().map_err(|e| format!("is not a readable image: {e}"))?;
+    if u64::from(width) * u64::from(height) > MAX_CUSTOM_TEXTURE_PIXELS {
+        return Err(format!("is {width}x{height} pixels, more than the budget of {MAX_CUSTOM_TEXTURE_PIXELS} (4096x4096) for a custom texture"));
+    }
+    let mut reader = reader()?;
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(4 * MAX_CUSTOM_TEXTURE_PIXELS * 2);
+    reader.limits(limits);
+    Ok(reader.decode().map_err(|e| format!("is not a readable image: {e}"))?.to_rgba8())
 }
 
 /// A pack's block.properties read under `macros`: block name → id.
@@ -526,6 +542,19 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_custom_texture_over_the_budget_is_refused_before_it_is_decoded() {
+        let encode = |side: u32| {
+            let mut png = Vec::new();
+            image::GrayImage::new(side, side).write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+            png
+        };
+        assert_eq!(decode_within_budget(&encode(64)).unwrap().dimensions(), (64, 64));
+        let error = decode_within_budget(&encode(4097)).unwrap_err();
+        assert!(error.contains("4097x4097") && error.contains("budget"), "{error}");
+        assert!(decode_within_budget(b"\x89PNG\r\n\x1a\n truncated").unwrap_err().contains("not a readable image"));
+    }
 
     #[test]
     fn adapt_vertex_keeps_every_line() {

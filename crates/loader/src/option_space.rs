@@ -10,7 +10,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 
 use tidepack_glsl::preprocess::resolve_include;
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Diagnostic, Location, terminal};
 
 use crate::consts;
 use crate::input::PackFiles;
@@ -139,7 +139,11 @@ impl<'p> ProfileResolver<'p> {
             let mut known: Vec<&str> = self.entries.keys().copied().collect();
             known.sort_unstable();
             return Err(Diagnostic::error(
-                format!("no profile `{name}` in shaders.properties (profiles: {})", if known.is_empty() { "none".into() } else { known.join(", ") }),
+                format!(
+                "no profile `{}` in shaders.properties (profiles: {})",
+                terminal::line(name),
+                if known.is_empty() { "none".into() } else { known.join(", ") }
+            ),
                 None,
             ));
         };
@@ -332,16 +336,18 @@ impl Configuration {
             let kind = declared.get(name).ok_or_else(|| {
                 let known: Vec<&str> = declared.keys().map(String::as_str).collect();
                 let known = if known.is_empty() { "none".to_string() } else { known.join(", ") };
-                format!("the pack has no option {name}; its options: {known}")
+                format!("the pack has no option {}; its options: {known}", terminal::line(name))
             })?;
             let parsed = match kind {
                 OptionKind::Switch { .. } => match value.as_str() {
                     "on" | "true" | "1" => OptionValue::Switch(true),
                     "off" | "false" | "0" => OptionValue::Switch(false),
-                    _ => return Err(format!("{name} is a switch: set it to on or off, not {value}")),
+                    _ => return Err(format!("{name} is a switch: set it to on or off, not {}", terminal::line(value))),
                 },
                 OptionKind::Value { values, .. } if values.contains(value) => OptionValue::Value(value.clone()),
-                OptionKind::Value { values, .. } => return Err(format!("{name} takes one of {}, not {value}", values.join(", "))),
+                OptionKind::Value { values, .. } => {
+                    return Err(format!("{name} takes one of {}, not {}", values.join(", "), terminal::line(value)));
+                }
             };
             set.insert(name.clone(), parsed);
         }

@@ -94,7 +94,7 @@ fn toml_value_of(value: &OptionValue) -> String {
 pub fn profile_set(source: &PackSource, options: &PackOptions, profile: &str) -> Result<OptionSet, Diagnostic> {
     let Some(p) = source.manifest.profiles.iter().find(|p| p.name == profile) else {
         let names: Vec<&str> = source.manifest.profiles.iter().map(|p| p.name.as_str()).collect();
-        return Err(Diagnostic::error(format!("no profile named {profile}; the pack has {}", names.join(", ")), None));
+        return Err(Diagnostic::error(format!("no profile named {}; the pack has {}", tidepack_glsl::terminal::line(profile), names.join(", ")), None));
     };
     p.settings
         .iter()

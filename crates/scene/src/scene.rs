@@ -248,6 +248,12 @@ pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
     Ok(files)
 }
 
+/// How far from the origin the game lets anything be: Minecraft's world border.
+pub const WORLD_BORDER: f64 = 30_000_000.0;
+
+/// Most quads a scene's mesh may have (each takes six vertices of about 100 bytes).
+pub const MAX_QUADS: usize = 1_000_000;
+
 impl Scene {
     /// When `loader` draws the scene's boxes of `kind`.
     pub fn overlay_phase(&self, loader: Loader, kind: OverlayKind) -> Phase {
@@ -303,6 +309,18 @@ impl Scene {
     }
 
     fn check(&self) -> Result<(), String> {
+        if self.name.chars().any(|c| c.is_control()) {
+            return Err(format!("name {:?} holds a control character; a scene's name is one line of text", self.name));
+        }
+        if let Some((what, at)) = self.farthest_point().filter(|(_, at)| *at > WORLD_BORDER) {
+            return Err(format!(
+                "{what} reaches {at:e} blocks from the world's origin; everything lies within Minecraft's world border, {WORLD_BORDER:e} blocks"
+            ));
+        }
+        let quads = self.quads();
+        if quads > MAX_QUADS as f64 {
+            return Err(format!("the scene makes {quads:.0} quads of terrain, water and glass, more than the budget of {MAX_QUADS}"));
+        }
         let [w, h] = self.resolution;
         // The upper bound depends on the device (Gpu::check_resolution), checked before rendering.
         if w == 0 || h == 0 {
@@ -346,6 +364,31 @@ impl Scene {
     }
 
     /// The camera's world position (origin applied).
+    /// The part of the scene farthest from the world's origin on any axis, with that distance.
+    fn farthest_point(&self) -> Option<(&'static str, f64)> {
+        let origin = DVec3::from(self.origin);
+        let at = |p: [f64; 3]| (DVec3::from(p) + origin).abs().max_element();
+        let flat = |p: [f64; 2], y: f64| at([p[0], y, p[1]]);
+        let mut parts: Vec<(&'static str, f64)> = vec![("the camera", at(self.camera.position))];
+        if let Some(w) = &self.water {
+            parts.push(("the water", flat(w.min, w.level).max(flat(w.max, w.bottom))));
+        }
+        parts.extend(self.terrain.ground.iter().map(|g| ("the ground", flat(g.min, g.height).max(flat(g.max, g.height)))));
+        parts.extend(self.terrain.boxes.iter().map(|b| ("a terrain box", at(b.min).max(at(b.max)))));
+        parts.extend(self.glass.iter().map(|g| ("a glass pane", at(g.min).max(at(g.max)))));
+        parts.extend(self.overlay.iter().map(|o| ("an overlay box", at(o.min).max(at(o.max)))));
+        parts.into_iter().max_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// The quads the mesh of this scene has, counted before it is built: a block of ground or
+    /// a cell of water each, six per box and pane.
+    pub fn quads(&self) -> f64 {
+        let cells = |min: [f64; 2], max: [f64; 2], cell: f64| ((max[0] - min[0]) / cell).ceil().max(0.0) * ((max[1] - min[1]) / cell).ceil().max(0.0);
+        let ground: f64 = self.terrain.ground.iter().map(|g| cells(g.min, g.max, 1.0)).sum();
+        let water = self.water.as_ref().map_or(0.0, |w| cells(w.min, w.max, w.cell));
+        ground + water + 6.0 * (self.terrain.boxes.len() + self.glass.len() + self.overlay.len()) as f64
+    }
+
     pub fn camera_position(&self) -> DVec3 {
         DVec3::from(self.camera.position) + DVec3::from(self.origin)
     }
@@ -409,6 +452,19 @@ mod tests {
             let error = load_text(&text).unwrap_err();
             assert!(error.contains(field) && error.contains("edited.toml"), "{to}: {error}");
         }
+    }
+
+    #[test]
+    fn sizes_are_budgeted_before_the_mesh_is_built() {
+        let wide = case4().replacen("min = [-32.0, -32.0]\nmax = [32.0, 22.0]", "min = [-1e6, -1e6]\nmax = [1e6, 1e6]", 1);
+        let error = load_text(&wide).unwrap_err();
+        assert!(error.contains("budget of 1000000") && error.contains("edited.toml"), "{error}");
+        let far = case4().replacen("position = [0.0, 67.0, -2.0]", "position = [1e308, 67.0, -2.0]", 1);
+        let error = load_text(&far).unwrap_err();
+        assert!(error.contains("the camera") && error.contains("world border"), "{error}");
+        let forged = case4().replacen("name = \"case4_above_near\"", "name = \"x\\r\\nerror: forged\"", 1);
+        let error = load_text(&forged).unwrap_err();
+        assert!(error.contains("control character"), "{error}");
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use codespan_reporting::term::termcolor::WriteColor;
-use tidepack_glsl::diagnostic;
+use tidepack_glsl::{diagnostic, terminal};
 use tidepack_glsl::{Diagnostic, Severity};
 
 use crate::{Report, Status};
@@ -31,56 +31,10 @@ fn displayed(report: &Report) -> Vec<Diagnostic> {
         .collect()
 }
 
-/// Text from the pack made safe for a terminal: control characters (an escape sequence in a
-/// file name or a line) shown as `^[`-style carets instead of acting on the terminal. Tabs and
-/// line breaks stay.
-pub fn terminal_safe(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '\t' | '\n' | '\r' => out.push(c),
-            c if (c as u32) < 0x20 => {
-                out.push('^');
-                out.push(char::from(b'@' + c as u8));
-            }
-            '\u{7f}' => out.push_str("^?"),
-            c if c.is_control() => out.push('\u{fffd}'),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// A snippet's source made safe for a terminal without moving any byte: every byte of a
-/// control character becomes `?`, so the diagnostics' byte columns still point at their text.
-fn snippet_safe(text: &str) -> String {
-    text.chars()
-        .map(|c| match c {
-            '\t' | '\n' | '\r' => c.to_string(),
-            c if c.is_control() => "?".repeat(c.len_utf8()),
-            c => c.to_string(),
-        })
-        .collect()
-}
-
 /// Compiler-style diagnostics with snippets (to `diagnostics_out`) and a summary line.
 pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::Result<String> {
-    let shown: Vec<Diagnostic> = displayed(report)
-        .into_iter()
-        .map(|mut d| {
-            d.message = terminal_safe(&d.message);
-            d.notes = d.notes.iter().map(|n| terminal_safe(n)).collect();
-            if let Some(loc) = &mut d.location {
-                loc.path = terminal_safe(&loc.path);
-            }
-            d
-        })
-        .collect();
-    let root = terminal_safe(&report.pack.display_root);
-    diagnostic::emit(diagnostics_out, &shown, &|path| {
-        let original = report.pack.texts.keys().find(|p| terminal_safe(p) == path.strip_prefix(root.as_str()).unwrap_or(""))?;
-        report.source_of(original).map(|text| snippet_safe(&text))
-    })?;
+    let root = &report.pack.display_root;
+    diagnostic::emit(diagnostics_out, &displayed(report), &|path| report.source_of(path.strip_prefix(root.as_str())?))?;
     let mut summary = String::new();
     let validated = report.programs.iter().filter(|p| p.status != Status::Skipped(String::new()) && !matches!(p.status, Status::Skipped(_))).count();
     let invalid = report.programs.iter().filter(|p| p.status == Status::Invalid).count();
@@ -141,7 +95,7 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
         report.warnings()
     )
     .unwrap();
-    Ok(terminal_safe(&summary))
+    Ok(terminal::block(&summary))
 }
 
 fn list(ids: &[String]) -> String {

@@ -58,18 +58,18 @@ pub fn run(args: &BenchArgs) -> ExitCode {
     match tidepack_bench::run(&config) {
         Ok(result) => {
             let scenes = result.scenes.len();
-            println!("{scenes} scene{} on {} ({} timing)", if scenes == 1 { "" } else { "s" }, result.adapter, result.timing_source);
-            print!("{}", tidepack_bench::output::table(&result));
+            say!("{scenes} scene{} on {} ({} timing)", if scenes == 1 { "" } else { "s" }, result.adapter, result.timing_source);
+            print!("{}", tidepack_glsl::terminal::block(&tidepack_bench::output::table(&result)));
             for f in ["bench.csv", "bench.json", "pareto.png", "report.md", "heatmaps/"] {
-                println!("  wrote {}", args.out.join(f).display());
+                say!("  wrote {}", args.out.join(f).display());
             }
             if let Some(r) = &args.report {
-                println!("  wrote {}", r.display());
+                say!("  wrote {}", r.display());
             }
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            tell!("error: {e}");
             if e.contains("mesa-vulkan-drivers") || e.contains("cannot read") { ExitCode::from(2) } else { ExitCode::FAILURE }
         }
     }

@@ -21,7 +21,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
                 scene = Some((path, loaded));
             }
             Err(message) => {
-                eprintln!("error: {message}");
+                tell!("error: {message}");
                 return ExitCode::from(2);
             }
         }
@@ -32,7 +32,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
     match result {
         Ok(report) => {
             print_diagnostics(&report.warnings, &|path| std::fs::read_to_string(path).ok());
-            println!(
+            say!(
                 "Built {} {} (profile {}, {} options) in {:.2} s",
                 report.pack_name,
                 report.version,
@@ -43,7 +43,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
             for o in &report.outcomes {
                 let v = &o.validation;
                 let coverage = v.covered.map_or("no option sets", |c| c.describe());
-                println!(
+                say!(
                     "  {:<22} {} programs, {} option sets ({coverage}); naga validated {} stages, {} skipped as identical",
                     o.dialect.to_string(),
                     v.programs,
@@ -51,10 +51,10 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
                     v.stages_validated,
                     v.stages_identical
                 );
-                println!("  {:<22} {} ({:.1} KiB)", "", o.zip.display(), o.zip_bytes as f64 / 1024.0);
+                say!("  {:<22} {} ({:.1} KiB)", "", o.zip.display(), o.zip_bytes as f64 / 1024.0);
             }
             if let (Some((path, scene)), Some(first)) = (&scene, report.outcomes.first()) {
-                println!("  specialised for {} ({} uniforms folded into constants)", path.display(), report.folded.len());
+                say!("  specialised for {} ({} uniforms folded into constants)", path.display(), report.folded.len());
                 report_speedup(&opts, first.dialect, path, scene);
             }
             ExitCode::SUCCESS
@@ -64,10 +64,10 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
             let errors = failure.diagnostics.iter().filter(|d| d.is_error()).count();
             let plural = if errors == 1 { "" } else { "s" };
             if failure.written.is_empty() {
-                eprintln!("build failed with {errors} error{plural}; no zip was written");
+                tell!("build failed with {errors} error{plural}; no zip was written");
             } else {
                 let written: Vec<String> = failure.written.iter().map(|p| p.display().to_string()).collect();
-                eprintln!("build failed with {errors} error{plural}; only these zips were written: {}", written.join(", "));
+                tell!("build failed with {errors} error{plural}; only these zips were written: {}", written.join(", "));
             }
             ExitCode::FAILURE
         }
@@ -92,10 +92,10 @@ impl ProgressLine {
         let mut state = self.state.lock().expect("no panics while printing");
         let text = format!("{dialect}: {}/{} {}", step.done, step.total, step.phase);
         if self.terminal {
-            eprint!("\r\x1b[2K{text}");
+            eprint!("\r\x1b[2K{}", tidepack_glsl::terminal::line(&text));
             state.1 = true;
         } else if state.0.elapsed() >= Duration::from_secs(10) {
-            eprintln!("{text}");
+            tell!("{text}");
             state.0 = Instant::now();
         }
     }
@@ -145,7 +145,7 @@ fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &P
     });
     match measured {
         Ok(report) => super::print_specialisation(&report),
-        Err(e) => eprintln!("warning: speedup not measured: {e}"),
+        Err(e) => tell!("warning: speedup not measured: {e}"),
     }
 }
 

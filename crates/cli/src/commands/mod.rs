@@ -5,6 +5,18 @@ use std::io::IsTerminal;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_glsl::{Diagnostic, diagnostic};
 
+/// `println!` through [`tidepack_glsl::terminal::block`]: whatever a pack, a scene or the command
+/// line put in the text is shown, never acted on by the terminal. Every line the CLI prints goes
+/// through this, [`tell!`] or [`print_diagnostics`].
+macro_rules! say {
+    ($($arg:tt)*) => { println!("{}", tidepack_glsl::terminal::block(&format!($($arg)*))) };
+}
+
+/// `eprintln!` through [`tidepack_glsl::terminal::block`], as [`say!`].
+macro_rules! tell {
+    ($($arg:tt)*) => { eprintln!("{}", tidepack_glsl::terminal::block(&format!($($arg)*))) };
+}
+
 #[cfg(feature = "bench")]
 pub mod bench;
 pub mod build;
@@ -27,11 +39,11 @@ pub fn print_diagnostics(diagnostics: &[Diagnostic], source_of: &dyn Fn(&str) ->
 #[cfg(feature = "render")]
 pub fn print_specialisation(report: &tidepack_harness::job::SpecialisationReport) {
     let d = report.max_difference.map(|c| c * 255.0);
-    println!(
+    say!(
         "  specialised composite {:.2} ms vs general {:.2} ms (pass-through {:.2} ms): {:.2}x faster, median of {} frames each",
         report.specialised_ms, report.general_ms, report.passthrough_ms, report.speedup, report.frames
     );
-    println!(
+    say!(
         "  images differ by at most R {:.2} G {:.2} B {:.2} A {:.2} (x/255); folded {}",
         d[0], d[1], d[2], d[3], report.folded.join(", ")
     );

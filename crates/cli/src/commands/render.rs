@@ -102,19 +102,19 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => return failure(e),
     };
-    println!("Rendered {}", report.rendered.describe(&format!("{}, {}, profile {}", report.dialect, report.rendered.loader, report.profile)));
+    say!("Rendered {}", report.rendered.describe(&format!("{}, {}, profile {}", report.dialect, report.rendered.loader, report.profile)));
     for p in &report.passes {
-        println!("  {:<24} {:>9.3} ms ({})", p.pass, p.ms, if p.gpu_ms.is_some() { "GPU" } else { "wall" });
+        say!("  {:<24} {:>9.3} ms ({})", p.pass, p.ms, if p.gpu_ms.is_some() { "GPU" } else { "wall" });
     }
     if let Some(r) = report.composite_over_passthrough {
-        println!("  composite / pass-through {r:.1}x");
+        say!("  composite / pass-through {r:.1}x");
     }
     if report.non_finite_pixels > 0 {
-        println!("  warning: {} pixels of the composite output are NaN or Inf", report.non_finite_pixels);
+        say!("  warning: {} pixels of the composite output are NaN or Inf", report.non_finite_pixels);
     }
     if let Some(gl) = &report.gl {
         let d = gl.max_difference.map(|c| c * 255.0);
-        println!(
+        say!(
             "  OpenGL ({}): max difference per channel (x/255) R {:.2} G {:.2} B {:.2} A {:.2}, {} pixels over 1/255",
             gl.renderer, d[0], d[1], d[2], d[3], gl.pixels_over_1_255
         );
@@ -123,22 +123,26 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         super::print_specialisation(spec);
     }
     for f in &report.files {
-        println!("  wrote {}", args.out.join(f).display());
+        say!("  wrote {}", args.out.join(f).display());
     }
     ExitCode::SUCCESS
 }
 
 /// Prints a command-line mistake; exit code 2.
 fn usage_error(message: &str) -> ExitCode {
-    eprintln!("error: {message}");
+    tell!("error: {message}");
     ExitCode::from(2)
 }
 
 /// Prints a harness error; exit code 2 where the input or a driver is missing, 1 otherwise.
 fn failure(e: HarnessError) -> ExitCode {
-    eprintln!("error: {e}");
+    tell!("error: {e}");
     match e {
-        HarnessError::NoAdapter(_) | HarnessError::NoGlDriver(_) | HarnessError::Io(_) | HarnessError::Scene(_) => ExitCode::from(2),
+        HarnessError::NoAdapter(_)
+        | HarnessError::NoGlDriver(_)
+        | HarnessError::Io(_)
+        | HarnessError::Scene(_)
+        | HarnessError::Configuration(_) => ExitCode::from(2),
         _ => ExitCode::FAILURE,
     }
 }
@@ -164,15 +168,15 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         Ok(r) => r,
         Err(e) => return failure(e),
     };
-    println!("Rendered {}", report.rendered.describe(&format!("{}, {}", report.pack, report.rendered.loader)));
+    say!("Rendered {}", report.rendered.describe(&format!("{}, {}", report.pack, report.rendered.loader)));
     let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
     for p in &report.passes {
         let time = format!("{:>9.3} ms", p.median_ms);
         let bad: Vec<String> = p.non_finite.iter().filter(|(_, n)| **n > 0).map(|(b, n)| format!("{b}: {n} NaN/Inf")).collect();
-        println!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
+        say!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
     }
     let t = &report.timing;
-    println!(
+    say!(
         "  frame {:.3} ms, one-tap pass-through {:.3} ms: {:.1}x ({source} times, median of {} frame{})",
         t.frame_ms,
         t.passthrough_ms,
@@ -181,7 +185,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         if t.frames > 2 { "s after the first" } else { "" }
     );
     if let Some(gl) = &report.gl {
-        println!(
+        say!(
             "  OpenGL ({}), largest difference per texture after each step (x/255, colour/alpha; pixels over 1/255):",
             gl.renderer
         );
@@ -192,43 +196,43 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
                 .map(|(t, d)| format!("{t} {:.2}/{:.2} ({} px)", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t]))
                 .collect();
             if !parts.is_empty() {
-                println!("    {:<38} {}", step.pass, parts.join(", "));
+                say!("    {:<38} {}", step.pass, parts.join(", "));
             }
         }
         if !gl.own_depth_mapping.is_empty() {
-            println!("    drawn with OpenGL's own depth range: {}", gl.own_depth_mapping.join(", "));
+            say!("    drawn with OpenGL's own depth range: {}", gl.own_depth_mapping.join(", "));
         }
     }
     if !report.not_modelled.is_empty() {
-        println!("  not imitated ({}):", report.not_modelled.len());
+        say!("  not imitated ({}):", report.not_modelled.len());
         for line in &report.not_modelled {
-            println!("    {line}");
+            say!("    {line}");
         }
     }
     for f in &report.files {
-        println!("  wrote {}", args.out.join(f).display());
+        say!("  wrote {}", args.out.join(f).display());
     }
     let mut failed = false;
     if let Some(expected) = &report.expected {
         match expected.mean_flip {
-            None => println!("  blessed {}", expected.path),
-            Some(flip) if expected.passed => println!("  mean FLIP {flip:.5} against {} (at most {})", expected.path, expected.max_flip),
+            None => say!("  blessed {}", expected.path),
+            Some(flip) if expected.passed => say!("  mean FLIP {flip:.5} against {} (at most {})", expected.path, expected.max_flip),
             Some(flip) => {
-                eprintln!("error: mean FLIP {flip:.5} against {} is over {}; see the .flip and .difference images", expected.path, expected.max_flip);
+                tell!("error: mean FLIP {flip:.5} against {} is over {}; see the .flip and .difference images", expected.path, expected.max_flip);
                 failed = true;
             }
         }
     }
     if let Some(refused) = report.gl.as_ref().and_then(|gl| gl.refused.as_ref()) {
-        eprintln!("error: Mesa's OpenGL refuses the pack, so the frames were not compared: {refused}");
+        tell!("error: Mesa's OpenGL refuses the pack, so the frames were not compared: {refused}");
         failed = true;
     }
     if report.non_finite_pixels > 0 {
-        eprintln!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
+        tell!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
         failed = true;
     }
     for (program, why) in &report.failed_programs {
-        eprintln!("error: {program} does not load, so the frame is not the one the loader draws: {why}");
+        tell!("error: {program} does not load, so the frame is not the one the loader draws: {why}");
         failed = true;
     }
     if failed { ExitCode::FAILURE } else { ExitCode::SUCCESS }

@@ -57,16 +57,16 @@ pub fn run(args: &StressArgs) -> ExitCode {
     opts.height = args.height;
     opts.seed = args.seed;
     opts.out_dir = args.out.clone();
-    let report = match tidepack_stress::run(&opts, &mut |m| eprintln!("{m}")) {
+    let report = match tidepack_stress::run(&opts, &mut |m| tell!("{m}")) {
         Ok(r) => r,
         Err(e) => {
-            eprintln!("error: {e}");
+            tell!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    print!("{}", tidepack_stress::tables(&report));
+    print!("{}", tidepack_glsl::terminal::block(&tidepack_stress::tables(&report)));
     if let Some(dir) = &args.out {
-        println!("\nwritten: {}/{{summary.json,categories.csv,distance.csv,cases.csv}}", dir.display());
+        say!("\nwritten: {}/{{summary.json,categories.csv,distance.csv,cases.csv}}", dir.display());
     }
     if report.non_finite_pixels > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS }
 }

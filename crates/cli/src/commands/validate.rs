@@ -106,14 +106,14 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
     let configuration = match args.configuration.configuration() {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("error: {e}");
+            tell!("error: {e}");
             return ExitCode::from(2);
         }
     };
     let mut macros = StandardMacros::for_loader(configuration.loader);
     if let Some(text) = &args.mc_version {
         let Some(mc_version) = parse_mc_version(text) else {
-            eprintln!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());
+            tell!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());
             return ExitCode::from(2);
         };
         macros.mc_version = mc_version;
@@ -142,7 +142,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
     if args.path.join("pack.toml").is_file() && args.path.join("shaders").is_dir() {
         // tidepack's own template source: the build writes lib/generated.glsl,
         // shaders.properties and the GLSL 120 dialect, and validates every option set itself.
-        eprintln!(
+        tell!(
             "error: {} is tidepack's template source (pack.toml beside shaders/), not a pack: `tidepack build` \
              generates the rest of the pack and validates it; to check the result as a player gets it, validate \
              a zip it writes (tidepack validate dist/<name>-glsl330.zip)",

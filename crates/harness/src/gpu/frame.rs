@@ -167,8 +167,48 @@ struct FrameTextures {
     shadow_colours: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
 }
 
+/// Most bytes the textures of one frame may take (lavapipe keeps them in the machine's memory):
+/// the pack's colour buffers at the scene's resolution, their snapshots, depth, the screen and
+/// the shadow maps.
+pub const MAX_FRAME_TEXTURE_BYTES: u64 = 384 << 20;
+
+/// Bytes per texel of `format` (depth formats have no copy size of their own).
+fn texel_bytes(format: wgpu::TextureFormat) -> u64 {
+    u64::from(format.block_copy_size(None).unwrap_or(4))
+}
+
 impl FrameTextures {
+    /// What the frame's textures will take, refused over [`MAX_FRAME_TEXTURE_BYTES`] before any
+    /// is made.
+    fn check_budget(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<(), HarnessError> {
+        let pixels = u64::from(scene.width()) * u64::from(scene.height());
+        let mut per_pixel = 2 * texel_bytes(DEPTH) + texel_bytes(OUT);
+        for &b in &plan.buffers {
+            let bytes = texel_bytes(gpu.texture_format(pack.format_of(b))?);
+            // Two to draw into and read from, one snapshot; a mip chain adds a third of a level.
+            per_pixel += if plan.mipmapped.contains(&b) { bytes * 2 * 4 / 3 + bytes } else { 3 * bytes };
+        }
+        let shadow_side = if pack.shadow_pass { u64::from(pack.shadow_settings.drawn_resolution().0) } else { 1 };
+        let mut per_shadow_texel = 2 * texel_bytes(DEPTH) + 2 * texel_bytes(OUT);
+        for &b in &plan.shadow_buffers {
+            per_shadow_texel += texel_bytes(gpu.texture_format(pack.shadow_format_of(b))?);
+        }
+        let bytes = pixels.saturating_mul(per_pixel).saturating_add(shadow_side * shadow_side * per_shadow_texel);
+        if bytes > MAX_FRAME_TEXTURE_BYTES {
+            return Err(HarnessError::Scene(format!(
+                "the frame's textures would take {} MiB ({} colour buffers at {}x{}, shadow maps of {shadow_side}^2), more than the budget of {} MiB",
+                bytes >> 20,
+                plan.buffers.len(),
+                scene.width(),
+                scene.height(),
+                MAX_FRAME_TEXTURE_BYTES >> 20
+            )));
+        }
+        Ok(())
+    }
+
     fn new(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<FrameTextures, HarnessError> {
+        FrameTextures::check_budget(gpu, pack, plan, scene)?;
         let size = wgpu::Extent3d { width: scene.width(), height: scene.height(), depth_or_array_layers: 1 };
         let texture = |label: &str, format| gpu.texture(label, size, format, every_use());
         let mut buffers: BTreeMap<u8, Buffer> = BTreeMap::new();
