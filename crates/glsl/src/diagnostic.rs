@@ -111,13 +111,30 @@ pub struct Diagnostic {
     pub refused_by: Drivers,
 }
 
+/// Longest message or note a diagnostic keeps: one quoting a pack's text (a token of a
+/// minified line, a value) is cut there, so no output (terminal, JSON, annotations) repeats
+/// megabytes of it.
+pub const MAX_MESSAGE_BYTES: usize = 1000;
+
+/// `text` cut to [`MAX_MESSAGE_BYTES`] at a character boundary, saying how much was left out.
+fn clipped(text: String) -> String {
+    if text.len() <= MAX_MESSAGE_BYTES {
+        return text;
+    }
+    let mut end = MAX_MESSAGE_BYTES;
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}… ({} more bytes)", &text[..end], text.len() - end)
+}
+
 impl Diagnostic {
     pub fn error(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Error, message: message.into(), location, notes: Vec::new(), refused_by: Drivers::ALL }
+        Diagnostic { severity: Severity::Error, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::ALL }
     }
 
     pub fn warning(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Warning, message: message.into(), location, notes: Vec::new(), refused_by: Drivers::NONE }
+        Diagnostic { severity: Severity::Warning, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::NONE }
     }
 
     /// The same diagnostic, said to be refused by `drivers` only.
@@ -127,7 +144,7 @@ impl Diagnostic {
     }
 
     pub fn with_note(mut self, note: impl Into<String>) -> Self {
-        self.notes.push(note.into());
+        self.notes.push(clipped(note.into()));
         self
     }
 
@@ -277,6 +294,13 @@ mod tests {
         assert!(shown.len() < 2_000, "{} bytes", shown.len());
         assert!(shown.contains("lib/min.glsl:2:") && shown.contains("oops") && shown.contains("^^^^"), "{shown}");
         assert!(shown.contains("line 2 is 2000004 bytes long"), "{shown}");
+    }
+
+    #[test]
+    fn a_message_quoting_megabytes_is_cut() {
+        let diag = Diagnostic::error(format!("unexpected `{}`", "é".repeat(1 << 20)), None).with_note("x".repeat(5000));
+        assert!(diag.message.len() < MAX_MESSAGE_BYTES + 40 && diag.message.ends_with("more bytes)"), "{}", diag.message.len());
+        assert!(diag.notes[0].len() < MAX_MESSAGE_BYTES + 40);
     }
 
     #[test]
