@@ -9,11 +9,15 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// Every `.rs` file under `dir`, as paths relative to `base`.
+/// Every `.rs` file under `dir`, as paths relative to `base`, build outputs (a crate's own
+/// `target/`, as crates/fuzz has) left out.
 fn rust_files(dir: &Path, base: &Path, out: &mut Vec<String>) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for entry in entries.flatten() {
         let path = entry.path();
+        if path.is_dir() && path.file_name().is_some_and(|n| n == "target") {
+            continue;
+        }
         if path.is_dir() {
             rust_files(&path, base, out);
         } else if path.extension().is_some_and(|e| e == "rs") {

@@ -129,7 +129,7 @@ fn profile_sets_the_shipped_defaults() {
     assert!(settings.contains("#define WAVE_REFINE_STEPS 0 //"), "{settings}");
     assert!(settings.contains("//#define REFLECTIONS //"), "{settings}");
     let output = build_into(&repo_root().join("shaderpack"), out.path(), &["--profile", "NOPE"]);
-    assert!(!output.status.success());
+    assert_eq!(output.status.code(), Some(2), "an unknown profile is a usage error");
     assert!(stderr(&output).contains("no profile named NOPE"), "{}", stderr(&output));
 }
 

@@ -297,6 +297,18 @@ mod tests {
     }
 
     #[test]
+    fn nothing_from_a_pack_reaches_the_terminal_raw() {
+        // An `#error` text, a file name and a source line, each with escapes and line breaks.
+        let diag = Diagnostic::error("#error \x1b[2Jgone\r\nerror: forged", Some(Location::line("lib/\x1b]0;title\x07a.glsl", 1)))
+            .with_note("note \x1b[31mred");
+        let mut out = NoColor::new(Vec::new());
+        emit(&mut out, &[diag], &|_| Some("float x = 1.0; // \x1b[1m\u{202E}\n".into())).unwrap();
+        let text = String::from_utf8(out.into_inner()).unwrap();
+        assert!(!text.contains('\x1b') && !text.contains('\r') && !text.contains('\x07') && !text.contains('\u{202E}'), "{text:?}");
+        assert!(text.contains("^[[2Jgone^M") && text.contains("lib/^[]0;title^Ga.glsl"), "{text}");
+    }
+
+    #[test]
     fn a_message_quoting_megabytes_is_cut() {
         let diag = Diagnostic::error(format!("unexpected `{}`", "é".repeat(1 << 20)), None).with_note("x".repeat(5000));
         assert!(diag.message.len() < MAX_MESSAGE_BYTES + 40 && diag.message.ends_with("more bytes)"), "{}", diag.message.len());

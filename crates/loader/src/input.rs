@@ -543,6 +543,22 @@ mod tests {
     }
 
     #[test]
+    fn an_entry_longer_than_its_header_says_fails_the_pack() {
+        let text = b"void main() { gl_FragColor = vec4(1.0); }\n";
+        let mut data = stored_zip_of(&[("shaders/composite.fsh", text)]);
+        // The uncompressed size in the local header (offset 22) and the central header (24).
+        let size = (text.len() as u32).to_le_bytes();
+        let short = (text.len() as u32 - 10).to_le_bytes();
+        data[22..26].copy_from_slice(&short);
+        let central = (0..data.len() - 4).find(|&i| data[i..i + 4] == [0x50, 0x4b, 0x01, 0x02]).unwrap();
+        assert_eq!(data[central + 24..central + 28], size);
+        data[central + 24..central + 28].copy_from_slice(&short);
+        let raw = read(data);
+        assert!(raw.files.is_empty());
+        assert!(raw.warnings[0].is_error() && raw.warnings[0].message.contains("the zip is damaged"), "{:?}", raw.warnings);
+    }
+
+    #[test]
     fn a_symbolic_link_program_fails_the_pack() {
         let mut buf = std::io::Cursor::new(Vec::new());
         let mut zip = zip::ZipWriter::new(&mut buf);

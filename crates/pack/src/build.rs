@@ -58,12 +58,14 @@ pub struct BuildFailure {
     pub diagnostics: Vec<Diagnostic>,
     /// Zips renamed into place before a later one failed to (empty in every other failure).
     pub written: Vec<PathBuf>,
+    /// The command line named what the pack does not have (a profile): a usage error.
+    pub usage: bool,
     sources: HashMap<String, String>,
 }
 
 impl BuildFailure {
     fn new(diagnostics: Vec<Diagnostic>) -> Self {
-        BuildFailure { diagnostics, written: Vec::new(), sources: HashMap::new() }
+        BuildFailure { diagnostics, written: Vec::new(), usage: false, sources: HashMap::new() }
     }
 
     /// Text of a file a diagnostic names, for the snippet.
@@ -138,7 +140,7 @@ pub fn generate_validated(
             }
         }
     }
-    if diagnostics.is_empty() { Ok((packs, warnings)) } else { Err(BuildFailure { diagnostics, written: Vec::new(), sources }) }
+    if diagnostics.is_empty() { Ok((packs, warnings)) } else { Err(BuildFailure { diagnostics, written: Vec::new(), usage: false, sources }) }
 }
 
 /// Hears how far each dialect's validation is.
@@ -154,7 +156,8 @@ pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Resu
         return Err(BuildFailure::new(problems));
     }
     let profile = opts.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
-    let defaults = pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure::new(vec![d]))?;
+    let defaults =
+        pack_options::profile_set(&source, &options, &profile).map_err(|d| BuildFailure { usage: true, ..BuildFailure::new(vec![d]) })?;
     let spec = opts.specialisation.as_ref();
     let (packs, mut warnings) = generate_validated(&source, &options, &opts.dialects, &defaults, opts.coverage, spec, progress)?;
     for option in options.values() {

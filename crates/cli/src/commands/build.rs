@@ -69,7 +69,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
                 let written: Vec<String> = failure.written.iter().map(|p| p.display().to_string()).collect();
                 tell!("build failed with {errors} error{plural}; only these zips were written: {}", written.join(", "));
             }
-            ExitCode::FAILURE
+            if failure.usage { ExitCode::from(2) } else { ExitCode::FAILURE }
         }
     }
 }
