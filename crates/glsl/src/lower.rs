@@ -1094,7 +1094,7 @@ impl<'a> Lowering<'_, 'a> {
                 continue;
             }
             let after = if self.tokens[end].is_punct(",") { format!(" {qualifiers}{}", decl.ty) } else { String::new() };
-            self.replace(equals, equals + 1, format!("; {}{} {RESERVED_PREFIX}init_{name}() {{ return", decl.ty, naga_dimensions(suffix)));
+            self.replace(equals, equals + 1, format!("; {}{} {RESERVED_PREFIX}init_{name}() {{ return ", decl.ty, naga_dimensions(suffix)));
             self.replace(end, end + 1, format!("; }}{after}"));
             self.global_initializers.push(name.to_string());
         }

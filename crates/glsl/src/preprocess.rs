@@ -91,6 +91,32 @@ impl Preprocessed {
 pub struct PreprocessOptions {
     /// Macros defined before the first line, in order (OptiFine's standard macros).
     pub predefined: Vec<(String, String)>,
+    /// How the loader reads an `#include` line's path.
+    pub include_quotes: IncludeQuotes,
+}
+
+/// Whether an `#include` path must be quoted: OptiFine takes `#include "path"` only (any other
+/// line reaches the compiler as written); Iris also takes `#include path`, dropping a quote at
+/// either end.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum IncludeQuotes {
+    #[default]
+    Required,
+    Optional,
+}
+
+impl IncludeQuotes {
+    /// The path an `#include` line names, given the rest of the line after `include`.
+    fn target(self, rest: &str) -> Option<&str> {
+        let rest = rest.trim();
+        match self {
+            IncludeQuotes::Required => rest.strip_prefix('"').and_then(|r| r.split('"').next()),
+            IncludeQuotes::Optional => {
+                let rest = rest.strip_prefix('"').unwrap_or(rest);
+                Some(rest.strip_suffix('"').unwrap_or(rest)).filter(|t| !t.is_empty())
+            }
+        }
+    }
 }
 
 /// Preprocesses `entry` and everything it includes.
@@ -114,6 +140,7 @@ pub fn preprocess(
         },
         include_stack: Vec::new(),
         seen_code: false,
+        include_quotes: options.include_quotes,
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
@@ -200,6 +227,7 @@ struct Preprocessor<'p> {
     include_stack: Vec<(String, u32)>,
     /// A line of code (not a directive) has been emitted.
     seen_code: bool,
+    include_quotes: IncludeQuotes,
 }
 
 /// A logical line: tokens up to a line break, continuations included.
@@ -461,7 +489,7 @@ impl Preprocessor<'_> {
 
     fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
-        let resolved = included_path(path, args).map_err(err_at)?;
+        let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
         if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
             return Err(err_at(format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)")));
         }
@@ -542,8 +570,8 @@ impl Preprocessor<'_> {
     /// preprocessing: the files must exist, as they must for OptiFine.
     fn check_inactive_include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
-        let resolved = included_path(path, args).map_err(err_at)?;
-        expand_includes(self.provider, &resolved, "").map(drop).map_err(|e| {
+        let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
+        expand_includes_mapped(self.provider, &resolved, "", self.include_quotes).map(drop).map_err(|e| {
             let note = "OptiFine splices includes in before it evaluates #if, so this include is resolved although its branch is not taken";
             let e = if e.location.is_none() { Diagnostic { location: Some(Location::line(path, at)), ..e } } else { e };
             e.with_note(note)
@@ -876,7 +904,7 @@ fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
 /// (includes inside inactive conditionals are expanded too), and inserts `after_version` after
 /// the `#version` line. The result is what a GL driver or glslangValidator compiles.
 pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: &str) -> Result<String, Diagnostic> {
-    expand_includes_mapped(provider, entry, after_version).map(|(text, _)| text)
+    expand_includes_mapped(provider, entry, after_version, IncludeQuotes::Required).map(|(text, _)| text)
 }
 
 /// [`expand_includes`] with a map from each line of the result to the pack file and line it
@@ -885,9 +913,11 @@ pub fn expand_includes_mapped(
     provider: &dyn FileProvider,
     entry: &str,
     after_version: &str,
+    quotes: IncludeQuotes,
 ) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
     fn expand(
         provider: &dyn FileProvider,
+        quotes: IncludeQuotes,
         path: &str,
         stack: &mut Vec<String>,
         out: &mut String,
@@ -904,9 +934,9 @@ pub fn expand_includes_mapped(
                 map.push(at());
                 continue;
             };
-            let target = rest.trim().strip_prefix('"').and_then(|r| r.split('"').next()).ok_or_else(|| {
-                Diagnostic::error(format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at())
-            })?;
+            let target = quotes
+                .target(rest)
+                .ok_or_else(|| Diagnostic::error(format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at()))?;
             let resolved = resolve_include(path, target).map_err(|m| Diagnostic::error(m, at()))?;
             if stack.contains(&resolved) {
                 let chain = format!("{} -> {resolved}", stack.join(" -> "));
@@ -924,7 +954,7 @@ pub fn expand_includes_mapped(
                     at(),
                 ));
             }
-            expand(provider, &resolved, stack, out, map)
+            expand(provider, quotes, &resolved, stack, out, map)
                 .map_err(|e| if e.location.is_none() { Diagnostic { location: at(), ..e } } else { e })?;
         }
         stack.pop();
@@ -932,7 +962,7 @@ pub fn expand_includes_mapped(
     }
     let mut body = String::new();
     let mut map = Vec::new();
-    expand(provider, entry, &mut Vec::new(), &mut body, &mut map)?;
+    expand(provider, quotes, entry, &mut Vec::new(), &mut body, &mut map)?;
     // After the `#version` line, wherever it is (comments may come first), as OptiFine does.
     let inserted = vec![None; after_version.matches('\n').count()];
     let version_line = body.split_inclusive('\n').position(|line| line.trim_start().starts_with("#version"));
@@ -950,12 +980,9 @@ pub fn expand_includes_mapped(
 
 /// The pack path an `#include "…"` directive of file `from` names (its arguments after the
 /// directive name).
-fn included_path(from: &str, args: &[Token<'_>]) -> Result<String, String> {
+fn included_path(from: &str, args: &[Token<'_>], quotes: IncludeQuotes) -> Result<String, String> {
     let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-    let target = raw
-        .strip_prefix('"')
-        .and_then(|s| s.strip_suffix('"'))
-        .ok_or_else(|| format!("#include expects a \"quoted\" path, found `{raw}`"))?;
+    let target = quotes.target(&raw).ok_or_else(|| format!("#include expects a \"quoted\" path, found `{raw}`"))?;
     resolve_include(from, target)
 }
 
@@ -1195,6 +1222,18 @@ mod tests {
     }
 
     #[test]
+    fn iris_reads_an_include_path_without_quotes_optifine_does_not() {
+        let list = [("a.fsh", "#version 120\n#include lib/b.glsl\nvoid main() {}\n"), ("lib/b.glsl", "float b;\n")];
+        let err = run(&list).unwrap_err();
+        assert!(err.message.contains("expects a \"quoted\" path") && err.location.unwrap().line == 2, "{}", err.message);
+        let iris = PreprocessOptions { include_quotes: IncludeQuotes::Optional, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &iris).unwrap();
+        assert!(out.text.contains("float b;"), "{}", out.text);
+        assert_eq!(IncludeQuotes::Optional.target(" \"lib/c.glsl\" "), Some("lib/c.glsl"));
+        assert_eq!(IncludeQuotes::Required.target(" \"lib/c.glsl\" // why"), Some("lib/c.glsl"));
+    }
+
+    #[test]
     fn a_version_no_glsl_has_is_an_error() {
         let err = run(&[("a.fsh", "#version 9999 compatibility\nvoid main() {}\n")]).unwrap_err();
         assert!(err.message.contains("#version 9999 is not a GLSL version"), "{}", err.message);
@@ -1342,11 +1381,11 @@ mod tests {
         ]);
         let out = expand_includes(&map, "a.fsh", "#define MC_VERSION 12104\n").unwrap();
         assert_eq!(out, "#version 120\n#define MC_VERSION 12104\n#ifdef NEVER\nfloat x;\n#endif\nvoid main() {}\n");
-        let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n").unwrap();
+        let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n", IncludeQuotes::Required).unwrap();
         let shown: Vec<String> = map.iter().map(|l| l.as_ref().map_or("-".into(), |l| l.to_string())).collect();
         assert_eq!(shown, ["a.fsh:1", "-", "a.fsh:2", "lib/x.glsl:1", "a.fsh:4", "a.fsh:5"]);
         let late = files(&[("a.fsh", "// banner\n\n#version 150 compatibility\nvoid main() {}\n")]);
-        let (text, map) = expand_includes_mapped(&late, "a.fsh", "#define A\n").unwrap();
+        let (text, map) = expand_includes_mapped(&late, "a.fsh", "#define A\n", IncludeQuotes::Required).unwrap();
         assert_eq!(text, "// banner\n\n#version 150 compatibility\n#define A\nvoid main() {}\n");
         assert_eq!(map[3], None);
         assert_eq!(map[4], Some(Location::line("a.fsh", 4)));

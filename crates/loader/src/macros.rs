@@ -4,7 +4,7 @@
 //! OptiFine's set, or Iris's, which adds its own names and fixes the quality settings at 1).
 //! This is the one set every part of the toolchain defines.
 
-use tidepack_glsl::preprocess::PreprocessOptions;
+use tidepack_glsl::preprocess::{IncludeQuotes, PreprocessOptions};
 
 use crate::loader::Loader;
 
@@ -191,7 +191,12 @@ impl StandardMacros {
     }
 
     pub fn preprocess_options(&self) -> PreprocessOptions {
-        PreprocessOptions { predefined: self.definitions() }
+        PreprocessOptions { predefined: self.definitions(), include_quotes: self.include_quotes() }
+    }
+
+    /// How the loader these macros stand for reads `#include` paths: Iris also without quotes.
+    pub fn include_quotes(&self) -> IncludeQuotes {
+        if self.iris_version.is_some() { IncludeQuotes::Optional } else { IncludeQuotes::Required }
     }
 
     /// The macros as `#define` lines, for text handed to a GL driver or glslangValidator.

@@ -6,7 +6,7 @@
 use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
-use tidepack_glsl::preprocess::expand_includes_mapped;
+use tidepack_glsl::preprocess::{IncludeQuotes, expand_includes_mapped};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
 use tidepack_loader::programs::Program;
@@ -33,13 +33,14 @@ pub fn is_loader_level(diag: &Diagnostic) -> bool {
 pub struct Driver {
     context: GlContext,
     defines: String,
+    include_quotes: IncludeQuotes,
 }
 
 impl Driver {
     /// A headless context; the error names the packages to install.
     pub fn new(macros: &StandardMacros) -> Result<Driver, Diagnostic> {
         let context = GlContext::new().map_err(|e| Diagnostic::error(e.message, None))?;
-        Ok(Driver { context, defines: macros.define_lines() })
+        Ok(Driver { context, defines: macros.define_lines(), include_quotes: macros.include_quotes() })
     }
 
     pub fn describe(&self) -> String {
@@ -132,7 +133,7 @@ impl Driver {
     ) -> Result<(), Vec<Diagnostic>> {
         let mut texts = Vec::new();
         for (kind, path) in files {
-            match expand_includes_mapped(provider, path, &self.defines) {
+            match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
                 Ok((text, map)) => texts.push((*kind, *path, text, map)),
                 Err(_) => return Err(Vec::new()),
             }
@@ -212,7 +213,7 @@ impl Driver {
     fn check_vertex_fragment(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
-            match expand_includes_mapped(provider, path, &self.defines) {
+            match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
                 Ok((text, map)) => texts.push((*stage, path.clone(), text, map)),
                 Err(_) => return Err(Vec::new()),
             }

@@ -4,6 +4,7 @@ uniform float rainStrength;
 uniform sampler2D tex;
 uniform bool isRaining;
 float sign_of_rain = rainStrength < 0.5 ? 1.0 : -1.0;
+float dimmed=exp(-rainStrength);
 vec2 offsets[2] = vec2[2](vec2(rainStrength), vec2(0.0)), scale = vec2(2.0);
 const vec3[] palette = vec3[](vec3(1.0), vec3(0.5), vec3(0.25));
 const float wet = 1.0 > 0.5 ? 0.75 : length(normalize(vec3(0.0)));

@@ -4,8 +4,8 @@ layout(location = 1) in vec2 texcoord;
 layout(location = 0) in float rain;
 layout(location = 2) flat in vec3 tints[1+1];
 
-float gain ; float tp_init_gain() { return rain * 2.0; }
-float frames ; float tp_init_frames() { return frameCounter; }
+float gain ; float tp_init_gain() { return  rain * 2.0; }
+float frames ; float tp_init_frames() { return  frameCounter; }
 
 float fade(float specular);
 
@@ -41,7 +41,7 @@ float lift(float x) {
 }
 
 
-float weights[3] ; float[3] tp_init_weights() { return float[3]( 0.5, 1.0, 0.5 ); }
+float weights[3] ; float[3] tp_init_weights() { return  float[3]( 0.5, 1.0, 0.5 ); }
 const vec2 pairs[2] = vec2[2]( vec2( 1.0, 2.0 ), vec2( 3.0, 4.0 ) );
 
 float gathered(vec2 uv) {
