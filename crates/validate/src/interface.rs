@@ -82,6 +82,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
     };
     let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
     let uses = global_uses(&fragment.text);
+    let vertex_uses = global_uses(&vertex.text);
     let vertex_path = vertex.files.first().cloned().unwrap_or_default();
     // Mesa's linker (like the GLSL 4.20 specification) refuses a statically read input that
     // the vertex stage does not declare in GLSL 1.10/1.20 and from 4.20 on, by the higher
@@ -118,6 +119,21 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                         .with_note(declare),
                     );
                 }
+            }
+            Some(output) if uses.contains_key(input.name.as_str()) && !vertex_uses.contains_key(output.name.as_str()) => {
+                // Declared, never named again: never written. Mesa's linker refuses the read in
+                // GLSL 1.10/1.20 ("fragment shader varying … not written by vertex shader") when
+                // its optimiser keeps the read, which tokens cannot tell; from 1.30 on it links.
+                let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
+                let consequence = if version <= 120 {
+                    format!("Mesa refuses to link it in #version {version} where the read is not optimised away")
+                } else {
+                    "it reads undefined values".to_string()
+                };
+                found.push(Diagnostic::warning(
+                    format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at}): {consequence}", input.name),
+                    at,
+                ));
             }
             Some(output) => {
                 // From GLSL 4.30 on only the fragment stage's interpolation qualifier counts.
