@@ -351,6 +351,15 @@ impl VaryingLayout {
         }
         Ok(VaryingLayout { locations })
     }
+
+    /// The location of `name`; one the layout was not built with (a stage lowered alone) gets
+    /// a location past every other, so the lowering never fails on it.
+    pub fn location_of(&self, name: &str) -> u32 {
+        match self.locations.get(name) {
+            Some(&location) => location,
+            None => self.locations.values().max().map_or(0, |last| last.saturating_add(4)),
+        }
+    }
 }
 
 /// `int`, `uint` and their vectors.
@@ -1974,7 +1983,7 @@ impl<'a> Lowering<'_, 'a> {
         }
         if let Some(varying) = legacy_varying(name, stage) {
             let ty = LEGACY_VARYINGS.iter().find(|v| v.2 == varying).map_or("vec4", |v| v.3);
-            let location = self.varyings.locations[varying];
+            let location = self.varyings.location_of(varying);
             let direction = if stage == Stage::Vertex { "out" } else { "in" };
             self.add_header(format!("layout(location = {location}) {direction} {ty} {varying};"));
             self.replace(i, i + 1, varying.into());
@@ -2050,7 +2059,7 @@ impl<'a> Lowering<'_, 'a> {
                 let index =
                     constant_index(&sig_tokens, k).ok_or_else(|| self.err(i, "gl_TexCoord needs a constant index"))?;
                 let varying = format!("tp_TexCoord{index}");
-                let location = self.varyings.locations[&varying];
+                let location = self.varyings.location_of(&varying);
                 let direction = if stage == Stage::Vertex { "out" } else { "in" };
                 self.add_header(format!("layout(location = {location}) {direction} vec4 {varying};"));
                 self.replace_lines(i, sig[k + 3] + 1, varying);
@@ -2191,5 +2200,20 @@ fn combined_use(lowered: &str, ty: &str, pass_both: bool) -> String {
         format!("{lowered}, {RESERVED_PREFIX}sampler_{lowered}")
     } else {
         format!("{ty}({lowered}, {RESERVED_PREFIX}sampler_{lowered})")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the `lower` fuzz target: a legacy varying the layout was not built with (a
+    /// stage lowered alone) used to index past the layout and panic.
+    #[test]
+    fn a_legacy_varying_outside_the_layout_gets_a_location_of_its_own() {
+        let text = "#version 120\nvoid main() {\n    gl_Position = ftransform();\n    gl_FrontColor = gl_Color;\n    gl_TexCoord[0] = gl_MultiTexCoord0;\n}\n";
+        let lowered = lower(text, Stage::Vertex, &VaryingLayout::default()).unwrap();
+        assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
+        assert!(lowered.text.contains("out vec4 tp_FrontColor;") && lowered.text.contains("out vec4 tp_TexCoord0;"), "{}", lowered.text);
     }
 }
