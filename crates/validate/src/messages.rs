@@ -54,6 +54,18 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
             "no form of {name}() takes these arguments: check the image's type (image2D, uimage2D, image3D, …) against \
              the coordinates (ivec2 for image2D) and the value (vec4 for image*, uvec4 for uimage*, ivec4 for iimage*)"
         ));
+    } else if let Some((name, forms)) =
+        unknown.as_deref().and_then(|name| BUILTIN_FORMS.iter().find(|(builtin, _)| *builtin == name))
+    {
+        // naga says a built-in called with arguments no form takes is unknown.
+        diag.message = format!("no form of the built-in {name}() takes these arguments");
+        diag = diag.with_note(format!("GLSL has {name}({})", forms.replace("; ", &format!("), {name}("))));
+        if forms.contains("gen") {
+            diag = diag.with_note(
+                "genType is float, vec2, vec3 or vec4 (genIType int, ivec…; genUType uint, uvec…; genBType bool, bvec…), the same \
+                 type at every place of one form; GLSL 1.20 converts int arguments to float, not vectors to other sizes",
+            );
+        }
     } else if let Some(name) = unknown.as_deref()
         && name.starts_with("atomic")
     {
@@ -61,6 +73,60 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
     }
     diag
 }
+
+/// The forms of GLSL's common built-in functions, as the GLSL specification lists them (each
+/// form's parameters, forms separated by `; `), for a call naga finds no form for.
+const BUILTIN_FORMS: &[(&str, &str)] = &[
+    ("radians", "genType degrees"),
+    ("degrees", "genType radians"),
+    ("sin", "genType angle"),
+    ("cos", "genType angle"),
+    ("tan", "genType angle"),
+    ("asin", "genType x"),
+    ("acos", "genType x"),
+    ("atan", "genType y, genType x; genType y_over_x"),
+    ("pow", "genType x, genType y"),
+    ("exp", "genType x"),
+    ("log", "genType x"),
+    ("exp2", "genType x"),
+    ("log2", "genType x"),
+    ("sqrt", "genType x"),
+    ("inversesqrt", "genType x"),
+    ("abs", "genType x; genIType x"),
+    ("sign", "genType x; genIType x"),
+    ("floor", "genType x"),
+    ("ceil", "genType x"),
+    ("fract", "genType x"),
+    ("round", "genType x"),
+    ("trunc", "genType x"),
+    ("mod", "genType x, float y; genType x, genType y"),
+    ("min", "genType x, genType y; genType x, float y; genIType x, genIType y; genIType x, int y; genUType x, genUType y; genUType x, uint y"),
+    ("max", "genType x, genType y; genType x, float y; genIType x, genIType y; genIType x, int y; genUType x, genUType y; genUType x, uint y"),
+    ("clamp", "genType x, genType minVal, genType maxVal; genType x, float minVal, float maxVal; genIType x, genIType minVal, genIType maxVal; genIType x, int minVal, int maxVal"),
+    ("mix", "genType x, genType y, genType a; genType x, genType y, float a; genType x, genType y, genBType a"),
+    ("step", "genType edge, genType x; float edge, genType x"),
+    ("smoothstep", "genType edge0, genType edge1, genType x; float edge0, float edge1, genType x"),
+    ("length", "genType x"),
+    ("distance", "genType p0, genType p1"),
+    ("dot", "genType x, genType y"),
+    ("cross", "vec3 x, vec3 y"),
+    ("normalize", "genType x"),
+    ("faceforward", "genType N, genType I, genType Nref"),
+    ("reflect", "genType I, genType N"),
+    ("refract", "genType I, genType N, float eta"),
+    ("matrixCompMult", "mat x, mat y"),
+    ("transpose", "mat m"),
+    ("inverse", "mat m"),
+    ("determinant", "mat m"),
+    ("outerProduct", "vec c, vec r"),
+    ("dFdx", "genType p"),
+    ("dFdy", "genType p"),
+    ("fwidth", "genType p"),
+    ("texture2D", "sampler2D sampler, vec2 coord; sampler2D sampler, vec2 coord, float bias"),
+    ("texture2DLod", "sampler2D sampler, vec2 coord, float lod"),
+    ("texture3D", "sampler3D sampler, vec3 coord; sampler3D sampler, vec3 coord, float bias"),
+    ("shadow2D", "sampler2DShadow sampler, vec3 coord; sampler2DShadow sampler, vec3 coord, float bias"),
+];
 
 /// Built-in functions and variables (by prefix) naga's GLSL front-end lacks and the lowering has
 /// no stand-in for: image atomics (images cannot be function parameters in naga), atomic
