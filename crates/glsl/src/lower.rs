@@ -2203,9 +2203,50 @@ fn combined_use(lowered: &str, ty: &str, pass_both: bool) -> String {
     }
 }
 
+/// The GLSL names a message about lowered text means: `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
+pub fn unlower_names(message: &str) -> String {
+    let prefix = RESERVED_PREFIX;
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find(prefix) {
+        let word_start = at == 0 || !rest.as_bytes()[at - 1].is_ascii_alphanumeric() && rest.as_bytes()[at - 1] != b'_';
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + prefix.len()..];
+        let len = tail.find(|c: char| !c.is_ascii_alphanumeric() && c != '_').unwrap_or(tail.len());
+        let name = &tail[..len];
+        if !word_start {
+            out.push_str(prefix);
+            out.push_str(name);
+        } else if let Some(n) = name.strip_prefix("FragData") {
+            out.push_str(&format!("gl_FragData[{n}]"));
+        } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
+            out.push_str(&format!("gl_TexCoord[{n}]"));
+        } else if let Some(x) =
+            ["sampler_", "bool_", "kw_", "init_", "scalar_"].iter().find_map(|p| name.strip_prefix(p))
+        {
+            out.push_str(x);
+        } else if name == "main" {
+            out.push_str("main");
+        } else {
+            out.push_str("gl_");
+            out.push_str(name);
+        }
+        rest = &tail[len..];
+    }
+    out.push_str(rest);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reserved_names_read_as_the_packs() {
+        assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
+        assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
+        assert_eq!(unlower_names("`tp_bool_heavyFog` is read"), "`heavyFog` is read");
+    }
 
     /// Found by the `lower` fuzz target: a legacy varying the layout was not built with (a
     /// stage lowered alone) used to index past the layout and panic.

@@ -41,7 +41,6 @@ mod stages;
 pub mod glsl_rules;
 pub mod version_rules;
 
-pub use messages::unlower_names;
 pub use naga_pool::MAX_NAGA_LINES;
 pub use report::{ProgramReport, Report, Status};
 pub use configurations::{PlanSummary, Shard};

@@ -163,7 +163,8 @@ impl Gpu {
                     message.push_str(&format!(": {inner}"));
                     source = inner.source();
                 }
-                Err(HarnessError::Wgpu(message))
+                // wgpu quotes the lowered text's names; the pack author wrote the GLSL ones.
+                Err(HarnessError::Wgpu(tidepack_glsl::lower::unlower_names(&message)))
             }
             None => Ok(value),
         }
