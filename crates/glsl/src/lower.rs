@@ -2115,7 +2115,9 @@ impl<'a> Lowering<'_, 'a> {
         let end = (version_index..self.tokens.len()).find(|&i| self.tokens[i].kind == TokenKind::Newline).unwrap_or(self.tokens.len());
         match self.tokens.get(end) {
             Some(newline) => self.replace(version_index, end + 1, format!("#version 450{}{line} ", newline.text)),
-            None => self.replace(version_index, end, format!("#version 450\n{line}")),
+            // Nothing follows the `#version` line, so nothing needs the declarations, and a line
+            // for them would move every line count.
+            None => self.replace(version_index, end, "#version 450".into()),
         }
         // `#extension` lines mean nothing to naga.
         let mut at_line_start = true;
@@ -2246,6 +2248,17 @@ mod tests {
         assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
         assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
         assert_eq!(unlower_names("`tp_bool_heavyFog` is read"), "`heavyFog` is read");
+    }
+
+    /// Found by the `lower` fuzz target: a stage that ends on its `#version` line kept its
+    /// line count only when a line break followed.
+    #[test]
+    fn a_stage_that_is_only_its_version_line_keeps_its_line_count() {
+        for text in ["#version 120", "#version 120 \u{FFFD}\u{FFFD}", "#version 330 compatibility\n"] {
+            if let Ok(lowered) = lower(text, Stage::Fragment, &VaryingLayout::default()) {
+                assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "{text:?} -> {:?}", lowered.text);
+            }
+        }
     }
 
     /// Found by the `lower` fuzz target: a legacy varying the layout was not built with (a
