@@ -212,6 +212,18 @@ fn float(value: f32) -> String {
 }
 
 /// Parses `1.21.4` (or `1.8.9`, `1.21`) into OptiFine's number (12104, 10809, 12100).
+/// An OpenGL or GLSL version as a person writes it (`4.6`) or as the macros hold it (`460`).
+pub fn parse_gl_version(text: &str) -> Result<u32, String> {
+    let bad = || format!("`{}` is not a version such as 4.6 or 460", tidepack_glsl::terminal::line(text));
+    match text.split_once('.') {
+        Some((major, minor)) => {
+            let (major, minor): (u32, u32) = (major.parse().map_err(|_| bad())?, minor.parse().map_err(|_| bad())?);
+            if minor > 9 { Err(bad()) } else { Ok(major * 100 + minor * 10) }
+        }
+        None => text.parse().map_err(|_| bad()),
+    }
+}
+
 pub fn parse_mc_version(text: &str) -> Option<u32> {
     let mut parts = text.trim().split('.').map(|p| p.parse::<u32>().ok());
     let major = parts.next()??;
@@ -226,6 +238,15 @@ pub fn parse_mc_version(text: &str) -> Option<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn gl_versions_read_as_written_or_as_numbers() {
+        assert_eq!(parse_gl_version("4.6"), Ok(460));
+        assert_eq!(parse_gl_version("3.3"), Ok(330));
+        assert_eq!(parse_gl_version("120"), Ok(120));
+        assert!(parse_gl_version("4.x").unwrap_err().contains("such as 4.6 or 460"));
+        assert!(parse_gl_version("4.10").is_err());
+    }
 
     #[test]
     fn defaults_define_one_os_vendor_and_renderer() {

@@ -40,8 +40,12 @@ pub fn print_diagnostics(diagnostics: &[Diagnostic], source_of: &dyn Fn(&str) ->
 pub fn print_specialisation(report: &tidepack_harness::job::SpecialisationReport) {
     let d = report.max_difference.map(|c| c * 255.0);
     say!(
-        "  specialised composite {:.2} ms vs general {:.2} ms (pass-through {:.2} ms): {:.2}x faster, median of {} frames each",
-        report.specialised_ms, report.general_ms, report.passthrough_ms, report.speedup, report.frames
+        "  specialised composite {:.2} ms vs general {:.2} ms (pass-through {:.2} ms): {}, median of {} frames each",
+        report.specialised_ms,
+        report.general_ms,
+        report.passthrough_ms,
+        if report.speedup >= 1.0 { format!("{:.2}x faster", report.speedup) } else { format!("{:.2}x slower", 1.0 / report.speedup) },
+        report.frames
     );
     say!(
         "  images differ by at most R {:.2} G {:.2} B {:.2} A {:.2} (x/255); folded {}",

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use tidepack_glsl::Drivers;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
-use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_mc_version};
+use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_gl_version, parse_mc_version};
 use tidepack_validate::{Coverage, Options, Profiles, Shard, output};
 
 use super::configuration::ConfigurationArgs;
@@ -48,11 +48,11 @@ pub struct ValidateArgs {
     /// Minecraft version for MC_VERSION (default: the loader's).
     #[arg(long)]
     pub mc_version: Option<String>,
-    /// MC_GL_VERSION (4.6 = 460).
-    #[arg(long, default_value_t = 460)]
+    /// MC_GL_VERSION: 4.6 or 460.
+    #[arg(long, default_value = "460", value_parser = parse_gl_version)]
     pub gl_version: u32,
-    /// MC_GLSL_VERSION: the driver's highest GLSL version.
-    #[arg(long, default_value_t = 460)]
+    /// MC_GLSL_VERSION, the driver's highest GLSL version: 4.6 or 460.
+    #[arg(long, default_value = "460", value_parser = parse_gl_version)]
     pub glsl_version: u32,
     /// Operating system for MC_OS_*.
     #[arg(long, value_enum, default_value_t = OsArg::Linux)]
