@@ -807,16 +807,14 @@ impl<'a> Lowering<'_, 'a> {
         LowerError { line: self.tokens[index].line, message: message.into() }
     }
 
-    fn replace(&mut self, start: usize, end: usize, text: String) {
+    /// Replaces tokens `start..end` with `text`, keeping the line breaks they spanned that
+    /// `text` does not hold (at its end), so that a construct written over several lines
+    /// (`vec3[\n]`, a declaration) still covers as many lines.
+    fn replace(&mut self, start: usize, end: usize, mut text: String) {
+        let breaks = (start..end.min(self.tokens.len())).map(|i| self.tokens[i].newlines() as usize).sum::<usize>();
+        let held = text.matches('\n').count();
+        text.extend(std::iter::repeat_n('\n', breaks.saturating_sub(held)));
         self.replacements.insert(start, (end, text));
-    }
-
-    /// Replaces tokens `start..end` and keeps the line breaks they spanned (at the end), so a
-    /// declaration written over several lines still covers as many lines.
-    fn replace_lines(&mut self, start: usize, end: usize, mut text: String) {
-        let breaks = (start..end).map(|i| self.tokens[i].newlines()).sum::<u32>();
-        text.extend(std::iter::repeat_n('\n', breaks as usize));
-        self.replace(start, end, text);
     }
 
     fn run(&mut self) -> Result<(), LowerError> {
@@ -859,7 +857,7 @@ impl<'a> Lowering<'_, 'a> {
                 let is_prototype = signature.last() == Some(&";") && header.contains(&"(");
                 if is_prototype && !seen_headers.insert(header.join(" ")) {
                     let (start, end) = (stmt.sig[0], *stmt.sig.last().unwrap() + 1);
-                    self.replace_lines(start, end, String::new());
+                    self.replace(start, end, String::new());
                     continue;
                 }
                 if signature.last() == Some(&"{") {
@@ -885,7 +883,7 @@ impl<'a> Lowering<'_, 'a> {
                         self.interface.inputs.insert(name.to_string(), location);
                         write!(text, "layout(location = {location}) in {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
-                    self.replace_lines(start, end, text.trim_end().to_string());
+                    self.replace(start, end, text.trim_end().to_string());
                 }
                 Storage::Varying => {
                     let direction = if self.stage == Stage::Vertex { "out" } else { "in" };
@@ -932,7 +930,7 @@ impl<'a> Lowering<'_, 'a> {
                         )
                         .unwrap();
                     }
-                    self.replace_lines(start, end, text.trim_end().to_string());
+                    self.replace(start, end, text.trim_end().to_string());
                 }
                 Storage::FragmentOutput => {
                     let mut text = String::new();
@@ -966,7 +964,7 @@ impl<'a> Lowering<'_, 'a> {
                         }
                         write!(text, "layout(location = {lowered_location}) out {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
-                    self.replace_lines(start, end, text.trim_end().to_string());
+                    self.replace(start, end, text.trim_end().to_string());
                 }
                 Storage::Other => self.move_initializers_into_main(&decl),
             }
@@ -1442,7 +1440,7 @@ impl<'a> Lowering<'_, 'a> {
             let (start, end) = (sig.get(k + 1).copied().unwrap_or(0), sig.get(j - 1).map_or(0, |&i| i + 1));
             if is_name && groups >= 2 && (declarator || sized_type) && !(start..end).any(|i| self.covered(i)) {
                 let written: String = sig[k + 1..j].iter().map(|&i| self.tokens[i].text).collect();
-                self.replace_lines(start, end, naga_dimensions(&written));
+                self.replace(start, end, naga_dimensions(&written));
             }
             k = j.max(k + 1);
         }
@@ -1558,7 +1556,7 @@ impl<'a> Lowering<'_, 'a> {
             let start = param.tokens[0];
             let end = *param.tokens.last().unwrap() + 1;
             let name = self.lowered_name(name);
-            self.replace_lines(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
+            self.replace(start, end, format!("{texture_ty} {name}, {sampler_ty} {RESERVED_PREFIX}sampler_{name}"));
         }
     }
 
@@ -1599,7 +1597,7 @@ impl<'a> Lowering<'_, 'a> {
             .unwrap();
             self.interface.images.insert(name.to_string(), decl.ty.to_string());
         }
-        self.replace_lines(start, end, text.trim_end().to_string());
+        self.replace(start, end, text.trim_end().to_string());
         Ok(())
     }
 
@@ -1637,7 +1635,7 @@ impl<'a> Lowering<'_, 'a> {
                     },
                 );
             }
-            self.replace_lines(start, end, text.trim_end().to_string());
+            self.replace(start, end, text.trim_end().to_string());
             return Ok(());
         }
         if decl.ty == "bool" {
@@ -1650,7 +1648,7 @@ impl<'a> Lowering<'_, 'a> {
                 self.symbols.bool_uniforms.insert(name.to_string());
                 self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: "bool".into() });
             }
-            self.replace_lines(start, end, String::new());
+            self.replace(start, end, String::new());
             return Ok(());
         }
         if !is_builtin_type(decl.ty) {
@@ -1667,14 +1665,14 @@ impl<'a> Lowering<'_, 'a> {
                 "layout(std140, set = {set}, binding = {binding}) uniform {RESERVED_PREFIX}Uniforms{binding} {{ {}}};",
                 members
             );
-            self.replace_lines(start, end, text);
+            self.replace(start, end, text);
             return Ok(());
         }
         for (name, suffix) in &decl.names {
             self.block.push(format!("{} {name}{};", decl.ty, naga_dimensions(suffix)));
             self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: format!("{}{suffix}", decl.ty) });
         }
-        self.replace_lines(start, end, String::new());
+        self.replace(start, end, String::new());
         Ok(())
     }
 
@@ -2030,7 +2028,7 @@ impl<'a> Lowering<'_, 'a> {
                 }
                 self.interface.inputs.insert("gl_Vertex".into(), 0);
                 self.add_header("layout(location = 0) in vec4 tp_Vertex;".into());
-                self.replace_lines(i, sig[close] + 1, "(tp_ModelViewProjectionMatrix * tp_Vertex)".into());
+                self.replace(i, sig[close] + 1, "(tp_ModelViewProjectionMatrix * tp_Vertex)".into());
             }
             "gl_FragData" | "gl_FragColor" => {
                 let sig_tokens: Vec<&Token<'_>> = sig.iter().map(|&j| &self.tokens[j]).collect();
@@ -2044,7 +2042,7 @@ impl<'a> Lowering<'_, 'a> {
                 let shipped = if name == "gl_FragColor" { name.to_string() } else { format!("gl_FragData[{location}]") };
                 self.interface.outputs.insert(location, shipped);
                 self.add_header(format!("layout(location = {location}) out vec4 tp_FragData{location};"));
-                self.replace_lines(i, end, format!("tp_FragData{location}"));
+                self.replace(i, end, format!("tp_FragData{location}"));
             }
             "gl_Fog" => {
                 if self.prelude.is_empty() {
@@ -2062,7 +2060,7 @@ impl<'a> Lowering<'_, 'a> {
                 let location = self.varyings.location_of(&varying);
                 let direction = if stage == Stage::Vertex { "out" } else { "in" };
                 self.add_header(format!("layout(location = {location}) {direction} vec4 {varying};"));
-                self.replace_lines(i, sig[k + 3] + 1, varying);
+                self.replace(i, sig[k + 3] + 1, varying);
             }
             _ => {}
         }
@@ -2248,6 +2246,17 @@ mod tests {
         assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
         assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
         assert_eq!(unlower_names("`tp_bool_heavyFog` is read"), "`heavyFog` is read");
+    }
+
+    /// Found by the `lower` fuzz target: brackets with a line break between them, sized by
+    /// the lowering, lost that line.
+    #[test]
+    fn a_replacement_keeps_the_line_breaks_it_covers() {
+        let text = "#version 120\nconst float weights[\n] = float[\n](1.0, 2.0);\nvoid main() { gl_FragColor = vec4(weights[1]); }\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "{}", lowered.text);
+        let lowered = lower("#version 3\n[\n]l[](", Stage::Fragment, &VaryingLayout::default());
+        assert!(lowered.is_err() || lowered.unwrap().text.matches('\n').count() == 2);
     }
 
     /// Found by the `lower` fuzz target: a stage that ends on its `#version` line kept its
