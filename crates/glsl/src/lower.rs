@@ -2249,7 +2249,7 @@ mod tests {
     }
 
     /// Found by the `lower` fuzz target: brackets with a line break between them, sized by
-    /// the lowering, lost that line.
+    /// the lowering.
     #[test]
     fn a_replacement_keeps_the_line_breaks_it_covers() {
         let text = "#version 120\nconst float weights[\n] = float[\n](1.0, 2.0);\nvoid main() { gl_FragColor = vec4(weights[1]); }\n";
@@ -2259,8 +2259,8 @@ mod tests {
         assert!(lowered.is_err() || lowered.unwrap().text.matches('\n').count() == 2);
     }
 
-    /// Found by the `lower` fuzz target: a stage that ends on its `#version` line kept its
-    /// line count only when a line break followed.
+    /// Found by the `lower` fuzz target: a stage that ends on its `#version` line, with no
+    /// line break after it.
     #[test]
     fn a_stage_that_is_only_its_version_line_keeps_its_line_count() {
         for text in ["#version 120", "#version 120 \u{FFFD}\u{FFFD}", "#version 330 compatibility\n"] {
@@ -2270,8 +2270,8 @@ mod tests {
         }
     }
 
-    /// Found by the `lower` fuzz target: a legacy varying the layout was not built with (a
-    /// stage lowered alone) used to index past the layout and panic.
+    /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
+    /// was not built with.
     #[test]
     fn a_legacy_varying_outside_the_layout_gets_a_location_of_its_own() {
         let text = "#version 120\nvoid main() {\n    gl_Position = ftransform();\n    gl_FrontColor = gl_Color;\n    gl_TexCoord[0] = gl_MultiTexCoord0;\n}\n";
