@@ -2,12 +2,6 @@
 //! every value finite or reported, never a panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use std::collections::BTreeMap;
-use tidepack_loader::custom_uniforms::evaluate;
-use tidepack_loader::properties::Properties;
 
-fuzz_target!(|data: &[u8]| {
-    let text = String::from_utf8_lossy(data);
-    let props = Properties::parse_plain(&text);
-    let _ = evaluate(&props, &BTreeMap::new());
-});
+// The check lives in tidepack_validate::fuzz::targets, where `cargo test` runs it too.
+fuzz_target!(|data: &[u8]| tidepack_validate::fuzz::targets::custom_uniforms(data));

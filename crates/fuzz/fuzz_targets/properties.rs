@@ -2,14 +2,6 @@
 //! resolved; each returns a value or a diagnostic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use std::collections::BTreeMap;
-use tidepack_loader::option_space::{profile_set, profiles};
-use tidepack_loader::properties::Properties;
 
-fuzz_target!(|data: &[u8]| {
-    let text = String::from_utf8_lossy(data);
-    let props = Properties::parse_plain(&text);
-    for name in profiles(&props).keys() {
-        let _ = profile_set(&props, name, &BTreeMap::new());
-    }
-});
+// The check lives in tidepack_validate::fuzz::targets, where `cargo test` runs it too.
+fuzz_target!(|data: &[u8]| tidepack_validate::fuzz::targets::properties(data));

@@ -200,6 +200,130 @@ fn execute(pack: &SeedPack, target: &str, mutated: &[u8]) -> Result<u64, String>
     }
 }
 
+/// The checks of the cargo-fuzz targets in crates/fuzz, one per reader, callable on the stable
+/// toolchain so that [`run_targets`] (and with it `cargo test`) runs them too. Each returns
+/// normally or panics where its check fails.
+pub mod targets {
+    use std::collections::{BTreeMap, HashMap};
+    use std::sync::Arc;
+
+    use tidepack_glsl::Stage;
+    use tidepack_glsl::lower::{VaryingLayout, lower as lower_stage};
+    use tidepack_glsl::preprocess::{IncludeQuotes, PreprocessOptions, preprocess as preprocess_program};
+    use tidepack_loader::custom_uniforms::evaluate;
+    use tidepack_loader::input::{Limits, read_zip_bytes};
+    use tidepack_loader::option_space::{ProfileResolver, profiles};
+    use tidepack_loader::properties::Properties;
+
+    /// Any bytes as a zipped pack: a pack or an error; what is kept fits the budget and no
+    /// path climbs out.
+    pub fn zip_reader(data: &[u8]) {
+        let limits = Limits::default();
+        if let Ok(pack) = read_zip_bytes(data, "fuzz.zip", &limits) {
+            let kept: u64 = pack.files.values().map(|f| f.len() as u64).sum();
+            assert!(kept <= limits.max_total_bytes, "{kept} bytes kept");
+            assert!(pack.files.keys().all(|p| !p.split('/').any(|part| part == "..")), "a path climbs out");
+        }
+    }
+
+    /// A program and one include (split at the first NUL) through the preprocessor, with
+    /// OptiFine's include syntax or, when the first byte is odd, Iris's: every output line
+    /// maps to a pack file.
+    pub fn preprocess(data: &[u8]) {
+        let text = String::from_utf8_lossy(data);
+        let (program, include) = text.split_once('\0').unwrap_or((&text, "float included;\n"));
+        let files: HashMap<String, Arc<str>> =
+            [("composite.fsh".to_string(), Arc::from(program)), ("lib/a.glsl".to_string(), Arc::from(include))].into();
+        let include_quotes = if data.first().is_some_and(|b| b & 1 == 1) { IncludeQuotes::Optional } else { IncludeQuotes::Required };
+        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_quotes };
+        if let Ok(pre) = preprocess_program(&files, "composite.fsh", &options) {
+            for line in 1..=pre.text.matches('\n').count() as u32 {
+                if let Some(at) = pre.location(line) {
+                    assert!(files.contains_key(&at.path), "line {line} maps to {}", at.path);
+                }
+            }
+        }
+    }
+
+    /// Any text (after a selector byte: stage, layout) through the lowering: a result or an
+    /// error, and a result with as many lines.
+    pub fn lower(data: &[u8]) {
+        let Some((&selector, rest)) = data.split_first() else { return };
+        let text = String::from_utf8_lossy(rest);
+        let stage = if selector & 1 == 0 { Stage::Vertex } else { Stage::Fragment };
+        let layout = if selector & 2 == 0 { VaryingLayout::default() } else { VaryingLayout::for_program(&[(stage, &text, 330)]).unwrap_or_default() };
+        if let Ok(lowered) = lower_stage(&text, stage, &layout) {
+            assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "the lowering moved lines");
+        }
+    }
+
+    /// Any text as shaders.properties: parsed, and every profile resolved or an error.
+    pub fn properties(data: &[u8]) {
+        let props = Properties::parse_plain(&String::from_utf8_lossy(data));
+        let options = BTreeMap::new();
+        let mut resolver = ProfileResolver::new(&props, &options);
+        for name in profiles(&props).keys() {
+            let _ = resolver.resolve(name);
+        }
+    }
+
+    /// Any text as shaders.properties' custom uniforms and variables, evaluated for one frame.
+    pub fn custom_uniforms(data: &[u8]) {
+        let _ = evaluate(&Properties::parse_plain(&String::from_utf8_lossy(data)), &BTreeMap::new());
+    }
+
+    /// The targets by name, as crates/fuzz names them.
+    pub const ALL: [(&str, fn(&[u8])); 5] =
+        [("zip_reader", zip_reader), ("preprocess", preprocess), ("lower", lower), ("properties", properties), ("custom_uniforms", custom_uniforms)];
+}
+
+/// Runs [`targets`] on mutations of the seed packs' files (their zip for `zip_reader`, their
+/// shaders.properties for the properties targets) until `executions` or `time` is reached;
+/// a panic in a target is a crash.
+pub fn run_targets(seeds: &[SeedPack], executions: u64, time: Duration, seed: u64) -> FuzzStats {
+    let mut stats = FuzzStats::default();
+    let mut rng = Rng::new(seed);
+    let all_files: Vec<&[u8]> = seeds.iter().flat_map(|p| p.values().map(Vec::as_slice)).collect();
+    let zips: Vec<Vec<u8>> = seeds.iter().map(zip_of).collect();
+    let started = Instant::now();
+    let previous_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    while stats.executions < executions && started.elapsed() < time {
+        let (name, target) = targets::ALL[rng.below(targets::ALL.len())];
+        let pack = rng.below(seeds.len());
+        let input: &[u8] = match name {
+            "zip_reader" => &zips[pack],
+            "properties" | "custom_uniforms" => seeds[pack].get("shaders.properties").map_or(&b"profile.A=profile.B\n"[..], Vec::as_slice),
+            _ => all_files[rng.below(all_files.len())],
+        };
+        let mutated = mutate(&mut rng, input, &all_files);
+        stats.executions += 1;
+        if let Err(panic) = std::panic::catch_unwind(AssertUnwindSafe(|| target(&mutated))) {
+            stats.crashes += 1;
+            let what = panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
+            if stats.findings.len() < 20 {
+                stats.findings.push((format!("panic in the {name} target: {}", what.unwrap_or_default()), mutated));
+            }
+        }
+    }
+    std::panic::set_hook(previous_hook);
+    stats
+}
+
+/// A seed pack as a zip, its files under `shaders/`.
+fn zip_of(pack: &SeedPack) -> Vec<u8> {
+    use std::io::Write;
+    let mut buffer = std::io::Cursor::new(Vec::new());
+    let mut zip = zip::ZipWriter::new(&mut buffer);
+    for (path, bytes) in pack {
+        if zip.start_file(format!("shaders/{path}"), zip::write::SimpleFileOptions::default()).is_ok() {
+            let _ = zip.write_all(bytes);
+        }
+    }
+    let _ = zip.finish();
+    buffer.into_inner()
+}
+
 /// Reads every file of the packs under `dir` (each subfolder holding `shaders/` somewhere).
 pub fn seeds_from(dirs: &[std::path::PathBuf]) -> Vec<SeedPack> {
     let mut seeds = Vec::new();
