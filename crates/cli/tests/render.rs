@@ -186,3 +186,21 @@ fn render_pack_compares_the_screen_with_a_blessed_one() {
         assert!(out.path().join(file).exists(), "{file}");
     }
 }
+
+/// A pack's own text in render's report (its "not imitated" list quotes shaders.properties
+/// and the buffer formats a pack names) is shown, never acted on by the terminal.
+#[test]
+fn render_pack_prints_a_packs_control_characters_escaped() {
+    let pack = pack_of(&[
+        ("final.vsh", FULLSCREEN_VSH),
+        ("final.fsh", "#version 120\nuniform sampler2D colortex0;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(colortex0, uv); }\n"),
+        ("shaders.properties", "#if UNDEFINED_\x1b[2J_MACRO(1) > 2\nclouds=off\n#endif\n"),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let output = render_pack(pack.path(), out.path());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("^[[2J"), "the properties problem is listed, escaped: {stdout}");
+    assert!(!stdout.contains('\x1b') && !stderr.contains('\x1b'), "{stdout:?}\n{stderr:?}");
+}
