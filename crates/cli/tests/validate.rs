@@ -185,3 +185,20 @@ fn covering_finds_a_mistake_behind_a_toggle_and_says_how_to_show_it() {
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains("K/N"), "{}", text(&out.stderr));
 }
+
+/// macOS gives Minecraft before 1.17 OpenGL 2.1: a `#version 330` stage does not load there,
+/// while GLSL 1.20 packs and later Minecraft versions are fine.
+#[test]
+fn an_os_and_minecraft_version_imply_their_glsl_limit() {
+    let core330 = tests_dir().join("corpus/core330");
+    let core330 = core330.to_str().unwrap();
+    let old_mac = validate(&[core330, "--os", "mac", "--mc-version", "1.16.5"]);
+    let stderr = String::from_utf8_lossy(&old_mac.stderr);
+    assert_eq!(old_mac.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("above GLSL 120") && stderr.contains("MC_GLSL_VERSION 120"), "{stderr}");
+    assert_eq!(validate(&[core330, "--os", "mac", "--mc-version", "1.20.1"]).status.code(), Some(0));
+    let legacy = tests_dir().join("corpus/legacy120");
+    assert_eq!(validate(&[legacy.to_str().unwrap(), "--os", "mac", "--mc-version", "1.16.5"]).status.code(), Some(0));
+    let explicit = validate(&[core330, "--glsl-version", "1.5"]);
+    assert!(String::from_utf8_lossy(&explicit.stderr).contains("above GLSL 150"));
+}

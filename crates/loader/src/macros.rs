@@ -212,6 +212,17 @@ fn float(value: f32) -> String {
 }
 
 /// Parses `1.21.4` (or `1.8.9`, `1.21`) into OptiFine's number (12104, 10809, 12100).
+/// The OpenGL and GLSL versions (as the macros hold them) a player's machine gives the game:
+/// macOS gives Minecraft before 1.17 a legacy OpenGL 2.1 context (GLSL 1.20) and later
+/// versions its 4.1 core one; elsewhere drivers give 4.6.
+pub fn platform_gl_versions(os: Os, mc_version: u32) -> (u32, u32) {
+    match os {
+        Os::Mac if mc_version < 11700 => (210, 120),
+        Os::Mac => (410, 410),
+        _ => (460, 460),
+    }
+}
+
 /// An OpenGL or GLSL version as a person writes it (`4.6`) or as the macros hold it (`460`).
 pub fn parse_gl_version(text: &str) -> Result<u32, String> {
     let bad = || format!("`{}` is not a version such as 4.6 or 460", tidepack_glsl::terminal::line(text));
@@ -238,6 +249,13 @@ pub fn parse_mc_version(text: &str) -> Option<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn macos_before_1_17_gives_glsl_1_20() {
+        assert_eq!(platform_gl_versions(Os::Mac, 11605), (210, 120));
+        assert_eq!(platform_gl_versions(Os::Mac, 12104), (410, 410));
+        assert_eq!(platform_gl_versions(Os::Windows, 11605), (460, 460));
+    }
 
     #[test]
     fn gl_versions_read_as_written_or_as_numbers() {

@@ -31,6 +31,7 @@ pub(crate) fn check_program(
                 diags.extend(version_rules::unknown_extensions(&pre));
                 diags.extend(glsl_rules::check(&pre, *stage));
                 diags.extend(macos_refusals(&pre, false));
+                diags.extend(above_configured_glsl(&pre, macros));
                 preprocessed.push((*stage, Arc::new(pre)));
             }
             Err(e) => {
@@ -80,6 +81,28 @@ const MACOS_GLSL: u32 = 410;
 
 /// What macOS's OpenGL 4.1 refuses in a stage: a `#version` above 410, compute shaders (4.3),
 /// shader storage blocks and images (4.3 and 4.2). Errors for macOS only.
+/// A stage whose `#version` is above the highest GLSL version of the configuration's driver
+/// (`MC_GLSL_VERSION`: `--glsl-version`, or what `--os` and `--mc-version` imply, such as GLSL
+/// 1.20 on macOS before Minecraft 1.17): that driver refuses it.
+fn above_configured_glsl(pre: &Preprocessed, macros: &PreprocessOptions) -> Option<Diagnostic> {
+    let highest: u32 = macros.predefined.iter().find(|(name, _)| name == "MC_GLSL_VERSION")?.1.parse().ok()?;
+    let version = pre.version.as_ref().filter(|v| v.number > highest && v.profile.as_deref() != Some("es"))?;
+    // Above macOS's own 4.1, `macos_refusals` says it.
+    let mac = macros.predefined.iter().any(|(name, _)| name == "MC_OS_MAC");
+    if mac && version.number > MACOS_GLSL {
+        return None;
+    }
+    let line = pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1);
+    Some(Diagnostic::error(
+        format!(
+            "`#version {}` is above GLSL {highest}, the highest this configuration's driver compiles (MC_GLSL_VERSION {highest}, from \
+             --glsl-version or what --os and --mc-version give): the program does not load there",
+            version.number
+        ),
+        pre.location(line),
+    ))
+}
+
 fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     let version_line = pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1);
@@ -169,6 +192,7 @@ pub(crate) fn check_compute(
     diags.extend(version_rules::check_compute(&pre).map(lenient_on_nvidia));
     diags.extend(version_rules::unknown_extensions(&pre));
     diags.extend(macos_refusals(&pre, true));
+    diags.extend(above_configured_glsl(&pre, macros));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {
             diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, program, names, loader));

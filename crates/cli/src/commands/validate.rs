@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use tidepack_glsl::Drivers;
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
-use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_gl_version, parse_mc_version};
+use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_gl_version, parse_mc_version, platform_gl_versions};
 use tidepack_validate::{Coverage, Options, Profiles, Shard, output};
 
 use super::configuration::ConfigurationArgs;
@@ -48,12 +48,14 @@ pub struct ValidateArgs {
     /// Minecraft version for MC_VERSION (default: the loader's).
     #[arg(long)]
     pub mc_version: Option<String>,
-    /// MC_GL_VERSION: 4.6 or 460.
-    #[arg(long, default_value = "460", value_parser = parse_gl_version)]
-    pub gl_version: u32,
-    /// MC_GLSL_VERSION, the driver's highest GLSL version: 4.6 or 460.
-    #[arg(long, default_value = "460", value_parser = parse_gl_version)]
-    pub glsl_version: u32,
+    /// MC_GL_VERSION: 4.6 or 460 (default: what the OS gives that Minecraft version: 2.1 on
+    /// macOS before 1.17, 4.1 on later macOS, else 4.6).
+    #[arg(long, value_parser = parse_gl_version)]
+    pub gl_version: Option<u32>,
+    /// MC_GLSL_VERSION, the driver's highest GLSL version: 4.6 or 460 (default: as for
+    /// --gl-version; 1.20 on macOS before 1.17). A stage whose #version is higher is an error.
+    #[arg(long, value_parser = parse_gl_version)]
+    pub glsl_version: Option<u32>,
     /// Operating system for MC_OS_*.
     #[arg(long, value_enum, default_value_t = OsArg::Linux)]
     pub os: OsArg,
@@ -118,14 +120,15 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         };
         macros.mc_version = mc_version;
     }
-    macros.gl_version = args.gl_version;
-    macros.glsl_version = args.glsl_version;
     macros.os = match args.os {
         OsArg::Windows => Os::Windows,
         OsArg::Mac => Os::Mac,
         OsArg::Linux => Os::Linux,
         OsArg::Other => Os::Other,
     };
+    let (gl_version, glsl_version) = platform_gl_versions(macros.os, macros.mc_version);
+    macros.gl_version = args.gl_version.unwrap_or(gl_version);
+    macros.glsl_version = args.glsl_version.unwrap_or(glsl_version);
     macros.vendor = match args.vendor {
         VendorArg::Amd => Vendor::Amd,
         VendorArg::Intel => Vendor::Intel,
