@@ -89,6 +89,7 @@ fn json_and_github_formats() {
     assert!(text(&out.stdout).lines().any(|l| l.starts_with("::warning ") && l.contains("gbuffers_terrain.fsh,line=8")), "{}", text(&out.stdout));
     let out = validate(&[drawbuffers.to_str().unwrap(), "--deny-warnings"]);
     assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("--deny-warnings: 1 warning"), "the failure says why: {}", text(&out.stderr));
 }
 
 #[test]

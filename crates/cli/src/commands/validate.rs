@@ -189,5 +189,13 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
     if written.is_err() {
         return ExitCode::from(2);
     }
-    if report.errors() > 0 || (args.deny_warnings && report.warnings() > 0) { ExitCode::from(1) } else { ExitCode::SUCCESS }
+    if report.errors() > 0 {
+        return ExitCode::from(1);
+    }
+    if args.deny_warnings && report.warnings() > 0 {
+        let plural = if report.warnings() == 1 { "" } else { "s" };
+        tell!("error: --deny-warnings: {} warning{plural} (listed above), so the check fails", report.warnings());
+        return ExitCode::from(1);
+    }
+    ExitCode::SUCCESS
 }
