@@ -873,6 +873,13 @@ impl<'a> Lowering<'_, 'a> {
                 _ if self.compute => Storage::Other,
                 other => other,
             };
+            // `out float gl_FragDepth;` (or with a conservative-depth layout) redeclares a
+            // built-in; naga has it already, and it is no stage input or output of the pack's.
+            let redeclares_builtin = decl.names.iter().all(|(name, _)| name.starts_with("gl_"));
+            if redeclares_builtin && matches!(storage, Storage::Attribute | Storage::Varying | Storage::FragmentOutput) {
+                self.replace(start, end, String::new());
+                continue;
+            }
             match storage {
                 Storage::Uniform => self.lower_uniform(&decl, start, end)?,
                 Storage::Attribute => {
