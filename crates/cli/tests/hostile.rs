@@ -143,13 +143,11 @@ fn cases(dir: &Path) -> Vec<Case> {
         bad_text.push((format!("shaders/lib/b{i}.glsl"), [b"//".as_slice(), &bytes, b"\n"].concat()));
         includes.push_str(&format!("#include \"/lib/b{i}.glsl\"\n"));
     }
-    let mut entries: Vec<(&str, Vec<u8>)> = bad_text.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    for p in ["composite", "composite1", "deferred", "final"] {
-        let stage: &'static str = Box::leak(format!("shaders/{p}.fsh").into_boxed_str());
-        let vertex: &'static str = Box::leak(format!("shaders/{p}.vsh").into_boxed_str());
-        entries.push((stage, program(&includes)));
-        entries.push((vertex, VSH.into()));
-    }
+    let stages: Vec<(String, Vec<u8>)> = ["composite", "composite1", "deferred", "final"]
+        .iter()
+        .flat_map(|p| [(format!("shaders/{p}.fsh"), program(&includes)), (format!("shaders/{p}.vsh"), VSH.into())])
+        .collect();
+    let entries = bad_text.iter().chain(&stages).map(|(n, b)| (n.as_str(), b.clone())).collect();
     validate("not_utf8", entries, 0, "not valid UTF-8");
     let long_line: Vec<u8> = [b"float x = 1.0".as_slice(), &incompressible(4 << 20, 7).iter().map(|b| b'a' + b % 26).collect::<Vec<u8>>(), b";\n"].concat();
     validate(
@@ -167,7 +165,6 @@ fn cases(dir: &Path) -> Vec<Case> {
     validate("profile_lattice", vec![("shaders/composite.vsh", VSH.into()), ("shaders/composite.fsh", program("")), ("shaders/shaders.properties", lattice.into_bytes())], 0, "");
     let nested = "(".repeat(200_000) + "1.0" + &")".repeat(200_000);
     validate("deep_parentheses", vec![("shaders/composite.vsh", VSH.into()), ("shaders/composite.fsh", program(&format!("float x = {nested};")))], 1, "");
-    let mut cases = cases;
     let mut all_profiles = |name: &'static str, zip: &str, code: i32, says: &'static str| {
         cases.push(Case { name, args: vec!["validate".into(), shown(at(zip)), "--all-profiles".into()], code, says });
     };

@@ -53,22 +53,21 @@ fn render_writes_the_image_and_a_report() {
 #[test]
 fn a_bad_option_is_a_usage_error_shown_on_one_line() {
     let out = tempfile::tempdir().unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_tidepack"))
-        .args(["render", "tests/scenes/case1_above_dry.toml", "--set", "NO_SUCH_OPTION=1", "--set", "FOAM=x\r\nerror: forged\x1b[2J", "--out"])
-        .arg(out.path())
-        .current_dir(repo_root())
-        .output()
-        .expect("run tidepack");
+    let render_dry = |sets: &[&str]| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_tidepack"));
+        command.args(["render", "tests/scenes/case1_above_dry.toml"]);
+        for set in sets {
+            command.args(["--set", set]);
+        }
+        command.arg("--out").arg(out.path()).current_dir(repo_root()).output().expect("run tidepack")
+    };
+    let forged = "FOAM=x\r\nerror: forged\x1b[2J";
+    let output = render_dry(&["NO_SUCH_OPTION=1", forged]);
     assert_eq!(output.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("NO_SUCH_OPTION"), "{stderr}");
     assert!(!out.path().join("case1_above_dry.png").exists());
-    let output = Command::new(env!("CARGO_BIN_EXE_tidepack"))
-        .args(["render", "tests/scenes/case1_above_dry.toml", "--set", "FOAM=x\r\nerror: forged\x1b[2J", "--out"])
-        .arg(out.path())
-        .current_dir(repo_root())
-        .output()
-        .expect("run tidepack");
+    let output = render_dry(&[forged]);
     assert_eq!(output.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("x^M^Jerror: forged^[[2J") && !stderr.contains('\x1b') && !stderr.contains('\r'), "{stderr}");

@@ -116,15 +116,20 @@ pub struct Diagnostic {
 /// megabytes of it.
 pub const MAX_MESSAGE_BYTES: usize = 1000;
 
+/// The largest character boundary of `text` at or below `index` (which is at most its length).
+fn floor_char_boundary(text: &str, mut index: usize) -> usize {
+    while !text.is_char_boundary(index) {
+        index -= 1;
+    }
+    index
+}
+
 /// `text` cut to [`MAX_MESSAGE_BYTES`] at a character boundary, saying how much was left out.
 fn clipped(text: String) -> String {
     if text.len() <= MAX_MESSAGE_BYTES {
         return text;
     }
-    let mut end = MAX_MESSAGE_BYTES;
-    while !text.is_char_boundary(end) {
-        end -= 1;
-    }
+    let end = floor_char_boundary(&text, MAX_MESSAGE_BYTES);
     format!("{}… ({} more bytes)", &text[..end], text.len() - end)
 }
 
@@ -227,14 +232,8 @@ fn long_line_window(text: &str, line: u32, span: Range<usize>) -> Option<(String
     if end - start <= MAX_SNIPPET_LINE_BYTES {
         return None;
     }
-    let floor = |mut i: usize| {
-        while !text.is_char_boundary(i) {
-            i -= 1;
-        }
-        i
-    };
-    let from = floor(span.start.saturating_sub(MAX_SNIPPET_LINE_BYTES / 4).max(start));
-    let to = floor((from + MAX_SNIPPET_LINE_BYTES).min(end));
+    let from = floor_char_boundary(text, span.start.saturating_sub(MAX_SNIPPET_LINE_BYTES / 4).max(start));
+    let to = floor_char_boundary(text, (from + MAX_SNIPPET_LINE_BYTES).min(end));
     let mut window = "\n".repeat(line as usize - 1);
     let offset = window.len();
     window.push_str(&text[from..to]);

@@ -79,13 +79,24 @@ pub const MAX_NAGA_LINES: usize = 40_000;
 /// grows with the product (2,500 of each take 760 MiB). Released packs stay far below.
 pub const MAX_NAGA_FUNCTIONS_TIMES_GLOBALS: usize = 2_000_000;
 
-/// The function definitions and the global declarations (top-level `;`) of a lowered stage.
-fn functions_and_globals(text: &str) -> (usize, usize) {
-    let Ok(tokens) = tidepack_glsl::token::tokenize(text) else { return (0, 0) };
+/// Which budget of naga's a lowered stage exceeds, said in full; checked in the order of their
+/// cost (lines are counted without tokenizing).
+fn over_naga_budget(text: &str) -> Option<String> {
+    let lines = text.lines().count();
+    if lines > MAX_NAGA_LINES {
+        return Some(format!("{lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"));
+    }
+    // Function definitions, and global declarations (top-level `;`).
+    let tokens = tidepack_glsl::token::tokenize(text).ok()?;
     let functions = tidepack_glsl::token::function_definitions(&tokens).len();
     let depths = tidepack_glsl::token::brace_depths(&tokens);
     let globals = tokens.iter().zip(&depths).filter(|(t, depth)| **depth == 0 && t.is_punct(";")).count();
-    (functions, globals)
+    (functions.saturating_mul(globals) > MAX_NAGA_FUNCTIONS_TIMES_GLOBALS).then(|| {
+        format!(
+            "{functions} functions times {globals} global declarations after preprocessing, more than the \
+             {MAX_NAGA_FUNCTIONS_TIMES_GLOBALS} naga is given (its memory grows with the product)"
+        )
+    })
 }
 
 /// Stack of each naga worker: naga's parser and validator recurse once per nesting level.
@@ -116,24 +127,8 @@ fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, s
 pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, set: &OptionSet) -> Vec<Diagnostic> {
     let provider = SetProvider::new(pack, set);
     let entry = &job.stage.preprocessed().files[0];
-    let lines = job.stage.text().lines().count();
-    if lines > MAX_NAGA_LINES {
-        let diag = Diagnostic::warning(
-            format!("not validated: {lines} lines after preprocessing, more than the {MAX_NAGA_LINES} naga is given"),
-            Some(Location::line(entry.clone(), 1)),
-        );
-        return vec![diag];
-    }
-    let (functions, globals) = functions_and_globals(job.stage.text());
-    if functions.saturating_mul(globals) > MAX_NAGA_FUNCTIONS_TIMES_GLOBALS {
-        let diag = Diagnostic::warning(
-            format!(
-                "not validated: {functions} functions times {globals} global declarations after preprocessing, more than the \
-                 {MAX_NAGA_FUNCTIONS_TIMES_GLOBALS} naga is given (its memory grows with the product)"
-            ),
-            Some(Location::line(entry.clone(), 1)),
-        );
-        return vec![diag];
+    if let Some(over) = over_naga_budget(job.stage.text()) {
+        return vec![Diagnostic::warning(format!("not validated: {over}"), Some(Location::line(entry.clone(), 1)))];
     }
     let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
         JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),

@@ -92,21 +92,24 @@ fn above_configured_glsl(pre: &Preprocessed, macros: &PreprocessOptions) -> Opti
     if mac && version.number > MACOS_GLSL {
         return None;
     }
-    let line = pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1);
     Some(Diagnostic::error(
         format!(
             "`#version {}` is above GLSL {highest}, the highest this configuration's driver compiles (MC_GLSL_VERSION {highest}, from \
              --glsl-version or what --os and --mc-version give): the program does not load there",
             version.number
         ),
-        pre.location(line),
+        pre.location(version_line(pre)),
     ))
+}
+
+/// The 1-based line of the preprocessed text that holds `#version` (1 when none does).
+fn version_line(pre: &Preprocessed) -> u32 {
+    pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1)
 }
 
 fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
     let mut found = Vec::new();
-    let version_line = pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1);
-    let entry = || pre.location(version_line).or_else(|| Some(Location::line(pre.files[0].clone(), 1)));
+    let entry = || pre.location(version_line(pre)).or_else(|| Some(Location::line(pre.files[0].clone(), 1)));
     let macos = |message: String, at: Option<Location>| Diagnostic::error(message, at).refused_by(Drivers::MACOS);
     if compute {
         found.push(macos("compute shaders need OpenGL 4.3; macOS stops at 4.1, so this pass does not run there".into(), entry()));

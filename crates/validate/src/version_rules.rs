@@ -48,17 +48,20 @@ const REMOVED_IN_CORE: [&str; 22] = [
     "texture2DLod", "shadow2D", "texture3D",
 ];
 
-fn enabled_extensions(text: &str) -> BTreeSet<String> {
-    let mut found = BTreeSet::new();
-    for line in text.lines() {
+/// The `#extension NAME : BEHAVIOUR` lines of `text`: the 0-based line, the name and the
+/// behaviour.
+fn extension_directives(text: &str) -> impl Iterator<Item = (usize, &str, &str)> {
+    text.lines().enumerate().filter_map(|(index, line)| {
         let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
-        if let ["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..] = words.as_slice()
-            && *behaviour != "disable"
-        {
-            found.insert(name.to_string());
+        match words.as_slice() {
+            ["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..] => Some((index, *name, *behaviour)),
+            _ => None,
         }
-    }
-    found
+    })
+}
+
+fn enabled_extensions(text: &str) -> BTreeSet<String> {
+    extension_directives(text).filter(|(_, _, behaviour)| *behaviour != "disable").map(|(_, name, _)| name.to_string()).collect()
 }
 
 /// The extension names GLSL compilers know: the union of the tables of Mesa's GLSL compiler
@@ -72,17 +75,15 @@ const KNOWN_EXTENSIONS: &str = include_str!("glsl_extensions.txt");
 /// among the drivers said to refuse it.
 pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
     let mut found = Vec::new();
-    for (index, line) in pre.text.lines().enumerate() {
-        let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
-        let (["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..]) = words.as_slice() else { continue };
+    for (index, name, behaviour) in extension_directives(&pre.text) {
         let at = pre.location(index as u32 + 1);
-        if *name == "all" {
-            if matches!(*behaviour, "require" | "enable") {
+        if name == "all" {
+            if matches!(behaviour, "require" | "enable") {
                 found.push(Diagnostic::error(format!("`#extension all : {behaviour}` is not allowed: `all` takes only `warn` or `disable`"), at));
             }
             continue;
         }
-        if *behaviour == "disable" || KNOWN_EXTENSIONS.lines().any(|known| known == *name) {
+        if behaviour == "disable" || KNOWN_EXTENSIONS.lines().any(|known| known == name) {
             continue;
         }
         let vendor = name.strip_prefix("GL_").and_then(|rest| rest.split('_').next()).unwrap_or("");
@@ -94,7 +95,7 @@ pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
             _ => Drivers::NONE,
         };
         let message = format!("`{name}` is an extension no GLSL compiler knows (Mesa's and glslang's tables): a misspelling?");
-        found.push(match *behaviour {
+        found.push(match behaviour {
             "require" => Diagnostic::error(message, at)
                 .with_note("with `require`, drivers that do not have it refuse the shader")
                 .refused_by(Drivers::ALL.without(own_driver)),
