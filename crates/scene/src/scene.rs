@@ -460,6 +460,10 @@ mod tests {
         let wide = case4().replacen("min = [-32.0, -32.0]\nmax = [32.0, 22.0]", "min = [-1e6, -1e6]\nmax = [1e6, 1e6]", 1);
         let error = load_text(&wide).unwrap_err();
         assert!(error.contains("budget of 200000") && error.contains("edited.toml"), "{error}");
+        // Found by the scene fuzz target: 810,000 cells of water made a mesh of over 600 MiB.
+        let broad = case4().replacen("min = [-32.0, -32.0]\nmax = [32.0, 22.0]", "min = [-450.0, -450.0]\nmax = [450.0, 450.0]", 1);
+        let error = load_text(&broad).unwrap_err();
+        assert!(error.contains("814058 quads") && error.contains("budget of 200000"), "{error}");
         let far = case4().replacen("position = [0.0, 67.0, -2.0]", "position = [1e308, 67.0, -2.0]", 1);
         let error = load_text(&far).unwrap_err();
         assert!(error.contains("the camera") && error.contains("world border"), "{error}");
