@@ -53,6 +53,12 @@ enum Command {
     /// between stages, render targets, uniforms and samplers. Exit 0: clean; 1: shader
     /// errors; 2: unreadable input.
     Validate(commands::validate::ValidateArgs),
+    /// List the diagnostic codes `--allow` and `--deny` take, with what each is about.
+    Codes {
+        /// Print docs/diagnostics.md instead: the codes as a Markdown page.
+        #[arg(long)]
+        markdown: bool,
+    },
     /// Render one scene (tests/scenes/*.toml) headless through the harness: writes
     /// OUT/<scene>.png and OUT/<scene>.json (pass times, adapter, resolution, dialect, options).
     #[cfg(feature = "render")]
@@ -81,6 +87,13 @@ enum DialectArg {
 }
 
 fn main() -> ExitCode {
+    // Output piped into `head` or a pager that closes early ends the process quietly, as other
+    // command-line tools do, instead of panicking on the failed write.
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default, before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     // A panic inside naga becomes a diagnostic; its panic message would only repeat it raw.
     let report_panic = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -101,6 +114,7 @@ fn main() -> ExitCode {
             commands::build::run(opts, scene.as_deref())
         }
         Command::Validate(args) => commands::validate::run(&args),
+        Command::Codes { markdown } => commands::validate::list_codes(markdown),
         #[cfg(feature = "render")]
         Command::Render(args) => commands::render::run(&args),
         #[cfg(feature = "render")]

@@ -325,8 +325,9 @@ fn an_option_no_program_reads_is_warned_about() {
 fn bad_manifests_and_missing_sources_are_clear_errors() {
     let out = tempfile::tempdir().unwrap();
     let output = build_into(Path::new("/nonexistent/pack"), out.path(), &[]);
-    assert_eq!(output.status.code(), Some(1));
-    assert!(stderr(&output).contains("/nonexistent/pack/pack.toml"), "{}", stderr(&output));
+    assert_eq!(output.status.code(), Some(2));
+    let err = stderr(&output);
+    assert!(err.contains("/nonexistent/pack holds no pack.toml") && err.contains("--source PATH"), "{err}");
 
     let work = tempfile::tempdir().unwrap();
     let source = work.path().join("pack");
@@ -451,7 +452,10 @@ fn build_for_a_scene_folds_its_uniforms_validates_and_measures_the_speedup() {
         assert!(result.status.success(), "{}\n{text}", String::from_utf8_lossy(&result.stdout));
     }
     // The speedup is measured (a figure, never asserted) and the picture is unchanged.
-    assert!(stdout.contains("x faster, median of"), "{stdout}");
+    assert!(
+        ["x faster, median of", "x slower, median of"].iter().any(|said| stdout.contains(said)),
+        "{stdout}"
+    );
     let images = stdout.lines().find(|l| l.contains("images differ by at most")).expect("image comparison line");
     let differences: Vec<f64> = images
         .split_whitespace()

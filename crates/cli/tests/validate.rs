@@ -38,7 +38,7 @@ fn exit_codes_follow_the_verdict() {
     let out = validate(&[planted.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
-    assert!(stderr.contains("error: Unknown variable: colr"), "{stderr}");
+    assert!(stderr.contains("error[glsl]: Unknown variable: colr"), "{stderr}");
     assert!(stderr.contains("undeclared_identifier/shaders/lib/color.glsl:4:"), "{stderr}");
     assert!(stderr.contains("return saturate3(colr);"), "snippet missing: {stderr}");
 
@@ -202,4 +202,98 @@ fn an_os_and_minecraft_version_imply_their_glsl_limit() {
     assert_eq!(validate(&[legacy.to_str().unwrap(), "--os", "mac", "--mc-version", "1.16.5"]).status.code(), Some(0));
     let explicit = validate(&[core330, "--glsl-version", "1.5"]);
     assert!(String::from_utf8_lossy(&explicit.stderr).contains("above GLSL 150"));
+}
+
+/// A pack with `count` fragment uniforms no loader sets, each read (an `unknown-uniform`
+/// warning apiece), and one `#if` on an undefined macro (an `undefined-in-if` warning).
+fn pack_with_unknown_uniforms(count: usize) -> (tempfile::TempDir, PathBuf) {
+    let declared: String = (0..count).map(|i| format!("uniform float mystery{i};\n")).collect();
+    let read: String = (0..count).map(|i| format!(" + mystery{i}")).collect();
+    pack_with_fragment(&format!(
+        "#version 120\n{declared}#if SOMETHING_UNDEFINED\n#endif\nvoid main() {{ gl_FragColor = vec4(0.0{read}); }}\n"
+    ))
+}
+
+#[test]
+fn codes_are_shown_counted_allowed_and_denied() {
+    let (_dir, pack) = pack_with_unknown_uniforms(3);
+    let path = pack.to_str().unwrap();
+    let out = validate(&[path]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("warning[unknown-uniform]: `mystery0` is not a uniform"), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("by code: unknown-uniform 3 warnings, undefined-in-if 1 warning"), "{}", text(&out.stdout));
+
+    let out = validate(&[path, "--allow", "unknown-uniform"]);
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("allowed, not shown: unknown-uniform 3") && stdout.contains("0 errors, 1 warnings"), "{stdout}");
+    assert!(!text(&out.stderr).contains("mystery"), "{}", text(&out.stderr));
+
+    let out = validate(&[path, "--deny", "undefined-in-if,unknown-uniform", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(1), "a denied warning fails the check");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let codes: Vec<(&str, &str)> =
+        json["diagnostics"].as_array().unwrap().iter().map(|d| (d["code"].as_str().unwrap(), d["severity"].as_str().unwrap())).collect();
+    assert_eq!(codes.iter().filter(|c| **c == ("unknown-uniform", "error")).count(), 3, "{codes:?}");
+    assert!(codes.contains(&("undefined-in-if", "error")), "{codes:?}");
+
+    for (args, said) in [
+        (vec!["--allow", "unknown-uniforms"], "did you mean unknown-uniform"),
+        (vec!["--allow", "link", "--deny", "link"], "contradict"),
+    ] {
+        let out = validate(&[&[path][..], &args].concat());
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(text(&out.stderr).contains(said), "{args:?}: {}", text(&out.stderr));
+    }
+}
+
+#[test]
+fn a_tidepack_toml_beside_the_pack_sets_the_levels_and_the_command_line_goes_over_it() {
+    let (_dir, pack) = pack_with_unknown_uniforms(2);
+    let path = pack.to_str().unwrap();
+    std::fs::write(pack.join("tidepack.toml"), "[validate]\ndeny = [\"unknown-uniform\"]\n").unwrap();
+    assert_eq!(validate(&[path]).status.code(), Some(1));
+    assert_eq!(validate(&[path, "--allow", "unknown-uniform"]).status.code(), Some(0));
+
+    // A mistake in the file is a usage error at its line, whichever way the file is found.
+    std::fs::write(pack.join("tidepack.toml"), "[validate]\ndeny = [\n  \"unknown-uniform\",\n  \"no-such-code\",\n]\n").unwrap();
+    let config = pack.join("tidepack.toml");
+    for args in [vec![path], vec![path, "--config", config.to_str().unwrap()]] {
+        let out = validate(&args);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(text(&out.stderr).contains("tidepack.toml:4"), "{}", text(&out.stderr));
+    }
+    let out = validate(&[path, "--config", "/nonexistent/tidepack.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("/nonexistent/tidepack.toml"), "{}", text(&out.stderr));
+}
+
+#[test]
+fn github_annotates_every_error_ten_warnings_and_the_summary_has_them_all() {
+    let (dir, pack) = pack_with_unknown_uniforms(25);
+    let summary = dir.path().join("summary.md");
+    std::fs::write(&summary, "earlier step\n").unwrap();
+    let out = validate(&[pack.to_str().unwrap(), "--format", "github", "--summary", summary.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    let annotations = text(&out.stdout);
+    let warnings: Vec<&str> = annotations.lines().filter(|l| l.starts_with("::warning ")).collect();
+    assert_eq!(warnings.len(), 10, "{annotations}");
+    // Taken a code at a time: the one undefined-in-if warning is among the ten.
+    assert!(warnings.iter().any(|l| l.contains("title=tidepack validate [undefined-in-if]")), "{annotations}");
+    assert!(annotations.lines().any(|l| l.starts_with("::notice ") && l.contains("16 more warnings")), "{annotations}");
+
+    let markdown = std::fs::read_to_string(&summary).unwrap();
+    assert!(markdown.starts_with("earlier step\n### tidepack validate"), "appended: {markdown}");
+    assert!(markdown.contains("| `unknown-uniform` | 0 | 25 |"), "{markdown}");
+    assert_eq!((0..25).filter(|i| markdown.contains(&format!("`mystery{i}`"))).count(), 25, "{markdown}");
+}
+
+#[test]
+fn the_codes_command_lists_every_code() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tidepack")).arg("codes").output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let listed = text(&out.stdout);
+    for code in tidepack_glsl::Code::ALL {
+        assert!(listed.lines().any(|l| l.split_whitespace().next() == Some(code.name())), "{code} missing: {listed}");
+    }
 }

@@ -8,6 +8,7 @@ use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor::WriteColor};
 
 use crate::terminal;
+pub use crate::code::Code;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
@@ -102,6 +103,8 @@ impl Drivers {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
     pub severity: Severity,
+    /// What it is about: the name `--allow` and `--deny` take.
+    pub code: Code,
     pub message: String,
     pub location: Option<Location>,
     /// Further context, each printed as a `= note:` line.
@@ -134,12 +137,12 @@ fn clipped(text: String) -> String {
 }
 
 impl Diagnostic {
-    pub fn error(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Error, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::ALL }
+    pub fn error(code: Code, message: impl Into<String>, location: Option<Location>) -> Self {
+        Diagnostic { severity: Severity::Error, code, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::ALL }
     }
 
-    pub fn warning(message: impl Into<String>, location: Option<Location>) -> Self {
-        Diagnostic { severity: Severity::Warning, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::NONE }
+    pub fn warning(code: Code, message: impl Into<String>, location: Option<Location>) -> Self {
+        Diagnostic { severity: Severity::Warning, code, message: clipped(message.into()), location, notes: Vec::new(), refused_by: Drivers::NONE }
     }
 
     /// The same diagnostic, said to be refused by `drivers` only.
@@ -167,7 +170,7 @@ impl fmt::Display for Diagnostic {
         if let Some(loc) = &self.location {
             write!(f, "{loc}: ")?;
         }
-        write!(f, "{kind}: {}", self.message)?;
+        write!(f, "{kind}[{}]: {}", self.code, self.message)?;
         for note in &self.notes {
             write!(f, "\n  = note: {note}")?;
         }
@@ -193,6 +196,7 @@ pub fn emit(
             Severity::Error => codespan_reporting::diagnostic::Severity::Error,
         };
         let mut out = CsDiagnostic::new(severity)
+            .with_code(diag.code.name())
             .with_message(terminal::block(&diag.message))
             .with_notes(diag.notes.iter().map(|n| terminal::block(n)).collect());
         if let Some(loc) = &diag.location {
@@ -273,7 +277,7 @@ mod tests {
 
     #[test]
     fn renders_snippet_with_file_and_line() {
-        let diag = Diagnostic::error("unknown identifier `foo`", Some(Location::line("lib/water.glsl", 2)));
+        let diag = Diagnostic::error(Code::Glsl, "unknown identifier `foo`", Some(Location::line("lib/water.glsl", 2)));
         let mut out = NoColor::new(Vec::new());
         emit(&mut out, &[diag], &|_| Some("a;\n  foo = 1;\n".into())).unwrap();
         let text = String::from_utf8(out.into_inner()).unwrap();
@@ -286,7 +290,7 @@ mod tests {
         let line = format!("{}oops{}", "a+".repeat(500_000), "+b".repeat(500_000));
         let text = format!("first\n{line}\n");
         let at = 6 + 1_000_000;
-        let diag = Diagnostic::error("unknown identifier `oops`", Some(Location { path: "lib/min.glsl".into(), line: 2, columns: Some(at - 6..at - 2) }));
+        let diag = Diagnostic::error(Code::Glsl, "unknown identifier `oops`", Some(Location { path: "lib/min.glsl".into(), line: 2, columns: Some(at - 6..at - 2) }));
         let mut out = NoColor::new(Vec::new());
         emit(&mut out, &[diag], &|_| Some(text.clone())).unwrap();
         let shown = String::from_utf8(out.into_inner()).unwrap();
@@ -298,7 +302,7 @@ mod tests {
     #[test]
     fn nothing_from_a_pack_reaches_the_terminal_raw() {
         // An `#error` text, a file name and a source line, each with escapes and line breaks.
-        let diag = Diagnostic::error("#error \x1b[2Jgone\r\nerror: forged", Some(Location::line("lib/\x1b]0;title\x07a.glsl", 1)))
+        let diag = Diagnostic::error(Code::Preprocessor, "#error \x1b[2Jgone\r\nerror: forged", Some(Location::line("lib/\x1b]0;title\x07a.glsl", 1)))
             .with_note("note \x1b[31mred");
         let mut out = NoColor::new(Vec::new());
         emit(&mut out, &[diag], &|_| Some("float x = 1.0; // \x1b[1m\u{202E}\n".into())).unwrap();
@@ -309,7 +313,7 @@ mod tests {
 
     #[test]
     fn a_message_quoting_megabytes_is_cut() {
-        let diag = Diagnostic::error(format!("unexpected `{}`", "é".repeat(1 << 20)), None).with_note("x".repeat(5000));
+        let diag = Diagnostic::error(Code::Glsl, format!("unexpected `{}`", "é".repeat(1 << 20)), None).with_note("x".repeat(5000));
         assert!(diag.message.len() < MAX_MESSAGE_BYTES + 40 && diag.message.ends_with("more bytes)"), "{}", diag.message.len());
         assert!(diag.notes[0].len() < MAX_MESSAGE_BYTES + 40);
     }

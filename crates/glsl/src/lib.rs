@@ -6,6 +6,7 @@
 //! → [`lower`] (line-preserving token rewrites to GLSL 450) → [`naga_check`] (naga parse and
 //! validation, errors mapped through the preprocessor's line map).
 
+pub mod code;
 pub mod diagnostic;
 pub mod lower;
 pub mod naga_check;
@@ -13,5 +14,6 @@ pub mod preprocess;
 pub mod terminal;
 pub mod token;
 
+pub use code::Code;
 pub use diagnostic::{Diagnostic, Drivers, Location, Severity};
 pub use lower::Stage;

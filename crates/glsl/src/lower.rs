@@ -382,10 +382,63 @@ pub struct VaryingDecl {
 }
 
 impl VaryingDecl {
-    /// Locations the varying takes: one per array element, times one per matrix column.
-    pub fn locations(&self) -> u32 {
-        self.array.unwrap_or(1).max(1).saturating_mul(matrix_shape(&self.ty).map_or(1, |(columns, _)| columns))
+    /// Locations the varying takes: one per array element, times one per matrix column or
+    /// the locations of a struct's members (`structs`: those of the stage's struct types).
+    pub fn locations(&self, structs: &BTreeMap<String, u32>) -> u32 {
+        self.array.unwrap_or(1).max(1).saturating_mul(type_locations(&self.ty, structs))
     }
+}
+
+/// Locations one value of `ty` takes as a varying: a matrix one per column, a struct the sum
+/// of its members', anything else one.
+fn type_locations(ty: &str, structs: &BTreeMap<String, u32>) -> u32 {
+    matrix_shape(ty).map(|(columns, _)| columns).or_else(|| structs.get(ty).copied()).unwrap_or(1)
+}
+
+/// The locations each struct type of a stage takes as a varying, from its definition
+/// (`struct S { vec3 a; mat2 b[2]; } ;`): its members' locations summed, nested structs
+/// counted by their own definitions.
+fn struct_locations(sig: &[&Token<'_>]) -> BTreeMap<String, u32> {
+    let mut structs = BTreeMap::new();
+    let mut i = 0;
+    while i + 2 < sig.len() {
+        if !(sig[i].is_ident("struct") && sig[i + 1].kind == TokenKind::Ident && sig[i + 2].is_punct("{")) {
+            i += 1;
+            continue;
+        }
+        let name = sig[i + 1].text.to_string();
+        let mut total = 0u32;
+        let mut j = i + 3;
+        // One member declaration per `;`: qualifiers, a type, then names with array suffixes.
+        while j < sig.len() && !sig[j].is_punct("}") {
+            let end = (j..sig.len()).find(|&k| sig[k].is_punct(";") || sig[k].is_punct("}")).unwrap_or(sig.len());
+            let member = &sig[j..end];
+            let words: Vec<usize> = (0..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
+            let type_at = words.iter().copied().find(|&k| !is_precision(member[k].text) && !matches!(member[k].text, "flat" | "smooth" | "noperspective" | "centroid" | "highp" | "const"));
+            if let Some(type_at) = type_at {
+                let per_value = type_locations(member[type_at].text, &structs);
+                let mut k = type_at + 1;
+                while k < member.len() {
+                    if member[k].kind == TokenKind::Ident {
+                        let mut count = 1u32;
+                        while k + 1 < member.len() && member[k + 1].is_punct("[") {
+                            let close = (k + 1..member.len()).find(|&c| member[c].is_punct("]")).unwrap_or(member.len() - 1);
+                            let inner: Vec<&str> = member[k + 2..close].iter().map(|t| t.text).collect();
+                            let size = literal_integer_expression(&inner.join(" ")).and_then(|n| u32::try_from(n).ok()).unwrap_or(1);
+                            count = count.saturating_mul(size.max(1));
+                            k = close;
+                        }
+                        total = total.saturating_add(per_value.saturating_mul(count));
+                    }
+                    k += 1;
+                }
+            }
+            j = if end < sig.len() && sig[end].is_punct(";") { end + 1 } else { end };
+        }
+        structs.insert(name, total.max(1));
+        i = j;
+    }
+    structs
 }
 
 /// Columns and rows of a float matrix type (`mat3` → 3×3, `mat2x4` → 2 columns of 4).
@@ -461,10 +514,11 @@ pub fn varying_declarations(text: &str, stage: Stage, version: u32) -> Result<Ve
 /// Names of the varyings a stage declares or uses through legacy built-ins, with the number
 /// of locations each takes.
 pub fn varyings_of(text: &str, stage: Stage, version: u32) -> Result<Vec<(String, u32)>, LowerError> {
-    let mut names: Vec<(String, u32)> =
-        varying_declarations(text, stage, version)?.iter().map(|d| (d.name.clone(), d.locations())).collect();
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let structs = struct_locations(&sig);
+    let mut names: Vec<(String, u32)> =
+        varying_declarations(text, stage, version)?.iter().map(|d| (d.name.clone(), d.locations(&structs))).collect();
     for (i, t) in sig.iter().enumerate() {
         if let Some(reserved) = legacy_varying(t.text, stage) {
             names.push((reserved.to_string(), 1));
@@ -2279,6 +2333,15 @@ mod tests {
 
     /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
     /// was not built with.
+    #[test]
+    fn struct_and_matrix_varyings_take_a_location_per_member_and_column() {
+        let vertex = "#version 400 compatibility\nstruct Inner { vec2 a[3]; };\nstruct Fog { vec3 color; mat3 basis; Inner inner; float density, height; };\n\
+                      flat out Fog fog;\nout mat4 frame;\nout vec2 uv;\nvoid main() { gl_Position = vec4(0.0); }\n";
+        let layout = VaryingLayout::for_program(&[(Stage::Vertex, vertex, 400)]).unwrap();
+        // fog: 1 + 3 + 3 + 2 = 9 locations, frame: 4, in name order.
+        assert_eq!(layout.locations, BTreeMap::from([("fog".to_string(), 0), ("frame".to_string(), 9), ("uv".to_string(), 13)]));
+    }
+
     #[test]
     fn a_legacy_varying_outside_the_layout_gets_a_location_of_its_own() {
         let text = "#version 120\nvoid main() {\n    gl_Position = ftransform();\n    gl_FrontColor = gl_Color;\n    gl_TexCoord[0] = gl_MultiTexCoord0;\n}\n";

@@ -1,6 +1,7 @@
 //! A whole program through the toolchain: preprocess each stage, lower it, parse and validate
 //! the lowered text with naga, and report every error at the pack file and line it came from.
 
+use crate::Code;
 use std::error::Error as _;
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -31,7 +32,7 @@ pub struct LoweredCompute {
 
 /// Lowers a preprocessed compute stage.
 pub fn lower_compute(pre: Arc<Preprocessed>) -> Result<LoweredCompute, Diagnostic> {
-    let lowered = lower::lower_compute(&pre.text).map_err(|e| Diagnostic::error(e.message, pre.location(e.line)))?;
+    let lowered = lower::lower_compute(&pre.text).map_err(|e| Diagnostic::error(Code::Glsl, e.message, pre.location(e.line)))?;
     Ok(LoweredCompute { preprocessed: pre, lowered })
 }
 
@@ -49,13 +50,13 @@ pub fn lower_program(stages: &[(Stage, Arc<Preprocessed>)]) -> Result<Vec<Lowere
         stages.iter().map(|(stage, pre)| (*stage, pre.text.as_str(), version_of(pre))).collect();
     let layout = VaryingLayout::for_program(&texts).map_err(|e| {
         let pre = &stages.iter().find(|(_, p)| p.location(e.line).is_some()).expect("a stage").1;
-        Diagnostic::error(e.message, pre.location(e.line))
+        Diagnostic::error(Code::Glsl, e.message, pre.location(e.line))
     })?;
     stages
         .iter()
         .map(|(stage, pre)| {
             let lowered = lower::lower(&pre.text, *stage, &layout)
-                .map_err(|e| Diagnostic::error(e.message, pre.location(e.line)))?;
+                .map_err(|e| Diagnostic::error(Code::Glsl, e.message, pre.location(e.line)))?;
             Ok(LoweredStage { stage: *stage, preprocessed: pre.clone(), lowered })
         })
         .collect()
@@ -135,7 +136,7 @@ fn validate_text(
     provider: &dyn FileProvider,
 ) -> Result<ValidStage, Vec<Diagnostic>> {
     if let Some((line, message)) = too_complex(&lowered.text) {
-        return Err(vec![Diagnostic::error(message, pre.location(line))]);
+        return Err(vec![Diagnostic::error(Code::Glsl, message, pre.location(line))]);
     }
     // GLSL converts int to float where naga wants the types to match: each such error is
     // repaired in the text (line for line) and naga runs again.
@@ -242,7 +243,7 @@ fn run_naga(frontend: &mut Frontend, naga_stage: naga::ShaderStage, text: &str) 
         });
         match worker {
             Ok(handle) => Ok(handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))),
-            Err(e) => Err(vec![Diagnostic::error(format!("cannot start naga's thread: {e}"), None)]),
+            Err(e) => Err(vec![Diagnostic::error(Code::NotChecked, format!("cannot start naga's thread: {e}"), None)]),
         }
     })
 }
@@ -1022,7 +1023,7 @@ fn diagnostic_at(
 ) -> Diagnostic {
     let Some(at) = at else {
         let entry = pre.files.first().map_or("the shader", String::as_str);
-        return Diagnostic::error(message, None).with_note(format!("naga gives no line; the error is in {entry}"));
+        return Diagnostic::error(Code::Glsl, message, None).with_note(format!("naga gives no line; the error is in {entry}"));
     };
     let mut location = pre.location(at.line_number);
     if let Some(loc) = &mut location {
@@ -1032,7 +1033,7 @@ fn diagnostic_at(
             loc.columns = unique_columns(provider, loc, token);
         }
     }
-    Diagnostic::error(message, location)
+    Diagnostic::error(Code::Glsl, message, location)
 }
 
 fn unique_columns(provider: &dyn FileProvider, loc: &Location, token: &str) -> Option<std::ops::Range<usize>> {

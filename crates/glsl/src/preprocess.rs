@@ -7,6 +7,7 @@
 //! Comments are dropped (their line breaks kept); the loader's comment directives
 //! (`/* DRAWBUFFERS:.. */`, `/* RENDERTARGETS: .. */`) are recorded when they are active.
 
+use crate::Code;
 use std::collections::{BTreeSet, HashMap};
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -144,13 +145,13 @@ pub fn preprocess(
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
-            Diagnostic::error(format!("predefined macro {name}: {}", e.message), None)
+            Diagnostic::error(Code::Preprocessor, format!("predefined macro {name}: {}", e.message), None)
         })?);
         pp.macros.insert(name.clone(), Macro { params: None, body });
     }
     // A shader without `#version` is GLSL 1.10.
     pp.define_version_macros(&VersionDirective { number: 110, profile: None });
-    let text = provider.read(entry).map_err(|e| Diagnostic::error(format!("cannot read {entry}: {e}"), None))?;
+    let text = provider.read(entry).map_err(|e| Diagnostic::error(Code::PackInput, format!("cannot read {entry}: {e}"), None))?;
     pp.process_file(entry, &text)?;
     debug_assert_eq!(pp.out.text.matches('\n').count(), pp.out.lines.len(), "one source line per output line");
     Ok(pp.out)
@@ -283,7 +284,7 @@ impl Preprocessor<'_> {
 
     fn process_file(&mut self, path: &str, text: &str) -> Result<(), Diagnostic> {
         let file = self.file_id(path);
-        let err_at = |line: u32, msg: String| Diagnostic::error(msg, Some(Location::line(path, line)));
+        let err_at = |line: u32, msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, line)));
         let tokens = tokenize(text).map_err(|e| err_at(e.line, e.message))?;
         let lines = logical_lines(&tokens);
         let mut conds: Vec<Conditional> = Vec::new();
@@ -477,9 +478,10 @@ impl Preprocessor<'_> {
     /// hides typos).
     fn condition(&mut self, args: &[Token<'_>], consult: bool, path: &str, line: u32) -> Result<bool, Diagnostic> {
         let (value, undefined) =
-            self.eval_condition(args, consult).map_err(|m| Diagnostic::error(m, Some(Location::line(path, line))))?;
+            self.eval_condition(args, consult).map_err(|m| Diagnostic::error(Code::Preprocessor, m, Some(Location::line(path, line))))?;
         for name in undefined {
             self.out.warnings.push(Diagnostic::warning(
+                Code::UndefinedInIf,
                 format!("`{name}` is not defined here and reads as 0 in #if"),
                 Some(Location::line(path, line)),
             ));
@@ -488,7 +490,7 @@ impl Preprocessor<'_> {
     }
 
     fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
-        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
+        let err_at = |msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, at)));
         let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
         if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
             return Err(err_at(format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)")));
@@ -569,7 +571,7 @@ impl Preprocessor<'_> {
     /// Resolves an include of an inactive branch and everything it includes in turn, without
     /// preprocessing: the files must exist, as they must for OptiFine.
     fn check_inactive_include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
-        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, at)));
+        let err_at = |msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, at)));
         let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
         expand_includes_mapped(self.provider, &resolved, "", self.include_quotes).map(drop).map_err(|e| {
             let note = "OptiFine splices includes in before it evaluates #if, so this include is resolved although its branch is not taken";
@@ -602,7 +604,7 @@ impl Preprocessor<'_> {
     }
 
     fn emit_text_line(&mut self, tokens: &[Token<'_>], path: &str, line: u32) -> Result<(), Diagnostic> {
-        let err_at = |msg: String| Diagnostic::error(msg, Some(Location::line(path, line)));
+        let err_at = |msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, line)));
         let mut i = 0;
         while i < tokens.len() {
             let t = &tokens[i];
@@ -923,7 +925,7 @@ pub fn expand_includes_mapped(
         out: &mut String,
         map: &mut Vec<Option<Location>>,
     ) -> Result<(), Diagnostic> {
-        let text = provider.read(path).map_err(|e| Diagnostic::error(format!("cannot read {path}: {e}"), None))?;
+        let text = provider.read(path).map_err(|e| Diagnostic::error(Code::PackInput, format!("cannot read {path}: {e}"), None))?;
         stack.push(path.to_string());
         for (index, line) in text.lines().enumerate() {
             let at = || Some(Location::line(path, index as u32 + 1));
@@ -936,20 +938,22 @@ pub fn expand_includes_mapped(
             };
             let target = quotes
                 .target(rest)
-                .ok_or_else(|| Diagnostic::error(format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at()))?;
-            let resolved = resolve_include(path, target).map_err(|m| Diagnostic::error(m, at()))?;
+                .ok_or_else(|| Diagnostic::error(Code::Preprocessor, format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at()))?;
+            let resolved = resolve_include(path, target).map_err(|m| Diagnostic::error(Code::Preprocessor, m, at()))?;
             if stack.contains(&resolved) {
                 let chain = format!("{} -> {resolved}", stack.join(" -> "));
-                return Err(Diagnostic::error(format!("include cycle: {chain}"), at()));
+                return Err(Diagnostic::error(Code::Preprocessor, format!("include cycle: {chain}"), at()));
             }
             if stack.len() > MAX_INCLUDE_DEPTH {
                 return Err(Diagnostic::error(
+                    Code::Preprocessor,
                     format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)"),
                     at(),
                 ));
             }
             if out.len() > MAX_OUTPUT_BYTES {
                 return Err(Diagnostic::error(
+                    Code::Preprocessor,
                     format!("the expanded shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20),
                     at(),
                 ));

@@ -4,6 +4,7 @@
 //! absolute path can do no harm; they are reported and skipped like the other suspicious
 //! entries (zip bombs by size or compression ratio, symbolic links, unreadable entries).
 
+use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 use std::io::{Read, Seek};
 use std::path::Path;
@@ -77,17 +78,17 @@ fn is_text(path: &str) -> bool {
 /// Reads a pack folder or zip. An error means the input cannot be read at all (exit code 2).
 pub fn read_pack(path: &Path, limits: &Limits) -> Result<PackFiles, Diagnostic> {
     let meta = std::fs::metadata(path)
-        .map_err(|e| Diagnostic::error(format!("cannot read {}: {e}", path.display()), None))?;
+        .map_err(|e| Diagnostic::error(Code::PackInput, format!("cannot read {}: {e}", path.display()), None))?;
     let mut raw = RawEntries::default();
     let shown = path.display().to_string();
     if meta.is_dir() {
         read_folder(path, "", limits, &mut raw, 0)?;
     } else if !meta.is_file() {
         // Opening a named pipe or a device would block or read without end.
-        return Err(Diagnostic::error(format!("{} is neither a folder nor a regular file (a zip)", path.display()), None));
+        return Err(Diagnostic::error(Code::PackInput, format!("{} is neither a folder nor a regular file (a zip)", path.display()), None));
     } else {
         let file = std::fs::File::open(path)
-            .map_err(|e| Diagnostic::error(format!("cannot open {}: {e}", path.display()), None))?;
+            .map_err(|e| Diagnostic::error(Code::PackInput, format!("cannot open {}: {e}", path.display()), None))?;
         read_zip(file, &shown, limits, &mut raw)?;
     }
     into_pack(raw, &shown, !meta.is_dir())
@@ -110,7 +111,7 @@ fn into_pack(raw: RawEntries, shown: &str, archive: bool) -> Result<PackFiles, D
         } else {
             format!("{shown}: no readable `shaders/` folder; {} entries were left out, first: {}", unread.len(), unread[0])
         };
-        Diagnostic::error(message, None)
+        Diagnostic::error(Code::PackInput, message, None)
     })?;
     let mut pack = PackFiles {
         display_root: format!("{}/{root}", shown.trim_end_matches('/')),
@@ -179,6 +180,7 @@ fn decode_utf8(path: &str, bytes: &[u8]) -> (Arc<str>, Option<Diagnostic>) {
             let at = e.valid_up_to();
             let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() as u32 + 1;
             let warning = Diagnostic::warning(
+                Code::BadUtf8,
                 format!("not valid UTF-8 (byte {at}); the bad bytes are read as U+FFFD"),
                 Some(Location::line(path, line)),
             )
@@ -199,7 +201,7 @@ struct RawEntries {
 
 impl RawEntries {
     fn skip(&mut self, name: &str, why: String) {
-        self.warnings.push(Diagnostic::warning(format!("skipped `{}`: {why}", name.escape_debug()), None));
+        self.warnings.push(Diagnostic::warning(Code::SkippedFile, format!("skipped `{}`: {why}", name.escape_debug()), None));
     }
 
     /// An entry left unread for its size. Shader text the loader would read and this check
@@ -207,14 +209,14 @@ impl RawEntries {
     /// (textures) are skipped with a warning.
     fn too_large(&mut self, name: &str, why: String) {
         if is_text(name) {
-            self.warnings.push(Diagnostic::error(format!("`{}` is not checked: {why}", name.escape_debug()), None));
+            self.warnings.push(Diagnostic::error(Code::PackInput, format!("`{}` is not checked: {why}", name.escape_debug()), None));
         } else {
             self.skip(name, why);
         }
     }
 
     fn unreadable(&mut self, name: &str, why: String) {
-        self.warnings.push(Diagnostic::error(format!("cannot read `{}`: {why}", name.escape_debug()), None));
+        self.warnings.push(Diagnostic::error(Code::PackInput, format!("cannot read `{}`: {why}", name.escape_debug()), None));
     }
 
     /// Whether a file of `size` bytes at `path` may still fit the budget for the whole pack;
@@ -255,13 +257,13 @@ fn read_folder(dir: &Path, rel: &str, limits: &Limits, raw: &mut RawEntries, dep
         raw.skip(rel, "folders nest deeper than 32 levels".into());
         return Ok(());
     }
-    let entries = std::fs::read_dir(dir).map_err(|e| Diagnostic::error(format!("cannot list {}: {e}", dir.display()), None))?;
+    let entries = std::fs::read_dir(dir).map_err(|e| Diagnostic::error(Code::PackInput, format!("cannot list {}: {e}", dir.display()), None))?;
     let mut names: Vec<_> = entries.filter_map(Result::ok).collect();
     names.sort_by_key(|e| e.file_name());
     for entry in names {
         raw.entries += 1;
         if raw.entries > limits.max_entries {
-            return Err(Diagnostic::error(format!("more than {} files and folders: not read", limits.max_entries), None));
+            return Err(Diagnostic::error(Code::PackInput, format!("more than {} files and folders: not read", limits.max_entries), None));
         }
         let name = entry.file_name().to_string_lossy().into_owned();
         let path = if rel.is_empty() { name.clone() } else { format!("{rel}/{name}") };
@@ -315,7 +317,7 @@ fn safe_entry_name(name: &str) -> Result<String, &'static str> {
 }
 
 fn read_zip<R: Read + Seek>(mut reader: R, shown: &str, limits: &Limits, raw: &mut RawEntries) -> Result<(), Diagnostic> {
-    let unreadable = |e: zip::result::ZipError| Diagnostic::error(format!("{shown} is neither a folder nor a readable zip: {e}"), None);
+    let unreadable = |e: zip::result::ZipError| Diagnostic::error(Code::PackInput, format!("{shown} is neither a folder nor a readable zip: {e}"), None);
     let duplicates = {
         let archive = zip::ZipArchive::new(&mut reader).map_err(unreadable)?;
         archive.has_duplicate_names().then(|| archive.central_directory_start())
@@ -323,12 +325,12 @@ fn read_zip<R: Read + Seek>(mut reader: R, shown: &str, limits: &Limits, raw: &m
     if let Some(start) = duplicates {
         for (name, count) in duplicate_names(&mut reader, start) {
             let message = format!("`{}` appears {count} times in the zip; loaders read only the last copy, as this check does", name.escape_debug());
-            raw.warnings.push(Diagnostic::warning(message, None));
+            raw.warnings.push(Diagnostic::warning(Code::DuplicateEntry, message, None));
         }
     }
     let mut archive = zip::ZipArchive::new(reader).map_err(unreadable)?;
     if archive.len() > limits.max_entries {
-        return Err(Diagnostic::error(format!("{shown} has {} entries, more than {}: not read", archive.len(), limits.max_entries), None));
+        return Err(Diagnostic::error(Code::PackInput, format!("{shown} has {} entries, more than {}: not read", archive.len(), limits.max_entries), None));
     }
     for index in 0..archive.len() {
         // A pack file that cannot be read is a file nobody checked: an error, not a warning.

@@ -6,6 +6,7 @@
 //! and a loader. `validate` and `render` take the same `--profile`, `--set NAME=VALUE`,
 //! `--dimension` and `--loader` and build one of these.
 
+use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 
@@ -139,6 +140,7 @@ impl<'p> ProfileResolver<'p> {
             let mut known: Vec<&str> = self.entries.keys().copied().collect();
             known.sort_unstable();
             return Err(Diagnostic::error(
+                Code::Profile,
                 format!(
                 "no profile `{}` in shaders.properties (profiles: {})",
                 terminal::line(name),
@@ -164,7 +166,7 @@ impl<'p> ProfileResolver<'p> {
             let error = match pending {
                 Some(other) if path.contains(&other) => {
                     let cycle: Vec<&str> = path[path.iter().position(|p| *p == other).unwrap_or(0)..].to_vec();
-                    Some(Diagnostic::error(format!("profile cycle: {} -> {other}", cycle.join(" -> ")), at))
+                    Some(Diagnostic::error(Code::Profile, format!("profile cycle: {} -> {other}", cycle.join(" -> ")), at))
                 }
                 Some(other) => match self.entries.get_key_value(other) {
                     Some((&other, _)) => {
@@ -172,6 +174,7 @@ impl<'p> ProfileResolver<'p> {
                         None
                     }
                     None => Some(Diagnostic::error(
+                        Code::Profile,
                         format!("profile `{current}` names profile `{other}`, which shaders.properties does not define"),
                         at,
                     )),
@@ -181,6 +184,7 @@ impl<'p> ProfileResolver<'p> {
                     self.entries_resolved += set.len();
                     if self.entries_resolved > MAX_PROFILE_ENTRIES {
                         Some(Diagnostic::error(
+                            Code::Budget,
                             format!("the profiles resolve to more than {MAX_PROFILE_ENTRIES} option entries in all (the budget for profiles); profile `{current}` is not read"),
                             at,
                         ))
@@ -232,6 +236,7 @@ fn own_entries(
             (Some(OptionKind::Value { values, .. }), Some(v)) => {
                 if !values.iter().any(|x| x == v) {
                     warnings.push(Diagnostic::warning(
+                        Code::Profile,
                         format!("profile `{name}` sets {option} to `{v}`, which is not among its values [{}]", values.join(" ")),
                         at(),
                     ));
@@ -239,11 +244,12 @@ fn own_entries(
                 set.insert(option.to_string(), OptionValue::Value(v.to_string()));
             }
             (Some(_), _) => warnings.push(Diagnostic::warning(
+                Code::Profile,
                 format!("profile `{name}`: `{entry}` does not match how {option} is declared (switch or value)"),
                 at(),
             )),
             (None, _) => {
-                warnings.push(Diagnostic::warning(format!("profile `{name}` sets `{option}`, which no shader file declares as an option"), at()))
+                warnings.push(Diagnostic::warning(Code::Profile, format!("profile `{name}` sets `{option}`, which no shader file declares as an option"), at()))
             }
         }
     }

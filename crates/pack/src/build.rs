@@ -1,6 +1,7 @@
 //! `build`: templates → shipped pack per dialect → validation of every option set → zips.
 //! Nothing is written unless every dialect validates.
 
+use tidepack_glsl::Code;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -58,7 +59,8 @@ pub struct BuildFailure {
     pub diagnostics: Vec<Diagnostic>,
     /// Zips renamed into place before a later one failed to (empty in every other failure).
     pub written: Vec<PathBuf>,
-    /// The command line named what the pack does not have (a profile): a usage error.
+    /// The command line named what the pack does not have (a profile), or a folder that is no
+    /// pack source: a usage error.
     pub usage: bool,
     sources: HashMap<String, String>,
 }
@@ -149,7 +151,9 @@ pub type ProgressReport<'a> = dyn Fn(Dialect, Progress) + Sync + 'a;
 /// Builds the pack (see the module docs); `progress` hears how far each dialect's validation is.
 pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Result<BuildReport, BuildFailure> {
     let started = Instant::now();
-    let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure::new(vec![d]))?;
+    // No pack source at all is the command line's mistake (--source); a broken one is the pack's.
+    let named_no_source = !opts.source_dir.join("pack.toml").exists();
+    let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure { usage: named_no_source, ..BuildFailure::new(vec![d]) })?;
     let options = pack_options::collect(&source).map_err(BuildFailure::new)?;
     let problems = pack_options::check_manifest(&source, &options);
     if !problems.is_empty() {
@@ -164,6 +168,7 @@ pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Resu
         if !packs.iter().any(|(_, report)| report.options_read.contains(&option.name)) {
             warnings.push(
                 Diagnostic::warning(
+                    Code::UnusedOption,
                     format!("option {} changes no program: no shader's text depends on it", option.name),
                     Some(option.declared_at.clone()),
                 )
@@ -185,7 +190,7 @@ pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Resu
         .collect();
     let sizes = archive::write_zips(&zips).map_err(|f| BuildFailure {
         written: f.written,
-        ..BuildFailure::new(vec![Diagnostic::error(f.message, None)])
+        ..BuildFailure::new(vec![Diagnostic::error(Code::Template, f.message, None)])
     })?;
     let paths: Vec<PathBuf> = zips.into_iter().map(|(zip, _)| zip).collect();
     let outcomes = packs

@@ -12,6 +12,7 @@
 //! Generation inserts exactly one line (the header) and changes no other line break, so a line
 //! of a shipped file maps back to its template by [`template_line`].
 
+use tidepack_glsl::Code;
 use std::collections::HashMap;
 use std::fmt;
 
@@ -102,7 +103,7 @@ pub fn generate(
     header: &str,
 ) -> Result<String, Diagnostic> {
     let stage = Stage::from_path(path);
-    let err = |line: u32, message: String| Diagnostic::error(message, Some(Location::line(template_path, line)));
+    let err = |line: u32, message: String| Diagnostic::error(Code::Template, message, Some(Location::line(template_path, line)));
     if stage.is_some() && !text.starts_with(TEMPLATE_VERSION) {
         return Err(err(1, format!("a program template starts with `{TEMPLATE_VERSION}`")));
     }

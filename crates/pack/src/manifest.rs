@@ -5,6 +5,7 @@
 //! sliders, profiles, the block ids shared between block.properties and the shaders, and the
 //! pipeline settings of shaders.properties.
 
+use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 
 use serde::Deserialize;
@@ -105,12 +106,12 @@ impl Manifest {
         let manifest: Manifest = toml::from_str(text).map_err(|e| {
             let line = e.span().map(|s| text[..s.start].matches('\n').count() as u32 + 1);
             let message = e.message().to_string();
-            Diagnostic::error(format!("invalid pack manifest: {message}"), line.map(|l| Location::line(path, l)))
+            Diagnostic::error(Code::Template, format!("invalid pack manifest: {message}"), line.map(|l| Location::line(path, l)))
         })?;
         for (field, value) in [("name", &manifest.pack.name), ("version", &manifest.pack.version)] {
             if let Err(why) = check_file_name_part(value) {
                 let at = line_of(text, "[pack]", &format!("{field} =")).map(|l| Location::line(path, l));
-                return Err(Diagnostic::error(format!("[pack] {field} {value:?} {why}"), at).with_note(
+                return Err(Diagnostic::error(Code::Template, format!("[pack] {field} {value:?} {why}"), at).with_note(
                     "the zips are named <name>-<version>-<dialect>.zip inside the output folder, so name and version \
                      must be plain file-name text",
                 ));
@@ -120,7 +121,7 @@ impl Manifest {
             if let Some((index, c)) = menu.char_indices().find(|(_, c)| *c == '\\' || c.is_control()) {
                 // The text before the bad character appears in the TOML as written.
                 let at = line_of(text, "", &menu[..index]).map(|l| Location::line(path, l));
-                return Err(Diagnostic::error(format!("menu text {menu:?} contains {c:?}"), at).with_note(
+                return Err(Diagnostic::error(Code::Template, format!("menu text {menu:?} contains {c:?}"), at).with_note(
                     "lang files are read differently by OptiFine (text as written) and Iris (Java properties: \
                      `\\` escapes, line continuations); write the text without backslashes or line breaks",
                 ));

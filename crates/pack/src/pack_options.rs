@@ -2,6 +2,7 @@
 //! label, a comment and a place on a screen, every profile sets every option to a value the
 //! option offers, and the GLSL defaults are the default profile.
 
+use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 
 use tidepack_loader::option_lines::{self, OptionKind, OptionSet, OptionValue};
@@ -31,7 +32,7 @@ pub fn collect(source: &PackSource) -> Result<PackOptions, Vec<Diagnostic>> {
             if let Some(previous) = found.get(&decl.name) {
                 if previous.kind != decl.kind {
                     errors.push(
-                        Diagnostic::error(format!("option {} is declared twice with different defaults or values", decl.name), Some(at))
+                        Diagnostic::error(Code::Template, format!("option {} is declared twice with different defaults or values", decl.name), Some(at))
                             .with_note(format!("first declared at {}; OptiFine disables such an option", previous.declared_at)),
                     );
                 }
@@ -94,13 +95,13 @@ fn toml_value_of(value: &OptionValue) -> String {
 pub fn profile_set(source: &PackSource, options: &PackOptions, profile: &str) -> Result<OptionSet, Diagnostic> {
     let Some(p) = source.manifest.profiles.iter().find(|p| p.name == profile) else {
         let names: Vec<&str> = source.manifest.profiles.iter().map(|p| p.name.as_str()).collect();
-        return Err(Diagnostic::error(format!("no profile named {}; the pack has {}", tidepack_glsl::terminal::line(profile), names.join(", ")), None));
+        return Err(Diagnostic::error(Code::Template, format!("no profile named {}; the pack has {}", tidepack_glsl::terminal::line(profile), names.join(", ")), None));
     };
     p.settings
         .iter()
         .filter_map(|(name, value)| Some((name, options.get(name)?, value)))
         .map(|(name, option, value)| {
-            let value = profile_value(option, value).map_err(|m| Diagnostic::error(m, None))?;
+            let value = profile_value(option, value).map_err(|m| Diagnostic::error(Code::Template, m, None))?;
             Ok((name.clone(), value))
         })
         .collect()
@@ -118,6 +119,7 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
         if !m.options.contains_key(&option.name) {
             errors.push(
                 Diagnostic::error(
+                    Code::Template,
                     format!("option {} has no label: add [options.{}] with label and comment to the manifest", option.name, option.name),
                     Some(option.declared_at.clone()),
                 )
@@ -128,14 +130,14 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
     for (name, text_entry) in &m.options {
         let here = at(&format!("[options.{name}]"), &format!("[options.{name}]"));
         match options.get(name) {
-            None => errors.push(Diagnostic::error(format!("[options.{name}] names no option declared in the GLSL"), here)),
+            None => errors.push(Diagnostic::error(Code::Template, format!("[options.{name}] names no option declared in the GLSL"), here)),
             Some(option) => {
                 if text_entry.label.trim().is_empty() || text_entry.comment.trim().is_empty() {
-                    errors.push(Diagnostic::error(format!("option {name} needs a non-empty label and comment"), here.clone()));
+                    errors.push(Diagnostic::error(Code::Template, format!("option {name} needs a non-empty label and comment"), here.clone()));
                 }
                 if let OptionKind::Value { values, .. } = &option.kind {
                     for value in text_entry.values.keys().filter(|v| !values.contains(v)) {
-                        errors.push(Diagnostic::error(format!("option {name} has no value {value} to label"), here.clone()));
+                        errors.push(Diagnostic::error(Code::Template, format!("option {name} has no value {value} to label"), here.clone()));
                     }
                 }
             }
@@ -149,13 +151,13 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
             let here = at("[screen", &format!("\"{item}\""));
             if let Some(sub) = item.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
                 if !m.screen.subs.contains_key(sub) {
-                    errors.push(Diagnostic::error(format!("screen {screen} links to [{sub}], which is not defined"), here));
+                    errors.push(Diagnostic::error(Code::Template, format!("screen {screen} links to [{sub}], which is not defined"), here));
                 }
             } else if !matches!(item.as_str(), "<profile>" | "<empty>" | "*") {
                 if options.contains_key(item) {
                     *placed.entry(item).or_default() += 1;
                 } else {
-                    errors.push(Diagnostic::error(format!("screen {screen} lists {item}, which is not an option"), here));
+                    errors.push(Diagnostic::error(Code::Template, format!("screen {screen} lists {item}, which is not an option"), here));
                 }
             }
         }
@@ -163,10 +165,12 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
     for option in options.values() {
         match placed.get(option.name.as_str()) {
             None => errors.push(Diagnostic::error(
+                Code::Template,
                 format!("option {} is on no screen; players could not change it", option.name),
                 Some(option.declared_at.clone()),
             )),
             Some(n) if *n > 1 => errors.push(Diagnostic::error(
+                Code::Template,
                 format!("option {} is on {n} screens; place it once", option.name),
                 Some(option.declared_at.clone()),
             )),
@@ -175,12 +179,13 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
     }
     for slider in &m.screen.sliders {
         if !matches!(options.get(slider).map(|o| &o.kind), Some(OptionKind::Value { .. })) {
-            errors.push(Diagnostic::error(format!("slider {slider} is not a value option"), at("sliders", slider)));
+            errors.push(Diagnostic::error(Code::Template, format!("slider {slider} is not a value option"), at("sliders", slider)));
         }
     }
     // Profiles: complete, valid, and the defaults are the default profile.
     if !m.profiles.iter().any(|p| p.name == m.pack.default_profile) {
         errors.push(Diagnostic::error(
+            Code::Template,
             format!("default_profile {} is not one of the profiles", m.pack.default_profile),
             at("[pack]", "default_profile"),
         ));
@@ -190,18 +195,20 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
         for option in options.values() {
             match profile.settings.get(&option.name) {
                 None => errors.push(Diagnostic::error(
+                    Code::Template,
                     format!("profile {} does not set {}; every profile sets every option", profile.name, option.name),
                     at(&section, &section),
                 )),
                 Some(value) => {
                     let glsl_default = option.kind.default_value();
                     match profile_value(option, value) {
-                        Err(message) => errors.push(Diagnostic::error(message, at(&section, &format!("{} =", option.name)))),
+                        Err(message) => errors.push(Diagnostic::error(Code::Template, message, at(&section, &format!("{} =", option.name)))),
                         Ok(set) if profile.name == m.pack.default_profile && set != glsl_default => {
                             let setting_at = at(&section, &format!("{} =", option.name))
                                 .map_or_else(|| source.manifest_path.clone(), |l| l.to_string());
                             errors.push(
                                 Diagnostic::error(
+                                    Code::Template,
                                     format!(
                                         "{} defaults to {glsl_default} in the GLSL but the default profile {} sets {set}",
                                         option.name, profile.name,
@@ -228,6 +235,7 @@ pub fn check_manifest(source: &PackSource, options: &PackOptions) -> Vec<Diagnos
         }
         for name in profile.settings.keys().filter(|n| !options.contains_key(*n)) {
             errors.push(Diagnostic::error(
+                Code::Template,
                 format!("profile {} sets {name}, which is not an option", profile.name),
                 at(&section, &format!("{name} =")),
             ));

@@ -8,6 +8,7 @@
 //! (`screen`, `sliders`, `profile.*`) are refused; any other key is written as it is, with a
 //! warning that it is unchecked.
 
+use tidepack_glsl::Code;
 use tidepack_glsl::{Diagnostic, Location};
 
 use crate::manifest::line_of;
@@ -86,10 +87,11 @@ pub fn check(source: &PackSource, pack: &ShippedPack) -> (Vec<Diagnostic>, Vec<D
         match check_entry(key, value, &programs, pack) {
             Ok(Checked::Yes) => {}
             Ok(Checked::No) => warnings.push(Diagnostic::warning(
+                Code::UncheckedProperty,
                 format!("{prefix} is not a key tidepack checks; it goes into shaders.properties as written"),
                 at,
             )),
-            Err(why) => errors.push(Diagnostic::error(format!("{prefix} = {value:?}: {why}"), at)),
+            Err(why) => errors.push(Diagnostic::error(Code::Template, format!("{prefix} = {value:?}: {why}"), at)),
         }
     }
     (errors, warnings)

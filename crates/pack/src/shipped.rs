@@ -1,6 +1,7 @@
 //! The pack as it ships in one dialect: every file under `shaders/`, in memory, each knowing
 //! where it came from so that a diagnostic about a shipped line can name the template line.
 
+use tidepack_glsl::Code;
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
@@ -107,6 +108,7 @@ impl ShippedPack {
         ] {
             if files.contains_key(path) {
                 return Err(vec![Diagnostic::error(
+                    Code::Template,
                     format!("shaderpack/shaders/{path} is generated from the manifest; remove the hand-written copy"),
                     None,
                 )]);

@@ -1,5 +1,6 @@
 //! The pack's sources on disk: `pack.toml` and the templates under `shaders/`.
 
+use tidepack_glsl::Code;
 use std::path::{Path, PathBuf};
 
 use tidepack_glsl::{Diagnostic, Location};
@@ -34,6 +35,17 @@ impl PackSource {
         let display = |p: &Path| p.display().to_string();
         let manifest_file = root.join("pack.toml");
         let manifest_path = display(&manifest_file);
+        if !manifest_file.exists() {
+            return Err(Diagnostic::error(
+                Code::Template,
+                format!("{} holds no pack.toml, so it is not a tidepack pack source", display(root)),
+                None,
+            )
+            .with_note(
+                "the pack's sources are the shaderpack/ folder of a tidepack checkout; run from the checkout's root, or name \
+                 the folder with --source PATH",
+            ));
+        }
         let manifest_text = read_text(&manifest_file)?;
         let manifest = Manifest::parse(&manifest_path, &manifest_text)?;
         let shaders = root.join("shaders");
@@ -56,25 +68,25 @@ impl PackSource {
 
 fn read_text(path: &Path) -> Result<String, Diagnostic> {
     let name = path.display().to_string();
-    let meta = std::fs::metadata(path).map_err(|e| Diagnostic::error(format!("cannot read {name}: {e}"), None))?;
+    let meta = std::fs::metadata(path).map_err(|e| Diagnostic::error(Code::Template, format!("cannot read {name}: {e}"), None))?;
     if meta.len() > MAX_TEMPLATE_BYTES {
-        return Err(Diagnostic::error(format!("{name} is {} bytes; sources are limited to {MAX_TEMPLATE_BYTES}", meta.len()), None));
+        return Err(Diagnostic::error(Code::Template, format!("{name} is {} bytes; sources are limited to {MAX_TEMPLATE_BYTES}", meta.len()), None));
     }
-    let bytes = std::fs::read(path).map_err(|e| Diagnostic::error(format!("cannot read {name}: {e}"), None))?;
+    let bytes = std::fs::read(path).map_err(|e| Diagnostic::error(Code::Template, format!("cannot read {name}: {e}"), None))?;
     String::from_utf8(bytes).map_err(|e| {
         let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = valid.iter().filter(|&&b| b == b'\n').count() as u32 + 1;
-        Diagnostic::error("the file is not valid UTF-8", Some(Location::line(name, line)))
+        Diagnostic::error(Code::Template, "the file is not valid UTF-8", Some(Location::line(name, line)))
     })
 }
 
 fn collect_files(dir: &Path, out: &mut Vec<PathBuf>) -> Result<(), Diagnostic> {
     let entries = std::fs::read_dir(dir)
-        .map_err(|e| Diagnostic::error(format!("cannot read the folder {}: {e}", dir.display()), None))?;
+        .map_err(|e| Diagnostic::error(Code::Template, format!("cannot read the folder {}: {e}", dir.display()), None))?;
     for entry in entries {
-        let entry = entry.map_err(|e| Diagnostic::error(format!("cannot read {}: {e}", dir.display()), None))?;
+        let entry = entry.map_err(|e| Diagnostic::error(Code::Template, format!("cannot read {}: {e}", dir.display()), None))?;
         let path = entry.path();
-        let kind = entry.file_type().map_err(|e| Diagnostic::error(format!("{}: {e}", path.display()), None))?;
+        let kind = entry.file_type().map_err(|e| Diagnostic::error(Code::Template, format!("{}: {e}", path.display()), None))?;
         if kind.is_dir() {
             collect_files(&path, out)?;
         } else if kind.is_file() && !entry.file_name().to_string_lossy().starts_with('.') {

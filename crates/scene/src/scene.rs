@@ -255,6 +255,27 @@ pub const WORLD_BORDER: f64 = 30_000_000.0;
 /// mesh stays near 120 MiB (the scenes of tests/scenes have at most 11,040).
 pub const MAX_QUADS: usize = 200_000;
 
+/// Largest scene file read: the scenes of tests/scenes are under 4 KiB.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+include!(concat!(env!("OUT_DIR"), "/built_in_scenes.rs"));
+
+/// The names of the scenes the binary carries (tests/scenes/*.toml).
+pub fn built_in_names() -> Vec<&'static str> {
+    BUILT_IN_SCENES.iter().map(|(name, _)| *name).collect()
+}
+
+/// The text of the built-in scene `path` names, when it is a bare name.
+fn built_in(path: &Path) -> Option<&'static str> {
+    let mut components = path.components();
+    let name = match (components.next(), components.next()) {
+        (Some(std::path::Component::Normal(name)), None) => name.to_str()?,
+        _ => return None,
+    };
+    let name = name.strip_suffix(".toml").unwrap_or(name);
+    BUILT_IN_SCENES.iter().find(|(n, _)| *n == name).map(|(_, text)| *text)
+}
+
 impl Scene {
     /// When `loader` draws the scene's boxes of `kind`.
     pub fn overlay_phase(&self, loader: Loader, kind: OverlayKind) -> Phase {
@@ -270,9 +291,26 @@ impl Scene {
         (self.projection() * self.model_view()).to_cols_array().map(|v| v as f32)
     }
 
+    /// The scene in the file at `path`; where there is no such file and `path` is a bare
+    /// name (`case4_above_near`, with or without `.toml`), the built-in scene of that name.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError(format!("cannot read scene {}: {e}", path.display())))?;
+        let unreadable = |why: String| SceneError(format!("cannot read scene {}: {why}", path.display()));
+        let meta = match std::fs::metadata(path) {
+            Ok(meta) => meta,
+            Err(e) => {
+                return match built_in(path) {
+                    Some(text) => Scene::parse(text, path),
+                    None => Err(unreadable(format!("{e}; the built-in scenes are {}", built_in_names().join(", ")))),
+                };
+            }
+        };
+        if !meta.is_file() {
+            return Err(unreadable("not a regular file".into()));
+        }
+        if meta.len() > MAX_SCENE_BYTES {
+            return Err(unreadable(format!("{} bytes, over the {MAX_SCENE_BYTES}-byte budget for a scene file", meta.len())));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
         Scene::parse(&text, path)
     }
 
@@ -425,6 +463,38 @@ mod tests {
 
     fn case4() -> String {
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/case4_above_near.toml")).unwrap()
+    }
+
+    #[test]
+    fn every_scene_of_tests_scenes_is_built_in_and_loads_by_name_anywhere() {
+        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes");
+        let mut on_disk: Vec<String> = std::fs::read_dir(&folder)
+            .unwrap()
+            .filter_map(|e| e.ok()?.path().file_stem()?.to_str().map(String::from))
+            .filter(|n| folder.join(format!("{n}.toml")).is_file())
+            .collect();
+        on_disk.sort();
+        assert_eq!(built_in_names(), on_disk);
+        // A bare name is looked up as a file first: tests run in crates/scene, which has none.
+        let by_name = Scene::load(Path::new("case4_above_near"));
+        let with_extension = Scene::load(Path::new("case4_above_near.toml"));
+        let missing = Scene::load(Path::new("no_such_scene")).map(|_| ()).unwrap_err().to_string();
+        let nested = Scene::load(Path::new("scenes/case4_above_near.toml")).map(|_| ()).unwrap_err().to_string();
+        assert_eq!(by_name.unwrap().name, "case4_above_near");
+        assert!(with_extension.is_ok());
+        assert!(missing.contains("no_such_scene") && missing.contains("built-in scenes are") && missing.contains("rain_over_lake"), "{missing}");
+        assert!(nested.contains("scenes/case4_above_near.toml"), "{nested}");
+    }
+
+    #[test]
+    fn a_scene_that_is_no_file_or_too_large_is_refused_before_it_is_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let err = Scene::load(dir.path()).map(|_| ()).unwrap_err().to_string();
+        assert!(err.contains("not a regular file"), "{err}");
+        let big = dir.path().join("big.toml");
+        std::fs::write(&big, vec![b'#'; MAX_SCENE_BYTES as usize + 1]).unwrap();
+        let err = Scene::load(&big).map(|_| ()).unwrap_err().to_string();
+        assert!(err.contains("budget for a scene file"), "{err}");
     }
 
     fn load_text(text: &str) -> Result<Scene, String> {

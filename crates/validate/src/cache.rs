@@ -7,6 +7,7 @@
 //! writes go through a temporary file renamed into place, so that parallel CI jobs sharing the
 //! folder never see half a file.
 
+use tidepack_glsl::Code;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -55,6 +56,8 @@ struct Entry {
 #[derive(Serialize, Deserialize)]
 struct StoredDiagnostic {
     error: bool,
+    /// Its [`Code`] by name; an entry whose code this version does not know is not reused.
+    code: String,
     message: String,
     path: Option<String>,
     line: u32,
@@ -67,6 +70,7 @@ impl From<&Diagnostic> for StoredDiagnostic {
     fn from(d: &Diagnostic) -> Self {
         StoredDiagnostic {
             error: d.is_error(),
+            code: d.code.name().to_string(),
             message: d.message.clone(),
             path: d.location.as_ref().map(|l| l.path.clone()),
             line: d.location.as_ref().map_or(0, |l| l.line),
@@ -77,15 +81,18 @@ impl From<&Diagnostic> for StoredDiagnostic {
     }
 }
 
-impl From<StoredDiagnostic> for Diagnostic {
-    fn from(d: StoredDiagnostic) -> Self {
-        Diagnostic {
+impl TryFrom<StoredDiagnostic> for Diagnostic {
+    type Error = String;
+
+    fn try_from(d: StoredDiagnostic) -> Result<Self, String> {
+        Ok(Diagnostic {
             severity: if d.error { Severity::Error } else { Severity::Warning },
+            code: Code::parse(&d.code)?,
             message: d.message,
             location: d.path.map(|path| Location { path, line: d.line, columns: d.columns.map(|(start, end)| start..end) }),
             notes: d.notes,
             refused_by: Drivers::parse(&d.refused_by.join(",")).unwrap_or(Drivers::NONE),
-        }
+        })
     }
 }
 
@@ -98,7 +105,7 @@ impl Cache {
     /// Opens (creating if need be) the folder; an error names it.
     pub fn open(dir: &Path) -> Result<Cache, Diagnostic> {
         std::fs::create_dir_all(dir)
-            .map_err(|e| Diagnostic::error(format!("--cache {}: cannot create the folder: {e}", dir.display()), None))?;
+            .map_err(|e| Diagnostic::error(Code::Usage, format!("--cache {}: cannot create the folder: {e}", dir.display()), None))?;
         Ok(Cache { dir: dir.to_path_buf() })
     }
 
@@ -111,7 +118,7 @@ impl Cache {
     pub fn get(&self, key: &Key) -> Option<Vec<Diagnostic>> {
         let text = std::fs::read_to_string(self.path(key)).ok()?;
         let entry: Entry = serde_json::from_str(&text).ok()?;
-        Some(entry.diagnostics.into_iter().map(Diagnostic::from).collect())
+        entry.diagnostics.into_iter().map(Diagnostic::try_from).collect::<Result<_, _>>().ok()
     }
 
     /// Stores `diagnostics` under `key`. A failure to write only loses the entry.

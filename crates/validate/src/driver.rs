@@ -3,6 +3,7 @@
 //! expanded, standard macros after `#version`, option lines rewritten. The driver's messages
 //! are located in the pack's files; its verdict is compared with tidepack's.
 
+use tidepack_glsl::Code;
 use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
@@ -39,7 +40,7 @@ pub struct Driver {
 impl Driver {
     /// A headless context; the error names the packages to install.
     pub fn new(macros: &StandardMacros) -> Result<Driver, Diagnostic> {
-        let context = GlContext::new().map_err(|e| Diagnostic::error(e.message, None))?;
+        let context = GlContext::new().map_err(|e| Diagnostic::error(Code::Driver, e.message, None))?;
         Ok(Driver { context, defines: macros.define_lines(), include_quotes: macros.include_quotes() })
     }
 
@@ -76,6 +77,7 @@ impl Driver {
             .filter(|p| !self.supports(p))
             .map(|p| {
                 Diagnostic::warning(
+                    Code::NotCompiled,
                     format!("{p} was only preprocessed: the OpenGL driver ({}) cannot compile this kind of stage", self.describe()),
                     Some(Location::line(p.clone(), 1)),
                 )
@@ -146,7 +148,7 @@ impl Driver {
                 .filter(|m| m.severity.contains("error"))
                 .map(|m| {
                     let at = map.and_then(|map| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
-                    let diag = Diagnostic::error(format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
+                    let diag = Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
                         .with_note(info(what.clone()));
                     if m.message.contains("geometry_shader4") {
                         diag.with_note("Mesa does not implement GL_ARB/EXT_geometry_shader4 (NVIDIA's driver does); geometry shaders written for `#version 150` or later compile on Mesa too")
@@ -157,7 +159,7 @@ impl Driver {
                 .collect();
             if diags.is_empty() {
                 diags.push(
-                    Diagnostic::error(format!("the OpenGL driver rejects this program: {}", log.trim()), Some(Location::line(path, 1)))
+                    Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this program: {}", log.trim()), Some(Location::line(path, 1)))
                         .with_note(info(what)),
                 );
             }
@@ -239,14 +241,14 @@ impl Driver {
             .map(|m| {
                 let at = stage_text.and_then(|(_, _, _, map)| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
                 let entry = stage_text.map(|t| t.1.clone()).or_else(|| program.stages.first().map(|s| s.1.clone()));
-                Diagnostic::error(format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| entry.map(|e| Location::line(e, 1))))
+                Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| entry.map(|e| Location::line(e, 1))))
                     .with_note(info.clone())
             })
             .collect();
         if diags.is_empty() {
             let entry = program.stages.first().map(|s| Location::line(s.1.clone(), 1));
             diags.push(
-                Diagnostic::error(format!("the OpenGL driver rejects this program: {}", log.log.trim()), entry).with_note(info),
+                Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this program: {}", log.log.trim()), entry).with_note(info),
             );
         }
         Err(diags)

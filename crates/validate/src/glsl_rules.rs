@@ -8,6 +8,7 @@
 //! - an assignment to a shader input (`in`, `varying`, `attribute`);
 //! - texture2D & co. on a `sampler2DShadow`, shadow2D & co. on a `sampler2D`.
 
+use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_glsl::preprocess::Preprocessed;
@@ -68,6 +69,7 @@ fn empty_operands_after_commas(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagno
         if (comma || assignment) && lines.insert(before.line) {
             let what = if comma { "`,` with no expression after it" } else { "an assignment with no value" };
             found.push(Diagnostic::error(
+                Code::Syntax,
                 format!("{what}, before `{}`: a syntax error (Mesa: \"syntax error, unexpected '{}'\")", after.text, after.text),
                 pre.location(before.line),
             ));
@@ -210,6 +212,7 @@ fn reserved_words(pre: &Preprocessed, sig: &[&Token], version: u32) -> Vec<Diagn
         let reserved = RESERVED.contains(&t.text) || (version >= 130 && RESERVED_FROM_130.contains(&t.text));
         if reserved && reported.insert(t.text) {
             found.push(Diagnostic::error(
+                Code::ReservedWord,
                 format!(
                     "`{}` is a reserved word in GLSL {version} and cannot name anything (Mesa: \"illegal use of reserved word \
                      `{}'\"; glslang, which AMD's compiler follows, refuses it too); rename it",
@@ -233,6 +236,7 @@ fn missing_returns(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagnostic> {
         if !body.iter().any(|t| t.is_ident("return")) {
             let name = sig[function.name].text;
             found.push(Diagnostic::error(
+                Code::MissingReturn,
                 format!(
                     "{name}() returns {} but its body has no `return` statement (Mesa: \"function `{name}' has non-void return \
                      type {}, but no return statement\"); return a value, or declare it `void`",
@@ -284,6 +288,7 @@ fn input_writes(pre: &Preprocessed, sig: &[&Token], globals: &Globals, stage: St
             let at = place(pre, *declared);
             let stage_name = if stage == Stage::Vertex { "vertex" } else { "fragment" };
             found.push(Diagnostic::error(
+                Code::InputWritten,
                 format!(
                     "`{}` is an input of this {stage_name} shader (declared at {at}) and inputs are read-only (Mesa: \"assignment \
                      to read-only variable '{}'\"); copy it into a local variable and change that",
@@ -337,6 +342,7 @@ fn shadow_lookups(pre: &Preprocessed, sig: &[&Token], globals: &Globals) -> Vec<
         if let (Some((lookup, other, what)), true) = (problem, is_sampler_argument) {
             let at = place(pre, declared);
             found.push(Diagnostic::error(
+                Code::NoMatchingOverload,
                 format!(
                     "no overload of {lookup}() takes a {ty}: `{}` is declared `{ty}` at {at} (Mesa: \"no matching function for \
                      call to `{lookup}'\"); use {other}() for {what}, or declare the sampler as the lookup needs",
@@ -368,6 +374,7 @@ fn mixed_outputs(pre: &Preprocessed, sig: &[&Token], globals: &Globals) -> Vec<D
     let (Some(builtin), Some(own)) = (builtin, own) else { return Vec::new() };
     let at = place(pre, own.line);
     vec![Diagnostic::error(
+        Code::MixedOutputs,
         format!(
             "this fragment shader writes {} and its own output `{}` (at {at}): a shader writes either the built-in outputs or \
              `out` variables, never both (Mesa refuses it: \"fragment shader writes to both `{}' and `{}'\"; glslang does not \

@@ -2,6 +2,7 @@
 //! inputs, the render-target directive against the outputs written, and uniform and sampler
 //! names against what OptiFine sets.
 
+use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
@@ -101,6 +102,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                 if mesa_links {
                     found.push(
                         Diagnostic::warning(
+                            Code::InputUndeclared,
                             format!(
                                 "fragment input `{}` is read at {} but {vertex_path} does not declare it: GLSL wants every input that is read written by the previous stage (stated as a link error from GLSL 4.20 on); Mesa links it under #version {version} (it refuses it only from 4.20 and in 1.10/1.20), stricter drivers may not",
                                 input.name,
@@ -113,6 +115,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                 } else {
                     found.push(
                         Diagnostic::error(
+                            Code::Link,
                             format!("fragment input `{}` is not an output of {vertex_path}: the program fails to link", input.name),
                             at,
                         )
@@ -131,6 +134,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                     "it reads undefined values".to_string()
                 };
                 found.push(Diagnostic::warning(
+                    Code::InputNeverWritten,
                     format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at}): {consequence}", input.name),
                     at,
                 ));
@@ -142,6 +146,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
                 if output.ty != input.ty || output.array != input.array || (qualifiers_must_match && flat(output) != flat(input)) {
                     let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
                     found.push(Diagnostic::error(
+                        Code::Link,
                         format!(
                             "`{}` here does not match `{}` at {out_at}: the program fails to link",
                             describe(input),
@@ -256,6 +261,7 @@ fn check_blocks(vertex: &Preprocessed, fragment: &Preprocessed, uses: &HashMap<&
             };
             if used {
                 found.push(Diagnostic::error(
+                    Code::Link,
                     format!("input block `{}` is not an output block of {vertex_path}: the program fails to link", input.name),
                     at,
                 ));
@@ -274,6 +280,7 @@ fn check_blocks(vertex: &Preprocessed, fragment: &Preprocessed, uses: &HashMap<&
         });
         if let Some(mismatch) = mismatch {
             found.push(Diagnostic::error(
+                Code::Link,
                 format!("block `{}` here does not match its declaration at {out_at} ({mismatch}): the program fails to link", input.name),
                 at,
             ));
@@ -324,6 +331,7 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
     for b in &targets.buffers {
         if !seen.insert(b) {
             found.push(Diagnostic::error(
+                Code::DrawBuffers,
                 format!("{shown} lists buffer {b} twice: glDrawBuffers refuses the list and the program draws nothing"),
                 Some(directive_at.clone()),
             ));
@@ -344,6 +352,7 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
             // (a buffer missing from the list), but not a failure: a warning.
             found.push(
                 Diagnostic::warning(
+                    Code::DrawBuffers,
                     format!("`{shipped}` is written but {shown} lists {count} buffer{}: the value goes nowhere", if count == 1 { "" } else { "s" }),
                     at,
                 )
@@ -357,6 +366,7 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
             if !written.contains_key(&(i as u32)) {
                 let output = if targets.modern { format!("outColor{i}") } else { format!("gl_FragData[{i}]") };
                 found.push(Diagnostic::warning(
+                    Code::DrawBuffers,
                     format!("{shown} lists buffer {buffer} as output {i}, but `{output}` is never written: the buffer gets undefined values"),
                     Some(directive_at.clone()),
                 ));
@@ -388,6 +398,7 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
         if !known::is_image(name) && !names.images.contains(name) {
             let at = uniform_line(pre, name).and_then(|l| pre.location(l));
             found.push(Diagnostic::warning(
+                Code::UnknownImage,
                 format!(
                     "`{name}` is not an image OptiFine binds (colorimg0-15, shadowcolorimg0-1) nor an `image.{name}` of shaders.properties: nothing is bound to it"
                 ),
@@ -404,17 +415,19 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
             ResourceKind::Texture { .. } => {
                 if !known::is_sampler_for(name, loader) && !names.samplers.contains(name) {
                     found.push(Diagnostic::warning(
+                        Code::UnknownSampler,
                         format!("`{name}` is not a sampler {who} binds: it silently reads texture unit 0"),
                         at(),
                     ));
                 } else if let Some(why) = known::sampler_unavailable(program, name) {
-                    found.push(Diagnostic::warning(format!("`{name}` in {program}: {why}"), at()));
+                    found.push(Diagnostic::warning(Code::UnknownSampler, format!("`{name}` in {program}: {why}"), at()));
                 }
             }
             ResourceKind::Uniform { ty } => {
                 if let Some(custom) = names.uniforms.get(name) {
                     if custom != ty {
                         found.push(Diagnostic::warning(
+                            Code::UniformType,
                             format!("`{name}` is declared `{ty}` but shaders.properties defines it as `{custom}`"),
                             at(),
                         ));
@@ -423,12 +436,14 @@ pub fn check_resources(pre: &Preprocessed, lowered: &lower::Lowered, program: &s
                     // glUniform1i sets a bool uniform, and an int one where the loader sets a bool.
                     if expected != ty && !(matches!((expected, ty.as_str()), ("int", "bool") | ("bool", "int"))) {
                         found.push(Diagnostic::warning(
+                            Code::UniformType,
                             format!("`{name}` is declared `{ty}` but {who} sets it as `{expected}`: it is never set"),
                             at(),
                         ));
                     }
                 } else {
                     found.push(Diagnostic::warning(
+                        Code::UnknownUniform,
                         format!("`{name}` is not a uniform {who} sets: it silently reads 0"),
                         at(),
                     ));

@@ -10,6 +10,7 @@
 //! terms by `messages` → here: diagnostics located in the pack's files, each once, in a
 //! [`Report`].
 
+use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::Instant;
 
@@ -33,6 +34,7 @@ pub mod driver;
 pub mod fuzz;
 pub mod glslang;
 pub mod interface;
+pub mod levels;
 mod messages;
 mod naga_pool;
 pub mod output;
@@ -42,6 +44,7 @@ pub mod glsl_rules;
 pub mod version_rules;
 
 pub use naga_pool::MAX_NAGA_LINES;
+pub use levels::Levels;
 pub use report::{ProgramReport, Report, Status};
 pub use configurations::{PlanSummary, Shard};
 pub use stages::other_stage_kind;
@@ -90,6 +93,8 @@ pub struct Options {
     /// The drivers whose refusals are errors; an error only others refuse becomes a warning,
     /// and one only macOS refuses is left out unless macOS is a target.
     pub target: Drivers,
+    /// Warnings silenced or made errors, by code.
+    pub levels: Levels,
 }
 
 /// The default `--target`: every family that runs OpenGL 4.6. macOS (4.1 at most) is a target
@@ -110,6 +115,7 @@ impl Default for Options {
             cache: None,
             shard: None,
             target: DEFAULT_TARGET,
+            levels: Levels::default(),
         }
     }
 }
@@ -160,6 +166,7 @@ fn option_sets(
             let names: Vec<String> = option_space::profiles(props).into_keys().collect();
             if names.len() > MAX_PROFILES_VALIDATED {
                 diagnostics.push(Diagnostic::error(
+                    Code::Budget,
                     format!(
                         "shaders.properties defines {} profiles, more than the {MAX_PROFILES_VALIDATED} validated (the budget for profiles); none is validated",
                         names.len()
@@ -184,7 +191,7 @@ fn option_sets(
     let mut overrides = OptionSet::new();
     if !options.overrides.is_empty() {
         let configuration = Configuration { options: options.overrides.clone(), ..Configuration::default() };
-        (overrides, _) = configuration.option_set(props, declared).map_err(|e| Diagnostic::error(e, None))?;
+        (overrides, _) = configuration.option_set(props, declared).map_err(|e| Diagnostic::error(Code::Usage, e, None))?;
         let named: Vec<String> = options.overrides.iter().map(|(n, v)| format!("{n}={v}")).collect();
         for (label, set) in &mut sets {
             set.extend(overrides.clone());
@@ -203,7 +210,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let props = Properties::parse(properties_text, &property_macros(&options.macros, &declared, &OptionSet::new()));
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
     // OptiFine takes a conditional line it cannot evaluate as false and says so in its log.
-    diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(problem.clone(), Some(Location::line(properties::PATH, *line)))));
+    diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(Code::Properties, problem.clone(), Some(Location::line(properties::PATH, *line)))));
     let (sets, overrides) = option_sets(&props, &declared, options, &mut diagnostics)?;
     let mut programs = programs::find_programs(pack.files.keys());
     let mut dimension_without_programs = None;
@@ -274,7 +281,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             })
             .collect()
     });
-    for problem in contexts.iter().flat_map(|c| &c.problems).map(|p| Diagnostic::warning(p.clone(), None)) {
+    for problem in contexts.iter().flat_map(|c| &c.problems).map(|p| Diagnostic::warning(Code::Properties, p.clone(), None)) {
         if !diagnostics.contains(&problem) {
             diagnostics.push(problem);
         }
@@ -376,11 +383,11 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     }
     if let Some(message) = dimension_without_programs {
         // A pack may shade some dimensions only: nothing to check is the answer here.
-        diagnostics.push(Diagnostic::warning(message, None));
+        diagnostics.push(Diagnostic::warning(Code::NothingValidated, message, None));
     } else if !reports.iter().any(|r| r.status == Status::Valid) && !found.iter().any(|f| f.diagnostic.is_error()) {
         // A CI check that checked nothing must not pass.
         let skipped: Vec<String> = reports.iter().map(|r| r.id.clone()).collect();
-        let mut diag = Diagnostic::error(format!("no program that {} runs was found, so nothing was validated", options.loader), None);
+        let mut diag = Diagnostic::error(Code::NothingValidated, format!("no program that {} runs was found, so nothing was validated", options.loader), None);
         if !skipped.is_empty() {
             diag = diag.with_note(format!("found only programs other loaders run: {}", skipped.join(", ")));
         }
@@ -401,6 +408,18 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut reproductions =
         if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
     found = in_target(found, options.target, &mut reproductions);
+    let mut allowed = BTreeMap::new();
+    diagnostics = options.levels.apply_all(std::mem::take(&mut diagnostics), &mut allowed);
+    found = found
+        .into_iter()
+        .filter_map(|f| match options.levels.apply(f.diagnostic) {
+            levels::Applied::Kept(diagnostic) => Some(Finding { diagnostic, ..f }),
+            levels::Applied::Allowed(code) => {
+                *allowed.entry(code).or_default() += 1;
+                None
+            }
+        })
+        .collect();
     // One diagnostic per distinct message and place, noting every program and option set it
     // was seen in, keyed by message and sorted by place so that the report reads file by file.
     let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
@@ -459,6 +478,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         stages_validated,
         elapsed: started.elapsed(),
         driver: driver_summary,
+        allowed,
     })
 }
 
@@ -685,6 +705,7 @@ fn run_driver(
                 Ok(()) if ours => {
                     let entry = program.entry().map(|s| Location::line(s.to_string(), 1));
                     let diag = Diagnostic::warning(
+                        Code::DriverAccepts,
                         format!("the OpenGL driver ({}) compiles and links {}: tidepack's errors in it may be false", summary.driver, program.id()),
                         entry,
                     );

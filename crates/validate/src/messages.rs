@@ -1,7 +1,7 @@
 //! naga's messages in the pack's terms: the lowering's reserved names turned back into the
 //! GLSL names they stand for, and what naga cannot check said as such.
 
-use tidepack_glsl::{Diagnostic, Severity};
+use tidepack_glsl::{Code, Diagnostic, Severity};
 
 /// Speaks of the pack's names instead of the lowering's reserved ones in naga's messages, and
 /// explains the messages that the lowering makes obscure.
@@ -16,6 +16,7 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         // Valid GLSL naga's front-end does not implement: not the pack's mistake.
         let call = if unknown.is_some() { "()" } else { "" };
         diag.severity = Severity::Warning;
+        diag.code = Code::NotChecked;
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
@@ -24,6 +25,7 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         // compile (Mesa does), and the value reaches whatever reads it.
         let value = if value == "NaN" { "NaN" } else { "infinite" };
         diag.severity = Severity::Warning;
+        diag.code = Code::NotChecked;
         diag.message = format!(
             "a constant expression here is {value} (such as 0.0 / 0.0 from option values): drivers compile it and the \
              value is {value} wherever it is used; naga stops here, so the rest of this stage is not checked"
@@ -35,10 +37,19 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
     {
         // GLSL samples integer textures (nearest texel); naga only loads from them.
         diag.severity = Severity::Warning;
+        diag.code = Code::NotChecked;
         diag.message = "sampling an integer texture (isampler*/usampler*) is not checked: naga refuses it, drivers \
                         accept it (`--driver` compiles it with Mesa)"
             .into();
         return diag;
+    }
+    if unknown.as_deref().is_some_and(|name| {
+        sampling.contains(&name)
+            || matches!(name, "imageLoad" | "imageStore" | "imageSize")
+            || name.starts_with("atomic")
+            || BUILTIN_FORMS.iter().any(|(builtin, _)| *builtin == name)
+    }) {
+        diag.code = Code::NoMatchingOverload;
     }
     if let Some(name) = unknown.as_deref()
         && sampling.contains(&name)

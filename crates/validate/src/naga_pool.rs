@@ -1,6 +1,7 @@
 //! naga on the distinct lowered stages, on worker threads with stacks deep enough for naga's
 //! recursion; a panic inside naga becomes a warning that the stage was not checked.
 
+use tidepack_glsl::Code;
 use std::panic::AssertUnwindSafe;
 
 use rayon::prelude::*;
@@ -34,6 +35,7 @@ fn position_not_written(pre: &Preprocessed) -> Diagnostic {
     let at = pre.location(main_line);
     if version < 140 {
         Diagnostic::error(
+            Code::NoGlPosition,
             format!(
                 "this vertex shader never writes gl_Position, which GLSL {version} requires: the program fails to link (Mesa: \
                  \"vertex shader does not write to `gl_Position'\"); write it, or declare GLSL 1.40 or later"
@@ -42,6 +44,7 @@ fn position_not_written(pre: &Preprocessed) -> Diagnostic {
         )
     } else {
         Diagnostic::warning(
+            Code::NoGlPosition,
             format!("this vertex shader never writes gl_Position, so the program draws nothing (drivers accept it in GLSL {version})"),
             at,
         )
@@ -128,7 +131,7 @@ pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &P
     let provider = SetProvider::new(pack, set);
     let entry = &job.stage.preprocessed().files[0];
     if let Some(over) = over_naga_budget(job.stage.text()) {
-        return vec![Diagnostic::warning(format!("not validated: {over}"), Some(Location::line(entry.clone(), 1)))];
+        return vec![Diagnostic::warning(Code::Budget, format!("not validated: {over}"), Some(Location::line(entry.clone(), 1)))];
     }
     let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
         JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),
@@ -153,6 +156,7 @@ pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &P
             // A bug in naga, not a verdict on the shader: the stage stays unchecked, as the
             // warning says.
             let diag = Diagnostic::warning(
+                Code::NotChecked,
                 format!(
                     "{entry} is not checked: naga crashed on it ({what}), a bug in naga rather than in the \
                      shader; `--driver` compiles it with Mesa"

@@ -1,13 +1,14 @@
 //! The report as text for people (codespan snippets), JSON for tools, and GitHub Actions
 //! workflow commands (annotations on the pack's files).
 
+use std::collections::{BTreeMap, VecDeque};
 use std::fmt::Write as _;
 
 use serde::Serialize;
 
 use codespan_reporting::term::termcolor::WriteColor;
 use tidepack_glsl::{diagnostic, terminal};
-use tidepack_glsl::{Diagnostic, Severity};
+use tidepack_glsl::{Code, Diagnostic, Severity};
 
 use crate::{Report, Status};
 
@@ -80,6 +81,15 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     if plan.other_shards > 0 {
         writeln!(summary, "  this shard: {} program texts left to the other shards", plan.other_shards).unwrap();
     }
+    let by_code = report.counts_by_code();
+    if !by_code.is_empty() {
+        let counts: Vec<String> = by_code.iter().map(|(code, errors, warnings)| format!("{code} {}", counted(*errors, *warnings))).collect();
+        writeln!(summary, "  by code: {}", counts.join(", ")).unwrap();
+    }
+    if !report.allowed.is_empty() {
+        let counts: Vec<String> = report.allowed.iter().map(|(code, n)| format!("{code} {n}")).collect();
+        writeln!(summary, "  allowed, not shown: {}", counts.join(", ")).unwrap();
+    }
     const LISTED: usize = 4;
     let mut sets = report.option_sets.iter().take(LISTED).cloned().collect::<Vec<_>>().join(", ");
     if report.option_sets.len() > LISTED {
@@ -98,6 +108,24 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     Ok(terminal::block(&summary))
 }
 
+fn plural(n: usize, what: &str) -> String {
+    format!("{n} {what}{}", if n == 1 { "" } else { "s" })
+}
+
+/// `2 errors, 1 warning`, leaving out a zero count.
+fn counted(errors: usize, warnings: usize) -> String {
+    match (errors, warnings) {
+        (0, w) => plural(w, "warning"),
+        (e, 0) => plural(e, "error"),
+        (e, w) => counted_each(e, w),
+    }
+}
+
+/// `0 errors, 1 warning`.
+fn counted_each(errors: usize, warnings: usize) -> String {
+    format!("{}, {}", plural(errors, "error"), plural(warnings, "warning"))
+}
+
 fn list(ids: &[String]) -> String {
     if ids.is_empty() { String::new() } else { format!(" ({})", ids.join(", ")) }
 }
@@ -105,6 +133,8 @@ fn list(ids: &[String]) -> String {
 #[derive(Serialize)]
 struct JsonDiagnostic<'a> {
     severity: &'static str,
+    /// Its code (`tidepack codes` lists them), the name `--allow` and `--deny` take.
+    code: &'static str,
     message: &'a str,
     file: Option<&'a str>,
     line: Option<u32>,
@@ -152,6 +182,8 @@ struct JsonSummary<'a> {
     stages_validated: usize,
     errors: usize,
     warnings: usize,
+    /// Warnings left out by `--allow` or the configuration file, by code.
+    allowed: BTreeMap<&'static str, usize>,
 }
 
 #[derive(Serialize)]
@@ -170,6 +202,7 @@ pub fn json(report: &Report) -> String {
         .iter()
         .map(|d| JsonDiagnostic {
             severity: if d.is_error() { "error" } else { "warning" },
+            code: d.code.name(),
             message: &d.message,
             file: d.location.as_ref().map(|l| l.path.as_str()),
             line: d.location.as_ref().map(|l| l.line),
@@ -214,6 +247,7 @@ pub fn json(report: &Report) -> String {
         stages_validated: report.stages_validated,
         errors: report.errors(),
         warnings: report.warnings(),
+        allowed: report.allowed.iter().map(|(code, n)| (code.name(), *n)).collect(),
     };
     let mut out = serde_json::to_string_pretty(&JsonReport { diagnostics, programs, driver, summary })
         .expect("the report serialises: it holds only strings and numbers");
@@ -240,19 +274,40 @@ fn github_escape(s: &str, property: bool) -> String {
     out
 }
 
-/// `::error file=…,line=…::message` lines, one per diagnostic. GitHub attaches an annotation to
-/// a file of the repository by its path from the repository root, where workflows run: a pack
-/// folder's files are named from the working directory. Files inside a zip are in no
-/// repository, so their annotations name the zip and the entry in the message.
+/// GitHub shows at most ten warning annotations of a step; more are dropped unseen.
+pub const MAX_WARNING_ANNOTATIONS: usize = 10;
+
+/// `::error file=…,line=…::message` lines: every error, then up to
+/// [`MAX_WARNING_ANNOTATIONS`] warnings taken a code at a time (so the ones shown cover as many
+/// codes as they can), then a notice counting the warnings left to the job summary
+/// ([`markdown`]). GitHub attaches an annotation to a file of the repository by its path from
+/// the repository root, where workflows run: a pack folder's files are named from the working
+/// directory. Files inside a zip are in no repository, so their annotations name the zip and
+/// the entry in the message.
 pub fn github(report: &Report) -> String {
     let cwd = std::env::current_dir().ok();
     let mut out = String::new();
-    for d in &report.diagnostics {
+    let errors = report.diagnostics.iter().filter(|d| d.is_error());
+    let mut by_code: BTreeMap<Code, VecDeque<&Diagnostic>> = BTreeMap::new();
+    for d in report.diagnostics.iter().filter(|d| !d.is_error()) {
+        by_code.entry(d.code).or_default().push_back(d);
+    }
+    let mut warnings = Vec::new();
+    while warnings.len() < MAX_WARNING_ANNOTATIONS && by_code.values().any(|q| !q.is_empty()) {
+        for queue in by_code.values_mut() {
+            if warnings.len() < MAX_WARNING_ANNOTATIONS
+                && let Some(d) = queue.pop_front()
+            {
+                warnings.push(d);
+            }
+        }
+    }
+    for d in errors.chain(warnings.iter().copied()) {
         let command = match d.severity {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
-        let mut props = vec!["title=tidepack validate".to_string()];
+        let mut props = vec![format!("title=tidepack validate [{}]", d.code)];
         let mut message = String::new();
         if let Some(loc) = &d.location {
             let shown = shown_path(report, &loc.path);
@@ -281,5 +336,63 @@ pub fn github(report: &Report) -> String {
         }
         writeln!(out, "::{command} {}::{}", props.join(","), github_escape(&message, false)).unwrap();
     }
+    let left = report.warnings() - warnings.len();
+    if left > 0 {
+        let notice = format!("{left} more warnings are not annotated; the job summary (--summary) lists every diagnostic, grouped by code");
+        writeln!(out, "::notice title=tidepack validate::{}", github_escape(&notice, false)).unwrap();
+    }
     out
+}
+
+/// The report as Markdown for a CI job summary (GitHub's `$GITHUB_STEP_SUMMARY`): the verdict
+/// and totals, a table of the codes found, and every diagnostic under its code. Text from the
+/// pack goes in code spans, so nothing in it is read as Markdown or HTML.
+pub fn markdown(report: &Report) -> String {
+    let mut out = String::new();
+    let verdict = if report.errors() > 0 { "fails" } else { "passes" };
+    writeln!(out, "### tidepack validate {}: {verdict}\n", code_span(&report.pack.display_root)).unwrap();
+    let allowed = if report.allowed.is_empty() {
+        String::new()
+    } else {
+        let counts: Vec<String> = report.allowed.iter().map(|(code, n)| format!("`{code}` {n}")).collect();
+        format!("; allowed, not shown: {}", counts.join(", "))
+    };
+    writeln!(
+        out,
+        "{} option sets, {} distinct stages validated: **{}**{allowed}\n",
+        report.option_sets.len(),
+        report.stages_validated,
+        counted_each(report.errors(), report.warnings()),
+    )
+    .unwrap();
+    let by_code = report.counts_by_code();
+    if by_code.is_empty() {
+        return out;
+    }
+    out.push_str("| code | errors | warnings | what it is |\n|---|--:|--:|---|\n");
+    for (code, errors, warnings) in &by_code {
+        writeln!(out, "| `{code}` | {errors} | {warnings} | {} |", code.summary().replace('|', "\\|")).unwrap();
+    }
+    for (code, errors, warnings) in &by_code {
+        writeln!(out, "\n<details><summary><code>{code}</code>: {}</summary>\n", counted(*errors, *warnings)).unwrap();
+        for d in report.diagnostics.iter().filter(|d| d.code == *code) {
+            let kind = if d.is_error() { "error" } else { "warning" };
+            let place = d.location.as_ref().map_or(String::new(), |l| format!(" {}", code_span(&format!("{}:{}", shown_path(report, &l.path), l.line))));
+            writeln!(out, "- {kind}{place}: {}", code_span(&d.message)).unwrap();
+            for note in &d.notes {
+                writeln!(out, "  - {}", code_span(note)).unwrap();
+            }
+        }
+        out.push_str("\n</details>\n");
+    }
+    out
+}
+
+/// `text` as a Markdown code span on one line: control characters escaped, and a fence of
+/// more backticks than any run in it.
+fn code_span(text: &str) -> String {
+    let line = terminal::line(text);
+    let longest = line.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    let fence = "`".repeat(longest + 1);
+    format!("{fence} {line} {fence}")
 }

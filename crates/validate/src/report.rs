@@ -1,8 +1,9 @@
 //! What `tidepack validate` found: per program, and every diagnostic once.
 
+use std::collections::BTreeMap;
 use std::time::Duration;
 
-use tidepack_glsl::Diagnostic;
+use tidepack_glsl::{Code, Diagnostic};
 
 use crate::driver;
 use tidepack_loader::input::PackFiles;
@@ -45,6 +46,8 @@ pub struct Report {
     pub elapsed: Duration,
     /// With [`Options::driver`](crate::Options::driver): how the driver's verdicts compare with tidepack's.
     pub driver: Option<driver::DriverSummary>,
+    /// Warnings left out by [`Options::levels`](crate::Options::levels), counted by code.
+    pub allowed: BTreeMap<Code, usize>,
 }
 
 impl Report {
@@ -54,6 +57,19 @@ impl Report {
 
     pub fn warnings(&self) -> usize {
         self.diagnostics.len() - self.errors()
+    }
+
+    /// How many diagnostics of each code the report holds, errors and warnings apart:
+    /// `(code, errors, warnings)`, most frequent first.
+    pub fn counts_by_code(&self) -> Vec<(Code, usize, usize)> {
+        let mut counts: BTreeMap<Code, (usize, usize)> = BTreeMap::new();
+        for d in &self.diagnostics {
+            let entry = counts.entry(d.code).or_default();
+            if d.is_error() { entry.0 += 1 } else { entry.1 += 1 }
+        }
+        let mut counts: Vec<(Code, usize, usize)> = counts.into_iter().map(|(c, (e, w))| (c, e, w)).collect();
+        counts.sort_by_key(|(c, e, w)| (std::cmp::Reverse((*e, *w)), *c));
+        counts
     }
 
     /// Text of a pack file, for snippets.

@@ -1,5 +1,6 @@
 //! Each program's stages preprocessed and lowered for naga, with the checks that need no naga.
 
+use tidepack_glsl::Code;
 use std::sync::Arc;
 
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
@@ -93,6 +94,7 @@ fn above_configured_glsl(pre: &Preprocessed, macros: &PreprocessOptions) -> Opti
         return None;
     }
     Some(Diagnostic::error(
+        Code::Version,
         format!(
             "`#version {}` is above GLSL {highest}, the highest this configuration's driver compiles (MC_GLSL_VERSION {highest}, from \
              --glsl-version or what --os and --mc-version give): the program does not load there",
@@ -110,7 +112,7 @@ fn version_line(pre: &Preprocessed) -> u32 {
 fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     let entry = || pre.location(version_line(pre)).or_else(|| Some(Location::line(pre.files[0].clone(), 1)));
-    let macos = |message: String, at: Option<Location>| Diagnostic::error(message, at).refused_by(Drivers::MACOS);
+    let macos = |message: String, at: Option<Location>| Diagnostic::error(Code::Macos, message, at).refused_by(Drivers::MACOS);
     if compute {
         found.push(macos("compute shaders need OpenGL 4.3; macOS stops at 4.1, so this pass does not run there".into(), entry()));
     }
@@ -163,6 +165,7 @@ pub(crate) fn preprocess_other_stages(
                 diags.extend(pre.warnings.iter().cloned());
                 if !driver {
                     diags.push(Diagnostic::warning(
+                        Code::NotCompiled,
                         format!(
                             "{path} was only preprocessed, not compiled: naga has no {} stage; `--driver` compiles it with Mesa",
                             other_stage_kind(path)

@@ -11,6 +11,7 @@
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
 //!   `texture2D`, `attribute`, `varying`, …).
 
+use tidepack_glsl::Code;
 use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess::Preprocessed;
@@ -79,7 +80,7 @@ pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
         let at = pre.location(index as u32 + 1);
         if name == "all" {
             if matches!(behaviour, "require" | "enable") {
-                found.push(Diagnostic::error(format!("`#extension all : {behaviour}` is not allowed: `all` takes only `warn` or `disable`"), at));
+                found.push(Diagnostic::error(Code::Extension, format!("`#extension all : {behaviour}` is not allowed: `all` takes only `warn` or `disable`"), at));
             }
             continue;
         }
@@ -96,10 +97,10 @@ pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
         };
         let message = format!("`{name}` is an extension no GLSL compiler knows (Mesa's and glslang's tables): a misspelling?");
         found.push(match behaviour {
-            "require" => Diagnostic::error(message, at)
+            "require" => Diagnostic::error(Code::Extension, message, at)
                 .with_note("with `require`, drivers that do not have it refuse the shader")
                 .refused_by(Drivers::ALL.without(own_driver)),
-            _ => Diagnostic::warning(message, at).with_note(format!("with `{behaviour}`, drivers only warn")),
+            _ => Diagnostic::warning(Code::Extension, message, at).with_note(format!("with `{behaviour}`, drivers only warn")),
         });
     }
     found
@@ -113,6 +114,7 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
     }
     let line = pre.text.lines().position(|l| l.trim_start().starts_with('#') && l.contains("version")).map_or(1, |i| i as u32 + 1);
     Some(Diagnostic::error(
+        Code::Version,
         format!("compute shaders need `#version 430` or later (or `#extension GL_ARB_compute_shader : require`); this stage is GLSL {number}"),
         pre.location(line),
     ))
@@ -172,6 +174,7 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         {
             if reported.insert((t.text.to_string(), t.line)) {
                 found.push(Diagnostic::error(
+                    Code::ConstInitializer,
                     format!(
                         "a local `const` must be initialised with a constant expression before GLSL 4.20, and the {what} \
                          `{}` is not one (Mesa: \"initializer of const variable must be a constant expression\" in \
@@ -186,6 +189,7 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         let initializer_list = t.is_punct("=") && sig.get(k + 1).is_some_and(|n| n.is_punct("{"));
         if t.is_punct(";") && depth == 0 && parens == 0 && number < 460 && k > 0 && function_ends.contains(&(k - 1)) {
             warnings.push(Diagnostic::warning(
+                Code::EmptyDeclaration,
                 format!(
                     "`;` after a function body is an empty declaration, which GLSL allows only from 4.60 on: Mesa and \
                      NVIDIA accept it in `{shown_version}`, glslang and stricter drivers refuse it"
@@ -245,7 +249,7 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         if let Some(message) = problem
             && reported.insert((t.text.to_string(), t.line))
         {
-            found.push(Diagnostic::error(message, pre.location(t.line)));
+            found.push(Diagnostic::error(Code::VersionFeature, message, pre.location(t.line)));
         }
     }
     if number >= 130 {
@@ -293,6 +297,7 @@ fn hidden_builtin_calls(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<
             let at = place(pre, declared_at);
             let hint = if t.text == "texture" { " (OptiFine binds the atlas as `gtexture` and `tex` too; Iris renames a sampler called `texture` to `gtexture` by itself)" } else { "" };
             found.push(Diagnostic::error(
+                Code::HiddenBuiltin,
                 format!(
                     "`{0}` is a variable here (declared at {at}), which hides the built-in function {0}() from GLSL 1.30 on: this call names no function (Mesa: \"no function with name '{0}'\"); rename the variable{hint}",
                     t.text
@@ -350,6 +355,7 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
         let Some((op, literal)) = after.or(before) else { continue };
         if reported.insert(t.line) {
             found.push(Diagnostic::error(
+                Code::ImplicitConversion,
                 format!(
                     "`{} {} {}` mixes the uint `{}` with the int literal {}: before GLSL 4.00 nothing converts int to uint \
                      implicitly (Mesa: \"could not implicitly convert\" in `{shown_version}`; NVIDIA accepts it); write {}u",

@@ -15,7 +15,8 @@ use tidepack_pack::Dialect;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Scene file (see tests/scenes/*.toml).
+    /// Scene file, or the name of a scene tidepack carries (those of tests/scenes:
+    /// case4_above_near, rain_over_lake, glass_over_land, …; a wrong name lists them).
     pub scene: PathBuf,
     /// GLSL dialect of the shipped text to render.
     #[arg(long, value_enum, default_value_t = RenderDialect::V330)]

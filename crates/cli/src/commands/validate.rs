@@ -7,10 +7,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
-use tidepack_glsl::Drivers;
+use tidepack_glsl::{Code, Drivers};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_gl_version, parse_mc_version, platform_gl_versions};
-use tidepack_validate::{Coverage, Options, Profiles, Shard, output};
+use tidepack_validate::{Coverage, Levels, Options, Profiles, Shard, output};
 
 use super::configuration::ConfigurationArgs;
 use super::print_diagnostics;
@@ -75,6 +75,22 @@ pub struct ValidateArgs {
     /// Exit 1 on warnings too (unknown uniforms, unlisted outputs, …), not only on errors.
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Leave out the warnings of these codes (`tidepack codes` lists them), comma-separated or
+    /// repeated. Errors cannot be allowed: `--target` chooses whose refusals are errors.
+    #[arg(long, value_name = "CODE", value_delimiter = ',', value_parser = Code::parse)]
+    pub allow: Vec<Code>,
+    /// Make the warnings of these codes errors (exit 1), comma-separated or repeated.
+    #[arg(long, value_name = "CODE", value_delimiter = ',', value_parser = Code::parse)]
+    pub deny: Vec<Code>,
+    /// The configuration file whose `[validate]` table lists codes to `allow` and `deny`
+    /// (default: tidepack.toml in PATH's folder, or else in the current folder). The command
+    /// line's --allow and --deny go over it.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Also append the report as Markdown to FILE: the verdict, a table of codes and every
+    /// diagnostic grouped by code (for CI job summaries: `--summary "$GITHUB_STEP_SUMMARY"`).
+    #[arg(long, value_name = "FILE")]
+    pub summary: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -153,6 +169,13 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    let levels = match levels(args) {
+        Ok(levels) => levels,
+        Err(diag) => {
+            print_diagnostics(&[diag], &|_| None);
+            return ExitCode::from(2);
+        }
+    };
     let options = Options {
         macros,
         profiles,
@@ -163,6 +186,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         cache: args.cache.clone(),
         shard: args.shard,
         target: args.target,
+        levels,
         ..Options::default()
     };
     let report = match tidepack_validate::validate_path(&args.path, &options) {
@@ -189,6 +213,17 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
     if written.is_err() {
         return ExitCode::from(2);
     }
+    if let Some(path) = &args.summary {
+        let appended = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+            .and_then(|mut file| file.write_all(output::markdown(&report).as_bytes()));
+        if let Err(e) = appended {
+            tell!("error: --summary {}: {e}", path.display());
+            return ExitCode::from(2);
+        }
+    }
     if report.errors() > 0 {
         return ExitCode::from(1);
     }
@@ -196,6 +231,33 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         let plural = if report.warnings() == 1 { "" } else { "s" };
         tell!("error: --deny-warnings: {} warning{plural} (listed above), so the check fails", report.warnings());
         return ExitCode::from(1);
+    }
+    ExitCode::SUCCESS
+}
+
+/// The levels of `--config` (or a tidepack.toml found beside the pack or here) with the
+/// command line's `--allow` and `--deny` over them.
+fn levels(args: &ValidateArgs) -> Result<Levels, tidepack_glsl::Diagnostic> {
+    let from_file = match &args.config {
+        Some(path) => Levels::read(path)?,
+        None => {
+            let beside = if args.path.is_dir() { Some(args.path.as_path()) } else { args.path.parent() };
+            let folders: Vec<&std::path::Path> = beside.into_iter().chain([std::path::Path::new(".")]).collect();
+            Levels::find(&folders)?.0
+        }
+    };
+    from_file.with_command_line(&args.allow, &args.deny).map_err(|m| tidepack_glsl::Diagnostic::error(Code::Usage, m, None))
+}
+
+/// `tidepack codes`: every diagnostic code with its summary, or the docs page.
+pub fn list_codes(markdown: bool) -> ExitCode {
+    if markdown {
+        print!("{}", tidepack_glsl::code::reference_page());
+    } else {
+        let width = Code::ALL.iter().map(|c| c.name().len()).max().unwrap_or(0);
+        for code in Code::ALL {
+            say!("{:width$}  {}", code.name(), code.summary());
+        }
     }
     ExitCode::SUCCESS
 }
