@@ -2266,6 +2266,22 @@ fn combined_use(lowered: &str, ty: &str, pass_both: bool) -> String {
 
 /// The GLSL names a message about lowered text means: `tp_FragData1` → `gl_FragData[1]`, `tp_sampler_x` → `x`, `tp_Vertex` → `gl_Vertex`, …
 pub fn unlower_names(message: &str) -> String {
+    /// The legacy built-in a reserved name stands for, given the part after the prefix
+    /// (`gl_Vertex` for `Vertex`).
+    fn builtin_of_reserved(name: &str) -> Option<&'static str> {
+        let reserved = |r: &str| r.strip_prefix(RESERVED_PREFIX) == Some(name);
+        LEGACY_INPUTS
+            .iter()
+            .find(|i| reserved(i.1))
+            .map(|i| i.0)
+            .or_else(|| LEGACY_VARYINGS.iter().find(|v| reserved(v.2)).map(|v| v.0))
+            .or_else(|| LEGACY_MATRICES.iter().find(|m| reserved(m.1)).map(|m| m.0))
+            .or(match name {
+                "Fog" => Some("gl_Fog"),
+                "FogParameters" => Some("gl_FogParameters"),
+                _ => None,
+            })
+    }
     let prefix = RESERVED_PREFIX;
     let mut out = String::with_capacity(message.len());
     let mut rest = message;
@@ -2282,14 +2298,17 @@ pub fn unlower_names(message: &str) -> String {
             out.push_str(&format!("gl_FragData[{n}]"));
         } else if let Some(n) = name.strip_prefix("TexCoord").filter(|n| !n.is_empty()) {
             out.push_str(&format!("gl_TexCoord[{n}]"));
-        } else if let Some(x) =
-            ["sampler_", "bool_", "kw_", "init_", "scalar_"].iter().find_map(|p| name.strip_prefix(p))
-        {
-            out.push_str(x);
+        } else if let Some(builtin) = builtin_of_reserved(name) {
+            out.push_str(builtin);
         } else if name == "main" {
             out.push_str("main");
+        } else if let Some(x) =
+            ["sampler_", "bool_", "kw_", "init_", "scalar_", "rt_"].iter().find_map(|p| name.strip_prefix(p))
+        {
+            out.push_str(x);
         } else {
-            out.push_str("gl_");
+            // Not a name the lowering makes: the pack's own identifier, as written.
+            out.push_str(prefix);
             out.push_str(name);
         }
         rest = &tail[len..];
@@ -2307,6 +2326,9 @@ mod tests {
         assert_eq!(unlower_names("found Identifier(\"tp_FragData0\")"), "found Identifier(\"gl_FragData[0]\")");
         assert_eq!(unlower_names("tp_sampler_colortex0 and tp_Vertex, tp_TexCoord3; stp_x"), "colortex0 and gl_Vertex, gl_TexCoord[3]; stp_x");
         assert_eq!(unlower_names("`tp_bool_heavyFog` is read"), "`heavyFog` is read");
+        assert_eq!(unlower_names("tp_ModelViewMatrix * tp_FogFragCoord, tp_Fog.color, tp_rt_textureLod"), "gl_ModelViewMatrix * gl_FogFragCoord, gl_Fog.color, textureLod");
+        // A pack's own identifier that happens to start with the prefix stays as written.
+        assert_eq!(unlower_names("Unknown variable: tp_missing"), "Unknown variable: tp_missing");
     }
 
     /// Found by the `lower` fuzz target: brackets with a line break between them, sized by

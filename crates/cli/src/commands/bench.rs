@@ -6,6 +6,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::{CANNOT_RUN, FINDINGS};
+
 use clap::Args;
 use tidepack_bench::BenchConfig;
 
@@ -70,7 +72,7 @@ pub fn run(args: &BenchArgs) -> ExitCode {
         }
         Err(e) => {
             tell!("error: {e}");
-            if e.contains("mesa-vulkan-drivers") || e.contains("cannot read") { ExitCode::from(2) } else { ExitCode::FAILURE }
+            if e.contains("mesa-vulkan-drivers") || e.contains("cannot read") { ExitCode::from(CANNOT_RUN) } else { ExitCode::from(FINDINGS) }
         }
     }
 }

@@ -4,6 +4,8 @@
 use std::io::IsTerminal;
 use std::path::Path;
 use std::process::ExitCode;
+
+use super::{CANNOT_RUN, FINDINGS};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -22,7 +24,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
             }
             Err(message) => {
                 tell!("error: {message}");
-                return ExitCode::from(2);
+                return ExitCode::from(CANNOT_RUN);
             }
         }
     }
@@ -69,7 +71,7 @@ pub fn run(mut opts: BuildOptions, scene_path: Option<&Path>) -> ExitCode {
                 let written: Vec<String> = failure.written.iter().map(|p| p.display().to_string()).collect();
                 tell!("build failed with {errors} error{plural}; only these zips were written: {}", written.join(", "));
             }
-            if failure.usage { ExitCode::from(2) } else { ExitCode::FAILURE }
+            if failure.usage { ExitCode::from(CANNOT_RUN) } else { ExitCode::from(FINDINGS) }
         }
     }
 }

@@ -17,6 +17,13 @@ macro_rules! tell {
     ($($arg:tt)*) => { eprintln!("{}", tidepack_glsl::terminal::block(&format!($($arg)*))) };
 }
 
+/// The exit-code rule of every command (README, "Exit codes"): 0 when the check is clean,
+/// [`FINDINGS`] when it found errors in what it checked (a pack, a template, a render),
+/// [`CANNOT_RUN`] when it could not check at all: a bad argument (as clap's own usage errors),
+/// unreadable input, a missing driver.
+pub const FINDINGS: u8 = 1;
+pub const CANNOT_RUN: u8 = 2;
+
 #[cfg(feature = "bench")]
 pub mod bench;
 pub mod build;

@@ -6,6 +6,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::{CANNOT_RUN, FINDINGS};
+
 use clap::{Args, ValueEnum};
 use tidepack_harness::HarnessError;
 
@@ -132,7 +134,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
 /// Prints a command-line mistake; exit code 2.
 fn usage_error(message: &str) -> ExitCode {
     tell!("error: {message}");
-    ExitCode::from(2)
+    ExitCode::from(CANNOT_RUN)
 }
 
 /// Prints a harness error; exit code 2 where the input or a driver is missing, 1 otherwise.
@@ -143,8 +145,8 @@ fn failure(e: HarnessError) -> ExitCode {
         | HarnessError::NoGlDriver(_)
         | HarnessError::Io(_)
         | HarnessError::Scene(_)
-        | HarnessError::Configuration(_) => ExitCode::from(2),
-        _ => ExitCode::FAILURE,
+        | HarnessError::Configuration(_) => ExitCode::from(CANNOT_RUN),
+        _ => ExitCode::from(FINDINGS),
     }
 }
 
@@ -236,5 +238,5 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         tell!("error: {program} does not load, so the frame is not the one the loader draws: {why}");
         failed = true;
     }
-    if failed { ExitCode::FAILURE } else { ExitCode::SUCCESS }
+    if failed { ExitCode::from(FINDINGS) } else { ExitCode::SUCCESS }
 }

@@ -5,6 +5,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::{CANNOT_RUN, FINDINGS};
+
 use clap::Args;
 use tidepack_pack::Dialect;
 use tidepack_stress::StressOptions;
@@ -61,12 +63,12 @@ pub fn run(args: &StressArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => {
             tell!("error: {e}");
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         }
     };
     print!("{}", tidepack_glsl::terminal::block(&tidepack_stress::tables(&report)));
     if let Some(dir) = &args.out {
         say!("\nwritten: {}/{{summary.json,categories.csv,distance.csv,cases.csv}}", dir.display());
     }
-    if report.non_finite_pixels > 0 { ExitCode::from(1) } else { ExitCode::SUCCESS }
+    if report.non_finite_pixels > 0 { ExitCode::from(FINDINGS) } else { ExitCode::SUCCESS }
 }

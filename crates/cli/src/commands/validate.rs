@@ -6,6 +6,8 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::{CANNOT_RUN, FINDINGS};
+
 use clap::{Args, ValueEnum};
 use tidepack_glsl::{Code, Drivers};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
@@ -125,14 +127,14 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         Ok(c) => c,
         Err(e) => {
             tell!("error: {e}");
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         }
     };
     let mut macros = StandardMacros::for_loader(configuration.loader);
     if let Some(text) = &args.mc_version {
         let Some(mc_version) = parse_mc_version(text) else {
             tell!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         };
         macros.mc_version = mc_version;
     }
@@ -167,13 +169,13 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
              a zip it writes (tidepack validate dist/<name>-glsl330.zip)",
             args.path.display()
         );
-        return ExitCode::from(2);
+        return ExitCode::from(CANNOT_RUN);
     }
     let levels = match levels(args) {
         Ok(levels) => levels,
         Err(diag) => {
             print_diagnostics(&[diag], &|_| None);
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         }
     };
     let options = Options {
@@ -197,7 +199,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
                 Format::Json => print!("{}", output::input_error_json(&diag)),
                 Format::Github => print!("{}", output::input_error_github(&diag)),
             }
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         }
     };
     let mut stdout = std::io::stdout().lock();
@@ -211,7 +213,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         Format::Github => stdout.write_all(output::github(&report).as_bytes()),
     };
     if written.is_err() {
-        return ExitCode::from(2);
+        return ExitCode::from(CANNOT_RUN);
     }
     if let Some(path) = &args.summary {
         let appended = std::fs::OpenOptions::new()
@@ -221,16 +223,16 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
             .and_then(|mut file| file.write_all(output::markdown(&report).as_bytes()));
         if let Err(e) = appended {
             tell!("error: --summary {}: {e}", path.display());
-            return ExitCode::from(2);
+            return ExitCode::from(CANNOT_RUN);
         }
     }
     if report.errors() > 0 {
-        return ExitCode::from(1);
+        return ExitCode::from(FINDINGS);
     }
     if args.deny_warnings && report.warnings() > 0 {
         let plural = if report.warnings() == 1 { "" } else { "s" };
         tell!("error: --deny-warnings: {} warning{plural} (listed above), so the check fails", report.warnings());
-        return ExitCode::from(1);
+        return ExitCode::from(FINDINGS);
     }
     ExitCode::SUCCESS
 }
