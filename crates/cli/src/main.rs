@@ -53,6 +53,19 @@ enum Command {
     /// between stages, render targets, uniforms and samplers. Exit 0: clean; 1: shader
     /// errors; 2: unreadable input.
     Validate(commands::validate::ValidateArgs),
+    /// Write the parts of docs/*.md that the pack's sources and its build decide (tables of
+    /// options and profiles, build figures, the diagnostic codes). Run from the checkout root.
+    Docs {
+        /// Only compare: exit 1 naming the docs that differ from what would be written.
+        #[arg(long)]
+        check: bool,
+        /// Folder with pack.toml and the shader templates.
+        #[arg(long, default_value = "shaderpack")]
+        source: PathBuf,
+        /// The docs folder.
+        #[arg(long, default_value = "docs")]
+        docs: PathBuf,
+    },
     /// List the diagnostic codes `--allow` and `--deny` take, with what each is about.
     Codes {
         /// Print docs/diagnostics.md instead: the codes as a Markdown page.
@@ -115,6 +128,7 @@ fn main() -> ExitCode {
         }
         Command::Validate(args) => commands::validate::run(&args),
         Command::Codes { markdown } => commands::validate::list_codes(markdown),
+        Command::Docs { check, source, docs } => commands::build::docs(&source, &docs, check),
         #[cfg(feature = "render")]
         Command::Render(args) => commands::render::run(&args),
         #[cfg(feature = "render")]

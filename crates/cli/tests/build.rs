@@ -581,3 +581,28 @@ fn properties_optifine_would_ignore_are_refused() {
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(stderr(&output).contains("\"uniform.float.tp_test\" is not a key tidepack checks"), "{}", stderr(&output));
 }
+
+#[test]
+fn the_generated_parts_of_the_docs_are_current() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tidepack")).args(["docs", "--check"]).current_dir(repo_root()).output().unwrap();
+    assert!(out.status.success(), "{}{}", String::from_utf8_lossy(&out.stdout), stderr(&out));
+    // A doc whose generated part was edited by hand is named.
+    let docs = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(repo_root().join("docs")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            std::fs::copy(&path, docs.path().join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    let skipping = docs.path().join("skipping.md");
+    let text = std::fs::read_to_string(&skipping).unwrap();
+    std::fs::write(&skipping, text.replace("stages validated", "stages checked")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_tidepack"))
+        .args(["docs", "--check", "--docs"])
+        .arg(docs.path())
+        .current_dir(repo_root())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("docs/skipping.md"), "{}", stderr(&out));
+}

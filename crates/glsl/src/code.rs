@@ -146,7 +146,7 @@ mod tests {
     fn the_docs_page_is_the_one_this_table_writes() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/diagnostics.md");
         let written = std::fs::read_to_string(path).unwrap_or_default();
-        assert!(written == reference_page(), "docs/diagnostics.md is out of date: run `cargo run -- codes --markdown > docs/diagnostics.md`");
+        assert!(written == reference_page(), "docs/diagnostics.md is out of date: run `cargo run -- docs`");
     }
 
     #[test]

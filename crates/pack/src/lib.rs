@@ -15,6 +15,7 @@
 pub mod archive;
 pub mod build;
 pub mod dialect;
+pub mod docs;
 pub mod manifest;
 pub mod option_sets;
 pub mod pack_options;

@@ -155,3 +155,25 @@ fn report_speedup(opts: &BuildOptions, dialect: tidepack_pack::Dialect, path: &P
 fn report_speedup(_: &BuildOptions, _: tidepack_pack::Dialect, _: &Path, scene: &Scene) {
     match *scene {}
 }
+
+/// `tidepack docs`: the generated parts of the docs written, or with `check` compared.
+pub fn docs(source: &Path, docs: &Path, check: bool) -> ExitCode {
+    match tidepack_pack::docs::update(source, docs, check) {
+        Ok(differed) if differed.is_empty() => {
+            say!("{} is up to date", docs.display());
+            ExitCode::SUCCESS
+        }
+        Ok(differed) if check => {
+            tell!("error: out of date (run `tidepack docs` from the checkout root): {}", differed.join(", "));
+            ExitCode::from(FINDINGS)
+        }
+        Ok(differed) => {
+            say!("wrote {}", differed.join(", "));
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            tell!("error: {e}");
+            ExitCode::from(CANNOT_RUN)
+        }
+    }
+}
