@@ -878,6 +878,7 @@ impl<'a> Lowering<'_, 'a> {
         self.reverse_array_dimensions();
         self.inline_local_constant_sizes();
         self.drop_const_naga_cannot_fold();
+        self.convert_bool_vector_constructors();
         let statements = top_level_statements(self.tokens);
         for (name, _) in GATHER_STAND_INS {
             // The stand-ins take the sampler's two halves, like the pack's own functions.
@@ -888,6 +889,8 @@ impl<'a> Lowering<'_, 'a> {
         }
         let mut attribute_count = 0;
         let mut output_order = 0;
+        let legacy_outputs_written =
+            self.stage == Stage::Fragment && self.tokens.iter().any(|t| t.is_ident("gl_FragColor") || t.is_ident("gl_FragData"));
         // Locations into which outputs are packed by `component`.
         let mut packed_outputs: HashSet<u32> = HashSet::new();
         // Function headers seen so far, as token text.
@@ -996,6 +999,11 @@ impl<'a> Lowering<'_, 'a> {
                 Storage::FragmentOutput => {
                     let mut text = String::new();
                     for (name, suffix) in &decl.names {
+                        if legacy_outputs_written && self.tokens.iter().filter(|t| t.is_ident(name)).count() == 1 {
+                            // Declared beside gl_FragColor/gl_FragData and never written: drivers
+                            // link it to nothing, where naga would see two outputs at one location.
+                            continue;
+                        }
                         let location = name
                             .strip_prefix("outColor")
                             .and_then(|n| n.parse().ok())
@@ -1418,6 +1426,55 @@ impl<'a> Lowering<'_, 'a> {
     /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
     /// An unsized declaration initialised by a sized constructor (`T x[] = T[3](…)`) gets the
     /// constructor's size too.
+    /// `vec3(a < b)`: GLSL makes a vector from a bool (1.0 or 0.0 in every component); naga
+    /// types the conversion as a float and never splats it. The one bool argument of a vector
+    /// constructor (a comparison or a logical operation at its top level) is converted to the
+    /// vector's component type first: `vec3(float(a < b))`.
+    fn convert_bool_vector_constructors(&mut self) {
+        let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        for k in 0..sig.len().saturating_sub(1) {
+            let scalar = match self.tokens[sig[k]].text {
+                "vec2" | "vec3" | "vec4" => "float",
+                "ivec2" | "ivec3" | "ivec4" => "int",
+                "uvec2" | "uvec3" | "uvec4" => "uint",
+                _ => continue,
+            };
+            if !self.tokens[sig[k + 1]].is_punct("(") {
+                continue;
+            }
+            let mut depth = 0usize;
+            let mut close = None;
+            let mut boolean = false;
+            let mut other_top_level = false;
+            for (j, &i) in sig.iter().enumerate().skip(k + 1) {
+                let text = self.tokens[i].text;
+                match text {
+                    "(" | "[" | "{" => depth += 1,
+                    ")" | "]" | "}" => {
+                        depth -= 1;
+                        if depth == 0 {
+                            close = Some(j);
+                            break;
+                        }
+                    }
+                    _ if depth == 1 && self.tokens[i].kind == TokenKind::Punct => match text {
+                        "<" | ">" | "<=" | ">=" | "==" | "!=" | "&&" | "||" | "^^" => boolean = true,
+                        "!" if j == k + 2 => boolean = true,
+                        "," | "?" | ":" | "=" | ";" => other_top_level = true,
+                        _ => {}
+                    },
+                    _ => {}
+                }
+            }
+            let Some(close) = close else { continue };
+            let (open, close) = (sig[k + 1], sig[close]);
+            if boolean && !other_top_level && !self.covered(open) && !self.covered(close) {
+                self.replace(open, open + 1, format!("({scalar}("));
+                self.replace(close, close + 1, "))".into());
+            }
+        }
+    }
+
     fn lower_array_constructor_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
@@ -2355,6 +2412,27 @@ mod tests {
 
     /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
     /// was not built with.
+    #[test]
+    fn outputs_declared_beside_gl_frag_color_and_never_written_are_dropped() {
+        let text = "#version 430 compatibility\nlayout(location = 0) out vec4 unused0;\nlayout(location = 1) out vec4 unused1;\n\
+                    void main() { gl_FragColor = vec4(1.0); }\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        assert!(!lowered.text.contains("unused0") && !lowered.text.contains("unused1"), "{}", lowered.text);
+        assert_eq!(lowered.interface.outputs.len(), 1, "{:?}", lowered.interface.outputs);
+        assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
+    }
+
+    #[test]
+    fn a_vector_made_from_a_bool_converts_it_first() {
+        let text = "#version 330\nout vec4 color;\nuniform float r;\nvoid main() { vec3 disk = vec3(r < 0.5); ivec2 on = ivec2(!(r > 1.0)); \
+                    vec2 kept = vec2(r < 0.5 ? 1.0 : 0.0); color = vec4(disk, float(on.x) + kept.x); }\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        assert!(lowered.text.contains("vec3(float(r < 0.5))"), "{}", lowered.text);
+        assert!(lowered.text.contains("ivec2(int(!(r > 1.0)))"), "{}", lowered.text);
+        assert!(lowered.text.contains("vec2(r < 0.5 ? 1.0 : 0.0)"), "{}", lowered.text);
+        assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
+    }
+
     #[test]
     fn struct_and_matrix_varyings_take_a_location_per_member_and_column() {
         let vertex = "#version 400 compatibility\nstruct Inner { vec2 a[3]; };\nstruct Fog { vec3 color; mat3 basis; Inner inner; float density, height; };\n\

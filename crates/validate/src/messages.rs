@@ -32,6 +32,16 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         );
         return diag;
     }
+    if diag.message.contains("unsupported matrix of the form matCx2") {
+        // A two-row matrix in a block, a struct of one, or a struct varying: GLSL lays it out
+        // and drivers accept it; naga's std140 layout has no two-row matrices.
+        diag.severity = Severity::Warning;
+        diag.code = Code::NotChecked;
+        diag.message = "a two-row matrix (mat2, mat3x2, mat4x2) here is not checked: naga cannot lay one out in a block \
+                        or a struct, drivers accept it (`--driver` compiles it with Mesa)"
+            .into();
+        return diag;
+    }
     if diag.message.contains("Unable to operate on image class Sampled { kind: Uint")
         || diag.message.contains("Unable to operate on image class Sampled { kind: Sint")
     {

@@ -274,12 +274,13 @@ fn github_escape(s: &str, property: bool) -> String {
     out
 }
 
-/// GitHub shows at most ten warning annotations of a step; more are dropped unseen.
+/// GitHub shows at most ten warning annotations of a step (and ten errors); more are dropped
+/// unseen.
 pub const MAX_WARNING_ANNOTATIONS: usize = 10;
 
 /// `::error file=…,line=…::message` lines: every error, then up to
-/// [`MAX_WARNING_ANNOTATIONS`] warnings taken a code at a time (so the ones shown cover as many
-/// codes as they can), then a notice counting the warnings left to the job summary
+/// [`MAX_WARNING_ANNOTATIONS`] warnings, each taken a code at a time (so the ten GitHub shows
+/// cover as many codes as they can), then a notice counting the warnings left to the job summary
 /// ([`markdown`]). GitHub attaches an annotation to a file of the repository by its path from
 /// the repository root, where workflows run: a pack folder's files are named from the working
 /// directory. Files inside a zip are in no repository, so their annotations name the zip and
@@ -287,22 +288,10 @@ pub const MAX_WARNING_ANNOTATIONS: usize = 10;
 pub fn github(report: &Report) -> String {
     let cwd = std::env::current_dir().ok();
     let mut out = String::new();
-    let errors = report.diagnostics.iter().filter(|d| d.is_error());
-    let mut by_code: BTreeMap<Code, VecDeque<&Diagnostic>> = BTreeMap::new();
-    for d in report.diagnostics.iter().filter(|d| !d.is_error()) {
-        by_code.entry(d.code).or_default().push_back(d);
-    }
-    let mut warnings = Vec::new();
-    while warnings.len() < MAX_WARNING_ANNOTATIONS && by_code.values().any(|q| !q.is_empty()) {
-        for queue in by_code.values_mut() {
-            if warnings.len() < MAX_WARNING_ANNOTATIONS
-                && let Some(d) = queue.pop_front()
-            {
-                warnings.push(d);
-            }
-        }
-    }
-    for d in errors.chain(warnings.iter().copied()) {
+    let errors = a_code_at_a_time(report.diagnostics.iter().filter(|d| d.is_error()));
+    let mut warnings = a_code_at_a_time(report.diagnostics.iter().filter(|d| !d.is_error()));
+    warnings.truncate(MAX_WARNING_ANNOTATIONS);
+    for d in errors.iter().chain(&warnings) {
         let command = match d.severity {
             Severity::Error => "error",
             Severity::Warning => "warning",
@@ -342,6 +331,20 @@ pub fn github(report: &Report) -> String {
         writeln!(out, "::notice title=tidepack validate::{}", github_escape(&notice, false)).unwrap();
     }
     out
+}
+
+/// `diagnostics` reordered to take one of each code in turn, so that the first few of them
+/// (all that GitHub shows) cover as many codes as they can.
+fn a_code_at_a_time<'a>(diagnostics: impl Iterator<Item = &'a Diagnostic>) -> Vec<&'a Diagnostic> {
+    let mut by_code: BTreeMap<Code, VecDeque<&Diagnostic>> = BTreeMap::new();
+    for d in diagnostics {
+        by_code.entry(d.code).or_default().push_back(d);
+    }
+    let mut ordered = Vec::new();
+    while by_code.values().any(|q| !q.is_empty()) {
+        ordered.extend(by_code.values_mut().filter_map(VecDeque::pop_front));
+    }
+    ordered
 }
 
 /// The report as Markdown for a CI job summary (GitHub's `$GITHUB_STEP_SUMMARY`): the verdict
