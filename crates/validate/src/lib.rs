@@ -211,6 +211,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
     // OptiFine takes a conditional line it cannot evaluate as false and says so in its log.
     diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(Code::Properties, problem.clone(), Some(Location::line(properties::PATH, *line)))));
+    if options.loader == Loader::Iris && !options.target.intersection(Drivers::MACOS).is_empty() {
+        diagnostics.extend(stages::iris_features_on_macos(&props));
+    }
     let (sets, overrides) = option_sets(&props, &declared, options, &mut diagnostics)?;
     let mut programs = programs::find_programs(pack.files.keys());
     let mut dimension_without_programs = None;

@@ -210,3 +210,26 @@ pub(crate) fn check_compute(
         }
     }
 }
+
+/// Iris features that need more than macOS's OpenGL 4.1, with what each needs.
+const IRIS_FEATURES_ABOVE_MACOS: [(&str, &str); 3] =
+    [("CUSTOM_IMAGES", "image load/store, OpenGL 4.2"), ("COMPUTE_SHADERS", "compute shaders, OpenGL 4.3"), ("SSBO", "shader storage buffers, OpenGL 4.3")];
+
+/// `iris.features.required` naming a feature macOS's OpenGL lacks: Iris refuses to load the
+/// pack there, whatever its programs hold.
+pub(crate) fn iris_features_on_macos(props: &tidepack_loader::properties::Properties) -> Vec<Diagnostic> {
+    let Some(entry) = props.get("iris.features.required") else { return Vec::new() };
+    entry
+        .value
+        .split_whitespace()
+        .filter_map(|feature| IRIS_FEATURES_ABOVE_MACOS.iter().find(|(name, _)| *name == feature))
+        .map(|(feature, needs)| {
+            Diagnostic::error(
+                Code::Macos,
+                format!("iris.features.required names {feature} ({needs}); macOS stops at OpenGL 4.1, so Iris refuses to load the pack there"),
+                Some(Location::line(tidepack_loader::properties::PATH, entry.line)),
+            )
+            .refused_by(Drivers::MACOS)
+        })
+        .collect()
+}

@@ -422,3 +422,25 @@ fn the_driver_skips_a_program_turned_off_as_validate_does() {
     let driver = report.driver.as_ref().expect("the driver ran");
     assert!(driver.only_driver_rejects.is_empty() && driver.both_accept == 1, "{driver:?}{}", show(&report));
 }
+
+#[test]
+fn iris_features_macos_lacks_are_refused_there_when_macos_is_a_target() {
+    let files = [
+        ("final.vsh", "#version 120\nvoid main() { gl_Position = ftransform(); }\n"),
+        ("final.fsh", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n"),
+        ("shaders.properties", "sliders = \niris.features.required = SSBO SEPARATE_HARDWARE_SAMPLERS COMPUTE_SHADERS\n"),
+    ];
+    let pack = || pack_from_memory("test/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
+    let iris = |target| Options { threads: 2, loader: tidepack_loader::Loader::Iris, target, ..Options::default() };
+    let report = validate_pack(pack(), &iris(tidepack_glsl::Drivers::ALL)).unwrap();
+    let on_macos: Vec<_> = report.diagnostics.iter().filter(|d| d.code == tidepack_glsl::Code::Macos).collect();
+    assert_eq!(on_macos.len(), 2, "{}", show(&report));
+    assert!(has(&report, true, "shaders.properties", 2, "SSBO (shader storage buffers, OpenGL 4.3)"), "{}", show(&report));
+    assert!(has(&report, true, "shaders.properties", 2, "COMPUTE_SHADERS"), "{}", show(&report));
+    assert!(on_macos.iter().all(|d| d.refused_by == tidepack_glsl::Drivers::MACOS));
+    // Not a target by default; and OptiFine does not read the key.
+    let report = validate_pack(pack(), &iris(tidepack_validate::DEFAULT_TARGET)).unwrap();
+    assert!(report.errors() == 0, "{}", show(&report));
+    let report = validate_pack(pack(), &Options { threads: 2, target: tidepack_glsl::Drivers::ALL, ..Options::default() }).unwrap();
+    assert!(report.errors() == 0, "{}", show(&report));
+}
