@@ -226,7 +226,7 @@ fn codes_are_shown_counted_allowed_and_denied() {
     let out = validate(&[path, "--allow", "unknown-uniform"]);
     assert_eq!(out.status.code(), Some(0));
     let stdout = text(&out.stdout);
-    assert!(stdout.contains("allowed, not shown: unknown-uniform 3") && stdout.contains("0 errors, 1 warnings"), "{stdout}");
+    assert!(stdout.contains("allowed, not shown: unknown-uniform 3") && stdout.contains("0 errors, 1 warning\n"), "{stdout}");
     assert!(!text(&out.stderr).contains("mystery"), "{}", text(&out.stderr));
 
     let out = validate(&[path, "--deny", "undefined-in-if,unknown-uniform", "--format", "json"]);

@@ -97,12 +97,11 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     }
     writeln!(
         summary,
-        "{root}: {validated} programs under {} ({sets}), {} distinct stages validated in {:.2} s: {invalid} invalid; {} errors, {} warnings",
-        if report.option_sets.len() == 1 { "1 option set".to_string() } else { format!("{} option sets", report.option_sets.len()) },
+        "{root}: {validated} programs under {} ({sets}), {} distinct stages validated in {:.2} s: {invalid} invalid; {}",
+        plural(report.option_sets.len(), "option set"),
         report.stages_validated,
         report.elapsed.as_secs_f64(),
-        report.errors(),
-        report.warnings()
+        counted_each(report.errors(), report.warnings())
     )
     .unwrap();
     Ok(terminal::block(&summary))
@@ -362,8 +361,8 @@ pub fn markdown(report: &Report) -> String {
     };
     writeln!(
         out,
-        "{} option sets, {} distinct stages validated: **{}**{allowed}\n",
-        report.option_sets.len(),
+        "{}, {} distinct stages validated: **{}**{allowed}\n",
+        plural(report.option_sets.len(), "option set"),
         report.stages_validated,
         counted_each(report.errors(), report.warnings()),
     )
