@@ -22,6 +22,7 @@ fn a_command_that_cannot_run_exits_2_with_a_one_line_error() {
         (&["validate", "/nonexistent/pack"], "/nonexistent/pack"),
         (&["validate", "tests/validate/corpus/legacy120", "--allow", "nope"], "no diagnostic code `nope`"),
         (&["validate", "tests/validate/corpus/legacy120", "--gl-version", "four"], "four"),
+        (&["validate", "tests/validate/corpus/legacy120", "--distant-horizons"], "needs --loader iris"),
         (&["build", "--source", "/nonexistent/pack", "--out", out], "holds no pack.toml"),
         (&["build", "--profile", "NOPE", "--out", out], "no profile named NOPE"),
         (&["render", "no_such_scene", "--out", out], "built-in scenes are"),

@@ -97,7 +97,8 @@ pub fn is_sampler(name: &str) -> bool {
 /// Why `sampler` reads something else than its name says in `program` (OptiFine binds units by
 /// program group), or `None` when it is available there.
 pub fn sampler_unavailable(program: &str, sampler: &str) -> Option<&'static str> {
-    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow";
+    // Iris's shadow_solid, shadow_water, … bind as `shadow` does.
+    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow" || program.starts_with("shadow_");
     let low_colortex = matches!(sampler, "colortex0" | "colortex1" | "colortex2" | "colortex3" | "gcolor" | "gdepth" | "gnormal" | "composite");
     let atlas_units = matches!(sampler, "texture" | "gtexture" | "tex" | "lightmap" | "normals" | "specular");
     if gbuffers_style && low_colortex {
@@ -121,6 +122,7 @@ mod tests {
         assert!(sampler_unavailable("composite2", "lightmap").is_some());
         assert!(sampler_unavailable("composite2", "colortex1").is_none());
         assert!(sampler_unavailable("shadow", "tex").is_none());
+        assert!(sampler_unavailable("shadow_water", "tex").is_none());
     }
 
     #[test]

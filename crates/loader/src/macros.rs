@@ -47,6 +47,9 @@ pub struct StandardMacros {
     /// Iris's version (`1.8.1` → 10801) when Iris loads the pack: it adds `IS_IRIS`,
     /// `IRIS_VERSION` and its other names. `None`: OptiFine.
     pub iris_version: Option<u32>,
+    /// Distant Horizons is installed beside Iris: `DISTANT_HORIZONS` is defined in every
+    /// program, and Iris runs the `dh_*` programs.
+    pub distant_horizons: bool,
 }
 
 /// The Iris version whose macros `for_loader(Loader::Iris)` defines.
@@ -72,6 +75,7 @@ impl Default for StandardMacros {
             normal_and_specular_maps: true,
             extensions: COMMON_EXTENSIONS.iter().map(|e| e.to_string()).collect(),
             iris_version: None,
+            distant_horizons: false,
         }
     }
 }
@@ -185,6 +189,9 @@ impl StandardMacros {
             }
             for (value, block) in DH_BLOCKS.iter().enumerate() {
                 out.push((format!("DH_BLOCK_{block}"), value.to_string()));
+            }
+            if self.distant_horizons {
+                out.push(("DISTANT_HORIZONS".into(), String::new()));
             }
         }
         out

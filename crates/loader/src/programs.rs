@@ -58,13 +58,70 @@ const IRIS_SHADOW: [&str; 6] = ["shadow_solid", "shadow_cutout", "shadow_water",
 
 /// Whether `loader` runs a program of this name, as far as `validate` checks it: OptiFine's
 /// programs, and under Iris also its finer gbuffers and shadow programs and its `begin`/`setup`
-/// compute passes (Iris's `ProgramId`). Distant Horizons' `dh_*` programs are left out: Iris
-/// rewrites their vertex stages (declaring `dhMaterialId`, replacing the legacy built-ins),
-/// which is not imitated, so their text alone does not say whether Iris compiles them.
+/// compute passes (Iris's `ProgramId`). Distant Horizons' `dh_*` programs run only where the
+/// mod is installed: [`runs_with`].
 pub fn runs(name: &str, loader: Loader) -> bool {
     run_by(name) == RunBy::OptiFine
         || (loader == Loader::Iris
             && (IRIS_ONLY.contains(&name) || IRIS_SHADOW.contains(&name) || numbered(name, "begin") || numbered(name, "setup")))
+}
+
+/// The programs Iris runs for Distant Horizons' LODs when the mod is installed.
+pub const DISTANT_HORIZONS_PROGRAMS: [&str; 4] = ["dh_terrain", "dh_water", "dh_shadow", "dh_generic"];
+
+/// [`runs`], and with Distant Horizons beside Iris also its `dh_*` programs.
+pub fn runs_with(name: &str, loader: Loader, distant_horizons: bool) -> bool {
+    runs(name, loader) || (loader == Loader::Iris && distant_horizons && DISTANT_HORIZONS_PROGRAMS.contains(&name))
+}
+
+/// Iris declares `int dhMaterialId;` (Distant Horizons' material of the vertex, one of the
+/// `DH_BLOCK_*` values) in the vertex stage of every `dh_*` program; a pack uses it undeclared.
+/// `text` (a stage as the driver or naga gets it) with that declaration put before its first
+/// line of code, on that line so that every line keeps its number; unchanged where the stage
+/// does not use the name or declares it itself.
+pub fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
+    const NAME: &str = "dhMaterialId";
+    let is_word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut used = false;
+    let mut declared = false;
+    for (at, _) in text.match_indices(NAME) {
+        let before = &text[..at];
+        if before.ends_with(is_word) || text[at + NAME.len()..].starts_with(is_word) {
+            continue;
+        }
+        used = true;
+        // `int dhMaterialId`: a type, whitespace, the name.
+        let spaced = before.trim_end_matches([' ', '\t']);
+        declared |= spaced.len() < before.len() && ["int", "uint", "float"].iter().any(|ty| {
+            spaced.strip_suffix(ty).is_some_and(|rest| !rest.ends_with(is_word))
+        });
+    }
+    if declared || !used {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut depth = 0usize;
+    let mut in_comment = false;
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim();
+        let directive = trimmed.strip_prefix('#').map(str::trim_start);
+        match directive {
+            Some(d) if d.starts_with("if") => depth += 1,
+            Some(d) if d.starts_with("endif") => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        let code = directive.is_none() && !in_comment && !trimmed.is_empty() && !trimmed.starts_with("//") && !trimmed.starts_with("/*");
+        if trimmed.starts_with("/*") && !trimmed.contains("*/") {
+            in_comment = true;
+        } else if in_comment && trimmed.contains("*/") {
+            in_comment = false;
+        }
+        if code && depth == 0 {
+            return std::borrow::Cow::Owned(format!("{}int {NAME}; {}", &text[..offset], &text[offset..]));
+        }
+        offset += line.len();
+    }
+    std::borrow::Cow::Borrowed(text)
 }
 
 /// Whether `name` is `base` or `base1` … `base99`.
@@ -263,6 +320,18 @@ pub fn disabled_programs(properties: &Properties, world: &str, declared: &BTreeM
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn dh_material_id_is_declared_before_the_first_code_where_it_is_used_undeclared() {
+        let text = "#version 330 compatibility\n#extension GL_ARB_x : enable\n#ifdef A\nuniform int a;\n#endif\n/* a\nb */\nout float m;\nvoid main() { m = float(dhMaterialId == DH_BLOCK_WATER); }\n";
+        let declared = declare_dh_material_id(text);
+        assert_eq!(declared.lines().count(), text.lines().count());
+        assert_eq!(declared.lines().nth(7), Some("int dhMaterialId; out float m;"));
+        let own = "#version 330\nin int dhMaterialId;\nvoid main() { int m = dhMaterialId; }\n";
+        assert_eq!(declare_dh_material_id(own), own);
+        let unused = "#version 330\nvoid main() {}\n";
+        assert_eq!(declare_dh_material_id(unused), unused);
+    }
 
     #[test]
     fn classifies_program_names() {

@@ -136,7 +136,7 @@ impl Driver {
         let mut texts = Vec::new();
         for (kind, path) in files {
             match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*kind, *path, text, map)),
+                Ok((text, map)) => texts.push((*kind, *path, loader_declarations(program, *kind == glow::VERTEX_SHADER, text), map)),
                 Err(_) => return Err(Vec::new()),
             }
         }
@@ -216,7 +216,7 @@ impl Driver {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
             match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*stage, path.clone(), text, map)),
+                Ok((text, map)) => texts.push((*stage, path.clone(), loader_declarations(program, *stage == Stage::Vertex, text), map)),
                 Err(_) => return Err(Vec::new()),
             }
         }
@@ -263,5 +263,15 @@ fn stage_name(kind: u32) -> &'static str {
         glow::TESS_CONTROL_SHADER => "tessellation control shader",
         glow::TESS_EVALUATION_SHADER => "tessellation evaluation shader",
         _ => "compute shader",
+    }
+}
+
+/// A stage's text with what the loader declares in it: Iris's `dhMaterialId` in the vertex
+/// stage of a Distant Horizons program.
+fn loader_declarations(program: &Program, vertex: bool, text: String) -> String {
+    if vertex && tidepack_loader::programs::DISTANT_HORIZONS_PROGRAMS.contains(&program.name.as_str()) {
+        tidepack_loader::programs::declare_dh_material_id(&text).into_owned()
+    } else {
+        text
     }
 }

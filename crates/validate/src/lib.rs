@@ -229,6 +229,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         }
     }
     let macros = options.macros.preprocess_options();
+    let runs = |name: &str| programs::runs_with(name, options.loader, options.macros.distant_horizons);
     let mut reports: Vec<ProgramReport> = programs
         .iter()
         .map(|p| ProgramReport {
@@ -241,17 +242,20 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 .chain(p.compute.iter().cloned())
                 .collect(),
             status: match &p.run_by {
-                _ if programs::runs(&p.name, options.loader) => Status::Valid,
+                _ if runs(&p.name) => Status::Valid,
+                RunBy::Other(who) if programs::DISTANT_HORIZONS_PROGRAMS.contains(&p.name.as_str()) => {
+                    Status::Skipped(format!("run by {who}; validated with --loader iris --distant-horizons"))
+                }
                 RunBy::Other(who) => Status::Skipped(format!("run by {who}; not validated under {}", options.loader)),
                 _ => Status::Skipped("no loader runs a program of this name; not validated".into()),
             },
             compile_error: false,
-            only_preprocessed: if programs::runs(&p.name, options.loader) && !options.driver { p.other_stages.clone() } else { Vec::new() },
+            only_preprocessed: if runs(&p.name) && !options.driver { p.other_stages.clone() } else { Vec::new() },
             diagnostics: Vec::new(),
         })
         .collect();
     let runnable: Vec<usize> =
-        (0..programs.len()).filter(|&i| programs::runs(&programs[i].name, options.loader) && programs[i].has_stages()).collect();
+        (0..programs.len()).filter(|&i| runs(&programs[i].name) && programs[i].has_stages()).collect();
     let cache = options.cache.as_deref().map(Cache::open).transpose()?;
     let covering = match options.profiles {
         Profiles::Covering(coverage) => Some(coverage),

@@ -444,3 +444,49 @@ fn iris_features_macos_lacks_are_refused_there_when_macos_is_a_target() {
     let report = validate_pack(pack(), &Options { threads: 2, target: tidepack_glsl::Drivers::ALL, ..Options::default() }).unwrap();
     assert!(report.errors() == 0, "{}", show(&report));
 }
+
+/// A Distant Horizons program as packs write it: `dhMaterialId` undeclared (Iris declares it
+/// in the vertex stage), `dhProjection`, legacy built-ins, and `DISTANT_HORIZONS` tested.
+fn distant_horizons_pack() -> Vec<(&'static str, &'static str)> {
+    vec![
+        ("final.vsh", "#version 120\nvoid main() { gl_Position = ftransform(); }\n"),
+        ("final.fsh", "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n"),
+        (
+            "dh_water.vsh",
+            "#version 330 compatibility\nuniform mat4 dhProjection;\nflat out int water;\nout vec4 tint;\n\
+             void main() {\n    water = int(dhMaterialId == DH_BLOCK_WATER);\n    tint = gl_Color;\n\
+                 gl_Position = dhProjection * (gl_ModelViewMatrix * gl_Vertex);\n}\n",
+        ),
+        (
+            "dh_water.fsh",
+            "#version 330 compatibility\nflat in int water;\nin vec4 tint;\n/* RENDERTARGETS: 0 */\nlayout(location = 0) out vec4 color;\n\
+             void main() {\n#ifndef DISTANT_HORIZONS\n    undefined_outside_dh();\n#endif\n    color = tint * float(water);\n}\n",
+        ),
+    ]
+}
+
+#[test]
+fn distant_horizons_programs_validate_with_what_iris_declares_and_mesa_agrees() {
+    let files = distant_horizons_pack();
+    let pack = || pack_from_memory("test/shaders/", files.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
+    let loader = tidepack_loader::Loader::Iris;
+    let with_dh = tidepack_loader::macros::StandardMacros { distant_horizons: true, ..tidepack_loader::macros::StandardMacros::for_loader(loader) };
+    let report = validate_pack(pack(), &Options { threads: 2, loader, macros: with_dh, driver: true, ..Options::default() }).unwrap();
+    assert_eq!(status(&report, "dh_water"), Status::Valid, "{}", show(&report));
+    assert!(report.diagnostics.is_empty(), "{}", show(&report));
+    let driver = report.driver.as_ref().expect("the driver ran");
+    assert!(driver.only_driver_rejects.is_empty() && driver.only_tidepack_rejects.is_empty() && driver.both_accept == 2, "{driver:?}");
+
+    // Without the mod the program is not run, and the report says how to validate it.
+    let plain = Options { threads: 2, loader, macros: tidepack_loader::macros::StandardMacros::for_loader(loader), ..Options::default() };
+    let report = validate_pack(pack(), &plain).unwrap();
+    assert!(matches!(status(&report, "dh_water"), Status::Skipped(why) if why.contains("--distant-horizons")), "{}", show(&report));
+
+    // A DH vertex stage that uses another undeclared name is still an error at its line.
+    let mut broken = distant_horizons_pack();
+    broken[2].1 = "#version 330 compatibility\nvoid main() {\n    gl_Position = vec4(float(dhMaterialId) * notDeclared);\n}\n";
+    let pack = pack_from_memory("test/shaders/", broken.iter().map(|(p, t)| (p.to_string(), t.as_bytes().to_vec())));
+    let with_dh = tidepack_loader::macros::StandardMacros { distant_horizons: true, ..tidepack_loader::macros::StandardMacros::for_loader(loader) };
+    let report = validate_pack(pack, &Options { threads: 2, loader, macros: with_dh, ..Options::default() }).unwrap();
+    assert!(has(&report, true, "dh_water.vsh", 3, "notDeclared"), "{}", show(&report));
+}

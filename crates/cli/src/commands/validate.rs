@@ -58,6 +58,11 @@ pub struct ValidateArgs {
     /// --gl-version; 1.20 on macOS before 1.17). A stage whose #version is higher is an error.
     #[arg(long, value_parser = parse_gl_version)]
     pub glsl_version: Option<u32>,
+    /// With `--loader iris`: Distant Horizons is installed, so `DISTANT_HORIZONS` is defined in
+    /// every program and Iris's `dh_terrain`, `dh_water`, `dh_shadow` and `dh_generic` are
+    /// validated too (with the `dhMaterialId` Iris declares in their vertex stages).
+    #[arg(long)]
+    pub distant_horizons: bool,
     /// Operating system for MC_OS_*.
     #[arg(long, value_enum, default_value_t = OsArg::Linux)]
     pub os: OsArg,
@@ -131,6 +136,13 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         }
     };
     let mut macros = StandardMacros::for_loader(configuration.loader);
+    if args.distant_horizons {
+        if configuration.loader != tidepack_loader::Loader::Iris {
+            tell!("error: --distant-horizons needs --loader iris: Distant Horizons' programs run only through Iris");
+            return ExitCode::from(CANNOT_RUN);
+        }
+        macros.distant_horizons = true;
+    }
     if let Some(text) = &args.mc_version {
         let Some(mc_version) = parse_mc_version(text) else {
             tell!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());
