@@ -422,7 +422,7 @@ fn struct_locations(sig: &[&Token<'_>]) -> BTreeMap<String, u32> {
                     if member[k].kind == TokenKind::Ident {
                         let mut count = 1u32;
                         while k + 1 < member.len() && member[k + 1].is_punct("[") {
-                            let close = (k + 1..member.len()).find(|&c| member[c].is_punct("]")).unwrap_or(member.len() - 1);
+                            let Some(close) = (k + 2..member.len()).find(|&c| member[c].is_punct("]")) else { break };
                             let inner: Vec<&str> = member[k + 2..close].iter().map(|t| t.text).collect();
                             let size = literal_integer_expression(&inner.join(" ")).and_then(|n| u32::try_from(n).ok()).unwrap_or(1);
                             count = count.saturating_mul(size.max(1));
@@ -2440,6 +2440,10 @@ mod tests {
         let layout = VaryingLayout::for_program(&[(Stage::Vertex, vertex, 400)]).unwrap();
         // fog: 1 + 3 + 3 + 2 = 9 locations, frame: 4, in name order.
         assert_eq!(layout.locations, BTreeMap::from([("fog".to_string(), 0), ("frame".to_string(), 9), ("uv".to_string(), 13)]));
+        // A member's bracket left open is malformed, and stops nothing.
+        for broken in ["struct S { vec2 a[", "struct S { vec2 a[3; }; out S s;", "struct S { vec2 a[]; }; out S s;"] {
+            let _ = VaryingLayout::for_program(&[(Stage::Vertex, broken, 400)]);
+        }
     }
 
     #[test]
