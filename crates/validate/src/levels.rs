@@ -106,6 +106,21 @@ impl Levels {
         Ok(levels)
     }
 
+    /// The levels a check of the pack at `pack` runs with: those of `config`, or else of a
+    /// tidepack.toml beside the pack (in its folder) or in the current folder, with the command
+    /// line's `allow` and `deny` over them.
+    pub fn for_pack(pack: &Path, config: Option<&Path>, allow: &[Code], deny: &[Code]) -> Result<Levels, Diagnostic> {
+        let from_file = match config {
+            Some(path) => Levels::read(path)?,
+            None => {
+                let beside = if pack.is_dir() { Some(pack) } else { pack.parent() };
+                let folders: Vec<&Path> = beside.into_iter().chain([Path::new(".")]).collect();
+                Levels::find(&folders)?.0
+            }
+        };
+        from_file.with_command_line(allow, deny).map_err(|m| Diagnostic::error(Code::Usage, m, None))
+    }
+
     /// The levels of the first `tidepack.toml` among `folders`, with its path; none (and no
     /// path) when no folder has one.
     pub fn find(folders: &[&Path]) -> Result<(Levels, Option<std::path::PathBuf>), Diagnostic> {

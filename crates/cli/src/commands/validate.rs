@@ -183,7 +183,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         );
         return ExitCode::from(CANNOT_RUN);
     }
-    let levels = match levels(args) {
+    let levels = match Levels::for_pack(&args.path, args.config.as_deref(), &args.allow, &args.deny) {
         Ok(levels) => levels,
         Err(diag) => {
             print_diagnostics(&[diag], &|_| None);
@@ -247,20 +247,6 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
         return ExitCode::from(FINDINGS);
     }
     ExitCode::SUCCESS
-}
-
-/// The levels of `--config` (or a tidepack.toml found beside the pack or here) with the
-/// command line's `--allow` and `--deny` over them.
-fn levels(args: &ValidateArgs) -> Result<Levels, tidepack_glsl::Diagnostic> {
-    let from_file = match &args.config {
-        Some(path) => Levels::read(path)?,
-        None => {
-            let beside = if args.path.is_dir() { Some(args.path.as_path()) } else { args.path.parent() };
-            let folders: Vec<&std::path::Path> = beside.into_iter().chain([std::path::Path::new(".")]).collect();
-            Levels::find(&folders)?.0
-        }
-    };
-    from_file.with_command_line(&args.allow, &args.deny).map_err(|m| tidepack_glsl::Diagnostic::error(Code::Usage, m, None))
 }
 
 /// `tidepack codes`: every diagnostic code with its summary, or the docs page.
