@@ -414,7 +414,7 @@ fn struct_locations(sig: &[&Token<'_>]) -> BTreeMap<String, u32> {
             let end = (j..sig.len()).find(|&k| sig[k].is_punct(";") || sig[k].is_punct("}")).unwrap_or(sig.len());
             let member = &sig[j..end];
             let words: Vec<usize> = (0..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
-            let type_at = words.iter().copied().find(|&k| !is_precision(member[k].text) && !matches!(member[k].text, "flat" | "smooth" | "noperspective" | "centroid" | "highp" | "const"));
+            let type_at = words.iter().copied().find(|&k| !is_precision(member[k].text) && !matches!(member[k].text, "flat" | "smooth" | "noperspective" | "centroid" | "const"));
             if let Some(type_at) = type_at {
                 let per_value = type_locations(member[type_at].text, &structs);
                 let mut k = type_at + 1;
@@ -1422,10 +1422,6 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
-    /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it
-    /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
-    /// An unsized declaration initialised by a sized constructor (`T x[] = T[3](…)`) gets the
-    /// constructor's size too.
     /// `vec3(a < b)`: GLSL makes a vector from a bool (1.0 or 0.0 in every component); naga
     /// types the conversion as a float and never splats it. The one bool argument of a vector
     /// constructor (a comparison or a logical operation at its top level) is converted to the
@@ -1475,6 +1471,10 @@ impl<'a> Lowering<'_, 'a> {
         }
     }
 
+    /// `T[](a, b, c)` becomes `T[3](a, b, c)`, and the unsized `[]` of the declaration it
+    /// initialises gets the same size: GLSL sizes arrays from their constructor, naga does not.
+    /// An unsized declaration initialised by a sized constructor (`T x[] = T[3](…)`) gets the
+    /// constructor's size too.
     fn lower_array_constructor_sizes(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
         let punct = |k: usize, p: &str| sig.get(k).is_some_and(|&i| self.tokens[i].is_punct(p));
@@ -2410,8 +2410,6 @@ mod tests {
         }
     }
 
-    /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
-    /// was not built with.
     #[test]
     fn outputs_declared_beside_gl_frag_color_and_never_written_are_dropped() {
         let text = "#version 430 compatibility\nlayout(location = 0) out vec4 unused0;\nlayout(location = 1) out vec4 unused1;\n\
@@ -2446,6 +2444,8 @@ mod tests {
         }
     }
 
+    /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
+    /// was not built with.
     #[test]
     fn a_legacy_varying_outside_the_layout_gets_a_location_of_its_own() {
         let text = "#version 120\nvoid main() {\n    gl_Position = ftransform();\n    gl_FrontColor = gl_Color;\n    gl_TexCoord[0] = gl_MultiTexCoord0;\n}\n";

@@ -74,12 +74,18 @@ pub fn runs_with(name: &str, loader: Loader, distant_horizons: bool) -> bool {
     runs(name, loader) || (loader == Loader::Iris && distant_horizons && DISTANT_HORIZONS_PROGRAMS.contains(&name))
 }
 
+/// A stage's text with what the loader declares in it: Iris's `dhMaterialId` in the vertex
+/// stage of a Distant Horizons program.
+pub fn with_loader_declarations<'t>(program: &str, vertex: bool, text: &'t str) -> std::borrow::Cow<'t, str> {
+    if vertex && DISTANT_HORIZONS_PROGRAMS.contains(&program) { declare_dh_material_id(text) } else { std::borrow::Cow::Borrowed(text) }
+}
+
 /// Iris declares `int dhMaterialId;` (Distant Horizons' material of the vertex, one of the
 /// `DH_BLOCK_*` values) in the vertex stage of every `dh_*` program; a pack uses it undeclared.
 /// `text` (a stage as the driver or naga gets it) with that declaration put before its first
 /// line of code, on that line so that every line keeps its number; unchanged where the stage
 /// does not use the name or declares it itself.
-pub fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
+fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
     const NAME: &str = "dhMaterialId";
     let is_word = |c: char| c.is_ascii_alphanumeric() || c == '_';
     let mut used = false;

@@ -7,6 +7,7 @@ use tidepack_glsl::Code;
 use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::programs::with_loader_declarations;
 use tidepack_glsl::preprocess::{IncludeQuotes, expand_includes_mapped};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 
@@ -136,7 +137,7 @@ impl Driver {
         let mut texts = Vec::new();
         for (kind, path) in files {
             match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*kind, *path, loader_declarations(program, *kind == glow::VERTEX_SHADER, text), map)),
+                Ok((text, map)) => texts.push((*kind, *path, declared(program, *kind == glow::VERTEX_SHADER, text), map)),
                 Err(_) => return Err(Vec::new()),
             }
         }
@@ -216,7 +217,7 @@ impl Driver {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
             match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*stage, path.clone(), loader_declarations(program, *stage == Stage::Vertex, text), map)),
+                Ok((text, map)) => texts.push((*stage, path.clone(), declared(program, *stage == Stage::Vertex, text), map)),
                 Err(_) => return Err(Vec::new()),
             }
         }
@@ -266,12 +267,7 @@ fn stage_name(kind: u32) -> &'static str {
     }
 }
 
-/// A stage's text with what the loader declares in it: Iris's `dhMaterialId` in the vertex
-/// stage of a Distant Horizons program.
-fn loader_declarations(program: &Program, vertex: bool, text: String) -> String {
-    if vertex && tidepack_loader::programs::DISTANT_HORIZONS_PROGRAMS.contains(&program.name.as_str()) {
-        tidepack_loader::programs::declare_dh_material_id(&text).into_owned()
-    } else {
-        text
-    }
+/// `text` with what the loader declares in the stage (see [`with_loader_declarations`]).
+fn declared(program: &Program, vertex: bool, text: String) -> String {
+    if let std::borrow::Cow::Owned(declared) = with_loader_declarations(&program.name, vertex, &text) { declared } else { text }
 }

@@ -9,7 +9,7 @@ use tidepack_glsl::{Diagnostic, Drivers, Location, Stage};
 
 use tidepack_loader::directives::CustomNames;
 use tidepack_loader::loader::Loader;
-use tidepack_loader::programs::{DISTANT_HORIZONS_PROGRAMS, Program, declare_dh_material_id};
+use tidepack_loader::programs::{Program, with_loader_declarations};
 
 use crate::{glsl_rules, interface, version_rules};
 
@@ -27,8 +27,8 @@ pub(crate) fn check_program(
         match preprocess::preprocess(provider, path, macros) {
             Ok(mut pre) => {
                 assume_glsl_110(&mut pre);
-                if *stage == Stage::Vertex && DISTANT_HORIZONS_PROGRAMS.contains(&program.name.as_str()) {
-                    pre.text = declare_dh_material_id(&pre.text).into_owned();
+                if let std::borrow::Cow::Owned(declared) = with_loader_declarations(&program.name, *stage == Stage::Vertex, &pre.text) {
+                    pre.text = declared;
                 }
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
