@@ -152,8 +152,8 @@ pub type ProgressReport<'a> = dyn Fn(Dialect, Progress) + Sync + 'a;
 pub fn build(opts: &BuildOptions, progress: Option<&ProgressReport<'_>>) -> Result<BuildReport, BuildFailure> {
     let started = Instant::now();
     // No pack source at all is the command line's mistake (--source); a broken one is the pack's.
-    let named_no_source = !opts.source_dir.join("pack.toml").exists();
-    let source = PackSource::load(&opts.source_dir).map_err(|d| BuildFailure { usage: named_no_source, ..BuildFailure::new(vec![d]) })?;
+    let source =
+        PackSource::load(&opts.source_dir).map_err(|d| BuildFailure { usage: d.code == Code::Usage, ..BuildFailure::new(vec![d]) })?;
     let options = pack_options::collect(&source).map_err(BuildFailure::new)?;
     let problems = pack_options::check_manifest(&source, &options);
     if !problems.is_empty() {

@@ -37,7 +37,7 @@ impl PackSource {
         let manifest_path = display(&manifest_file);
         if !manifest_file.exists() {
             return Err(Diagnostic::error(
-                Code::Template,
+                Code::Usage,
                 format!("{} holds no pack.toml, so it is not a tidepack pack source", display(root)),
                 None,
             )
