@@ -4,13 +4,12 @@
 //! absolute path can do no harm; they are reported and skipped like the other suspicious
 //! entries (zip bombs by size or compression ratio, symbolic links, unreadable entries).
 
-use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 use std::io::{Read, Seek};
 use std::path::Path;
 use std::sync::Arc;
 
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 use crate::loader::Loader;
 use crate::option_space::Dimension;

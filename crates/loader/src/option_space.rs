@@ -6,12 +6,11 @@
 //! and a loader. `validate` and `render` take the same `--profile`, `--set NAME=VALUE`,
 //! `--dimension` and `--loader` and build one of these.
 
-use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt;
 
 use tidepack_glsl::preprocess::resolve_include;
-use tidepack_glsl::{Diagnostic, Location, terminal};
+use tidepack_glsl::{Code, Diagnostic, Location, terminal};
 
 use crate::consts;
 use crate::input::PackFiles;

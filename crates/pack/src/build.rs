@@ -1,12 +1,11 @@
 //! `build`: templates → shipped pack per dialect → validation of every option set → zips.
 //! Nothing is written unless every dialect validates.
 
-use tidepack_glsl::Code;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use tidepack_glsl::Diagnostic;
+use tidepack_glsl::{Code, Diagnostic};
 use tidepack_loader::option_lines::OptionSet;
 
 use crate::{archive, properties};

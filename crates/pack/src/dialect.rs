@@ -12,12 +12,11 @@
 //! Generation inserts exactly one line (the header) and changes no other line break, so a line
 //! of a shipped file maps back to its template by [`template_line`].
 
-use tidepack_glsl::Code;
 use std::collections::HashMap;
 use std::fmt;
 
 use tidepack_glsl::token::{Token, TokenKind, tokenize};
-use tidepack_glsl::{Diagnostic, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Dialect {

@@ -5,11 +5,10 @@
 //! sliders, profiles, the block ids shared between block.properties and the shaders, and the
 //! pipeline settings of shaders.properties.
 
-use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 
 use serde::Deserialize;
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

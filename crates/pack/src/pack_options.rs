@@ -2,11 +2,10 @@
 //! label, a comment and a place on a screen, every profile sets every option to a value the
 //! option offers, and the GLSL defaults are the default profile.
 
-use tidepack_glsl::Code;
 use std::collections::BTreeMap;
 
 use tidepack_loader::option_lines::{self, OptionKind, OptionSet, OptionValue};
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 use crate::manifest::line_of;
 use crate::source::PackSource;

@@ -8,8 +8,7 @@
 //! (`screen`, `sliders`, `profile.*`) are refused; any other key is written as it is, with a
 //! warning that it is unchecked.
 
-use tidepack_glsl::Code;
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 use crate::manifest::line_of;
 use crate::shipped::ShippedPack;

@@ -1,13 +1,12 @@
 //! The pack as it ships in one dialect: every file under `shaders/`, in memory, each knowing
 //! where it came from so that a diagnostic about a shipped line can name the template line.
 
-use tidepack_glsl::Code;
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use tidepack_loader::option_lines::{self, OptionSet};
 use tidepack_glsl::preprocess::FileProvider;
-use tidepack_glsl::{Diagnostic, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 use crate::dialect::{self, Dialect};
 use crate::pack_options::{PackOptions, is_glsl};

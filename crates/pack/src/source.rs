@@ -1,9 +1,8 @@
 //! The pack's sources on disk: `pack.toml` and the templates under `shaders/`.
 
-use tidepack_glsl::Code;
 use std::path::{Path, PathBuf};
 
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 use crate::manifest::Manifest;
 

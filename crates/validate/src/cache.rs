@@ -7,13 +7,12 @@
 //! writes go through a temporary file renamed into place, so that parallel CI jobs sharing the
 //! folder never see half a file.
 
-use tidepack_glsl::Code;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use tidepack_glsl::{Diagnostic, Drivers, Location, Severity};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Location, Severity};
 use tidepack_loader::Loader;
 use tidepack_loader::option_lines::OptionSet;
 

@@ -3,13 +3,12 @@
 //! expanded, standard macros after `#version`, option lines rewritten. The driver's messages
 //! are located in the pack's files; its verdict is compared with tidepack's.
 
-use tidepack_glsl::Code;
 use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::programs::with_loader_declarations;
 use tidepack_glsl::preprocess::{IncludeQuotes, expand_includes_mapped};
-use tidepack_glsl::{Diagnostic, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 use tidepack_loader::programs::Program;
 

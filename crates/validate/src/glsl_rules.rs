@@ -8,12 +8,11 @@
 //! - an assignment to a shader input (`in`, `varying`, `attribute`);
 //! - texture2D & co. on a `sampler2DShadow`, shadow2D & co. on a `sampler2D`.
 
-use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
-use tidepack_glsl::{Diagnostic, Drivers, Stage};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 const RESERVED: [&str; 35] = [

@@ -2,14 +2,13 @@
 //! inputs, the render-target directive against the outputs written, and uniform and sampler
 //! names against what OptiFine sets.
 
-use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, brace_depths, tokenize};
 use tidepack_glsl::naga_check::LoweredStage;
-use tidepack_glsl::{Diagnostic, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 use tidepack_loader::known;
 use tidepack_loader::loader::Loader;

@@ -20,10 +20,16 @@ pub struct Levels {
     pub deny: BTreeSet<Code>,
 }
 
-/// What [`Levels::apply`] did with a diagnostic.
-pub enum Applied {
-    Kept(Diagnostic),
-    Allowed(Code),
+/// The warnings the levels left out, each distinct diagnostic once however many programs and
+/// option sets it was seen in, so that "allowed" counts what the report would have shown.
+#[derive(Debug, Default)]
+pub struct Silenced(BTreeMap<Code, BTreeSet<String>>);
+
+impl Silenced {
+    /// How many distinct diagnostics of each code were left out.
+    pub fn counts(&self) -> BTreeMap<Code, usize> {
+        self.0.iter().map(|(code, seen)| (*code, seen.len())).collect()
+    }
 }
 
 impl Levels {
@@ -44,32 +50,21 @@ impl Levels {
         Ok(self)
     }
 
-    pub fn apply(&self, mut diag: Diagnostic) -> Applied {
+    /// The diagnostic as the levels leave it: a denied warning becomes an error saying why; an
+    /// allowed one is recorded in `silenced` and dropped. Errors pass unchanged.
+    pub fn apply(&self, mut diag: Diagnostic, silenced: &mut Silenced) -> Option<Diagnostic> {
         if diag.severity != Severity::Warning {
-            return Applied::Kept(diag);
+            return Some(diag);
         }
         if self.allow.contains(&diag.code) {
-            return Applied::Allowed(diag.code);
+            silenced.0.entry(diag.code).or_default().insert(diag.to_string());
+            return None;
         }
         if self.deny.contains(&diag.code) {
             diag.severity = Severity::Error;
             diag.notes.push(format!("a warning that fails the check: `{}` is denied", diag.code));
         }
-        Applied::Kept(diag)
-    }
-
-    /// Applies the levels to `diagnostics`, counting what was allowed into `allowed`.
-    pub fn apply_all(&self, diagnostics: Vec<Diagnostic>, allowed: &mut BTreeMap<Code, usize>) -> Vec<Diagnostic> {
-        diagnostics
-            .into_iter()
-            .filter_map(|d| match self.apply(d) {
-                Applied::Kept(d) => Some(d),
-                Applied::Allowed(code) => {
-                    *allowed.entry(code).or_default() += 1;
-                    None
-                }
-            })
-            .collect()
+        Some(diag)
     }
 
     /// The `[validate]` table of a `tidepack.toml`: `allow` and `deny`, lists of codes. Every
@@ -166,14 +161,14 @@ mod tests {
     }
 
     #[test]
-    fn allowed_warnings_are_counted_and_denied_ones_become_errors() {
+    fn allowed_warnings_are_counted_once_each_and_denied_ones_become_errors() {
         let levels = Levels::default().with_command_line(&[Code::UnknownUniform], &[Code::UndefinedInIf]).unwrap();
-        let mut allowed = BTreeMap::new();
-        let kept = levels.apply_all(
-            vec![warning(Code::UnknownUniform), warning(Code::UnknownUniform), warning(Code::UndefinedInIf), warning(Code::Properties)],
-            &mut allowed,
-        );
-        assert_eq!(allowed, BTreeMap::from([(Code::UnknownUniform, 2)]));
+        let mut silenced = Silenced::default();
+        let other = Diagnostic::warning(Code::UnknownUniform, "another", None);
+        let found = [warning(Code::UnknownUniform), warning(Code::UnknownUniform), other, warning(Code::UndefinedInIf), warning(Code::Properties)];
+        let kept: Vec<Diagnostic> = found.into_iter().filter_map(|d| levels.apply(d, &mut silenced)).collect();
+        // The same warning seen twice (in two programs, say) is one diagnostic of the report.
+        assert_eq!(silenced.counts(), BTreeMap::from([(Code::UnknownUniform, 2)]));
         assert_eq!(kept.iter().map(|d| (d.code, d.severity)).collect::<Vec<_>>(), [
             (Code::UndefinedInIf, Severity::Error),
             (Code::Properties, Severity::Warning)
@@ -184,7 +179,8 @@ mod tests {
     #[test]
     fn errors_are_never_allowed() {
         let levels = Levels::default().with_command_line(&[Code::Glsl], &[]).unwrap();
-        assert!(matches!(levels.apply(Diagnostic::error(Code::Glsl, "e", None)), Applied::Kept(d) if d.is_error()));
+        let kept = levels.apply(Diagnostic::error(Code::Glsl, "e", None), &mut Silenced::default());
+        assert!(kept.is_some_and(|d| d.is_error()));
     }
 
     #[test]

@@ -10,14 +10,13 @@
 //! terms by `messages` → here: diagnostics located in the pack's files, each once, in a
 //! [`Report`].
 
-use tidepack_glsl::Code;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 
-use tidepack_glsl::{Diagnostic, Drivers, Location};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Location};
 use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
@@ -415,18 +414,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut reproductions =
         if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
     found = in_target(found, options.target, &mut reproductions);
-    let mut allowed = BTreeMap::new();
-    diagnostics = options.levels.apply_all(std::mem::take(&mut diagnostics), &mut allowed);
-    found = found
-        .into_iter()
-        .filter_map(|f| match options.levels.apply(f.diagnostic) {
-            levels::Applied::Kept(diagnostic) => Some(Finding { diagnostic, ..f }),
-            levels::Applied::Allowed(code) => {
-                *allowed.entry(code).or_default() += 1;
-                None
-            }
-        })
-        .collect();
+    let mut silenced = levels::Silenced::default();
+    diagnostics = std::mem::take(&mut diagnostics).into_iter().filter_map(|d| options.levels.apply(d, &mut silenced)).collect();
+    found = found.into_iter().filter_map(|f| Some(Finding { diagnostic: options.levels.apply(f.diagnostic, &mut silenced)?, ..f })).collect();
     // One diagnostic per distinct message and place, noting every program and option set it
     // was seen in, keyed by message and sorted by place so that the report reads file by file.
     let pack_level: BTreeSet<String> = diagnostics.iter().map(|d| d.to_string()).collect();
@@ -485,7 +475,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         stages_validated,
         elapsed: started.elapsed(),
         driver: driver_summary,
-        allowed,
+        allowed: silenced.counts(),
     })
 }
 

@@ -1,7 +1,6 @@
 //! naga on the distinct lowered stages, on worker threads with stacks deep enough for naga's
 //! recursion; a panic inside naga becomes a warning that the stage was not checked.
 
-use tidepack_glsl::Code;
 use std::panic::AssertUnwindSafe;
 
 use rayon::prelude::*;
@@ -9,7 +8,7 @@ use rayon::prelude::*;
 use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
-use tidepack_glsl::{Diagnostic, Location};
+use tidepack_glsl::{Code, Diagnostic, Location};
 
 use crate::messages::clarify;
 use tidepack_loader::{PackFiles, SetProvider};

@@ -46,7 +46,8 @@ pub struct Report {
     pub elapsed: Duration,
     /// With [`Options::driver`](crate::Options::driver): how the driver's verdicts compare with tidepack's.
     pub driver: Option<driver::DriverSummary>,
-    /// Warnings left out by [`Options::levels`](crate::Options::levels), counted by code.
+    /// Warnings left out by [`Options::levels`](crate::Options::levels): distinct diagnostics
+    /// by code, counted as the report counts what it shows.
     pub allowed: BTreeMap<Code, usize>,
 }
 

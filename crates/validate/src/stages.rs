@@ -1,11 +1,10 @@
 //! Each program's stages preprocessed and lowered for naga, with the checks that need no naga.
 
-use tidepack_glsl::Code;
 use std::sync::Arc;
 
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed, assume_glsl_110};
-use tidepack_glsl::{Diagnostic, Drivers, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Location, Stage};
 
 use tidepack_loader::directives::CustomNames;
 use tidepack_loader::loader::Loader;

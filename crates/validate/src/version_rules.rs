@@ -11,12 +11,11 @@
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
 //!   `texture2D`, `attribute`, `varying`, …).
 
-use tidepack_glsl::Code;
 use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
-use tidepack_glsl::{Diagnostic, Drivers, Stage};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
 
 use crate::glsl_rules::{Globals, code_tokens, place};
 use tidepack_loader::loader::Loader;
