@@ -4,9 +4,11 @@
 //   2. camera under water, pixel under water: absorption over the distance, caustics;
 //   3. camera under water, pixel seen through the surface: refraction, total internal
 //      reflection, absorption up to the surface;
-//   4. camera above water, water pixel nearer than the render distance: wave surface,
+//   4. camera above water, water pixel nearer than the drawn distance: wave surface,
 //      refraction, absorption, caustics, reflections, highlights, foam, the game's fog;
-//   5. camera above water, water pixel at or beyond the render distance: the fog colour only.
+//   5. camera above water, water pixel at or beyond the drawn distance (the game's, or with
+//      Distant Horizons its LODs'): the fog colour only.
+// Distant Horizons' water (dh_water) is shaded as the game's, from its own depth buffers.
 // Stained glass and ice get no water effects of their own.
 #include "/lib/settings.glsl"
 #include "/lib/common.glsl"
@@ -31,6 +33,13 @@ uniform sampler2D colortex6; // the water's plain colour (rgb), kept where glass
 uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height, slope, foam
 uniform sampler2D depthtex0;
 uniform sampler2D depthtex1;
+#ifdef DISTANT_HORIZONS
+// Distant Horizons' depth buffers, with and without its water, under its own projection.
+uniform sampler2D dhDepthTex0;
+uniform sampler2D dhDepthTex1;
+uniform mat4 dhProjection;
+uniform mat4 dhProjectionInverse;
+#endif
 #if CAUSTICS_MODE == 1
 uniform sampler2D noisetex;
 // OptiFine binds noisetex only for a pack that declares its size (or a texture.noise).
@@ -128,13 +137,15 @@ vec3 sceneBehindOverlay(vec2 uv) {
     return (texture(colortex0, uv).rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
 }
 
-// Cases 4 and 5: the camera is above the water and this pixel is its surface.
-vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
-    vec3 view0 = viewFromScreen(uv, depth0, gbufferProjectionInverse);
+// Cases 4 and 5: the camera is above the water and this pixel is its surface, at window depth
+// depth0 under `projection`. The opaque scene behind it is in floorDepth: the game's depthtex1,
+// or for Distant Horizons' water its dhDepthTex1 under its own projection.
+vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection, mat4 projectionInverse, vec3 tint, float skyLight) {
+    vec3 view0 = viewFromScreen(uv, depth0, projectionInverse);
     float distance0 = length(view0);
 #ifdef FAR_HAZE
     // The game's fog, as lib/vanilla.glsl puts it on the terrain.
-    float haze = 1.0 - distanceFog(distance0, far);
+    float haze = 1.0 - distanceFog(distance0, drawnDistance(far));
     if (!NEEDED(haze > 0.0)) {
         return fogColor;
     }
@@ -155,18 +166,18 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
     // The opaque scene under the surface, refracted. The offset grows with the water's
     // opacity, so it vanishes where water meets a shore (C); a sample whose opaque point
     // lies in front of the surface would pull above-water objects in, so it is rejected.
-    float depth1 = texture(depthtex1, uv).r;
+    float depth1 = texture(floorDepth, uv).r;
     vec2 sceneUv = uv;
 #ifdef REFRACTION
-    float opacity = 1.0 - transmittance(length(viewFromScreen(uv, depth1, gbufferProjectionInverse)) - distance0).b;
+    float opacity = 1.0 - transmittance(length(viewFromScreen(uv, depth1, projectionInverse)) - distance0).b;
     vec2 candidate = clamp(uv + normalView.xy * REFRACTION_STRENGTH * opacity, 0.0, 1.0);
-    float candidateDepth = texture(depthtex1, candidate).r;
+    float candidateDepth = texture(floorDepth, candidate).r;
     if (candidateDepth > depth0) {
         sceneUv = candidate;
         depth1 = candidateDepth;
     }
 #endif
-    vec3 view1 = viewFromScreen(sceneUv, depth1, gbufferProjectionInverse);
+    vec3 view1 = viewFromScreen(sceneUv, depth1, projectionInverse);
     vec3 player1 = playerFromView(view1, gbufferModelViewInverse);
     float pathInWater = max(distance(player1, surface), 0.0);
     bool floorVisible = depth1 < 1.0;
@@ -191,7 +202,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, vec3 tint, float skyLight) {
         vec3 marchNormal = mat3(gbufferModelView) * safeNormalize(vec3(normal.x, normal.y * (5.0 + 0.025 * distance0), normal.z), vec3(0.0, 1.0, 0.0));
         vec3 start = (gbufferModelView * vec4(surface, 1.0)).xyz;
         vec3 marchDir = reflect(safeNormalize(view0, vec3(0.0, 0.0, -1.0)), marchNormal);
-        vec4 hit = traceReflection(colortex0, depthtex1, start, marchDir, dot(marchDir, marchNormal), gbufferProjection, gbufferProjectionInverse);
+        vec4 hit = traceReflection(colortex0, floorDepth, start, marchDir, dot(marchDir, marchNormal), projection, projectionInverse);
         reflection = mix(reflection, hit.rgb, hit.a);
     }
 #endif
@@ -258,6 +269,20 @@ vec3 shadeUnderwater(vec2 uv, float depth0, vec3 color, bool opaque, vec3 scatte
     return throughWater(color, distance0, scattered);
 }
 
+#ifdef DISTANT_HORIZONS
+// Whether the water nearest at uv, `waterDistance` from the eye, is Distant Horizons' (drawn
+// by dh_water, before the game's water) rather than the game's: its LOD surface lies at that
+// distance. Both record their distance in colortex4.b, to about a sixteenth of a block.
+bool isLodWater(vec2 uv, float waterDistance) {
+    float lodDepth = ownTexel(dhDepthTex0).r;
+    if (lodDepth >= 1.0) {
+        return false;
+    }
+    float lodDistance = length(viewFromScreen(uv, lodDepth, dhProjectionInverse));
+    return abs(lodDistance - waterDistance) < 0.5 + 0.002 * waterDistance;
+}
+#endif
+
 void main() {
     vec4 scene = ownTexel(colortex0);
     outColor0 = vec4(scene.rgb, 1.0);
@@ -283,11 +308,22 @@ void main() {
             vec3 tint = ownTexel(colortex5).rgb;
             // Rain, clouds and the hand write their depth over the water's: where they drew, the
             // surface's depth comes from the distance the water kept.
-            float waterDistance = waterRecord.b * WATER_DISTANCE_RANGE * max(far, 1.0);
-            float depth0 = drawnOver.a > 0.0
-                ? depthAtDistance(screenUv, waterDistance, gbufferProjection, gbufferProjectionInverse)
-                : ownTexel(depthtex0).r;
-            vec3 surface = shadeFromAbove(screenUv, depth0, tint, waterRecord.g);
+            float waterDistance = waterRecord.b * WATER_DISTANCE_RANGE * max(drawnDistance(far), 1.0);
+            vec3 surface;
+#ifdef DISTANT_HORIZONS
+            if (isLodWater(screenUv, waterDistance)) {
+                float lodDepth0 = drawnOver.a > 0.0
+                    ? depthAtDistance(screenUv, waterDistance, dhProjection, dhProjectionInverse)
+                    : ownTexel(dhDepthTex0).r;
+                surface = shadeFromAbove(screenUv, lodDepth0, dhDepthTex1, dhProjection, dhProjectionInverse, tint, waterRecord.g);
+            } else
+#endif
+            {
+                float depth0 = drawnOver.a > 0.0
+                    ? depthAtDistance(screenUv, waterDistance, gbufferProjection, gbufferProjectionInverse)
+                    : ownTexel(depthtex0).r;
+                surface = shadeFromAbove(screenUv, depth0, depthtex1, gbufferProjection, gbufferProjectionInverse, tint, waterRecord.g);
+            }
             shaded = water ? surface : shaded;
         }
         outColor0.rgb = water || waterBehindGlass ? shaded * uncovered + drawnOver.rgb : scene.rgb;

@@ -97,8 +97,9 @@ pub fn is_sampler(name: &str) -> bool {
 /// Why `sampler` reads something else than its name says in `program` (OptiFine binds units by
 /// program group), or `None` when it is available there.
 pub fn sampler_unavailable(program: &str, sampler: &str) -> Option<&'static str> {
-    // Iris's shadow_solid, shadow_water, … bind as `shadow` does.
-    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow" || program.starts_with("shadow_");
+    // Iris's shadow_solid, shadow_water, … bind as `shadow` does, and Distant Horizons' dh_*
+    // programs as gbuffers do.
+    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow" || program.starts_with("shadow_") || program.starts_with("dh_");
     let low_colortex = matches!(sampler, "colortex0" | "colortex1" | "colortex2" | "colortex3" | "gcolor" | "gdepth" | "gnormal" | "composite");
     let atlas_units = matches!(sampler, "texture" | "gtexture" | "tex" | "lightmap" | "normals" | "specular");
     if gbuffers_style && low_colortex {
@@ -118,6 +119,7 @@ mod tests {
     fn samplers_by_program_group() {
         assert!(sampler_unavailable("gbuffers_water", "colortex1").is_some());
         assert!(sampler_unavailable("gbuffers_water", "colortex4").is_none());
+        assert!(sampler_unavailable("dh_water", "lightmap").is_none());
         assert!(sampler_unavailable("gbuffers_water", "gtexture").is_none());
         assert!(sampler_unavailable("composite2", "lightmap").is_some());
         assert!(sampler_unavailable("composite2", "colortex1").is_none());

@@ -9,10 +9,12 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use tidepack_glsl::Diagnostic;
+use tidepack_glsl::{Diagnostic, Stage};
 use tidepack_loader::coverage::{self, Consulted, CoveringSets, Representatives};
 pub use tidepack_loader::coverage::{Coverage, SetsCovered};
+use tidepack_loader::loader::Loader;
 use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::programs;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
 use tidepack_glsl::preprocess::{self, PreprocessOptions, Preprocessed, resolve_include};
 use tidepack_glsl::naga_check::{self, LoweredStage};
@@ -51,14 +53,14 @@ pub type ProgressFn<'a> = &'a (dyn Fn(Progress) + Sync);
 /// Counts finished items of a phase across worker threads and reports them, rate limited.
 struct Ticker<'a> {
     report: Option<ProgressFn<'a>>,
-    phase: &'static str,
+    phase: String,
     total: usize,
     done: AtomicUsize,
     last: Mutex<Instant>,
 }
 
 impl<'a> Ticker<'a> {
-    fn new(report: Option<ProgressFn<'a>>, phase: &'static str, total: usize) -> Self {
+    fn new(report: Option<ProgressFn<'a>>, phase: String, total: usize) -> Self {
         Ticker { report, phase, total, done: AtomicUsize::new(0), last: Mutex::new(Instant::now()) }
     }
 
@@ -68,17 +70,26 @@ impl<'a> Ticker<'a> {
         let mut last = self.last.lock().expect("no panics while holding the ticker");
         if done == self.total || last.elapsed() >= Duration::from_secs(1) {
             *last = Instant::now();
-            report(Progress { phase: self.phase, done, total: self.total });
+            report(Progress { phase: &self.phase, done, total: self.total });
         }
     }
 }
 
-/// Validates every program of `pack`; diagnostics point at shipped files.
+/// The loaders the pack is validated for: OptiFine's macros, and Iris's with Distant Horizons
+/// beside it, whose `DISTANT_HORIZONS` and `DH_BLOCK_*` open the pack's code for the LODs and
+/// which alone runs the `dh_*` programs. Each loader's programs are those it runs.
+fn loaders() -> [(&'static str, StandardMacros, Loader, bool); 2] {
+    let iris = StandardMacros { distant_horizons: true, ..StandardMacros::for_loader(Loader::Iris) };
+    [("OptiFine", StandardMacros::default(), Loader::OptiFine1_21, false), ("Iris with Distant Horizons", iris, Loader::Iris, true)]
+}
+
+/// Validates every program of `pack` under every loader of [`loaders`]; diagnostics point at
+/// shipped files. A stage whose text two loaders share is validated once.
 ///
 /// The default option set of every program goes first: most mistakes show there, and a
 /// failing build then stops before enumerating every set.
 /// `profiles` are option sets players can pick, always validated. `progress` hears how far
-/// the option-set search, the lowering and naga are.
+/// the option-set search, the lowering and naga are, for each loader in turn.
 pub fn validate_pack(
     pack: &ShippedPack,
     options: &PackOptions,
@@ -86,21 +97,56 @@ pub fn validate_pack(
     profiles: &[OptionSet],
     progress: Option<ProgressFn>,
 ) -> Result<ValidationReport, Vec<Diagnostic>> {
-    let macros = StandardMacros::default().preprocess_options();
-    let programs = pack.programs();
-    let defaults: Vec<(&Program, OptionSet)> = programs.iter().map(|p| (p, OptionSet::new())).collect();
+    let mut report = ValidationReport::default();
+    let mut names = BTreeSet::new();
     let mut seen = HashMap::new();
-    let (unique, mut errors, _) = lower_sets(pack, &defaults, &macros, &mut seen, None);
-    errors.extend(validate_in_parallel(pack, &programs, &unique, None));
+    for (label, macros, loader, distant_horizons) in loaders() {
+        let programs: Vec<Program> = pack
+            .programs()
+            .into_iter()
+            .filter(|p| programs::runs_with(p.name.rsplit('/').next().unwrap_or(&p.name), loader, distant_horizons))
+            .collect();
+        names.extend(programs.iter().map(|p| p.name.clone()));
+        let macros = macros.preprocess_options();
+        let one = validate_for_loader(pack, options, coverage, profiles, progress.map(|p| (p, label)), &macros, &programs, &mut seen)?;
+        report.option_sets += one.option_sets;
+        report.stages_validated += one.stages_validated;
+        report.stages_identical += one.stages_identical;
+        report.covered = report.covered.max(one.covered);
+        report.validated.extend(one.validated);
+        report.options_read.extend(one.options_read);
+    }
+    report.programs = names.len();
+    Ok(report)
+}
+
+/// [`validate_pack`] for one loader's `programs` under its `macros`, progress reported with the
+/// loader's name; `seen` holds the stages validated already, by shipped path and lowered text.
+#[allow(clippy::too_many_arguments)]
+fn validate_for_loader(
+    pack: &ShippedPack,
+    options: &PackOptions,
+    coverage: Coverage,
+    profiles: &[OptionSet],
+    progress: Option<(ProgressFn, &str)>,
+    macros: &PreprocessOptions,
+    programs: &[Program],
+    seen: &mut HashMap<(String, String), ()>,
+) -> Result<ValidationReport, Vec<Diagnostic>> {
+    let defaults: Vec<(&Program, OptionSet)> = programs.iter().map(|p| (p, OptionSet::new())).collect();
+    let (unique, mut errors, _) = lower_sets(pack, &defaults, macros, seen, None);
+    errors.extend(validate_in_parallel(pack, programs, &unique, None));
     if !errors.is_empty() {
-        return Err(distinct_errors(pack, &programs, &macros, errors));
+        return Err(distinct_errors(pack, programs, macros, errors));
     }
     let mut report = ValidationReport { programs: programs.len(), ..Default::default() };
     let mut all_sets = Vec::new();
     let kinds: BTreeMap<String, OptionKind> = options.iter().map(|(name, option)| (name.clone(), option.kind.clone())).collect();
-    let searched = Ticker::new(progress, "programs' option sets found", programs.len());
-    for program in &programs {
-        match option_sets(pack, program, &kinds, &macros, coverage, profiles) {
+    let (progress, label) = progress.map_or((None, ""), |(p, label)| (Some(p), label));
+    let phase = |name: &str| format!("{name} for {label}");
+    let searched = Ticker::new(progress, phase("programs' option sets found"), programs.len());
+    for program in programs {
+        match option_sets(pack, program, &kinds, macros, coverage, profiles) {
             Ok(CoveringSets { sets, covered, read }) => {
                 report.covered = report.covered.max(Some(covered));
                 report.option_sets += sets.len();
@@ -114,16 +160,16 @@ pub fn validate_pack(
         }
         searched.tick();
     }
-    let lowered = Ticker::new(progress, "option sets lowered", all_sets.len());
-    let (mut unique, lowering_errors, identical) = lower_sets(pack, &all_sets, &macros, &mut HashMap::new(), Some(&lowered));
+    let lowered = Ticker::new(progress, phase("option sets lowered"), all_sets.len());
+    let (mut unique, lowering_errors, identical) = lower_sets(pack, &all_sets, macros, seen, Some(&lowered));
     errors.extend(lowering_errors);
     report.stages_identical = identical;
     report.stages_validated = unique.len();
     report.validated = unique.iter().map(|(stage, set)| (stage.preprocessed.files[0].clone(), set.clone())).collect();
-    let validated = Ticker::new(progress, "stages validated by naga", unique.len());
-    errors.extend(validate_in_parallel(pack, &programs, &unique, Some(&validated)));
+    let validated = Ticker::new(progress, phase("stages validated by naga"), unique.len());
+    errors.extend(validate_in_parallel(pack, programs, &unique, Some(&validated)));
     unique.clear();
-    if errors.is_empty() { Ok(report) } else { Err(distinct_errors(pack, &programs, &macros, errors)) }
+    if errors.is_empty() { Ok(report) } else { Err(distinct_errors(pack, programs, macros, errors)) }
 }
 
 /// An error, the option set that showed it and the program it was found in.
@@ -310,7 +356,18 @@ fn run_set(
     macros: &PreprocessOptions,
 ) -> Result<Vec<Arc<Preprocessed>>, Diagnostic> {
     let provider = WithOptions::new(pack, set);
-    program.stages.iter().map(|(_, path)| preprocess::preprocess(&provider, path, macros).map(Arc::new)).collect()
+    let name = program.name.rsplit('/').next().unwrap_or(&program.name);
+    program
+        .stages
+        .iter()
+        .map(|(stage, path)| {
+            let mut pre = preprocess::preprocess(&provider, path, macros)?;
+            if let std::borrow::Cow::Owned(declared) = programs::with_loader_declarations(name, *stage == Stage::Vertex, &pre.text) {
+                pre.text = declared;
+            }
+            Ok(Arc::new(pre))
+        })
+        .collect()
 }
 
 /// An error of the option-set search and the set that showed it, boxed so that the common `Ok`
@@ -358,11 +415,18 @@ mod tests {
         let record = |step: Progress| seen.lock().unwrap().push((step.phase.to_string(), step.done, step.total));
         let report = validate_pack(&pack, &options, Coverage::Pairwise, &[], Some(&record)).unwrap();
         let seen = seen.into_inner().unwrap();
-        for phase in ["programs' option sets found", "option sets lowered", "stages validated by naga"] {
-            let last = seen.iter().rfind(|(p, _, _)| p == phase).unwrap_or_else(|| panic!("no {phase}: {seen:?}"));
-            assert_eq!(last.1, last.2, "{phase} ends at its total: {seen:?}");
+        let mut validated = 0;
+        for loader in ["OptiFine", "Iris with Distant Horizons"] {
+            for phase in ["programs' option sets found", "option sets lowered", "stages validated by naga"] {
+                let phase = format!("{phase} for {loader}");
+                let last = seen.iter().rfind(|(p, _, _)| *p == phase).unwrap_or_else(|| panic!("no {phase}: {seen:?}"));
+                assert_eq!(last.1, last.2, "{phase} ends at its total: {seen:?}");
+                if phase.starts_with("stages validated") {
+                    validated += last.1;
+                }
+            }
         }
-        assert!(seen.iter().any(|(p, done, _)| p == "stages validated by naga" && *done == report.stages_validated));
+        assert_eq!(validated, report.stages_validated);
         assert!(report.options_read.contains("CAUSTICS") && report.options_read.contains("SSR_STEPS"), "{:?}", report.options_read);
     }
 }

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{TokenKind, brace_depths, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, brace_depths, function_definitions, tokenize};
 use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
@@ -290,6 +290,8 @@ fn check_blocks(vertex: &Preprocessed, fragment: &Preprocessed, uses: &HashMap<&
 
 /// The first line of `pre` where `needle` (a token sequence such as `gl_FragData [ 1 ]`) is
 /// assigned to (`=`, `+=`, …, possibly through a swizzle or index), if any.
+/// The line of the first write of the output `needle`: an assignment, or an argument given to an
+/// `out` or `inout` parameter of a function the stage defines.
 fn first_write_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
     let tokens = tokenize(&pre.text).ok()?;
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
@@ -307,7 +309,46 @@ fn first_write_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
             }
         }
         let op = sig.get(j)?.text;
-        matches!(op, "=" | "+=" | "-=" | "*=" | "/=" | "++" | "--").then_some(sig[k].line)
+        let assigned = matches!(op, "=" | "+=" | "-=" | "*=" | "/=" | "++" | "--");
+        let argument = matches!(op, "," | ")") && k > 0 && matches!(sig[k - 1].text, "(" | ",");
+        (assigned || (argument && passed_to_out_parameter(&sig, k))).then_some(sig[k].line)
+    })
+}
+
+/// Whether the argument starting at `sig[at]` goes to an `out` or `inout` parameter of the
+/// function called there, as the stage defines it.
+fn passed_to_out_parameter(sig: &[&Token<'_>], at: usize) -> bool {
+    // The call's `(`: the nearest unmatched one before the argument, counting commas on the way.
+    let (mut depth, mut index) = (0usize, 0usize);
+    let mut open = None;
+    for k in (0..at).rev() {
+        match sig[k].text {
+            ")" | "]" => depth += 1,
+            "(" | "[" if depth > 0 => depth -= 1,
+            "(" => {
+                open = Some(k);
+                break;
+            }
+            "," if depth == 0 => index += 1,
+            _ => {}
+        }
+    }
+    let Some(callee) = open.and_then(|o| o.checked_sub(1)).map(|c| sig[c].text) else { return false };
+    function_definitions(sig).iter().filter(|d| sig[d.name].text == callee).any(|definition| {
+        // The parameter list from the `(` after the name to its `)`, split at top-level commas.
+        let mut parameter = 0usize;
+        let mut depth = 0usize;
+        for t in &sig[definition.name + 2..definition.open] {
+            match t.text {
+                "(" | "[" => depth += 1,
+                ")" | "]" if depth > 0 => depth -= 1,
+                ")" => break,
+                "," if depth == 0 => parameter += 1,
+                "out" | "inout" if parameter == index => return true,
+                _ => {}
+            }
+        }
+        false
     })
 }
 

@@ -97,9 +97,10 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     }
     writeln!(
         summary,
-        "{root}: {validated} programs under {} ({sets}), {} distinct stages validated in {:.2} s: {invalid} invalid; {}",
+        "{root}: {} under {} ({sets}), {} validated in {:.2} s: {invalid} invalid; {}",
+        plural(validated, "program"),
         plural(report.option_sets.len(), "option set"),
-        report.stages_validated,
+        plural(report.stages_validated, "distinct stage"),
         report.elapsed.as_secs_f64(),
         counted_each(report.errors(), report.warnings())
     )

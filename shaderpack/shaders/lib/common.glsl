@@ -9,9 +9,10 @@ const float TAU = 6.28318530718;
 const float WATER_MARK = 1.0;
 const float MARK_KEPT_BEHIND_TRANSLUCENT = 0.75;
 
-// The water's distance from the eye is kept in colortex4.b as a fraction of this many render
-// distances (`far`), the projection's far plane: composite reads the surface's position from it
-// where rain, clouds or the hand wrote their depth over the water's.
+// The water's distance from the eye is kept in colortex4.b as a fraction of this many drawn
+// distances (drawnDistance), as far as the game's projection reaches (4 × far): composite
+// reads the surface's position from it where rain, clouds or the hand wrote their depth over
+// the water's, and tells Distant Horizons' water from the game's by it.
 const float WATER_DISTANCE_RANGE = 4.0;
 
 // Water is the nearest translucent at this pixel.
@@ -38,8 +39,23 @@ float maxComponent(vec3 v) {
     return max(v.r, max(v.g, v.b));
 }
 
-// The game's distance fog: none up to three quarters of the render distance (`far`), all of it
-// at the render distance.
+#ifdef DISTANT_HORIZONS
+uniform int dhRenderDistance;
+#endif
+
+// How far the world is drawn, given the game's render distance (`far`): with Distant Horizons
+// its LODs go on to dhRenderDistance, so the fog and the water's distance record reach out
+// there with them, and the fog has no edge where the game's chunks end and the LODs begin.
+float drawnDistance(float renderDistance) {
+#ifdef DISTANT_HORIZONS
+    return max(renderDistance, float(dhRenderDistance));
+#else
+    return renderDistance;
+#endif
+}
+
+// The game's distance fog: none up to three quarters of the render distance, all of it at the
+// render distance.
 float distanceFog(float viewDistance, float renderDistance) {
     float range = max(renderDistance, 1.0);
     return clamp((viewDistance - 0.75 * range) / (0.25 * range), 0.0, 1.0);

@@ -23,7 +23,7 @@ vec3 withDistanceFog(vec3 color, float viewDistance) {
     if (fogMode == 0 || isEyeInWater == 1) {
         return color;
     }
-    return mix(color, fogColor, distanceFog(viewDistance, far));
+    return mix(color, fogColor, distanceFog(viewDistance, drawnDistance(far)));
 }
 
 #ifdef TEXTURED
