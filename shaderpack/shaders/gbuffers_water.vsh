@@ -15,6 +15,7 @@ uniform mat4 gbufferModelView;
 uniform mat4 gbufferModelViewInverse;
 uniform vec3 cameraPosition;
 uniform float frameTimeCounter;
+uniform float far;
 
 out vec2 texUv;
 out vec2 lightUv;
@@ -36,7 +37,13 @@ void main() {
         // stay, so the water never parts from the blocks around it.
         float heightInBlock = fract(playerPos.y + cameraPosition.y);
         if (heightInBlock > 0.01 && heightInBlock < 0.99) {
-            playerPos.y += swellOffset(worldPos.z, frameTimeCounter, WAVE_AMPLITUDE);
+            float amplitude = WAVE_AMPLITUDE;
+#ifdef DISTANT_HORIZONS
+            // Distant Horizons' flat water goes on where the game's chunks end (a square of
+            // side 2 × far): the swell dies out before it, so the two surfaces meet.
+            amplitude *= 1.0 - smoothstep(0.75 * far, far, max(abs(playerPos.x), abs(playerPos.z)));
+#endif
+            playerPos.y += swellOffset(worldPos.z, frameTimeCounter, amplitude);
             viewPos = gbufferModelView * vec4(playerPos, 1.0);
         }
     }

@@ -8,10 +8,11 @@ use std::sync::Arc;
 
 use tidepack_glsl::preprocess::expand_includes;
 use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::programs;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::shipped::ShippedPack;
 use tidepack_pack::source::PackSource;
-use tidepack_pack::pack_options;
+use tidepack_pack::{option_sets, pack_options};
 
 fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
@@ -61,6 +62,10 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
             "shaders/lang/en_us.lang",
             "shaders/gbuffers_water.vsh",
             "shaders/gbuffers_water.fsh",
+            "shaders/dh_terrain.vsh",
+            "shaders/dh_terrain.fsh",
+            "shaders/dh_water.vsh",
+            "shaders/dh_water.fsh",
             "shaders/composite.vsh",
             "shaders/composite.fsh",
             "shaders/lib/generated.glsl",
@@ -77,6 +82,7 @@ fn build_writes_one_zip_per_dialect_in_the_optifine_layout() {
         // One program-wide blend mode: OptiFine before 1.16.5 and Iris without OpenGL 4.0 have
         // no per-buffer blending, and would draw no water with it.
         assert!(properties.lines().any(|l| l.trim() == "blend.gbuffers_water=SRC_ALPHA ONE_MINUS_SRC_ALPHA ZERO ZERO"), "{dialect}: {properties}");
+        assert!(properties.lines().any(|l| l.trim() == "blend.dh_water=SRC_ALPHA ONE_MINUS_SRC_ALPHA ZERO ZERO"), "{dialect}: {properties}");
         assert!(!properties.lines().any(|l| l.starts_with("blend.") && l.split('=').next().unwrap().split('.').count() == 3), "{dialect}: {properties}");
         let water_vertex = &entries["shaders/gbuffers_water.vsh"];
         assert!(water_vertex.lines().any(|l| l.trim() == "attribute vec4 mc_Entity;"), "{dialect}: OptiFine <= 1.16.5 would not bind mc_Entity");
@@ -134,7 +140,8 @@ fn profile_sets_the_shipped_defaults() {
 }
 
 /// glslangValidator, the Khronos reference front-end, compiles every shipped stage of both
-/// dialects under every profile, after OptiFine-style include expansion.
+/// dialects under every profile, after OptiFine-style include expansion, with the macros (and
+/// the declarations) of each loader that runs it: OptiFine, and Iris with Distant Horizons.
 #[test]
 fn glslang_accepts_every_shipped_stage() {
     let glslang = which("glslangValidator").expect(
@@ -149,28 +156,36 @@ fn glslang_accepts_every_shipped_stage() {
         for dialect in Dialect::ALL {
             let pack = ShippedPack::generate(&source, &options, dialect, &defaults).unwrap();
             let files: HashMap<String, Arc<str>> = pack.files.iter().map(|(k, v)| (k.clone(), v.text.clone())).collect();
-            let macros = StandardMacros::default().define_lines();
-            for program in pack.programs() {
-                for (stage, path) in &program.stages {
-                    let text = expand_includes(&files, path, &macros).unwrap();
-                    let file = work.path().join(format!("{profile}-{}-{}", dialect.slug(), path.replace('/', "_")));
-                    std::fs::write(&file, &text).unwrap();
-                    let kind = if *stage == tidepack_glsl::Stage::Vertex { "vert" } else { "frag" };
-                    let result = Command::new(&glslang).args(["-S", kind]).arg(&file).output().unwrap();
-                    assert!(
-                        result.status.success(),
-                        "glslangValidator rejects {path} ({dialect}, profile {profile}):\n{}\n{text}",
-                        String::from_utf8_lossy(&result.stdout)
-                    );
-                    checked += 1;
+            for (_, macros, loader, distant_horizons) in option_sets::loaders() {
+                let macros = macros.define_lines();
+                for program in pack.programs() {
+                    let name = program.name.rsplit('/').next().unwrap();
+                    if !programs::runs_with(name, loader, distant_horizons) {
+                        continue;
+                    }
+                    for (stage, path) in &program.stages {
+                        let expanded = expand_includes(&files, path, &macros).unwrap();
+                        let text = programs::with_loader_declarations(name, *stage == tidepack_glsl::Stage::Vertex, &expanded);
+                        let file = work.path().join(format!("{profile}-{}-{}-{}", dialect.slug(), loader.name(), path.replace('/', "_")));
+                        std::fs::write(&file, &text).unwrap();
+                        let kind = if *stage == tidepack_glsl::Stage::Vertex { "vert" } else { "frag" };
+                        let result = Command::new(&glslang).args(["-S", kind]).arg(&file).output().unwrap();
+                        assert!(
+                            result.status.success(),
+                            "glslangValidator rejects {path} ({dialect}, profile {profile}):\n{}\n{text}",
+                            String::from_utf8_lossy(&result.stdout)
+                        );
+                        checked += 1;
+                    }
                 }
             }
         }
     }
     // gbuffers_water, the six programs that draw as the game does (basic, textured,
     // textured_lit, weather, clouds, hand_water), composite and the Nether's and the End's
-    // composites, two stages each.
-    assert_eq!(checked, source.manifest.profiles.len() * Dialect::ALL.len() * 10 * 2);
+    // composites, two stages each; under Iris with Distant Horizons also dh_terrain (at the
+    // root, in the Nether, in the End) and dh_water.
+    assert_eq!(checked, source.manifest.profiles.len() * Dialect::ALL.len() * (10 + 14) * 2);
 }
 
 fn which(program: &str) -> Option<PathBuf> {
@@ -240,8 +255,8 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
         },
         Mutation {
             template: "gbuffers_water.fsh",
-            anchor: "#include \"/lib/common.glsl\"",
-            replace: ("#include \"/lib/common.glsl\"", "#include \"/lib/missing.glsl\""),
+            anchor: "#include \"/lib/translucent.glsl\"",
+            replace: ("#include \"/lib/translucent.glsl\"", "#include \"/lib/missing.glsl\""),
             message: "cannot include `lib/missing.glsl`",
         },
         Mutation {
@@ -401,7 +416,8 @@ fn options_properties_and_lang_agree() {
 }
 
 /// The Nether (world-1) has no water, and the End (world1) no sun or sky light for the model:
-/// their programs carry none of the water model's code.
+/// their programs carry none of the water model's code. Their dh_terrain draws Distant
+/// Horizons' LODs as the game draws its terrain.
 #[test]
 fn the_nether_and_the_end_get_no_water_code() {
     let out = tempfile::tempdir().unwrap();
@@ -412,9 +428,12 @@ fn the_nether_and_the_end_get_no_water_code() {
         let programs: Vec<(&String, &String)> = entries.iter().filter(|(name, _)| name.starts_with(&prefix)).collect();
         let mut names: Vec<&str> = programs.iter().map(|(n, _)| n.as_str()).collect();
         names.sort();
-        assert_eq!(names, [format!("{prefix}composite.fsh"), format!("{prefix}composite.vsh")]);
+        let expected: Vec<String> = ["composite.fsh", "composite.vsh", "dh_terrain.fsh", "dh_terrain.vsh"].iter().map(|n| format!("{prefix}{n}")).collect();
+        assert_eq!(names, expected);
         for (name, text) in programs {
-            assert!(!text.contains("#include"), "{name} includes shared water code");
+            let includes: Vec<&str> = text.lines().filter(|l| l.starts_with("#include")).collect();
+            let allowed: &[&str] = if name.contains("dh_terrain") { &["#include \"/lib/vanilla_vertex.glsl\"", "#include \"/lib/vanilla.glsl\""] } else { &[] };
+            assert!(includes.iter().all(|l| allowed.contains(l)), "{name} includes shared water code: {includes:?}");
             for water_word in ["colortex4", "colortex5", "colortex6", "colortex7", "depthtex", "isEyeInWater", "wave"] {
                 assert!(!text.contains(water_word), "{name} mentions {water_word}");
             }

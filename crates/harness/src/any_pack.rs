@@ -17,7 +17,6 @@ use tidepack_loader::custom_uniforms;
 use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
-use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_space::{declared_options, property_macros};
 use tidepack_loader::programs::{self, RunBy, find_programs};
 use tidepack_loader::properties::{self, Properties};
@@ -66,6 +65,8 @@ pub struct AnyPack {
     /// The pack as messages name it (`Pack.zip/shaders/`).
     pub display_root: String,
     pub loader: Loader,
+    /// Distant Horizons beside Iris (the configuration's).
+    pub distant_horizons: bool,
     /// The folder the programs come from: the dimension's (`world0/`) or the shaders folder
     /// itself (`""`).
     pub world: String,
@@ -75,6 +76,9 @@ pub struct AnyPack {
     pub fullscreen: Vec<LoadedProgram>,
     /// The shadow pass's programs the loader's chains can draw with, by name.
     pub shadow: BTreeMap<String, LoadedProgram>,
+    /// Distant Horizons' dh_terrain and dh_water, where the configuration has the mod beside
+    /// Iris and the pack has them.
+    pub lod: BTreeMap<String, LoadedProgram>,
     /// Whether the frame starts with the shadow pass: some program reads a shadow map (what
     /// makes OptiFine and Iris draw one) and the pack has a program to draw it with.
     pub shadow_pass: bool,
@@ -223,6 +227,12 @@ impl ProgramLoading<'_> {
         shadow
     }
 
+    /// Distant Horizons' programs Iris draws the LODs with, by name (dh_water falls back to
+    /// dh_terrain: [`AnyPack::resolve_lod`]).
+    fn lod(&mut self) -> BTreeMap<String, LoadedProgram> {
+        ["dh_terrain", "dh_water"].into_iter().filter_map(|name| Some((name.to_string(), self.load(name, LoaderAlphaTest::None)?))).collect()
+    }
+
     /// prepare*, deferred*, composite* and final, in the order the loader runs them.
     fn fullscreen(&mut self) -> Vec<LoadedProgram> {
         let mut fullscreen = Vec::new();
@@ -346,7 +356,7 @@ impl AnyPack {
     pub fn from_files(files: &PackFiles, configuration: &Configuration) -> Result<AnyPack, HarnessError> {
         let loader = configuration.loader;
         let (options, _) = configuration.option_set_of(files).map_err(HarnessError::Configuration)?;
-        let standard = StandardMacros::for_loader(loader);
+        let standard = configuration.standard_macros();
         let declared = declared_options(files);
         let property_macros = property_macros(&standard, &declared, &options);
         let properties_text = files.texts.get(properties::PATH).map_or("", |t| &**t);
@@ -372,6 +382,7 @@ impl AnyPack {
         let gbuffers = loading.gbuffers();
         let shadow = loading.shadow();
         let fullscreen = loading.fullscreen();
+        let lod = if configuration.distant_horizons { loading.lod() } else { BTreeMap::new() };
         let ProgramLoading { mut not_modelled, failed, .. } = loading;
 
         for name in present.keys() {
@@ -403,7 +414,7 @@ impl AnyPack {
             not_modelled.push(format!("{name}: no program reads a shadow map, so the loader draws none"));
         }
         let mut blends = BTreeMap::new();
-        for name in gbuffers.keys().chain(shadow.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
+        for name in gbuffers.keys().chain(shadow.keys()).chain(lod.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
             match directives::blend_modes(&properties, name, loader.per_buffer_blend()) {
                 Ok(modes) => {
                     blends.insert(name.clone(), modes);
@@ -418,7 +429,8 @@ impl AnyPack {
         not_modelled.extend(unreadable_flips);
         not_modelled.extend(unimitated_keys(&properties));
 
-        let stages: Vec<&LoadedStage> = gbuffers.values().chain(shadow.values()).chain(fullscreen.iter()).flat_map(|p| [&p.vertex, &p.fragment]).collect();
+        let stages: Vec<&LoadedStage> =
+            gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(fullscreen.iter()).flat_map(|p| [&p.vertex, &p.fragment]).collect();
         let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.gl_text.as_str()));
         let buffers = DeclaredBuffers::read(&stages, &fullscreen, &mut not_modelled);
         if shadow_pass {
@@ -436,10 +448,12 @@ impl AnyPack {
         Ok(AnyPack {
             display_root: files.display_root.clone(),
             loader,
+            distant_horizons: configuration.distant_horizons,
             world,
             gbuffers,
             fullscreen,
             shadow,
+            lod,
             shadow_pass,
             shadow_settings,
             water_shadow,
@@ -462,6 +476,12 @@ impl AnyPack {
     /// The first program of `chain` the pack has: what the loader draws with.
     pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
         chain.iter().find_map(|name| self.gbuffers.get(*name))
+    }
+
+    /// The program drawing Distant Horizons' opaque LODs, or with `translucent` its water.
+    pub fn resolve_lod(&self, translucent: bool) -> Option<&LoadedProgram> {
+        let own = if translucent { self.lod.get("dh_water") } else { None };
+        own.or_else(|| self.lod.get("dh_terrain"))
     }
 
     /// The shadow program drawing the opaque terrain, or with `translucent` the water.
@@ -514,6 +534,7 @@ pub struct PassValues {
     pub fullscreen: BTreeMap<String, Value>,
     pub shadow: BTreeMap<String, Value>,
     pub celestial: BTreeMap<String, Value>,
+    pub distant_horizons: BTreeMap<String, Value>,
 }
 
 impl PassValues {
@@ -525,6 +546,7 @@ impl PassValues {
             fullscreen: pack.uniform_values(scene, Pass::Fullscreen).0,
             shadow: pack.uniform_values(scene, Pass::Shadow).0,
             celestial: pack.uniform_values(scene, Pass::Celestial).0,
+            distant_horizons: pack.uniform_values(scene, Pass::DistantHorizons).0,
         };
         (values, problems)
     }
@@ -535,6 +557,7 @@ impl PassValues {
             Pass::Fullscreen => &self.fullscreen,
             Pass::Shadow => &self.shadow,
             Pass::Celestial => &self.celestial,
+            Pass::DistantHorizons => &self.distant_horizons,
         }
     }
 }
@@ -558,13 +581,16 @@ pub enum PlannedWork<'a> {
         snapshots: BTreeSet<u8>,
         /// What `gtexture` holds.
         sprites: Sprites,
-        /// Whose uniform values: gbuffers, or the sun and moon's.
+        /// Whose uniform values: gbuffers, the sun and moon's, or Distant Horizons' (which also
+        /// draws into Distant Horizons' own depth buffer).
         pass: Pass,
         /// `renderStage` for the draw: the `MC_RENDER_STAGE_*` name.
         render_stage: &'static str,
     },
     /// depthtex0 to depthtex1.
     DepthCopy,
+    /// Distant Horizons' depth before its water to dhDepthTex1.
+    LodDepthCopy,
     /// Geometry drawn into the shadow map by a shadow program, under the shadow camera: its
     /// render targets are shadow colour buffers, its depth buffer shadowtex0; no blending.
     ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex], render_stage: &'static str },
@@ -607,10 +633,13 @@ pub enum ScreenOutput {
 ///    to shadowtex1, the water;
 /// 1. prepare*;
 /// 2. the sky (gbuffers_skybasic's chain, no depth written), the loader's overlays before the
-///    terrain, the terrain (gbuffers_terrain's chain), the overlays before the water;
+///    terrain, Distant Horizons' opaque LODs (dh_terrain, into dhDepthTex0, where the pack has
+///    it and the scene has LODs), the terrain (gbuffers_terrain's chain), the overlays before
+///    the water;
 /// 3. depthtex0 to depthtex1;
 /// 4. deferred*;
-/// 5. the water and glass (gbuffers_water's chain), the overlays after the water;
+/// 5. dhDepthTex0 to dhDepthTex1 and Distant Horizons' water (dh_water's chain) where there are
+///    LODs, the water and glass (gbuffers_water's chain), the overlays after the water;
 /// 6. composite*;
 /// 7. final into the screen, or colortex0 copied there ([`ScreenOutput`]).
 #[derive(Debug)]
@@ -674,12 +703,21 @@ impl<'a> FramePlan<'a> {
             plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon, "MOON");
         }
         plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
+        // Iris draws Distant Horizons' LODs only with the pack's own programs.
+        let lod = scene.distant_horizons.is_some() && pack.resolve_lod(false).is_some();
+        if lod {
+            plan.lod_geometry(pack, false, &mesh.lod_terrain, "LOD terrain", "TERRAIN_SOLID");
+        }
         plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks, "TERRAIN_SOLID");
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         plan.forced_flips(pack, "deferred_pre");
         for program in family("deferred") {
             plan.fullscreen(pack, program, false);
+        }
+        if lod {
+            plan.steps.push(PlannedStep { label: "dhDepthTex0 to dhDepthTex1".into(), work: PlannedWork::LodDepthCopy });
+            plan.lod_geometry(pack, true, &mesh.lod_translucent, "LOD water", "TERRAIN_TRANSLUCENT");
         }
         plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks, "TERRAIN_TRANSLUCENT");
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
@@ -723,6 +761,29 @@ impl<'a> FramePlan<'a> {
         self.steps.push(PlannedStep {
             label: format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str())),
             work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage },
+        });
+    }
+
+    /// Distant Horizons' LODs drawn by dh_terrain, or with `translucent` its water by dh_water's
+    /// chain: under [`Pass::DistantHorizons`], into Distant Horizons' own depth buffer.
+    fn lod_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str, render_stage: &'static str) {
+        let Some(program) = pack.resolve_lod(translucent) else { return };
+        let default_blend = if translucent { DEFAULT_TRANSLUCENT_BLEND } else { Blend::Off };
+        let snapshots = colour_buffers_read(pack, program, SamplerNaming::Frame, true);
+        let current = self.current.clone();
+        self.steps.push(PlannedStep {
+            label: format!("{what} ({})", program.name),
+            work: PlannedWork::Geometry {
+                program: Some(program),
+                vertices,
+                default_blend,
+                depth_write: true,
+                current,
+                snapshots,
+                sprites: Sprites::Blocks,
+                pass: Pass::DistantHorizons,
+                render_stage,
+            },
         });
     }
 

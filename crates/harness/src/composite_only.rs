@@ -115,6 +115,14 @@ impl CompositeOnly {
         }
         let depth0 = texture("depthtex0 (R32Float)", DEPTH_AS, input);
         let depth1 = texture("depthtex1 (R32Float)", DEPTH_AS, input);
+        // Distant Horizons' depth with no LODs drawn: 1 everywhere.
+        let no_lods = texture("dhDepthTex0 and 1 (no LODs, R32Float)", DEPTH_AS, input);
+        gpu.queue.write_texture(
+            no_lods.as_image_copy(),
+            bytemuck::cast_slice(&vec![1.0f32; (width * height) as usize]),
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(width * 4), rows_per_image: Some(height) },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        );
         let harness_textures = HarnessTextures::new(gpu, &pack.pack);
         let bindable = BindableTextures {
             naming: SamplerNaming::Frame,
@@ -122,6 +130,7 @@ impl CompositeOnly {
             colors: &colors,
             depth0: &depth0,
             depth1: &depth1,
+            lod_depth: [&no_lods; 2],
             shadow: ShadowTextures::empty(&harness_textures),
             sprites: tidepack_scene::mesh::Sprites::Blocks,
             mipmapped: &crate::gpu::bindings::NO_MIPMAPS,

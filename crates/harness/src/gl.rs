@@ -192,6 +192,8 @@ pub(crate) struct Textures<'a> {
     pub colors: BTreeMap<u8, (glow::Texture, BufferFormat)>,
     pub depth0: glow::Texture,
     pub depth1: glow::Texture,
+    /// dhDepthTex0 and dhDepthTex1.
+    pub lod_depth: [glow::Texture; 2],
     /// shadowtex0 and shadowtex1.
     pub shadow_depth: [glow::Texture; 2],
     /// The shadow colour buffers by number (one not here reads white).
@@ -546,6 +548,7 @@ unsafe fn set_uniforms(
                     Ok(Source::Unbound) => harness.unbound,
                     Ok(Source::Depth0) => textures.depth0,
                     Ok(Source::Depth1) => textures.depth1,
+                    Ok(Source::LodDepth(n)) => textures.lod_depth[n as usize],
                     Ok(Source::Color(n)) => match textures.colors.get(&n) {
                         Some(c) => c.0,
                         None => {
@@ -558,7 +561,7 @@ unsafe fn set_uniforms(
                         continue;
                     }
                 };
-                if shadow && !matches!(resolved, Ok(Source::Depth0 | Source::Depth1 | Source::ShadowDepth(_))) {
+                if shadow && !matches!(resolved, Ok(Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_))) {
                     missing.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
                     continue;
                 }

@@ -77,6 +77,8 @@ struct GlPlanFrame<'a> {
     buffers: BTreeMap<u8, GlBuffer>,
     depth0: glow::Texture,
     depth1: glow::Texture,
+    /// Distant Horizons' depth buffers, dhDepthTex0 and dhDepthTex1.
+    lod_depth: [glow::Texture; 2],
     shadow_side: i32,
     shadow_depth: [glow::Texture; 2],
     shadow_colours: BTreeMap<u8, glow::Texture>,
@@ -103,6 +105,10 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh,
                 }
                 PlannedWork::DepthCopy => {
                     frame.copy(frame.depth0, frame.depth1, frame.w, frame.h);
+                    Vec::new()
+                }
+                PlannedWork::LodDepthCopy => {
+                    frame.copy(frame.lod_depth[0], frame.lod_depth[1], frame.w, frame.h);
                     Vec::new()
                 }
                 PlannedWork::ShadowGeometry { program, vertices, render_stage } => frame.shadow_geometry(program, vertices, render_stage)?,
@@ -172,6 +178,7 @@ impl<'a> GlPlanFrame<'a> {
                 buffers,
                 depth0: depth_of(w, h)?,
                 depth1: depth_of(w, h)?,
+                lod_depth: [depth_of(w, h)?, depth_of(w, h)?],
                 shadow_side,
                 shadow_depth,
                 shadow_colours,
@@ -198,6 +205,8 @@ impl<'a> GlPlanFrame<'a> {
                 }
             }
             gl.depth_mask(true);
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            attach(gl, &[], Some(self.lod_depth[0]))?;
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
             for (b, t) in &self.shadow_colours {
                 attach(gl, &[*t], Some(self.shadow_depth[0]))?;
@@ -275,7 +284,9 @@ impl<'a> GlPlanFrame<'a> {
                 },
             };
             let targets: Vec<glow::Texture> = drawn.iter().map(|b| self.buffers[b].0[current[b]]).collect();
-            attach(gl, &targets, Some(self.depth0))?;
+            // Distant Horizons draws into its own depth buffer.
+            let depth = if step.pass == Pass::DistantHorizons { self.lod_depth[0] } else { self.depth0 };
+            attach(gl, &targets, Some(depth))?;
             set_blends(gl, &drawn, &|b| self.pack.blend_of(step.program, b, step.default_blend));
             gl.enable(glow::DEPTH_TEST);
             gl.depth_mask(step.depth_write);
@@ -289,6 +300,8 @@ impl<'a> GlPlanFrame<'a> {
                         colors: self.buffers.iter().map(|(b, (_, snapshot, format))| (*b, (*snapshot, *format))).collect(),
                         depth0: self.depth1,
                         depth1: self.depth1,
+                        // Likewise dhDepthTex0 while Distant Horizons draws into it.
+                        lod_depth: [self.lod_depth[1]; 2],
                         shadow_depth: self.shadow_depth,
                         shadow_colours: self.shadow_colours.clone(),
                         sprites: step.sprites,
@@ -323,6 +336,7 @@ impl<'a> GlPlanFrame<'a> {
                 colors: BTreeMap::new(),
                 depth0: self.depth1,
                 depth1: self.depth1,
+                lod_depth: [self.lod_depth[1]; 2],
                 shadow_depth: [harness.empty_shadow_depth; 2],
                 shadow_colours: BTreeMap::new(),
                 sprites: Sprites::Blocks,
@@ -370,6 +384,7 @@ impl<'a> GlPlanFrame<'a> {
                 colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
                 depth0: self.depth0,
                 depth1: self.depth1,
+                lod_depth: self.lod_depth,
                 shadow_depth: self.shadow_depth,
                 shadow_colours: self.shadow_colours.clone(),
                 sprites: Sprites::Blocks,
@@ -416,7 +431,7 @@ impl<'a> GlPlanFrame<'a> {
             self.harness.delete(gl);
             let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().copied());
             let buffer_textures = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
-            for t in [self.depth0, self.depth1, self.screen].into_iter().chain(buffer_textures).chain(shadow_textures) {
+            for t in [self.depth0, self.depth1, self.lod_depth[0], self.lod_depth[1], self.screen].into_iter().chain(buffer_textures).chain(shadow_textures) {
                 gl.delete_texture(t);
             }
             if error != glow::NO_ERROR {

@@ -29,6 +29,8 @@ pub struct RenderJob {
     pub options: Vec<(String, String)>,
     /// The loader whose drawing the frame imitates.
     pub loader: Loader,
+    /// Distant Horizons beside the loader (Iris).
+    pub distant_horizons: bool,
     pub out_dir: PathBuf,
     /// Also write colortex0, colortex4, depthtex0 and depthtex1.
     pub buffers: bool,
@@ -154,7 +156,11 @@ pub fn specialisation_speedup(
     frames: usize,
 ) -> Result<SpecialisationReport, HarnessError> {
     let spec = uniforms::scene_specialisation(scene, scene_label);
-    let specialised = program::load_for(selection, Some(&spec), general.loader())?;
+    let specialised = if general.pack.distant_horizons {
+        program::load_with_distant_horizons(selection, Some(&spec))?
+    } else {
+        program::load_for(selection, Some(&spec), general.loader())?
+    };
     const ROUNDS: usize = 3;
     let per_round = frames.div_ceil(ROUNDS).max(1);
     let (mut general_ms, mut specialised_ms, mut passthrough_ms) = (Vec::new(), Vec::new(), Vec::new());
@@ -193,7 +199,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         profile: job.profile.clone(),
         options: job.options.clone(),
     };
-    let pack = program::load_for(&selection, None, job.loader)?;
+    let pack = if job.distant_horizons { program::load_with_distant_horizons(&selection, None)? } else { program::load_for(&selection, None, job.loader)? };
     let gpu = Gpu::new()?;
     let frame = crate::render_wgpu(&gpu, &pack, &scene)?;
 

@@ -20,6 +20,8 @@ use tidepack_loader::input;
 use tidepack_loader::loader::Loader;
 use tidepack_loader::option_lines::OptionSet;
 use tidepack_loader::option_space::Configuration;
+use tidepack_loader::programs;
+use tidepack_scene::mesh::LOD_MATERIAL_INPUT;
 use tidepack_loader::properties::{Macros, Properties};
 use tidepack_loader::shadow::ShadowSettings;
 use tidepack_pack::dialect::Dialect;
@@ -181,6 +183,17 @@ pub fn load_specialised(selection: &PackSelection, specialisation: Option<&Speci
 /// the profile's values as its defaults, and the option overrides are applied to the shipped
 /// text as the loader applies a player's choices.
 pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisation>, loader: Loader) -> Result<LoadedPack, HarnessError> {
+    load_configured(selection, specialisation, Configuration { options: selection.options.clone(), loader, ..Configuration::default() })
+}
+
+/// [`load_for`] Iris with Distant Horizons beside it: `DISTANT_HORIZONS` is defined and the
+/// pack's dh_* programs draw the scenes' LODs.
+pub fn load_with_distant_horizons(selection: &PackSelection, specialisation: Option<&Specialisation>) -> Result<LoadedPack, HarnessError> {
+    let configuration = Configuration { options: selection.options.clone(), loader: Loader::Iris, distant_horizons: true, ..Configuration::default() };
+    load_configured(selection, specialisation, configuration)
+}
+
+fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisation>, configuration: Configuration) -> Result<LoadedPack, HarnessError> {
     let source = PackSource::load(&selection.source_dir).map_err(|d| diag_error("cannot read the pack", &[d]))?;
     let options = pack_options::collect(&source).map_err(|d| diag_error("the pack's options are invalid", &d))?;
     let profile = selection.profile.clone().unwrap_or_else(|| source.manifest.pack.default_profile.clone());
@@ -194,7 +207,6 @@ pub fn load_for(selection: &PackSelection, specialisation: Option<&Specialisatio
     let texts = shipped.files.iter().map(|(path, file)| (path.clone(), file.text.as_bytes().to_vec()));
     let binaries = shipped.binaries.iter().map(|(path, bytes)| (path.clone(), bytes.to_vec()));
     let files = input::pack_from_memory("shaders/", texts.chain(binaries));
-    let configuration = Configuration { options: selection.options.clone(), loader, ..Configuration::default() };
     let (overrides, _) = configuration.option_set_of(&files).map_err(HarnessError::Configuration)?;
     let pack = AnyPack::from_files(&files, &configuration)?;
     if !pack.failed.is_empty() {
@@ -244,6 +256,9 @@ pub(crate) fn load_program_files(
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
         let mut p = preprocess::preprocess(provider, path, macros).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
+        if stage == Stage::Vertex {
+            p.text = with_lod_material_attribute(name, &p.text)?;
+        }
         pre.push((stage, Arc::new(p)));
     }
     let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
@@ -257,6 +272,9 @@ pub(crate) fn load_program_files(
         let mut narrow_outputs = BTreeMap::new();
         let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        if stage.stage == Stage::Vertex {
+            gl_text = with_lod_material_attribute(name, &gl_text)?;
+        }
         let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
@@ -302,6 +320,19 @@ pub(crate) fn load_program_files(
         (None, UndeclaredTargets::FirstOnly) => vec![0],
     };
     Ok(LoadedProgram { name: name.to_string(), vertex, fragment, render_targets })
+}
+
+/// `text`, a vertex stage of `program`, with `dhMaterialId` read as Iris gives it where a
+/// Distant Horizons program uses it undeclared: each use reads [`LOD_MATERIAL_INPUT`], declared
+/// before the first line of code. Line numbers are kept.
+fn with_lod_material_attribute(program: &str, text: &str) -> Result<String, HarnessError> {
+    if !programs::DISTANT_HORIZONS_PROGRAMS.contains(&program) || !programs::uses_undeclared_dh_material_id(text) {
+        return Ok(text.to_string());
+    }
+    let tokens = tokenize(text).map_err(|e| HarnessError::Pack(format!("shader text: {}", e.message)))?;
+    let read = format!("int({LOD_MATERIAL_INPUT}.x + 0.5)");
+    let replaced: String = tokens.iter().map(|t| if t.text == "dhMaterialId" { read.as_str() } else { t.text }).collect();
+    Ok(programs::declare_before_code(&replaced, &format!("attribute vec4 {LOD_MATERIAL_INPUT};")).into_owned())
 }
 
 /// The one change the harness makes to a lowered vertex shader: the shipped `main` becomes

@@ -17,6 +17,8 @@ pub enum Source {
     Color(u8),
     Depth0,
     Depth1,
+    /// Distant Horizons' depth: dhDepthTex0 (its water included) or dhDepthTex1 (without).
+    LodDepth(u8),
     /// A custom texture of the pack (index into [`PackResources::custom_textures`]).
     Custom(usize),
     /// The normal map of a resource pack without one: flat, (0.5, 0.5, 1).
@@ -71,6 +73,8 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
         ("shadow", _) => Source::ShadowDepth(if pack.water_shadow() { 1 } else { 0 }),
         ("shadowtex0" | "watershadow", _) => Source::ShadowDepth(0),
         ("shadowtex1", _) => Source::ShadowDepth(1),
+        ("dhDepthTex" | "dhDepthTex0", _) => Source::LodDepth(0),
+        ("dhDepthTex1", _) => Source::LodDepth(1),
         _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
             (Some(n), _) => Source::Color(n),
             (None, Some(n)) => Source::ShadowColour(n),
@@ -84,7 +88,7 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
 /// maps read as nothing drawn, since they are being drawn.
 pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<Source, String> {
     Ok(match resolve_any(pack, name, true)? {
-        Source::Color(_) | Source::Depth0 | Source::Depth1 => Source::Unbound,
+        Source::Color(_) | Source::Depth0 | Source::Depth1 | Source::LodDepth(_) => Source::Unbound,
         source => source,
     })
 }

@@ -27,6 +27,9 @@ pub enum Pass {
     Shadow,
     /// The sun and the moon: as gbuffers, with the game's fog off (`fogMode` 0).
     Celestial,
+    /// Distant Horizons' LODs (dh_terrain, dh_water): as gbuffers, under dhProjection, with
+    /// the lightmap coordinates already in 0..1 (Iris's identity gl_TextureMatrix[1]).
+    DistantHorizons,
 }
 
 /// Legacy matrices as the OpenGL compatibility API holds them for a pass.
@@ -48,12 +51,13 @@ pub fn lightmap_matrix() -> DMat4 {
 fn legacy_matrices(scene: &Scene, pass: Pass, shadow_camera: (DMat4, DMat4)) -> LegacyMatrices {
     let (model_view, projection) = match pass {
         Pass::Gbuffers | Pass::Celestial => (scene.model_view(), scene.projection()),
+        Pass::DistantHorizons => (scene.model_view(), scene.lod_projection()),
         Pass::Fullscreen => (DMat4::IDENTITY, DMat4::orthographic_rh_gl(0.0, 1.0, 0.0, 1.0, -1.0, 1.0)),
         Pass::Shadow => shadow_camera,
     };
     let texture = match pass {
         Pass::Gbuffers | Pass::Shadow | Pass::Celestial => [DMat4::IDENTITY, lightmap_matrix()],
-        Pass::Fullscreen => [DMat4::IDENTITY, DMat4::IDENTITY],
+        Pass::Fullscreen | Pass::DistantHorizons => [DMat4::IDENTITY, DMat4::IDENTITY],
     };
     LegacyMatrices { model_view, projection, texture }
 }
@@ -87,6 +91,14 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("gbufferProjectionInverse", Value::mat4(projection.inverse()));
     put("gbufferPreviousModelView", Value::mat4(model_view));
     put("gbufferPreviousProjection", Value::mat4(projection));
+    let (lod_distance, lod_near, lod_far) = scene.lod_planes();
+    let lod_projection = scene.lod_projection();
+    put("dhProjection", Value::mat4(lod_projection));
+    put("dhProjectionInverse", Value::mat4(lod_projection.inverse()));
+    put("dhPreviousProjection", Value::mat4(lod_projection));
+    put("dhNearPlane", Value::float(lod_near));
+    put("dhFarPlane", Value::float(lod_far));
+    put("dhRenderDistance", Value::int(lod_distance.round() as i64));
     put("cameraPosition", Value::vec3(camera));
     put("previousCameraPosition", Value::vec3(camera));
     put("eyeAltitude", Value::float(camera.y));

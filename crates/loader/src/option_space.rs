@@ -326,9 +326,17 @@ pub struct Configuration {
     pub options: Vec<(String, String)>,
     pub dimension: Dimension,
     pub loader: Loader,
+    /// Distant Horizons beside Iris: `DISTANT_HORIZONS` is defined and Iris runs the `dh_*`
+    /// programs.
+    pub distant_horizons: bool,
 }
 
 impl Configuration {
+    /// The macros the loader defines under this configuration.
+    pub fn standard_macros(&self) -> StandardMacros {
+        StandardMacros { distant_horizons: self.distant_horizons, ..StandardMacros::for_loader(self.loader) }
+    }
+
     /// The option set this configuration means for a pack with `declared` options and
     /// properties `props`: the profile's values, then each single option. An unknown profile
     /// or option, or a value the option does not offer, is an error naming what there is.

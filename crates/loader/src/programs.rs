@@ -77,15 +77,17 @@ pub fn runs_with(name: &str, loader: Loader, distant_horizons: bool) -> bool {
 /// A stage's text with what the loader declares in it: Iris's `dhMaterialId` in the vertex
 /// stage of a Distant Horizons program.
 pub fn with_loader_declarations<'t>(program: &str, vertex: bool, text: &'t str) -> std::borrow::Cow<'t, str> {
-    if vertex && DISTANT_HORIZONS_PROGRAMS.contains(&program) { declare_dh_material_id(text) } else { std::borrow::Cow::Borrowed(text) }
+    if vertex && DISTANT_HORIZONS_PROGRAMS.contains(&program) && uses_undeclared_dh_material_id(text) {
+        declare_before_code(text, "int dhMaterialId;")
+    } else {
+        std::borrow::Cow::Borrowed(text)
+    }
 }
 
-/// Iris declares `int dhMaterialId;` (Distant Horizons' material of the vertex, one of the
-/// `DH_BLOCK_*` values) in the vertex stage of every `dh_*` program; a pack uses it undeclared.
-/// `text` (a stage as the driver or naga gets it) with that declaration put before its first
-/// line of code, on that line so that every line keeps its number; unchanged where the stage
-/// does not use the name or declares it itself.
-fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
+/// Whether `text` uses `dhMaterialId` (Distant Horizons' material of the vertex, one of the
+/// `DH_BLOCK_*` values) without declaring it: Iris declares it in the vertex stage of every
+/// `dh_*` program, and a pack uses it undeclared.
+pub fn uses_undeclared_dh_material_id(text: &str) -> bool {
     const NAME: &str = "dhMaterialId";
     let is_word = |c: char| c.is_ascii_alphanumeric() || c == '_';
     let mut used = false;
@@ -102,9 +104,13 @@ fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
             spaced.strip_suffix(ty).is_some_and(|rest| !rest.ends_with(is_word))
         });
     }
-    if declared || !used {
-        return std::borrow::Cow::Borrowed(text);
-    }
+    used && !declared
+}
+
+/// `text` (a stage as the driver or naga gets it) with `declaration` put before its first line
+/// of code outside any `#if`, on that line so that every line keeps its number; unchanged when
+/// it has no such line.
+pub fn declare_before_code<'t>(text: &'t str, declaration: &str) -> std::borrow::Cow<'t, str> {
     let mut depth = 0usize;
     let mut in_comment = false;
     let mut offset = 0;
@@ -123,7 +129,7 @@ fn declare_dh_material_id(text: &str) -> std::borrow::Cow<'_, str> {
             in_comment = false;
         }
         if code && depth == 0 {
-            return std::borrow::Cow::Owned(format!("{}int {NAME}; {}", &text[..offset], &text[offset..]));
+            return std::borrow::Cow::Owned(format!("{}{declaration} {}", &text[..offset], &text[offset..]));
         }
         offset += line.len();
     }
@@ -330,13 +336,13 @@ mod tests {
     #[test]
     fn dh_material_id_is_declared_before_the_first_code_where_it_is_used_undeclared() {
         let text = "#version 330 compatibility\n#extension GL_ARB_x : enable\n#ifdef A\nuniform int a;\n#endif\n/* a\nb */\nout float m;\nvoid main() { m = float(dhMaterialId == DH_BLOCK_WATER); }\n";
-        let declared = declare_dh_material_id(text);
+        let declared = with_loader_declarations("dh_water", true, text);
         assert_eq!(declared.lines().count(), text.lines().count());
         assert_eq!(declared.lines().nth(7), Some("int dhMaterialId; out float m;"));
         let own = "#version 330\nin int dhMaterialId;\nvoid main() { int m = dhMaterialId; }\n";
-        assert_eq!(declare_dh_material_id(own), own);
+        assert_eq!(with_loader_declarations("dh_water", true, own), own);
         let unused = "#version 330\nvoid main() {}\n";
-        assert_eq!(declare_dh_material_id(unused), unused);
+        assert_eq!(with_loader_declarations("dh_water", true, unused), unused);
     }
 
     #[test]

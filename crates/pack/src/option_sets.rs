@@ -78,7 +78,7 @@ impl<'a> Ticker<'a> {
 /// The loaders the pack is validated for: OptiFine's macros, and Iris's with Distant Horizons
 /// beside it, whose `DISTANT_HORIZONS` and `DH_BLOCK_*` open the pack's code for the LODs and
 /// which alone runs the `dh_*` programs. Each loader's programs are those it runs.
-fn loaders() -> [(&'static str, StandardMacros, Loader, bool); 2] {
+pub fn loaders() -> [(&'static str, StandardMacros, Loader, bool); 2] {
     let iris = StandardMacros { distant_horizons: true, ..StandardMacros::for_loader(Loader::Iris) };
     [("OptiFine", StandardMacros::default(), Loader::OptiFine1_21, false), ("Iris with Distant Horizons", iris, Loader::Iris, true)]
 }

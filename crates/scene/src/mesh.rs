@@ -10,8 +10,9 @@ use glam::DVec3;
 use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
-use crate::scene::{BLOCK_SPRITES, Scene};
+use crate::scene::{BLOCK_SPRITES, LOD_CELL, Scene};
 use tidepack_loader::loader::OverlayKind;
+use tidepack_loader::macros::DH_BLOCKS;
 use tidepack_loader::shadow::SunPath;
 
 /// The vertex of the pack's gbuffers programs; every attribute a `gbuffers_*` vertex shader
@@ -105,7 +106,31 @@ pub struct SceneMesh {
     /// texture, faded by rain.
     pub sun: Vec<PackVertex>,
     pub moon: Vec<PackVertex>,
+    /// Distant Horizons' opaque LODs and its water, triangles (the water back to front), for
+    /// the pack's dh_terrain and dh_water. As Iris gives them: no texture coordinates, the
+    /// lightmap coordinates already in 0..1, and Distant Horizons' material id (`dhMaterialId`)
+    /// in `entity.x`.
+    pub lod_terrain: Vec<PackVertex>,
+    pub lod_translucent: Vec<PackVertex>,
 }
+
+/// The `DH_BLOCK_*` material of a block of the scenes.
+fn lod_material(block: Option<&str>) -> f32 {
+    let name = match block {
+        Some("minecraft:stone") => "STONE",
+        Some("minecraft:grass_block") => "GRASS",
+        Some("minecraft:sand") => "SAND",
+        Some("minecraft:dirt") => "DIRT",
+        Some("minecraft:oak_leaves") => "LEAVES",
+        Some("minecraft:water") => "WATER",
+        _ => "UNKNOWN",
+    };
+    DH_BLOCKS.iter().position(|b| *b == name).expect("a DH_BLOCK_* name") as f32
+}
+
+/// Distant Horizons' lightmap coordinates as Iris gives them: (block + 0.5) / 16 and
+/// (sky + 0.5) / 16, here no block light and full sky light.
+const LOD_LIGHT: [f32; 4] = [0.5 / 16.0, 15.5 / 16.0, 0.0, 1.0];
 
 /// Block ids the translucent geometry carries in `mc_Entity.x`.
 pub trait BlockIds {
@@ -225,6 +250,37 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             .collect();
         mesh.overlay.push((kind, back_to_front(quads, local_camera, &rel)));
     }
+    if let Some(lod) = &scene.distant_horizons {
+        let cells = |min: [f64; 2], max: [f64; 2], y: f64| {
+            let (nx, nz) = (((max[0] - min[0]) / LOD_CELL).ceil() as i64, ((max[1] - min[1]) / LOD_CELL).ceil() as i64);
+            (0..nx).flat_map(move |i| (0..nz).map(move |k| {
+                let (x0, z0) = (min[0] + i as f64 * LOD_CELL, min[1] + k as f64 * LOD_CELL);
+                let (x1, z1) = ((x0 + LOD_CELL).min(max[0]), (z0 + LOD_CELL).min(max[1]));
+                [DVec3::new(x0, y, z0), DVec3::new(x0, y, z1), DVec3::new(x1, y, z1), DVec3::new(x1, y, z0)]
+            }))
+        };
+        let light = 0.45 + 0.55 * DVec3::Y.dot(sun).max(0.0);
+        for g in &lod.ground {
+            let color = [(g.color[0] * light) as f32, (g.color[1] * light) as f32, (g.color[2] * light) as f32, 1.0];
+            let material = lod_material(g.block.as_deref());
+            for corners in cells(g.min, g.max, g.height) {
+                for i in [0, 1, 2, 0, 2, 3] {
+                    mesh.lod_terrain.push(lod_vertex(rel(corners[i]), color, material));
+                }
+            }
+        }
+        let quads = lod
+            .water
+            .iter()
+            .flat_map(|w| {
+                let color = [w.tint[0], w.tint[1], w.tint[2], 1.0];
+                cells(w.min, w.max, w.level).map(move |corners| Quad { corners, normal: DVec3::Y, color, sprite: WATER_SPRITE, entity: [0.0; 4] })
+            })
+            .collect();
+        let material = lod_material(Some("minecraft:water"));
+        mesh.lod_translucent =
+            back_to_front(quads, camera - origin, &rel).into_iter().map(|v| lod_vertex(v.position, v.color, material)).collect();
+    }
     mesh.sky = sky_box(scene);
     let (sun_quad, moon_quad) = sun_and_moon(scene);
     mesh.sun = sun_quad;
@@ -234,6 +290,21 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
         add_tangents_and_sprite_centres(vertices);
     }
     mesh
+}
+
+/// A vertex of Distant Horizons' LODs (see [`SceneMesh::lod_terrain`]); they face up.
+fn lod_vertex(position: [f32; 4], color: [f32; 4], material: f32) -> PackVertex {
+    PackVertex {
+        position,
+        color,
+        normal: [0.0, 1.0, 0.0],
+        uv0: [0.0, 0.0, 0.0, 1.0],
+        uv1: LOD_LIGHT,
+        entity: [material, 0.0, 0.0, 0.0],
+        lightmap: LIGHT_INT,
+        tangent: [1.0, 0.0, 0.0, 1.0],
+        mid_uv: [0.0, 0.0, 0.0, 1.0],
+    }
 }
 
 /// The sky: a box in the sky colour around the camera, inside the far plane, seen from inside.
@@ -493,6 +564,11 @@ impl AttributeFormat {
     }
 }
 
+/// The vertex input Iris reads Distant Horizons' material id from (in x), which the harness
+/// declares where a dh_* program uses `dhMaterialId`; the LOD vertices carry the id in
+/// `entity`.
+pub const LOD_MATERIAL_INPUT: &str = "irisExtra";
+
 /// Where a vertex stage's input of this shipped name is in [`PackVertex`], and its format.
 pub fn attribute_source(name: &str) -> Option<(AttributeFormat, u64)> {
     Some(match name {
@@ -502,6 +578,7 @@ pub fn attribute_source(name: &str) -> Option<(AttributeFormat, u64)> {
         "gl_MultiTexCoord0" => (AttributeFormat::Float32x4, offsets::UV0),
         "gl_MultiTexCoord1" => (AttributeFormat::Float32x4, offsets::UV1),
         "mc_Entity" => (AttributeFormat::Float32x4, offsets::ENTITY),
+        LOD_MATERIAL_INPUT => (AttributeFormat::Float32x4, offsets::ENTITY),
         "at_tangent" => (AttributeFormat::Float32x4, offsets::TANGENT),
         "mc_midTexCoord" => (AttributeFormat::Float32x4, offsets::MID_UV),
         // The 1.17+ core profile's names for the same data (positions relative to the chunk

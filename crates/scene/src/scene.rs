@@ -43,6 +43,63 @@ pub struct Scene {
     /// Boxes drawn as rain, clouds, particles or the translucent hand.
     #[serde(default)]
     pub overlay: Vec<OverlayBox>,
+    /// Distant Horizons' LODs past the game's chunks, drawn by a pack's dh_* programs where the
+    /// loader is Iris with the mod.
+    pub distant_horizons: Option<DistantHorizons>,
+}
+
+/// Distant Horizons' level-of-detail world: flat terrain and water beyond the game's render
+/// distance, drawn with its own projection into its own depth buffers (Iris's dhDepthTex0
+/// and dhDepthTex1), before the game's terrain and water.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistantHorizons {
+    /// `dhRenderDistance`: how far the LODs reach, in blocks.
+    pub render_distance: f64,
+    /// `dhNearPlane`, the near plane of Distant Horizons' projection, in blocks.
+    #[serde(default = "default_lod_near")]
+    pub near: f64,
+    /// The LOD water: flat rectangles of [`LOD_CELL`]-block cells.
+    #[serde(default)]
+    pub water: Vec<LodWater>,
+    /// LOD ground, in [`LOD_CELL`]-block cells, flat at each rectangle's height.
+    #[serde(default)]
+    pub ground: Vec<LodGround>,
+}
+
+/// Side of the quads of the LOD world, in blocks: Distant Horizons' LODs are coarse.
+pub const LOD_CELL: f64 = 16.0;
+
+fn default_lod_near() -> f64 {
+    16.0
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LodWater {
+    pub level: f64,
+    #[serde(deserialize_with = "exact")]
+    pub min: [f64; 2],
+    #[serde(deserialize_with = "exact")]
+    pub max: [f64; 2],
+    /// The LOD's colour: Distant Horizons' vertex colour of its water.
+    #[serde(default = "default_water_tint", deserialize_with = "exact")]
+    pub tint: [f64; 3],
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LodGround {
+    #[serde(deserialize_with = "exact")]
+    pub min: [f64; 2],
+    #[serde(deserialize_with = "exact")]
+    pub max: [f64; 2],
+    pub height: f64,
+    #[serde(deserialize_with = "exact")]
+    pub color: [f64; 3],
+    /// What Distant Horizons calls the material (`dhMaterialId`): one of the blocks of
+    /// [`BLOCK_SPRITES`], or unknown.
+    pub block: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -372,13 +429,19 @@ impl Scene {
         if self.water.as_ref().is_some_and(|w| w.cell.is_nan() || w.cell < 1.0) {
             return Err("water.cell must be at least 1 block".into());
         }
+        if let Some(lod) = &self.distant_horizons
+            && !(lod.near > 0.0 && lod.render_distance > c.far && lod.near < lod.render_distance)
+        {
+            return Err("distant_horizons needs near > 0 and render_distance beyond both near and camera.far".into());
+        }
         if !(0.0..=1.0).contains(&self.sky.rain_strength) {
             return Err("sky.rain_strength must lie in 0..1".into());
         }
         if DVec3::from(self.sky.sun_direction).length() < 1e-9 {
             return Err("sky.sun_direction must not be zero".into());
         }
-        let blocks = self.terrain.ground.iter().map(|g| &g.block).chain(self.terrain.boxes.iter().map(|b| &b.block));
+        let lod_blocks = self.distant_horizons.iter().flat_map(|lod| lod.ground.iter().map(|g| &g.block));
+        let blocks = self.terrain.ground.iter().map(|g| &g.block).chain(self.terrain.boxes.iter().map(|b| &b.block)).chain(lod_blocks);
         for block in blocks.flatten() {
             if !BLOCK_SPRITES.iter().any(|(name, _)| name == block) {
                 let known: Vec<&str> = BLOCK_SPRITES.iter().map(|(name, _)| *name).collect();
@@ -416,6 +479,10 @@ impl Scene {
         parts.extend(self.terrain.boxes.iter().map(|b| ("a terrain box", at(b.min).max(at(b.max)))));
         parts.extend(self.glass.iter().map(|g| ("a glass pane", at(g.min).max(at(g.max)))));
         parts.extend(self.overlay.iter().map(|o| ("an overlay box", at(o.min).max(at(o.max)))));
+        if let Some(lod) = &self.distant_horizons {
+            parts.extend(lod.water.iter().map(|w| ("the LOD water", flat(w.min, w.level).max(flat(w.max, w.level)))));
+            parts.extend(lod.ground.iter().map(|g| ("the LOD ground", flat(g.min, g.height).max(flat(g.max, g.height)))));
+        }
         parts.into_iter().max_by(|a, b| a.1.total_cmp(&b.1))
     }
 
@@ -425,7 +492,10 @@ impl Scene {
         let cells = |min: [f64; 2], max: [f64; 2], cell: f64| ((max[0] - min[0]) / cell).ceil().max(0.0) * ((max[1] - min[1]) / cell).ceil().max(0.0);
         let ground: f64 = self.terrain.ground.iter().map(|g| cells(g.min, g.max, 1.0)).sum();
         let water = self.water.as_ref().map_or(0.0, |w| cells(w.min, w.max, w.cell));
-        ground + water + 6.0 * (self.terrain.boxes.len() + self.glass.len() + self.overlay.len()) as f64
+        let lod: f64 = self.distant_horizons.iter().map(|lod| {
+            lod.water.iter().map(|w| cells(w.min, w.max, LOD_CELL)).sum::<f64>() + lod.ground.iter().map(|g| cells(g.min, g.max, LOD_CELL)).sum::<f64>()
+        }).sum();
+        ground + water + lod + 6.0 * (self.terrain.boxes.len() + self.glass.len() + self.overlay.len()) as f64
     }
 
     pub fn camera_position(&self) -> DVec3 {
@@ -454,6 +524,25 @@ impl Scene {
 
     pub fn sun_direction(&self) -> DVec3 {
         DVec3::from(self.sky.sun_direction).normalize()
+    }
+
+    /// `dhRenderDistance`, `dhNearPlane` and `dhFarPlane`: the scene's LOD band's, or without one
+    /// a band that ends where the game's chunks do (what Iris sets with the mod drawing nothing
+    /// beyond them). The far plane is Iris's: the render distance and 512 blocks, times √2 so
+    /// that the corners are not cut off.
+    pub fn lod_planes(&self) -> (f64, f64, f64) {
+        let (render_distance, near) = match &self.distant_horizons {
+            Some(lod) => (lod.render_distance, lod.near),
+            None => (self.camera.far, default_lod_near().min(self.camera.far * 0.5)),
+        };
+        (render_distance, near, (render_distance + 512.0) * std::f64::consts::SQRT_2)
+    }
+
+    /// dhProjection: the camera's perspective between Distant Horizons' near and far planes.
+    pub fn lod_projection(&self) -> DMat4 {
+        let (_, near, far) = self.lod_planes();
+        let aspect = self.width() as f64 / self.height() as f64;
+        DMat4::perspective_rh_gl(self.camera.fov.to_radians(), aspect, near, far)
     }
 }
 

@@ -22,16 +22,24 @@ pub struct ConfigurationArgs {
     /// (docs/loaders.md says what differs).
     #[arg(long, default_value_t = Loader::default())]
     pub loader: Loader,
+    /// Distant Horizons installed beside Iris (needs --loader iris): DISTANT_HORIZONS is
+    /// defined, and Iris runs the pack's dh_* programs.
+    #[arg(long)]
+    pub distant_horizons: bool,
 }
 
 impl ConfigurationArgs {
     /// The configuration the arguments name; a malformed `--set` is an error naming it.
     pub fn configuration(&self) -> Result<Configuration, String> {
+        if self.distant_horizons && self.loader != Loader::Iris {
+            return Err("--distant-horizons needs --loader iris: Distant Horizons' programs run only through Iris".into());
+        }
         Ok(Configuration {
             profile: self.profile.clone(),
             options: parse_assignments(&self.set)?,
             dimension: self.dimension.clone().unwrap_or_default(),
             loader: self.loader,
+            distant_horizons: self.distant_horizons,
         })
     }
 }

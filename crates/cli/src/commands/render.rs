@@ -96,6 +96,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         profile: configuration.profile,
         options: configuration.options,
         loader: configuration.loader,
+        distant_horizons: configuration.distant_horizons,
         out_dir: args.out.clone(),
         buffers: args.buffers,
         gl: args.gl,

@@ -11,7 +11,7 @@ use super::{CANNOT_RUN, FINDINGS};
 use clap::{Args, ValueEnum};
 use tidepack_glsl::{Code, Drivers};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
-use tidepack_loader::macros::{Os, StandardMacros, Vendor, parse_gl_version, parse_mc_version, platform_gl_versions};
+use tidepack_loader::macros::{Os, Vendor, parse_gl_version, parse_mc_version, platform_gl_versions};
 use tidepack_validate::{Coverage, Levels, Options, Profiles, Shard, output};
 
 use super::configuration::ConfigurationArgs;
@@ -58,11 +58,6 @@ pub struct ValidateArgs {
     /// --gl-version; 1.20 on macOS before 1.17). A stage whose #version is higher is an error.
     #[arg(long, value_parser = parse_gl_version)]
     pub glsl_version: Option<u32>,
-    /// With `--loader iris`: Distant Horizons is installed, so `DISTANT_HORIZONS` is defined in
-    /// every program and Iris's `dh_terrain`, `dh_water`, `dh_shadow` and `dh_generic` are
-    /// validated too (with the `dhMaterialId` Iris declares in their vertex stages).
-    #[arg(long)]
-    pub distant_horizons: bool,
     /// Operating system for MC_OS_*.
     #[arg(long, value_enum, default_value_t = OsArg::Linux)]
     pub os: OsArg,
@@ -135,14 +130,7 @@ pub fn run(args: &ValidateArgs) -> ExitCode {
             return ExitCode::from(CANNOT_RUN);
         }
     };
-    let mut macros = StandardMacros::for_loader(configuration.loader);
-    if args.distant_horizons {
-        if configuration.loader != tidepack_loader::Loader::Iris {
-            tell!("error: --distant-horizons needs --loader iris: Distant Horizons' programs run only through Iris");
-            return ExitCode::from(CANNOT_RUN);
-        }
-        macros.distant_horizons = true;
-    }
+    let mut macros = configuration.standard_macros();
     if let Some(text) = &args.mc_version {
         let Some(mc_version) = parse_mc_version(text) else {
             tell!("error: --mc-version `{}` is not a version like 1.21.4", text.escape_debug());

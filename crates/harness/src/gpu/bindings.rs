@@ -266,6 +266,8 @@ pub(crate) struct BindableTextures<'a> {
     pub colors: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     pub depth0: &'a wgpu::Texture,
     pub depth1: &'a wgpu::Texture,
+    /// dhDepthTex0 and dhDepthTex1.
+    pub lod_depth: [&'a wgpu::Texture; 2],
     pub shadow: ShadowTextures<'a>,
     /// What `gtexture` holds.
     pub sprites: Sprites,
@@ -327,6 +329,7 @@ impl BindableTextures<'_> {
             Source::Custom(i) => (harness.custom[i].0.clone(), true),
             Source::Depth0 => (view(self.depth0), false),
             Source::Depth1 => (view(self.depth1), false),
+            Source::LodDepth(n) => (view(self.lod_depth[n as usize]), false),
             Source::Color(n) => {
                 let (t, format) = self.colors.get(&n).ok_or_else(|| format!("colortex{n} is not a buffer of this frame"))?;
                 let filters = gpu.filterable(*format);
@@ -882,7 +885,7 @@ fn stage_entries(
             }
             let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source, depth_class)?)));
             match bound {
-                Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::ShadowDepth(_)) => {
+                Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_)) => {
                     problems.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
                 }
                 Ok((source, (view, filters))) => {

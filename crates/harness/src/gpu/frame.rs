@@ -17,7 +17,7 @@ use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Value};
+use crate::uniforms::{self, Pass, Value};
 
 use super::Gpu;
 use super::bindings::{
@@ -114,8 +114,10 @@ enum WrittenTexture {
 type Written = (String, WrittenTexture);
 
 enum Work<'p> {
-    Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8> },
+    /// `lod`: Distant Horizons' draw, into its own depth buffer.
+    Geometry { draw: GeometryDraw, current: &'p BTreeMap<u8, usize>, snapshots: &'p BTreeSet<u8>, lod: bool },
     DepthCopy,
+    LodDepthCopy,
     ShadowGeometry(GeometryDraw),
     ShadowDepthCopy,
     Fullscreen {
@@ -132,7 +134,7 @@ enum Work<'p> {
 impl Work<'_> {
     /// A texture copy, not a render pass (no timestamps).
     fn is_copy(&self) -> bool {
-        matches!(self, Work::DepthCopy | Work::ShadowDepthCopy)
+        matches!(self, Work::DepthCopy | Work::LodDepthCopy | Work::ShadowDepthCopy)
     }
 }
 
@@ -159,6 +161,8 @@ struct FrameTextures {
     snapshots: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     depth0: wgpu::Texture,
     depth1: wgpu::Texture,
+    /// Distant Horizons' depth buffers, dhDepthTex0 and dhDepthTex1.
+    lod_depth: [wgpu::Texture; 2],
     screen: wgpu::Texture,
     shadow_size: wgpu::Extent3d,
     shadow_depth: [wgpu::Texture; 2],
@@ -182,7 +186,7 @@ impl FrameTextures {
     /// is made.
     fn check_budget(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<(), HarnessError> {
         let pixels = u64::from(scene.width()) * u64::from(scene.height());
-        let mut per_pixel = 2 * texel_bytes(DEPTH) + texel_bytes(OUT);
+        let mut per_pixel = 4 * texel_bytes(DEPTH) + texel_bytes(OUT);
         for &b in &plan.buffers {
             let bytes = texel_bytes(gpu.texture_format(pack.format_of(b))?);
             // Two to draw into and read from, one snapshot; a mip chain adds a third of a level.
@@ -237,6 +241,7 @@ impl FrameTextures {
             snapshots,
             depth0: texture("depthtex0", DEPTH),
             depth1: texture("depthtex1", DEPTH),
+            lod_depth: [texture("dhDepthTex0", DEPTH), texture("dhDepthTex1", DEPTH)],
             screen: texture("screen (RGBA32F)", OUT),
             shadow_size,
             shadow_depth: [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)],
@@ -261,6 +266,7 @@ impl FrameTextures {
             .flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color))))
             .collect();
         record_clears(encoder, &colours, &self.depth0);
+        record_clears(encoder, &[], &self.lod_depth[0]);
         let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
             self.shadow_colours.iter().map(|(b, (t, _))| (t, pack.shadow_clear_of(*b).shadow_colour())).collect();
         shadow_clears.extend(self.shadow_depth_read.iter().map(|t| (t, [1.0; 4])));
@@ -301,15 +307,18 @@ impl<'p> PreparedSteps<'p> {
                         colors: &textures.snapshots,
                         depth0: &textures.depth1,
                         depth1: &textures.depth1,
+                        // Likewise dhDepthTex0 while Distant Horizons draws into it.
+                        lod_depth: [&textures.lod_depth[1]; 2],
                         shadow: textures.shadow(),
                         sprites: *sprites,
                         mipmapped: &NO_MIPMAPS,
                     };
                     let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
                     let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
-                    (Work::Geometry { draw, current, snapshots }, written)
+                    (Work::Geometry { draw, current, snapshots, lod: *pass == Pass::DistantHorizons }, written)
                 }
                 PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+                PlannedWork::LodDepthCopy => (Work::LodDepthCopy, Vec::new()),
                 PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
                     let values = uniforms::with_render_stage(&values.shadow, render_stage);
                     let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
@@ -321,6 +330,7 @@ impl<'p> PreparedSteps<'p> {
                         colors: &textures.shadow_colours,
                         depth0: &textures.depth1,
                         depth1: &textures.depth1,
+                        lod_depth: [&textures.lod_depth[1]; 2],
                         shadow: ShadowTextures::empty(harness),
                         sprites: Sprites::Blocks,
                         mipmapped: &NO_MIPMAPS,
@@ -403,6 +413,7 @@ impl<'p> PreparedSteps<'p> {
             colors: &reading,
             depth0: &textures.depth0,
             depth1: &textures.depth1,
+            lod_depth: [&textures.lod_depth[0], &textures.lod_depth[1]],
             shadow: textures.shadow(),
             sprites: Sprites::Blocks,
             mipmapped: mipmaps,
@@ -428,14 +439,16 @@ impl Recorder<'_> {
     fn record(&self, encoder: &mut wgpu::CommandEncoder, work: &Work, stamps: Option<wgpu::RenderPassTimestampWrites<'_>>) {
         let t = self.textures;
         match work {
-            Work::Geometry { draw, current, snapshots } => {
+            Work::Geometry { draw, current, snapshots, lod } => {
                 for b in *snapshots {
                     let buffer = &t.buffers[b];
                     encoder.copy_texture_to_texture(buffer.textures[current[b]].as_image_copy(), buffer.snapshot.as_image_copy(), t.size);
                 }
-                draw.record(encoder, &|b| &t.buffers[&b].textures[current[&b]], &t.depth0, stamps);
+                let depth = if *lod { &t.lod_depth[0] } else { &t.depth0 };
+                draw.record(encoder, &|b| &t.buffers[&b].textures[current[&b]], depth, stamps);
             }
             Work::DepthCopy => encoder.copy_texture_to_texture(t.depth0.as_image_copy(), t.depth1.as_image_copy(), t.size),
+            Work::LodDepthCopy => encoder.copy_texture_to_texture(t.lod_depth[0].as_image_copy(), t.lod_depth[1].as_image_copy(), t.size),
             Work::ShadowGeometry(draw) => {
                 draw.record(encoder, &|b| &t.shadow_colours[&b].0, &t.shadow_depth[0], stamps);
                 self.depth_as_luminance.record(encoder, &t.shadow_depth_read[0], None);
@@ -606,7 +619,9 @@ pub(crate) fn record_clears(encoder: &mut wgpu::CommandEncoder, colours: &[(&wgp
             })
         })
         .collect();
-    for chunk in attachments.chunks(8) {
+    // Without colours, one pass clears the depth alone.
+    let chunks: Vec<&[Option<wgpu::RenderPassColorAttachment>]> = if attachments.is_empty() { vec![&[]] } else { attachments.chunks(8).collect() };
+    for chunk in chunks {
         encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("clear"),
             color_attachments: chunk,
