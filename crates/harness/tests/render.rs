@@ -32,6 +32,23 @@ fn pack(dialect: Dialect) -> &'static LoadedPack {
     })
 }
 
+/// The pack under Iris with Distant Horizons beside it.
+fn pack_with_distant_horizons(dialect: Dialect) -> &'static LoadedPack {
+    static P120: OnceLock<LoadedPack> = OnceLock::new();
+    static P330: OnceLock<LoadedPack> = OnceLock::new();
+    let cell = if dialect == Dialect::Glsl120 { &P120 } else { &P330 };
+    cell.get_or_init(|| {
+        let selection = PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };
+        program::load_with_distant_horizons(&selection, None).unwrap_or_else(|e| panic!("{e}"))
+    })
+}
+
+/// The pack as the scene is drawn: a scene with Distant Horizons' LODs under Iris with the mod,
+/// every other under the default loader.
+fn pack_for(dialect: Dialect, scene: &Scene) -> &'static LoadedPack {
+    if scene.distant_horizons.is_some() { pack_with_distant_horizons(dialect) } else { pack(dialect) }
+}
+
 /// Every scene rendered once (GLSL 330, default profile), shared by the tests.
 fn frames() -> &'static BTreeMap<String, Frame> {
     static FRAMES: OnceLock<BTreeMap<String, Frame>> = OnceLock::new();
@@ -39,8 +56,8 @@ fn frames() -> &'static BTreeMap<String, Frame> {
         scene_names()
             .into_iter()
             .map(|name| {
-                let frame = render_wgpu(gpu(), pack(Dialect::Glsl330), &scene(&name))
-                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                let s = scene(&name);
+                let frame = render_wgpu(gpu(), pack_for(Dialect::Glsl330, &s), &s).unwrap_or_else(|e| panic!("{name}: {e}"));
                 (name, frame)
             })
             .collect()
@@ -87,6 +104,48 @@ fn the_scenes_cover_the_issue() {
     assert!(scene("case2_under_down").eye_in_water() && scene("case3_under_up").eye_in_water());
     assert!(!scene("case4_above_near").eye_in_water() && !scene("case5_above_far").eye_in_water());
     assert!(scene("far_from_origin").camera_position().x > 1e6);
+}
+
+/// Distant Horizons' water meets the game's without a seam: up each column of the screen's
+/// middle, the colour steps no more from the game's last water pixel to the LODs' first than
+/// between neighbouring rows of water on either side; and under a loader without the mod the
+/// same scene has no LOD water at all.
+#[test]
+fn lod_water_meets_the_games_water_without_a_seam() {
+    let name = "lod_water_beyond_chunks";
+    let frame = &frames()[name];
+    let (w, h) = (frame.image.width as usize, frame.image.height as usize);
+    let luminance = |i: usize| {
+        let p = frame.image.pixels[i];
+        0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
+    };
+    // The game's water holds depthtex0; the LODs' leaves it empty (they have their own).
+    let water = |f: &Frame, i: usize| mark(f, i) > 0.875;
+    let game = |i: usize| water(frame, i) && frame.depth0.pixels[i][0] < 1.0;
+    let lod = |i: usize| water(frame, i) && frame.depth0.pixels[i][0] >= 1.0;
+    let (mut at_boundary, mut beside) = (Vec::new(), Vec::new());
+    for x in w / 4..3 * w / 4 {
+        // Rows run bottom first: the game's water lies below the LODs' on screen.
+        let Some(b) = (1..h).find(|&y| game((y - 1) * w + x) && lod(y * w + x)) else { continue };
+        at_boundary.push((luminance(b * w + x) - luminance((b - 1) * w + x)).abs());
+        for y in (b.saturating_sub(10)..b - 1).chain(b + 1..(b + 10).min(h - 1)) {
+            if water(frame, y * w + x) && water(frame, (y + 1) * w + x) {
+                beside.push((luminance((y + 1) * w + x) - luminance(y * w + x)).abs());
+            }
+        }
+    }
+    assert!(at_boundary.len() == w / 2, "the boundary crosses every middle column: {} of {}", at_boundary.len(), w / 2);
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    let (step, neighbours) = (mean(&at_boundary), mean(&beside));
+    println!("{name}: mean step at the LOD boundary {step:.5}, between neighbouring rows beside it {neighbours:.5}");
+    assert!(step <= 1.5 * neighbours, "a seam: the colour steps {step:.5} at the boundary against {neighbours:.5} beside it");
+    let lods = (0..w * h).filter(|&i| lod(i)).count();
+    assert!(lods > w * h / 20, "the LODs' water covers the far band: {lods} pixels");
+
+    let s = scene(name);
+    let without = render_wgpu(gpu(), pack(Dialect::Glsl330), &s).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let lod_without = (0..w * h).filter(|&i| water(&without, i) && without.depth0.pixels[i][0] >= 1.0).count();
+    assert_eq!(lod_without, 0, "a loader without Distant Horizons draws no LODs");
 }
 
 #[test]
@@ -313,6 +372,7 @@ golden_tests! {
     glass: 0.032,
     glass_over_land: 0.034,
     hand_glass_over_water: 0.029,
+    lod_water_beyond_chunks: 0.030,
     no_water: 0.037,
     particle_over_water: 0.028,
     rain_over_lake: 0.028,
@@ -394,9 +454,9 @@ fn opengl_and_wgpu_agree_on_every_scene() {
             let wgpu_frame = if dialect == Dialect::Glsl330 {
                 frames()[&name].clone()
             } else {
-                render_wgpu(gpu(), pack(dialect), &s).unwrap_or_else(|e| panic!("{name}: {e}"))
+                render_wgpu(gpu(), pack_for(dialect, &s), &s).unwrap_or_else(|e| panic!("{name}: {e}"))
             };
-            let gl_frame = tidepack_harness::render_gl(&ctx, pack(dialect), &s)
+            let gl_frame = tidepack_harness::render_gl(&ctx, pack_for(dialect, &s), &s)
                 .unwrap_or_else(|e| panic!("{name} ({dialect}): {e}"));
             assert_eq!(gl_frame.image.non_finite(), 0, "{name}: NaN/Inf from OpenGL");
             let max = images::max_channel_difference(&wgpu_frame.image, &gl_frame.image);
