@@ -167,7 +167,7 @@ fn glslang_accepts_every_shipped_stage() {
                         let expanded = expand_includes(&files, path, &macros).unwrap();
                         let text = programs::with_loader_declarations(name, *stage == tidepack_glsl::Stage::Vertex, &expanded);
                         let file = work.path().join(format!("{profile}-{}-{}-{}", dialect.slug(), loader.name(), path.replace('/', "_")));
-                        std::fs::write(&file, &text).unwrap();
+                        std::fs::write(&file, text.as_bytes()).unwrap();
                         let kind = if *stage == tidepack_glsl::Stage::Vertex { "vert" } else { "frag" };
                         let result = Command::new(&glslang).args(["-S", kind]).arg(&file).output().unwrap();
                         assert!(

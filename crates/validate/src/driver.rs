@@ -31,6 +31,14 @@ pub fn is_loader_level(diag: &Diagnostic) -> bool {
     diag.message.contains("DRAWBUFFERS") || diag.message.contains("RENDERTARGETS")
 }
 
+/// One stage's text for the driver, with the map of its lines to the pack's files.
+struct StageText {
+    text: String,
+    map: Vec<Option<Location>>,
+    /// Where the stage asked for a newer GLSL than the driver has: the note saying so.
+    version_note: Option<String>,
+}
+
 pub struct Driver {
     context: GlContext,
     defines: String,
@@ -53,6 +61,38 @@ impl Driver {
         let version = &self.context.info().version;
         let mut numbers = version.split(|c: char| !c.is_ascii_digit()).filter(|n| !n.is_empty()).map(|n| n.parse().unwrap_or(0));
         (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0))
+    }
+
+    /// The highest `#version` the context compiles: from OpenGL 3.3 on GLSL's number of the
+    /// OpenGL version (4.5 → 450); 150, 140 and 130 for 3.2, 3.1 and 3.0; 120 before.
+    fn highest_glsl(&self) -> u32 {
+        match self.gl_version() {
+            (3, 2) => 150,
+            (3, 1) => 140,
+            (3, 0) => 130,
+            (major, _) if major < 3 => 120,
+            (major, minor) => major * 100 + minor * 10,
+        }
+    }
+
+    /// A stage's text as the driver gets it: includes expanded, the standard macros, what the
+    /// loader declares, and a `#version` above the driver's lowered to its highest (see
+    /// [`within_version`]); `None` when it cannot be expanded (tidepack's preprocessor reported
+    /// that already).
+    fn stage_text(&self, program: &Program, vertex: bool, path: &str, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Option<StageText> {
+        let (text, map) = expand_includes_mapped(provider, path, &self.defines, self.include_quotes).ok()?;
+        let highest = self.highest_glsl();
+        let (text, asked) = within_version(declared(program, vertex, text), highest);
+        let version_note = asked.map(|asked| {
+            format!(
+                "compiled as `#version {highest}`: this driver offers GLSL up to {}.{:02}; a driver with GLSL {}.{:02} reads `#version {asked}` as written",
+                highest / 100,
+                highest % 100,
+                asked / 100,
+                asked % 100
+            )
+        });
+        Some(StageText { text, map, version_note })
     }
 
     /// Whether the context compiles tessellation (OpenGL 4.0) and compute (4.3) stages.
@@ -135,11 +175,10 @@ impl Driver {
     ) -> Result<(), Vec<Diagnostic>> {
         let mut texts = Vec::new();
         for (kind, path) in files {
-            match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*kind, *path, declared(program, *kind == glow::VERTEX_SHADER, text), map)),
-                Err(_) => return Err(Vec::new()),
-            }
+            let Some(stage) = self.stage_text(program, *kind == glow::VERTEX_SHADER, path, provider) else { return Err(Vec::new()) };
+            texts.push((*kind, *path, stage));
         }
+        let version_note = |path: &str| texts.iter().find(|(_, p, _)| *p == path).and_then(|(_, _, stage)| stage.version_note.clone());
         let gl = self.context.gl();
         let info = |what: String| format!("{what} by {}", self.describe());
         let located = |log: &str, path: &str, map: Option<&Vec<Option<Location>>>, what: String| -> Vec<Diagnostic> {
@@ -150,6 +189,10 @@ impl Driver {
                     let at = map.and_then(|map| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
                     let diag = Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| Some(Location::line(path, 1))))
                         .with_note(info(what.clone()));
+                    let diag = match version_note(path) {
+                        Some(note) => diag.with_note(note),
+                        None => diag,
+                    };
                     if m.message.contains("geometry_shader4") {
                         diag.with_note("Mesa does not implement GL_ARB/EXT_geometry_shader4 (NVIDIA's driver does); geometry shaders written for `#version 150` or later compile on Mesa too")
                     } else {
@@ -169,7 +212,7 @@ impl Driver {
         unsafe {
             let mut shaders = Vec::new();
             let mut failed = Vec::new();
-            for (kind, path, text, map) in &texts {
+            for (kind, path, StageText { text, map, .. }) in &texts {
                 let Ok(shader) = gl.create_shader(*kind) else {
                     failed.extend(located("", path, None, format!("{} creation", stage_name(*kind))));
                     continue;
@@ -215,16 +258,14 @@ impl Driver {
     fn check_vertex_fragment(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
-            match expand_includes_mapped(provider, path, &self.defines, self.include_quotes) {
-                Ok((text, map)) => texts.push((*stage, path.clone(), declared(program, *stage == Stage::Vertex, text), map)),
-                Err(_) => return Err(Vec::new()),
-            }
+            let Some(text) = self.stage_text(program, *stage == Stage::Vertex, path, provider) else { return Err(Vec::new()) };
+            texts.push((*stage, path.clone(), text));
         }
         let vertex = texts.iter().find(|t| t.0 == Stage::Vertex);
         let fragment = texts.iter().find(|t| t.0 == Stage::Fragment);
         let result = match (vertex, fragment) {
-            (Some(v), Some(f)) => self.context.compile_program(&v.2, &f.2, &[], &[]).map(|p| self.context.delete_program(p)),
-            (Some(only), None) | (None, Some(only)) => self.context.compile_shader_only(only.0 == Stage::Vertex, &only.2).map(|_| ()),
+            (Some(v), Some(f)) => self.context.compile_program(&v.2.text, &f.2.text, &[], &[]).map(|p| self.context.delete_program(p)),
+            (Some(only), None) | (None, Some(only)) => self.context.compile_shader_only(only.0 == Stage::Vertex, &only.2.text).map(|_| ()),
             (None, None) => Ok(()),
         };
         let Err(log) = result else { return Ok(()) };
@@ -239,10 +280,14 @@ impl Driver {
             .into_iter()
             .filter(|m| m.severity.contains("error"))
             .map(|m| {
-                let at = stage_text.and_then(|(_, _, _, map)| map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
+                let at = stage_text.and_then(|(_, _, t)| t.map.get(m.line.checked_sub(1)? as usize).cloned().flatten());
                 let entry = stage_text.map(|t| t.1.clone()).or_else(|| program.stages.first().map(|s| s.1.clone()));
-                Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| entry.map(|e| Location::line(e, 1))))
-                    .with_note(info.clone())
+                let diag = Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this: {}", m.message.trim()), at.or_else(|| entry.map(|e| Location::line(e, 1))))
+                    .with_note(info.clone());
+                match stage_text.and_then(|(_, _, t)| t.version_note.clone()) {
+                    Some(note) => diag.with_note(note),
+                    None => diag,
+                }
             })
             .collect();
         if diags.is_empty() {
@@ -267,6 +312,23 @@ fn stage_name(kind: u32) -> &'static str {
 }
 
 /// `text` with what the loader declares in the stage (see [`with_loader_declarations`]).
+/// `text` with a `#version` above `highest` (a stage for a newer driver than this one) lowered
+/// to `highest`, its profile kept, and the version it asked for; unchanged otherwise. GLSL 4.60
+/// adds little to 4.50, so the driver here still checks nearly all of such a stage.
+fn within_version(text: String, highest: u32) -> (String, Option<u32>) {
+    let Some(start) = text.find("#version") else { return (text, None) };
+    let line_end = text[start..].find('\n').map_or(text.len(), |e| start + e);
+    let line = &text[start..line_end];
+    let mut words = line.split_whitespace().skip(1);
+    let Some(asked) = words.next().and_then(|n| n.parse::<u32>().ok()) else { return (text, None) };
+    if asked <= highest {
+        return (text, None);
+    }
+    let profile: Vec<&str> = words.collect();
+    let rewritten = if profile.is_empty() { format!("#version {highest}") } else { format!("#version {highest} {}", profile.join(" ")) };
+    (format!("{}{rewritten}{}", &text[..start], &text[line_end..]), Some(asked))
+}
+
 fn declared(program: &Program, vertex: bool, text: String) -> String {
     if let std::borrow::Cow::Owned(declared) = with_loader_declarations(&program.name, vertex, &text) { declared } else { text }
 }

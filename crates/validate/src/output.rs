@@ -56,9 +56,9 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     if let Some(d) = &report.driver {
         writeln!(
             summary,
-            "  driver {}: {} programs both accept, {} both reject, {} only the driver rejects{}, {} only tidepack rejects{}",
+            "  driver {}: {} both accept, {} both reject, {} only the driver rejects{}, {} only tidepack rejects{}",
             d.driver,
-            d.both_accept,
+            plural(d.both_accept, "program"),
             d.both_reject,
             d.only_driver_rejects.len(),
             list(&d.only_driver_rejects),
