@@ -878,7 +878,7 @@ fn group_is_empty(lines: &[LogicalLine<'_, '_>], index: usize) -> bool {
 }
 
 /// The desktop GLSL versions, and the GLSL ES ones: drivers refuse any other `#version`.
-const GLSL_VERSIONS: [u32; 13] = [110, 120, 130, 140, 150, 330, 400, 410, 420, 430, 440, 450, 460];
+pub const GLSL_VERSIONS: [u32; 13] = [110, 120, 130, 140, 150, 330, 400, 410, 420, 430, 440, 450, 460];
 const GLSL_ES_VERSIONS: [u32; 4] = [100, 300, 310, 320];
 
 fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {

@@ -321,7 +321,8 @@ fn within_version(text: String, highest: u32) -> (String, Option<u32>) {
     let line = &text[start..line_end];
     let mut words = line.split_whitespace().skip(1);
     let Some(asked) = words.next().and_then(|n| n.parse::<u32>().ok()) else { return (text, None) };
-    if asked <= highest {
+    // A version that does not exist is refused by every driver: left for this one to say so.
+    if asked <= highest || !tidepack_glsl::preprocess::GLSL_VERSIONS.contains(&asked) {
         return (text, None);
     }
     let profile: Vec<&str> = words.collect();
