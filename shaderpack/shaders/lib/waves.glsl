@@ -42,28 +42,50 @@ float waveHeight(sampler2D waterTexture, vec2 worldXZ, float time) {
     return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
 }
 
-// Height error below which the bisection stops early. Against the converged reference,
-// 0.0005 block leaves every profile's error unchanged; 0.002 already cost ULTRA 6 dB PSNR.
+// Height error below which the search stops early. Against the converged reference, 0.0005
+// block leaves every profile's error unchanged; 0.002 already cost ULTRA 6 dB PSNR.
 const float SURFACE_TOLERANCE = 0.0005;
 
-// A1: bisection along the ray from the rasterised (flat) hit towards the wave surface.
+// A1: the wave surface along the view ray from the rasterised (flat) hit, `t` blocks along the
+// ray: a secant search kept inside the bracket where the crossing must lie (3.2 blocks either
+// way). Each point on the camera's side of the surface moves the bracket's near end up to it,
+// each one past the surface its far end; the next point is where the line through the last two
+// (at first: a flat surface) meets the surface, or the bracket's middle where that falls
+// outside. A smooth surface is met in 3 or 4 lookups where halving steps took 8 for less.
 // `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
 vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove) {
-    vec3 p = playerHit;
     float planeY = playerHit.y;
-    float stepLength = 10.0 * WAVE_MAX_HEIGHT;
+    float near = -20.0 * WAVE_MAX_HEIGHT;
+    float far = 20.0 * WAVE_MAX_HEIGHT;
+    float t = 0.0;
+    float previousT = 0.0;
+    float previousGap = 0.0;
     for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
+        vec3 p = playerHit + rayDir * t;
         float gap = p.y - planeY - waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
-        // On the surface to within SURFACE_TOLERANCE: further halvings cannot show.
+        // On the surface to within SURFACE_TOLERANCE: further steps cannot show.
         if (!NEEDED(abs(gap) >= SURFACE_TOLERANCE)) {
             break;
         }
-        // On the camera's side of the surface: go on along the ray; past it: go back.
-        bool cameraSide = (gap > 0.0) == cameraAbove;
-        p += rayDir * (cameraSide ? stepLength : -stepLength);
-        stepLength *= 0.5;
+        if ((gap > 0.0) == cameraAbove) {
+            near = t;
+        } else {
+            far = t;
+        }
+        // How the gap changes along the ray: from the last two points, or for the first step
+        // (and two points at one place) the flat surface's rate, the ray's own vertical rate.
+        float moved = t - previousT;
+        float slope = i > 0 && abs(moved) > 1e-6 ? (gap - previousGap) / moved : rayDir.y;
+        float next = 0.5 * (near + far);
+        if (abs(slope) > 1e-6) {
+            float crossing = t - gap / slope;
+            next = crossing >= near && crossing <= far ? crossing : next;
+        }
+        previousT = t;
+        previousGap = gap;
+        t = next;
     }
-    return p;
+    return playerHit + rayDir * t;
 }
 
 // A2: the surface normal (world axes, y up) at a wrapped world position, and the "diffuse

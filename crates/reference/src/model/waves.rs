@@ -33,21 +33,37 @@ pub(crate) fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
     WAVE_AMPLITUDE_ANALYTIC * (analytic_wave(world_xz, time) + WAVE_NOISE_WEIGHT * noise)
 }
 
-/// `refineSurface` (A1): bisection along the ray from the flat hit towards the wave surface.
+/// `refineSurface` (A1): the secant search along the ray from the flat hit, kept inside the
+/// bracket where the crossing must lie.
 pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, s: &ReferenceSettings) -> DVec3 {
-    let mut p = player_hit;
     let plane_y = player_hit.y;
-    let mut step_length = 10.0 * WAVE_MAX_HEIGHT;
-    for _ in 0..s.wave_refine_steps {
+    let (mut near, mut far) = (-20.0 * WAVE_MAX_HEIGHT, 20.0 * WAVE_MAX_HEIGHT);
+    let (mut t, mut previous_t, mut previous_gap) = (0.0, 0.0, 0.0);
+    for i in 0..s.wave_refine_steps {
+        let p = player_hit + ray_dir * t;
         let gap = p.y - plane_y - wave_height(water, DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z), time);
         if gap.abs() < s.surface_tolerance {
             break;
         }
-        let camera_side = (gap > 0.0) == camera_above;
-        p += ray_dir * if camera_side { step_length } else { -step_length };
-        step_length *= 0.5;
+        if (gap > 0.0) == camera_above {
+            near = t;
+        } else {
+            far = t;
+        }
+        let moved = t - previous_t;
+        let slope = if i > 0 && moved.abs() > 1e-6 { (gap - previous_gap) / moved } else { ray_dir.y };
+        let mut next = 0.5 * (near + far);
+        if slope.abs() > 1e-6 {
+            let crossing = t - gap / slope;
+            if crossing >= near && crossing <= far {
+                next = crossing;
+            }
+        }
+        previous_t = t;
+        previous_gap = gap;
+        t = next;
     }
-    p
+    player_hit + ray_dir * t
 }
 
 /// The four height samples at `±e` in x and z, each the sum of the octaves in use.
@@ -105,7 +121,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_surface_bisection_converges_to_the_wave_height() {
+    fn the_surface_search_converges_to_the_wave_height() {
         let water = Texture::new(1, 1, vec![DVec4::splat(0.5)], crate::Filter::Linear, crate::Wrap::Repeat);
         let hit = DVec3::new(3.0, -5.0, -4.0);
         let dir = hit.normalize();
@@ -117,5 +133,12 @@ mod tests {
         let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &pack);
         let expected = hit.y + wave_height(&water, DVec2::new(q.x, q.z), 12.5);
         assert!((q.y - expected).abs() < crate::settings::SURFACE_TOLERANCE, "{} vs {expected}", q.y);
+        // The secant meets that tolerance within MEDIUM's 4 lookups on a view ray as steep as
+        // a near pixel's, and within HIGH's 8 on one grazing at 3 degrees.
+        for (dir, steps) in [(hit.normalize(), 4), (DVec3::new(0.0, -0.05, -1.0).normalize(), 8)] {
+            let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &ReferenceSettings { wave_refine_steps: steps, ..pack.clone() });
+            let gap = q.y - hit.y - wave_height(&water, DVec2::new(q.x, q.z), 12.5);
+            assert!(gap.abs() < crate::settings::SURFACE_TOLERANCE, "{steps} steps along {dir}: gap {gap}");
+        }
     }
 }
