@@ -514,7 +514,7 @@ pub(crate) fn custom_textures(
                 continue;
             }
         };
-        let decoded = decode_within_budget(&bytes).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
+        let decoded = decode_within_budget(&bytes, path).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
         let meta = provider.read(&format!("{path}.mcmeta")).map(|t| t.to_string()).unwrap_or_default();
         let flag = |name: &str| {
             meta.split(&format!("\"{name}\"")).nth(1).is_some_and(|rest| rest.trim_start_matches([' ', ':']).starts_with("true"))
@@ -537,9 +537,19 @@ pub(crate) fn custom_textures(
 pub const MAX_CUSTOM_TEXTURE_PIXELS: u64 = 4096 * 4096;
 
 /// Decodes an image whose header's size is within [`MAX_CUSTOM_TEXTURE_PIXELS`], read before
-/// anything is decoded; the decoder's own allocations are held to the same budget.
-fn decode_within_budget(bytes: &[u8]) -> Result<image::RgbaImage, String> {
-    let reader = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| format!("is not a readable image: {e}"));
+/// anything is decoded; the decoder's own allocations are held to the same budget. The format
+/// is the one the bytes show, or for a format without a signature (TGA) the one `path`'s
+/// extension names.
+fn decode_within_budget(bytes: &[u8], path: &str) -> Result<image::RgbaImage, String> {
+    let reader = || {
+        let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format().map_err(|e| format!("is not a readable image: {e}"))?;
+        if reader.format().is_none()
+            && let Ok(format) = image::ImageFormat::from_path(path)
+        {
+            reader.set_format(format);
+        }
+        Ok::<_, String>(reader)
+    };
     let (width, height) = reader()?.into_dimensions().map_err(|e| format!("is not a readable image: {e}"))?;
     if u64::from(width) * u64::from(height) > MAX_CUSTOM_TEXTURE_PIXELS {
         return Err(format!("is {width}x{height} pixels, more than the budget of {MAX_CUSTOM_TEXTURE_PIXELS} (4096x4096) for a custom texture"));
@@ -581,10 +591,22 @@ mod tests {
             image::GrayImage::new(side, side).write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
             png
         };
-        assert_eq!(decode_within_budget(&encode(64)).unwrap().dimensions(), (64, 64));
-        let error = decode_within_budget(&encode(4097)).unwrap_err();
+        assert_eq!(decode_within_budget(&encode(64), "a.png").unwrap().dimensions(), (64, 64));
+        let error = decode_within_budget(&encode(4097), "a.png").unwrap_err();
         assert!(error.contains("4097x4097") && error.contains("budget"), "{error}");
-        assert!(decode_within_budget(b"\x89PNG\r\n\x1a\n truncated").unwrap_err().contains("not a readable image"));
+        assert!(decode_within_budget(b"\x89PNG\r\n\x1a\n truncated", "a.png").unwrap_err().contains("not a readable image"));
+    }
+
+    #[test]
+    fn custom_textures_decode_in_every_format_a_loader_reads() {
+        let picture = image::RgbImage::from_fn(8, 4, |x, y| image::Rgb([x as u8 * 30, y as u8 * 60, 200]));
+        for format in [image::ImageFormat::Jpeg, image::ImageFormat::Bmp, image::ImageFormat::Gif, image::ImageFormat::Tga] {
+            let mut bytes = Vec::new();
+            image::DynamicImage::ImageRgb8(picture.clone()).write_to(&mut std::io::Cursor::new(&mut bytes), format).unwrap();
+            let path = format!("textures/sky.{}", format.extensions_str()[0]);
+            let decoded = decode_within_budget(&bytes, &path).unwrap_or_else(|e| panic!("{format:?}: {e}"));
+            assert_eq!(decoded.dimensions(), (8, 4), "{format:?}");
+        }
     }
 
     #[test]
