@@ -273,22 +273,32 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Stand-ins for `textureGather*` and `textureQueryLod` on a `sampler2D`, which naga's GLSL
-/// front-end lacks: they check the arguments' types and sample the texture once (their result
-/// is never used).
+/// `textureGather*` and `textureQueryLod` on a `sampler2D`, which naga's GLSL front-end lacks.
+/// The gathers are exact for a texture that clamps to its edge (the frame's buffers): component
+/// `c` of the four texels bilinear filtering would weigh at `p`, in GLSL's order (i0 j1, i1 j1,
+/// i1 j0, i0 j0). `textureQueryLod` samples the texture once (its result is not rendered).
 const GATHER_STAND_INS: [(&str, &str); 3] = [
     (
         "textureGather",
-        "vec4 textureGather(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0); } \
-         vec4 textureGather(texture2D t, sampler s, vec2 p, int c) { return textureLod(sampler2D(t, s), p, 0.0); }",
+        "vec4 textureGather(texture2D t, sampler s, vec2 p) { return tp_gather(t, s, p, ivec2(0), 0); } \
+         vec4 textureGather(texture2D t, sampler s, vec2 p, int c) { return tp_gather(t, s, p, ivec2(0), c); }",
     ),
     (
         "textureGatherOffset",
-        "vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o) { return textureLod(sampler2D(t, s), p, 0.0); } \
-         vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o, int c) { return textureLod(sampler2D(t, s), p, 0.0); }",
+        "vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o) { return tp_gather(t, s, p, o, 0); } \
+         vec4 textureGatherOffset(texture2D t, sampler s, vec2 p, ivec2 o, int c) { return tp_gather(t, s, p, o, c); }",
     ),
     ("textureQueryLod", "vec2 textureQueryLod(texture2D t, sampler s, vec2 p) { return textureLod(sampler2D(t, s), p, 0.0).xy; }"),
 ];
+
+/// The gather both `textureGather` stand-ins call, put before them.
+const GATHER: &str = "vec4 tp_gather(texture2D t, sampler s, vec2 p, ivec2 o, int c) { \
+    ivec2 last = textureSize(sampler2D(t, s), 0) - 1; ivec2 i = ivec2(floor(p * vec2(last + 1) - 0.5)) + o; \
+    vec4 t00 = texelFetch(sampler2D(t, s), clamp(i, ivec2(0), last), 0); \
+    vec4 t10 = texelFetch(sampler2D(t, s), clamp(i + ivec2(1, 0), ivec2(0), last), 0); \
+    vec4 t01 = texelFetch(sampler2D(t, s), clamp(i + ivec2(0, 1), ivec2(0), last), 0); \
+    vec4 t11 = texelFetch(sampler2D(t, s), clamp(i + ivec2(1, 1), ivec2(0), last), 0); \
+    return vec4(t01[c], t11[c], t10[c], t00[c]); }";
 
 /// Built-ins naga cannot evaluate in a constant expression (drivers can).
 const NOT_CONSTANT_FOLDED: &[&str] = &[
@@ -1954,7 +1964,10 @@ impl<'a> Lowering<'_, 'a> {
                 self.replace(i, i + 1, "textureLod".to_string());
                 closers.push((paren_depth + 1, ", 0.0)"));
             } else if followed_by_call && self.symbols.sampler_functions.contains_key(t.text) {
-                if let Some((_, stand_in)) = GATHER_STAND_INS.iter().find(|(name, _)| *name == t.text) {
+                if let Some((name, stand_in)) = GATHER_STAND_INS.iter().find(|(name, _)| *name == t.text) {
+                    if name.starts_with("textureGather") {
+                        self.add_header(GATHER.to_string());
+                    }
                     self.add_header((*stand_in).to_string());
                 }
                 calls.push((t.text.to_string(), paren_depth + 1, 0));
