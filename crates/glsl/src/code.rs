@@ -53,6 +53,7 @@ codes! {
     Link "link" "the stages of a program do not link: an input no output matches, or one declared differently",
     InputUndeclared "input-undeclared" "a fragment input is read that the vertex shader does not declare",
     InputNeverWritten "input-never-written" "a fragment input is read that the vertex shader declares but never writes",
+    UninitialisedRead "uninitialised-read" "a local variable is read but nothing ever assigns it: its value is undefined",
     DrawBuffers "draw-buffers" "a DRAWBUFFERS/RENDERTARGETS list that does not match what the shader writes",
     Driver "driver" "the real OpenGL driver (`--driver`) refuses a stage or a program",
     // What the loader does that the pack does not expect.

@@ -6,7 +6,9 @@
 //! - a function with a return type and no `return` anywhere in its body;
 //! - a fragment shader writing both `gl_FragData`/`gl_FragColor` and `out` variables of its own;
 //! - an assignment to a shader input (`in`, `varying`, `attribute`);
-//! - texture2D & co. on a `sampler2DShadow`, shadow2D & co. on a `sampler2D`.
+//! - texture2D & co. on a `sampler2DShadow`, shadow2D & co. on a `sampler2D`;
+//! - and, as a warning (drivers compile it, each to its own value), a local variable that is
+//!   read but never assigned.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -47,6 +49,7 @@ pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
     if stage == Stage::Fragment {
         found.extend(mixed_outputs(pre, &sig, &globals));
     }
+    found.extend(never_assigned_locals(pre, &sig));
     let mut found: Vec<Diagnostic> =
         found.into_iter().map(|d| if d.is_error() { d.refused_by(Drivers::ALL_BUT_NVIDIA) } else { d }).collect();
     found.extend(empty_operands_after_commas(pre, &sig));
@@ -295,6 +298,55 @@ fn input_writes(pre: &Preprocessed, sig: &[&Token], globals: &Globals, stage: St
                 ),
                 pre.location(t.line),
             ));
+        }
+    }
+    found
+}
+
+/// The types a local declaration `T name;` can start with.
+fn is_value_type(word: &str) -> bool {
+    let sized = |prefix: &str| word.strip_prefix(prefix).is_some_and(|n| matches!(n, "2" | "3" | "4"));
+    matches!(word, "float" | "int" | "uint" | "bool" | "double")
+        || ["vec", "ivec", "uvec", "bvec", "dvec", "mat"].iter().any(|p| sized(p))
+        || word.strip_prefix("mat").is_some_and(|n| matches!(n, "2x2" | "2x3" | "2x4" | "3x2" | "3x3" | "3x4" | "4x2" | "4x3" | "4x4"))
+}
+
+/// Locals declared without a value (`vec3 color;`) that the function reads and nothing in it
+/// ever assigns: not assigned, incremented, or passed to a function (which may fill it through an
+/// `out` parameter). Drivers compile the read and each gives its own value (often 0, on some
+/// GPUs what the register held). A name any write touches is left alone, so branches and loops
+/// cannot make this a false warning.
+fn never_assigned_locals(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    for function in function_definitions(sig) {
+        let body = function.open + 1..function.close.min(sig.len());
+        for k in body.clone() {
+            let declares = sig[k].kind == TokenKind::Ident
+                && is_value_type(sig[k - 1].text)
+                && sig.get(k + 1).is_some_and(|t| t.is_punct(";"))
+                && matches!(sig[k - 2].text, "{" | "}" | ";");
+            if !declares {
+                continue;
+            }
+            let name = sig[k].text;
+            let uses: Vec<usize> =
+                body.clone().filter(|&j| j != k && sig[j].text == name && !(j > 0 && sig[j - 1].is_punct("."))).collect();
+            let written = uses.iter().any(|&j| {
+                let argument = matches!(sig[j - 1].text, "(" | ",") && sig.get(j + 1).is_some_and(|t| matches!(t.text, ")" | "," | "." | "["));
+                is_written(sig, j) || argument
+            });
+            if let Some(&first) = uses.iter().find(|&&j| j > k).filter(|_| !written) {
+                found.push(Diagnostic::warning(
+                    Code::UninitialisedRead,
+                    format!(
+                        "`{name}` is read but nothing assigns it (declared `{} {name};` at {}): its value is undefined, and drivers \
+                         differ in what they read; give it a value where it is declared",
+                        sig[k - 1].text,
+                        place(pre, sig[k].line)
+                    ),
+                    pre.location(sig[first].line),
+                ));
+            }
         }
     }
     found
