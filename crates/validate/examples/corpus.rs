@@ -4,8 +4,14 @@
 //! Every program is checked under the pack's defaults; programs only other loaders run are left
 //! out, as `validate` leaves them out.
 //!
-//! `cargo run --release -p tidepack-validate --example corpus -- [--details FILE] PACK_DIR...`
-//! (tools/corpus runs it over every pack of a folder).
+//! With `--covering`, each pack is also validated under every configuration `--covering` chooses
+//! (the defaults, every profile, the covering sets of each program's options): once alone, timed,
+//! and once with `--driver`, where Mesa compiles and links every (program, set) pair validated;
+//! a second table gives those pairs both accept, both reject, only Mesa rejects (misses) and
+//! only tidepack rejects (false errors).
+//!
+//! `cargo run --release -p tidepack-validate --example corpus -- [--details FILE] [--covering]
+//! [--threads N] PACK_DIR...` (tools/corpus runs it over every pack of a folder).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -15,7 +21,7 @@ use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::OptionSet;
 use tidepack_loader::SetProvider;
 use tidepack_loader::programs::{self, RunBy};
-use tidepack_validate::{Options, Status, driver, glslang};
+use tidepack_validate::{Coverage, Options, Profiles, Status, driver, glslang};
 
 #[derive(Default)]
 struct Row {
@@ -31,21 +37,47 @@ struct Row {
     mesa: Duration,
     glslang: Duration,
     glslang_programs: usize,
+    covering: Option<CoveringRow>,
+}
+
+/// `--covering`: every configuration validated, against Mesa.
+#[derive(Default)]
+struct CoveringRow {
+    programs: usize,
+    option_sets: usize,
+    considered: usize,
+    identical: usize,
+    errors_defaults: usize,
+    errors_covering: usize,
+    both_accept: usize,
+    both_reject: usize,
+    misses: Vec<String>,
+    false_errors: Vec<String>,
+    /// `--covering` alone.
+    tidepack: Duration,
+    /// `--covering --driver`.
+    with_driver: Duration,
 }
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let mut details_path: Option<PathBuf> = None;
+    let mut covering = false;
+    let mut threads = std::thread::available_parallelism().map_or(2, |n| n.get());
     let mut dirs: Vec<PathBuf> = Vec::new();
     while let Some(arg) = args.next() {
         if arg == "--details" {
             details_path = args.next().map(PathBuf::from);
+        } else if arg == "--covering" {
+            covering = true;
+        } else if arg == "--threads" {
+            threads = args.next().and_then(|n| n.parse().ok()).unwrap_or(threads).max(1);
         } else {
             dirs.push(PathBuf::from(arg));
         }
     }
     if dirs.is_empty() {
-        eprintln!("usage: corpus [--details FILE] PACK_DIR...");
+        eprintln!("usage: corpus [--details FILE] [--covering] [--threads N] PACK_DIR...");
         std::process::exit(2);
     }
     let macros = StandardMacros::default();
@@ -127,6 +159,14 @@ fn main() {
                 }
             }
         }
+        if covering {
+            let errors_defaults = report.errors();
+            let programs = report.programs.iter().filter(|p| !matches!(p.status, Status::Skipped(_))).count();
+            match covering_row(dir, threads, errors_defaults, programs, &row.pack, &mut details) {
+                Ok(c) => row.covering = Some(c),
+                Err(e) => eprintln!("{}: --covering: {e}", dir.display()),
+            }
+        }
         eprintln!(
             "{}: {} valid, {} invalid, {} false errors, {} misses, {} not compared",
             row.pack,
@@ -167,11 +207,85 @@ fn main() {
         total.glslang_programs,
         seconds(total.glslang) / seconds(total.tidepack),
     );
+    if covering {
+        println!(
+            "\nEvery configuration (`--covering`, {threads} threads), Mesa compiling and linking every (program, set) pair validated:\n"
+        );
+        println!(
+            "| pack | programs | option sets | program texts | distinct | errors (defaults) | errors (covering) | Mesa: both accept | both reject | misses | false errors | tidepack --covering s | with --driver s | Mesa defaults once s |"
+        );
+        println!("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        for row in &rows {
+            let Some(c) = &row.covering else { continue };
+            println!(
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.2} |",
+                row.pack,
+                c.programs,
+                c.option_sets,
+                c.considered,
+                c.considered - c.identical,
+                c.errors_defaults,
+                c.errors_covering,
+                c.both_accept,
+                c.both_reject,
+                c.misses.len(),
+                c.false_errors.len(),
+                c.tidepack.as_secs_f64(),
+                c.with_driver.as_secs_f64(),
+                row.mesa.as_secs_f64()
+            );
+        }
+    }
     if let Some(path) = details_path {
         std::fs::write(&path, details).unwrap_or_else(|e| eprintln!("cannot write {}: {e}", path.display()));
     } else if !details.is_empty() {
         println!("\n{details}");
     }
+}
+
+/// `--covering` alone (timed), then with `--driver`: Mesa's verdict on every pair validated.
+fn covering_row(
+    dir: &std::path::Path,
+    threads: usize,
+    errors_defaults: usize,
+    programs: usize,
+    pack: &str,
+    details: &mut String,
+) -> Result<CoveringRow, String> {
+    let options = Options { threads, profiles: Profiles::Covering(Coverage::Pairwise), ..Options::default() };
+    let started = Instant::now();
+    let alone = tidepack_validate::validate_path(dir, &options).map_err(|e| e.to_string())?;
+    let tidepack = started.elapsed();
+    let started = Instant::now();
+    let checked = tidepack_validate::validate_path(dir, &Options { driver: true, ..options }).map_err(|e| e.to_string())?;
+    let with_driver = started.elapsed();
+    let summary = checked.driver.ok_or("no driver summary")?;
+    for id in &summary.only_driver_rejects {
+        writeln!(details, "{pack} {id}: MISS under --covering (Mesa rejects)").unwrap();
+    }
+    for id in &summary.only_tidepack_rejects {
+        writeln!(details, "{pack} {id}: FALSE ERROR under --covering").unwrap();
+    }
+    // Mesa's messages for the pairs only it rejects, and tidepack's errors, are in the report.
+    for d in checked.diagnostics.iter().filter(|d| {
+        !summary.only_driver_rejects.is_empty() && d.is_error() || d.code == tidepack_glsl::Code::DriverAccepts
+    }) {
+        writeln!(details, "    {}", d.to_string().replace('\n', "\n    ")).unwrap();
+    }
+    Ok(CoveringRow {
+        programs,
+        option_sets: alone.option_sets.len(),
+        considered: alone.plan.considered,
+        identical: alone.plan.identical,
+        errors_defaults,
+        errors_covering: alone.errors(),
+        both_accept: summary.both_accept,
+        both_reject: summary.both_reject,
+        misses: summary.only_driver_rejects,
+        false_errors: summary.only_tidepack_rejects,
+        tidepack,
+        with_driver,
+    })
 }
 
 fn print_row(row: &Row) {

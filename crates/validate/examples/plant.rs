@@ -30,7 +30,8 @@ use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::{self, FileProvider, Preprocessed};
 use tidepack_loader::SetProvider;
 use tidepack_loader::programs::{self, RunBy};
-use tidepack_validate::{Coverage, Options, Profiles, Report, Status};
+use tidepack_loader::option_lines::OptionValue;
+use tidepack_validate::{Coverage, Options, Profiles, Report, Status, driver};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Kind {
@@ -50,9 +51,18 @@ enum Kind {
     UnterminatedIf,
     MacroRedefined,
     ErrorDirective,
+    ReservedOutput,
+    ReservedSample,
+    ConstFromUniform,
+    IntToUint,
+    WriteToInput,
+    MissingReturn,
+    FragDataBesideOut,
+    Texture2DOnShadow,
+    UninitialisedRead,
 }
 
-const KINDS: [Kind; 16] = [
+const KINDS: [Kind; 25] = [
     Kind::UndeclaredVariable,
     Kind::TypeMismatch,
     Kind::MissingSemicolon,
@@ -69,6 +79,15 @@ const KINDS: [Kind; 16] = [
     Kind::UnterminatedIf,
     Kind::MacroRedefined,
     Kind::ErrorDirective,
+    Kind::ReservedOutput,
+    Kind::ReservedSample,
+    Kind::ConstFromUniform,
+    Kind::IntToUint,
+    Kind::WriteToInput,
+    Kind::MissingReturn,
+    Kind::FragDataBesideOut,
+    Kind::Texture2DOnShadow,
+    Kind::UninitialisedRead,
 ];
 
 impl Kind {
@@ -90,7 +109,21 @@ impl Kind {
             Kind::UnterminatedIf => "unterminated #if at file end",
             Kind::MacroRedefined => "macro redefined with another body",
             Kind::ErrorDirective => "#error",
+            Kind::ReservedOutput => "reserved word `output` as a name",
+            Kind::ReservedSample => "`sample` as a name (GLSL 4.00+)",
+            Kind::ConstFromUniform => "local `const` from a uniform (before 4.20)",
+            Kind::IntToUint => "int literal into a `uint` (1.30 to 3.30)",
+            Kind::WriteToInput => "write to a fragment input",
+            Kind::MissingReturn => "non-void function without `return`",
+            Kind::FragDataBesideOut => "gl_FragData beside the stage's own `out`",
+            Kind::Texture2DOnShadow => "texture2D on a sampler2DShadow",
+            Kind::UninitialisedRead => "read of a local never assigned (warning)",
         }
+    }
+
+    /// Whether the mistake is a warning (drivers compile it) rather than an error.
+    fn is_warning(self) -> bool {
+        self == Kind::UninitialisedRead
     }
 }
 
@@ -122,6 +155,16 @@ struct StageInfo {
     uniforms: Vec<Global>,
     samplers: Vec<Global>,
     consts: Vec<Global>,
+    /// `#version` number (110 without one).
+    version: u32,
+    /// A fragment stage (`.fsh`).
+    fragment: bool,
+    /// Fragment inputs (`in`/`varying` of one value-type name).
+    inputs: Vec<Global>,
+    /// The stage's own `out` variables that it writes somewhere (`name =`, `name.x =`, `name[0] =`).
+    written_outputs: Vec<String>,
+    /// Whether the stage names gl_FragData or gl_FragColor at all.
+    builtin_outputs: bool,
 }
 
 /// A source line that ends a statement in a function body: a new line goes right after it.
@@ -163,7 +206,20 @@ struct Plant {
     internals: bool,
     /// New errors, and warnings at the planted line, as reported.
     reported: Vec<String>,
+    /// The drivers the diagnostic at the line says refuse it (`refused_by`).
+    drivers: Vec<&'static str>,
+    /// With `--mesa`: whether Mesa compiles and links the planted program.
+    mesa: MesaVerdict,
     elapsed: Duration,
+}
+
+#[derive(Clone, PartialEq, Eq)]
+enum MesaVerdict {
+    /// Not asked (`--mesa` not given), or the program could not be given to Mesa.
+    NotGiven,
+    Accepts,
+    /// Mesa's first error.
+    Refuses(String),
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -196,6 +252,8 @@ fn main() {
     let mut per_kind = 1usize;
     let mut threads = 2usize;
     let mut behind_toggle = false;
+    let mut mesa = false;
+    let mut kinds: Vec<Kind> = KINDS.to_vec();
     let mut dirs: Vec<PathBuf> = Vec::new();
     while let Some(arg) = args.next() {
         let mut number = |name: &str| -> u64 {
@@ -209,11 +267,25 @@ fn main() {
             "--per-kind" => per_kind = number("--per-kind") as usize,
             "--threads" => threads = number("--threads").max(1) as usize,
             "--behind-toggle" => behind_toggle = true,
+            "--mesa" => mesa = true,
+            "--kinds" => {
+                let list = args.next().unwrap_or_default();
+                kinds = list
+                    .split(',')
+                    .map(|name| {
+                        KINDS.iter().copied().find(|k| format!("{k:?}") == name.trim()).unwrap_or_else(|| {
+                            let names: Vec<String> = KINDS.iter().map(|k| format!("{k:?}")).collect();
+                            eprintln!("unknown kind `{name}`: {}", names.join(", "));
+                            std::process::exit(2)
+                        })
+                    })
+                    .collect();
+            }
             _ => dirs.push(PathBuf::from(arg)),
         }
     }
     if dirs.is_empty() {
-        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] [--behind-toggle] PACK_DIR...");
+        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] [--behind-toggle] [--mesa] [--kinds K,...] PACK_DIR...");
         std::process::exit(2);
     }
     let scratch = tempfile::tempdir().expect("temporary folder");
@@ -227,6 +299,12 @@ fn main() {
     } else {
         Options { threads, ..Options::default() }
     };
+    let gl = mesa.then(|| {
+        driver::Driver::new(&options.macros).unwrap_or_else(|e| {
+            eprintln!("{e}");
+            std::process::exit(2)
+        })
+    });
     let mut plants: Vec<Plant> = Vec::new();
     let mut skipped: Vec<String> = Vec::new();
     for dir in &dirs {
@@ -237,7 +315,7 @@ fn main() {
             skipped.push(format!("{pack}: cannot copy ({e})"));
             continue;
         }
-        match plant_pack(&pack, &copy, &options, seed, per_kind, behind_toggle) {
+        match plant_pack(&pack, &copy, &options, seed, per_kind, behind_toggle, &kinds, gl.as_ref()) {
             Ok(mut found) => plants.append(&mut found),
             Err(why) => {
                 eprintln!("{pack}: {why}");
@@ -283,7 +361,17 @@ fn toggle_on_the_menu(properties: &str) -> String {
     lines.join("\n") + "\n"
 }
 
-fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: usize, behind_toggle: bool) -> Result<Vec<Plant>, String> {
+#[allow(clippy::too_many_arguments)]
+fn plant_pack(
+    pack: &str,
+    root: &Path,
+    options: &Options,
+    seed: u64,
+    per_kind: usize,
+    behind_toggle: bool,
+    kinds: &[Kind],
+    gl: Option<&driver::Driver>,
+) -> Result<Vec<Plant>, String> {
     let properties = root.join("shaders/shaders.properties");
     if behind_toggle && let Ok(text) = std::fs::read_to_string(&properties) {
         std::fs::write(&properties, toggle_on_the_menu(&text)).map_err(|e| format!("shaders.properties: {e}"))?;
@@ -303,6 +391,8 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
     let mut stages: Vec<StageInfo> = Vec::new();
     let mut anchors: Vec<Anchor> = Vec::new();
     let mut seen_lines: HashSet<(String, u32)> = HashSet::new();
+    let mut global_anchors: Vec<Anchor> = Vec::new();
+    let mut seen_global_lines: HashSet<(String, u32)> = HashSet::new();
     let mut seen_texts: HashSet<String> = HashSet::new();
     for program in programs::find_programs(base.pack.files.keys()) {
         if program.run_by != RunBy::OptiFine || !clean.contains(&program.id()) {
@@ -315,7 +405,17 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
                 continue;
             }
             let index = stages.len();
-            stages.push(scan(index, program.id(), path.clone(), pre, &base, &mut anchors, &mut seen_lines));
+            stages.push(scan(
+                index,
+                program.id(),
+                path.clone(),
+                pre,
+                &base,
+                &mut anchors,
+                &mut seen_lines,
+                &mut global_anchors,
+                &mut seen_global_lines,
+            ));
         }
     }
     if anchors.is_empty() {
@@ -323,14 +423,14 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
     }
     eprintln!("{pack}: {} clean programs, {} stages, {} anchor lines", clean.len(), stages.len(), anchors.len());
     let mut plants = Vec::new();
-    for kind in KINDS {
+    for &kind in kinds {
         // The toggle's own `#endif` would close a planted unterminated `#if`.
         if behind_toggle && kind == Kind::UnterminatedIf {
             continue;
         }
         for round in 0..per_kind {
             let mut rng = Rng::new(seed ^ fnv(pack) ^ ((kind as u64) << 32) ^ round as u64);
-            let Some((path, line, text, program)) = choose(kind, &mut rng, &stages, &anchors, &base, &provider, &macros) else {
+            let Some((path, line, text, program)) = choose(kind, &mut rng, &stages, &anchors, &global_anchors, &base, &provider, &macros) else {
                 eprintln!("{pack}: no place for {}", kind.name());
                 continue;
             };
@@ -342,11 +442,32 @@ fn plant_pack(pack: &str, root: &Path, options: &Options, seed: u64, per_kind: u
             let started = Instant::now();
             let result = tidepack_validate::validate_path(root, options);
             let elapsed = started.elapsed();
+            // Mesa's verdict on the planted program, with the toggle on when there is one.
+            let mesa = match (gl, &result) {
+                (Some(gl), Ok(report)) => {
+                    let mut set = OptionSet::new();
+                    if behind_toggle {
+                        set.insert("PLANTED_TOGGLE".into(), OptionValue::Switch(true));
+                    }
+                    let provider = SetProvider::new(&report.pack, &set);
+                    programs::find_programs(report.pack.files.keys())
+                        .into_iter()
+                        .find(|p| p.id() == program)
+                        .map(|p| match gl.check(&p, &provider) {
+                            Ok(()) => MesaVerdict::Accepts,
+                            Err(d) if d.is_empty() => MesaVerdict::NotGiven,
+                            Err(d) => MesaVerdict::Refuses(d.into_iter().find(|d| d.is_error()).map(|d| d.to_string().replace('\n', " ")).unwrap_or_default()),
+                        })
+                        .unwrap_or(MesaVerdict::NotGiven)
+                }
+                _ => MesaVerdict::NotGiven,
+            };
             std::fs::write(&file, &original).map_err(|e| format!("{path}: cannot restore: {e}"))?;
             let planted_line = if behind_toggle { line + 3 } else { line + 1 };
             let accepted = accepted_lines(kind, &String::from_utf8_lossy(&modified), planted_line);
             let inserted_lines = inserted.lines().count() as u32;
-            let plant = judge(pack, kind, program, path.clone(), planted_line, (line, inserted_lines), text, &accepted, &base, result, elapsed);
+            let mut plant = judge(pack, kind, program, path.clone(), planted_line, (line, inserted_lines), text, &accepted, &base, result, elapsed);
+            plant.mesa = mesa;
             eprintln!(
                 "{pack}: {} at {}:{} -> {} ({:.1} s)",
                 kind.name(),
@@ -377,10 +498,28 @@ fn scan(
     base: &Report,
     anchors: &mut Vec<Anchor>,
     seen_lines: &mut HashSet<(String, u32)>,
+    global_anchors: &mut Vec<Anchor>,
+    seen_global_lines: &mut HashSet<(String, u32)>,
 ) -> StageInfo {
-    let mut info =
-        StageInfo { program, path, pre, functions: Vec::new(), uniforms: Vec::new(), samplers: Vec::new(), consts: Vec::new() };
+    let version = pre.version.as_ref().map_or(110, |v| v.number);
+    let fragment = path.ends_with(".fsh");
+    let mut info = StageInfo {
+        program,
+        path,
+        pre,
+        functions: Vec::new(),
+        uniforms: Vec::new(),
+        samplers: Vec::new(),
+        consts: Vec::new(),
+        version,
+        fragment,
+        inputs: Vec::new(),
+        written_outputs: Vec::new(),
+        builtin_outputs: false,
+    };
     let text = info.pre.text.clone();
+    info.builtin_outputs = text.contains("gl_FragData") || text.contains("gl_FragColor");
+    let mut outputs: Vec<String> = Vec::new();
     let lines: Vec<&str> = text.split('\n').collect();
     let mut stack: Vec<Block> = Vec::new();
     let mut parens = 0i32;
@@ -390,7 +529,7 @@ fn scan(
         let trimmed = line.trim();
         if parens == 0 {
             if stack.is_empty() {
-                global_declaration(trimmed, out_line, &mut info);
+                global_declaration(trimmed, out_line, &mut info, &mut outputs);
             } else if let Some(decl) = local_declaration(trimmed) {
                 stack.last_mut().unwrap().locals.push(decl);
             }
@@ -410,6 +549,17 @@ fn scan(
             }
         }
         offset += line.len() + 1;
+        // A statement that ends at file scope: a function or a global can follow it.
+        if stack.is_empty() && parens == 0 && trimmed.ends_with(';') && !trimmed.starts_with('#') {
+            if let Some(loc) = info.pre.location(out_line as u32 + 1)
+                && let Some(source) = base.pack.texts.get(&loc.path)
+                && let Some(indent) = plantable(source, loc.line)
+                && seen_global_lines.insert((loc.path.clone(), loc.line))
+            {
+                global_anchors.push(Anchor { stage: index, out_line, path: loc.path, line: loc.line, indent, function: 0, locals: Vec::new() });
+            }
+            continue;
+        }
         let function = stack.iter().find_map(|b| if let BlockKind::Function(f) = b.kind { Some(f) } else { None });
         let code_only = !stack.is_empty() && stack.iter().all(|b| !matches!(b.kind, BlockKind::Other));
         // After a jump, a planted line would be unreachable code: not the mistake measured.
@@ -437,7 +587,30 @@ fn scan(
         }
     }
     anchors.append(&mut pending);
+    info.written_outputs = outputs.into_iter().filter(|name| is_assigned(&text, name)).collect();
     info
+}
+
+/// Whether `text` assigns `name` (`name =`, `name.xy =`, `name[0] +=`), not only compares it.
+fn is_assigned(text: &str, name: &str) -> bool {
+    let bytes = text.as_bytes();
+    let word = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    let mut from = 0;
+    while let Some(i) = text[from..].find(name).map(|i| i + from) {
+        from = i + name.len();
+        if i > 0 && (word(bytes[i - 1]) || bytes[i - 1] == b'.') || bytes.get(from).is_some_and(|&c| word(c)) {
+            continue;
+        }
+        let rest = text[from..].trim_start();
+        let rest = if rest.starts_with('[') { rest.find(']').map_or("", |e| rest[e + 1..].trim_start()) } else { rest };
+        let rest = rest.strip_prefix('.').map_or(rest, |r| r.trim_start_matches(|c: char| c.is_alphanumeric() || c == '_').trim_start());
+        let assigned = rest.starts_with('=') && !rest.starts_with("==")
+            || ["+=", "-=", "*=", "/="].iter().any(|op| rest.starts_with(op));
+        if assigned {
+            return true;
+        }
+    }
+    false
 }
 
 fn starts_with_word(text: &str, word: &str) -> bool {
@@ -546,7 +719,7 @@ fn local_declaration(line: &str) -> Option<(String, String)> {
     (VALUE_TYPES.contains(&ty.as_str()) && after.starts_with(['=', ';', ','])).then_some((ty, name))
 }
 
-fn global_declaration(line: &str, out_line: usize, info: &mut StageInfo) {
+fn global_declaration(line: &str, out_line: usize, info: &mut StageInfo, outputs: &mut Vec<String>) {
     let strip_precision = |t: &str| {
         let mut t = t.trim_start();
         for p in ["lowp ", "mediump ", "highp "] {
@@ -554,6 +727,32 @@ fn global_declaration(line: &str, out_line: usize, info: &mut StageInfo) {
         }
         t.to_string()
     };
+    // Interpolation and layout qualifiers before `in`/`out`/`varying`.
+    let mut qualified = line.trim_start();
+    if let Some(rest) = qualified.strip_prefix("layout")
+        && let Some(close) = rest.find(')')
+    {
+        qualified = rest[close + 1..].trim_start();
+    }
+    for q in ["flat ", "smooth ", "noperspective ", "centroid "] {
+        qualified = qualified.strip_prefix(q).unwrap_or(qualified).trim_start();
+    }
+    if info.fragment
+        && let Some(rest) = qualified.strip_prefix("in ").or_else(|| qualified.strip_prefix("varying "))
+        && let Some((ty, name, ";")) = type_and_name(&strip_precision(rest))
+        && VALUE_TYPES.contains(&ty.as_str())
+    {
+        info.inputs.push(Global { out_line, ty, name });
+        return;
+    }
+    if info.fragment
+        && let Some(rest) = qualified.strip_prefix("out ")
+        && let Some((_, name, after)) = type_and_name(&strip_precision(rest))
+        && after.starts_with([';', '['])
+    {
+        outputs.push(name);
+        return;
+    }
     if let Some(rest) = line.strip_prefix("uniform ") {
         // One name, no array: `NAME = NAME;` and `NAME + 1.0` then mean what they say.
         let decl = strip_precision(rest);
@@ -596,10 +795,19 @@ fn choose(
     rng: &mut Rng,
     stages: &[StageInfo],
     anchors: &[Anchor],
+    global_anchors: &[Anchor],
     base: &Report,
     provider: &SetProvider<'_>,
     macros: &preprocess::PreprocessOptions,
 ) -> Option<Choice> {
+    let pick_global = |rng: &mut Rng, fits: &dyn Fn(&Anchor) -> bool| -> Option<&Anchor> {
+        let mut by_file: BTreeMap<&str, Vec<&Anchor>> = BTreeMap::new();
+        for a in global_anchors.iter().filter(|a| fits(a)) {
+            by_file.entry(&a.path).or_default().push(a);
+        }
+        let file = by_file.values().nth(rng.below(by_file.len().max(1)))?;
+        Some(file[rng.below(file.len())])
+    };
     // A file first, then a line of it: long files would take nearly every plant otherwise.
     let pick = |rng: &mut Rng, fits: &dyn Fn(&Anchor) -> bool| -> Option<&Anchor> {
         let mut by_file: BTreeMap<&str, Vec<&Anchor>> = BTreeMap::new();
@@ -674,6 +882,71 @@ fn choose(
             let (_, name) = &options[rng.below(options.len())];
             done(a, format!("float sampler_tp = {name} + 1.0;"))
         }
+        Kind::ReservedOutput => simple(rng, "float output = 1.0;"),
+        // `sample` is a qualifier from GLSL 4.00 on; before, an identifier like any other.
+        Kind::ReservedSample => {
+            let a = pick(rng, &|a| stages[a.stage].version >= 400)?;
+            done(a, "float sample = 1.0;".into())
+        }
+        // Before GLSL 4.20 a `const` takes only a constant expression.
+        Kind::ConstFromUniform => {
+            let fits = |a: &Anchor| stages[a.stage].version < 420 && !before(&stages[a.stage].uniforms, a).is_empty();
+            let a = pick(rng, &fits)?;
+            let options = before(&stages[a.stage].uniforms, a);
+            let (ty, name) = &options[rng.below(options.len())];
+            done(a, format!("const {ty} const_uniform_tp = {name};"))
+        }
+        // `uint` exists from 1.30; an int converts to it implicitly from 4.00.
+        Kind::IntToUint => {
+            let a = pick(rng, &|a| (130..400).contains(&stages[a.stage].version))?;
+            done(a, "uint uint_tp = 1;".into())
+        }
+        Kind::WriteToInput => {
+            let inputs = |a: &Anchor| -> Vec<(String, String)> {
+                let stage = &stages[a.stage];
+                // In `main`, which has no parameters to hide the input, and not hidden by a local.
+                if !stage.fragment || stage.functions[a.function].name != "main" {
+                    return Vec::new();
+                }
+                before(&stage.inputs, a).into_iter().filter(|(_, n)| !a.locals.iter().any(|(_, l)| l == n)).collect()
+            };
+            let a = pick(rng, &|a| !inputs(a).is_empty())?;
+            let options = inputs(a);
+            let (_, name) = &options[rng.below(options.len())];
+            done(a, format!("{name} = {name};"))
+        }
+        Kind::MissingReturn => {
+            let a = pick_global(rng, &|_| true)?;
+            done(a, "float missing_return_tp(float x) { x += 1.0; }".into())
+        }
+        // A fragment stage that writes its own `out`s (GLSL 1.30 and later) and names neither
+        // built-in output.
+        Kind::FragDataBesideOut => {
+            let fits = |a: &Anchor| {
+                let stage = &stages[a.stage];
+                stage.fragment && stage.version >= 130 && !stage.written_outputs.is_empty() && !stage.builtin_outputs
+            };
+            let a = pick(rng, &fits)?;
+            done(a, "gl_FragData[0] = vec4(0.0);".into())
+        }
+        Kind::Texture2DOnShadow => {
+            let shadows = |a: &Anchor| -> Vec<(String, String)> {
+                before(&stages[a.stage].samplers, a).into_iter().filter(|(ty, _)| ty == "sampler2DShadow").collect()
+            };
+            match pick(rng, &|a| !shadows(a).is_empty()) {
+                Some(a) => {
+                    let options = shadows(a);
+                    let (_, name) = &options[rng.below(options.len())];
+                    done(a, format!("float shadow_tp = texture2D({name}, vec2(0.0)).r;"))
+                }
+                // No shadow sampler in any clean stage: one declared with the function that misuses it.
+                None => {
+                    let a = pick_global(rng, &|a| stages[a.stage].version < 420 || stages[a.stage].pre.version.as_ref().is_some_and(|v| v.profile.as_deref() == Some("compatibility")))?;
+                    done(a, "uniform sampler2DShadow shadowtex0_tp; float shadow_read_tp() { return texture2D(shadowtex0_tp, vec2(0.0)).r; }".into())
+                }
+            }
+        }
+        Kind::UninitialisedRead => simple(rng, "float uninit_tp; float uninit_use_tp = uninit_tp * 2.0;"),
         Kind::UnterminatedIf => {
             let stage = &stages[rng.below(stages.len())];
             let text = base.pack.texts.get(&stage.path)?;
@@ -824,7 +1097,11 @@ fn has_internals(text: &str) -> bool {
             && !text[..i].ends_with(|p: char| p.is_alphanumeric() || p == '_')
             && text[i + 1..].find(']').is_some_and(|e| e > 0 && text[i + 1..i + 1 + e].chars().all(|d| d.is_ascii_digit()))
     });
-    bracketed_number || ["Handle", "TypeName(", "Expression", "naga::", "Some(", "HirExpr"].iter().any(|w| text.contains(w))
+    // The lowering's own names start with `tp_` (the planted ones end with `_tp`).
+    let lowering_name = text.match_indices("tp_").any(|(i, _)| !text[..i].ends_with(|p: char| p.is_alphanumeric() || p == '_'));
+    bracketed_number
+        || lowering_name
+        || ["Handle", "TypeName(", "Expression", "naga::", "Some(", "HirExpr"].iter().any(|w| text.contains(w))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -854,6 +1131,8 @@ fn judge(
         hit_line: None,
         internals: false,
         reported: Vec::new(),
+        drivers: Vec::new(),
+        mesa: MesaVerdict::NotGiven,
         elapsed,
     };
     let report = match result {
@@ -875,10 +1154,12 @@ fn judge(
             (d.message.clone(), loc)
         })
         .collect();
+    // A warning kind is found by its warning; it is not an error anywhere.
+    let counts = |d: &&Diagnostic| if kind.is_warning() { d.code == tidepack_glsl::Code::UninitialisedRead } else { d.is_error() };
     let new: Vec<&Diagnostic> = report
         .diagnostics
         .iter()
-        .filter(|d| d.is_error())
+        .filter(counts)
         .filter(|d| !known.contains(&(d.message.clone(), d.location.as_ref().map(|l| (l.path.clone(), l.line)))))
         .collect();
     let at = |d: &&Diagnostic| d.location.as_ref().is_some_and(|l| l.path == path && accepted.contains(&l.line));
@@ -888,11 +1169,12 @@ fn judge(
         plant.outcome = Outcome::AtLine;
         plant.hit_line = first.location.as_ref().map(|l| l.line);
         plant.internals = hits.iter().any(|d| has_internals(&spoken(d)));
+        plant.drivers = first.refused_by.names();
     } else if !new.is_empty() {
         plant.outcome = Outcome::Elsewhere;
         plant.internals = new.iter().any(|d| has_internals(&spoken(d)));
     }
-    let warnings_here = report.diagnostics.iter().filter(|d| !d.is_error()).filter(at);
+    let warnings_here = report.diagnostics.iter().filter(|d| !d.is_error() && !new.contains(d)).filter(at);
     plant.reported = new.iter().copied().chain(warnings_here).take(6).map(|d| d.to_string().replace('\n', " ")).collect();
     if plant.outcome == Outcome::Missed {
         // A miss is often explained by what the program was warned about (a stage naga never
@@ -912,6 +1194,10 @@ struct Tally {
     elsewhere: usize,
     missed: usize,
     internals: usize,
+    /// At the line with the refusing drivers named (errors; a warning names none).
+    drivers_named: usize,
+    mesa_refuses: usize,
+    mesa_accepts: usize,
 }
 
 impl Tally {
@@ -923,9 +1209,18 @@ impl Tally {
             Outcome::Missed => self.missed += 1,
         }
         self.internals += usize::from(p.internals);
+        self.drivers_named += usize::from(p.outcome == Outcome::AtLine && !p.drivers.is_empty());
+        match p.mesa {
+            MesaVerdict::Refuses(_) => self.mesa_refuses += 1,
+            MesaVerdict::Accepts => self.mesa_accepts += 1,
+            MesaVerdict::NotGiven => {}
+        }
     }
     fn row(&self, label: &str) -> String {
-        format!("| {label} | {} | {} | {} | {} | {} |\n", self.planted, self.at_line, self.elsewhere, self.missed, self.internals)
+        format!(
+            "| {label} | {} | {} | {} | {} | {} | {} | {} / {} |\n",
+            self.planted, self.at_line, self.elsewhere, self.missed, self.internals, self.drivers_named, self.mesa_refuses, self.mesa_accepts
+        )
     }
 }
 
@@ -943,7 +1238,10 @@ fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, th
     )
     .unwrap();
     let header = |first: &str| {
-        format!("| {first} | planted | at file+line | elsewhere | missed | messages with naga internals |\n|---|---:|---:|---:|---:|---:|\n")
+        format!(
+            "| {first} | planted | at file+line | elsewhere | missed | messages with naga internals | at line, drivers named | Mesa refuses / accepts |\n\
+             |---|---:|---:|---:|---:|---:|---:|---:|\n"
+        )
     };
     let mut total = Tally::default();
     let mut by_kind: BTreeMap<Kind, Tally> = BTreeMap::new();
@@ -992,7 +1290,7 @@ fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, th
     for p in internal {
         describe(&mut out, p);
     }
-    out.push_str("\n## Every plant\n\n| pack | kind | file:line | planted | outcome | first message |\n|---|---|---|---|---|---|\n");
+    out.push_str("\n## Every plant\n\n| pack | kind | file:line | planted | outcome | refused by | Mesa | first message |\n|---|---|---|---|---|---|---|---|\n");
     for p in plants {
         let outcome = match p.outcome {
             Outcome::AtLine if p.hit_line != Some(p.line) => "at next line",
@@ -1001,7 +1299,23 @@ fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, th
             Outcome::Missed => "missed",
         };
         let first = p.reported.first().map_or("", String::as_str);
-        writeln!(out, "| {} | {} | {}:{} | `{}` | {outcome} | {} |", p.pack, p.kind.name(), p.path, p.line, p.text, cell(first)).unwrap();
+        let mesa = match &p.mesa {
+            MesaVerdict::NotGiven => "-".to_string(),
+            MesaVerdict::Accepts => "accepts".to_string(),
+            MesaVerdict::Refuses(first) => format!("refuses: {}", cell(first)),
+        };
+        writeln!(
+            out,
+            "| {} | {} | {}:{} | `{}` | {outcome} | {} | {mesa} | {} |",
+            p.pack,
+            p.kind.name(),
+            p.path,
+            p.line,
+            p.text,
+            p.drivers.join(", "),
+            cell(first)
+        )
+        .unwrap();
     }
     out
 }
