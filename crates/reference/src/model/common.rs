@@ -20,7 +20,7 @@ pub fn is_water_behind_translucent(mark: f64) -> bool {
 }
 
 /// `distanceFog`.
-pub(crate) fn distance_fog(view_distance: f64, render_distance: f64) -> f64 {
+pub fn distance_fog(view_distance: f64, render_distance: f64) -> f64 {
     let range = render_distance.max(1.0);
     ((view_distance - 0.75 * range) / (0.25 * range)).clamp(0.0, 1.0)
 }

@@ -7,7 +7,7 @@ use super::common::*;
 use crate::settings::{Absorption, ReferenceSettings};
 
 pub(crate) const WATER_F0: f64 = 0.02;
-pub(crate) const WATER_IOR: f64 = 1.333;
+pub const WATER_IOR: f64 = 1.333;
 
 /// `fresnelSchlick`.
 pub(crate) fn fresnel_schlick(cos_theta: f64) -> f64 {
@@ -42,7 +42,7 @@ pub(crate) fn fresnel(cos_theta: f64, from_above: bool, exact: bool) -> f64 {
 }
 
 /// `transmittance`: the ramp or Beer–Lambert.
-pub(crate) fn transmittance(path_length: f64, s: &ReferenceSettings) -> DVec3 {
+pub fn transmittance(path_length: f64, s: &ReferenceSettings) -> DVec3 {
     let l = path_length.clamp(0.0, 1e4);
     match s.absorption {
         Absorption::Ramp => {
@@ -60,13 +60,13 @@ pub(crate) fn transmittance(path_length: f64, s: &ReferenceSettings) -> DVec3 {
 }
 
 /// `scatteredColor`.
-pub(crate) fn scattered_color(water_tint: DVec3, sky_light: f64, sky_color: DVec3) -> DVec3 {
+pub fn scattered_color(water_tint: DVec3, sky_light: f64, sky_color: DVec3) -> DVec3 {
     let daylight = 0.25 + 0.75 * (luminance(sky_color) * 1.5).clamp(0.0, 1.0);
     water_tint * 0.35 * (0.15 + 0.85 * sky_light) * daylight
 }
 
 /// `skyRadiance`.
-pub(crate) fn sky_radiance(dir: DVec3, sky_color: DVec3, fog_color: DVec3) -> DVec3 {
+pub fn sky_radiance(dir: DVec3, sky_color: DVec3, fog_color: DVec3) -> DVec3 {
     mix3(fog_color, sky_color, smoothstep(-0.05, 0.35, dir.y))
 }
 

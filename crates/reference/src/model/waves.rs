@@ -12,7 +12,7 @@ pub(crate) const WAVE_VECTOR: DVec2 = DVec2::new(3.0 * (TAU / WAVE_TILE), 5.0 * 
 pub(crate) const WAVE_SPEED: f64 = TAU * 180.0 / 3600.0;
 pub(crate) const WAVE_AMPLITUDE_ANALYTIC: f64 = 0.10;
 pub(crate) const WAVE_NOISE_WEIGHT: f64 = 0.6;
-pub(crate) const WAVE_MAX_HEIGHT: f64 = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT);
+pub const WAVE_MAX_HEIGHT: f64 = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT);
 pub(crate) const WAVE_DRIFT: DVec2 = DVec2::new(36.0 / 3600.0, 24.0 / 3600.0);
 
 /// `heightTexel`.
@@ -28,7 +28,7 @@ pub(crate) fn analytic_wave(world_xz: DVec2, time: f64) -> f64 {
 }
 
 /// `waveHeight`.
-pub(crate) fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
+pub fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
     let noise = height_texel(water, world_xz, time, 1.0) * 2.0 - 1.0;
     WAVE_AMPLITUDE_ANALYTIC * (analytic_wave(world_xz, time) + WAVE_NOISE_WEIGHT * noise)
 }
