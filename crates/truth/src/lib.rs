@@ -21,7 +21,7 @@ pub mod trace;
 
 use std::io::Cursor;
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use rayon::prelude::*;
 use tidepack_reference::{Filter, ReferenceSettings, Texture, Wrap};
 use tidepack_scene::Scene;
@@ -101,7 +101,7 @@ impl Truth {
         if let Some(w) = &mut water {
             w.waves = options.waves;
         }
-        let tint = water.as_ref().map_or(DVec3::from(tidepack_scene_default_tint()), |w| w.tint);
+        let tint = water.as_ref().map_or(DVec3::from(default_water_tint()), |w| w.tint);
         let medium = Medium::new(settings, tint, DVec3::from(scene.sky.sky_color));
         let sun = scene.sun_direction();
         let caustics = water.as_ref().and_then(|w| CausticGrid::trace(w, &geometry, &medium, sun));
@@ -189,7 +189,7 @@ impl Truth {
 
 /// Minecraft's default water colour, the pack's `DEFAULT_WATER_TINT`, for scenes without
 /// water (whose medium is then never entered).
-fn tidepack_scene_default_tint() -> [f64; 3] {
+fn default_water_tint() -> [f64; 3] {
     [63.0 / 255.0, 118.0 / 255.0, 228.0 / 255.0]
 }
 
@@ -197,9 +197,4 @@ fn tidepack_scene_default_tint() -> [f64; 3] {
 /// `options`: linear colour per pixel, row 0 at the bottom, with the water and overlay masks.
 pub fn render(scene: &Scene, settings: &ReferenceSettings, options: &TruthOptions) -> Result<TruthImage, String> {
     Ok(Truth::new(scene, settings, options)?.render())
-}
-
-/// The pixel centre's screen position, as the composite's `screenUv` there.
-pub fn pixel_centre(width: usize, height: usize, x: usize, y: usize) -> DVec2 {
-    DVec2::new((x as f64 + 0.5) / width as f64, (y as f64 + 0.5) / height as f64)
 }
