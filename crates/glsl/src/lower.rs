@@ -1111,6 +1111,40 @@ impl<'a> Lowering<'_, 'a> {
             }
             k += 1;
         }
+        // naga takes no matrices as stage inputs or outputs, in a block or not: a matrix member
+        // of a block without an instance name (`out Data { flat mat3 tbn; };`, used as `tbn`)
+        // passes its columns, and the matrix becomes a global the `main` wrapper fills from them
+        // (vertex: the columns from it), as for a plain matrix varying.
+        let unnamed = sig.get(k + 1).is_some_and(|&i| self.tokens[i].is_punct(";"));
+        if unnamed && !self.compute {
+            let mut matrices = String::new();
+            let mut start = open + 1;
+            for end in (open + 1..k).filter(|&j| self.tokens[sig[j]].is_punct(";")) {
+                let words: Vec<usize> = (start..end)
+                    .filter(|&j| {
+                        let w = self.tokens[sig[j]].text;
+                        !(is_varying_qualifier(w) || is_precision(w) || w == "sample")
+                    })
+                    .collect();
+                start = end + 1;
+                let [ty, name] = words[..] else { continue };
+                let (ty, name) = (self.tokens[sig[ty]].text, (sig[ty], sig[name]));
+                let member = self.tokens[name.1];
+                let Some((columns, rows)) = matrix_shape(ty) else { continue };
+                if member.kind != TokenKind::Ident {
+                    continue;
+                }
+                let column_ty = format!("vec{rows}");
+                let cols: Vec<String> = (0..columns).map(|c| format!("{column_ty} {RESERVED_PREFIX}{}_{c}", member.text)).collect();
+                self.replace(name.0, name.1 + 1, cols.join("; "));
+                write!(matrices, " {ty} {};", member.text).unwrap();
+                self.matrix_varyings.push((member.text.to_string(), column_ty, columns));
+            }
+            if !matrices.is_empty() {
+                let semicolon = sig[k + 1];
+                self.replace(semicolon, semicolon + 1, format!(";{matrices}"));
+            }
+        }
         Ok(true)
     }
 
