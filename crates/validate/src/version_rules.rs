@@ -22,6 +22,7 @@ use tidepack_loader::loader::Loader;
 
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
+const TEXTURE_QUERY_LOD: &str = "GL_ARB_texture_query_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
@@ -205,6 +206,12 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         } else if explicit_location && location_needs_extension {
             Some(format!(
                 "`layout(location = …)` needs GLSL 3.30 or `#extension {EXPLICIT_LOCATION} : enable` (Mesa, AMD and Intel refuse it in `{shown_version}`)"
+            ))
+        } else if next_is_call && matches!(t.text, "textureQueryLod" | "textureQueryLOD") && number < 400 && !extensions.contains(TEXTURE_QUERY_LOD) {
+            Some(format!(
+                "{}() needs GLSL 4.00 or `#extension {TEXTURE_QUERY_LOD} : enable` (Mesa: \"no function with name '{}'\" in \
+                 `{shown_version}`)",
+                t.text, t.text
             ))
         } else if !legacy_rules {
             None
