@@ -161,7 +161,7 @@ impl Truth {
     pub fn render(&self) -> TruthImage {
         let (w, h) = (self.camera.width, self.camera.height);
         let stride = self.options.stride.max(1);
-        let rows: Vec<(usize, Vec<(usize, DVec3, bool, bool)>)> = (0..h)
+        let rows: Vec<Row> = (0..h)
             .into_par_iter()
             .step_by(stride)
             .map(|y| (y, (0..w).step_by(stride).map(|x| { let (c, water, overlay) = self.pixel(x, y); (x, c, water, overlay) }).collect()))
@@ -186,6 +186,9 @@ impl Truth {
         image
     }
 }
+
+/// A traced row: its index, and per traced pixel its x, colour, water and overlay flags.
+type Row = (usize, Vec<(usize, DVec3, bool, bool)>);
 
 /// Minecraft's default water colour, the pack's `DEFAULT_WATER_TINT`, for scenes without
 /// water (whose medium is then never entered).

@@ -184,7 +184,7 @@ impl WaterBody {
         clip(origin.y, dir.y, self.level - reach, self.level + reach);
         clip(origin.x, dir.x, self.min.x, self.max.x);
         clip(origin.z, dir.z, self.min.y, self.max.y);
-        if !(hi > lo) {
+        if hi <= lo || hi.is_nan() || lo.is_nan() {
             return None;
         }
         // Gap above the surface: positive in the air, negative in the water.

@@ -94,8 +94,10 @@ impl Tracer {
         if ray.in_water { self.medium.through(colour, length) } else { colour }
     }
 
-    fn child(&self, ray: &Ray, point: DVec3, dir: DVec3, in_water: bool, straight: bool, t: f64, share: f64) -> Ray {
-        Ray { origin: point, dir, in_water, straight: ray.straight && straight, path: ray.path + t, weight: ray.weight * share, depth: ray.depth + 1 }
+    /// The ray leaving `point` along `dir` after `ray` went `t` to it and kept `share`: in the
+    /// same medium and no longer straight unless the caller says otherwise.
+    fn child(&self, ray: &Ray, point: DVec3, dir: DVec3, t: f64, share: f64) -> Ray {
+        Ray { origin: point, dir, in_water: ray.in_water, straight: false, path: ray.path + t, weight: ray.weight * share, depth: ray.depth + 1 }
     }
 
     /// At the water's boundary: Fresnel's reflected and transmitted shares of both rays.
@@ -104,7 +106,7 @@ impl Tracer {
         let i = interface(ray.dir, normal, n1, n2);
         let mut colour = DVec3::ZERO;
         if ray.weight * i.reflectance >= PRUNE {
-            let reflected = self.child(ray, point, reflect(ray.dir, normal), ray.in_water, false, t, i.reflectance);
+            let reflected = self.child(ray, point, reflect(ray.dir, normal), t, i.reflectance);
             colour += i.reflectance * self.radiance(reflected, record);
         }
         if let Some(dir) = i.refracted
@@ -114,7 +116,7 @@ impl Tracer {
                 record.left_water = true;
             }
             let scale = if self.radiance_scaling { (n1 / n2) * (n1 / n2) } else { 1.0 };
-            let refracted = self.child(ray, point, dir, !ray.in_water, false, t, i.transmittance);
+            let refracted = Ray { in_water: !ray.in_water, ..self.child(ray, point, dir, t, i.transmittance) };
             colour += i.transmittance * scale * self.radiance(refracted, record);
         }
         colour
@@ -135,7 +137,7 @@ impl Tracer {
                 // The pack blends each face the ray crosses over what lies behind (no culling):
                 // a layer of the pane's colour at its opacity. The pane, a thin slab, also
                 // reflects at the face the ray enters by: 2R/(1+R), direction unchanged through.
-                let behind = self.radiance(self.child(ray, point, ray.dir, ray.in_water, true, t, 1.0 - colour.w), record);
+                let behind = self.radiance(Ray { straight: ray.straight, ..self.child(ray, point, ray.dir, t, 1.0 - colour.w) }, record);
                 let layered = colour.truncate() * colour.w + behind * (1.0 - colour.w);
                 let cos_i = -ray.dir.dot(normal);
                 if cos_i <= 0.0 {
@@ -144,7 +146,7 @@ impl Tracer {
                 let outside = if ray.in_water { WATER_IOR } else { 1.0 };
                 let r = slab_reflectance(cos_i, outside, GLASS_IOR);
                 let reflected = if ray.weight * r >= PRUNE {
-                    self.radiance(self.child(ray, point, reflect(ray.dir, normal), ray.in_water, false, t, r), record)
+                    self.radiance(self.child(ray, point, reflect(ray.dir, normal), t, r), record)
                 } else {
                     DVec3::ZERO
                 };
