@@ -10,8 +10,11 @@
 //! a second table gives those pairs both accept, both reject, only Mesa rejects (misses) and
 //! only tidepack rejects (false errors).
 //!
+//! With `--iris-dh`, the packs are read as Iris with Distant Horizons reads them (`--loader iris
+//! --distant-horizons`): Iris's programs and the `dh_*` programs are compared too.
+//!
 //! `cargo run --release -p tidepack-validate --example corpus -- [--details FILE] [--covering]
-//! [--threads N] PACK_DIR...` (tools/corpus runs it over every pack of a folder).
+//! [--threads N] [--iris-dh] PACK_DIR...` (tools/corpus runs it over every pack of a folder).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -19,7 +22,7 @@ use std::time::{Duration, Instant};
 
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::OptionSet;
-use tidepack_loader::SetProvider;
+use tidepack_loader::{Loader, SetProvider};
 use tidepack_loader::programs::{self, RunBy};
 use tidepack_validate::{Coverage, Options, Profiles, Status, driver, glslang};
 
@@ -63,6 +66,7 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let mut details_path: Option<PathBuf> = None;
     let mut covering = false;
+    let mut iris_dh = false;
     let mut threads = std::thread::available_parallelism().map_or(2, |n| n.get());
     let mut dirs: Vec<PathBuf> = Vec::new();
     while let Some(arg) = args.next() {
@@ -70,6 +74,8 @@ fn main() {
             details_path = args.next().map(PathBuf::from);
         } else if arg == "--covering" {
             covering = true;
+        } else if arg == "--iris-dh" {
+            iris_dh = true;
         } else if arg == "--threads" {
             threads = args.next().and_then(|n| n.parse().ok()).unwrap_or(threads).max(1);
         } else {
@@ -80,7 +86,12 @@ fn main() {
         eprintln!("usage: corpus [--details FILE] [--covering] [--threads N] PACK_DIR...");
         std::process::exit(2);
     }
-    let macros = StandardMacros::default();
+    let (loader, macros) = if iris_dh {
+        (Loader::Iris, StandardMacros { distant_horizons: true, ..StandardMacros::for_loader(Loader::Iris) })
+    } else {
+        (Loader::default(), StandardMacros::default())
+    };
+    let base = Options { macros: macros.clone(), loader, ..Options::default() };
     let gl = driver::Driver::new(&macros).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(2)
@@ -93,7 +104,7 @@ fn main() {
     for dir in &dirs {
         let mut row = Row { pack: dir.file_name().map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into_owned()), ..Row::default() };
         // One thread, as the driver and glslangValidator below run one program at a time.
-        let options = Options { threads: 1, ..Options::default() };
+        let options = Options { threads: 1, ..base.clone() };
         let started = Instant::now();
         let report = match tidepack_validate::validate_path(dir, &options) {
             Ok(r) => r,
@@ -106,7 +117,7 @@ fn main() {
         let set = OptionSet::new();
         let provider = SetProvider::new(&report.pack, &set);
         for program in programs::find_programs(report.pack.files.keys()) {
-            if program.run_by != RunBy::OptiFine || !program.has_stages() {
+            if (program.run_by != RunBy::OptiFine && !iris_dh) || !program.has_stages() {
                 continue;
             }
             let Some(ours) = report.programs.iter().find(|p| p.id == program.id()) else { continue };
@@ -162,7 +173,7 @@ fn main() {
         if covering {
             let errors_defaults = report.errors();
             let programs = report.programs.iter().filter(|p| !matches!(p.status, Status::Skipped(_))).count();
-            match covering_row(dir, threads, errors_defaults, programs, &row.pack, &mut details) {
+            match covering_row(dir, &Options { threads, ..base.clone() }, errors_defaults, programs, &row.pack, &mut details) {
                 Ok(c) => row.covering = Some(c),
                 Err(e) => eprintln!("{}: --covering: {e}", dir.display()),
             }
@@ -208,17 +219,19 @@ fn main() {
         seconds(total.glslang) / seconds(total.tidepack),
     );
     if covering {
+        let read_as = if iris_dh { ", read as Iris with Distant Horizons" } else { "" };
         println!(
-            "\nEvery configuration (`--covering`, {threads} threads), Mesa compiling and linking every (program, set) pair validated:\n"
+            "\nEvery configuration (`--covering`, {threads} threads{read_as}), Mesa compiling and linking every (program, set) pair validated:\n"
         );
         println!(
-            "| pack | programs | option sets | program texts | distinct | errors (defaults) | errors (covering) | Mesa: both accept | both reject | misses | false errors | tidepack --covering s | with --driver s | Mesa defaults once s |"
+            "| pack | programs | option sets | program texts | distinct | errors (defaults) | errors (covering) | Mesa: both accept | both reject | misses | false errors | not given to Mesa | tidepack --covering s | with --driver s | Mesa defaults once s |"
         );
-        println!("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+        println!("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
         for row in &rows {
             let Some(c) = &row.covering else { continue };
+            let compared = c.both_accept + c.both_reject + c.misses.len() + c.false_errors.len();
             println!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.2} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.2} |",
                 row.pack,
                 c.programs,
                 c.option_sets,
@@ -230,6 +243,7 @@ fn main() {
                 c.both_reject,
                 c.misses.len(),
                 c.false_errors.len(),
+                (c.considered - c.identical).saturating_sub(compared),
                 c.tidepack.as_secs_f64(),
                 c.with_driver.as_secs_f64(),
                 row.mesa.as_secs_f64()
@@ -246,13 +260,13 @@ fn main() {
 /// `--covering` alone (timed), then with `--driver`: Mesa's verdict on every pair validated.
 fn covering_row(
     dir: &std::path::Path,
-    threads: usize,
+    base: &Options,
     errors_defaults: usize,
     programs: usize,
     pack: &str,
     details: &mut String,
 ) -> Result<CoveringRow, String> {
-    let options = Options { threads, profiles: Profiles::Covering(Coverage::Pairwise), ..Options::default() };
+    let options = Options { profiles: Profiles::Covering(Coverage::Pairwise), ..base.clone() };
     let started = Instant::now();
     let alone = tidepack_validate::validate_path(dir, &options).map_err(|e| e.to_string())?;
     let tidepack = started.elapsed();
