@@ -98,23 +98,27 @@ impl ShippedPack {
         }
         let m = &source.manifest;
         let water = textures::water_texture();
-        for (path, text) in [
-            (GENERATED_GLSL, writers::generated_glsl(m, manifest_name, water.slope_range)),
-            (&format!("{}.mcmeta", textures::WATER_TEXTURE), textures::WATER_TEXTURE_META.to_string()),
-            ("shaders.properties", writers::shaders_properties(m, options, manifest_name)),
-            ("block.properties", writers::block_properties(m, manifest_name)),
-            ("lang/en_us.lang", writers::lang(m, manifest_name)),
-        ] {
-            if files.contains_key(path) {
+        let mut binaries: BTreeMap<String, Arc<[u8]>> = [(textures::WATER_TEXTURE.to_string(), Arc::from(water.png))].into();
+        for (&(path, _, _), png) in textures::HEIGHT_CROSS_TEXTURES.iter().zip(water.height_cross) {
+            binaries.insert(path.to_string(), Arc::from(png));
+        }
+        let texture_metas = binaries.keys().map(|path| (format!("{path}.mcmeta"), textures::WATER_TEXTURE_META.to_string()));
+        let generated = [
+            (GENERATED_GLSL.to_string(), writers::generated_glsl(m, manifest_name, water.slope_range)),
+            ("shaders.properties".to_string(), writers::shaders_properties(m, options, manifest_name)),
+            ("block.properties".to_string(), writers::block_properties(m, manifest_name)),
+            ("lang/en_us.lang".to_string(), writers::lang(m, manifest_name)),
+        ];
+        for (path, text) in texture_metas.collect::<Vec<_>>().into_iter().chain(generated) {
+            if files.contains_key(&path) {
                 return Err(vec![Diagnostic::error(
                     Code::Template,
                     format!("shaderpack/shaders/{path} is generated from the manifest; remove the hand-written copy"),
                     None,
                 )]);
             }
-            files.insert(path.to_string(), ShippedFile { text: Arc::from(text), origin: Origin::Manifest });
+            files.insert(path, ShippedFile { text: Arc::from(text), origin: Origin::Manifest });
         }
-        let binaries = [(textures::WATER_TEXTURE.to_string(), Arc::from(water.png))].into();
         Ok(ShippedPack { dialect, files, binaries, folded_uniforms: Vec::new() })
     }
 

@@ -6,6 +6,13 @@
 //! - G, B: the height's slope along u and v (per unit of uv), mapped from
 //!   [-slope_range, slope_range] to [0, 1], so a normal costs one lookup;
 //! - A: foam pattern in [0, 1].
+//!
+//! Beside it, the height cross textures, one per octave of `waveNormal`'s height samples: what
+//! four bilinear lookups of the height, k texels either side of a point along u and v, reduce
+//! to. Bilinear filtering is linear, so a difference (or sum) of lookups k texels apart is one
+//! lookup of the per-texel difference (or sum), with the same weights. Per texel, for height
+//! bytes h: R = h[u+k] - h[u-k] + 128, G = h[v+k] - h[v-k] + 128, B = h, A = the four
+//! neighbours' sum - 4h + 128; every value fits a byte exactly, so nothing is rounded.
 
 use std::f64::consts::TAU;
 use std::io::Cursor;
@@ -16,9 +23,16 @@ use rand_xoshiro::SplitMix64;
 /// Path inside `shaders/`, as named by `texture.composite.colortex7`.
 pub const WATER_TEXTURE: &str = "textures/water.png";
 pub const SIZE: u32 = 256;
+/// The height cross textures (path inside `shaders/`, sampler composite reads it through,
+/// texels apart): k = 1 and 2 are where waveNormal's ±0.25 blocks fall at the first and the
+/// second octave's scale (WAVE_TILE / SIZE = 0.25 blocks per texel at scale 1).
+pub const HEIGHT_CROSS_TEXTURES: [(&str, &str, usize); 2] =
+    [("textures/height_cross1.png", "colortex1", 1), ("textures/height_cross2.png", "colortex2", 2)];
 
 pub struct WaterTexture {
     pub png: Vec<u8>,
+    /// The height cross textures of `HEIGHT_CROSS_TEXTURES`, in its order.
+    pub height_cross: Vec<Vec<u8>>,
     /// Largest slope magnitude G and B can hold, a power of two.
     pub slope_range: f64,
 }
@@ -91,13 +105,40 @@ pub fn water_texture() -> WaterTexture {
             to_byte(foam * foam * (3.0 - 2.0 * foam)),
         ]);
     }
+    let heights: Vec<u8> = rgba.chunks_exact(4).map(|texel| texel[0]).collect();
+    let height_cross = HEIGHT_CROSS_TEXTURES.iter().map(|&(_, _, k)| encode_png(height_cross(&heights, k))).collect();
+    WaterTexture { png: encode_png(rgba), height_cross, slope_range }
+}
+
+fn encode_png(rgba: Vec<u8>) -> Vec<u8> {
     let image = image::RgbaImage::from_raw(SIZE, SIZE, rgba).expect("buffer matches the size");
     let mut png = Vec::new();
     image.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png).expect("PNG encoding to memory");
-    WaterTexture { png, slope_range }
+    png
 }
 
-/// Linear filtering and repeat, for OptiFine's custom-texture loader.
+/// The height cross texture `k` texels wide (see the module doc) of a SIZE x SIZE height map,
+/// rows along v, wrapping as the texture repeats.
+fn height_cross(heights: &[u8], k: usize) -> Vec<u8> {
+    let n = SIZE as usize;
+    let h = |u: usize, v: usize| i32::from(heights[(v % n) * n + u % n]);
+    let biased = |x: i32| u8::try_from(x + 128).expect("the generated heights change by less than 128 over a height cross");
+    let mut rgba = Vec::with_capacity(n * n * 4);
+    for v in 0..n {
+        for u in 0..n {
+            let (left, right, down, up) = (h(u + n - k, v), h(u + k, v), h(u, v + n - k), h(u, v + k));
+            rgba.extend_from_slice(&[
+                biased(right - left),
+                biased(up - down),
+                heights[v * n + u],
+                biased(left + right + down + up - 4 * h(u, v)),
+            ]);
+        }
+    }
+    rgba
+}
+
+/// Linear filtering and repeat, for OptiFine's custom-texture loader (every generated texture).
 pub const WATER_TEXTURE_META: &str = "{\"texture\": {\"blur\": true, \"clamp\": false}}\n";
 
 #[cfg(test)]

@@ -91,11 +91,17 @@ vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cam
 // A2: the surface normal (world axes, y up) at a wrapped world position, and the "diffuse
 // intensity" that makes crests brighter than troughs. Far water is flattened against
 // aliasing; the second octave is only worth it within 500 blocks.
-vec3 waveNormal(sampler2D waterTexture, vec2 worldXZ, float time, float distance, out float diffuse) {
+//
+// The height samples e = 0.25 blocks either side in x and z (one height texel at the first
+// octave's scale, two at the second's) come from the height cross textures, one lookup per
+// octave where the height itself would take four: per texel they hold the height's
+// differences across the cross along u and v and the sum of its four ends, and bilinear
+// filtering is linear, so a lookup of those is the difference (or sum) of the four lookups.
+vec3 waveNormal(sampler2D waterTexture, sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance, out float diffuse) {
     float flatten = 1.0 + 0.05 * distance;
+    vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
 #if NORMAL_MODE == 0
     // One lookup: the texture stores the height's slope in G and B (8 units per full range).
-    vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
     vec4 texel = texture(waterTexture, fract(uv));
     vec2 slope = (texel.gb * 2.0 - 1.0) * WATER_TEXTURE_SLOPE_RANGE * WAVE_NOISE_WEIGHT * WAVE_AMPLITUDE_ANALYTIC * 2.0 / WAVE_TILE;
     diffuse = 0.35 + 0.4 * (texel.r - 0.5);
@@ -103,33 +109,30 @@ vec3 waveNormal(sampler2D waterTexture, vec2 worldXZ, float time, float distance
     return safeNormalize(vec3(-slope.x, flatten, slope.y), vec3(0.0, 1.0, 0.0));
 #else
     const float e = 0.25;
-    float h1 = heightTexel(waterTexture, worldXZ + vec2(e, 0.0), time, 1.0);
-    float h2 = heightTexel(waterTexture, worldXZ - vec2(e, 0.0), time, 1.0);
-    float h3 = heightTexel(waterTexture, worldXZ + vec2(0.0, e), time, 1.0);
-    float h4 = heightTexel(waterTexture, worldXZ - vec2(0.0, e), time, 1.0);
-    // Each further octave doubles the frequency at 0.75 of the weight; only worth it near.
-    float weight = 0.75;
-    float scale = 2.0;
-    for (int octave = 1; octave < NORMAL_OCTAVES; octave++) {
-        if (distance >= 500.0) {
-            break;
-        }
-        h1 += weight * heightTexel(waterTexture, worldXZ + vec2(e, 0.0), time, scale);
-        h2 += weight * heightTexel(waterTexture, worldXZ - vec2(e, 0.0), time, scale);
-        h3 += weight * heightTexel(waterTexture, worldXZ + vec2(0.0, e), time, scale);
-        h4 += weight * heightTexel(waterTexture, worldXZ - vec2(0.0, e), time, scale);
-        weight *= 0.75;
-        scale *= 2.0;
+    // The cross textures store differences and the neighbours' excess over the height biased
+    // by 128/255. z runs along -v, so the difference along z is the one along v negated.
+    const float BIAS = 128.0 / 255.0;
+    vec4 cross1 = texture(heightCross1, fract(uv));
+    vec2 difference = vec2(cross1.r - BIAS, BIAS - cross1.g);
+    float heightSum = 4.0 * cross1.b + cross1.a - BIAS;
+#if NORMAL_OCTAVES >= 2
+    // The second octave doubles the frequency at 0.75 of the weight.
+    if (distance < 500.0) {
+        vec2 uv2 = 0.5 + 2.0 * vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
+        vec4 cross2 = texture(heightCross2, fract(uv2));
+        difference += 0.75 * vec2(cross2.r - BIAS, BIAS - cross2.g);
+        heightSum += 0.75 * (4.0 * cross2.b + cross2.a - BIAS);
     }
+#endif
     // A travelling phase lets the texture ripples pulse along x and z.
     float travel = WAVE_SPEED * time;
-    float dx = (h1 - h2) * (1.0 + 0.3 * cos(travel));
-    float dz = (h3 - h4) * (1.0 + 0.3 * sin(travel));
+    float dx = difference.x * (1.0 + 0.3 * cos(travel));
+    float dz = difference.y * (1.0 + 0.3 * sin(travel));
     float a1 = analyticWave(worldXZ + vec2(2.1, 0.0), time);
     float a2 = analyticWave(worldXZ - vec2(2.1, 0.0), time);
     float a3 = analyticWave(worldXZ + vec2(0.0, 2.1), time);
     float a4 = analyticWave(worldXZ - vec2(0.0, 2.1), time);
-    diffuse = 0.35 + 0.05 * (h1 + h2 + h3 + h4) + 0.05 * (a1 + a2 + a3 + a4);
+    diffuse = 0.35 + 0.05 * heightSum + 0.05 * (a1 + a2 + a3 + a4);
     // Height differences in blocks over the sample spacing: the normal of y = h(x, z).
     float slopeX = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dx / (2.0 * e) + (a1 - a2) / 4.2);
     float slopeZ = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dz / (2.0 * e) + (a3 - a4) / 4.2);

@@ -120,6 +120,40 @@ mod tests {
 
     use super::*;
 
+    /// lib/waves.glsl reads the four height samples of each octave from one lookup of a height
+    /// cross texture: bilinear filtering being linear, the lookup must give their differences
+    /// and sum exactly.
+    #[test]
+    fn one_height_cross_lookup_gives_the_four_height_samples() {
+        let decode = |png: &[u8]| {
+            let image = image::load_from_memory(png).unwrap().to_rgba8();
+            Texture::from_rgba8(image.width() as usize, image.height() as usize, image.as_raw(), crate::Filter::Linear, crate::Wrap::Repeat)
+        };
+        let generated = tidepack_pack::textures::water_texture();
+        let water = decode(&generated.png);
+        let crosses: Vec<Texture> = generated.height_cross.iter().map(|png| decode(png)).collect();
+        const BIAS: f64 = 128.0 / 255.0;
+        for k in 0..400 {
+            let world_xz = DVec2::new((k as f64 * 7.31) % 64.0, (k as f64 * 3.77) % 64.0);
+            let time = k as f64 * 9.13;
+            for (octave, cross) in crosses.iter().enumerate() {
+                let scale = (1 << octave) as f64;
+                let h = height_cross(&water, world_xz, time, 0.0, 1 + octave as u32);
+                let lower = height_cross(&water, world_xz, time, 0.0, octave as u32);
+                // This octave's own samples, weighted as waveNormal weights it.
+                let weight = 0.75f64.powi(octave as i32);
+                let own: Vec<f64> = h.iter().zip(lower).map(|(all, below)| if octave == 0 { *all } else { (all - below) / weight }).collect();
+                let uv = 0.5 + scale * DVec2::new(world_xz.x, -world_xz.y) / WAVE_TILE + time * WAVE_DRIFT;
+                let texel = cross.sample(fract2(uv));
+                let expected = [own[0] - own[1], own[2] - own[3], own.iter().sum::<f64>()];
+                let looked_up = [texel.x - BIAS, BIAS - texel.y, 4.0 * texel.z + texel.w - BIAS];
+                for (e, l) in expected.iter().zip(looked_up) {
+                    assert!((e - l).abs() < 1e-12, "octave {octave} at {world_xz}, time {time}: {expected:?} vs {looked_up:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn the_surface_search_converges_to_the_wave_height() {
         let water = Texture::new(1, 1, vec![DVec4::splat(0.5)], crate::Filter::Linear, crate::Wrap::Repeat);
