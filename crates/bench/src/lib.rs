@@ -2,8 +2,11 @@
 //! around the default profile), the composite's GPU time on the harness
 //! (median of N frames, with the one-tap pass-through composite of the same frames as the
 //! floor) and its error against the f64 reference at converged settings (max abs, RMSE, PSNR,
-//! mean FLIP). Writes a table, CSV, JSON, a Pareto plot of time against error, FLIP heat-maps
-//! and a Markdown report. See docs/accuracy.md.
+//! mean FLIP), and its error against the truth (`tidepack-truth`, a physically based ray tracer
+//! of the same scenes) over the pixels where the truth met water: the converged reference
+//! measures discretisation error, the truth the model's own. Writes a table, CSV, JSON, a
+//! Pareto plot of time against error, FLIP heat-maps, pictures of the truth beside the base
+//! profile and a Markdown report. See docs/accuracy.md.
 //!
 //! Each scene is rendered once per option set through the whole harness pipeline
 //! (`render_wgpu`: the image whose error is measured, and the G-buffers). The composite is then
@@ -31,6 +34,7 @@ use tidepack_pack::Dialect;
 use tidepack_pack::source::PackSource;
 use tidepack_pack::specialise::Specialisation;
 use tidepack_reference::ReferenceImage;
+use tidepack_truth::TruthOptions;
 
 pub use metrics::ErrorMetrics;
 
@@ -119,6 +123,9 @@ pub struct Row {
     pub error: ErrorMetrics,
     /// Sum of squared rgb differences over the pixels / (3 pixels): to aggregate PSNR.
     pub mse: f64,
+    /// The error against the truth over the scene's compared pixels ([`TruthFrame::compared`]);
+    /// None where there are none (no water in view).
+    pub truth_error: Option<ErrorMetrics>,
     /// Largest |timed composite output − the harness frame's composite output| (rgba): the
     /// timed pass computes the image whose error is reported (0 when it does).
     pub timed_image_difference: f64,
@@ -142,6 +149,9 @@ pub struct Aggregate {
     pub psnr: f64,
     /// Mean over scenes of the mean FLIP.
     pub mean_flip: f64,
+    /// Against the truth, over the scenes with compared pixels: the largest max abs, RMSE and
+    /// PSNR from the mean of the scenes' MSE, the mean of their mean FLIP.
+    pub truth: Option<ErrorMetrics>,
     /// Its place in (ratio, mean FLIP) against the other runs, within the timing noise.
     pub verdict: pareto::Verdict,
     /// Runs that dominate it beyond the timing noise, with the smaller of their two relative
@@ -161,6 +171,12 @@ pub struct BenchResult {
     pub resolution: Option<[u32; 2]>,
     pub reference_stride: usize,
     pub reference_settings: String,
+    pub truth_options: String,
+    /// Per scene, the pixels compared with the truth.
+    pub truth_pixels: BTreeMap<String, usize>,
+    /// The run pictured beside the truth (`truth/<scene>-<run>.png`, for the scenes with
+    /// compared pixels): the base profile when it ran.
+    pub pictured_run: String,
     pub base_profile: String,
     pub scenes: Vec<String>,
     pub rows: Vec<Row>,
@@ -293,8 +309,25 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         bar.inc(1);
     }
 
-    std::fs::create_dir_all(config.out_dir.join("heatmaps")).map_err(|e| format!("cannot create {}: {e}", config.out_dir.display()))?;
     let mut files = Vec::new();
+    // The truth, once per scene: it depends on the scene alone (and the absorption density,
+    // which every profile shares).
+    let mut truths: BTreeMap<String, TruthFrame> = BTreeMap::new();
+    for (name, scene) in &scenes {
+        bar.set_message(format!("truth {name}"));
+        truths.insert(name.clone(), TruthFrame::trace(scene, &settings, config.reference_stride)?);
+    }
+
+    for folder in ["heatmaps", "truth"] {
+        std::fs::create_dir_all(config.out_dir.join(folder)).map_err(|e| format!("cannot create {}: {e}", config.out_dir.join(folder).display()))?;
+    }
+    // The run pictured beside the truth: the base profile, else the first run.
+    let pictured = runs.iter().find(|r| r.name == base).or(runs.first()).map(|r| r.name.clone()).unwrap_or_default();
+    for (name, truth) in &truths {
+        let file = format!("truth/{name}.png");
+        truth.rgb8().save(config.out_dir.join(&file)).map_err(|e| format!("cannot write {file}: {e}"))?;
+        files.push(file);
+    }
     // Option sets that come out equal (a sweep value that is the base's own) are measured once:
     // `set_of_run[i]` is the index in `sets` of run i's option set.
     struct OptionSet {
@@ -322,6 +355,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
             }
         }
     }
+    let pictured_set = runs.iter().position(|r| r.name == pictured).map_or(0, |i| set_of_run[i]);
     bar.set_length((scenes.len() * (1 + sets.len() + frames + 1)) as u64);
     let mut timing_gpu = true;
     for (name, scene) in &scenes {
@@ -334,7 +368,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         // pipeline; otherwise the general pack and its pipeline for this frame size.
         let specialisation = config.specialise.then(|| uniforms::scene_specialisation(scene, name));
         let mut specialised: Vec<Option<(LoadedPack, CompositeOnly)>> = Vec::new();
-        for set in &mut sets {
+        for (set_index, set) in sets.iter_mut().enumerate() {
             bar.set_message(format!("{} {name} (RSS {:.0} MiB)", set.run.name, tidepack_harness::resident_mib().unwrap_or(f64::NAN)));
             let own = match &specialisation {
                 Some(spec) => {
@@ -352,12 +386,26 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
             let pack = own.as_ref().map_or(&set.pack, |(pack, _)| pack);
             let frame = render_wgpu(&gpu, pack, scene).map_err(err)?;
             let (error, map) = metrics::error(&frame.image, &references[name]);
+            let truth = &truths[name];
+            let against_truth = metrics::error_where(&frame.image, &truth.image, &truth.compared);
             if set.run.kind == "profile" {
                 let file = format!("heatmaps/{name}-{}.png", set.run.name);
                 metrics::write_heatmap(&map, &config.out_dir.join(&file))?;
                 files.push(file);
+                if let Some((_, truth_map)) = &against_truth {
+                    let file = format!("heatmaps/{name}-{}-truth.png", set.run.name);
+                    metrics::write_heatmap(truth_map, &config.out_dir.join(&file))?;
+                    files.push(file);
+                }
             }
-            prepared.push((GBuffers::from_frame(&frame), frame.image, error));
+            if let (Some((_, truth_map)), true) = (&against_truth, set_index == pictured_set) {
+                let file = format!("truth/{name}-{pictured}.png");
+                metrics::side_by_side(&truth.rgb8(), &frame.image, truth_map)?
+                    .save(config.out_dir.join(&file))
+                    .map_err(|e| format!("cannot write {file}: {e}"))?;
+                files.push(file);
+            }
+            prepared.push((GBuffers::from_frame(&frame), frame.image, error, against_truth.map(|(e, _)| e)));
             specialised.push(own);
             bar.inc(1);
         }
@@ -372,7 +420,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
             for k in 0..sets.len() {
                 let i = (k + round) % sets.len();
                 let set = &sets[i];
-                let (g, image, _) = &prepared[i];
+                let (g, image, _, _) = &prepared[i];
                 let (pack, runner) = match &specialised[i] {
                     Some((pack, runner)) => (pack, runner),
                     None => (&set.pack, &set.runners[&size]),
@@ -397,7 +445,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         }
         for (i, set) in sets.iter_mut().enumerate() {
             let (c, p) = (tidepack_harness::median(&times[i].0), tidepack_harness::median(&times[i].1));
-            let error = prepared[i].2;
+            let (error, truth_error) = (prepared[i].2, prepared[i].3);
             set.rows.push(Row {
                 scene: name.clone(),
                 run: set.run.clone(),
@@ -408,6 +456,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
                 passthrough_frames_ms: times[i].1.clone(),
                 error,
                 mse: error.rmse * error.rmse,
+                truth_error,
                 timed_image_difference: differences[i],
             });
         }
@@ -428,6 +477,9 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
         resolution: config.resolution,
         reference_stride: config.reference_stride,
         reference_settings: format!("{settings:?}"),
+        truth_options: format!("{:?}", TruthOptions { stride: config.reference_stride, ..TruthOptions::default() }),
+        pictured_run: pictured,
+        truth_pixels: truths.iter().map(|(n, t)| (n.clone(), t.compared.iter().filter(|&&c| c).count())).collect(),
         base_profile: base,
         scenes: scenes.iter().map(|(n, _)| n.clone()).collect(),
         rows,
@@ -438,6 +490,32 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     };
     output::write_all(config, &mut result)?;
     Ok(result)
+}
+
+/// A scene as the truth renders it, for scoring the pack's frames.
+pub struct TruthFrame {
+    /// Linear colour, bottom row first, as the composite's output.
+    pub image: ReferenceImage,
+    /// The pixels the water model is scored on: traced, some ray of them met water, and no
+    /// overlay (rain, clouds, particles, the hand: the truth leaves them out) in front.
+    pub compared: Vec<bool>,
+}
+
+impl TruthFrame {
+    /// Traces `scene` with the absorption of `settings`, one sample at each pixel's centre
+    /// (where the composite shades), every `stride`-th pixel.
+    pub fn trace(scene: &Scene, settings: &tidepack_reference::ReferenceSettings, stride: usize) -> Result<TruthFrame, String> {
+        let options = TruthOptions { stride, ..TruthOptions::default() };
+        let traced = tidepack_truth::render(scene, settings, &options)?;
+        let compared = (0..traced.pixels.len()).map(|i| traced.evaluated[i] && traced.water[i] && !traced.overlay[i]).collect();
+        Ok(TruthFrame { image: ReferenceImage { width: traced.width, height: traced.height, pixels: traced.pixels }, compared })
+    }
+
+    /// As the 8-bit framebuffer would hold it, top row first.
+    pub fn rgb8(&self) -> image::RgbImage {
+        let (w, h) = (self.image.width as u32, self.image.height as u32);
+        image::RgbImage::from_raw(w, h, metrics::reference_rgb8_top_first(&self.image)).expect("three bytes a pixel")
+    }
 }
 
 /// With a stride above 1, each evaluated pixel stands for its stride × stride block.

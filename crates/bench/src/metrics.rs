@@ -19,19 +19,47 @@ pub struct ErrorMetrics {
 
 /// The error of `gpu` against `reference`, rgb channels, every pixel. Returns the FLIP error map too.
 pub fn error(gpu: &FloatImage, reference: &ReferenceImage) -> (ErrorMetrics, nv_flip::FlipImageFloat) {
+    let every = vec![true; reference.pixels.len()];
+    error_where(gpu, reference, &every).expect("a frame has pixels")
+}
+
+/// The error of `gpu` against `reference` over the pixels `compared` keeps (bottom row first,
+/// as both images), with the FLIP map, whose pixels outside `compared` are 0. None when
+/// `compared` keeps no pixel.
+pub fn error_where(gpu: &FloatImage, reference: &ReferenceImage, compared: &[bool]) -> Option<(ErrorMetrics, nv_flip::FlipImageFloat)> {
     assert_eq!((gpu.width as usize, gpu.height as usize), (reference.width, reference.height));
+    assert_eq!(compared.len(), reference.pixels.len());
+    let count = compared.iter().filter(|&&c| c).count();
+    if count == 0 {
+        return None;
+    }
     let (mut max_abs, mut squares) = (0.0f64, 0.0f64);
-    for (g, r) in gpu.pixels.iter().zip(&reference.pixels) {
+    for ((g, r), _) in gpu.pixels.iter().zip(&reference.pixels).zip(compared).filter(|(_, c)| **c) {
         let g = DVec3::new(g[0] as f64, g[1] as f64, g[2] as f64);
         let g = if g.is_finite() { g.clamp(DVec3::ZERO, DVec3::ONE) } else { DVec3::ONE };
         let d = (g - r.clamp(DVec3::ZERO, DVec3::ONE)).abs();
         max_abs = max_abs.max(d.max_element());
         squares += d.length_squared();
     }
-    let mse = squares / (3 * gpu.pixels.len()) as f64;
-    let flip_map = images::flip_map(&gpu.to_rgb8_top_first(), &reference_rgb8_top_first(reference), gpu.width, gpu.height);
-    let mean_flip = images::mean_flip(&flip_map);
-    (ErrorMetrics { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map)
+    let mse = squares / (3 * count) as f64;
+    let mut flip_map = images::flip_map(&gpu.to_rgb8_top_first(), &reference_rgb8_top_first(reference), gpu.width, gpu.height);
+    if count < compared.len() {
+        // The map is top row first; the mask bottom row first.
+        let (w, h) = (reference.width, reference.height);
+        let values: Vec<f32> = flip_map
+            .to_vec()
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| if compared[(h - 1 - i / w) * w + i % w] { v } else { 0.0 })
+            .collect();
+        flip_map = nv_flip::FlipImageFloat::with_data(gpu.width, gpu.height, &values);
+    }
+    let mean_flip = if count == compared.len() {
+        images::mean_flip(&flip_map)
+    } else {
+        flip_map.to_vec().iter().map(|&v| v as f64).sum::<f64>() / count as f64
+    };
+    Some((ErrorMetrics { max_abs, rmse: mse.sqrt(), psnr: psnr_of_mse(mse), mean_flip }, flip_map))
 }
 
 /// PSNR in dB of a mean squared error over 0..1 values; infinite (identical) when the error is
@@ -56,6 +84,34 @@ pub fn reference_rgb8_top_first(image: &ReferenceImage) -> Vec<u8> {
 /// The FLIP map through the magma colour map with its legend, as a PNG.
 pub fn write_heatmap(map: &nv_flip::FlipImageFloat, path: &std::path::Path) -> Result<(), String> {
     heatmap_image(map)?.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// Gap between the panels of [`side_by_side`], pixels.
+pub const PANEL_GAP: u32 = 6;
+
+/// Where the model differs from the truth, at half size: the truth, the pack's frame, and the
+/// FLIP map between them with its legend, left to right on white.
+pub fn side_by_side(truth: &image::RgbImage, frame: &FloatImage, map: &nv_flip::FlipImageFloat) -> Result<image::RgbImage, String> {
+    use image::imageops::{self, FilterType};
+    let (w, h) = (frame.width, frame.height);
+    let (hw, hh) = ((w / 2).max(1), (h / 2).max(1));
+    let pack = image::RgbImage::from_raw(w, h, frame.to_rgb8_top_first()).expect("three bytes a pixel");
+    // The map's values averaged over each 2x2 block, so that the colours keep FLIP's scale.
+    let values = map.to_vec();
+    let half: Vec<f32> = (0..hh)
+        .flat_map(|y| (0..hw).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let block = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| values[((2 * y + dy).min(h - 1) * w + (2 * x + dx).min(w - 1)) as usize]);
+            block.iter().sum::<f32>() / 4.0
+        })
+        .collect();
+    let heat = heatmap_image(&nv_flip::FlipImageFloat::with_data(hw, hh, &half))?;
+    let width = 2 * (hw + PANEL_GAP) + heat.width();
+    let mut canvas = image::RgbImage::from_pixel(width, heat.height().max(hh), image::Rgb([255, 255, 255]));
+    imageops::replace(&mut canvas, &imageops::resize(truth, hw, hh, FilterType::Triangle), 0, 0);
+    imageops::replace(&mut canvas, &imageops::resize(&pack, hw, hh, FilterType::Triangle), i64::from(hw + PANEL_GAP), 0);
+    imageops::replace(&mut canvas, &heat, i64::from(2 * (hw + PANEL_GAP)), 0);
+    Ok(canvas)
 }
 
 /// Height of the legend strip under a heat map, pixels.

@@ -9,7 +9,7 @@ use plotters::prelude::*;
 use crate::metrics::psnr_of_mse;
 use crate::labels;
 use crate::pareto::{self, Verdict};
-use crate::{Aggregate, BenchConfig, BenchResult, NEAR_FRONT, Row, RunSpec};
+use crate::{Aggregate, BenchConfig, BenchResult, ErrorMetrics, NEAR_FRONT, Row, RunSpec};
 
 fn mean(v: impl Iterator<Item = f64>) -> f64 {
     let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
@@ -33,6 +33,7 @@ pub fn aggregate(runs: &[RunSpec], rows: &[Row]) -> Vec<Aggregate> {
                 rmse: mse.sqrt(),
                 psnr: psnr_of_mse(mse),
                 mean_flip: mean(r.iter().map(|r| r.error.mean_flip)),
+                truth: truth_aggregate(&r),
                 verdict: Verdict::Front,
                 dominated_by: vec![],
                 ties_with: vec![],
@@ -48,6 +49,21 @@ pub fn aggregate(runs: &[RunSpec], rows: &[Row]) -> Vec<Aggregate> {
         a.ties_with = j.ties_with.into_iter().map(|i| names[i].clone()).collect();
     }
     out
+}
+
+/// The error against the truth over the scenes that have compared pixels.
+fn truth_aggregate(rows: &[&Row]) -> Option<ErrorMetrics> {
+    let scored: Vec<ErrorMetrics> = rows.iter().filter_map(|r| r.truth_error).collect();
+    if scored.is_empty() {
+        return None;
+    }
+    let mse = mean(scored.iter().map(|e| e.rmse * e.rmse));
+    Some(ErrorMetrics {
+        max_abs: scored.iter().map(|e| e.max_abs).fold(0.0, f64::max),
+        rmse: mse.sqrt(),
+        psnr: psnr_of_mse(mse),
+        mean_flip: mean(scored.iter().map(|e| e.mean_flip)),
+    })
 }
 
 /// Not dominated beyond the timing noise, or beaten by no run by more than [`NEAR_FRONT`] in
@@ -93,13 +109,14 @@ pub fn table(result: &BenchResult) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<34} {:>9} {:>7} {:>10} {:>9} {:>8} {:>9} {:>10}  pareto",
-        "run (mean over scenes)", "comp/pt", "spread", "comp ms", "max abs", "RMSE", "PSNR dB", "mean FLIP"
+        "{:<34} {:>9} {:>7} {:>10} {:>9} {:>8} {:>9} {:>10} {:>10} {:>11}  pareto",
+        "run (mean over scenes)", "comp/pt", "spread", "comp ms", "max abs", "RMSE", "PSNR dB", "mean FLIP", "truth dB", "truth FLIP"
     );
     for a in &result.aggregates {
+        let (truth_db, truth_flip) = a.truth.map_or(("–".to_string(), "–".to_string()), |t| (db(t.psnr), format!("{:.5}", t.mean_flip)));
         let _ = writeln!(
             s,
-            "{:<34} {:>8.2}x {:>7} {:>10.3} {:>9.4} {:>8.5} {:>9} {:>10.5}  {}",
+            "{:<34} {:>8.2}x {:>7} {:>10.3} {:>9.4} {:>8.5} {:>9} {:>10.5} {:>10} {:>11}  {}",
             a.run.name,
             a.ratio,
             spread(a.ratio_spread),
@@ -108,6 +125,8 @@ pub fn table(result: &BenchResult) -> String {
             a.rmse,
             db(a.psnr),
             a.mean_flip,
+            truth_db,
+            truth_flip,
             front_label(a)
         );
     }
@@ -126,21 +145,26 @@ pub fn csv(result: &BenchResult) -> String {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "scene", "run", "kind", "profile", "knob", "value", "composite_ms", "passthrough_ms", "ratio", "ratio_spread", "max_abs", "rmse",
-        "psnr_db", "mean_flip", "pareto",
+        "psnr_db", "mean_flip", "pareto", "truth_max_abs", "truth_rmse", "truth_psnr_db", "truth_mean_flip",
     ])
     .expect("CSV into memory");
-    let mut record = |scene: &str, run: &RunSpec, [c, p, r, spread]: [f64; 4], m: f64, rmse: f64, psnr: f64, f: f64, front: &str| {
-        let psnr = if psnr.is_finite() { format!("{psnr:.3}") } else { "inf".into() };
-        let numbers = [format!("{c:.6}"), format!("{p:.6}"), format!("{r:.4}"), format!("{spread:.4}"), format!("{m:.6e}"), format!("{rmse:.6e}"), psnr, format!("{f:.6e}")];
+    let psnr_field = |psnr: f64| if psnr.is_finite() { format!("{psnr:.3}") } else { "inf".into() };
+    let error_fields = |e: &ErrorMetrics| [format!("{:.6e}", e.max_abs), format!("{:.6e}", e.rmse), psnr_field(e.psnr), format!("{:.6e}", e.mean_flip)];
+    let mut record = |scene: &str, run: &RunSpec, [c, p, r, spread]: [f64; 4], error: &ErrorMetrics, front: &str, truth: Option<&ErrorMetrics>| {
+        let times = [format!("{c:.6}"), format!("{p:.6}"), format!("{r:.4}"), format!("{spread:.4}")];
+        let truth = truth.map_or_else(|| [(); 4].map(|_| String::new()), error_fields);
         let text = [scene, &run.name, &run.kind, &run.profile, run.knob.as_deref().unwrap_or(""), run.value.as_deref().unwrap_or("")];
-        w.write_record(text.into_iter().chain(numbers.iter().map(String::as_str)).chain([front])).expect("CSV into memory");
+        let error = error_fields(error);
+        let numbers = times.iter().chain(&error).map(String::as_str);
+        w.write_record(text.into_iter().chain(numbers).chain([front]).chain(truth.iter().map(String::as_str))).expect("CSV into memory");
     };
     for r in &result.rows {
         let spread = pareto::ratio_spread(&r.composite_frames_ms, &r.passthrough_frames_ms);
-        record(&r.scene, &r.run, [r.composite_ms, r.passthrough_ms, r.ratio, spread], r.error.max_abs, r.error.rmse, r.error.psnr, r.error.mean_flip, "");
+        record(&r.scene, &r.run, [r.composite_ms, r.passthrough_ms, r.ratio, spread], &r.error, "", r.truth_error.as_ref());
     }
     for a in &result.aggregates {
-        record("ALL", &a.run, [a.composite_ms, a.passthrough_ms, a.ratio, a.ratio_spread], a.max_abs, a.rmse, a.psnr, a.mean_flip, &front_label(a));
+        let error = ErrorMetrics { max_abs: a.max_abs, rmse: a.rmse, psnr: a.psnr, mean_flip: a.mean_flip };
+        record("ALL", &a.run, [a.composite_ms, a.passthrough_ms, a.ratio, a.ratio_spread], &error, &front_label(a), a.truth.as_ref());
     }
     String::from_utf8(w.into_inner().expect("CSV into memory")).expect("CSV of UTF-8 fields")
 }
@@ -352,14 +376,30 @@ fn knob_table(result: &BenchResult, knob: &str, labels: &[(&str, &str)]) -> Stri
             "\nTime over all scenes: {} {:.2}× the pass-through, {} {:.2}×.",
             names[0].1, a.ratio, names[1].1, b.ratio
         );
+        if let (Some(ta), Some(tb)) = (a.truth, b.truth) {
+            let _ = writeln!(
+                s,
+                "Against the truth (water pixels, all scenes): {} {} dB PSNR, mean FLIP {:.5}; {} {} dB, {:.5}.",
+                names[0].1,
+                db(ta.psnr),
+                ta.mean_flip,
+                names[1].1,
+                db(tb.psnr),
+                tb.mean_flip
+            );
+        }
     }
     s
 }
 
+/// The header of the profile and Pareto tables (Markdown).
+const AGGREGATE_HEADER: &str = "comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | truth PSNR dB | truth mean FLIP | Pareto |\n\
+                                |---|---|---|---|---|---|---|---|";
+
 /// One run of the profile and Pareto tables (Markdown).
 fn aggregate_line(a: &Aggregate) -> String {
     format!(
-        "| {} | {:.2}× {} | {:.3} | {} | {:.5} | {:.4} | {} |\n",
+        "| {} | {:.2}× {} | {:.3} | {} | {:.5} | {:.4} | {} | {} |\n",
         a.run.name,
         a.ratio,
         spread(a.ratio_spread),
@@ -367,11 +407,84 @@ fn aggregate_line(a: &Aggregate) -> String {
         db(a.psnr),
         a.mean_flip,
         a.max_abs,
+        truth_cells(a.truth.as_ref()),
         front_label(a)
     )
 }
 
-pub fn markdown(result: &BenchResult, image: &str) -> String {
+/// "PSNR | mean FLIP" against the truth, or dashes where nothing was compared.
+fn truth_cells(truth: Option<&ErrorMetrics>) -> String {
+    truth.map_or_else(|| "– | –".to_string(), |t| format!("{} | {:.5}", db(t.psnr), t.mean_flip))
+}
+
+/// How much lower a run's mean FLIP against the truth must be than the base profile's for the
+/// report to call it closer: smaller differences are the last digits of the same picture.
+pub const CLOSER_TO_TRUTH: f64 = 0.01;
+
+/// The base profile against the truth, and the runs cheaper than it whose water is closer to the
+/// truth (mean FLIP against it lower by more than [`CLOSER_TO_TRUTH`]) (Markdown).
+fn truth_findings(result: &BenchResult) -> String {
+    let mut s = String::new();
+    let Some(base) = agg(result, &result.base_profile).filter(|a| a.truth.is_some()) else {
+        return s;
+    };
+    let base_truth = base.truth.expect("filtered");
+    let mut closer: Vec<&Aggregate> = result
+        .aggregates
+        .iter()
+        .filter(|a| {
+            a.run.name != base.run.name
+                && a.ratio < base.ratio
+                && a.truth.is_some_and(|t| t.mean_flip < (1.0 - CLOSER_TO_TRUTH) * base_truth.mean_flip)
+        })
+        .collect();
+    closer.sort_by(|a, b| a.truth.map(|t| t.mean_flip).unwrap_or(f64::NAN).total_cmp(&b.truth.map(|t| t.mean_flip).unwrap_or(f64::NAN)));
+    let _ = writeln!(
+        s,
+        "{} against the truth: {} dB PSNR, mean FLIP {:.5} (against the converged model: {} dB, {:.5}).\n",
+        base.run.name,
+        db(base_truth.psnr),
+        base_truth.mean_flip,
+        db(base.psnr),
+        base.mean_flip
+    );
+    if closer.is_empty() {
+        let _ = writeln!(s, "No run cheaper than {} is closer to the truth.\n", base.run.name);
+    } else {
+        let _ = writeln!(
+            s,
+            "Cheaper than {} ({:.2}× {}) and closer to the truth by more than {:.0}% in mean FLIP:\n",
+            base.run.name,
+            base.ratio,
+            spread(base.ratio_spread),
+            100.0 * CLOSER_TO_TRUTH
+        );
+        for a in closer {
+            let t = a.truth.expect("filtered");
+            let _ = writeln!(
+                s,
+                "- {}: {:.2}× {}, truth mean FLIP {:.5} ({:+.0}%), truth PSNR {} dB; against the converged model {} dB, mean FLIP {:.5}.",
+                a.run.name,
+                a.ratio,
+                spread(a.ratio_spread),
+                t.mean_flip,
+                100.0 * (t.mean_flip / base_truth.mean_flip - 1.0),
+                db(t.psnr),
+                db(a.psnr),
+                a.mean_flip
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nA time difference smaller than the two runs' spreads is a tie within timing noise (see the Pareto table).\n"
+        );
+    }
+    s
+}
+
+/// The report; `image` is the plot's path and `pictures` the folder of the truth comparisons,
+/// both relative to the report.
+pub fn markdown(result: &BenchResult, image: &str, pictures: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Accuracy and cost of the profiles and quality knobs\n");
     let _ = writeln!(s, "Generated by `tidepack bench` (crates/bench); regenerate with\n\n    {}\n", result.command);
@@ -418,9 +531,18 @@ pub fn markdown(result: &BenchResult, image: &str) -> String {
          (10·log10(1/MSE); over all scenes from the mean MSE) and mean FLIP (NVIDIA FLIP, LDR, 67 pixels per degree, \
          on the 8-bit images the framebuffer would hold).\n"
     );
+    let _ = writeln!(
+        s,
+        "- Truth: `tidepack-truth` (docs/truth.md), a physically based f64 ray tracer of the same scenes ({}), one \
+         sample at each pixel's centre. It scores the model's error, where the converged reference scores the \
+         discretisation's. Compared over the pixels where the truth's rays met water and no overlay (rain, clouds, \
+         particles, the hand, which the truth leaves out) lies in front; Distant Horizons' LODs are not traced, so \
+         their pixels are not compared. \"Truth\" columns: PSNR from the mean MSE of those pixels, mean FLIP over \
+         them; dry pixels would score the same in every run.\n",
+        result.truth_options
+    );
     let _ = writeln!(s, "## Profiles\n");
-    let _ = writeln!(s, "| profile | comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "| profile | {AGGREGATE_HEADER}");
     for a in result.aggregates.iter().filter(|a| a.run.kind == "profile") {
         s.push_str(&aggregate_line(a));
     }
@@ -439,29 +561,61 @@ pub fn markdown(result: &BenchResult, image: &str) -> String {
     }
     let _ = writeln!(s, "\n{}", ties_sentence(result));
     let _ = writeln!(s, "\n![time against error]({image})\n");
+    let _ = writeln!(s, "## Against the truth\n");
+    s.push_str(&truth_findings(result));
+    let _ = writeln!(s, "| scene | compared pixels | {} |", result.aggregates.iter().filter(|a| a.run.kind == "profile").map(|a| format!("{0} truth PSNR dB | {0} truth mean FLIP", a.run.name)).collect::<Vec<_>>().join(" | "));
+    let profiles: Vec<&str> = result.aggregates.iter().filter(|a| a.run.kind == "profile").map(|a| a.run.name.as_str()).collect();
+    let _ = writeln!(s, "|---|---|{}", "---|---|".repeat(profiles.len()));
+    for scene in &result.scenes {
+        let pixels = result.truth_pixels.get(scene).copied().unwrap_or(0);
+        let cells: Vec<String> = profiles
+            .iter()
+            .map(|p| truth_cells(result.rows.iter().find(|r| &r.scene == scene && r.run.name == *p).and_then(|r| r.truth_error.as_ref())))
+            .collect();
+        let _ = writeln!(s, "| {scene} | {pixels} | {} |", cells.join(" | "));
+    }
+    let _ = writeln!(
+        s,
+        "\nWhere {} differs from the truth: the truth (left), {} (middle) and FLIP between them over the compared pixels \
+         (right; black where nothing is compared), at half size.\n",
+        result.pictured_run, result.pictured_run
+    );
+    for (scene, _) in result.truth_pixels.iter().filter(|(_, n)| **n > 0) {
+        let _ = writeln!(s, "![{scene}: truth, {run}, FLIP]({pictures}/{scene}-{run}.png)\n", run = result.pictured_run);
+    }
     let _ = writeln!(s, "## Schlick against exact Fresnel ({} with `FRESNEL_EXACT` off and on)\n", result.base_profile);
     s.push_str(&knob_table(result, "FRESNEL_EXACT", &[("off", "Schlick"), ("on", "exact")]));
     let _ = writeln!(s, "\n## Ramp against Beer–Lambert ({} with `ABSORPTION_MODEL` 0 and 1)\n", result.base_profile);
     s.push_str(&knob_table(result, "ABSORPTION_MODEL", &[("0", "ramp"), ("1", "Beer–Lambert")]));
     let _ = writeln!(s, "\n## Every run (Pareto table, mean over scenes)\n");
-    let _ = writeln!(s, "| run | comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | Pareto |");
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "| run | {AGGREGATE_HEADER}");
     let mut sorted: Vec<&Aggregate> = result.aggregates.iter().collect();
     sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
     for a in sorted {
         s.push_str(&aggregate_line(a));
     }
     let _ = writeln!(s, "\n## Profiles per scene\n");
-    let _ = writeln!(s, "| scene | profile | comp/pt | PSNR dB | mean FLIP | max abs |");
-    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    let _ = writeln!(s, "| scene | profile | comp/pt | PSNR dB | mean FLIP | max abs | truth PSNR dB | truth mean FLIP |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     for scene in &result.scenes {
         for r in result.rows.iter().filter(|r| &r.scene == scene && r.run.kind == "profile") {
-            let _ = writeln!(s, "| {scene} | {} | {:.2}× | {} | {:.5} | {:.4} |", r.run.name, r.ratio, db(r.error.psnr), r.error.mean_flip, r.error.max_abs);
+            let _ = writeln!(
+                s,
+                "| {scene} | {} | {:.2}× | {} | {:.5} | {:.4} | {} |",
+                r.run.name,
+                r.ratio,
+                db(r.error.psnr),
+                r.error.mean_flip,
+                r.error.max_abs,
+                truth_cells(r.truth_error.as_ref())
+            );
         }
     }
     let _ = writeln!(
         s,
-        "\nCSV, JSON and FLIP heat-maps per scene and profile (`heatmaps/<scene>-<profile>.png`) are in the bench's --out folder."
+        "\nCSV, JSON, FLIP heat-maps per scene and profile against the converged model (`heatmaps/<scene>-<profile>.png`) and \
+         against the truth (`heatmaps/<scene>-<profile>-truth.png`), and the truth's images (`truth/<scene>.png`) are in the \
+         bench's --out folder."
     );
     s
 }
@@ -472,14 +626,25 @@ pub fn write_all(config: &BenchConfig, result: &mut BenchResult) -> Result<(), S
     plot(result, &out.join("pareto.png"))?;
     result.files.extend(["bench.csv", "bench.json", "pareto.png", "report.md"].map(String::from));
     write("bench.csv", &csv(result))?;
-    write("report.md", &markdown(result, "pareto.png"))?;
+    write("report.md", &markdown(result, "pareto.png", "truth"))?;
     write("bench.json", &(serde_json::to_string_pretty(result).map_err(|e| e.to_string())? + "\n"))?;
     if let Some(report) = &config.report {
         let stem = report.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "report".into());
         let image = format!("{stem}-pareto.png");
         let dir = report.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         std::fs::copy(out.join("pareto.png"), dir.join(&image)).map_err(|e| format!("cannot copy the plot: {e}"))?;
-        std::fs::write(report, markdown(result, &image)).map_err(|e| format!("cannot write {}: {e}", report.display()))?;
+        // The truth comparisons beside the report, in a folder of their own made anew.
+        let pictures = format!("{stem}-truth");
+        let pictures_dir = dir.join(&pictures);
+        if pictures_dir.exists() {
+            std::fs::remove_dir_all(&pictures_dir).map_err(|e| format!("cannot clear {}: {e}", pictures_dir.display()))?;
+        }
+        std::fs::create_dir_all(&pictures_dir).map_err(|e| format!("cannot create {}: {e}", pictures_dir.display()))?;
+        for (scene, _) in result.truth_pixels.iter().filter(|(_, n)| **n > 0) {
+            let file = format!("{scene}-{}.png", result.pictured_run);
+            std::fs::copy(out.join("truth").join(&file), pictures_dir.join(&file)).map_err(|e| format!("cannot copy truth/{file}: {e}"))?;
+        }
+        std::fs::write(report, markdown(result, &image, &pictures)).map_err(|e| format!("cannot write {}: {e}", report.display()))?;
     }
     Ok(())
 }

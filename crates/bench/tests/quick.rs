@@ -1,6 +1,7 @@
 //! The bench end to end at a tiny resolution: one scene, two option sets. Checks that every
-//! output exists and parses, that the errors are finite and that ULTRA (the profile closest to
-//! the converged reference) scores better than LOW. Timings are never asserted.
+//! output exists and parses, that the errors are finite, that ULTRA (the profile closest to
+//! the converged reference) scores better than LOW against it, and that the truth scores the
+//! model's own error beside it. Timings are never asserted.
 //!
 //! Needs lavapipe (Debian mesa-vulkan-drivers; tools/test installs it): without it this test
 //! fails with an error naming the package. It never skips.
@@ -57,13 +58,33 @@ fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
             assert!(v.is_finite(), "{line}");
         }
     }
-    for png in ["pareto.png", "heatmaps/case4_above_near-LOW.png", "heatmaps/case4_above_near-ULTRA.png"] {
+    for png in [
+        "pareto.png",
+        "heatmaps/case4_above_near-LOW.png",
+        "heatmaps/case4_above_near-ULTRA.png",
+        "heatmaps/case4_above_near-ULTRA-truth.png",
+        "truth/case4_above_near.png",
+        "truth/case4_above_near-LOW.png",
+    ] {
         let image = image::open(dir.join(png)).unwrap_or_else(|e| panic!("{png}: {e}"));
         assert!(image.width() > 0, "{png}");
     }
     let md = std::fs::read_to_string(&report).unwrap();
     assert!(md.contains("| LOW |") && md.contains("| ULTRA |"), "{md}");
     assert!(out.path().join("docs/accuracy-pareto.png").exists());
+    // Both references are reported: the truth's section, columns and pictures beside the report.
+    assert!(md.contains("## Against the truth") && md.contains("truth mean FLIP"), "{md}");
+    assert!(md.contains("(accuracy-truth/case4_above_near-LOW.png)"), "{md}");
+    assert!(out.path().join("docs/accuracy-truth/case4_above_near-LOW.png").exists());
+    let compared = result.truth_pixels["case4_above_near"];
+    assert!(compared > 96 * 54 / 2, "the pool fills most of case4's view, yet {compared} pixels were compared");
+    for line in &lines[1..] {
+        let fields: Vec<&str> = line.split(',').collect();
+        for f in &fields[columns - 4..] {
+            let v: f64 = f.parse().unwrap_or_else(|_| panic!("truth field {f} in {line}"));
+            assert!(v.is_finite() || *f == "inf", "{line}");
+        }
+    }
 
     let low = &result.rows.iter().find(|r| r.run.name == "LOW").unwrap().error;
     let ultra = &result.rows.iter().find(|r| r.run.name == "ULTRA").unwrap().error;
@@ -71,6 +92,13 @@ fn quick_bench_writes_parseable_outputs_and_ultra_beats_low() {
         assert!(e.max_abs.is_finite() && e.rmse.is_finite() && e.mean_flip.is_finite() && !e.psnr.is_nan(), "{e:?}");
     }
     println!("LOW {low:?}\nULTRA {ultra:?}");
+    let truth = |name: &str| result.rows.iter().find(|r| r.run.name == name).unwrap().truth_error.unwrap();
+    println!("against the truth: LOW {:?}\nULTRA {:?}", truth("LOW"), truth("ULTRA"));
+    // The two references measure different things: ULTRA is its own model nearly converged,
+    // and still a model of the light (no sunlight lost on its way down to the floor, no bending
+    // of the floor's geometry, a screen-space mirror), so the truth is farther from it.
+    assert!(truth("ULTRA").rmse > 10.0 * ultra.rmse, "truth {:?} vs converged {ultra:?}", truth("ULTRA"));
+    assert!(truth("ULTRA").mean_flip > ultra.mean_flip, "truth {:?} vs converged {ultra:?}", truth("ULTRA"));
     assert!(ultra.rmse < low.rmse, "ULTRA {ultra:?} LOW {low:?}");
     assert!(ultra.mean_flip < low.mean_flip, "ULTRA {ultra:?} LOW {low:?}");
 }

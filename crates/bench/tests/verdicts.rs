@@ -18,6 +18,7 @@ fn row(run: &RunSpec, composite_frames_ms: Vec<f64>, passthrough_ms: f64, mean_f
         passthrough_frames_ms,
         error: ErrorMetrics { max_abs: mean_flip, rmse: mean_flip, psnr: 30.0, mean_flip },
         mse: mean_flip * mean_flip,
+        truth_error: None,
         timed_image_difference: 0.0,
     }
 }
@@ -30,6 +31,9 @@ fn bench_result(runs: &[RunSpec], rows: Vec<Row>) -> BenchResult {
         resolution: Some([160, 90]),
         reference_stride: 1,
         reference_settings: String::new(),
+        truth_options: String::new(),
+        truth_pixels: Default::default(),
+        pictured_run: String::new(),
         base_profile: "HIGH".into(),
         scenes: vec!["synthetic".into()],
         aggregates: output::aggregate(runs, &rows),
@@ -61,11 +65,11 @@ fn noisy_close_times_are_ties_and_the_report_counts_them() {
     let table = output::table(&result);
     assert!(table.contains("tie within timing noise (with ULTRA)"), "{table}");
     assert!(table.contains("1 of 3 Pareto verdicts are ties within timing noise"), "{table}");
-    let md = output::markdown(&result, "pareto.png");
+    let md = output::markdown(&result, "pareto.png", "truth");
     assert!(md.contains("| HIGH | 10.00× ±10.0% |"), "{md}");
     assert!(md.contains("1 of 3 Pareto verdicts are ties within timing noise"), "{md}");
     let csv = output::csv(&result);
-    assert!(csv.lines().any(|l| l.starts_with("ALL,HIGH,") && l.ends_with(",tie within timing noise (with ULTRA)")), "{csv}");
+    assert!(csv.lines().any(|l| l.starts_with("ALL,HIGH,") && l.ends_with(",tie within timing noise (with ULTRA),,,,")), "{csv}");
 
     // The same medians measured tightly: ULTRA is slower beyond the noise and more accurate,
     // so both are on the front.

@@ -81,8 +81,9 @@ enum Command {
     /// |cameraPosition| (docs/stress.md). Prints the tables; writes files only with --out.
     #[cfg(feature = "render")]
     Stress(commands::stress::StressArgs),
-    /// Composite time against error for every scene, profile and single-knob sweep: table,
-    /// CSV, JSON, Pareto plot, FLIP heat-maps (docs/accuracy.md).
+    /// Composite time against error for every scene, profile and single-knob sweep, the error
+    /// both against the converged model and against the physically based truth: table, CSV,
+    /// JSON, Pareto plot, FLIP heat-maps, the truth beside the pack (docs/accuracy.md).
     #[cfg(feature = "bench")]
     Bench(commands::bench::BenchArgs),
 }

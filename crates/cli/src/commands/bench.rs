@@ -62,7 +62,7 @@ pub fn run(args: &BenchArgs) -> ExitCode {
             let scenes = result.scenes.len();
             say!("{scenes} scene{} on {} ({} timing)", if scenes == 1 { "" } else { "s" }, result.adapter, result.timing_source);
             print!("{}", tidepack_glsl::terminal::block(&tidepack_bench::output::table(&result)));
-            for f in ["bench.csv", "bench.json", "pareto.png", "report.md", "heatmaps/"] {
+            for f in ["bench.csv", "bench.json", "pareto.png", "report.md", "heatmaps/", "truth/"] {
                 say!("  wrote {}", args.out.join(f).display());
             }
             if let Some(r) = &args.report {
