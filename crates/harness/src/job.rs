@@ -295,6 +295,44 @@ pub struct AnyPackJob {
     pub bless: bool,
     /// The largest mean FLIP against the blessed screen that passes.
     pub max_flip: f64,
+    /// With `gl`: the most pixels of one texture after one step that may differ between the
+    /// two renderers by more than 1/255 before the run counts as a disagreement.
+    pub gl_max_pixels: usize,
+}
+
+/// Pixels of one texture after one step that may differ between wgpu and OpenGL by more than
+/// 1/255 (rounding where the two rasterise an edge alike but sample it a hair apart) before the
+/// renderers are said to disagree.
+pub const GL_MAX_DIFFERING_PIXELS: usize = 16;
+
+/// Where wgpu and OpenGL part: the first step, in frame order, with a texture over the limit.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Disagreement {
+    pub pass: String,
+    pub texture: String,
+    /// Pixels differing by more than 1/255 in some colour channel.
+    pub pixels: usize,
+    /// The largest difference of any channel, in 1/255.
+    pub max_difference_255: f32,
+    /// The limit it passed.
+    pub max_pixels: usize,
+}
+
+impl GlStepsComparison {
+    /// The first step where a texture differs between the renderers on more than `max_pixels`
+    /// pixels; None when they agree throughout (or OpenGL refused the pack, so nothing was
+    /// compared).
+    pub fn first_disagreement(&self, max_pixels: usize) -> Option<Disagreement> {
+        self.steps.iter().find_map(|step| {
+            step.pixels_over_1_255.iter().find(|(_, n)| **n > max_pixels).map(|(texture, &pixels)| Disagreement {
+                pass: step.pass.clone(),
+                texture: texture.clone(),
+                pixels,
+                max_difference_255: step.max_difference_255.get(texture).map_or(f32::NAN, |d| d.iter().copied().fold(0.0, f32::max)),
+                max_pixels,
+            })
+        })
+    }
 }
 
 /// The screen against a blessed one.
@@ -350,6 +388,8 @@ pub struct AnyPackReport {
     /// Programs the loader would run that did not load, with why.
     pub failed_programs: Vec<(String, String)>,
     pub gl: Option<GlStepsComparison>,
+    /// Where the renderers part beyond the job's limit, if they do.
+    pub gl_disagreement: Option<Disagreement>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
 }
@@ -413,6 +453,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = AnyPackReport {
+        gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(job.gl_max_pixels)),
         gl,
         expected,
         timing: frame.timing.clone(),
@@ -507,5 +548,32 @@ mod tests {
         assert_eq!(super::file_stem("case1_above_dry"), "case1_above_dry");
         assert_eq!(super::file_stem("../x y"), "scene.._x_y");
         assert_eq!(super::file_stem(""), "scene");
+    }
+
+    /// A frame whose composite parts on most of the screen (the all-black OpenGL screen beside a
+    /// plausible wgpu one): the first step over the limit is named, not a later one, and a step
+    /// within the limit is agreement.
+    #[test]
+    fn the_first_step_where_the_renderers_part_is_named() {
+        use super::{Disagreement, GlStepComparison, GlStepsComparison};
+        let step = |pass: &str, texture: &str, pixels: usize, worst: f32| GlStepComparison {
+            pass: pass.into(),
+            max_difference_255: [(texture.to_string(), [worst, 0.0, 0.0, 0.0])].into(),
+            pixels_over_1_255: [(texture.to_string(), pixels)].into(),
+        };
+        let frame = GlStepsComparison {
+            renderer: "llvmpipe".into(),
+            steps: vec![step("gbuffers_terrain", "colortex0", 3, 1.5), step("composite", "colortex0", 17_654, 67.0), step("final", "screen", 20_000, 70.0)],
+            own_depth_mapping: vec![],
+            refused: None,
+        };
+        assert_eq!(
+            frame.first_disagreement(16),
+            Some(Disagreement { pass: "composite".into(), texture: "colortex0".into(), pixels: 17_654, max_difference_255: 67.0, max_pixels: 16 })
+        );
+        assert_eq!(frame.first_disagreement(2).map(|d| d.pass), Some("gbuffers_terrain".into()));
+        assert_eq!(frame.first_disagreement(20_000), None);
+        let refused = GlStepsComparison { steps: vec![], refused: Some("link error".into()), ..frame };
+        assert_eq!(refused.first_disagreement(0), None);
     }
 }

@@ -66,6 +66,11 @@ pub struct RenderArgs {
     /// With --expect: the largest mean FLIP that passes.
     #[arg(long, default_value_t = 0.03, requires = "expect")]
     pub max_flip: f64,
+    /// With --pack --gl: the most pixels of one texture after one step that may differ
+    /// between wgpu and OpenGL by more than 1/255; past it the run fails, naming the step where
+    /// the renderers part.
+    #[arg(long, value_name = "PIXELS", default_value_t = job::GL_MAX_DIFFERING_PIXELS, requires = "gl")]
+    pub gl_max_pixels: usize,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -112,6 +117,17 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
     if let Some(r) = report.composite_over_passthrough {
         say!("  composite / pass-through {r:.1}x");
+    }
+    if let Some(d) = &report.gl_disagreement {
+        tell!(
+            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255), over the {} allowed (--gl-max-pixels)",
+            d.pass,
+            d.texture,
+            d.pixels,
+            d.max_difference_255,
+            d.max_pixels
+        );
+        failed = true;
     }
     if report.non_finite_pixels > 0 {
         say!("  warning: {} pixels of the composite output are NaN or Inf", report.non_finite_pixels);
@@ -167,6 +183,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         expect: args.expect.clone(),
         bless: args.bless,
         max_flip: args.max_flip,
+        gl_max_pixels: args.gl_max_pixels,
     };
     let report = match job::run_any_pack(&job) {
         Ok(r) => r,
@@ -229,6 +246,17 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
     }
     if let Some(refused) = report.gl.as_ref().and_then(|gl| gl.refused.as_ref()) {
         tell!("error: Mesa's OpenGL refuses the pack, so the frames were not compared: {refused}");
+        failed = true;
+    }
+    if let Some(d) = &report.gl_disagreement {
+        tell!(
+            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255), over the {} allowed (--gl-max-pixels)",
+            d.pass,
+            d.texture,
+            d.pixels,
+            d.max_difference_255,
+            d.max_pixels
+        );
         failed = true;
     }
     if report.non_finite_pixels > 0 {
