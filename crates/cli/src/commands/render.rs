@@ -118,17 +118,6 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     if let Some(r) = report.composite_over_passthrough {
         say!("  composite / pass-through {r:.1}x");
     }
-    if let Some(d) = &report.gl_disagreement {
-        tell!(
-            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255), over the {} allowed (--gl-max-pixels)",
-            d.pass,
-            d.texture,
-            d.pixels,
-            d.max_difference_255,
-            d.max_pixels
-        );
-        failed = true;
-    }
     if report.non_finite_pixels > 0 {
         say!("  warning: {} pixels of the composite output are NaN or Inf", report.non_finite_pixels);
     }
