@@ -107,10 +107,9 @@ vec3 withCaustics(vec3 lit, vec2 worldXZ, float visibility) {
 #endif
 }
 
-// Light lost and gained along a path through water.
-vec3 throughWater(vec3 color, float pathLength, vec3 scattered) {
+// Light lost and gained along a path through water whose transmittance is t.
+vec3 throughWater(vec3 color, vec3 t, vec3 scattered) {
 #ifdef DEPTH_FADE
-    vec3 t = transmittance(pathLength);
     return t * color + (1.0 - t) * scattered;
 #else
     return color;
@@ -157,10 +156,12 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
     float time = frameTimeCounter;
 
-    vec3 surface = refineSurface(colortex7, player0, rayDir, cameraWrap, time, true);
+    vec4 surfaceCross;
+    bool crossFound;
+    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, time, true, surfaceCross, crossFound);
     vec2 surfaceXZ = surface.xz + cameraWrap.xz;
     float diffuse;
-    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surfaceXZ, time, distance0, diffuse);
+    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surfaceXZ, time, distance0, surfaceCross, crossFound, diffuse);
     vec3 normalView = mat3(gbufferModelView) * normal;
     float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);
     vec3 scattered = scatteredColor(tint, skyLight, skyColor) * (0.65 + diffuse);
@@ -168,7 +169,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     // The opaque scene under the surface, refracted. The offset grows with the water's
     // opacity, so it vanishes where water meets a shore (C); a sample whose opaque point
     // lies in front of the surface would pull above-water objects in, so it is rejected.
-    float depth1 = texture(floorDepth, uv).r;
+    float depth1 = ownTexel(floorDepth).r;
     vec2 sceneUv = uv;
 #ifdef REFRACTION
     float opacity = 1.0 - transmittance(length(viewFromScreen(uv, depth1, projectionInverse)) - distance0).b;
@@ -184,10 +185,11 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     float pathInWater = max(distance(player1, surface), 0.0);
     bool floorVisible = depth1 < 1.0;
     vec3 below = sceneBehindOverlay(sceneUv);
+    vec3 belowTransmittance = transmittance(pathInWater);
     if (floorVisible) {
-        below = withCaustics(below, player1.xz + cameraWrap.xz, transmittance(pathInWater).b);
+        below = withCaustics(below, player1.xz + cameraWrap.xz, belowTransmittance.b);
     }
-    below = throughWater(below, pathInWater, scattered);
+    below = throughWater(below, belowTransmittance, scattered);
 
     vec3 reflected = reflect(rayDir, normal);
     vec3 reflection = skyRadiance(reflected, skyColor, fogColor) * (0.2 + 0.8 * skyLight);
@@ -216,8 +218,12 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     float waterDepth = floorVisible ? max(surface.y - player1.y, 0.0) : 1e4;
     float coastal = max(0.0, 0.8 * (1.0 - waterDepth / 1.5));
     float crest = smoothstep(0.55, 0.75, diffuse);
-    vec2 foamUv = 0.5 + 4.0 * vec2(surfaceXZ.x + normal.x, -(surfaceXZ.y + normal.z)) / WAVE_TILE;
-    foam = max(coastal, crest) * min(1.0, 32.0 / max(distance0, 1.0)) * texture(colortex7, fract(foamUv)).a;
+    float foamWeight = max(coastal, crest) * min(1.0, 32.0 / max(distance0, 1.0));
+    // Most water is neither shallow nor a high crest: it skips the pattern's lookup.
+    if (NEEDED(foamWeight > 0.0)) {
+        vec2 foamUv = 0.5 + 4.0 * vec2(surfaceXZ.x + normal.x, -(surfaceXZ.y + normal.z)) / WAVE_TILE;
+        foam = foamWeight * texture(colortex7, fract(foamUv)).a;
+    }
     color = mix(color, FOAM_COLOR * (0.2 + 0.8 * skyLight) * (0.3 + 0.7 * luminance(skyColor)), foam);
 #endif
 #ifdef SPECULAR
@@ -237,9 +243,11 @@ vec3 shadeFromBelow(vec2 uv, float depth0, float skyLight, vec3 scattered) {
     vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
     vec3 rayDir = safeNormalize(player0 - eyePosition(), vec3(0.0, 1.0, 0.0));
     vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
-    vec3 surface = refineSurface(colortex7, player0, rayDir, cameraWrap, frameTimeCounter, false);
+    vec4 surfaceCross;
+    bool crossFound;
+    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, frameTimeCounter, false, surfaceCross, crossFound);
     float diffuse;
-    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, diffuse);
+    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, surfaceCross, crossFound, diffuse);
     float cosView = clamp(dot(rayDir, normal), 0.0, 1.0);
 
     // What lies above the surface, refracted more the farther it is behind the surface.
@@ -256,7 +264,7 @@ vec3 shadeFromBelow(vec2 uv, float depth0, float skyLight, vec3 scattered) {
 #ifdef FOAM
     color = mix(color, FOAM_COLOR * 0.5 * skyLight, smoothstep(0.6, 0.8, diffuse) * 0.5);
 #endif
-    return throughWater(color, distance0, scattered);
+    return throughWater(color, transmittance(distance0), scattered);
 }
 
 // Case 2: the camera is under water and so is this pixel.
@@ -268,7 +276,7 @@ vec3 shadeUnderwater(vec2 uv, float depth0, vec3 color, bool opaque, vec3 scatte
         vec2 worldXZ = player0.xz + wrappedCamera(cameraPosition, WAVE_TILE).xz;
         color = withCaustics(color, worldXZ, transmittance(distance0).b);
     }
-    return throughWater(color, distance0, scattered);
+    return throughWater(color, transmittance(distance0), scattered);
 }
 
 #ifdef DISTANT_HORIZONS

@@ -78,7 +78,12 @@ vec3 skyRadiance(vec3 dir, vec3 skyColor, vec3 fogColor) {
 // height.
 vec3 specularLight(vec3 reflected, vec3 lightDir, float glint, vec3 skyColor, float skyLight) {
     float visibility = smoothstep(-0.05, 0.15, lightDir.y) * skyLight * glint;
-    float sun = pow(max(dot(reflected, lightDir), 0.0), 256.0) * 8.0;
-    float sky = pow(max(reflected.y, 0.0), 4.0) * 0.15;
+    // Powers by squaring: pow() is exp2(log2()) on a CPU renderer.
+    float sun = max(dot(reflected, lightDir), 0.0);
+    sun *= sun; sun *= sun; sun *= sun; sun *= sun;
+    sun *= sun; sun *= sun; sun *= sun; sun *= sun;
+    sun *= 8.0;
+    float up = max(reflected.y, 0.0);
+    float sky = up * up * up * up * 0.15;
     return vec3(1.0, 0.95, 0.85) * sun * visibility + skyColor * sky * skyLight;
 }

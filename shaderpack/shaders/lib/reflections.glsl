@@ -37,7 +37,7 @@ vec4 traceReflection(sampler2D sceneColor, sampler2D opaqueDepth, vec3 start, ve
             vec3 hit = screenFromView(start + dir * hi, projection);
             vec2 ndc = clamp(hit.xy, 0.0, 1.0) * 2.0 - 1.0;
             // Fade towards the screen border, where the reflected scene ends.
-            float border = clamp(1.0 - pow(0.01 + dot(ndc, ndc), 0.25), 0.0, 1.0);
+            float border = clamp(1.0 - sqrt(sqrt(0.01 + dot(ndc, ndc))), 0.0, 1.0);
             return vec4(texture(sceneColor, clamp(hit.xy, 0.0, 1.0)).rgb, border);
         }
         previous = travelled;

@@ -25,20 +25,22 @@ const float WAVE_MAX_HEIGHT = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT
 // The height texture drifts by whole tiles per 3600 s.
 const vec2 WAVE_DRIFT = vec2(36.0, 24.0) / 3600.0;
 
-// Height texture (R channel of the water texture) at a wrapped world position, in [0, 1].
-float heightTexel(sampler2D waterTexture, vec2 worldXZ, float time, float scale) {
-    vec2 uv = 0.5 + scale * vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
-    return texture(waterTexture, fract(uv)).r;
-}
-
 float analyticWave(vec2 worldXZ, float time) {
     float phase = WAVE_SPEED * time + dot(WAVE_VECTOR, worldXZ);
     return sin(phase - 0.5 * cos(phase));
 }
 
-// Height of the water surface above its flat plane, in blocks.
-float waveHeight(sampler2D waterTexture, vec2 worldXZ, float time) {
-    float noise = heightTexel(waterTexture, worldXZ, time, 1.0) * 2.0 - 1.0;
+// The first octave's height cross texel at a wrapped world position (see waveNormal). Its B is
+// the height texture's R byte for byte, so the surface search reads the height from it, and
+// the lookup where the search stops is the normal's first one.
+vec4 heightCrossTexel(sampler2D heightCross1, vec2 worldXZ, float time) {
+    vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
+    return texture(heightCross1, fract(uv));
+}
+
+// Height of the water surface above its flat plane, in blocks, given the height texture there.
+float waveHeight(float heightTexture, vec2 worldXZ, float time) {
+    float noise = heightTexture * 2.0 - 1.0;
     return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
 }
 
@@ -53,18 +55,27 @@ const float SURFACE_TOLERANCE = 0.0005;
 // (at first: a flat surface) meets the surface, or the bracket's middle where that falls
 // outside. A smooth surface is met in 3 or 4 lookups where halving steps took 8 for less.
 // `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
-vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove) {
+// When the search stops on the surface, `surfaceCross` is the height cross texel of the point
+// returned and `crossFound` is true.
+vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove,
+                   out vec4 surfaceCross, out bool crossFound) {
     float planeY = playerHit.y;
     float near = -20.0 * WAVE_MAX_HEIGHT;
     float far = 20.0 * WAVE_MAX_HEIGHT;
     float t = 0.0;
     float previousT = 0.0;
     float previousGap = 0.0;
+    surfaceCross = vec4(0.0);
+    crossFound = false;
     for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
         vec3 p = playerHit + rayDir * t;
-        float gap = p.y - planeY - waveHeight(waterTexture, p.xz + cameraWrap.xz, time);
+        vec2 worldXZ = p.xz + cameraWrap.xz;
+        vec4 crossTexel = heightCrossTexel(heightCross1, worldXZ, time);
+        float gap = p.y - planeY - waveHeight(crossTexel.b, worldXZ, time);
         // On the surface to within SURFACE_TOLERANCE: further steps cannot show.
         if (!NEEDED(abs(gap) >= SURFACE_TOLERANCE)) {
+            surfaceCross = crossTexel;
+            crossFound = true;
             break;
         }
         if ((gap > 0.0) == cameraAbove) {
@@ -97,7 +108,9 @@ vec3 refineSurface(sampler2D waterTexture, vec3 playerHit, vec3 rayDir, vec3 cam
 // octave where the height itself would take four: per texel they hold the height's
 // differences across the cross along u and v and the sum of its four ends, and bilinear
 // filtering is linear, so a lookup of those is the difference (or sum) of the four lookups.
-vec3 waveNormal(sampler2D waterTexture, sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance, out float diffuse) {
+// `surfaceCross` is the first octave's texel when `crossFound` (from refineSurface).
+vec3 waveNormal(sampler2D waterTexture, sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance,
+                vec4 surfaceCross, bool crossFound, out float diffuse) {
     float flatten = 1.0 + 0.05 * distance;
     vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
 #if NORMAL_MODE == 0
@@ -112,7 +125,10 @@ vec3 waveNormal(sampler2D waterTexture, sampler2D heightCross1, sampler2D height
     // The cross textures store differences and the neighbours' excess over the height biased
     // by 128/255. z runs along -v, so the difference along z is the one along v negated.
     const float BIAS = 128.0 / 255.0;
-    vec4 cross1 = texture(heightCross1, fract(uv));
+    vec4 cross1 = surfaceCross;
+    if (!crossFound) {
+        cross1 = texture(heightCross1, fract(uv));
+    }
     vec2 difference = vec2(cross1.r - BIAS, BIAS - cross1.g);
     float heightSum = 4.0 * cross1.b + cross1.a - BIAS;
 #if NORMAL_OCTAVES >= 2

@@ -150,6 +150,11 @@ mod tests {
                 for (e, l) in expected.iter().zip(looked_up) {
                     assert!((e - l).abs() < 1e-12, "octave {octave} at {world_xz}, time {time}: {expected:?} vs {looked_up:?}");
                 }
+                // The surface search reads the height from the first octave's B (lib/waves.glsl).
+                if octave == 0 {
+                    let height = height_texel(&water, world_xz, time, 1.0);
+                    assert!((texel.z - height).abs() < 1e-12, "B is not the height at {world_xz}, time {time}: {} vs {height}", texel.z);
+                }
             }
         }
     }
