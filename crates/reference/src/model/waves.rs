@@ -33,15 +33,27 @@ pub fn wave_height(water: &Texture, world_xz: DVec2, time: f64) -> f64 {
     WAVE_AMPLITUDE_ANALYTIC * (analytic_wave(world_xz, time) + WAVE_NOISE_WEIGHT * noise)
 }
 
-/// `refineSurface` (A1): the secant search along the ray from the flat hit, kept inside the
+/// `waveGradient`: the gradient of the wave height, the analytic wave's exactly, the height
+/// texture's as its difference across the first octave's cross (±0.25 block), which is what one
+/// lookup of the first height cross texture gives.
+pub(crate) fn wave_gradient(water: &Texture, world_xz: DVec2, time: f64) -> DVec2 {
+    let phase = WAVE_SPEED * time + WAVE_VECTOR.dot(world_xz);
+    let analytic = (phase - 0.5 * phase.cos()).cos() * (1.0 + 0.5 * phase.sin()) * WAVE_VECTOR;
+    let [h1, h2, h3, h4] = height_cross(water, world_xz, time, 0.0, 1);
+    let difference = DVec2::new(h1 - h2, h3 - h4);
+    WAVE_AMPLITUDE_ANALYTIC * (analytic + WAVE_NOISE_WEIGHT * 2.0 * difference / 0.5)
+}
+
+/// `refineSurface` (A1): Newton's search along the ray from the flat hit, kept inside the
 /// bracket where the crossing must lie.
 pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, s: &ReferenceSettings) -> DVec3 {
     let plane_y = player_hit.y;
     let (mut near, mut far) = (-20.0 * WAVE_MAX_HEIGHT, 20.0 * WAVE_MAX_HEIGHT);
-    let (mut t, mut previous_t, mut previous_gap) = (0.0, 0.0, 0.0);
-    for i in 0..s.wave_refine_steps {
+    let mut t = 0.0;
+    for _ in 0..s.wave_refine_steps {
         let p = player_hit + ray_dir * t;
-        let gap = p.y - plane_y - wave_height(water, DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z), time);
+        let world_xz = DVec2::new(p.x, p.z) + DVec2::new(camera_wrap.x, camera_wrap.z);
+        let gap = p.y - plane_y - wave_height(water, world_xz, time);
         if gap.abs() < s.surface_tolerance {
             break;
         }
@@ -50,8 +62,7 @@ pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3,
         } else {
             far = t;
         }
-        let moved = t - previous_t;
-        let slope = if i > 0 && moved.abs() > 1e-6 { (gap - previous_gap) / moved } else { ray_dir.y };
+        let slope = ray_dir.y - wave_gradient(water, world_xz, time).dot(DVec2::new(ray_dir.x, ray_dir.z));
         let mut next = 0.5 * (near + far);
         if slope.abs() > 1e-6 {
             let crossing = t - gap / slope;
@@ -59,8 +70,6 @@ pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3,
                 next = crossing;
             }
         }
-        previous_t = t;
-        previous_gap = gap;
         t = next;
     }
     player_hit + ray_dir * t
@@ -172,9 +181,9 @@ mod tests {
         let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &pack);
         let expected = hit.y + wave_height(&water, DVec2::new(q.x, q.z), 12.5);
         assert!((q.y - expected).abs() < crate::settings::SURFACE_TOLERANCE, "{} vs {expected}", q.y);
-        // The secant meets that tolerance within MEDIUM's 4 lookups on a view ray as steep as
-        // a near pixel's, and within HIGH's 8 on one grazing at 3 degrees.
-        for (dir, steps) in [(hit.normalize(), 4), (DVec3::new(0.0, -0.05, -1.0).normalize(), 8)] {
+        // Newton's search meets that tolerance within 3 lookups on a view ray as steep as a near
+        // pixel's, and within HIGH's 8 on one grazing at 3 degrees.
+        for (dir, steps) in [(hit.normalize(), 3), (DVec3::new(0.0, -0.05, -1.0).normalize(), 8)] {
             let q = refine_surface(&water, hit, dir, DVec3::ZERO, 12.5, true, &ReferenceSettings { wave_refine_steps: steps, ..pack.clone() });
             let gap = q.y - hit.y - wave_height(&water, DVec2::new(q.x, q.z), 12.5);
             assert!(gap.abs() < crate::settings::SURFACE_TOLERANCE, "{steps} steps along {dir}: gap {gap}");
