@@ -17,6 +17,7 @@
 //! compile time to the timed pass (see that module and docs/stress.md, "Memory"). The timed
 //! image is checked against the harness frame's (`timed_image_difference`).
 
+pub mod compare;
 pub mod labels;
 pub mod metrics;
 pub mod output;

@@ -86,6 +86,11 @@ enum Command {
     /// JSON, Pareto plot, FLIP heat-maps, the truth beside the pack (docs/accuracy.md).
     #[cfg(feature = "bench")]
     Bench(commands::bench::BenchArgs),
+    /// Our pack beside released packs on the same scenes: each pack's water cost (frame with
+    /// water minus without, in one-tap pass-through units) and the pictures side by side
+    /// (docs/compare.md).
+    #[cfg(feature = "bench")]
+    Compare(commands::compare::CompareArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -136,6 +141,8 @@ fn main() -> ExitCode {
         Command::Stress(args) => commands::stress::run(&args),
         #[cfg(feature = "bench")]
         Command::Bench(args) => commands::bench::run(&args),
+        #[cfg(feature = "bench")]
+        Command::Compare(args) => commands::compare::run(&args),
     }
 }
 

@@ -30,6 +30,8 @@ fn a_command_that_cannot_run_exits_2_with_a_one_line_error() {
         (&["render", "case4_above_near", "--pack", "/nonexistent/pack", "--out", out], "/nonexistent/pack"),
         (&["stress", "--cases", "zero"], "zero"),
         (&["bench", "--nonsense"], "--nonsense"),
+        (&["compare", "--pack", "/nonexistent/pack", "--out", out], "cannot read pack /nonexistent/pack"),
+        (&["compare", "--scene", "/nonexistent/scene.toml", "--out", out], "/nonexistent/scene.toml"),
         (&["codes", "--nonsense"], "--nonsense"),
         (&["no-such-command"], "no-such-command"),
     ];

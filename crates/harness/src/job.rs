@@ -535,8 +535,8 @@ const PASSTHROUGH: &str = "pass-through composite";
 /// Timed frames per pack behind `render --specialise`.
 const SPECIALISATION_FRAMES: usize = 9;
 
-/// A scene name made safe as a file name.
-fn file_stem(name: &str) -> String {
+/// A scene or pack name made safe as a file name.
+pub fn file_stem(name: &str) -> String {
     let s: String = name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') { c } else { '_' }).collect();
     if s.is_empty() || s.starts_with('.') { format!("scene{s}") } else { s }
 }

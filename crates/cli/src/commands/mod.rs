@@ -26,6 +26,8 @@ pub const CANNOT_RUN: u8 = 2;
 
 #[cfg(feature = "bench")]
 pub mod bench;
+#[cfg(feature = "bench")]
+pub mod compare;
 pub mod build;
 pub mod configuration;
 #[cfg(feature = "render")]
