@@ -30,7 +30,7 @@ uniform sampler2D colortex3; // rain, clouds and the translucent hand: premultip
 uniform sampler2D colortex4; // water mark (r, weakened by each glass in front), the water's sky light (g) and distance (b)
 uniform sampler2D colortex5; // the water's tint (rgb)
 uniform sampler2D colortex6; // the water's plain colour (rgb), kept where glass covers the water
-uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height, slope, foam
+uniform sampler2D colortex7; // water texture (texture.composite.colortex7): height in three octaves, foam
 uniform sampler2D colortex1; // height cross textures (texture.composite.colortex1, colortex2): the normal's
 uniform sampler2D colortex2; // height samples per octave, generated from colortex7's height
 uniform sampler2D depthtex0;
@@ -161,7 +161,7 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, time, true, surfaceCross, crossFound);
     vec2 surfaceXZ = surface.xz + cameraWrap.xz;
     float diffuse;
-    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surfaceXZ, time, distance0, surfaceCross, crossFound, diffuse);
+    vec3 normal = waveNormal(colortex1, colortex2, surfaceXZ, time, distance0, surfaceCross, crossFound, diffuse);
     vec3 normalView = mat3(gbufferModelView) * normal;
     float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);
     vec3 scattered = scatteredColor(tint, skyLight, skyColor) * (0.65 + diffuse);
@@ -247,7 +247,7 @@ vec3 shadeFromBelow(vec2 uv, float depth0, float skyLight, vec3 scattered) {
     bool crossFound;
     vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, frameTimeCounter, false, surfaceCross, crossFound);
     float diffuse;
-    vec3 normal = waveNormal(colortex7, colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, surfaceCross, crossFound, diffuse);
+    vec3 normal = waveNormal(colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, surfaceCross, crossFound, diffuse);
     float cosView = clamp(dot(rayDir, normal), 0.0, 1.0);
 
     // What lies above the surface, refracted more the farther it is behind the surface.

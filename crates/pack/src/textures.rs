@@ -3,8 +3,9 @@
 //! One RGBA8 texture, tiling exactly: every channel is a sum of sinusoids with whole numbers
 //! of cycles across the texture.
 //! - R: wave height in [0, 1];
-//! - G, B: the height's slope along u and v (per unit of uv), mapped from
-//!   [-slope_range, slope_range] to [0, 1], so a normal costs one lookup;
+//! - G, B: the same height at twice and four times the frequency (the same sinusoids, each with
+//!   its cycles doubled or quadrupled, so each tiles too), so one lookup gives a caustic sample
+//!   of each of the three octaves;
 //! - A: foam pattern in [0, 1].
 //!
 //! Beside it, the height cross textures, one per octave of `waveNormal`'s height samples: what
@@ -33,7 +34,8 @@ pub struct WaterTexture {
     pub png: Vec<u8>,
     /// The height cross textures of `HEIGHT_CROSS_TEXTURES`, in its order.
     pub height_cross: Vec<Vec<u8>>,
-    /// Largest slope magnitude G and B can hold, a power of two.
+    /// The height's largest slope (per unit of uv, over its range) rounded up to a power of
+    /// two: `WATER_TEXTURE_SLOPE_RANGE` of lib/generated.glsl.
     pub slope_range: f64,
 }
 
@@ -94,16 +96,13 @@ pub fn water_texture() -> WaterTexture {
     let (foam_lo, foam_hi) = foams.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &f| (lo.min(f), hi.max(f)));
     let to_byte = |x: f64| (x.clamp(0.0, 1.0) * 255.0).round() as u8;
     let mut rgba = Vec::with_capacity(n * n * 4);
-    for ((h, du, dv), f) in heights.iter().zip(&foams) {
+    // The height at `frequency` times its own at texel k, on the same scale as R.
+    let octave = |k: usize, frequency: f64| to_byte((evaluate(&height_waves, frequency * texel(k % n), frequency * texel(k / n)).0 - lo) * scale);
+    for (k, (h, f)) in heights.iter().zip(&foams).enumerate() {
         let foam = (f - foam_lo) / (foam_hi - foam_lo);
         // Foam is patchy: only the upper part of the pattern shows.
         let foam = ((foam - 0.45) / 0.3).clamp(0.0, 1.0);
-        rgba.extend_from_slice(&[
-            to_byte((h - lo) * scale),
-            to_byte(0.5 + du * scale / (2.0 * slope_range)),
-            to_byte(0.5 + dv * scale / (2.0 * slope_range)),
-            to_byte(foam * foam * (3.0 - 2.0 * foam)),
-        ]);
+        rgba.extend_from_slice(&[to_byte((h.0 - lo) * scale), octave(k, 2.0), octave(k, 4.0), to_byte(foam * foam * (3.0 - 2.0 * foam))]);
     }
     let heights: Vec<u8> = rgba.chunks_exact(4).map(|texel| texel[0]).collect();
     let height_cross = HEIGHT_CROSS_TEXTURES.iter().map(|&(_, _, k)| encode_png(height_cross(&heights, k))).collect();
@@ -163,21 +162,23 @@ mod tests {
         assert!(a.slope_range >= 1.0 && a.slope_range.log2().fract() == 0.0);
     }
 
+    /// G and B are the height at twice and four times its frequency: G at a texel is close to
+    /// the mean of R's 2x2 texels around twice its coordinates (texel centres (i + 0.5) / SIZE go
+    /// to (2i + 1) / SIZE, between texels 2i and 2i + 1), and B to G's likewise.
     #[test]
-    fn slope_channels_match_the_height_gradient() {
+    fn green_and_blue_are_the_heights_octaves() {
         let t = water_texture();
         let image = image::load_from_memory(&t.png).unwrap().to_rgba8();
-        let height = |x: u32, y: u32| image.get_pixel(x % SIZE, y % SIZE)[0] as f64 / 255.0;
-        let mut agree = 0;
-        let samples = 200;
-        for k in 0..samples {
-            let (x, y) = ((k * 37) % SIZE, (k * 91) % SIZE);
-            let finite = (height(x + 1, y) - height(x + SIZE - 1, y)) * SIZE as f64 / 2.0;
-            let stored = (image.get_pixel(x, y)[1] as f64 / 255.0 - 0.5) * 2.0 * t.slope_range;
-            if (finite - stored).abs() < 0.15 * t.slope_range {
-                agree += 1;
+        let channel = |c: usize, x: u32, y: u32| image.get_pixel(x % SIZE, y % SIZE)[c] as f64;
+        for c in [1, 2] {
+            let mut worst = 0.0f64;
+            for k in 0..400u32 {
+                let (x, y) = ((k * 37) % SIZE, (k * 91) % SIZE);
+                let below = |u, v| channel(c - 1, u, v);
+                let mean = (below(2 * x, 2 * y) + below(2 * x + 1, 2 * y) + below(2 * x, 2 * y + 1) + below(2 * x + 1, 2 * y + 1)) / 4.0;
+                worst = worst.max((channel(c, x, y) - mean).abs());
             }
+            assert!(worst < 12.0, "channel {c} differs from the octave below at twice the coordinates by {worst}");
         }
-        assert!(agree > samples * 9 / 10, "{agree} of {samples} slopes agree with finite differences");
     }
 }

@@ -76,7 +76,7 @@ pub struct Inputs {
     pub depthtex0: Texture,
     /// Depth of the nearest opaque surface (r).
     pub depthtex1: Texture,
-    /// The water texture bound to colortex7 (height, slope, foam).
+    /// The water texture bound to colortex7 (the height at 1, 2 and 4 times its frequency, foam).
     pub water: Texture,
     /// OptiFine's noisetex (caustics mode 1).
     pub noise: Texture,

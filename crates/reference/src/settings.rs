@@ -3,7 +3,7 @@
 /// How the normal is found (`NORMAL_MODE`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NormalMode {
-    /// 0: one lookup of the slope stored in the water texture's G and B.
+    /// 0: one lookup: the height texture's slopes across the first height cross (no analytic wave, no second octave).
     StoredSlope,
     /// 1: height samples around the point.
     HeightSamples,
@@ -75,7 +75,8 @@ pub struct ReferenceSettings {
     pub foam: bool,
     /// `FAR_HAZE`.
     pub far_haze: bool,
-    /// `WATER_TEXTURE_SLOPE_RANGE` of lib/generated.glsl (from the texture generator).
+    /// `WATER_TEXTURE_SLOPE_RANGE` of lib/generated.glsl (from the texture generator). No part
+    /// of the model reads it since the water texture's G and B hold the height's octaves.
     pub slope_range: f64,
 }
 

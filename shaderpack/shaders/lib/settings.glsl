@@ -5,7 +5,7 @@
 #define WATER_WAVES // Move water surface vertices in a slow swell.
 #define WAVE_AMPLITUDE 0.05 // [0.02 0.05 0.08] Height of the vertex swell in blocks.
 #define WAVE_REFINE_STEPS 8 // [0 4 6 8 10 16 32] Bisection steps that find the wave surface along the view ray. 0 uses the flat surface.
-#define NORMAL_MODE 1 // [0 1] 0: one lookup of a stored normal. 1: normals from height samples.
+#define NORMAL_MODE 1 // [0 1] 0: the height texture's slopes from one lookup. 1: normals from height samples.
 #define NORMAL_OCTAVES 2 // [1 2] Height octaves for normals; the second adds detail near the camera.
 
 // Light on and through the surface

@@ -116,17 +116,21 @@ vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cam
 // differences across the cross along u and v and the sum of its four ends, and bilinear
 // filtering is linear, so a lookup of those is the difference (or sum) of the four lookups.
 // `surfaceCross` is the first octave's texel when `crossFound` (from refineSurface).
-vec3 waveNormal(sampler2D waterTexture, sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance,
+vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance,
                 vec4 surfaceCross, bool crossFound, out float diffuse) {
     float flatten = 1.0 + 0.05 * distance;
     vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
 #if NORMAL_MODE == 0
-    // One lookup: the texture stores the height's slope in G and B (8 units per full range).
-    vec4 texel = texture(waterTexture, fract(uv));
-    vec2 slope = (texel.gb * 2.0 - 1.0) * WATER_TEXTURE_SLOPE_RANGE * WAVE_NOISE_WEIGHT * WAVE_AMPLITUDE_ANALYTIC * 2.0 / WAVE_TILE;
-    diffuse = 0.35 + 0.4 * (texel.r - 0.5);
-    // The z slope is negated because the texture's v axis runs along -z.
-    return safeNormalize(vec3(-slope.x, flatten, slope.y), vec3(0.0, 1.0, 0.0));
+    // One lookup, of the first height cross texel alone (see below): the height's differences
+    // across the cross give the texture term's slope, B the height.
+    const float BIAS = 128.0 / 255.0;
+    vec4 cross1 = surfaceCross;
+    if (!crossFound) {
+        cross1 = texture(heightCross1, fract(uv));
+    }
+    vec2 slope = WAVE_AMPLITUDE_ANALYTIC * WAVE_NOISE_WEIGHT * 2.0 * vec2(cross1.r - BIAS, BIAS - cross1.g) / (2.0 * 0.25);
+    diffuse = 0.35 + 0.4 * (cross1.b - 0.5);
+    return safeNormalize(vec3(-slope.x, flatten, -slope.y), vec3(0.0, 1.0, 0.0));
 #else
     const float e = 0.25;
     // The cross textures store differences and the neighbours' excess over the height biased

@@ -99,11 +99,12 @@ pub(crate) fn wave_normal(water: &Texture, world_xz: DVec2, time: f64, distance:
     let flatten = 1.0 + 0.05 * distance;
     match s.normal_mode {
         NormalMode::StoredSlope => {
-            let uv = 0.5 + DVec2::new(world_xz.x, -world_xz.y) / WAVE_TILE + time * WAVE_DRIFT;
-            let texel = water.sample(fract2(uv));
-            let slope = (DVec2::new(texel.y, texel.z) * 2.0 - 1.0) * s.slope_range * WAVE_NOISE_WEIGHT * WAVE_AMPLITUDE_ANALYTIC * 2.0 / WAVE_TILE;
-            let diffuse = 0.35 + 0.4 * (texel.x - 0.5);
-            (safe_normalize(DVec3::new(-slope.x, flatten, slope.y), UP), diffuse)
+            // The first octave's height cross alone (one lookup of the first height cross texture).
+            const E: f64 = 0.25;
+            let [h1, h2, h3, h4] = height_cross(water, world_xz, time, distance, 1);
+            let slope = WAVE_AMPLITUDE_ANALYTIC * WAVE_NOISE_WEIGHT * 2.0 * DVec2::new(h1 - h2, h3 - h4) / (2.0 * E);
+            let diffuse = 0.35 + 0.4 * (height_texel(water, world_xz, time, 1.0) - 0.5);
+            (safe_normalize(DVec3::new(-slope.x, flatten, -slope.y), UP), diffuse)
         }
         NormalMode::HeightSamples => {
             const E: f64 = 0.25;
