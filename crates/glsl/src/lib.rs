@@ -7,6 +7,7 @@
 //! validation, errors mapped through the preprocessor's line map).
 
 pub mod code;
+pub mod compat;
 pub mod diagnostic;
 pub mod lower;
 pub mod naga_check;

@@ -94,6 +94,10 @@ pub struct PreprocessOptions {
     pub predefined: Vec<(String, String)>,
     /// How the loader reads an `#include` line's path.
     pub include_quotes: IncludeQuotes,
+    /// Take an `#extension` after code as NVIDIA's compiler takes it, instead of refusing it as
+    /// Mesa and AMD do: the renderer draws what lenient drivers run (and moves the line up for
+    /// OpenGL, `compat::for_strict_drivers`); `validate` leaves this off.
+    pub late_extensions: bool,
 }
 
 /// Whether an `#include` path must be quoted: OptiFine takes `#include "path"` only (any other
@@ -142,6 +146,7 @@ pub fn preprocess(
         include_stack: Vec::new(),
         seen_code: false,
         include_quotes: options.include_quotes,
+        late_extensions: options.late_extensions,
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
@@ -229,6 +234,7 @@ struct Preprocessor<'p> {
     /// A line of code (not a directive) has been emitted.
     seen_code: bool,
     include_quotes: IncludeQuotes,
+    late_extensions: bool,
 }
 
 /// A logical line: tokens up to a line break, continuations included.
@@ -443,7 +449,7 @@ impl Preprocessor<'_> {
                     self.out.text.push_str(&text);
                 }
                 Some("extension") => {
-                    if self.seen_code {
+                    if self.seen_code && !self.late_extensions {
                         return Err(err_at(
                             at,
                             "#extension after code: GLSL wants it before the first declaration; Mesa and AMD refuse it \

@@ -474,6 +474,23 @@ impl AnyPack {
     }
 
     /// The first program of `chain` the pack has: what the loader draws with.
+    /// Every program loaded: gbuffers, shadow, Distant Horizons' and full-screen ones.
+    pub fn programs(&self) -> impl Iterator<Item = &LoadedProgram> {
+        self.gbuffers.values().chain(self.shadow.values()).chain(self.lod.values()).chain(&self.fullscreen)
+    }
+
+    /// What the OpenGL text of each program had rewritten for a strict driver, as
+    /// `program: file:line: what`, in program order.
+    pub fn gl_rewrites(&self) -> Vec<String> {
+        self.programs()
+            .flat_map(|p| {
+                [&p.vertex, &p.fragment]
+                    .into_iter()
+                    .flat_map(move |stage| stage.gl_rewrites.iter().map(move |r| format!("{}: {r}", p.name)))
+            })
+            .collect()
+    }
+
     pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
         chain.iter().find_map(|name| self.gbuffers.get(*name))
     }

@@ -390,6 +390,9 @@ pub struct AnyPackReport {
     pub gl: Option<GlStepsComparison>,
     /// Where the renderers part beyond the job's limit, if they do.
     pub gl_disagreement: Option<Disagreement>,
+    /// With `gl`: what the text given to OpenGL had rewritten of what only lenient compilers
+    /// accept (`program: path:line: what`); wgpu draws the program as the lowering reads it.
+    pub gl_rewrites: Vec<String>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
 }
@@ -454,6 +457,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     files.push(json_name.clone());
     let report = AnyPackReport {
         gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(job.gl_max_pixels)),
+        gl_rewrites: if job.gl { pack.gl_rewrites() } else { Vec::new() },
         gl,
         expected,
         timing: frame.timing.clone(),

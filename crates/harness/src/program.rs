@@ -53,9 +53,13 @@ pub struct LoadedStage {
     pub stage: Stage,
     /// Path inside `shaders/`.
     pub path: String,
-    /// What a GL driver compiles: the shipped text, options applied, includes expanded, and
-    /// OptiFine's standard macros defined after `#version`.
+    /// What a GL driver compiles: the shipped text, options applied, includes expanded,
+    /// OptiFine's standard macros defined after `#version`, and what only lenient compilers
+    /// accept rewritten for a strict one (`gl_rewrites`).
     pub gl_text: String,
+    /// The rewrites `tidepack_glsl::compat::for_strict_drivers` made to `gl_text`, each as
+    /// `file:line: what` at the pack file and line it was made on.
+    pub gl_rewrites: Vec<String>,
     /// The lowered GLSL 450 exactly as the toolchain produces it.
     pub lowered_text: String,
     /// The text naga parsed for wgpu: the lowered text, plus (vertex stage only) a wrapper
@@ -254,7 +258,9 @@ pub(crate) fn load_program_files(
     let mut pre = Vec::new();
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
-        let mut p = preprocess::preprocess(provider, path, macros).map_err(|d| diag_error(path, &[d]))?;
+        // The renderer draws what lenient drivers run: an `#extension` after code included.
+        let lenient = preprocess::PreprocessOptions { late_extensions: true, ..macros.clone() };
+        let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
@@ -270,8 +276,17 @@ pub(crate) fn load_program_files(
         let path = stage.preprocessed.files[0].clone();
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
-        let mut gl_text = preprocess::expand_includes(provider, &path, &defines)
+        let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
+        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text);
+        let gl_rewrites = rewrites
+            .iter()
+            .map(|r| match line_map.get(r.line as usize - 1).cloned().flatten() {
+                Some(at) => format!("{at}: {}", r.what),
+                None => format!("{path}: {}", r.what),
+            })
+            .collect();
         if stage.stage == Stage::Vertex {
             gl_text = with_lod_material_attribute(name, &gl_text)?;
         }
@@ -304,6 +319,7 @@ pub(crate) fn load_program_files(
             stage: stage.stage,
             path,
             gl_text,
+            gl_rewrites,
             lowered_text,
             harness_text,
             interface: stage.lowered.interface,

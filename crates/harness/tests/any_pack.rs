@@ -260,3 +260,45 @@ fn the_unrounded_screen_is_the_loaders_screen_before_rounding() {
         }
     }
 }
+
+/// A pack that only NVIDIA's leniency compiles (tests/packs/lenient): a sampler named `texture`
+/// called through texture() under 1.30, texture() under 1.20, an `#extension` after code and a
+/// reserved word as a name. OpenGL draws it with the rewrites loaders and lenient drivers
+/// apply, each listed at its file and line, and agrees with wgpu, which draws the lowering's
+/// reading of the same text.
+#[test]
+fn what_only_lenient_drivers_compile_is_rewritten_for_opengl_listed_and_drawn_alike() {
+    let pack = pack("lenient", Loader::default());
+    assert!(pack.failed.is_empty(), "{:?}", pack.failed);
+    let rewrites = pack.gl_rewrites();
+    for expected in [
+        "gbuffers_terrain: gbuffers_terrain.fsh:4: the sampler `texture`",
+        "composite: composite.fsh:1: #version 120 raised to 130 for `texture()`",
+        "composite: composite.fsh:6: `#extension GL_EXT_gpu_shader4 : enable` after code moved up",
+        "composite: composite.fsh:8: `output`, a reserved word, renamed to `output_` (2 uses)",
+    ] {
+        assert!(rewrites.iter().any(|r| r.starts_with(expected)), "{expected:?} is not among {rewrites:#?}");
+    }
+    assert_eq!(rewrites.len(), 4, "{rewrites:#?}");
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let wgpu = wgpu_frame::render(gpu(), &pack, &scene, &mesh, ScreenOutput::AsLoader, 1).unwrap_or_else(|e| panic!("{e}"));
+    let gl = gl_frame::render(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader).unwrap_or_else(|e| panic!("Mesa refuses the rewritten text: {e}"));
+    for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
+        for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
+            assert_eq!(images::count_differing(a, b, 1.0 / 255.0 + 1e-6), 0, "{} {texture}", pass.pass);
+        }
+    }
+}
+
+/// Our own programs need none of those rewrites.
+#[test]
+fn our_pack_is_given_to_opengl_as_written() {
+    for dialect in [tidepack_pack::Dialect::Glsl120, tidepack_pack::Dialect::Glsl330] {
+        let selection = tidepack_harness::PackSelection { source_dir: root().join("shaderpack"), dialect, profile: None, options: vec![] };
+        let loaded = tidepack_harness::program::load(&selection).unwrap_or_else(|e| panic!("{e}"));
+        let rewritten = loaded.pack.gl_rewrites();
+        assert!(rewritten.is_empty(), "{rewritten:#?}");
+    }
+}

@@ -12,19 +12,10 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use tidepack_glsl::compat::{RESERVED, RESERVED_FROM_130};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
-
-/// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
-const RESERVED: [&str; 35] = [
-    "asm", "class", "union", "enum", "typedef", "template", "this", "packed", "goto", "inline", "noinline", "volatile", "public",
-    "static", "extern", "external", "interface", "long", "short", "half", "fixed", "unsigned", "input", "output", "hvec2", "hvec3",
-    "hvec4", "fvec2", "fvec3", "fvec4", "sampler3DRect", "sizeof", "cast", "namespace", "using",
-];
-
-/// Words GLSL reserves from 1.30 on.
-const RESERVED_FROM_130: [&str; 5] = ["superp", "common", "partition", "active", "filter"];
 
 /// Lookups that take a `sampler2D`, and the `sampler2DShadow` form of each.
 const COLOUR_LOOKUPS: [(&str, &str); 4] =

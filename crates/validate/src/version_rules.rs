@@ -13,6 +13,7 @@
 
 use std::collections::BTreeSet;
 
+use tidepack_glsl::compat::GLSL130_FUNCTIONS;
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
@@ -26,13 +27,6 @@ const TEXTURE_QUERY_LOD: &str = "GL_ARB_texture_query_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
-
-/// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
-/// these names.
-const GLSL130_FUNCTIONS: [&str; 12] = [
-    "texture", "textureLod", "textureProj", "textureGrad", "textureOffset", "texelFetch", "textureSize",
-    "textureLodOffset", "texelFetchOffset", "textureProjLod", "textureGather", "round",
-];
 
 /// Lod sampling that GLSL 1.20 allows only in vertex shaders.
 const VERTEX_ONLY_LOD: [&str; 7] =

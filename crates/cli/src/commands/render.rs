@@ -209,6 +209,12 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
                 say!("    {:<38} {}", step.pass, parts.join(", "));
             }
         }
+        if !report.gl_rewrites.is_empty() {
+            say!("    rewritten for a strict driver, as lenient ones accept them ({}):", report.gl_rewrites.len());
+            for line in &report.gl_rewrites {
+                say!("      {line}");
+            }
+        }
         if !gl.own_depth_mapping.is_empty() {
             say!("    drawn with OpenGL's own depth range: {}", gl.own_depth_mapping.join(", "));
         }

@@ -1,0 +1,240 @@
+//! What lenient compilers let pass and strict ones refuse, and the rewrites that let a strict
+//! compiler (Mesa) compile such a stage as the lenient one runs it.
+//!
+//! NVIDIA's compiler accepts an `#extension` after code and a reserved word used as a name;
+//! Iris renames a sampler called `texture` (which from GLSL 1.30 hides the built-in function)
+//! to `gtexture` before any driver sees it. `validate` reports every one of these as an error
+//! (they fail on Mesa, AMD, Intel and macOS); the renderer applies [`for_strict_drivers`] to the
+//! text it gives OpenGL, so that such packs still render, and lists what it rewrote.
+
+use crate::token::{Token, TokenKind, tokenize};
+
+/// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
+pub const RESERVED: [&str; 35] = [
+    "asm", "class", "union", "enum", "typedef", "template", "this", "packed", "goto", "inline", "noinline", "volatile", "public",
+    "static", "extern", "external", "interface", "long", "short", "half", "fixed", "unsigned", "input", "output", "hvec2", "hvec3",
+    "hvec4", "fvec2", "fvec3", "fvec4", "sampler3DRect", "sizeof", "cast", "namespace", "using",
+];
+
+/// Words GLSL reserves from 1.30 on.
+pub const RESERVED_FROM_130: [&str; 5] = ["superp", "common", "partition", "active", "filter"];
+
+/// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
+/// these names.
+pub const GLSL130_FUNCTIONS: [&str; 12] = [
+    "texture", "textureLod", "textureProj", "textureGrad", "textureOffset", "texelFetch", "textureSize",
+    "textureLodOffset", "texelFetchOffset", "textureProjLod", "textureGather", "round",
+];
+
+/// One rewrite, at the line of the text it was made on (before any rewrite).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rewrite {
+    pub line: u32,
+    pub what: String,
+}
+
+/// The stage's `#version` number (110 without one).
+fn version_of(tokens: &[Token]) -> u32 {
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    sig.windows(3)
+        .find(|w| w[0].is_punct("#") && w[1].is_ident("version") && w[2].kind == TokenKind::Number)
+        .and_then(|w| w[2].text.parse().ok())
+        .unwrap_or(110)
+}
+
+/// `text` with what lenient compilers accept rewritten for a strict one, and the rewrites made.
+/// `text` may still hold its conditionals (the driver evaluates them); `preprocessed` is the
+/// same stage with them evaluated, which decides what the driver would meet:
+/// - an `#extension` after code, outside any `#if`, moves up to just after `#version` (its
+///   old line is left empty, so the lines after it keep their numbers, and the ones between
+///   move down by one);
+/// - from GLSL 1.30 on, a sampler uniform named `texture` and every use of it that is not a
+///   call become `gtexture`, as Iris renames it;
+/// - a reserved word used as a name gets a `_` appended wherever it appears;
+/// - a `#version 110` or `120` stage that calls a GLSL 1.30 function (`texture()`, …) is
+///   compiled as `#version 130`, which keeps everything 1.20 has (a compatibility driver
+///   still takes `varying`, `gl_FragData` and `texture2D` there).
+pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
+    let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
+    let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
+    let mut version = version_of(&tokens);
+    let mut rewrites = Vec::new();
+    // Replacement text per token index.
+    let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
+    let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let taken = |name: &str| tokens.iter().any(|t| t.is_ident(name));
+
+    // Reserved words as names: every use, so that the declaration and the uses still agree.
+    let reserved = RESERVED.iter().chain(if version >= 130 { &RESERVED_FROM_130[..] } else { &[] });
+    for word in reserved {
+        let uses: Vec<usize> = significant.iter().copied().filter(|&i| tokens[i].is_ident(word)).collect();
+        if let (Some(&first), true) = (uses.first(), met.iter().any(|t| t.is_ident(word))) {
+            let mut new_name = format!("{word}_");
+            while taken(&new_name) {
+                new_name.push('_');
+            }
+            for &i in &uses {
+                replaced[i] = Some(new_name.clone());
+            }
+            rewrites.push(Rewrite { line: tokens[first].line, what: format!("`{word}`, a reserved word, renamed to `{new_name}` ({} uses)", uses.len()) });
+        }
+    }
+
+    if version < 130 {
+        let called = met.windows(2).find(|w| w[0].kind == TokenKind::Ident && GLSL130_FUNCTIONS.contains(&w[0].text) && w[1].is_punct("("));
+        let number = significant.windows(3).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map(|w| w[2]);
+        if let (Some(call), Some(number)) = (called, number) {
+            replaced[number] = Some("130".into());
+            rewrites.push(Rewrite {
+                line: tokens[number].line,
+                what: format!("#version {version} raised to 130 for `{}()`, a GLSL 1.30 function", call[0].text),
+            });
+            version = 130;
+        }
+    }
+
+    // A sampler called `texture` hides the built-in function from 1.30 on.
+    if version >= 130 {
+        let is_declaration = |w: [&Token; 3]| {
+            w[0].is_ident("uniform") && w[1].kind == TokenKind::Ident && w[1].text.trim_start_matches(['i', 'u']).starts_with("sampler") && w[2].is_ident("texture")
+        };
+        let met_declaration = met.windows(3).any(|w| is_declaration([w[0], w[1], w[2]]));
+        let declaration = significant.windows(3).find(|w| is_declaration([&tokens[w[0]], &tokens[w[1]], &tokens[w[2]]]));
+        if let (true, Some(w)) = (met_declaration, declaration) {
+            let mut renamed = 0;
+            for (k, &i) in significant.iter().enumerate() {
+                let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+                if tokens[i].is_ident("texture") && !called {
+                    replaced[i] = Some("gtexture".into());
+                    renamed += 1;
+                }
+            }
+            rewrites.push(Rewrite {
+                line: tokens[w[2]].line,
+                what: format!("the sampler `texture`, which hides the function texture() from GLSL 1.30 on, renamed to `gtexture` as Iris does ({renamed} uses)"),
+            });
+        }
+    }
+
+    let mut out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
+    let (moved_text, moved) = extensions_moved_up(&out);
+    if !moved.is_empty() {
+        out = moved_text;
+        rewrites.extend(moved);
+    }
+    rewrites.sort_by_key(|r| r.line);
+    (out, rewrites)
+}
+
+/// `#extension` lines after the first line of code and outside every `#if` moved to just after
+/// `#version` (or to the top without one), their old lines left empty.
+fn extensions_moved_up(text: &str) -> (String, Vec<Rewrite>) {
+    let Ok(tokens) = tokenize(text) else { return (text.to_string(), Vec::new()) };
+    // Per line: its first significant token, and whether the line holds any.
+    let mut first_on_line: Vec<Option<usize>> = vec![None; text.lines().count() + 2];
+    for (i, t) in tokens.iter().enumerate() {
+        if !t.is_trivia() {
+            let line = t.line as usize;
+            if line < first_on_line.len() && first_on_line[line].is_none() {
+                first_on_line[line] = Some(i);
+            }
+        }
+    }
+    let directive = |i: usize| {
+        tokens.iter().skip(i + 1).find(|t| t.kind != TokenKind::Whitespace).filter(|t| t.kind == TokenKind::Ident).map(|t| t.text)
+    };
+    let (mut depth, mut code_seen, mut version_line) = (0i32, false, None);
+    let mut moved_lines = Vec::new();
+    for (line, first) in first_on_line.iter().enumerate() {
+        let Some(i) = *first else { continue };
+        if !tokens[i].is_punct("#") {
+            code_seen = true;
+            continue;
+        }
+        match directive(i) {
+            Some("if" | "ifdef" | "ifndef") => depth += 1,
+            Some("endif") => depth -= 1,
+            Some("version") => version_line = Some(line),
+            Some("extension") if code_seen && depth == 0 => moved_lines.push(line),
+            _ => {}
+        }
+    }
+    if moved_lines.is_empty() {
+        return (text.to_string(), Vec::new());
+    }
+    let lines: Vec<&str> = text.split('\n').collect();
+    let mut out: Vec<String> = Vec::with_capacity(lines.len() + moved_lines.len());
+    let moved: Vec<&str> = moved_lines.iter().map(|&l| lines[l - 1].trim()).collect();
+    if version_line.is_none() {
+        out.extend(moved.iter().map(|l| l.to_string()));
+    }
+    for (k, line) in lines.iter().enumerate() {
+        let number = k + 1;
+        out.push(if moved_lines.contains(&number) { String::new() } else { line.to_string() });
+        if Some(number) == version_line {
+            out.extend(moved.iter().map(|l| l.to_string()));
+        }
+    }
+    let rewrites = moved_lines
+        .iter()
+        .zip(&moved)
+        .map(|(&line, text)| Rewrite { line: line as u32, what: format!("`{text}` after code moved up to follow #version") })
+        .collect();
+    (out.join("\n"), rewrites)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_extension_after_code_moves_up_and_one_inside_an_if_stays() {
+        let text = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nuniform float a;\n\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 3);
+        // Before any code it is where it belongs.
+        let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
+        assert_eq!(for_strict_drivers(clean, clean), (clean.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_sampler_named_texture_is_renamed_where_it_hides_the_function() {
+        let text = "#version 130\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv) + texture(texture, uv); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert!(out.contains("uniform sampler2D gtexture;"), "{out}");
+        assert!(out.contains("texture2D(gtexture, uv) + texture(gtexture, uv)"), "{out}");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 2);
+        // Under 1.20 there is no function to hide: left alone.
+        let old = "#version 120\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv); }\n";
+        assert_eq!(for_strict_drivers(old, old), (old.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_glsl_120_stage_calling_a_130_function_is_compiled_as_130() {
+        let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture(tex, uv); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, text.replace("#version 120", "#version 130"));
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].what, "#version 120 raised to 130 for `texture()`, a GLSL 1.30 function");
+        // A call the preprocessor leaves out (a branch for 1.30 and later) does not count.
+        let guarded = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n#if __VERSION__ >= 130\ngl_FragData[0] = texture(tex, uv);\n#endif\n}\n";
+        let preprocessed = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n\n\n\n}\n";
+        assert_eq!(for_strict_drivers(guarded, preprocessed), (guarded.to_string(), Vec::new()));
+        let plain = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(tex, uv); }\n";
+        assert_eq!(for_strict_drivers(plain, plain), (plain.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn reserved_words_used_as_names_get_a_suffix_everywhere() {
+        let text = "#version 330\nvec3 output;\nvoid main() { output = vec3(1.0); float filter = 2.0; output *= filter; }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, "#version 330\nvec3 output_;\nvoid main() { output_ = vec3(1.0); float filter_ = 2.0; output_ *= filter_; }\n");
+        assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [2, 3]);
+        // A taken name is not reused.
+        let (out, _) = for_strict_drivers("#version 120\nfloat input_;\nfloat input;\n", "#version 120\nfloat input_;\nfloat input;\n");
+        assert!(out.contains("float input__;"), "{out}");
+    }
+}
