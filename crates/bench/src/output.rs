@@ -394,7 +394,7 @@ fn knob_table(result: &BenchResult, knob: &str, labels: &[(&str, &str)]) -> Stri
 
 /// The header of the profile and Pareto tables (Markdown).
 const AGGREGATE_HEADER: &str = "comp/pt ± spread | composite ms | PSNR dB | mean FLIP | max abs | truth PSNR dB | truth mean FLIP | Pareto |\n\
-                                |---|---|---|---|---|---|---|---|";
+                                |---|---|---|---|---|---|---|---|---|";
 
 /// One run of the profile and Pareto tables (Markdown).
 fn aggregate_line(a: &Aggregate) -> String {
