@@ -48,6 +48,12 @@ fn a_command_that_cannot_run_exits_2_with_a_one_line_error() {
 fn findings_exit_1_and_a_clean_check_0() {
     let (code, stderr) = tidepack(&["validate", "tests/validate/planted/undeclared_identifier"]);
     assert_eq!(code, Some(1), "{stderr}");
+    // What `render` rewrites for OpenGL (NVIDIA accepts it) stays an error for validate.
+    let (code, stderr) = tidepack(&["validate", "tests/packs/lenient"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    for refused in ["#extension after code", "hidden-builtin"] {
+        assert!(stderr.contains(refused), "{refused}: {stderr}");
+    }
     let (code, stderr) = tidepack(&["validate", "tests/validate/corpus/legacy120"]);
     assert_eq!(code, Some(0), "{stderr}");
     let (code, stderr) = tidepack(&["codes"]);
