@@ -30,7 +30,7 @@ fn main() {
         scenes = ["case1_above_dry", "case2_under_down", "case3_under_up", "case4_above_near"].map(String::from).to_vec();
     }
     let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
-    let settings = tidepack_reference::harness::converged_settings();
+    let settings = tidepack_reference::ReferenceSettings::converged();
     println!("{:<24} {:<7} {:>14} {:>14} {:>14} {:>14} {:>10} {:>12} {:>14}", "scene", "profile", "PSNR dB (law)", "FLIP (law)", "PSNR dB (no)", "FLIP (no)", "pack lum", "truth lum", "truth lum (no)");
     for name in &scenes {
         let scene = Scene::load(&root.join(format!("tests/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{name}: {e}"));

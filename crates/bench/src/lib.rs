@@ -298,7 +298,7 @@ pub fn run(config: &BenchConfig) -> Result<BenchResult, String> {
     // The reference: converged settings, fed the G-buffers of the base profile's frame (every
     // profile but LOW has the same gbuffers_water options; LOW's flat surface counts as error).
     let base_pack = load_pack(&config.source_dir, &RunSpec::profile(&base), None)?;
-    let settings = tidepack_reference::harness::converged_settings();
+    let settings = tidepack_reference::ReferenceSettings::converged();
     let mut references: BTreeMap<String, ReferenceImage> = BTreeMap::new();
     for (name, scene) in &scenes {
         bar.set_message(format!("reference {name}"));

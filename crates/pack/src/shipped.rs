@@ -104,7 +104,7 @@ impl ShippedPack {
         }
         let texture_metas = binaries.keys().map(|path| (format!("{path}.mcmeta"), textures::WATER_TEXTURE_META.to_string()));
         let generated = [
-            (GENERATED_GLSL.to_string(), writers::generated_glsl(m, manifest_name, water.slope_range)),
+            (GENERATED_GLSL.to_string(), writers::generated_glsl(m, manifest_name)),
             ("shaders.properties".to_string(), writers::shaders_properties(m, options, manifest_name)),
             ("block.properties".to_string(), writers::block_properties(m, manifest_name)),
             ("lang/en_us.lang".to_string(), writers::lang(m, manifest_name)),

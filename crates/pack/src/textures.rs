@@ -34,9 +34,6 @@ pub struct WaterTexture {
     pub png: Vec<u8>,
     /// The height cross textures of `HEIGHT_CROSS_TEXTURES`, in its order.
     pub height_cross: Vec<Vec<u8>>,
-    /// The height's largest slope (per unit of uv, over its range) rounded up to a power of
-    /// two: `WATER_TEXTURE_SLOPE_RANGE` of lib/generated.glsl.
-    pub slope_range: f64,
 }
 
 /// A wave component: whole cycles along u and v, amplitude, phase.
@@ -71,13 +68,9 @@ fn waves(rng: &mut SplitMix64, count: usize, min: i64, max: i64) -> Vec<Wave> {
         .collect()
 }
 
-/// Value and gradient (d/du, d/dv) of a sum of waves at (u, v).
-fn evaluate(waves: &[Wave], u: f64, v: f64) -> (f64, f64, f64) {
-    waves.iter().fold((0.0, 0.0, 0.0), |(h, du, dv), w| {
-        let angle = TAU * (w.fu * u + w.fv * v) + w.phase;
-        let (s, c) = angle.sin_cos();
-        (h + w.amplitude * s, du + w.amplitude * TAU * w.fu * c, dv + w.amplitude * TAU * w.fv * c)
-    })
+/// Value of a sum of waves at (u, v).
+fn evaluate(waves: &[Wave], u: f64, v: f64) -> f64 {
+    waves.iter().map(|w| w.amplitude * (TAU * (w.fu * u + w.fv * v) + w.phase).sin()).sum()
 }
 
 pub fn water_texture() -> WaterTexture {
@@ -86,27 +79,24 @@ pub fn water_texture() -> WaterTexture {
     let foam_waves = waves(&mut rng, 16, 10, 28);
     let n = SIZE as usize;
     let texel = |i: usize| (i as f64 + 0.5) / SIZE as f64;
-    let heights: Vec<(f64, f64, f64)> =
-        (0..n * n).map(|k| evaluate(&height_waves, texel(k % n), texel(k / n))).collect();
-    let foams: Vec<f64> = (0..n * n).map(|k| evaluate(&foam_waves, texel(k % n), texel(k / n)).0).collect();
-    let (lo, hi) = heights.iter().fold((f64::MAX, f64::MIN), |(lo, hi), h| (lo.min(h.0), hi.max(h.0)));
+    let heights: Vec<f64> = (0..n * n).map(|k| evaluate(&height_waves, texel(k % n), texel(k / n))).collect();
+    let foams: Vec<f64> = (0..n * n).map(|k| evaluate(&foam_waves, texel(k % n), texel(k / n))).collect();
+    let (lo, hi) = heights.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &h| (lo.min(h), hi.max(h)));
     let scale = 1.0 / (hi - lo);
-    let max_slope = heights.iter().map(|h| h.1.abs().max(h.2.abs()) * scale).fold(0.0, f64::max);
-    let slope_range = max_slope.log2().ceil().exp2();
     let (foam_lo, foam_hi) = foams.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &f| (lo.min(f), hi.max(f)));
     let to_byte = |x: f64| (x.clamp(0.0, 1.0) * 255.0).round() as u8;
     let mut rgba = Vec::with_capacity(n * n * 4);
     // The height at `frequency` times its own at texel k, on the same scale as R.
-    let octave = |k: usize, frequency: f64| to_byte((evaluate(&height_waves, frequency * texel(k % n), frequency * texel(k / n)).0 - lo) * scale);
+    let octave = |k: usize, frequency: f64| to_byte((evaluate(&height_waves, frequency * texel(k % n), frequency * texel(k / n)) - lo) * scale);
     for (k, (h, f)) in heights.iter().zip(&foams).enumerate() {
         let foam = (f - foam_lo) / (foam_hi - foam_lo);
         // Foam is patchy: only the upper part of the pattern shows.
         let foam = ((foam - 0.45) / 0.3).clamp(0.0, 1.0);
-        rgba.extend_from_slice(&[to_byte((h.0 - lo) * scale), octave(k, 2.0), octave(k, 4.0), to_byte(foam * foam * (3.0 - 2.0 * foam))]);
+        rgba.extend_from_slice(&[to_byte((h - lo) * scale), octave(k, 2.0), octave(k, 4.0), to_byte(foam * foam * (3.0 - 2.0 * foam))]);
     }
     let heights: Vec<u8> = rgba.chunks_exact(4).map(|texel| texel[0]).collect();
     let height_cross = HEIGHT_CROSS_TEXTURES.iter().map(|&(_, _, k)| encode_png(height_cross(&heights, k))).collect();
-    WaterTexture { png: encode_png(rgba), height_cross, slope_range }
+    WaterTexture { png: encode_png(rgba), height_cross }
 }
 
 fn encode_png(rgba: Vec<u8>) -> Vec<u8> {
@@ -156,10 +146,9 @@ mod tests {
             let (left, right) = (image.get_pixel(0, y)[0] as i32, image.get_pixel(last, y)[0] as i32);
             assert!((left - right).abs() < 24, "row {y}: {left} vs {right}");
         }
-        // Heights span the whole range and slopes fit their range.
+        // Heights span the whole range.
         let reds: Vec<u8> = image.pixels().map(|p| p[0]).collect();
         assert_eq!((reds.iter().min(), reds.iter().max()), (Some(&0), Some(&255)));
-        assert!(a.slope_range >= 1.0 && a.slope_range.log2().fract() == 0.0);
     }
 
     /// G and B are the height at twice and four times its frequency: G at a texel is close to

@@ -57,18 +57,15 @@ pub fn block_properties(m: &Manifest, manifest_name: &str) -> String {
     out
 }
 
-/// lib/generated.glsl: the block ids of block.properties and facts about the generated water
-/// texture, for the shaders.
-pub fn generated_glsl(m: &Manifest, manifest_name: &str, slope_range: f64) -> String {
-    let mut out = generated_header("//", "block ids and water texture facts", manifest_name);
+/// lib/generated.glsl: the block ids of block.properties, for the shaders.
+pub fn generated_glsl(m: &Manifest, manifest_name: &str) -> String {
+    let mut out = generated_header("//", "block ids", manifest_name);
     out.push_str("\n\n// Block ids, the same as block.properties.\n");
     for block in &m.blocks {
         let names: Vec<&str> = block.names.iter().map(|n| n.strip_prefix("minecraft:").unwrap_or(n)).collect();
         let shown = if names.len() > 4 { format!("{} and {} more", names[..3].join(", "), names.len() - 3) } else { names.join(", ") };
         writeln!(out, "#define {} {} // {shown}", block.macro_name, block.id).unwrap();
     }
-    out.push_str("\n// The water texture's G and B channels hold slopes in [-range, range].\n");
-    writeln!(out, "const float WATER_TEXTURE_SLOPE_RANGE = {slope_range:.1};").unwrap();
     out
 }
 

@@ -14,21 +14,13 @@ use tidepack_harness::{FloatImage, Frame, LoadedPack, Scene, mesh};
 
 use crate::{Filter, Inputs, ReferenceSettings, Texture, Uniforms, Wrap};
 
-/// The pack's option values as the reference's settings, with `WATER_TEXTURE_SLOPE_RANGE` from
-/// the texture generator (as lib/generated.glsl gets it).
+/// The pack's option values as the reference's settings.
 pub fn settings_of(pack: &LoadedPack) -> Result<ReferenceSettings, String> {
-    let mut s = ReferenceSettings::from_options(|name| match pack.options.get(name)? {
+    ReferenceSettings::from_options(|name| match pack.options.get(name)? {
         OptionValue::Switch(true) => Some(None),
         OptionValue::Switch(false) => None,
         OptionValue::Value(v) => Some(Some(v.clone())),
-    })?;
-    s.slope_range = tidepack_pack::textures::water_texture().slope_range;
-    Ok(s)
-}
-
-/// Converged settings with the slope range of the generated water texture.
-pub fn converged_settings() -> ReferenceSettings {
-    ReferenceSettings { slope_range: tidepack_pack::textures::water_texture().slope_range, ..ReferenceSettings::converged() }
+    })
 }
 
 /// The filter gpu/bindings.rs binds a colour buffer's sampler with in a full-screen program: linear

@@ -75,9 +75,6 @@ pub struct ReferenceSettings {
     pub foam: bool,
     /// `FAR_HAZE`.
     pub far_haze: bool,
-    /// `WATER_TEXTURE_SLOPE_RANGE` of lib/generated.glsl (from the texture generator). No part
-    /// of the model reads it since the water texture's G and B hold the height's octaves.
-    pub slope_range: f64,
 }
 
 impl Default for ReferenceSettings {
@@ -119,7 +116,6 @@ impl ReferenceSettings {
             caustics_strength: 0.40,
             foam: true,
             far_haze: true,
-            slope_range: 8.0,
         }
     }
 
@@ -171,7 +167,6 @@ impl ReferenceSettings {
             caustics_strength: number("CAUSTICS_STRENGTH")?,
             foam: switch("FOAM"),
             far_haze: switch("FAR_HAZE"),
-            slope_range: ReferenceSettings::converged().slope_range,
         })
     }
 }

@@ -38,7 +38,7 @@ fn main() {
         _ => UniformBinding::ReadOnlyStorage,
     };
     let runner = CompositeOnly::with_binding(&gpu, &pack, 32, 18, &values, binding).expect("runner");
-    let settings = reference::converged_settings();
+    let settings = tidepack_reference::ReferenceSettings::converged();
     let textures = Textures::of(&pack).expect("textures");
     let rss = || tidepack_harness::resident_mib().unwrap_or(0.0);
     println!("mode {mode}, start RSS {:.1} MiB", rss());

@@ -59,8 +59,7 @@ pub fn frame(scene_name: &str, profile: &str) -> Frame {
     render_wgpu(gpu(), pack(profile), &scene(scene_name)).unwrap_or_else(|e| panic!("{scene_name} at {profile}: {e}"))
 }
 
-/// The pack's option values as the reference's settings (`WATER_TEXTURE_SLOPE_RANGE` from the
-/// texture generator, as lib/generated.glsl gets it).
+/// The pack's option values as the reference's settings.
 pub fn settings_of(pack: &LoadedPack) -> ReferenceSettings {
     harness::settings_of(pack).unwrap_or_else(|e| panic!("{e}"))
 }
