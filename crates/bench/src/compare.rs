@@ -103,21 +103,6 @@ fn pack_name(path: &Path) -> String {
     path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string())
 }
 
-/// The interquartile range of `values` over their median (NaN for fewer than 2 values).
-fn relative_spread(values: &[f64]) -> f64 {
-    if values.len() < 2 {
-        return f64::NAN;
-    }
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let quantile = |q: f64| {
-        let x = q * (sorted.len() - 1) as f64;
-        let (lo, hi) = (x.floor() as usize, x.ceil() as usize);
-        sorted[lo] + (sorted[hi] - sorted[lo]) * (x - lo as f64)
-    };
-    (quantile(0.75) - quantile(0.25)) / quantile(0.5).abs()
-}
-
 /// Builds our pack (GLSL 330, default profile) into `out_dir/pack` and returns its zip.
 fn build_ours(source_dir: &Path, out_dir: &Path) -> Result<PathBuf, String> {
     let options = BuildOptions {
@@ -242,7 +227,7 @@ fn measure(gpu: &Gpu, pack: &AnyPack, scene: &Scene, frames: usize, rounds: usiz
         passthrough_ms,
         frame_cost: wet_ms / passthrough_ms,
         water_cost: tidepack_harness::median(&differences) / passthrough_ms,
-        water_cost_spread: relative_spread(&differences),
+        water_cost_spread: crate::pareto::relative_spread(&differences).abs(),
         non_finite_pixels: image.non_finite(),
         picture: String::new(),
     };
@@ -352,12 +337,6 @@ fn write(config: &CompareConfig, result: &CompareResult) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn spread_is_the_interquartile_range_over_the_median() {
-        assert!(relative_spread(&[1.0]).is_nan());
-        assert!((relative_spread(&[1.0, 2.0, 3.0]) - 0.5).abs() < 1e-12);
-    }
 
     #[test]
     fn a_scene_a_pack_could_not_draw_is_grey_beside_the_others() {
