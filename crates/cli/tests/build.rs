@@ -243,8 +243,8 @@ fn mistakes_in_templates_are_reported_at_the_template_line_and_no_zip_is_written
         },
         Mutation {
             template: "lib/caustics.glsl",
-            anchor: "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);",
-            replace: ("float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);"),
+            anchor: "vec3 c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);",
+            replace: ("vec3 c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "vec3 c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);"),
             message: "error",
         },
         Mutation {
@@ -305,7 +305,7 @@ fn errors_under_non_default_options_name_the_options() {
 #[test]
 fn errors_in_included_files_name_the_including_program() {
     let (output, _work, _) = build_mutated("lib/caustics.glsl", |t| {
-        t.replacen("float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "float c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);", 1)
+        t.replacen("vec3 c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0);", "vec3 c = clamp(1.0 - abs(a + b - 1.0), 0.0, 1.0) + vec2(1.0);", 1)
     });
     let err = stderr(&output);
     assert!(!output.status.success());
