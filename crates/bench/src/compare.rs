@@ -16,6 +16,8 @@ use tidepack_loader::Configuration;
 use tidepack_pack::Dialect;
 use tidepack_pack::build::BuildOptions;
 
+use crate::metrics;
+
 /// The scenes the comparison draws by default, relative to the scenes folder, with what each
 /// shows: the shore by day and by night, under water, rain, stained glass.
 pub const DEFAULT_SCENES: [(&str, &str); 5] = [
@@ -235,24 +237,13 @@ fn measure(gpu: &Gpu, pack: &AnyPack, scene: &Scene, frames: usize, rounds: usiz
     Ok((measurement, rgb))
 }
 
-/// Gap between pictures, pixels.
-const GAP: u32 = 6;
-
 /// A scene's screens left to right at half size, in pack order; grey where a pack could not
 /// draw it.
 fn side_by_side(screens: &[Option<image::RgbImage>]) -> image::RgbImage {
-    use image::imageops::{self, FilterType};
-    let (w, h) = screens.iter().flatten().next().map_or((320, 180), |s| ((s.width() / 2).max(1), (s.height() / 2).max(1)));
-    let n = screens.len().max(1) as u32;
-    let mut canvas = image::RgbImage::from_pixel(n * w + (n - 1) * GAP, h, image::Rgb([255, 255, 255]));
-    for (i, screen) in screens.iter().enumerate() {
-        let x = i64::from(i as u32 * (w + GAP));
-        match screen {
-            Some(s) => imageops::replace(&mut canvas, &imageops::resize(s, w, h, FilterType::Triangle), x, 0),
-            None => imageops::replace(&mut canvas, &image::RgbImage::from_pixel(w, h, image::Rgb([128, 128, 128])), x, 0),
-        }
-    }
-    canvas
+    let (w, h) = screens.iter().flatten().next().map_or((640, 360), |s| (s.width(), s.height()));
+    let grey = image::RgbImage::from_pixel(w, h, image::Rgb([128, 128, 128]));
+    let halves: Vec<image::RgbImage> = screens.iter().map(|s| metrics::half_size(s.as_ref().unwrap_or(&grey))).collect();
+    metrics::panels(&halves)
 }
 
 fn cost(value: f64, spread: f64) -> String {
@@ -342,8 +333,8 @@ mod tests {
     fn a_scene_a_pack_could_not_draw_is_grey_beside_the_others() {
         let red = image::RgbImage::from_pixel(8, 4, image::Rgb([255, 0, 0]));
         let row = side_by_side(&[Some(red), None]);
-        assert_eq!((row.width(), row.height()), (2 * 4 + GAP, 2));
+        assert_eq!((row.width(), row.height()), (2 * 4 + metrics::PANEL_GAP, 2));
         assert_eq!(row.get_pixel(0, 0).0, [255, 0, 0]);
-        assert_eq!(row.get_pixel(4 + GAP, 0).0, [128, 128, 128]);
+        assert_eq!(row.get_pixel(4 + metrics::PANEL_GAP, 0).0, [128, 128, 128]);
     }
 }

@@ -86,13 +86,30 @@ pub fn write_heatmap(map: &nv_flip::FlipImageFloat, path: &std::path::Path) -> R
     heatmap_image(map)?.save(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-/// Gap between the panels of [`side_by_side`], pixels.
+/// Gap between the panels of [`panels`], pixels.
 pub const PANEL_GAP: u32 = 6;
 
+/// `images` left to right, [`PANEL_GAP`] apart, on white as tall as the tallest.
+pub fn panels(images: &[image::RgbImage]) -> image::RgbImage {
+    let width = images.iter().map(|i| i.width()).sum::<u32>() + PANEL_GAP * (images.len().max(1) as u32 - 1);
+    let height = images.iter().map(|i| i.height()).max().unwrap_or(1);
+    let mut canvas = image::RgbImage::from_pixel(width.max(1), height, image::Rgb([255, 255, 255]));
+    let mut x = 0;
+    for image in images {
+        image::imageops::replace(&mut canvas, image, i64::from(x), 0);
+        x += image.width() + PANEL_GAP;
+    }
+    canvas
+}
+
+/// `image` at half its size (at least one pixel), filtered.
+pub fn half_size(image: &image::RgbImage) -> image::RgbImage {
+    image::imageops::resize(image, (image.width() / 2).max(1), (image.height() / 2).max(1), image::imageops::FilterType::Triangle)
+}
+
 /// Where the model differs from the truth, at half size: the truth, the pack's frame, and the
-/// FLIP map between them with its legend, left to right on white.
+/// FLIP map between them with its legend, left to right.
 pub fn side_by_side(truth: &image::RgbImage, frame: &FloatImage, map: &nv_flip::FlipImageFloat) -> Result<image::RgbImage, String> {
-    use image::imageops::{self, FilterType};
     let (w, h) = (frame.width, frame.height);
     let (hw, hh) = ((w / 2).max(1), (h / 2).max(1));
     let pack = image::RgbImage::from_raw(w, h, frame.to_rgb8_top_first()).expect("three bytes a pixel");
@@ -106,12 +123,7 @@ pub fn side_by_side(truth: &image::RgbImage, frame: &FloatImage, map: &nv_flip::
         })
         .collect();
     let heat = heatmap_image(&nv_flip::FlipImageFloat::with_data(hw, hh, &half))?;
-    let width = 2 * (hw + PANEL_GAP) + heat.width();
-    let mut canvas = image::RgbImage::from_pixel(width, heat.height().max(hh), image::Rgb([255, 255, 255]));
-    imageops::replace(&mut canvas, &imageops::resize(truth, hw, hh, FilterType::Triangle), 0, 0);
-    imageops::replace(&mut canvas, &imageops::resize(&pack, hw, hh, FilterType::Triangle), i64::from(hw + PANEL_GAP), 0);
-    imageops::replace(&mut canvas, &heat, i64::from(2 * (hw + PANEL_GAP)), 0);
-    Ok(canvas)
+    Ok(panels(&[half_size(truth), half_size(&pack), heat]))
 }
 
 /// Height of the legend strip under a heat map, pixels.

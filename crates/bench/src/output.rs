@@ -563,8 +563,9 @@ pub fn markdown(result: &BenchResult, image: &str, pictures: &str) -> String {
     let _ = writeln!(s, "\n![time against error]({image})\n");
     let _ = writeln!(s, "## Against the truth\n");
     s.push_str(&truth_findings(result));
-    let _ = writeln!(s, "| scene | compared pixels | {} |", result.aggregates.iter().filter(|a| a.run.kind == "profile").map(|a| format!("{0} truth PSNR dB | {0} truth mean FLIP", a.run.name)).collect::<Vec<_>>().join(" | "));
     let profiles: Vec<&str> = result.aggregates.iter().filter(|a| a.run.kind == "profile").map(|a| a.run.name.as_str()).collect();
+    let columns: Vec<String> = profiles.iter().map(|p| format!("{p} truth PSNR dB | {p} truth mean FLIP")).collect();
+    let _ = writeln!(s, "| scene | compared pixels | {} |", columns.join(" | "));
     let _ = writeln!(s, "|---|---|{}", "---|---|".repeat(profiles.len()));
     for scene in &result.scenes {
         let pixels = result.truth_pixels.get(scene).copied().unwrap_or(0);

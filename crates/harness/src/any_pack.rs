@@ -473,7 +473,6 @@ impl AnyPack {
         })
     }
 
-    /// The first program of `chain` the pack has: what the loader draws with.
     /// Every program loaded: gbuffers, shadow, Distant Horizons' and full-screen ones.
     pub fn programs(&self) -> impl Iterator<Item = &LoadedProgram> {
         self.gbuffers.values().chain(self.shadow.values()).chain(self.lod.values()).chain(&self.fullscreen)
@@ -491,6 +490,7 @@ impl AnyPack {
             .collect()
     }
 
+    /// The first program of `chain` the pack has: what the loader draws with.
     pub fn resolve(&self, chain: &[&str]) -> Option<&LoadedProgram> {
         chain.iter().find_map(|name| self.gbuffers.get(*name))
     }
