@@ -100,13 +100,39 @@ fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
+/// Why no comparison was made. `cannot_run`: the input could not be read or no driver is
+/// there (the command line's exit 2); otherwise the run itself failed.
+#[derive(Debug)]
+pub struct CompareError {
+    pub message: String,
+    pub cannot_run: bool,
+}
+
+impl CompareError {
+    fn cannot_run(message: impl std::fmt::Display) -> CompareError {
+        CompareError { message: message.to_string(), cannot_run: true }
+    }
+}
+
+impl From<String> for CompareError {
+    fn from(message: String) -> CompareError {
+        CompareError { message, cannot_run: false }
+    }
+}
+
+impl std::fmt::Display for CompareError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
 /// A pack's name for the tables: its folder or zip name.
 fn pack_name(path: &Path) -> String {
     path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string())
 }
 
 /// Builds our pack (GLSL 330, default profile) into `out_dir/pack` and returns its zip.
-fn build_ours(source_dir: &Path, out_dir: &Path) -> Result<PathBuf, String> {
+fn build_ours(source_dir: &Path, out_dir: &Path) -> Result<PathBuf, CompareError> {
     let options = BuildOptions {
         source_dir: source_dir.to_path_buf(),
         out_dir: out_dir.join("pack"),
@@ -118,33 +144,36 @@ fn build_ours(source_dir: &Path, out_dir: &Path) -> Result<PathBuf, String> {
     let report = tidepack_pack::build::build(&options, None).map_err(|f| {
         let first = f.diagnostics.first().map_or_else(String::new, |d| format!(": {}", d.message));
         if f.usage {
-            format!("cannot read our pack's source {}{first}", source_dir.display())
+            CompareError::cannot_run(format!("cannot read our pack's source {}{first}", source_dir.display()))
         } else {
-            format!("our pack does not build ({} errors{first})", f.diagnostics.len())
+            CompareError::from(format!("our pack does not build ({} errors{first})", f.diagnostics.len()))
         }
     })?;
-    report.outcomes.into_iter().next().map(|o| o.zip).ok_or_else(|| "the build wrote no zip".to_string())
+    Ok(report.outcomes.into_iter().next().map(|o| o.zip).ok_or_else(|| "the build wrote no zip".to_string())?)
 }
 
 /// Draws every pack on every scene, writes the pictures, the JSON and the page.
-pub fn run(config: &CompareConfig) -> Result<CompareResult, String> {
+pub fn run(config: &CompareConfig) -> Result<CompareResult, CompareError> {
     // A pack that is not there is the command line's mistake, found before an hour of drawing.
     for pack in &config.packs {
-        std::fs::metadata(pack).map_err(|e| format!("cannot read pack {}: {e}", pack.display()))?;
+        std::fs::metadata(pack).map_err(|e| CompareError::cannot_run(format!("cannot read pack {}: {e}", pack.display())))?;
     }
     std::fs::create_dir_all(config.out_dir.join("screens")).map_err(|e| format!("cannot create {}: {e}", config.out_dir.display()))?;
     let scenes: Vec<(String, String, Scene)> = config
         .scenes
         .iter()
         .map(|(path, label)| {
-            let scene = Scene::load(path).map_err(err)?;
+            let scene = Scene::load(path).map_err(CompareError::cannot_run)?;
             Ok((scene.name.clone(), label.clone(), scene))
         })
-        .collect::<Result<_, String>>()?;
+        .collect::<Result<_, CompareError>>()?;
     let ours = build_ours(&config.source_dir, &config.out_dir)?;
     let packs: Vec<PathBuf> = std::iter::once(ours).chain(config.packs.iter().cloned()).collect();
     let names: Vec<String> = packs.iter().map(|p| pack_name(p)).collect();
-    let gpu = Gpu::new().map_err(err)?;
+    let gpu = Gpu::new().map_err(|e| match e {
+        tidepack_harness::HarnessError::NoAdapter(_) => CompareError::cannot_run(e),
+        e => CompareError::from(e.to_string()),
+    })?;
     let frames = config.frames.max(2);
     let rounds = config.rounds.max(1);
     let mut measurements = Vec::new();

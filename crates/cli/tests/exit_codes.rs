@@ -32,6 +32,7 @@ fn a_command_that_cannot_run_exits_2_with_a_one_line_error() {
         (&["bench", "--nonsense"], "--nonsense"),
         (&["compare", "--pack", "/nonexistent/pack", "--out", out], "cannot read pack /nonexistent/pack"),
         (&["compare", "--scene", "/nonexistent/scene.toml", "--out", out], "/nonexistent/scene.toml"),
+        (&["compare", "--scene", "README.md", "--out", out], "README.md"),
         (&["codes", "--nonsense"], "--nonsense"),
         (&["no-such-command"], "no-such-command"),
     ];

@@ -83,7 +83,7 @@ pub fn run(args: &CompareArgs) -> ExitCode {
         }
         Err(e) => {
             tell!("error: {e}");
-            if e.contains("mesa-vulkan-drivers") || e.contains("cannot read") { ExitCode::from(CANNOT_RUN) } else { ExitCode::from(FINDINGS) }
+            ExitCode::from(if e.cannot_run { CANNOT_RUN } else { FINDINGS })
         }
     }
 }
