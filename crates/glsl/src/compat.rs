@@ -26,6 +26,14 @@ pub const GLSL130_FUNCTIONS: [&str; 12] = [
     "textureLodOffset", "texelFetchOffset", "textureProjLod", "textureGather", "round",
 ];
 
+/// Lookups with an explicit level that GLSL 1.20 allows only in vertex shaders, unless
+/// `GL_ARB_shader_texture_lod` is enabled.
+pub const VERTEX_ONLY_LOD: [&str; 7] =
+    ["texture2DLod", "texture2DProjLod", "texture3DLod", "textureCubeLod", "shadow2DLod", "texture1DLod", "shadow2DProjLod"];
+
+/// The extension that brings [`VERTEX_ONLY_LOD`] to fragment shaders.
+pub const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
+
 /// One rewrite, at the line of the text it was made on (before any rewrite).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rewrite {
@@ -53,7 +61,10 @@ fn version_of(tokens: &[Token]) -> u32 {
 /// - a reserved word used as a name gets a `_` appended wherever it appears;
 /// - a `#version 110` or `120` stage that calls a GLSL 1.30 function (`texture()`, …) is
 ///   compiled as `#version 130`, which keeps everything 1.20 has (a compatibility driver
-///   still takes `varying`, `gl_FragData` and `texture2D` there).
+///   still takes `varying`, `gl_FragData` and `texture2D` there);
+/// - a stage below 1.30 that calls `texture2DLod` & co. without `GL_ARB_shader_texture_lod` gets
+///   that extension enabled after `#version` (a fragment shader needs it; elsewhere it is
+///   harmless).
 pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
@@ -116,19 +127,27 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrit
         }
     }
 
-    let mut out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
-    let (moved_text, moved) = extensions_moved_up(&out);
-    if !moved.is_empty() {
-        out = moved_text;
-        rewrites.extend(moved);
+    let mut added = Vec::new();
+    if version < 130 && !tokens.iter().any(|t| t.is_ident(TEXTURE_LOD)) {
+        let lookup = met.windows(2).find(|w| w[0].kind == TokenKind::Ident && VERTEX_ONLY_LOD.contains(&w[0].text) && w[1].is_punct("("));
+        if let Some(call) = lookup {
+            added.push(format!("#extension {TEXTURE_LOD} : enable"));
+            let line = significant.windows(2).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map_or(1, |w| tokens[w[0]].line);
+            rewrites.push(Rewrite { line, what: format!("{TEXTURE_LOD} enabled after #version for `{}()`", call[0].text) });
+        }
     }
+
+    let out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
+    let (out, moved) = extensions_after_version(&out, &added);
+    rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
 }
 
 /// `#extension` lines after the first line of code and outside every `#if` moved to just after
-/// `#version` (or to the top without one), their old lines left empty.
-fn extensions_moved_up(text: &str) -> (String, Vec<Rewrite>) {
+/// `#version` (or to the top without one), their old lines left empty, with the `added` lines
+/// after them; the rewrites are the moves.
+fn extensions_after_version(text: &str, added: &[String]) -> (String, Vec<Rewrite>) {
     let Ok(tokens) = tokenize(text) else { return (text.to_string(), Vec::new()) };
     // Per line: its first significant token, and whether the line holds any.
     let mut first_on_line: Vec<Option<usize>> = vec![None; text.lines().count() + 2];
@@ -159,20 +178,21 @@ fn extensions_moved_up(text: &str) -> (String, Vec<Rewrite>) {
             _ => {}
         }
     }
-    if moved_lines.is_empty() {
+    if moved_lines.is_empty() && added.is_empty() {
         return (text.to_string(), Vec::new());
     }
     let lines: Vec<&str> = text.split('\n').collect();
-    let mut out: Vec<String> = Vec::with_capacity(lines.len() + moved_lines.len());
     let moved: Vec<&str> = moved_lines.iter().map(|&l| lines[l - 1].trim()).collect();
+    let inserted: Vec<String> = moved.iter().map(|l| l.to_string()).chain(added.iter().cloned()).collect();
+    let mut out: Vec<String> = Vec::with_capacity(lines.len() + inserted.len());
     if version_line.is_none() {
-        out.extend(moved.iter().map(|l| l.to_string()));
+        out.extend(inserted.iter().cloned());
     }
     for (k, line) in lines.iter().enumerate() {
         let number = k + 1;
         out.push(if moved_lines.contains(&number) { String::new() } else { line.to_string() });
         if Some(number) == version_line {
-            out.extend(moved.iter().map(|l| l.to_string()));
+            out.extend(inserted.iter().cloned());
         }
     }
     let rewrites = moved_lines
@@ -225,6 +245,17 @@ mod tests {
         assert_eq!(for_strict_drivers(guarded, preprocessed), (guarded.to_string(), Vec::new()));
         let plain = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(tex, uv); }\n";
         assert_eq!(for_strict_drivers(plain, plain), (plain.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_120_stage_with_level_lookups_gets_the_extension_that_allows_them() {
+        let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2DLod(tex, uv, 0.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n"));
+        assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_ARB_shader_texture_lod enabled after #version for `texture2DLod()`".into() }]);
+        // Already enabled, or not called: left alone.
+        let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n");
+        assert_eq!(for_strict_drivers(&enabled, &enabled), (enabled.clone(), Vec::new()));
     }
 
     #[test]

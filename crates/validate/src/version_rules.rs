@@ -13,7 +13,7 @@
 
 use std::collections::BTreeSet;
 
-use tidepack_glsl::compat::GLSL130_FUNCTIONS;
+use tidepack_glsl::compat::{GLSL130_FUNCTIONS, TEXTURE_LOD, VERTEX_ONLY_LOD};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
@@ -22,15 +22,10 @@ use crate::glsl_rules::{Globals, code_tokens, place};
 use tidepack_loader::loader::Loader;
 
 const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
-const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
 const TEXTURE_QUERY_LOD: &str = "GL_ARB_texture_query_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
-
-/// Lod sampling that GLSL 1.20 allows only in vertex shaders.
-const VERTEX_ONLY_LOD: [&str; 7] =
-    ["texture2DLod", "texture2DProjLod", "texture3DLod", "textureCubeLod", "shadow2DLod", "texture1DLod", "shadow2DProjLod"];
 
 /// Functions of `GL_EXT_gpu_shader4`.
 const GPU_SHADER4_FUNCTIONS: [&str; 6] = ["texelFetch2D", "texelFetch3D", "textureSize2D", "textureSize3D", "texture2DArray", "texelFetch2DOffset"];
