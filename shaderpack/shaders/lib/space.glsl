@@ -11,13 +11,23 @@ vec3 viewFromScreen(vec2 screenUv, float depth, mat4 projectionInverse) {
     return divideByW(projectionInverse * vec4(vec3(screenUv, depth) * 2.0 - 1.0, 1.0));
 }
 
-// Screen position (uv, depth) of a view-space point; z < 0 when the point is behind the camera.
-vec3 screenFromView(vec3 viewPos, mat4 projection) {
-    vec4 clip = projection * vec4(viewPos, 1.0);
+// Screen position (uv, depth) of a clip-space point; z < 0 when the point is behind the camera.
+vec3 screenFromClip(vec4 clip) {
     if (clip.w <= 1e-5) {
         return vec3(-1.0);
     }
     return clip.xyz / clip.w * 0.5 + 0.5;
+}
+
+vec3 screenFromView(vec3 viewPos, mat4 projection) {
+    return screenFromClip(projection * vec4(viewPos, 1.0));
+}
+
+// The view-space point at window depth `depth` on the screen position of the view-space point
+// viewPos, whose clip-space position is clip (w > 0). The inverse projection is linear, so that
+// is viewPos moved along the inverse's depth column: no matrix product.
+vec3 viewAtDepth(vec3 viewPos, vec4 clip, float depth, mat4 projectionInverse) {
+    return divideByW(vec4(viewPos, 1.0) + projectionInverse[2] * ((2.0 * depth - 1.0) * clip.w - clip.z));
 }
 
 // Window depth of the point `distance` blocks from the eye along the view ray through uv.

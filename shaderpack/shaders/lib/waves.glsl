@@ -25,9 +25,21 @@ const float WAVE_MAX_HEIGHT = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT
 // The height texture drifts by whole tiles per 3600 s.
 const vec2 WAVE_DRIFT = vec2(36.0, 24.0) / 3600.0;
 
-float analyticWave(vec2 worldXZ, float time) {
-    float phase = WAVE_SPEED * time + dot(WAVE_VECTOR, worldXZ);
-    return sin(phase - 0.5 * cos(phase));
+float wavePhase(vec2 worldXZ, float time) {
+    return WAVE_SPEED * time + dot(WAVE_VECTOR, worldXZ);
+}
+
+// The analytic wave sin(θ − cos(θ)/2) at up to four phases θ given by their sines and cosines,
+// and the cosine of its argument, which its slope needs. The shift cos(θ)/2 stays within ±0.5
+// rad, where the series below are exact to float precision: a sample costs the sine and cosine
+// of θ alone, and samples at fixed offsets from one phase need no trigonometry of their own.
+vec4 analyticWave(vec4 sinPhase, vec4 cosPhase, out vec4 cosArgument) {
+    vec4 shift = 0.5 * cosPhase;
+    vec4 s2 = shift * shift;
+    vec4 sinShift = shift * (1.0 - s2 / 6.0 * (1.0 - s2 / 20.0 * (1.0 - s2 / 42.0)));
+    vec4 cosShift = 1.0 - s2 / 2.0 * (1.0 - s2 / 12.0 * (1.0 - s2 / 30.0 * (1.0 - s2 / 56.0)));
+    cosArgument = cosPhase * cosShift + sinPhase * sinShift;
+    return sinPhase * cosShift - cosPhase * sinShift;
 }
 
 // The first octave's height cross texel at a wrapped world position (see waveNormal). Its B is
@@ -38,19 +50,20 @@ vec4 heightCrossTexel(sampler2D heightCross1, vec2 worldXZ, float time) {
     return texture(heightCross1, fract(uv));
 }
 
-// Height of the water surface above its flat plane, in blocks, given the height texture there.
-float waveHeight(float heightTexture, vec2 worldXZ, float time) {
+// Height of the water surface above its flat plane, in blocks, given the height texture there
+// and the analytic wave.
+float waveHeight(float heightTexture, float analytic) {
     float noise = heightTexture * 2.0 - 1.0;
-    return WAVE_AMPLITUDE_ANALYTIC * (analyticWave(worldXZ, time) + WAVE_NOISE_WEIGHT * noise);
+    return WAVE_AMPLITUDE_ANALYTIC * (analytic + WAVE_NOISE_WEIGHT * noise);
 }
 
-// The gradient of waveHeight (blocks per block along x and z) at a wrapped world position whose
-// first height cross texel is crossTexel: the analytic wave's exactly, the height texture's as
-// its difference across the texel's cross (±0.25 block, as waveNormal takes it).
-vec2 waveGradient(vec4 crossTexel, vec2 worldXZ, float time) {
+// The gradient of waveHeight (blocks per block along x and z) where the wave's phase has sine
+// sinPhase and its argument cosine cosArgument, and the first height cross texel is crossTexel:
+// the analytic wave's exactly, the height texture's as its difference across the texel's cross
+// (±0.25 block, as waveNormal takes it).
+vec2 waveGradient(vec4 crossTexel, float sinPhase, float cosArgument) {
     const float BIAS = 128.0 / 255.0;
-    float phase = WAVE_SPEED * time + dot(WAVE_VECTOR, worldXZ);
-    vec2 analytic = cos(phase - 0.5 * cos(phase)) * (1.0 + 0.5 * sin(phase)) * WAVE_VECTOR;
+    vec2 analytic = cosArgument * (1.0 + 0.5 * sinPhase) * WAVE_VECTOR;
     vec2 difference = vec2(crossTexel.r - BIAS, BIAS - crossTexel.g);
     return WAVE_AMPLITUDE_ANALYTIC * (analytic + WAVE_NOISE_WEIGHT * 2.0 * difference / 0.5);
 }
@@ -81,7 +94,11 @@ vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cam
         vec3 p = playerHit + rayDir * t;
         vec2 worldXZ = p.xz + cameraWrap.xz;
         vec4 crossTexel = heightCrossTexel(heightCross1, worldXZ, time);
-        float gap = p.y - planeY - waveHeight(crossTexel.b, worldXZ, time);
+        float phase = wavePhase(worldXZ, time);
+        float sinPhase = sin(phase);
+        vec4 cosArgument;
+        float analytic = analyticWave(vec4(sinPhase), vec4(cos(phase)), cosArgument).x;
+        float gap = p.y - planeY - waveHeight(crossTexel.b, analytic);
         // On the surface to within SURFACE_TOLERANCE: further steps cannot show.
         if (!NEEDED(abs(gap) >= SURFACE_TOLERANCE)) {
             surfaceCross = crossTexel;
@@ -95,7 +112,7 @@ vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cam
         }
         // How the gap changes along the ray: the ray's vertical rate less the surface's rise
         // along it (Newton's step).
-        float slope = rayDir.y - dot(waveGradient(crossTexel, worldXZ, time), rayDir.xz);
+        float slope = rayDir.y - dot(waveGradient(crossTexel, sinPhase, cosArgument.x), rayDir.xz);
         float next = 0.5 * (near + far);
         if (abs(slope) > 1e-6) {
             float crossing = t - gap / slope;
@@ -155,14 +172,18 @@ vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, fl
     float travel = WAVE_SPEED * time;
     float dx = difference.x * (1.0 + 0.3 * cos(travel));
     float dz = difference.y * (1.0 + 0.3 * sin(travel));
-    float a1 = analyticWave(worldXZ + vec2(2.1, 0.0), time);
-    float a2 = analyticWave(worldXZ - vec2(2.1, 0.0), time);
-    float a3 = analyticWave(worldXZ + vec2(0.0, 2.1), time);
-    float a4 = analyticWave(worldXZ - vec2(0.0, 2.1), time);
-    diffuse = 0.35 + 0.05 * heightSum + 0.05 * (a1 + a2 + a3 + a4);
+    // The analytic wave 2.1 blocks either side in x and z: phases at fixed offsets from this
+    // point's, by the angle sum formulas.
+    const vec4 OFFSET = vec4(WAVE_VECTOR.x, -WAVE_VECTOR.x, WAVE_VECTOR.y, -WAVE_VECTOR.y) * 2.1;
+    float phase = wavePhase(worldXZ, time);
+    float sinPhase = sin(phase);
+    float cosPhase = cos(phase);
+    vec4 cosArgument;
+    vec4 a = analyticWave(sinPhase * cos(OFFSET) + cosPhase * sin(OFFSET), cosPhase * cos(OFFSET) - sinPhase * sin(OFFSET), cosArgument);
+    diffuse = 0.35 + 0.05 * heightSum + 0.05 * (a.x + a.y + a.z + a.w);
     // Height differences in blocks over the sample spacing: the normal of y = h(x, z).
-    float slopeX = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dx / (2.0 * e) + (a1 - a2) / 4.2);
-    float slopeZ = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dz / (2.0 * e) + (a3 - a4) / 4.2);
+    float slopeX = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dx / (2.0 * e) + (a.x - a.y) / 4.2);
+    float slopeZ = WAVE_AMPLITUDE_ANALYTIC * (WAVE_NOISE_WEIGHT * 2.0 * dz / (2.0 * e) + (a.z - a.w) / 4.2);
     return safeNormalize(vec3(-slopeX, flatten, -slopeZ), vec3(0.0, 1.0, 0.0));
 #endif
 }
