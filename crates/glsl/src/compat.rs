@@ -34,6 +34,19 @@ pub const VERTEX_ONLY_LOD: [&str; 7] =
 /// The extension that brings [`VERTEX_ONLY_LOD`] to fragment shaders.
 pub const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
 
+/// The extension that brings integer operations and the lookups below to GLSL 1.10 and 1.20.
+pub const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
+
+/// Functions of [`GPU_SHADER4`].
+pub const GPU_SHADER4_FUNCTIONS: [&str; 16] = [
+    "texelFetch1D", "texelFetch2D", "texelFetch3D", "texelFetch2DRect", "texelFetch2DOffset", "textureSize1D", "textureSize2D",
+    "textureSize3D", "textureSizeCube", "texture2DArray", "texture2DArrayLod", "shadow2DArray", "texture2DGrad", "texture3DGrad",
+    "texture2DOffset", "texture2DLodOffset",
+];
+
+/// Operators GLSL 1.10 and 1.20 reserve that [`GPU_SHADER4`] allows.
+pub const GPU_SHADER4_OPERATORS: [&str; 13] = ["%", "%=", "<<", ">>", "<<=", ">>=", "~", "&", "|", "^", "&=", "|=", "^="];
+
 /// One rewrite, at the line of the text it was made on (before any rewrite).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rewrite {
@@ -64,7 +77,8 @@ fn version_of(tokens: &[Token]) -> u32 {
 ///   still takes `varying`, `gl_FragData` and `texture2D` there);
 /// - a stage below 1.30 that calls `texture2DLod` & co. without `GL_ARB_shader_texture_lod` gets
 ///   that extension enabled after `#version` (a fragment shader needs it; elsewhere it is
-///   harmless).
+///   harmless), and one that calls `texelFetch2D` & co. or uses an integer operator (`%`, `<<`,
+///   …) without `GL_EXT_gpu_shader4` gets that one.
 pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
@@ -128,12 +142,16 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrit
     }
 
     let mut added = Vec::new();
-    if version < 130 && !tokens.iter().any(|t| t.is_ident(TEXTURE_LOD)) {
-        let lookup = met.windows(2).find(|w| w[0].kind == TokenKind::Ident && VERTEX_ONLY_LOD.contains(&w[0].text) && w[1].is_punct("("));
-        if let Some(call) = lookup {
-            added.push(format!("#extension {TEXTURE_LOD} : enable"));
-            let line = significant.windows(2).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map_or(1, |w| tokens[w[0]].line);
-            rewrites.push(Rewrite { line, what: format!("{TEXTURE_LOD} enabled after #version for `{}()`", call[0].text) });
+    let version_line = significant.windows(2).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map_or(1, |w| tokens[w[0]].line);
+    let call_of = |functions: &[&str]| {
+        met.windows(2).find(|w| w[0].kind == TokenKind::Ident && functions.contains(&w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text))
+    };
+    let operator = || met.iter().find(|t| t.kind == TokenKind::Punct && GPU_SHADER4_OPERATORS.contains(&t.text)).map(|t| format!("the operator `{}`", t.text));
+    let needed = [(TEXTURE_LOD, call_of(&VERTEX_ONLY_LOD)), (GPU_SHADER4, call_of(&GPU_SHADER4_FUNCTIONS).or_else(operator))];
+    for (extension, used) in needed {
+        if let (true, Some(used)) = (version < 130 && !tokens.iter().any(|t| t.is_ident(extension)), used) {
+            added.push(format!("#extension {extension} : enable"));
+            rewrites.push(Rewrite { line: version_line, what: format!("{extension} enabled after #version for {used}") });
         }
     }
 
@@ -256,6 +274,18 @@ mod tests {
         // Already enabled, or not called: left alone.
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n");
         assert_eq!(for_strict_drivers(&enabled, &enabled), (enabled.clone(), Vec::new()));
+    }
+
+    #[test]
+    fn a_120_stage_with_integer_operations_gets_gpu_shader4() {
+        let text = "#version 120\nuniform sampler2D s;\nvoid main() { gl_FragColor = texelFetch2D(s, ivec2(7 % 3, 0), 0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n"));
+        assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_EXT_gpu_shader4 enabled after #version for `texelFetch2D()`".into() }]);
+        let operator_only = "#version 120\nvoid main() { gl_FragColor = vec4(float(7 % 3)); }\n";
+        assert_eq!(for_strict_drivers(operator_only, operator_only).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for the operator `%`");
+        let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
+        assert_eq!(for_strict_drivers(&enabled, &enabled).1, []);
     }
 
     #[test]

@@ -42,6 +42,12 @@ pub struct GlFrame {
     pub steps: Vec<(String, Vec<(String, FloatImage)>)>,
     /// Programs drawn with OpenGL's depth range (see the module doc).
     pub own_depth_mapping: Vec<String>,
+    /// Per step, in plan order: wall time of its draws and copies between two `glFinish`, in
+    /// ms (compiling the programs and reading the textures back are left out).
+    pub step_ms: Vec<f64>,
+    /// Wall time of a one-tap pass-through of colortex0 into the screen, timed as the steps
+    /// are (the median of five draws).
+    pub passthrough_ms: f64,
 }
 
 /// Renders `scene` with the pack's shipped text through OpenGL.
@@ -87,6 +93,8 @@ struct GlPlanFrame<'a> {
     fbo: glow::Framebuffer,
     values: PassValues,
     own_depth_mapping: Vec<String>,
+    /// Wall time of the current step's draws and copies so far, in ms.
+    step_ms: f64,
 }
 
 fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput) -> Result<GlFrame, HarnessError> {
@@ -97,7 +105,9 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh,
         frame.clear()?;
         let quad = mesh::fullscreen_quad();
         let mut steps = Vec::new();
+        let mut step_ms = Vec::new();
         for step in &plan.steps {
+            frame.step_ms = 0.0;
             let written = match &step.work {
                 PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
                     let draw = GeometryStep { program: *program, vertices, default_blend, depth_write: *depth_write, sprites: *sprites, pass: *pass, render_stage };
@@ -120,8 +130,9 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh,
                 PlannedWork::ScreenCopy { current } => frame.screen_copy(*current)?,
             };
             steps.push((step.label.clone(), written));
+            step_ms.push(frame.step_ms);
         }
-        frame.finish(steps, &plan.current)
+        frame.finish(steps, step_ms, &plan.current)
     }
 }
 
@@ -187,6 +198,7 @@ impl<'a> GlPlanFrame<'a> {
                 fbo,
                 values,
                 own_depth_mapping: Vec::new(),
+                step_ms: 0.0,
             })
         }
     }
@@ -223,9 +235,10 @@ impl<'a> GlPlanFrame<'a> {
     }
 
     /// `from` copied into `to` (depth copies).
-    unsafe fn copy(&self, from: glow::Texture, to: glow::Texture, w: i32, h: i32) {
+    unsafe fn copy(&mut self, from: glow::Texture, to: glow::Texture, w: i32, h: i32) {
+        let gl = self.ctx.gl();
         // SAFETY: both textures are this frame's.
-        unsafe { self.ctx.gl().copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1) };
+        self.step_ms += timed(gl, || unsafe { gl.copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1) });
     }
 
     unsafe fn read_colour(&self, t: glow::Texture) -> Result<FloatImage, HarnessError> {
@@ -233,11 +246,13 @@ impl<'a> GlPlanFrame<'a> {
         unsafe { read(self.ctx.gl(), t, false, self.screen, self.w, self.h) }
     }
 
-    /// Compiles `program` with the harness's depth mapping where the outputs allow it.
+    /// Compiles `program` with the harness's depth mapping where the outputs allow it: the
+    /// vertex stage recorded by transform feedback, then a stand-in vertex stage passing its
+    /// outputs on, which cannot stand in for interface blocks (the link fails).
     fn build(&mut self, program: &LoadedProgram) -> Result<(Compiled, bool), HarnessError> {
         match compile(self.ctx, program, DepthMapping::Harness) {
             Ok(c) => Ok((c, false)),
-            Err(HarnessError::Unsupported(_)) => {
+            Err(HarnessError::Unsupported(_)) | Err(HarnessError::Gl(_)) => {
                 self.own_depth_mapping.push(program.name.clone());
                 Ok((compile(self.ctx, program, DepthMapping::OpenGl)?, true))
             }
@@ -256,7 +271,8 @@ impl<'a> GlPlanFrame<'a> {
             if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
-            let drawn = draw_program(self.ctx, self.pack, program, &compiled, pass, &values, textures, vertices);
+            let mut drawn = Ok(());
+            self.step_ms += timed(self.ctx.gl(), || drawn = draw_program(self.ctx, self.pack, program, &compiled, pass, &values, textures, vertices));
             if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }
@@ -309,7 +325,12 @@ impl<'a> GlPlanFrame<'a> {
                     };
                     self.draw(program, step.pass, step.render_stage, &textures, step.vertices)?;
                 }
-                None => draw_own_colour(self.ctx, self.pack.loader.missing_program_draws(), DepthMapping::Harness, self.scene, step.vertices)?,
+                None => {
+                    let mut drawn = Ok(());
+                    let missing = self.pack.loader.missing_program_draws();
+                    self.step_ms += timed(gl, || drawn = draw_own_colour(self.ctx, missing, DepthMapping::Harness, self.scene, step.vertices));
+                    drawn?
+                }
             }
             set_blends(gl, &drawn, &|_| Blend::Off);
             gl.depth_mask(true);
@@ -414,11 +435,20 @@ impl<'a> GlPlanFrame<'a> {
     }
 
     /// The screen read back, every object deleted, and the driver's error state checked.
-    unsafe fn finish(self, steps: Vec<(String, Vec<(String, FloatImage)>)>, current: &BTreeMap<u8, usize>) -> Result<GlFrame, HarnessError> {
+    unsafe fn finish(
+        self,
+        steps: Vec<(String, Vec<(String, FloatImage)>)>,
+        step_ms: Vec<f64>,
+        current: &BTreeMap<u8, usize>,
+    ) -> Result<GlFrame, HarnessError> {
         let gl = self.ctx.gl();
         unsafe {
             gl.finish();
             let image = self.read_colour(self.screen)?;
+            let passthrough_ms = match self.buffers.get(&0) {
+                Some((textures, _, _)) => self.time_passthrough(textures[current[&0]])?,
+                None => f64::NAN,
+            };
             let mut buffers = BTreeMap::new();
             for (b, (textures, _, _)) in &self.buffers {
                 buffers.insert(*b, self.read_colour(textures[current[b]])?);
@@ -437,7 +467,48 @@ impl<'a> GlPlanFrame<'a> {
             if error != glow::NO_ERROR {
                 return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
             }
-            Ok(GlFrame { image, buffers, depth0, depth1, steps, own_depth_mapping: self.own_depth_mapping })
+            Ok(GlFrame { image, buffers, depth0, depth1, steps, own_depth_mapping: self.own_depth_mapping, step_ms, passthrough_ms })
         }
     }
+
+    /// The one-tap pass-through of `colour` into the scratch screen, timed as a step's draws
+    /// are: the median of five draws after one that lets llvmpipe compile it.
+    unsafe fn time_passthrough(&self, colour: glow::Texture) -> Result<f64, HarnessError> {
+        const VERTEX: &str = "#version 330 core\nvoid main() {\n    vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0;\n    gl_Position = vec4(corner, 0.0, 1.0);\n}\n";
+        const FRAGMENT: &str = "#version 330 core\nuniform sampler2D colortex0;\nout vec4 color;\nvoid main() {\n    color = texelFetch(colortex0, ivec2(gl_FragCoord.xy), 0);\n}\n";
+        let program = self.ctx.compile_program(VERTEX, FRAGMENT, &[], &[("color", 0)]).map_err(|e| HarnessError::Gl(format!("the pass-through: {e}")))?;
+        let gl = self.ctx.gl();
+        // SAFETY: the program, the textures and the framebuffer are this context's.
+        let samples = unsafe {
+            let vertex_array = gl.create_vertex_array().map_err(|e| HarnessError::Gl(format!("vertex array: {e}")))?;
+            gl.bind_vertex_array(Some(vertex_array));
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            attach(gl, &[self.screen], None)?;
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::BLEND);
+            gl.use_program(Some(program.raw));
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, Some(colour));
+            let location = gl.get_uniform_location(program.raw, "colortex0");
+            gl.uniform_1_i32(location.as_ref(), 0);
+            let samples: Vec<f64> = (0..6).map(|_| timed(gl, || gl.draw_arrays(glow::TRIANGLES, 0, 3))).skip(1).collect();
+            gl.use_program(None);
+            gl.bind_vertex_array(None);
+            gl.delete_vertex_array(vertex_array);
+            samples
+        };
+        self.ctx.delete_program(program);
+        Ok(crate::images::median(&samples))
+    }
+}
+
+/// Wall time of `work` between two `glFinish`, in ms.
+fn timed(gl: &glow::Context, work: impl FnOnce()) -> f64 {
+    // SAFETY: glFinish takes no arguments; the caller holds the current context.
+    unsafe { gl.finish() };
+    let start = std::time::Instant::now();
+    work();
+    // SAFETY: as above.
+    unsafe { gl.finish() };
+    start.elapsed().as_secs_f64() * 1000.0
 }

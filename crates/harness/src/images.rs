@@ -192,3 +192,15 @@ mod tests {
         assert!(heat.chunks_exact(4).all(|p| p[3] == 255));
     }
 }
+
+/// Median of pass times (NaN for none): what every timing report of the harness quotes.
+pub fn median(samples: &[f64]) -> f64 {
+    let mut sorted = samples.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => sorted[n / 2],
+        _ => (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0,
+    }
+}

@@ -14,7 +14,7 @@ use crate::images::{self, FloatImage};
 use crate::program::{self, LoadedPack, PackSelection};
 use tidepack_scene::scene::Scene;
 use crate::{Gpu, HarnessError, Loader, gl, uniforms};
-use crate::any_pack::ScreenOutput;
+use crate::any_pack::{AnyPack, ScreenOutput};
 use tidepack_scene::mesh;
 
 /// What to render and where to put it.
@@ -178,13 +178,13 @@ pub fn specialisation_speedup(
     let (Some(general_image), Some(specialised_image)) = images else {
         return Err(HarnessError::Wgpu("no frame was rendered".into()));
     };
-    let (general_ms, specialised_ms) = (gpu::median(&general_ms), gpu::median(&specialised_ms));
+    let (general_ms, specialised_ms) = (crate::images::median(&general_ms), crate::images::median(&specialised_ms));
     Ok(SpecialisationReport {
         folded: specialised.folded_uniforms.clone(),
         frames: per_round * ROUNDS,
         general_ms,
         specialised_ms,
-        passthrough_ms: gpu::median(&passthrough_ms),
+        passthrough_ms: crate::images::median(&passthrough_ms),
         speedup: general_ms / specialised_ms,
         max_difference: images::max_channel_difference(&general_image, &specialised_image),
     })
@@ -368,6 +368,17 @@ pub struct GlStepsComparison {
     pub refused: Option<String>,
 }
 
+/// The renderer whose frame a report's screen, passes and times are.
+#[derive(Clone, Debug, Serialize)]
+pub struct PrimaryRenderer {
+    /// `wgpu`, or `OpenGL (<driver>)` where wgpu cannot draw the frame: then OpenGL draws every
+    /// step.
+    pub name: String,
+    /// Why wgpu cannot draw the frame (a pipeline it refuses, a program naga cannot translate
+    /// for it), when OpenGL drew it.
+    pub wgpu_cannot_draw: Option<String>,
+}
+
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
 #[derive(Clone, Debug, Serialize)]
 pub struct AnyPackReport {
@@ -376,6 +387,8 @@ pub struct AnyPackReport {
     pub pack: String,
     /// The folder the programs came from (`world0` or `""`).
     pub world: String,
+    /// The renderer that drew every pass below.
+    pub renderer: PrimaryRenderer,
     /// Each pass as it ran, in frame order, with its NaN and Inf counts.
     pub passes: Vec<crate::gpu::StepReport>,
     /// The frame against the one-tap pass-through composite, measured in the same run.
@@ -404,8 +417,19 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
-    let frame = gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames)?;
-    let gl = if job.gl {
+    let (frame, renderer) = match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
+        Ok(frame) => (frame, PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None }),
+        Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) => {
+            let ctx = gl::context().map_err(|_| cannot.clone())?;
+            let frame = opengl_frame(&ctx, &pack, &scene, &mesh, job.frames)
+                .map_err(|e| HarnessError::Gl(format!("{e}; and wgpu cannot draw the frame: {cannot}")))?;
+            (frame, PrimaryRenderer { name: format!("OpenGL ({})", ctx.info()), wgpu_cannot_draw: Some(cannot.to_string()) })
+        }
+        Err(e) => return Err(e),
+    };
+    let gl_primary = renderer.wgpu_cannot_draw.is_some();
+    // With OpenGL as the primary renderer there is no second frame to compare with.
+    let gl = if job.gl && !gl_primary {
         let ctx = gl::context()?;
         Some((ctx.info().to_string(), crate::gl_frame::render(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader)))
     } else {
@@ -457,7 +481,8 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     files.push(json_name.clone());
     let report = AnyPackReport {
         gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(job.gl_max_pixels)),
-        gl_rewrites: if job.gl { pack.gl_rewrites() } else { Vec::new() },
+        gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites() } else { Vec::new() },
+        renderer,
         gl,
         expected,
         timing: frame.timing.clone(),
@@ -474,6 +499,55 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let json_path = job.out_dir.join(&json_name);
     std::fs::write(&json_path, json + "\n").map_err(|e| HarnessError::Io(format!("cannot write {}: {e}", json_path.display())))?;
     Ok(report)
+}
+
+/// The frame drawn by OpenGL as the primary renderer, `frames` times: the last frame's images,
+/// each step's median wall time over the frames after the first (all of them when there is
+/// one), and the pass-through's.
+fn opengl_frame(ctx: &tidepack_gldriver::GlContext, pack: &AnyPack, scene: &Scene, mesh: &mesh::SceneMesh, frames: usize) -> Result<gpu::Frame, HarnessError> {
+    let mut rendered = Vec::new();
+    for _ in 0..frames.max(1) {
+        rendered.push(crate::gl_frame::render(ctx, pack, scene, mesh, ScreenOutput::AsLoader)?);
+    }
+    let timed = if rendered.len() > 1 { &rendered[1..] } else { &rendered[..] };
+    let last = rendered.last().expect("one frame at least");
+    let passes: Vec<StepReport> = last
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(i, (pass, images))| {
+            let samples_ms: Vec<f64> = rendered.iter().map(|f| f.step_ms[i]).collect();
+            let median_ms = crate::images::median(&timed.iter().map(|f| f.step_ms[i]).collect::<Vec<_>>());
+            StepReport {
+                pass: pass.clone(),
+                wall_ms: last.step_ms[i],
+                gpu_ms: None,
+                median_ms,
+                samples_ms,
+                non_finite: images.iter().map(|(name, image)| (name.clone(), image.non_finite())).collect(),
+                images: images.clone(),
+            }
+        })
+        .collect();
+    let frame_ms = crate::images::median(&timed.iter().map(|f| f.step_ms.iter().sum()).collect::<Vec<f64>>());
+    let passthrough_samples_ms: Vec<f64> = rendered.iter().map(|f| f.passthrough_ms).collect();
+    let timing = gpu::FrameTiming {
+        frames: rendered.len(),
+        frame_ms,
+        passthrough_ms: crate::images::median(&timed.iter().map(|f| f.passthrough_ms).collect::<Vec<_>>()),
+        passthrough_samples_ms,
+    };
+    let last = rendered.pop().expect("one frame at least");
+    Ok(gpu::Frame {
+        image: last.image,
+        buffers: last.buffers,
+        depth0: last.depth0,
+        depth1: last.depth1,
+        passes,
+        timing,
+        not_modelled: pack.not_modelled.clone(),
+        zeroed: Vec::new(),
+    })
 }
 
 /// The OpenGL frame's textures against the wgpu frame's, step by step.

@@ -21,7 +21,8 @@ pub mod program;
 pub mod samplers;
 pub mod uniforms;
 
-pub use gpu::{Frame, Gpu, StepReport, median};
+pub use gpu::{Frame, Gpu, StepReport};
+pub use images::median;
 pub use images::FloatImage;
 pub use tidepack_loader::Loader;
 pub use program::{LoadedPack, PackSelection};

@@ -302,3 +302,36 @@ fn our_pack_is_given_to_opengl_as_written() {
         assert!(rewritten.is_empty(), "{rewritten:#?}");
     }
 }
+
+/// A pack whose final passes more varyings between its stages than Vulkan on lavapipe takes
+/// (tests/packs/beyond_wgpu, 32): wgpu cannot draw the frame, so OpenGL draws it as the primary
+/// renderer, every varying arriving, and the report names the renderer, why, and its times.
+#[test]
+fn opengl_draws_the_frame_where_wgpu_cannot() {
+    let out = std::env::temp_dir().join(format!("tidepack-beyond-wgpu-{}", std::process::id()));
+    let job = tidepack_harness::job::AnyPackJob {
+        scene: root().join("tests/scenes/case4_above_near.toml"),
+        pack: root().join("tests/packs/beyond_wgpu"),
+        configuration: Configuration::default(),
+        out_dir: out.clone(),
+        buffers: false,
+        gl: true,
+        frames: 2,
+        expect: None,
+        bless: false,
+        max_flip: 0.03,
+        gl_max_pixels: tidepack_harness::job::GL_MAX_DIFFERING_PIXELS,
+    };
+    let report = tidepack_harness::job::run_any_pack(&job).unwrap_or_else(|e| panic!("{e}"));
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    let why = report.renderer.wgpu_cannot_draw.as_deref().unwrap_or_default();
+    assert!(why.contains("final") && why.contains("max_inter_stage_shader_variables"), "{why}");
+    assert!(report.failed_programs.is_empty() && report.gl.is_none(), "{:?} {:?}", report.failed_programs, report.gl);
+    assert_eq!(report.passes.last().map(|p| p.pass.as_str()), Some("final"));
+    assert!(report.timing.frame_ms > 0.0 && report.timing.passthrough_ms > 0.0, "{:?}", report.timing);
+    // The 32 varyings' red parts sum to 1: the screen is full red wherever final drew.
+    let screen = image::open(out.join("case4_above_near.png")).unwrap_or_else(|e| panic!("{e}")).to_rgba8();
+    let centre = screen.get_pixel(screen.width() / 2, screen.height() / 2);
+    assert_eq!(centre[0], 255, "{centre:?}");
+    std::fs::remove_dir_all(&out).ok();
+}

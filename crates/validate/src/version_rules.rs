@@ -13,7 +13,7 @@
 
 use std::collections::BTreeSet;
 
-use tidepack_glsl::compat::{GLSL130_FUNCTIONS, TEXTURE_LOD, VERTEX_ONLY_LOD};
+use tidepack_glsl::compat::{GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, GPU_SHADER4_OPERATORS, TEXTURE_LOD, VERTEX_ONLY_LOD};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
@@ -21,14 +21,10 @@ use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
 use crate::glsl_rules::{Globals, code_tokens, place};
 use tidepack_loader::loader::Loader;
 
-const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
 const TEXTURE_QUERY_LOD: &str = "GL_ARB_texture_query_lod";
 const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
-
-/// Functions of `GL_EXT_gpu_shader4`.
-const GPU_SHADER4_FUNCTIONS: [&str; 6] = ["texelFetch2D", "texelFetch3D", "textureSize2D", "textureSize3D", "texture2DArray", "texelFetch2DOffset"];
 
 /// Built-ins a core profile removed.
 const REMOVED_IN_CORE: [&str; 22] = [
@@ -214,7 +210,7 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
                 })
         } else {
             match t.kind {
-                TokenKind::Punct if matches!(t.text, "%" | "%=" | "<<" | ">>" | "<<=" | ">>=" | "~" | "&" | "|" | "^" | "&=" | "|=" | "^=") && !gpu4 => {
+                TokenKind::Punct if GPU_SHADER4_OPERATORS.contains(&t.text) && !gpu4 => {
                     Some(format!("operator `{}` is reserved in GLSL {number}; enable {GPU_SHADER4} or use #version 130", t.text))
                 }
                 TokenKind::Ident => match t.text {

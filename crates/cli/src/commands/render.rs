@@ -179,6 +179,9 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         Err(e) => return failure(e),
     };
     say!("Rendered {}", report.rendered.describe(&format!("{}, {}", report.pack, report.rendered.loader)));
+    if let Some(why) = &report.renderer.wgpu_cannot_draw {
+        say!("  drawn by {}, as wgpu cannot draw it: {why}", report.renderer.name);
+    }
     let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
     for p in &report.passes {
         let time = format!("{:>9.3} ms", p.median_ms);

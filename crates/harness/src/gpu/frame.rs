@@ -29,18 +29,7 @@ use super::own::{MipmapPipelines, PassthroughPipeline};
 use crate::samplers::SamplerNaming;
 use tidepack_loader::buffers::mip_levels;
 use super::readback::{read_pass_ms, read_texture};
-
-/// Median of pass times (NaN for none): what every timing report of the harness quotes.
-pub fn median(samples: &[f64]) -> f64 {
-    let mut sorted = samples.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => sorted[n / 2],
-        _ => (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0,
-    }
-}
+use crate::images::median;
 
 /// One pass of the frame as it ran.
 #[derive(Clone, Debug, serde::Serialize)]

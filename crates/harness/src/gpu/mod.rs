@@ -20,5 +20,5 @@ pub mod readback;
 
 pub use bindings::UniformBinding;
 pub use device::{Gpu, VULKAN_PACKAGE};
-pub use frame::{Frame, FrameTiming, StepReport, median, render};
+pub use frame::{Frame, FrameTiming, StepReport, render};
 pub use readback::read_texture;
