@@ -175,6 +175,18 @@ pub fn flip_heatmap_rgba8(map: &nv_flip::FlipImageFloat) -> Vec<u8> {
     map.apply_color_lut(&nv_flip::magma_lut()).to_vec().chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
 }
 
+/// Median of pass times (NaN for none): what every timing report of the harness quotes.
+pub fn median(samples: &[f64]) -> f64 {
+    let mut sorted = samples.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len();
+    match n {
+        0 => f64::NAN,
+        _ if n % 2 == 1 => sorted[n / 2],
+        _ => (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -190,17 +202,5 @@ mod tests {
         let heat = flip_heatmap_rgba8(&flip_map(&shifted(64), &base, w, h));
         assert_eq!(heat.len(), (w * h * 4) as usize);
         assert!(heat.chunks_exact(4).all(|p| p[3] == 255));
-    }
-}
-
-/// Median of pass times (NaN for none): what every timing report of the harness quotes.
-pub fn median(samples: &[f64]) -> f64 {
-    let mut sorted = samples.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len();
-    match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => sorted[n / 2],
-        _ => (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0,
     }
 }
