@@ -473,6 +473,26 @@ impl AnyPack {
         })
     }
 
+    /// Sets aside, as programs that do not load, those naga cannot read for wgpu, as loading
+    /// did before OpenGL could draw them: for a frame neither renderer can draw whole, wgpu then
+    /// draws what the loader would run without them. Whether there were any.
+    pub fn set_aside_unreadable(&mut self) -> bool {
+        let before = self.failed.len();
+        let failed = &mut self.failed;
+        let mut keep = |p: &LoadedProgram| match [&p.vertex, &p.fragment].into_iter().find_map(|s| s.naga.as_ref().err()) {
+            Some(why) => {
+                failed.push((p.name.clone(), HarnessError::Pack(why.clone()).to_string()));
+                false
+            }
+            None => true,
+        };
+        self.gbuffers.retain(|_, p| keep(p));
+        self.shadow.retain(|_, p| keep(p));
+        self.lod.retain(|_, p| keep(p));
+        self.fullscreen.retain(|p| keep(p));
+        self.failed.len() > before
+    }
+
     /// Every program loaded: gbuffers, shadow, Distant Horizons' and full-screen ones.
     pub fn programs(&self) -> impl Iterator<Item = &LoadedProgram> {
         self.gbuffers.values().chain(self.shadow.values()).chain(self.lod.values()).chain(&self.fullscreen)

@@ -414,16 +414,25 @@ pub struct AnyPackReport {
 /// written as JSON).
 pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let scene = Scene::load(&job.scene)?;
-    let pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
+    let mut pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
+    let wgpu_renderer = PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None };
     let (frame, renderer) = match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
-        Ok(frame) => (frame, PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None }),
+        Ok(frame) => (frame, wgpu_renderer),
         Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) => {
-            let ctx = gl::context().map_err(|_| cannot.clone())?;
-            let frame = opengl_frame(&ctx, &pack, &scene, &mesh, job.frames)
-                .map_err(|e| HarnessError::Gl(format!("{e}; and wgpu cannot draw the frame: {cannot}")))?;
-            (frame, PrimaryRenderer { name: format!("OpenGL ({})", ctx.info()), wgpu_cannot_draw: Some(cannot.to_string()) })
+            let by_opengl = gl::context().and_then(|ctx| Ok((opengl_frame(&ctx, &pack, &scene, &mesh, job.frames)?, ctx.info().to_string())));
+            match by_opengl {
+                Ok((frame, driver)) => (frame, PrimaryRenderer { name: format!("OpenGL ({driver})"), wgpu_cannot_draw: Some(cannot.to_string()) }),
+                // Neither draws it whole: without the programs naga cannot read (they do not
+                // load, and the report says so), wgpu may.
+                Err(refused) if pack.set_aside_unreadable() => match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
+                    Ok(frame) => (frame, wgpu_renderer),
+                    Err(e) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {e}"))),
+                },
+                Err(HarnessError::NoGlDriver(_)) => return Err(cannot),
+                Err(refused) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {cannot}"))),
+            }
         }
         Err(e) => return Err(e),
     };

@@ -66,11 +66,19 @@ pub struct LoadedStage {
     /// `main` on the last line that converts OpenGL clip space to wgpu's (see [`adapt_vertex`]).
     pub harness_text: String,
     pub interface: Interface,
-    pub module: naga::Module,
-    pub info: naga::valid::ModuleInfo,
+    /// naga's module of `harness_text`, what wgpu draws with; or why naga cannot read or
+    /// validate it, in the pack's terms (OpenGL can still draw the program).
+    pub naga: Result<naga::Module, String>,
     /// Fragment outputs declared with fewer than four channels, by location: the harness text
     /// writes them as `vec4` and the pipeline masks the channels they lack.
     pub narrow_outputs: BTreeMap<u32, u8>,
+}
+
+impl LoadedStage {
+    /// naga's module, or what wgpu cannot draw the stage for.
+    pub fn module(&self) -> Result<&naga::Module, HarnessError> {
+        self.naga.as_ref().map_err(|e| HarnessError::Unsupported(format!("{}: naga cannot read it for wgpu: {e}", self.path)))
+    }
 }
 
 #[derive(Debug)]
@@ -218,6 +226,11 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
         let failed: Vec<&str> = pack.failed.iter().map(|(_, why)| why.strip_prefix("pack: ").unwrap_or(why)).collect();
         return Err(HarnessError::Pack(failed.join("\n")));
     }
+    // Our programs must all be drawn by both renderers.
+    let unreadable: Vec<&str> = pack.programs().flat_map(|p| [&p.vertex, &p.fragment]).filter_map(|s| s.naga.as_ref().err()).map(String::as_str).collect();
+    if !unreadable.is_empty() {
+        return Err(HarnessError::Pack(unreadable.join("\n")));
+    }
     if !pack.gbuffers.contains_key("gbuffers_water") || !pack.fullscreen.iter().any(|p| p.name == "composite") {
         return Err(HarnessError::Pack("the pack has no gbuffers_water or no composite program".into()));
     }
@@ -309,8 +322,12 @@ pub(crate) fn load_program_files(
             preprocessed: stage.preprocessed.clone(),
             lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: stage.lowered.interface.clone() },
         };
-        let valid = naga_check::validate_stage(&mut frontend, &adapted, provider)
-            .map_err(|d| diag_error(&format!("{path} does not validate"), &d))?;
+        let naga = naga_check::validate_stage(&mut frontend, &adapted, provider)
+            .map(|valid| valid.module)
+            .map_err(|d| match diag_error(&format!("{path} does not validate"), &d) {
+                HarnessError::Pack(message) => message,
+                other => other.to_string(),
+            });
         if let Some(reference) = alpha_test {
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
@@ -323,8 +340,7 @@ pub(crate) fn load_program_files(
             lowered_text,
             harness_text,
             interface: stage.lowered.interface,
-            module: valid.module,
-            info: valid.info,
+            naga,
             narrow_outputs,
         });
     }

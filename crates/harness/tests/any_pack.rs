@@ -303,15 +303,13 @@ fn our_pack_is_given_to_opengl_as_written() {
     }
 }
 
-/// A pack whose final passes more varyings between its stages than Vulkan on lavapipe takes
-/// (tests/packs/beyond_wgpu, 32): wgpu cannot draw the frame, so OpenGL draws it as the primary
-/// renderer, every varying arriving, and the report names the renderer, why, and its times.
-#[test]
-fn opengl_draws_the_frame_where_wgpu_cannot() {
-    let out = std::env::temp_dir().join(format!("tidepack-beyond-wgpu-{}", std::process::id()));
+/// `render --pack` of tests/packs/`name` on case4_above_near, two frames, with `--gl`: the
+/// report and the screen.
+fn render_job(name: &str) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {
+    let out = std::env::temp_dir().join(format!("tidepack-{name}-{}", std::process::id()));
     let job = tidepack_harness::job::AnyPackJob {
         scene: root().join("tests/scenes/case4_above_near.toml"),
-        pack: root().join("tests/packs/beyond_wgpu"),
+        pack: root().join("tests/packs").join(name),
         configuration: Configuration::default(),
         out_dir: out.clone(),
         buffers: false,
@@ -322,7 +320,18 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
         max_flip: 0.03,
         gl_max_pixels: tidepack_harness::job::GL_MAX_DIFFERING_PIXELS,
     };
-    let report = tidepack_harness::job::run_any_pack(&job).unwrap_or_else(|e| panic!("{e}"));
+    let report = tidepack_harness::job::run_any_pack(&job).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let screen = image::open(out.join("case4_above_near.png")).unwrap_or_else(|e| panic!("{e}")).to_rgba8();
+    std::fs::remove_dir_all(&out).ok();
+    (report, screen)
+}
+
+/// A pack whose final passes more varyings between its stages than Vulkan on lavapipe takes
+/// (tests/packs/beyond_wgpu, 32): wgpu cannot draw the frame, so OpenGL draws it as the primary
+/// renderer, every varying arriving, and the report names the renderer, why, and its times.
+#[test]
+fn opengl_draws_the_frame_where_wgpu_cannot() {
+    let (report, screen) = render_job("beyond_wgpu");
     assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
     let why = report.renderer.wgpu_cannot_draw.as_deref().unwrap_or_default();
     assert!(why.contains("final") && why.contains("max_inter_stage_shader_variables"), "{why}");
@@ -330,8 +339,19 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
     assert_eq!(report.passes.last().map(|p| p.pass.as_str()), Some("final"));
     assert!(report.timing.frame_ms > 0.0 && report.timing.passthrough_ms > 0.0, "{:?}", report.timing);
     // The 32 varyings' red parts sum to 1: the screen is full red wherever final drew.
-    let screen = image::open(out.join("case4_above_near.png")).unwrap_or_else(|e| panic!("{e}")).to_rgba8();
     let centre = screen.get_pixel(screen.width() / 2, screen.height() / 2);
     assert_eq!(centre[0], 255, "{centre:?}");
-    std::fs::remove_dir_all(&out).ok();
+}
+
+/// A program naga refuses and OpenGL compiles (tests/packs/beyond_naga: textureLod on an
+/// unsigned-integer sampler) loads: OpenGL draws the frame, and the report gives naga's reason
+/// at the pack's file and line.
+#[test]
+fn a_program_only_opengl_reads_is_drawn_by_opengl() {
+    let (report, screen) = render_job("beyond_naga");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    let why = report.renderer.wgpu_cannot_draw.as_deref().unwrap_or_default();
+    assert!(why.contains("final.fsh:9") && why.contains("Uint"), "{why}");
+    assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 255, 0, 255]);
 }

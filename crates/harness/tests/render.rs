@@ -334,7 +334,8 @@ fn the_same_scene_twice_gives_the_same_bytes() {
 fn a_uniform_the_harness_cannot_fill_is_an_error_naming_it() {
     let mut values = tidepack_harness::uniforms::values(&scene("case4_above_near"), tidepack_harness::uniforms::Pass::Fullscreen);
     values.remove("gbufferProjectionInverse");
-    let module = &pack(Dialect::Glsl330).composite().fragment.module;
+    let pack = pack(Dialect::Glsl330);
+    let module = pack.composite().fragment.module().unwrap_or_else(|e| panic!("{e}"));
     let err = tidepack_harness::uniforms::fill_block(module, &values, "composite.fsh").err().expect("must fail");
     assert!(err.to_string().contains("gbufferProjectionInverse"), "{err}");
 }

@@ -413,7 +413,7 @@ fn binding_entries(
             tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
         };
         let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
-        if let Some(block) = fill(&stage.module, values, &stage.path)? {
+        if let Some(block) = fill(stage.module()?, values, &stage.path)? {
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{} uniforms", stage.path)),
                 contents: &block.bytes,
@@ -590,7 +590,7 @@ impl ProgramPipeline {
         });
         let (color_targets, alternates) = color_targets(gpu, pack, program, &kind, textures)?;
         let shader_module = |stage: &LoadedStage| {
-            let module = if storage { uniforms_as_storage(&stage.module) } else { stage.module.clone() };
+            let module = if storage { uniforms_as_storage(stage.module()?) } else { stage.module()?.clone() };
             without_panics(&stage.path, || {
                 gpu.checked(&format!("{} (wgpu shader module)", stage.path), || {
                     device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -654,7 +654,7 @@ impl ProgramPipeline {
     pub(crate) fn write_uniforms(&self, gpu: &Gpu, program: &LoadedProgram, values: &BTreeMap<String, Value>) -> Result<(), HarnessError> {
         for (stage, buffer) in &self.uniform_buffers {
             let stage = if *stage == tidepack_glsl::Stage::Vertex { &program.vertex } else { &program.fragment };
-            let block = uniforms::fill_block(&stage.module, values, &stage.path)?
+            let block = uniforms::fill_block(stage.module()?, values, &stage.path)?
                 .ok_or_else(|| HarnessError::Uniform(format!("{}: the uniform block is gone", stage.path)))?;
             gpu.queue.write_buffer(buffer, 0, &block.bytes);
         }
@@ -799,7 +799,7 @@ fn vertex_attributes(stage: &LoadedStage) -> VertexInputs {
         if let Some((format, offset)) = mesh::attribute_source(name) {
             known.push(wgpu::VertexAttribute { format: vertex_format(format), offset, shader_location: *location });
         } else {
-            let format = match input_scalar_kind(&stage.module, *location) {
+            let format = match stage.module().ok().and_then(|module| input_scalar_kind(module, *location)) {
                 Some(naga::ScalarKind::Sint) => wgpu::VertexFormat::Sint32x4,
                 Some(naga::ScalarKind::Uint) => wgpu::VertexFormat::Uint32x4,
                 _ => wgpu::VertexFormat::Float32x4,
@@ -830,7 +830,7 @@ fn stage_entries(
     gbuffers: bool,
     textures: &BindableTextures,
 ) -> Result<Vec<(u32, u32, Entry)>, HarnessError> {
-    let module = &stage.module;
+    let module = stage.module()?;
     let mut entries = Vec::new();
     // Any pack's own buffer blocks read zero: nothing the harness runs writes them.
     {
