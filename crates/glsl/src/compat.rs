@@ -44,6 +44,10 @@ pub const GPU_SHADER4_FUNCTIONS: [&str; 16] = [
     "texture2DOffset", "texture2DLodOffset",
 ];
 
+/// Interpolation qualifiers and integer types GLSL 1.10 and 1.20 lack that [`GPU_SHADER4`] brings.
+pub const GPU_SHADER4_QUALIFIERS: [&str; 2] = ["flat", "noperspective"];
+pub const GPU_SHADER4_TYPES: [&str; 6] = ["uint", "uvec2", "uvec3", "uvec4", "usampler2D", "isampler2D"];
+
 /// Operators GLSL 1.10 and 1.20 reserve that [`GPU_SHADER4`] allows.
 pub const GPU_SHADER4_OPERATORS: [&str; 13] = ["%", "%=", "<<", ">>", "<<=", ">>=", "~", "&", "|", "^", "&=", "|=", "^="];
 
@@ -77,8 +81,8 @@ fn version_of(tokens: &[Token]) -> u32 {
 ///   still takes `varying`, `gl_FragData` and `texture2D` there);
 /// - a stage below 1.30 that calls `texture2DLod` & co. without `GL_ARB_shader_texture_lod` gets
 ///   that extension enabled after `#version` (a fragment shader needs it; elsewhere it is
-///   harmless), and one that calls `texelFetch2D` & co. or uses an integer operator (`%`, `<<`,
-///   …) without `GL_EXT_gpu_shader4` gets that one.
+///   harmless), and one that calls `texelFetch2D` & co., uses an integer operator (`%`, `<<`,
+///   …) or type, or `flat` without `GL_EXT_gpu_shader4` gets that one.
 pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
@@ -146,7 +150,14 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrit
     let call_of = |functions: &[&str]| {
         met.windows(2).find(|w| w[0].kind == TokenKind::Ident && functions.contains(&w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text))
     };
-    let operator = || met.iter().find(|t| t.kind == TokenKind::Punct && GPU_SHADER4_OPERATORS.contains(&t.text)).map(|t| format!("the operator `{}`", t.text));
+    let operator = || {
+        met.iter()
+            .find(|t| {
+                (t.kind == TokenKind::Punct && GPU_SHADER4_OPERATORS.contains(&t.text))
+                    || (t.kind == TokenKind::Ident && (GPU_SHADER4_QUALIFIERS.contains(&t.text) || GPU_SHADER4_TYPES.contains(&t.text)))
+            })
+            .map(|t| format!("`{}`", t.text))
+    };
     let needed = [(TEXTURE_LOD, call_of(&VERTEX_ONLY_LOD)), (GPU_SHADER4, call_of(&GPU_SHADER4_FUNCTIONS).or_else(operator))];
     for (extension, used) in needed {
         if let (true, Some(used)) = (version < 130 && !tokens.iter().any(|t| t.is_ident(extension)), used) {
@@ -283,7 +294,9 @@ mod tests {
         assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_EXT_gpu_shader4 enabled after #version for `texelFetch2D()`".into() }]);
         let operator_only = "#version 120\nvoid main() { gl_FragColor = vec4(float(7 % 3)); }\n";
-        assert_eq!(for_strict_drivers(operator_only, operator_only).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for the operator `%`");
+        assert_eq!(for_strict_drivers(operator_only, operator_only).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `%`");
+        let flat = "#version 120\nflat varying float id;\nvoid main() {}\n";
+        assert_eq!(for_strict_drivers(flat, flat).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
         assert_eq!(for_strict_drivers(&enabled, &enabled).1, []);
     }

@@ -1,7 +1,8 @@
 //! Renders one scene with every pack of a folder through `render --pack --gl` and prints, per
-//! pack, whether it rendered, how far Mesa's OpenGL screen is from wgpu's, the frame's cost
-//! against a one-tap pass-through, how many things it uses that the harness does not imitate,
-//! and why a pack failed. tools/render-corpus runs it.
+//! pack, whether it rendered as `render` would exit 0, the renderer that drew it (wgpu, or
+//! OpenGL where wgpu cannot, and why), how far Mesa's OpenGL screen is from wgpu's, the frame's
+//! cost against a one-tap pass-through, how many things it uses that the harness does not
+//! imitate, and why a pack failed. tools/render-corpus runs it.
 //!
 //!     render_corpus SCENE.toml OUT_DIR PACK_DIR...
 
@@ -15,9 +16,9 @@ fn main() {
         eprintln!("usage: render_corpus SCENE.toml OUT_DIR PACK_DIR...");
         std::process::exit(2);
     };
-    println!("| pack | result | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | not imitated |");
-    println!("|---|---|---:|---:|---:|");
-    let mut rendered = 0;
+    println!("| pack | result | renderer | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | not imitated |");
+    println!("|---|---|---|---:|---:|---:|");
+    let (mut by_wgpu, mut by_opengl) = (0, 0);
     for pack in packs {
         let path = PathBuf::from(pack);
         let name = path.file_name().map_or_else(|| pack.clone(), |n| n.to_string_lossy().into_owned());
@@ -47,22 +48,32 @@ fn main() {
                     format!("{program} does not load: {}", cell(why))
                 } else if report.non_finite_pixels > 0 {
                     format!("{} NaN/Inf pixels", report.non_finite_pixels)
+                } else if let Some(d) = &report.gl_disagreement {
+                    format!("the renderers part at {}: {} differs on {} pixels", d.pass, d.texture, d.pixels)
                 } else {
-                    rendered += 1;
+                    if report.renderer.wgpu_cannot_draw.is_some() { by_opengl += 1 } else { by_wgpu += 1 }
                     "rendered".to_string()
+                };
+                let renderer = match &report.renderer.wgpu_cannot_draw {
+                    Some(why) => format!("OpenGL (wgpu: {})", cell(why)),
+                    None => "wgpu".to_string(),
                 };
                 let t = &report.timing;
                 println!(
-                    "| {name} | {failure} | {} | {:.1}x | {} |",
+                    "| {name} | {failure} | {renderer} | {} | {:.1}x | {} |",
                     screen.unwrap_or_else(|| "-".into()),
                     t.frame_ms / t.passthrough_ms,
                     report.not_modelled.len()
                 );
             }
-            Err(e) => println!("| {name} | {} | - | - | - |", cell(&e.to_string())),
+            Err(e) => println!("| {name} | {} | - | - | - | - |", cell(&e.to_string())),
         }
     }
-    println!("\n{rendered} of {} packs rendered with OpenGL's agreement measured", packs.len());
+    println!(
+        "\n{} of {} packs rendered as `render --pack --gl` exits 0: {by_wgpu} by wgpu with OpenGL agreeing, {by_opengl} by OpenGL where wgpu cannot draw them",
+        by_wgpu + by_opengl,
+        packs.len()
+    );
 }
 
 /// A message on one line, short enough for a table cell, without `|`. wgpu's messages repeat

@@ -13,7 +13,9 @@
 
 use std::collections::BTreeSet;
 
-use tidepack_glsl::compat::{GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, GPU_SHADER4_OPERATORS, TEXTURE_LOD, VERTEX_ONLY_LOD};
+use tidepack_glsl::compat::{
+    GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, TEXTURE_LOD, VERTEX_ONLY_LOD,
+};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
@@ -214,10 +216,10 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
                     Some(format!("operator `{}` is reserved in GLSL {number}; enable {GPU_SHADER4} or use #version 130", t.text))
                 }
                 TokenKind::Ident => match t.text {
-                    "flat" | "noperspective" if !gpu4 => {
+                    q if GPU_SHADER4_QUALIFIERS.contains(&q) && !gpu4 => {
                         Some(format!("`{}` needs GLSL 1.30 or `#extension {GPU_SHADER4} : enable`", t.text))
                     }
-                    "uint" | "uvec2" | "uvec3" | "uvec4" | "switch" | "usampler2D" | "isampler2D" if !(gpu4 && t.text != "switch") => {
+                    w if (GPU_SHADER4_TYPES.contains(&w) && !gpu4) || w == "switch" => {
                         Some(format!("`{}` does not exist in GLSL {number}", t.text))
                     }
                     "in" | "out" if depth == 0 && parens == 0 && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident) => {
