@@ -51,6 +51,12 @@ pub const GPU_SHADER4_TYPES: [&str; 6] = ["uint", "uvec2", "uvec3", "uvec4", "us
 /// Operators GLSL 1.10 and 1.20 reserve that [`GPU_SHADER4`] allows.
 pub const GPU_SHADER4_OPERATORS: [&str; 13] = ["%", "%=", "<<", ">>", "<<=", ">>=", "~", "&", "|", "^", "&=", "|=", "^="];
 
+/// The types a function can return that `T(0)` constructs.
+const VALUE_TYPES: [&str; 19] = [
+    "float", "vec2", "vec3", "vec4", "int", "ivec2", "ivec3", "ivec4", "uint", "uvec2", "uvec3", "uvec4", "bool", "bvec2", "bvec3", "bvec4",
+    "mat2", "mat3", "mat4",
+];
+
 /// One rewrite, at the line of the text it was made on (before any rewrite).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rewrite {
@@ -82,7 +88,9 @@ fn version_of(tokens: &[Token]) -> u32 {
 /// - a stage below 1.30 that calls `texture2DLod` & co. without `GL_ARB_shader_texture_lod` gets
 ///   that extension enabled after `#version` (a fragment shader needs it; elsewhere it is
 ///   harmless), and one that calls `texelFetch2D` & co., uses an integer operator (`%`, `<<`,
-///   …) or type, or `flat` without `GL_EXT_gpu_shader4` gets that one.
+///   …) or type, or `flat` without `GL_EXT_gpu_shader4` gets that one;
+/// - a function returning a value whose body has no `return` at all gets `return T(0);` before
+///   its closing brace (NVIDIA returns an undefined value; Mesa refuses the stage).
 pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
@@ -166,11 +174,73 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrit
         }
     }
 
+    let met_without_return: Vec<&str> = without_return(&met).iter().map(|f| met[f.name].text).collect();
+    let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    for f in without_return(&sig) {
+        let (name, type_) = (sig[f.name].text, sig[f.name - 1].text);
+        if met_without_return.contains(&name) {
+            replaced[significant[f.close]] = Some(format!("return {type_}(0); }}"));
+            rewrites.push(Rewrite {
+                line: sig[f.name].line,
+                what: format!("`{name}` returns {type_} but has no `return`: `return {type_}(0);` added at its end"),
+            });
+        }
+    }
+
     let out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
     let (out, moved) = extensions_after_version(&out, &added);
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// A function definition in a list of significant tokens: where its name and its closing brace are.
+struct Definition {
+    name: usize,
+    close: usize,
+}
+
+/// The definitions, outside every brace, of functions returning a [`VALUE_TYPES`] value whose
+/// body holds no `return`.
+fn without_return(toks: &[&Token]) -> Vec<Definition> {
+    let mut found = Vec::new();
+    let (mut depth, mut i) = (0i32, 0);
+    // The index of the brace matching the one at `open` (or of `close` of the parenthesis).
+    let matching = |open: usize, opening: &str, closing: &str| {
+        let mut d = 0;
+        (open..toks.len()).find(|&k| {
+            if toks[k].is_punct(opening) {
+                d += 1;
+            } else if toks[k].is_punct(closing) {
+                d -= 1;
+            }
+            d == 0
+        })
+    };
+    while i < toks.len() {
+        let t = toks[i];
+        if t.is_punct("{") {
+            depth += 1;
+        } else if t.is_punct("}") {
+            depth -= 1;
+        } else if depth == 0
+            && t.kind == TokenKind::Ident
+            && VALUE_TYPES.contains(&t.text)
+            && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident)
+            && toks.get(i + 2).is_some_and(|n| n.is_punct("("))
+            && let Some(params_end) = matching(i + 2, "(", ")")
+            && toks.get(params_end + 1).is_some_and(|n| n.is_punct("{"))
+            && let Some(close) = matching(params_end + 1, "{", "}")
+        {
+            if !toks[params_end + 1..close].iter().any(|t| t.is_ident("return")) {
+                found.push(Definition { name: i + 1, close });
+            }
+            i = close + 1;
+            continue;
+        }
+        i += 1;
+    }
+    found
 }
 
 /// `#extension` lines after the first line of code and outside every `#if` moved to just after
@@ -299,6 +369,14 @@ mod tests {
         assert_eq!(for_strict_drivers(flat, flat).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
         assert_eq!(for_strict_drivers(&enabled, &enabled).1, []);
+    }
+
+    #[test]
+    fn a_function_without_return_returns_zero() {
+        let text = "#version 120\nfloat remap(float x) {\n    mix(0.0, 1.0, x);\n}\nvec2 kept(vec2 a) { if (a.x > 0.0) { return a; } }\nvoid main() { gl_FragColor = vec4(remap(0.5)); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text);
+        assert_eq!(out, text.replace("    mix(0.0, 1.0, x);\n}", "    mix(0.0, 1.0, x);\nreturn float(0); }"));
+        assert_eq!(rewrites, [Rewrite { line: 2, what: "`remap` returns float but has no `return`: `return float(0);` added at its end".into() }]);
     }
 
     #[test]
