@@ -7,6 +7,7 @@
 //! (they fail on Mesa, AMD, Intel and macOS); the renderer applies [`for_strict_drivers`] to the
 //! text it gives OpenGL, so that such packs still render, and lists what it rewrote.
 
+use crate::Stage;
 use crate::token::{Token, TokenKind, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
@@ -90,8 +91,10 @@ fn version_of(tokens: &[Token]) -> u32 {
 ///   harmless), and one that calls `texelFetch2D` & co., uses an integer operator (`%`, `<<`,
 ///   …) or type, or `flat` without `GL_EXT_gpu_shader4` gets that one;
 /// - a function returning a value whose body has no `return` at all gets `return T(0);` before
-///   its closing brace (NVIDIA returns an undefined value; Mesa refuses the stage).
-pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrite>) {
+///   its closing brace (NVIDIA returns an undefined value; Mesa refuses the stage);
+/// - a vertex stage's output that nothing writes gets 0 at the start of `main` (Mesa refuses
+///   to link a fragment stage that reads it).
+pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
     let mut version = version_of(&tokens);
@@ -187,11 +190,47 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str) -> (String, Vec<Rewrit
         }
     }
 
+    if stage == Stage::Vertex {
+        let unwritten = unwritten_outputs(&met);
+        let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
+        if let (false, Some(at)) = (unwritten.is_empty(), main_open) {
+            let zeroes: String = unwritten.iter().map(|(type_, name)| format!(" {name} = {type_}(0);")).collect();
+            replaced[significant[at + 4]] = Some(format!("{{{zeroes}"));
+            let names: Vec<String> = unwritten.iter().map(|(_, name)| format!("`{name}`")).collect();
+            rewrites.push(Rewrite { line: sig[at + 4].line, what: format!("outputs nothing writes set to 0 at the start of main: {}", names.join(", ")) });
+        }
+    }
+
     let out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
     let (out, moved) = extensions_after_version(&out, &added);
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), whose
+/// name appears nowhere else: (type, name).
+fn unwritten_outputs<'t>(toks: &[&'t Token]) -> Vec<(&'t str, &'t str)> {
+    let mut depth = 0i32;
+    let mut found = Vec::new();
+    for (i, t) in toks.iter().enumerate() {
+        if t.is_punct("{") {
+            depth += 1;
+        } else if t.is_punct("}") {
+            depth -= 1;
+        } else if depth == 0
+            && (t.is_ident("varying") || t.is_ident("out"))
+            && let [type_, name, end] = [toks.get(i + 1), toks.get(i + 2), toks.get(i + 3)]
+            && let (Some(type_), Some(name), Some(end)) = (type_, name, end)
+            && VALUE_TYPES.contains(&type_.text)
+            && name.kind == TokenKind::Ident
+            && end.is_punct(";")
+            && toks.iter().filter(|u| u.is_ident(name.text)).count() == 1
+        {
+            found.push((type_.text, name.text));
+        }
+    }
+    found
 }
 
 /// A function definition in a list of significant tokens: where its name and its closing brace are.
@@ -309,84 +348,94 @@ mod tests {
     #[test]
     fn an_extension_after_code_moves_up_and_one_inside_an_if_stays() {
         let text = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nuniform float a;\n\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 3);
         // Before any code it is where it belongs.
         let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
-        assert_eq!(for_strict_drivers(clean, clean), (clean.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment), (clean.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_sampler_named_texture_is_renamed_where_it_hides_the_function() {
         let text = "#version 130\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv) + texture(texture, uv); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert!(out.contains("uniform sampler2D gtexture;"), "{out}");
         assert!(out.contains("texture2D(gtexture, uv) + texture(gtexture, uv)"), "{out}");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 2);
         // Under 1.20 there is no function to hide: left alone.
         let old = "#version 120\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv); }\n";
-        assert_eq!(for_strict_drivers(old, old), (old.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(old, old, Stage::Fragment), (old.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_glsl_120_stage_calling_a_130_function_is_compiled_as_130() {
         let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture(tex, uv); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].what, "#version 120 raised to 130 for `texture()`, a GLSL 1.30 function");
         // A call the preprocessor leaves out (a branch for 1.30 and later) does not count.
         let guarded = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n#if __VERSION__ >= 130\ngl_FragData[0] = texture(tex, uv);\n#endif\n}\n";
         let preprocessed = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n\n\n\n}\n";
-        assert_eq!(for_strict_drivers(guarded, preprocessed), (guarded.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(guarded, preprocessed, Stage::Fragment), (guarded.to_string(), Vec::new()));
         let plain = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(tex, uv); }\n";
-        assert_eq!(for_strict_drivers(plain, plain), (plain.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(plain, plain, Stage::Fragment), (plain.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_120_stage_with_level_lookups_gets_the_extension_that_allows_them() {
         let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2DLod(tex, uv, 0.0); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_ARB_shader_texture_lod enabled after #version for `texture2DLod()`".into() }]);
         // Already enabled, or not called: left alone.
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n");
-        assert_eq!(for_strict_drivers(&enabled, &enabled), (enabled.clone(), Vec::new()));
+        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment), (enabled.clone(), Vec::new()));
     }
 
     #[test]
     fn a_120_stage_with_integer_operations_gets_gpu_shader4() {
         let text = "#version 120\nuniform sampler2D s;\nvoid main() { gl_FragColor = texelFetch2D(s, ivec2(7 % 3, 0), 0); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_EXT_gpu_shader4 enabled after #version for `texelFetch2D()`".into() }]);
         let operator_only = "#version 120\nvoid main() { gl_FragColor = vec4(float(7 % 3)); }\n";
-        assert_eq!(for_strict_drivers(operator_only, operator_only).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `%`");
+        assert_eq!(for_strict_drivers(operator_only, operator_only, Stage::Fragment).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `%`");
         let flat = "#version 120\nflat varying float id;\nvoid main() {}\n";
-        assert_eq!(for_strict_drivers(flat, flat).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
+        assert_eq!(for_strict_drivers(flat, flat, Stage::Fragment).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
-        assert_eq!(for_strict_drivers(&enabled, &enabled).1, []);
+        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment).1, []);
     }
 
     #[test]
     fn a_function_without_return_returns_zero() {
         let text = "#version 120\nfloat remap(float x) {\n    mix(0.0, 1.0, x);\n}\nvec2 kept(vec2 a) { if (a.x > 0.0) { return a; } }\nvoid main() { gl_FragColor = vec4(remap(0.5)); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, text.replace("    mix(0.0, 1.0, x);\n}", "    mix(0.0, 1.0, x);\nreturn float(0); }"));
         assert_eq!(rewrites, [Rewrite { line: 2, what: "`remap` returns float but has no `return`: `return float(0);` added at its end".into() }]);
     }
 
     #[test]
+    fn a_vertex_output_nothing_writes_is_set_to_zero() {
+        let text = "#version 130\nflat out vec2 offsets;\nout float used;\n#ifdef NEVER\nvoid f() { offsets = vec2(1.0); }\n#endif\nvoid main() {\n    used = 1.0;\n}\n";
+        let preprocessed = "#version 130\nflat out vec2 offsets;\nout float used;\n\n\n\nvoid main() {\n    used = 1.0;\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Vertex);
+        assert_eq!(out, text.replace("void main() {", "void main() { offsets = vec2(0);"));
+        assert_eq!(rewrites, [Rewrite { line: 7, what: "outputs nothing writes set to 0 at the start of main: `offsets`".into() }]);
+        assert_eq!(for_strict_drivers(text, preprocessed, Stage::Fragment).1, []);
+    }
+
+    #[test]
     fn reserved_words_used_as_names_get_a_suffix_everywhere() {
         let text = "#version 330\nvec3 output;\nvoid main() { output = vec3(1.0); float filter = 2.0; output *= filter; }\n";
-        let (out, rewrites) = for_strict_drivers(text, text);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, "#version 330\nvec3 output_;\nvoid main() { output_ = vec3(1.0); float filter_ = 2.0; output_ *= filter_; }\n");
         assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [2, 3]);
         // A taken name is not reused.
-        let (out, _) = for_strict_drivers("#version 120\nfloat input_;\nfloat input;\n", "#version 120\nfloat input_;\nfloat input;\n");
+        let (out, _) = for_strict_drivers("#version 120\nfloat input_;\nfloat input;\n", "#version 120\nfloat input_;\nfloat input;\n", Stage::Fragment);
         assert!(out.contains("float input__;"), "{out}");
     }
 }

@@ -292,7 +292,7 @@ pub(crate) fn load_program_files(
         let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
-        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text);
+        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text, stage.stage);
         let gl_rewrites = rewrites
             .iter()
             .map(|r| match line_map.get(r.line as usize - 1).cloned().flatten() {
