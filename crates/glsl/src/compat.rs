@@ -83,9 +83,9 @@ fn version_of(tokens: &[Token]) -> u32 {
 /// - from GLSL 1.30 on, a sampler uniform named `texture` and every use of it that is not a
 ///   call become `gtexture`, as Iris renames it;
 /// - a reserved word used as a name gets a `_` appended wherever it appears;
-/// - a `#version 110` or `120` stage that calls a GLSL 1.30 function (`texture()`, …) is
-///   compiled as `#version 130`, which keeps everything 1.20 has (a compatibility driver
-///   still takes `varying`, `gl_FragData` and `texture2D` there);
+/// - a `#version 110` or `120` stage that calls a GLSL 1.30 function (`texture()`, …) or has a
+///   `switch` is compiled as `#version 130`, which keeps everything 1.20 has (a compatibility
+///   driver still takes `varying`, `gl_FragData` and `texture2D` there);
 /// - a stage below 1.30 that calls `texture2DLod` & co. without `GL_ARB_shader_texture_lod` gets
 ///   that extension enabled after `#version` (a fragment shader needs it; elsewhere it is
 ///   harmless), and one that calls `texelFetch2D` & co., uses an integer operator (`%`, `<<`,
@@ -121,14 +121,15 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage) -> (Stri
     }
 
     if version < 130 {
-        let called = met.windows(2).find(|w| w[0].kind == TokenKind::Ident && GLSL130_FUNCTIONS.contains(&w[0].text) && w[1].is_punct("("));
+        let called = met
+            .windows(2)
+            .find(|w| w[0].kind == TokenKind::Ident && GLSL130_FUNCTIONS.contains(&w[0].text) && w[1].is_punct("("))
+            .map(|w| format!("`{}()`, a GLSL 1.30 function", w[0].text))
+            .or_else(|| met.iter().any(|t| t.is_ident("switch")).then(|| "`switch`, a GLSL 1.30 statement".to_string()));
         let number = significant.windows(3).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map(|w| w[2]);
-        if let (Some(call), Some(number)) = (called, number) {
+        if let (Some(what), Some(number)) = (called, number) {
             replaced[number] = Some("130".into());
-            rewrites.push(Rewrite {
-                line: tokens[number].line,
-                what: format!("#version {version} raised to 130 for `{}()`, a GLSL 1.30 function", call[0].text),
-            });
+            rewrites.push(Rewrite { line: tokens[number].line, what: format!("#version {version} raised to 130 for {what}") });
             version = 130;
         }
     }
@@ -408,6 +409,14 @@ mod tests {
         assert_eq!(for_strict_drivers(flat, flat, Stage::Fragment).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
         assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment).1, []);
+    }
+
+    #[test]
+    fn a_120_stage_with_a_switch_is_compiled_as_130() {
+        let text = "#version 120\nuniform int mode;\nvoid main() { switch (mode) { default: gl_FragColor = vec4(1.0); } }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        assert_eq!(out, text.replace("#version 120", "#version 130"));
+        assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `switch`, a GLSL 1.30 statement".into() }]);
     }
 
     #[test]
