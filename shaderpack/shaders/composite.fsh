@@ -132,16 +132,10 @@ vec3 lightDirection() {
 }
 
 // The scene at uv without the rain, clouds and translucent hand drawn over it: they lie in
-// colortex0 and, alone, in colortex3 (premultiplied colour, coverage in alpha). Under water or
-// glass colortex0's alpha is their coverage, as gbuffers_water left it 0: where it is 0,
-// nothing was drawn over, colortex3 holds nothing, and its lookup is skipped.
+// colortex0 and, alone, in colortex3 (premultiplied colour, coverage in alpha).
 vec3 sceneBehindOverlay(vec2 uv) {
-    vec4 scene = texture(colortex0, uv);
-    if (!NEEDED(scene.a > 0.0)) {
-        return scene.rgb;
-    }
     vec4 over = texture(colortex3, uv);
-    return (scene.rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
+    return (texture(colortex0, uv).rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
 }
 
 // Cases 4 and 5: the camera is above the water and this pixel is its surface, at window depth

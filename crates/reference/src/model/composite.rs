@@ -98,12 +98,8 @@ impl Frame<'_> {
 
     /// `sceneBehindOverlay`.
     fn scene_behind_overlay(&self, uv: DVec2) -> DVec3 {
-        let scene = self.colortex0(uv);
-        if scene.w <= 0.0 {
-            return scene.xyz();
-        }
         let over = self.i.colortex3.sample(uv);
-        (scene.xyz() - over.xyz()) / (1.0 - over.w).max(INVISIBLE)
+        (self.colortex0(uv).xyz() - over.xyz()) / (1.0 - over.w).max(INVISIBLE)
     }
 
     /// `shadeFromAbove`: cases 4 and 5.
