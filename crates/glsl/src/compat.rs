@@ -178,15 +178,41 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage) -> (Stri
         }
     }
 
-    let met_without_return: Vec<&str> = without_return(&met).iter().map(|f| met[f.name].text).collect();
     let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
-    for f in without_return(&sig) {
+    let met_functions = value_functions(&met);
+    let met_without_return: Vec<&str> =
+        met_functions.iter().filter(|f| !met[f.open..f.close].iter().any(|t| t.is_ident("return"))).map(|f| met[f.name].text).collect();
+    // A float or vector function returning an integer literal (`return 8;`, often a macro's value).
+    let met_int_return: Vec<&str> = met_functions
+        .iter()
+        .filter(|f| ["float", "vec2", "vec3", "vec4"].contains(&met[f.name - 1].text))
+        .filter(|f| {
+            met[f.open..f.close].windows(3).any(|w| w[0].is_ident("return") && w[1].kind == TokenKind::Number && w[2].is_punct(";") && is_int_literal(w[1].text))
+        })
+        .map(|f| met[f.name].text)
+        .collect();
+    for f in value_functions(&sig) {
         let (name, type_) = (sig[f.name].text, sig[f.name - 1].text);
-        if met_without_return.contains(&name) {
+        let body = f.open..f.close;
+        if met_without_return.contains(&name) && !sig[body.clone()].iter().any(|t| t.is_ident("return")) {
             replaced[significant[f.close]] = Some(format!("return {type_}(0); }}"));
             rewrites.push(Rewrite {
                 line: sig[f.name].line,
                 what: format!("`{name}` returns {type_} but has no `return`: `return {type_}(0);` added at its end"),
+            });
+        }
+        if met_int_return.contains(&name) {
+            let mut wrapped = 0;
+            for k in body.clone().filter(|&k| sig[k].is_ident("return")) {
+                if let Some(end) = (k..f.close).find(|&e| sig[e].is_punct(";")) {
+                    replaced[significant[k]] = Some(format!("return {type_}("));
+                    replaced[significant[end]] = Some(");".into());
+                    wrapped += 1;
+                }
+            }
+            rewrites.push(Rewrite {
+                line: sig[f.name].line,
+                what: format!("`{name}` returns an integer where {type_} is declared: its {wrapped} return values converted with {type_}()"),
             });
         }
     }
@@ -234,15 +260,21 @@ fn unwritten_outputs<'t>(toks: &[&'t Token]) -> Vec<(&'t str, &'t str)> {
     found
 }
 
-/// A function definition in a list of significant tokens: where its name and its closing brace are.
+/// A function definition in a list of significant tokens: where its name and its body's braces are.
 struct Definition {
     name: usize,
+    open: usize,
     close: usize,
 }
 
-/// The definitions, outside every brace, of functions returning a [`VALUE_TYPES`] value whose
-/// body holds no `return`.
-fn without_return(toks: &[&Token]) -> Vec<Definition> {
+/// Whether a number token is an integer literal (`8`, `0x1F`, `3u`), not a float.
+fn is_int_literal(number: &str) -> bool {
+    let hex = number.starts_with("0x") || number.starts_with("0X");
+    !number.contains('.') && (hex || !number.contains(['e', 'E', 'f', 'F']))
+}
+
+/// The definitions, outside every brace, of functions returning a [`VALUE_TYPES`] value.
+fn value_functions(toks: &[&Token]) -> Vec<Definition> {
     let mut found = Vec::new();
     let (mut depth, mut i) = (0i32, 0);
     // The index of the brace matching the one at `open` (or of `close` of the parenthesis).
@@ -272,9 +304,7 @@ fn without_return(toks: &[&Token]) -> Vec<Definition> {
             && toks.get(params_end + 1).is_some_and(|n| n.is_punct("{"))
             && let Some(close) = matching(params_end + 1, "{", "}")
         {
-            if !toks[params_end + 1..close].iter().any(|t| t.is_ident("return")) {
-                found.push(Definition { name: i + 1, close });
-            }
+            found.push(Definition { name: i + 1, open: params_end + 1, close });
             i = close + 1;
             continue;
         }
@@ -417,6 +447,15 @@ mod tests {
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `switch`, a GLSL 1.30 statement".into() }]);
+    }
+
+    #[test]
+    fn a_float_function_returning_an_integer_converts_its_returns() {
+        let text = "#version 330 compatibility\n#define INTENSITY 8\nfloat glow(bool on) {\n    if (on) return INTENSITY;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
+        let preprocessed = "#version 330 compatibility\n\nfloat glow(bool on) {\n    if (on) return 8;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment);
+        assert_eq!(out, text.replace("return INTENSITY;", "return float( INTENSITY);").replace("return 0.5 * 2.0;", "return float( 0.5 * 2.0);"));
+        assert_eq!(rewrites, [Rewrite { line: 3, what: "`glow` returns an integer where float is declared: its 2 return values converted with float()".into() }]);
     }
 
     #[test]
