@@ -93,8 +93,11 @@ fn version_of(tokens: &[Token]) -> u32 {
 /// - a function returning a value whose body has no `return` at all gets `return T(0);` before
 ///   its closing brace (NVIDIA returns an undefined value; Mesa refuses the stage);
 /// - a vertex stage's output that nothing writes gets 0 at the start of `main` (Mesa refuses
-///   to link a fragment stage that reads it).
-pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage) -> (String, Vec<Rewrite>) {
+///   to link a fragment stage that reads it);
+/// - before each line of `redefined` (1-based lines of `text`, with the macro each `#define`
+///   there redefines with another body, as the lenient preprocessor found them) a line
+///   `#undef NAME` is inserted: the one rewrite that moves the lines after it down.
+pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefined: &[(u32, String)]) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
     let mut version = version_of(&tokens);
@@ -228,7 +231,18 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage) -> (Stri
         }
     }
 
-    let out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
+    let mut out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
+    if !redefined.is_empty() {
+        let mut lines: Vec<String> = out.split_inclusive('\n').map(str::to_string).collect();
+        let mut sorted: Vec<&(u32, String)> = redefined.iter().collect();
+        sorted.sort_by_key(|(line, _)| std::cmp::Reverse(*line));
+        for (line, name) in sorted {
+            let at = (*line as usize).saturating_sub(1).min(lines.len());
+            lines.insert(at, format!("#undef {name}\n"));
+            rewrites.push(Rewrite { line: *line, what: format!("`{name}` redefined with another body: `#undef {name}` inserted before it") });
+        }
+        out = lines.concat();
+    }
     let (out, moved) = extensions_after_version(&out, &added);
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
@@ -379,72 +393,72 @@ mod tests {
     #[test]
     fn an_extension_after_code_moves_up_and_one_inside_an_if_stays() {
         let text = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nuniform float a;\n\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 3);
         // Before any code it is where it belongs.
         let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
-        assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment), (clean.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment, &[]), (clean.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_sampler_named_texture_is_renamed_where_it_hides_the_function() {
         let text = "#version 130\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv) + texture(texture, uv); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert!(out.contains("uniform sampler2D gtexture;"), "{out}");
         assert!(out.contains("texture2D(gtexture, uv) + texture(gtexture, uv)"), "{out}");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 2);
         // Under 1.20 there is no function to hide: left alone.
         let old = "#version 120\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv); }\n";
-        assert_eq!(for_strict_drivers(old, old, Stage::Fragment), (old.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(old, old, Stage::Fragment, &[]), (old.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_glsl_120_stage_calling_a_130_function_is_compiled_as_130() {
         let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture(tex, uv); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].what, "#version 120 raised to 130 for `texture()`, a GLSL 1.30 function");
         // A call the preprocessor leaves out (a branch for 1.30 and later) does not count.
         let guarded = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n#if __VERSION__ >= 130\ngl_FragData[0] = texture(tex, uv);\n#endif\n}\n";
         let preprocessed = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() {\n\n\n\n}\n";
-        assert_eq!(for_strict_drivers(guarded, preprocessed, Stage::Fragment), (guarded.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(guarded, preprocessed, Stage::Fragment, &[]), (guarded.to_string(), Vec::new()));
         let plain = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2D(tex, uv); }\n";
-        assert_eq!(for_strict_drivers(plain, plain, Stage::Fragment), (plain.to_string(), Vec::new()));
+        assert_eq!(for_strict_drivers(plain, plain, Stage::Fragment, &[]), (plain.to_string(), Vec::new()));
     }
 
     #[test]
     fn a_120_stage_with_level_lookups_gets_the_extension_that_allows_them() {
         let text = "#version 120\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragData[0] = texture2DLod(tex, uv, 0.0); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_ARB_shader_texture_lod enabled after #version for `texture2DLod()`".into() }]);
         // Already enabled, or not called: left alone.
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_ARB_shader_texture_lod : enable\n");
-        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment), (enabled.clone(), Vec::new()));
+        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment, &[]), (enabled.clone(), Vec::new()));
     }
 
     #[test]
     fn a_120_stage_with_integer_operations_gets_gpu_shader4() {
         let text = "#version 120\nuniform sampler2D s;\nvoid main() { gl_FragColor = texelFetch2D(s, ivec2(7 % 3, 0), 0); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "GL_EXT_gpu_shader4 enabled after #version for `texelFetch2D()`".into() }]);
         let operator_only = "#version 120\nvoid main() { gl_FragColor = vec4(float(7 % 3)); }\n";
-        assert_eq!(for_strict_drivers(operator_only, operator_only, Stage::Fragment).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `%`");
+        assert_eq!(for_strict_drivers(operator_only, operator_only, Stage::Fragment, &[]).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `%`");
         let flat = "#version 120\nflat varying float id;\nvoid main() {}\n";
-        assert_eq!(for_strict_drivers(flat, flat, Stage::Fragment).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
+        assert_eq!(for_strict_drivers(flat, flat, Stage::Fragment, &[]).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
-        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment).1, []);
+        assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment, &[]).1, []);
     }
 
     #[test]
     fn a_120_stage_with_a_switch_is_compiled_as_130() {
         let text = "#version 120\nuniform int mode;\nvoid main() { switch (mode) { default: gl_FragColor = vec4(1.0); } }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `switch`, a GLSL 1.30 statement".into() }]);
     }
@@ -453,15 +467,23 @@ mod tests {
     fn a_float_function_returning_an_integer_converts_its_returns() {
         let text = "#version 330 compatibility\n#define INTENSITY 8\nfloat glow(bool on) {\n    if (on) return INTENSITY;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
         let preprocessed = "#version 330 compatibility\n\nfloat glow(bool on) {\n    if (on) return 8;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
-        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("return INTENSITY;", "return float( INTENSITY);").replace("return 0.5 * 2.0;", "return float( 0.5 * 2.0);"));
         assert_eq!(rewrites, [Rewrite { line: 3, what: "`glow` returns an integer where float is declared: its 2 return values converted with float()".into() }]);
     }
 
     #[test]
+    fn a_redefined_macro_is_undefined_first() {
+        let text = "#version 120\n#define PI 3.14\n#define PI 3.14159\nvoid main() { gl_FragColor = vec4(PI); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[(3, "PI".into())]);
+        assert_eq!(out, text.replace("#define PI 3.14159", "#undef PI\n#define PI 3.14159"));
+        assert_eq!(rewrites, [Rewrite { line: 3, what: "`PI` redefined with another body: `#undef PI` inserted before it".into() }]);
+    }
+
+    #[test]
     fn a_function_without_return_returns_zero() {
         let text = "#version 120\nfloat remap(float x) {\n    mix(0.0, 1.0, x);\n}\nvec2 kept(vec2 a) { if (a.x > 0.0) { return a; } }\nvoid main() { gl_FragColor = vec4(remap(0.5)); }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("    mix(0.0, 1.0, x);\n}", "    mix(0.0, 1.0, x);\nreturn float(0); }"));
         assert_eq!(rewrites, [Rewrite { line: 2, what: "`remap` returns float but has no `return`: `return float(0);` added at its end".into() }]);
     }
@@ -470,20 +492,20 @@ mod tests {
     fn a_vertex_output_nothing_writes_is_set_to_zero() {
         let text = "#version 130\nflat out vec2 offsets;\nout float used;\n#ifdef NEVER\nvoid f() { offsets = vec2(1.0); }\n#endif\nvoid main() {\n    used = 1.0;\n}\n";
         let preprocessed = "#version 130\nflat out vec2 offsets;\nout float used;\n\n\n\nvoid main() {\n    used = 1.0;\n}\n";
-        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Vertex);
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Vertex, &[]);
         assert_eq!(out, text.replace("void main() {", "void main() { offsets = vec2(0);"));
         assert_eq!(rewrites, [Rewrite { line: 7, what: "outputs nothing writes set to 0 at the start of main: `offsets`".into() }]);
-        assert_eq!(for_strict_drivers(text, preprocessed, Stage::Fragment).1, []);
+        assert_eq!(for_strict_drivers(text, preprocessed, Stage::Fragment, &[]).1, []);
     }
 
     #[test]
     fn reserved_words_used_as_names_get_a_suffix_everywhere() {
         let text = "#version 330\nvec3 output;\nvoid main() { output = vec3(1.0); float filter = 2.0; output *= filter; }\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment);
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, "#version 330\nvec3 output_;\nvoid main() { output_ = vec3(1.0); float filter_ = 2.0; output_ *= filter_; }\n");
         assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [2, 3]);
         // A taken name is not reused.
-        let (out, _) = for_strict_drivers("#version 120\nfloat input_;\nfloat input;\n", "#version 120\nfloat input_;\nfloat input;\n", Stage::Fragment);
+        let (out, _) = for_strict_drivers("#version 120\nfloat input_;\nfloat input;\n", "#version 120\nfloat input_;\nfloat input;\n", Stage::Fragment, &[]);
         assert!(out.contains("float input__;"), "{out}");
     }
 }

@@ -78,6 +78,9 @@ pub struct Preprocessed {
     /// substituted into the text).
     pub tested_macros: BTreeSet<String>,
     pub warnings: Vec<Diagnostic>,
+    /// With [`PreprocessOptions::lenient`]: the `#define` lines that redefined a macro with
+    /// another body, and the macro's name.
+    pub redefinitions: Vec<(Location, String)>,
 }
 
 impl Preprocessed {
@@ -94,10 +97,11 @@ pub struct PreprocessOptions {
     pub predefined: Vec<(String, String)>,
     /// How the loader reads an `#include` line's path.
     pub include_quotes: IncludeQuotes,
-    /// Take an `#extension` after code as NVIDIA's compiler takes it, instead of refusing it as
-    /// Mesa and AMD do: the renderer draws what lenient drivers run (and moves the line up for
-    /// OpenGL, `compat::for_strict_drivers`); `validate` leaves this off.
-    pub late_extensions: bool,
+    /// Take what NVIDIA's compiler takes and Mesa and AMD refuse: an `#extension` after code, a
+    /// macro redefined with another body (the last definition holds; each is recorded in
+    /// [`Preprocessed::redefinitions`]). The renderer draws what lenient drivers run, and
+    /// `compat::for_strict_drivers` rewrites the text for OpenGL; `validate` leaves this off.
+    pub lenient: bool,
 }
 
 /// Whether an `#include` path must be quoted: OptiFine takes `#include "path"` only (any other
@@ -142,11 +146,12 @@ pub fn preprocess(
             consulted_macros: BTreeSet::new(),
             tested_macros: BTreeSet::new(),
             warnings: Vec::new(),
+            redefinitions: Vec::new(),
         },
         include_stack: Vec::new(),
         seen_code: false,
         include_quotes: options.include_quotes,
-        late_extensions: options.late_extensions,
+        lenient: options.lenient,
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
@@ -234,7 +239,7 @@ struct Preprocessor<'p> {
     /// A line of code (not a directive) has been emitted.
     seen_code: bool,
     include_quotes: IncludeQuotes,
-    late_extensions: bool,
+    lenient: bool,
 }
 
 /// A logical line: tokens up to a line break, continuations included.
@@ -421,7 +426,11 @@ impl Preprocessor<'_> {
                     self.check_inactive_include(path, at, args)?;
                 }
                 _ if !active => {}
-                Some("define") => self.define(args).map_err(|m| err_at(at, m))?,
+                Some("define") => {
+                    if let Some(name) = self.define(args).map_err(|m| err_at(at, m))? {
+                        self.out.redefinitions.push((Location::line(path, at), name));
+                    }
+                }
                 Some("undef") => {
                     let macro_name =
                         single_ident(args).ok_or_else(|| err_at(at, "#undef needs exactly one macro name".into()))?;
@@ -449,7 +458,7 @@ impl Preprocessor<'_> {
                     self.out.text.push_str(&text);
                 }
                 Some("extension") => {
-                    if self.seen_code && !self.late_extensions {
+                    if self.seen_code && !self.lenient {
                         return Err(err_at(
                             at,
                             "#extension after code: GLSL wants it before the first declaration; Mesa and AMD refuse it \
@@ -536,7 +545,9 @@ impl Preprocessor<'_> {
         }
     }
 
-    fn define(&mut self, args: &[Token<'_>]) -> Result<(), String> {
+    /// Defines the macro of a `#define` line; the macro's name when, leniently, it replaced a
+    /// definition with another body.
+    fn define(&mut self, args: &[Token<'_>]) -> Result<Option<String>, String> {
         let Some((name_pos, name)) = first_significant(args).filter(|(_, t)| t.kind == TokenKind::Ident) else {
             return Err("#define needs a macro name".into());
         };
@@ -562,16 +573,15 @@ impl Preprocessor<'_> {
             return Err(format!("token pasting (##) in #define {} is not supported by GLSL drivers", name.text));
         }
         let definition = Macro { params, body };
-        if let Some(previous) = self.macros.get(name.text)
-            && !previous.same_definition(&definition)
-        {
+        let redefined = self.macros.get(name.text).is_some_and(|previous| !previous.same_definition(&definition));
+        if redefined && !self.lenient {
             return Err(format!(
                 "macro {} is redefined with a different body (drivers refuse this; #undef it first)",
                 name.text
             ));
         }
         self.macros.insert(name.text.to_string(), definition);
-        Ok(())
+        Ok(redefined.then(|| name.text.to_string()))
     }
 
     /// Resolves an include of an inactive branch and everything it includes in turn, without

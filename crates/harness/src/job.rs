@@ -377,6 +377,9 @@ pub struct PrimaryRenderer {
     /// Why wgpu cannot draw the frame (a pipeline it refuses, a program naga cannot translate
     /// for it), when OpenGL drew it.
     pub wgpu_cannot_draw: Option<String>,
+    /// What OpenGL refused, when it could not draw the frame either and wgpu drew it without
+    /// the programs naga cannot read (listed as programs that do not load).
+    pub opengl_refused: Option<String>,
 }
 
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
@@ -417,17 +420,19 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let mut pack = crate::any_pack::AnyPack::load(&job.pack, &job.configuration)?;
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
-    let wgpu_renderer = PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None };
+    let wgpu_renderer = PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None, opengl_refused: None };
     let (frame, renderer) = match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
         Ok(frame) => (frame, wgpu_renderer),
         Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) => {
             let by_opengl = gl::context().and_then(|ctx| Ok((opengl_frame(&ctx, &pack, &scene, &mesh, job.frames)?, ctx.info().to_string())));
             match by_opengl {
-                Ok((frame, driver)) => (frame, PrimaryRenderer { name: format!("OpenGL ({driver})"), wgpu_cannot_draw: Some(cannot.to_string()) }),
+                Ok((frame, driver)) => {
+                    (frame, PrimaryRenderer { name: format!("OpenGL ({driver})"), wgpu_cannot_draw: Some(cannot.to_string()), opengl_refused: None })
+                }
                 // Neither draws it whole: without the programs naga cannot read (they do not
                 // load, and the report says so), wgpu may.
                 Err(refused) if pack.set_aside_unreadable() => match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
-                    Ok(frame) => (frame, wgpu_renderer),
+                    Ok(frame) => (frame, PrimaryRenderer { opengl_refused: Some(refused.to_string()), ..wgpu_renderer }),
                     Err(e) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {e}"))),
                 },
                 Err(HarnessError::NoGlDriver(_)) => return Err(cannot),

@@ -272,7 +272,7 @@ pub(crate) fn load_program_files(
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
         // The renderer draws what lenient drivers run: an `#extension` after code included.
-        let lenient = preprocess::PreprocessOptions { late_extensions: true, ..macros.clone() };
+        let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
         if stage == Stage::Vertex {
@@ -292,7 +292,16 @@ pub(crate) fn load_program_files(
         let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
-        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text, stage.stage);
+        // Macros the lenient preprocessor saw redefined, at the lines of the expanded text.
+        let redefined: Vec<(u32, String)> = stage
+            .preprocessed
+            .redefinitions
+            .iter()
+            .flat_map(|(at, name)| {
+                line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
+            })
+            .collect();
+        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text, stage.stage, &redefined);
         let gl_rewrites = rewrites
             .iter()
             .map(|r| match line_map.get(r.line as usize - 1).cloned().flatten() {
@@ -325,7 +334,9 @@ pub(crate) fn load_program_files(
         let naga = naga_check::validate_stage(&mut frontend, &adapted, provider)
             .map(|valid| valid.module)
             .map_err(|d| match diag_error(&format!("{path} does not validate"), &d) {
-                HarnessError::Pack(message) => message,
+                // naga names functions as the harness text has them: the shipped main is
+                // renamed for the harness's own (see `adapt_vertex`).
+                HarnessError::Pack(message) => message.replace("'tp_shipped_main'", "'main'"),
                 other => other.to_string(),
             });
         if let Some(reference) = alpha_test {

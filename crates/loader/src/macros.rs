@@ -198,7 +198,7 @@ impl StandardMacros {
     }
 
     pub fn preprocess_options(&self) -> PreprocessOptions {
-        PreprocessOptions { predefined: self.definitions(), include_quotes: self.include_quotes(), late_extensions: false }
+        PreprocessOptions { predefined: self.definitions(), include_quotes: self.include_quotes(), lenient: false }
     }
 
     /// How the loader these macros stand for reads `#include` paths: Iris also without quotes.

@@ -235,7 +235,7 @@ pub mod targets {
         let files: HashMap<String, Arc<str>> =
             [("composite.fsh".to_string(), Arc::from(program)), ("lib/a.glsl".to_string(), Arc::from(include))].into();
         let include_quotes = if data.first().is_some_and(|b| b & 1 == 1) { IncludeQuotes::Optional } else { IncludeQuotes::Required };
-        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_quotes, late_extensions: false };
+        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_quotes, lenient: false };
         if let Ok(pre) = preprocess_program(&files, "composite.fsh", &options) {
             for line in 1..=pre.text.matches('\n').count() as u32 {
                 if let Some(at) = pre.location(line) {

@@ -182,6 +182,9 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
     if let Some(why) = &report.renderer.wgpu_cannot_draw {
         say!("  drawn by {}, as wgpu cannot draw it: {why}", report.renderer.name);
     }
+    if let Some(refused) = &report.renderer.opengl_refused {
+        say!("  OpenGL refuses the frame too, so wgpu drew it without the programs naga cannot read: {refused}");
+    }
     let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
     for p in &report.passes {
         let time = format!("{:>9.3} ms", p.median_ms);
