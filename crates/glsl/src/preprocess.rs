@@ -1254,6 +1254,17 @@ mod tests {
     }
 
     #[test]
+    fn a_macro_redefined_is_refused_and_taken_leniently_with_its_place_recorded() {
+        let list = [("a.fsh", "#version 120\n#include \"/b.glsl\"\n#define PI 3.14159\nfloat x = PI;\n"), ("b.glsl", "#define PI 3.14\n")];
+        let err = run(&list).unwrap_err();
+        assert!(err.message.contains("macro PI is redefined") && err.location.unwrap().line == 3, "{}", err.message);
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("float x = 3.14159;"), "{}", out.text);
+        assert_eq!(out.redefinitions, [(Location::line("a.fsh", 3), "PI".to_string())]);
+    }
+
+    #[test]
     fn a_version_no_glsl_has_is_an_error() {
         let err = run(&[("a.fsh", "#version 9999 compatibility\nvoid main() {}\n")]).unwrap_err();
         assert!(err.message.contains("#version 9999 is not a GLSL version"), "{}", err.message);
