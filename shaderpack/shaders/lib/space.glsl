@@ -19,10 +19,6 @@ vec3 screenFromClip(vec4 clip) {
     return clip.xyz / clip.w * 0.5 + 0.5;
 }
 
-vec3 screenFromView(vec3 viewPos, mat4 projection) {
-    return screenFromClip(projection * vec4(viewPos, 1.0));
-}
-
 // The view-space point at window depth `depth` on the screen position of the view-space point
 // viewPos, whose clip-space position is clip (w > 0). The inverse projection is linear, so that
 // is viewPos moved along the inverse's depth column: no matrix product.

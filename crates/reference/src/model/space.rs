@@ -16,7 +16,8 @@ pub(crate) fn view_from_screen(uv: DVec2, depth: f64, projection_inverse: &DMat4
     divide_by_w(*projection_inverse * (DVec3::new(uv.x, uv.y, depth) * 2.0 - 1.0).extend(1.0))
 }
 
-/// `screenFromView`.
+/// `screenFromClip` of the view-space point's clip position (the march steps the clip position
+/// in f32; in f64 projecting each point is the same).
 pub(crate) fn screen_from_view(view: DVec3, projection: &DMat4) -> DVec3 {
     let clip = *projection * view.extend(1.0);
     if clip.w <= 1e-5 {
