@@ -65,15 +65,6 @@ pub struct Rewrite {
     pub what: String,
 }
 
-/// The stage's `#version` number (110 without one).
-fn version_of(tokens: &[Token]) -> u32 {
-    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    sig.windows(3)
-        .find(|w| w[0].is_punct("#") && w[1].is_ident("version") && w[2].kind == TokenKind::Number)
-        .and_then(|w| w[2].text.parse().ok())
-        .unwrap_or(110)
-}
-
 /// `text` with what lenient compilers accept rewritten for a strict one, and the rewrites made.
 /// `text` may still hold its conditionals (the driver evaluates them); `preprocessed` is the
 /// same stage with them evaluated, which decides what the driver would meet:
@@ -100,12 +91,19 @@ fn version_of(tokens: &[Token]) -> u32 {
 pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefined: &[(u32, String)]) -> (String, Vec<Rewrite>) {
     let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
-    let mut version = version_of(&tokens);
     let mut rewrites = Vec::new();
     // Replacement text per token index.
     let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
     let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
     let taken = |name: &str| tokens.iter().any(|t| t.is_ident(name));
+    // Where `#version` is, as an index into `significant`, and its number (110 without one).
+    let version_at = significant.windows(2).position(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version"));
+    let version_number = version_at.and_then(|at| significant.get(at + 2).copied()).filter(|&i| tokens[i].kind == TokenKind::Number);
+    let mut version: u32 = version_number.and_then(|i| tokens[i].text.parse().ok()).unwrap_or(110);
+    // The first call the driver meets of one of `functions`, named for a rewrite.
+    let call_of = |functions: &[&str]| {
+        met.windows(2).find(|w| w[0].kind == TokenKind::Ident && functions.contains(&w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text))
+    };
 
     // Reserved words as names: every use, so that the declaration and the uses still agree.
     let reserved = RESERVED.iter().chain(if version >= 130 { &RESERVED_FROM_130[..] } else { &[] });
@@ -124,13 +122,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     if version < 130 {
-        let called = met
-            .windows(2)
-            .find(|w| w[0].kind == TokenKind::Ident && GLSL130_FUNCTIONS.contains(&w[0].text) && w[1].is_punct("("))
-            .map(|w| format!("`{}()`, a GLSL 1.30 function", w[0].text))
+        let called = call_of(&GLSL130_FUNCTIONS)
+            .map(|call| format!("{call}, a GLSL 1.30 function"))
             .or_else(|| met.iter().any(|t| t.is_ident("switch")).then(|| "`switch`, a GLSL 1.30 statement".to_string()));
-        let number = significant.windows(3).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map(|w| w[2]);
-        if let (Some(what), Some(number)) = (called, number) {
+        if let (Some(what), Some(number)) = (called, version_number) {
             replaced[number] = Some("130".into());
             rewrites.push(Rewrite { line: tokens[number].line, what: format!("#version {version} raised to 130 for {what}") });
             version = 130;
@@ -161,10 +156,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     let mut added = Vec::new();
-    let version_line = significant.windows(2).find(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version")).map_or(1, |w| tokens[w[0]].line);
-    let call_of = |functions: &[&str]| {
-        met.windows(2).find(|w| w[0].kind == TokenKind::Ident && functions.contains(&w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text))
-    };
+    let version_line = version_at.map_or(1, |at| tokens[significant[at]].line);
     let operator = || {
         met.iter()
             .find(|t| {
