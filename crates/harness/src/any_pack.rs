@@ -479,9 +479,9 @@ impl AnyPack {
     pub fn set_aside_unreadable(&mut self) -> bool {
         let before = self.failed.len();
         let failed = &mut self.failed;
-        let mut keep = |p: &LoadedProgram| match [&p.vertex, &p.fragment].into_iter().find_map(|s| s.naga.as_ref().err()) {
+        let mut keep = |p: &LoadedProgram| match p.naga_refusal() {
             Some(why) => {
-                failed.push((p.name.clone(), HarnessError::Pack(why.clone()).to_string()));
+                failed.push((p.name.clone(), HarnessError::Pack(why.to_string()).to_string()));
                 false
             }
             None => true,

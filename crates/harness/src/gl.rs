@@ -388,7 +388,7 @@ impl Compiled {
 /// the shipped names, all `float`/`vecN` with the default (perspective, centre) interpolation.
 fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessError> {
     let unsupported = |what: String| HarnessError::Unsupported(format!("{}: {what} (OpenGL depth mapping)", stage.path));
-    let module = stage.naga.as_ref().map_err(|_| unsupported("naga cannot read it".into()))?;
+    let module = stage.module()?;
     let entry = module.entry_points.iter().find(|e| e.stage == naga::ShaderStage::Vertex).ok_or_else(|| unsupported("no vertex entry point".into()))?;
     let Some(result) = &entry.function.result else { return Ok(Vec::new()) };
     // Outputs the harness declared for fragment inputs the shipped vertex stage lacks are not

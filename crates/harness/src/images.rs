@@ -187,6 +187,12 @@ pub fn median(samples: &[f64]) -> f64 {
     }
 }
 
+/// The median of a run's per-frame times without the first frame, which pays for llvmpipe's
+/// lazy shader compilation (all of them when there is one).
+pub fn settled_median(samples: &[f64]) -> f64 {
+    median(if samples.len() > 1 { &samples[1..] } else { samples })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -178,13 +178,13 @@ pub fn specialisation_speedup(
     let (Some(general_image), Some(specialised_image)) = images else {
         return Err(HarnessError::Wgpu("no frame was rendered".into()));
     };
-    let (general_ms, specialised_ms) = (crate::images::median(&general_ms), crate::images::median(&specialised_ms));
+    let (general_ms, specialised_ms) = (images::median(&general_ms), images::median(&specialised_ms));
     Ok(SpecialisationReport {
         folded: specialised.folded_uniforms.clone(),
         frames: per_round * ROUNDS,
         general_ms,
         specialised_ms,
-        passthrough_ms: crate::images::median(&passthrough_ms),
+        passthrough_ms: images::median(&passthrough_ms),
         speedup: general_ms / specialised_ms,
         max_difference: images::max_channel_difference(&general_image, &specialised_image),
     })
@@ -516,14 +516,12 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
 }
 
 /// The frame drawn by OpenGL as the primary renderer, `frames` times: the last frame's images,
-/// each step's median wall time over the frames after the first (all of them when there is
-/// one), and the pass-through's.
+/// and each step's and the pass-through's settled median wall time.
 fn opengl_frame(ctx: &tidepack_gldriver::GlContext, pack: &AnyPack, scene: &Scene, mesh: &mesh::SceneMesh, frames: usize) -> Result<gpu::Frame, HarnessError> {
     let mut rendered = Vec::new();
     for _ in 0..frames.max(1) {
         rendered.push(crate::gl_frame::render(ctx, pack, scene, mesh, ScreenOutput::AsLoader)?);
     }
-    let timed = if rendered.len() > 1 { &rendered[1..] } else { &rendered[..] };
     let last = rendered.last().expect("one frame at least");
     let passes: Vec<StepReport> = last
         .steps
@@ -531,24 +529,23 @@ fn opengl_frame(ctx: &tidepack_gldriver::GlContext, pack: &AnyPack, scene: &Scen
         .enumerate()
         .map(|(i, (pass, images))| {
             let samples_ms: Vec<f64> = rendered.iter().map(|f| f.step_ms[i]).collect();
-            let median_ms = crate::images::median(&timed.iter().map(|f| f.step_ms[i]).collect::<Vec<_>>());
             StepReport {
                 pass: pass.clone(),
                 wall_ms: last.step_ms[i],
                 gpu_ms: None,
-                median_ms,
+                median_ms: images::settled_median(&samples_ms),
                 samples_ms,
                 non_finite: images.iter().map(|(name, image)| (name.clone(), image.non_finite())).collect(),
                 images: images.clone(),
             }
         })
         .collect();
-    let frame_ms = crate::images::median(&timed.iter().map(|f| f.step_ms.iter().sum()).collect::<Vec<f64>>());
+    let frame_ms: Vec<f64> = rendered.iter().map(|f| f.step_ms.iter().sum()).collect();
     let passthrough_samples_ms: Vec<f64> = rendered.iter().map(|f| f.passthrough_ms).collect();
     let timing = gpu::FrameTiming {
         frames: rendered.len(),
-        frame_ms,
-        passthrough_ms: crate::images::median(&timed.iter().map(|f| f.passthrough_ms).collect::<Vec<_>>()),
+        frame_ms: images::settled_median(&frame_ms),
+        passthrough_ms: images::settled_median(&passthrough_samples_ms),
         passthrough_samples_ms,
     };
     let last = rendered.pop().expect("one frame at least");

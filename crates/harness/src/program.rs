@@ -81,6 +81,13 @@ impl LoadedStage {
     }
 }
 
+impl LoadedProgram {
+    /// Why naga cannot read a stage of the program, if it cannot.
+    pub fn naga_refusal(&self) -> Option<&str> {
+        [&self.vertex, &self.fragment].into_iter().find_map(|s| s.naga.as_ref().err()).map(String::as_str)
+    }
+}
+
 #[derive(Debug)]
 pub struct LoadedProgram {
     pub name: String,
@@ -227,7 +234,7 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
         return Err(HarnessError::Pack(failed.join("\n")));
     }
     // Our programs must all be drawn by both renderers.
-    let unreadable: Vec<&str> = pack.programs().flat_map(|p| [&p.vertex, &p.fragment]).filter_map(|s| s.naga.as_ref().err()).map(String::as_str).collect();
+    let unreadable: Vec<&str> = pack.programs().filter_map(LoadedProgram::naga_refusal).collect();
     if !unreadable.is_empty() {
         return Err(HarnessError::Pack(unreadable.join("\n")));
     }
@@ -271,7 +278,7 @@ pub(crate) fn load_program_files(
     let mut pre = Vec::new();
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
-        // The renderer draws what lenient drivers run: an `#extension` after code included.
+        // The renderer draws what lenient drivers run (`PreprocessOptions::lenient`).
         let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
@@ -291,7 +298,6 @@ pub(crate) fn load_program_files(
         let mut narrow_outputs = BTreeMap::new();
         let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
-        // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
         // Macros the lenient preprocessor saw redefined, at the lines of the expanded text.
         let redefined: Vec<(u32, String)> = stage
             .preprocessed
@@ -301,6 +307,7 @@ pub(crate) fn load_program_files(
                 line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
             })
             .collect();
+        // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
         let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text, stage.stage, &redefined);
         let gl_rewrites = rewrites
             .iter()

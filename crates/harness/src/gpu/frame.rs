@@ -29,7 +29,7 @@ use super::own::{MipmapPipelines, PassthroughPipeline};
 use crate::samplers::SamplerNaming;
 use tidepack_loader::buffers::mip_levels;
 use super::readback::{read_pass_ms, read_texture};
-use crate::images::median;
+use crate::images::settled_median;
 
 /// One pass of the frame as it ran.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -581,14 +581,12 @@ fn run_frames(
         }
         floor_ms.push(gpu_iter.next().unwrap_or(walls[steps.len()]));
     }
-    // The first frame pays for llvmpipe's lazy shader compilation: medians leave it out.
-    let settled = |samples: &[f64]| median(if samples.len() > 1 { &samples[1..] } else { samples });
     for (report, samples) in reports.iter_mut().zip(&step_ms) {
-        report.median_ms = settled(samples);
+        report.median_ms = settled_median(samples);
         report.samples_ms = samples.clone();
     }
     let frame_ms: Vec<f64> = (0..frames).map(|f| step_ms.iter().map(|s| s[f]).sum()).collect();
-    let timing = FrameTiming { frames, frame_ms: settled(&frame_ms), passthrough_ms: settled(&floor_ms), passthrough_samples_ms: floor_ms };
+    let timing = FrameTiming { frames, frame_ms: settled_median(&frame_ms), passthrough_ms: settled_median(&floor_ms), passthrough_samples_ms: floor_ms };
     Ok((reports, timing))
 }
 
