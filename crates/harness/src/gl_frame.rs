@@ -52,6 +52,34 @@ pub struct GlFrame {
 
 /// Renders `scene` with the pack's shipped text through OpenGL.
 pub fn render(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput) -> Result<GlFrame, HarnessError> {
+    render_seeded(ctx, pack, scene, mesh, screen, None)
+}
+
+/// Renders `scene` as [`render`] does, but each step starts from what another renderer's frame
+/// of the same plan (`reference`: per step, the textures it wrote, as [`GlFrame::steps`] names
+/// them) left: the textures the step before wrote are replaced by the reference's. Each step
+/// is then drawn from the same colour inputs as the reference's, so a difference it shows is
+/// its own, not one an earlier step made and a blur or a bloom spread. Depth buffers stay
+/// OpenGL's own.
+pub fn render_from(
+    ctx: &GlContext,
+    pack: &AnyPack,
+    scene: &Scene,
+    mesh: &SceneMesh,
+    screen: ScreenOutput,
+    reference: &[&[(String, FloatImage)]],
+) -> Result<GlFrame, HarnessError> {
+    render_seeded(ctx, pack, scene, mesh, screen, Some(reference))
+}
+
+fn render_seeded(
+    ctx: &GlContext,
+    pack: &AnyPack,
+    scene: &Scene,
+    mesh: &SceneMesh,
+    screen: ScreenOutput,
+    reference: Option<&[&[(String, FloatImage)]]>,
+) -> Result<GlFrame, HarnessError> {
     let Some(clip_control) = ctx.legacy().clip_control else {
         return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
     };
@@ -60,7 +88,7 @@ pub fn render(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, 
         clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
         (ctx.legacy().provoking_vertex)(legacy::FIRST_VERTEX_CONVENTION);
     }
-    let frame = render_plan(ctx, pack, scene, mesh, screen);
+    let frame = render_plan(ctx, pack, scene, mesh, screen, reference);
     // SAFETY: as above.
     unsafe {
         clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
@@ -97,8 +125,20 @@ struct GlPlanFrame<'a> {
     step_ms: f64,
 }
 
-fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput) -> Result<GlFrame, HarnessError> {
+fn render_plan(
+    ctx: &GlContext,
+    pack: &AnyPack,
+    scene: &Scene,
+    mesh: &SceneMesh,
+    screen: ScreenOutput,
+    reference: Option<&[&[(String, FloatImage)]]>,
+) -> Result<GlFrame, HarnessError> {
     let plan = FramePlan::new(pack, scene, mesh, screen);
+    if let Some(reference) = reference
+        && reference.len() != plan.steps.len()
+    {
+        return Err(HarnessError::Gl(format!("the reference frame ran {} steps, the OpenGL frame has {}", reference.len(), plan.steps.len())));
+    }
     // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
         let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan)?;
@@ -106,7 +146,14 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh,
         let quad = mesh::fullscreen_quad();
         let mut steps = Vec::new();
         let mut step_ms = Vec::new();
-        for step in &plan.steps {
+        // The textures the step before wrote, by name.
+        let mut last_written: Vec<(String, glow::Texture)> = Vec::new();
+        for (index, step) in plan.steps.iter().enumerate() {
+            if let Some(reference) = reference
+                && index > 0
+            {
+                frame.seed(&last_written, reference[index - 1])?;
+            }
             frame.step_ms = 0.0;
             let written = match &step.work {
                 PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
@@ -129,11 +176,19 @@ fn render_plan(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh,
                 PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => frame.fullscreen(program, current, *into_screen, mipmaps, &quad)?,
                 PlannedWork::ScreenCopy { current } => frame.screen_copy(*current)?,
             };
-            steps.push((step.label.clone(), written));
+            last_written = written.iter().map(|w| (w.name.clone(), w.texture)).collect();
+            steps.push((step.label.clone(), written.into_iter().map(|w| (w.name, w.image)).collect()));
             step_ms.push(frame.step_ms);
         }
         frame.finish(steps, step_ms, &plan.current)
     }
+}
+
+/// A texture a step wrote, and what it holds after the step.
+struct Written {
+    name: String,
+    texture: glow::Texture,
+    image: FloatImage,
 }
 
 /// A geometry step of the plan, as drawn in OpenGL.
@@ -234,6 +289,33 @@ impl<'a> GlPlanFrame<'a> {
         Ok(())
     }
 
+    /// Each texture in `written` overwritten with the reference's image of the same name
+    /// (see [`render_from`]); its mipmaps are made again by the step that reads them.
+    unsafe fn seed(&self, written: &[(String, glow::Texture)], reference: &[(String, FloatImage)]) -> Result<(), HarnessError> {
+        let gl = self.ctx.gl();
+        for (name, texture) in written {
+            let Some((_, image)) = reference.iter().find(|(n, _)| n == name) else {
+                return Err(HarnessError::Gl(format!("the reference frame has no {name} where the OpenGL frame wrote it")));
+            };
+            // SAFETY: the texture is this frame's, of the image's size (both frames follow one plan).
+            unsafe {
+                gl.bind_texture(glow::TEXTURE_2D, Some(*texture));
+                gl.tex_sub_image_2d(
+                    glow::TEXTURE_2D,
+                    0,
+                    0,
+                    0,
+                    image.width as i32,
+                    image.height as i32,
+                    glow::RGBA,
+                    glow::FLOAT,
+                    glow::PixelUnpackData::Slice(Some(bytemuck::cast_slice(&image.pixels))),
+                );
+            }
+        }
+        Ok(())
+    }
+
     /// `from` copied into `to` (depth copies).
     unsafe fn copy(&mut self, from: glow::Texture, to: glow::Texture, w: i32, h: i32) {
         let gl = self.ctx.gl();
@@ -284,7 +366,7 @@ impl<'a> GlPlanFrame<'a> {
 
     /// A gbuffers draw (or the loader's own colour where the chain has no program), after the
     /// buffers it samples are copied to their snapshots.
-    unsafe fn geometry(&mut self, step: &GeometryStep, current: &BTreeMap<u8, usize>, snapshots: &BTreeSet<u8>) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+    unsafe fn geometry(&mut self, step: &GeometryStep, current: &BTreeMap<u8, usize>, snapshots: &BTreeSet<u8>) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         let (w, h) = (self.w, self.h);
         unsafe {
@@ -334,12 +416,12 @@ impl<'a> GlPlanFrame<'a> {
             }
             set_blends(gl, &drawn, &|_| Blend::Off);
             gl.depth_mask(true);
-            drawn.iter().zip(&targets).map(|(b, t)| Ok((format!("colortex{b}"), self.read_colour(*t)?))).collect()
+            drawn.iter().zip(&targets).map(|(b, t)| Ok(Written { name: format!("colortex{b}"), texture: *t, image: self.read_colour(*t)? })).collect()
         }
     }
 
     /// A shadow program's draw into the shadow map, at the shadow map's size.
-    unsafe fn shadow_geometry(&mut self, program: &LoadedProgram, vertices: &[PackVertex], render_stage: &str) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+    unsafe fn shadow_geometry(&mut self, program: &LoadedProgram, vertices: &[PackVertex], render_stage: &str) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         let side = self.shadow_side;
         unsafe {
@@ -366,7 +448,12 @@ impl<'a> GlPlanFrame<'a> {
             self.draw(program, Pass::Shadow, render_stage, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            program.render_targets.iter().zip(&targets).map(|(b, t)| Ok((format!("shadowcolor{b}"), read(gl, *t, false, self.screen, side, side)?))).collect()
+            program
+                .render_targets
+                .iter()
+                .zip(&targets)
+                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, false, self.screen, side, side)? }))
+                .collect()
         }
     }
 
@@ -379,7 +466,7 @@ impl<'a> GlPlanFrame<'a> {
         into_screen: bool,
         mipmaps: &BTreeSet<u8>,
         quad: &[PackVertex],
-    ) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+    ) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         unsafe {
             for b in mipmaps {
@@ -413,12 +500,12 @@ impl<'a> GlPlanFrame<'a> {
             };
             self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            targets.into_iter().map(|(name, t)| Ok((name, self.read_colour(t)?))).collect()
+            targets.into_iter().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
         }
     }
 
     /// colortex0's current texture blitted to the screen, for a pack without final.
-    unsafe fn screen_copy(&self, current: usize) -> Result<Vec<(String, FloatImage)>, HarnessError> {
+    unsafe fn screen_copy(&self, current: usize) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         let (w, h) = (self.w, self.h);
         unsafe {
@@ -430,7 +517,7 @@ impl<'a> GlPlanFrame<'a> {
             gl.blit_framebuffer(0, 0, w, h, 0, 0, w, h, glow::COLOR_BUFFER_BIT, glow::NEAREST);
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             gl.delete_framebuffer(read_fbo);
-            Ok(vec![("screen".to_string(), self.read_colour(self.screen)?)])
+            Ok(vec![Written { name: "screen".to_string(), texture: self.screen, image: self.read_colour(self.screen)? }])
         }
     }
 

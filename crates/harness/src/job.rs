@@ -442,10 +442,13 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         Err(e) => return Err(e),
     };
     let gl_primary = renderer.wgpu_cannot_draw.is_some();
-    // With OpenGL as the primary renderer there is no second frame to compare with.
+    // With OpenGL as the primary renderer there is no second frame to compare with. OpenGL
+    // draws each step from wgpu's textures, so that the step where they part is the one that
+    // differs, not one further down that spreads an earlier step's few pixels.
     let gl = if job.gl && !gl_primary {
         let ctx = gl::context()?;
-        Some((ctx.info().to_string(), crate::gl_frame::render(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader)))
+        let reference: Vec<&[(String, FloatImage)]> = frame.passes.iter().map(|p| p.images.as_slice()).collect();
+        Some((ctx.info().to_string(), crate::gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference)))
     } else {
         None
     };

@@ -80,6 +80,39 @@ fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
     }
 }
 
+/// OpenGL redrawing each step from wgpu's textures: with wgpu's own, every step agrees; with
+/// composite's colortex0 replaced, composite1 (which reads it) draws from the replacement.
+#[test]
+fn opengl_draws_each_step_from_the_reference_frames_textures() {
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    let pack = pack("flip_chain", Loader::default());
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let wgpu = render(&pack, &scene);
+    let mut reference: Vec<Vec<(String, images::FloatImage)>> = wgpu.passes.iter().map(|p| p.images.clone()).collect();
+    let draw = |r: &[Vec<(String, images::FloatImage)>]| {
+        let views: Vec<&[(String, images::FloatImage)]> = r.iter().map(Vec::as_slice).collect();
+        gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &views).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let faithful = draw(&reference);
+    for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&faithful.steps) {
+        for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
+            assert_eq!(images::count_differing(a, b, 1.0 / 255.0 + 1e-6), 0, "{} {texture}", pass.pass);
+        }
+    }
+    let composite = wgpu.passes.iter().position(|p| p.pass == "composite").expect("a composite step");
+    assert_eq!(wgpu.passes[composite + 1].pass, "composite1");
+    for (texture, image) in &mut reference[composite] {
+        assert_eq!(texture, "colortex0");
+        image.pixels.iter_mut().for_each(|p| *p = [1.0, 0.0, 1.0, 1.0]);
+    }
+    let replaced = draw(&reference);
+    let (before, after) = (&faithful.steps[composite + 1].1[0].1, &replaced.steps[composite + 1].1[0].1);
+    let pixels = (scene.width() * scene.height()) as usize;
+    assert!(images::count_differing(before, after, 0.1) > pixels / 2, "composite1 did not read the replaced colortex0");
+    assert_eq!(images::count_differing(&faithful.steps[composite].1[0].1, &replaced.steps[composite].1[0].1, 0.0), 0, "composite itself is drawn alike");
+}
+
 #[test]
 fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
