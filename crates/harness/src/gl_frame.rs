@@ -55,20 +55,21 @@ pub fn render(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, 
     render_seeded(ctx, pack, scene, mesh, screen, None)
 }
 
-/// Renders `scene` as [`render`] does, but each step starts from what another renderer's frame
-/// of the same plan (`reference`: per step, the textures it wrote, as [`GlFrame::steps`] names
-/// them) left: the textures the step before wrote are replaced by the reference's. Each step
-/// is then drawn from the same colour inputs as the reference's, so a difference it shows is
-/// its own, not one an earlier step made and a blur or a bloom spread. Depth buffers stay
-/// OpenGL's own.
-pub fn render_from(
-    ctx: &GlContext,
-    pack: &AnyPack,
-    scene: &Scene,
-    mesh: &SceneMesh,
-    screen: ScreenOutput,
-    reference: &[&[(String, FloatImage)]],
-) -> Result<GlFrame, HarnessError> {
+/// Another renderer's frame of the same plan, for [`render_from`]: per step, the textures it
+/// wrote (as [`GlFrame::steps`] names them), and its depth buffers at the end of the frame.
+pub struct Reference<'r> {
+    pub steps: Vec<&'r [(String, FloatImage)]>,
+    pub depth0: &'r FloatImage,
+    pub depth1: &'r FloatImage,
+}
+
+/// Renders `scene` as [`render`] does, but each step starts from what `reference` left: the
+/// colour textures the step before wrote are replaced by the reference's, and so are the depth
+/// buffers a full-screen step reads where the reference's final ones hold what they held then
+/// (after the last geometry, or the opaque depth between the depth copy and the next geometry).
+/// Each step is then drawn from the same inputs as the reference's, so a difference it shows is
+/// its own, not one an earlier step made and a blur, a bloom or an occlusion pass spread.
+pub fn render_from(ctx: &GlContext, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput, reference: &Reference) -> Result<GlFrame, HarnessError> {
     render_seeded(ctx, pack, scene, mesh, screen, Some(reference))
 }
 
@@ -78,7 +79,7 @@ fn render_seeded(
     scene: &Scene,
     mesh: &SceneMesh,
     screen: ScreenOutput,
-    reference: Option<&[&[(String, FloatImage)]]>,
+    reference: Option<&Reference>,
 ) -> Result<GlFrame, HarnessError> {
     let Some(clip_control) = ctx.legacy().clip_control else {
         return Err(HarnessError::Gl(format!("{} has no glClipControl (OpenGL 4.5 / ARB_clip_control)", ctx.info())));
@@ -131,14 +132,17 @@ fn render_plan(
     scene: &Scene,
     mesh: &SceneMesh,
     screen: ScreenOutput,
-    reference: Option<&[&[(String, FloatImage)]]>,
+    reference: Option<&Reference>,
 ) -> Result<GlFrame, HarnessError> {
     let plan = FramePlan::new(pack, scene, mesh, screen);
     if let Some(reference) = reference
-        && reference.len() != plan.steps.len()
+        && reference.steps.len() != plan.steps.len()
     {
-        return Err(HarnessError::Gl(format!("the reference frame ran {} steps, the OpenGL frame has {}", reference.len(), plan.steps.len())));
+        return Err(HarnessError::Gl(format!("the reference frame ran {} steps, the OpenGL frame has {}", reference.steps.len(), plan.steps.len())));
     }
+    let is_geometry = |work: &PlannedWork| matches!(work, PlannedWork::Geometry { .. });
+    let last_geometry = plan.steps.iter().rposition(|s| is_geometry(&s.work));
+    let depth_copy = plan.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
     // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
         let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan)?;
@@ -149,10 +153,19 @@ fn render_plan(
         // The textures the step before wrote, by name.
         let mut last_written: Vec<(String, glow::Texture)> = Vec::new();
         for (index, step) in plan.steps.iter().enumerate() {
-            if let Some(reference) = reference
-                && index > 0
-            {
-                frame.seed(&last_written, reference[index - 1])?;
+            if let Some(reference) = reference {
+                if index > 0 {
+                    frame.seed(&last_written, reference.steps[index - 1])?;
+                }
+                if matches!(step.work, PlannedWork::Fullscreen { .. }) {
+                    let after_all_geometry = last_geometry.is_none_or(|g| g < index);
+                    let opaque_only = depth_copy.is_some_and(|c| c < index && !plan.steps[c..index].iter().any(|s| is_geometry(&s.work)));
+                    if after_all_geometry {
+                        frame.seed_depth(reference.depth0, reference.depth1);
+                    } else if opaque_only {
+                        frame.seed_depth(reference.depth1, reference.depth1);
+                    }
+                }
             }
             frame.step_ms = 0.0;
             let written = match &step.work {
@@ -314,6 +327,29 @@ impl<'a> GlPlanFrame<'a> {
             }
         }
         Ok(())
+    }
+
+    /// depthtex0 and depthtex1 overwritten with the reference's images (see [`render_from`]).
+    unsafe fn seed_depth(&self, depth0: &FloatImage, depth1: &FloatImage) {
+        let gl = self.ctx.gl();
+        for (texture, image) in [(self.depth0, depth0), (self.depth1, depth1)] {
+            let depths: Vec<f32> = image.pixels.iter().map(|p| p[0]).collect();
+            // SAFETY: the texture is this frame's, of the frame's size, as the image is.
+            unsafe {
+                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                gl.tex_sub_image_2d(
+                    glow::TEXTURE_2D,
+                    0,
+                    0,
+                    0,
+                    image.width as i32,
+                    image.height as i32,
+                    glow::DEPTH_COMPONENT,
+                    glow::FLOAT,
+                    glow::PixelUnpackData::Slice(Some(bytemuck::cast_slice(&depths))),
+                );
+            }
+        }
     }
 
     /// `from` copied into `to` (depth copies).

@@ -443,11 +443,16 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     };
     let gl_primary = renderer.wgpu_cannot_draw.is_some();
     // With OpenGL as the primary renderer there is no second frame to compare with. OpenGL
-    // draws each step from wgpu's textures, so that the step where they part is the one that
-    // differs, not one further down that spreads an earlier step's few pixels.
+    // draws each step from wgpu's textures (gl_frame::render_from), so that the step where
+    // they part is the one that differs, not one further down that spreads an earlier step's
+    // few pixels.
     let gl = if job.gl && !gl_primary {
         let ctx = gl::context()?;
-        let reference: Vec<&[(String, FloatImage)]> = frame.passes.iter().map(|p| p.images.as_slice()).collect();
+        let reference = crate::gl_frame::Reference {
+            steps: frame.passes.iter().map(|p| p.images.as_slice()).collect(),
+            depth0: &frame.depth0,
+            depth1: &frame.depth1,
+        };
         Some((ctx.info().to_string(), crate::gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference)))
     } else {
         None

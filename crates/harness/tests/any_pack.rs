@@ -91,8 +91,8 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
     let wgpu = render(&pack, &scene);
     let mut reference: Vec<Vec<(String, images::FloatImage)>> = wgpu.passes.iter().map(|p| p.images.clone()).collect();
     let draw = |r: &[Vec<(String, images::FloatImage)>]| {
-        let views: Vec<&[(String, images::FloatImage)]> = r.iter().map(Vec::as_slice).collect();
-        gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &views).unwrap_or_else(|e| panic!("{e}"))
+        let reference = gl_frame::Reference { steps: r.iter().map(Vec::as_slice).collect(), depth0: &wgpu.depth0, depth1: &wgpu.depth1 };
+        gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference).unwrap_or_else(|e| panic!("{e}"))
     };
     let faithful = draw(&reference);
     for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&faithful.steps) {
