@@ -33,7 +33,7 @@ fn main() {
             expect: None,
             bless: false,
             max_flip: 0.0,
-            gl_max_pixels: job::GL_MAX_DIFFERING_PIXELS,
+            gl_max_pixels: None,
         };
         match job::run_any_pack(&job) {
             Ok(report) => {

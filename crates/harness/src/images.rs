@@ -149,6 +149,21 @@ pub fn difference_rgb8(a: &[u8], b: &[u8]) -> Vec<u8> {
         .collect()
 }
 
+/// White where `a` and `b` differ by more than `threshold` in some channel, black elsewhere:
+/// 8-bit RGBA, top row first, to find the few pixels where two renderers part.
+pub fn differing_mask_rgba8(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<u8> {
+    let mut mask = Vec::with_capacity(a.pixels.len() * 4);
+    for y in (0..a.height).rev() {
+        for x in 0..a.width {
+            let (p, q) = (a.at(x, y), b.at(x, y));
+            let over = (0..4).any(|c| (p[c] - q[c]).abs() > threshold);
+            let v = if over { 255 } else { 0 };
+            mask.extend_from_slice(&[v, v, v, 255]);
+        }
+    }
+    mask
+}
+
 /// Drops the alpha of 8-bit RGBA pixels.
 pub fn rgba8_to_rgb8(rgba: &[u8]) -> Vec<u8> {
     rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()

@@ -296,14 +296,19 @@ pub struct AnyPackJob {
     /// The largest mean FLIP against the blessed screen that passes.
     pub max_flip: f64,
     /// With `gl`: the most pixels of one texture after one step that may differ between the
-    /// two renderers by more than 1/255 before the run counts as a disagreement.
-    pub gl_max_pixels: usize,
+    /// two renderers by more than 1/255 before the run counts as a disagreement; `None` for
+    /// [`gl_max_differing_pixels`] of the screen.
+    pub gl_max_pixels: Option<usize>,
 }
 
 /// Pixels of one texture after one step that may differ between wgpu and OpenGL by more than
-/// 1/255 (rounding where the two rasterise an edge alike but sample it a hair apart) before the
-/// renderers are said to disagree.
-pub const GL_MAX_DIFFERING_PIXELS: usize = 16;
+/// 1/255 before the renderers are said to disagree, on a screen of `width` x `height`: one in
+/// 10,000, and at least 16. Where a lookup's result jumps, the last bit of its coordinate
+/// decides (a nearest texel on a sprite's edge, a mipmap level chosen from derivatives a hair
+/// apart); a wrong binding or mapping moves thousands.
+pub fn gl_max_differing_pixels(width: u32, height: u32) -> usize {
+    (width as usize * height as usize / 10_000).max(16)
+}
 
 /// Where wgpu and OpenGL part: the first step, in frame order, with a texture over the limit.
 #[derive(Clone, Debug, Serialize, PartialEq)]
@@ -482,10 +487,22 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         write(".depthtex0", &frame.depth0.depth_for_viewing())?;
         write(".depthtex1", &frame.depth1.depth_for_viewing())?;
     }
+    let gl_max_pixels = job.gl_max_pixels.unwrap_or_else(|| gl_max_differing_pixels(frame.image.width, frame.image.height));
     let gl = match gl {
         Some((renderer, Ok(gl_frame))) => {
             write(".gl", &gl_frame.image)?;
-            Some(compare_steps(renderer, &frame, &gl_frame)?)
+            let comparison = compare_steps(renderer, &frame, &gl_frame)?;
+            // Where they part: both renderers' texture and the pixels over 1/255, to look at.
+            if let Some(parted) = comparison.first_disagreement(gl_max_pixels) {
+                let step = frame.passes.iter().position(|p| p.pass == parted.pass).expect("the step was compared");
+                let image_of = |images: &[(String, FloatImage)]| images.iter().find(|(name, _)| *name == parted.texture).map(|(_, i)| i.clone());
+                if let (Some(ours), Some(theirs)) = (image_of(&frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
+                    write(".parted.wgpu", &ours)?;
+                    write(".parted.opengl", &theirs)?;
+                    write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, 1.0 / 255.0 + 1e-6))?;
+                }
+            }
+            Some(comparison)
         }
         // The driver refusing a program is a finding about the pack, reported with the frame.
         Some((renderer, Err(HarnessError::Gl(refused)))) => {
@@ -502,7 +519,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = AnyPackReport {
-        gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(job.gl_max_pixels)),
+        gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(gl_max_pixels)),
         gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites() } else { Vec::new() },
         renderer,
         gl,

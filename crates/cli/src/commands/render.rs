@@ -68,9 +68,9 @@ pub struct RenderArgs {
     pub max_flip: f64,
     /// With --pack --gl: the most pixels of one texture after one step that may differ
     /// between wgpu and OpenGL by more than 1/255; past it the run fails, naming the step where
-    /// the renderers part.
-    #[arg(long, value_name = "PIXELS", default_value_t = job::GL_MAX_DIFFERING_PIXELS, requires = "gl")]
-    pub gl_max_pixels: usize,
+    /// the renderers part [default: one pixel in 10,000 of the screen, at least 16].
+    #[arg(long, value_name = "PIXELS", requires = "gl")]
+    pub gl_max_pixels: Option<usize>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
