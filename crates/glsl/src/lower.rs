@@ -260,6 +260,17 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
         "atomicExchange",
         "int atomicExchange(inout int m, int v) { return m; } uint atomicExchange(inout uint m, uint v) { return m; }",
     ),
+    // GLSL's geometric functions take a float too (genType); naga's only vectors. The
+    // scalar forms as the GLSL specification defines them.
+    ("dot", "float dot(float x, float y) { return x * y; }"),
+    ("normalize", "float normalize(float x) { return x / abs(x); }"),
+    ("reflect", "float reflect(float i, float n) { return i - 2.0 * n * i * n; }"),
+    (
+        "refract",
+        "float refract(float i, float n, float eta) { float k = 1.0 - eta * eta * (1.0 - n * i * n * i); \
+         return k < 0.0 ? 0.0 : eta * i - (eta * n * i + sqrt(k)) * n; }",
+    ),
+    ("faceforward", "float faceforward(float n, float i, float nref) { return nref * i < 0.0 ? n : -n; }"),
     (
         "modf",
         "float modf(float x, out float i) { i = trunc(x); return x - i; } \

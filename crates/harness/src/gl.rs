@@ -748,6 +748,9 @@ unsafe fn set_uniform(gl: &glow::Context, location: Option<&glow::UniformLocatio
             glow::INT_VEC2 => expect("ivec2").map(|_| gl.uniform_2_i32_slice(location, &i)),
             glow::INT_VEC3 => expect("ivec3").map(|_| gl.uniform_3_i32_slice(location, &i)),
             glow::INT_VEC4 => expect("ivec4").map(|_| gl.uniform_4_i32_slice(location, &i)),
+            // OpenGL sets a `bool` from an int (0 is false), as OptiFine sets a pack's
+            // `uniform bool isEyeInWater;` from the int it has.
+            glow::BOOL => expect("int").or_else(|_| expect("bool")).map(|_| gl.uniform_1_i32_slice(location, &i)),
             glow::FLOAT_MAT3 => expect("mat3").map(|_| gl.uniform_matrix_3_f32_slice(location, false, &f)),
             glow::FLOAT_MAT4 => expect("mat4").map(|_| gl.uniform_matrix_4_f32_slice(location, false, &f)),
             other => Err(format!("GL type 0x{other:x} is not supported by the harness")),

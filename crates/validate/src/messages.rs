@@ -8,7 +8,15 @@ use tidepack_glsl::{Code, Diagnostic, Severity};
 pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
     diag.message = tidepack_glsl::lower::unlower_names(&diag.message);
     let sampling = ["texture", "textureLod", "textureProj", "textureGrad", "texelFetch", "textureSize", "textureOffset"];
-    let unknown = diag.message.strip_prefix("Unknown function '").and_then(|r| r.strip_suffix('\'')).map(str::to_string);
+    // naga names a built-in whose arguments fit none of its own forms by its IR name (`Dot`).
+    let invalid_arguments = diag
+        .message
+        .strip_prefix("Can't resolve type: BuiltinArgumentsInvalid(\"")
+        .and_then(|r| r.strip_suffix("\")"))
+        .and_then(|ir_name| BUILTIN_FORMS.iter().find(|(builtin, _)| builtin.eq_ignore_ascii_case(ir_name)))
+        .map(|(builtin, _)| builtin.to_string());
+    let unknown =
+        diag.message.strip_prefix("Unknown function '").and_then(|r| r.strip_suffix('\'')).map(str::to_string).or(invalid_arguments);
     let unknown_variable = diag.message.strip_prefix("Unknown variable: ").map(str::to_string);
     if let Some(name) = unknown.as_deref().or(unknown_variable.as_deref())
         && NAGA_LACKS.iter().any(|prefix| name.starts_with(prefix))
