@@ -213,13 +213,24 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     if stage == Stage::Vertex {
-        let unwritten = unwritten_outputs(&met);
+        let (unwritten, sometimes) = outputs_not_always_written(&met);
         let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
-        if let (false, Some(at)) = (unwritten.is_empty(), main_open) {
-            let zeroes: String = unwritten.iter().map(|(type_, name)| format!(" {name} = {type_}(0);")).collect();
+        if let (false, Some(at)) = (unwritten.is_empty() && sometimes.is_empty(), main_open) {
+            let zeroes: String = unwritten.iter().chain(&sometimes).map(|(type_, name)| format!(" {name} = {type_}(0);")).collect();
             replaced[significant[at + 4]] = Some(format!("{{{zeroes}"));
-            let names: Vec<String> = unwritten.iter().map(|(_, name)| format!("`{name}`")).collect();
-            rewrites.push(Rewrite { line: sig[at + 4].line, what: format!("outputs nothing writes set to 0 at the start of main: {}", names.join(", ")) });
+            let names = |outputs: &[(&str, &str)]| outputs.iter().map(|(_, name)| format!("`{name}`")).collect::<Vec<_>>().join(", ");
+            if !unwritten.is_empty() {
+                rewrites.push(Rewrite { line: sig[at + 4].line, what: format!("outputs nothing writes set to 0 at the start of main: {}", names(&unwritten)) });
+            }
+            if !sometimes.is_empty() {
+                rewrites.push(Rewrite {
+                    line: sig[at + 4].line,
+                    what: format!(
+                        "outputs not written whole on every path set to 0 at the start of main (undefined where not written; 0 as wgpu has them): {}",
+                        names(&sometimes)
+                    ),
+                });
+            }
         }
     }
 
@@ -241,16 +252,29 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     (out, rewrites)
 }
 
-/// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), whose
-/// name appears nowhere else: (type, name).
-fn unwritten_outputs<'t>(toks: &[&'t Token]) -> Vec<(&'t str, &'t str)> {
+/// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), that
+/// the stage may leave unwritten: (type, name) of those whose name appears nowhere else, and of
+/// those `main` does not assign whole (`NAME =`) outside every block of its own, so that some
+/// paths (an `if`, a function called on some) or components (`NAME.rgb =`) are left undefined.
+fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)>, Vec<(&'t str, &'t str)>) {
     let mut depth = 0i32;
-    let mut found = Vec::new();
+    let mut main_body: Option<(usize, usize)> = None;
+    let mut declared = Vec::new();
     for (i, t) in toks.iter().enumerate() {
         if t.is_punct("{") {
+            if depth == 0 && i >= 4 && toks[i - 4].is_ident("void") && toks[i - 3].is_ident("main") && toks[i - 2].is_punct("(") && toks[i - 1].is_punct(")") {
+                main_body = Some((i, toks.len()));
+            }
             depth += 1;
         } else if t.is_punct("}") {
             depth -= 1;
+            if depth == 0
+                && let Some((open, close)) = &mut main_body
+                && *close == toks.len()
+                && i > *open
+            {
+                *close = i;
+            }
         } else if depth == 0
             && (t.is_ident("varying") || t.is_ident("out"))
             && let [type_, name, end] = [toks.get(i + 1), toks.get(i + 2), toks.get(i + 3)]
@@ -258,12 +282,40 @@ fn unwritten_outputs<'t>(toks: &[&'t Token]) -> Vec<(&'t str, &'t str)> {
             && VALUE_TYPES.contains(&type_.text)
             && name.kind == TokenKind::Ident
             && end.is_punct(";")
-            && toks.iter().filter(|u| u.is_ident(name.text)).count() == 1
         {
-            found.push((type_.text, name.text));
+            declared.push((type_.text, name.text));
         }
     }
-    found
+    // Where main assigns each name at its own level (depth 1 inside its braces).
+    let mut assigned_in_main = std::collections::HashSet::new();
+    if let Some((open, close)) = main_body {
+        let mut depth = 0i32;
+        for k in open..close {
+            let t = toks[k];
+            if t.is_punct("{") {
+                depth += 1;
+            } else if t.is_punct("}") {
+                depth -= 1;
+            } else if depth == 1
+                && t.kind == TokenKind::Ident
+                && toks.get(k + 1).is_some_and(|e| e.is_punct("="))
+                // A statement of its own, not the body of an `if (…)`, `else`, `for (…)` or `while (…)` without braces.
+                && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p))
+            {
+                assigned_in_main.insert(t.text);
+            }
+        }
+    }
+    let mut unwritten = Vec::new();
+    let mut sometimes = Vec::new();
+    for (type_, name) in declared {
+        if toks.iter().filter(|u| u.is_ident(name)).count() == 1 {
+            unwritten.push((type_, name));
+        } else if main_body.is_some() && !assigned_in_main.contains(name) {
+            sometimes.push((type_, name));
+        }
+    }
+    (unwritten, sometimes)
 }
 
 /// A function definition in a list of significant tokens: where its name and its body's braces are.
@@ -488,6 +540,15 @@ mod tests {
         assert_eq!(out, text.replace("void main() {", "void main() { offsets = vec2(0);"));
         assert_eq!(rewrites, [Rewrite { line: 7, what: "outputs nothing writes set to 0 at the start of main: `offsets`".into() }]);
         assert_eq!(for_strict_drivers(text, preprocessed, Stage::Fragment, &[]).1, []);
+    }
+
+    #[test]
+    fn a_vertex_output_written_on_some_paths_is_set_to_zero_first() {
+        let text = "#version 120\nattribute vec4 mc_Entity;\nvarying float isWater;\nvarying vec4 color;\nvarying vec2 uv;\nvoid setUv() { uv = vec2(0.5); }\nvoid main() {\n    color.rgb = vec3(1.0);\n    if (mc_Entity.x == 8.0) isWater = 1.0;\n    setUv();\n    gl_Position = ftransform();\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
+        assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); uv = vec2(0);"));
+        assert_eq!(rewrites.len(), 1);
+        assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `uv`"), "{rewrites:?}");
     }
 
     #[test]

@@ -453,6 +453,9 @@ fn pass_through_vertex(fragment_text: &str, outputs: &[(String, u32)]) -> String
 
 /// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
 /// locations the lowering gave them (so both renderers feed and read the same slots).
+/// Vertex attributes OpenGL guarantees (GL_MAX_VERTEX_ATTRIBS).
+const MAX_VERTEX_ATTRIBUTES: usize = 16;
+
 pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
     let attributes: Vec<(&str, u32)> = program
         .vertex
@@ -477,6 +480,16 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
         }
         DepthMapping::Harness => {
             let outputs = vertex_outputs(&program.vertex)?;
+            // The pass-through vertex stage reads each output as an attribute, after the
+            // position: OpenGL guarantees 16 (Mesa's llvmpipe has no more).
+            if outputs.len() + 1 > MAX_VERTEX_ATTRIBUTES {
+                return Err(HarnessError::Unsupported(format!(
+                    "{}: {} vertex outputs, more than the {} attributes a pass-through vertex stage can read",
+                    program.name,
+                    outputs.len(),
+                    MAX_VERTEX_ATTRIBUTES - 1
+                )));
+            }
             let mut captured = vec!["gl_Position"];
             captured.extend(outputs.iter().map(|(name, _)| name.as_str()));
             // The driver drops outputs the vertex stage never writes, and then refuses to record

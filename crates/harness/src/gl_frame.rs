@@ -3,8 +3,9 @@
 //! the two can be compared texture by texture after every step.
 //!
 //! Depth is mapped as the wgpu path maps it ([`DepthMapping::Harness`]) for every program
-//! whose vertex outputs transform feedback can record (floats, perspective); a program with
-//! other outputs (`flat` integers) is linked as shipped and drawn with OpenGL's own depth
+//! whose vertex outputs transform feedback can record (floats, perspective, at most 15, which
+//! a pass-through vertex stage reads back as attributes); a program with other outputs (`flat`
+//! integers, interface blocks, more of them) is linked as shipped and drawn with OpenGL's own depth
 //! range, which equals the wgpu mapping up to the last bits. Those programs are named in
 //! [`GlFrame::own_depth_mapping`].
 
