@@ -38,7 +38,7 @@ fn exit_codes_follow_the_verdict() {
     let out = validate(&[planted.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
-    assert!(stderr.contains("error[glsl]: Unknown variable: colr"), "{stderr}");
+    assert!(stderr.contains("error[glsl]: undeclared identifier `colr`"), "{stderr}");
     assert!(stderr.contains("undeclared_identifier/shaders/lib/color.glsl:4:"), "{stderr}");
     assert!(stderr.contains("return saturate3(colr);"), "snippet missing: {stderr}");
 

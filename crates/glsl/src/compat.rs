@@ -86,6 +86,8 @@ pub struct Rewrite {
 /// - a vertex stage's output that nothing writes gets 0 at the start of `main` (Mesa refuses
 ///   to link a fragment stage that reads it), and so does one `main` does not write whole on
 ///   every path (its value is undefined elsewhere; wgpu has 0);
+/// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
+///   removed;
 /// - a draw buffer a fragment stage names (`/* DRAWBUFFERS:02 */`) and never writes gets
 ///   `gl_FragData[i] = vec4(0.0);` at the start of `main` (undefined otherwise: Mesa writes
 ///   white, wgpu 0);
@@ -133,6 +135,30 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             replaced[number] = Some("130".into());
             rewrites.push(Rewrite { line: tokens[number].line, what: format!("#version {version} raised to 130 for {what}") });
             version = 130;
+        }
+    }
+
+    // Precision qualifiers are reserved words before 1.30, and change nothing after it.
+    if version < 130 {
+        let mut removed = 0;
+        let mut first_line = None;
+        let mut k = 0;
+        while k < significant.len() {
+            let t = &tokens[significant[k]];
+            if t.is_ident("precision") || (t.kind == TokenKind::Ident && matches!(t.text, "lowp" | "mediump" | "highp")) {
+                let end = if t.is_ident("precision") { (k..significant.len()).find(|&j| tokens[significant[j]].is_punct(";")).unwrap_or(k) } else { k };
+                for &i in &significant[k..=end] {
+                    replaced[i] = Some(String::new());
+                }
+                removed += 1;
+                first_line.get_or_insert(t.line);
+                k = end + 1;
+            } else {
+                k += 1;
+            }
+        }
+        if let Some(line) = first_line {
+            rewrites.push(Rewrite { line, what: format!("precision qualifiers, reserved words in GLSL {version}, removed ({removed})") });
         }
     }
 
@@ -614,6 +640,16 @@ mod tests {
         assert_eq!(out, one_of_two.replace("void main() {", "void main() { gl_FragData[1] = vec4(0.0);"));
         let writes = "#version 130\nout vec4 colour;\n/* RENDERTARGETS: 0 */\nvoid main() {\n  colour = vec4(1.0);\n}\n";
         assert_eq!(for_strict_drivers(writes, writes, Stage::Fragment, &[]).1, []);
+    }
+
+    #[test]
+    fn precision_qualifiers_before_130_are_removed() {
+        let text = "#version 120\nprecision mediump float;\nlowp float hash(lowp vec2 p) { return p.x; }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, "#version 120\n  \n float hash( vec2 p) { return p.x; }\n");
+        assert_eq!(rewrites, [Rewrite { line: 2, what: "precision qualifiers, reserved words in GLSL 120, removed (3)".into() }]);
+        let modern = text.replace("#version 120", "#version 130");
+        assert_eq!(for_strict_drivers(&modern, &modern, Stage::Fragment, &[]).1, []);
     }
 
     #[test]

@@ -819,6 +819,11 @@ pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
 
 fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
+    let blanked = without_precision(text, &tokens);
+    let tokens = match &blanked {
+        Some(blanked) => tokenize(blanked).map_err(|e| LowerError { line: e.line, message: e.message })?,
+        None => tokens,
+    };
     let mut lowering = Lowering {
         tokens: &tokens,
         stage,
@@ -839,6 +844,36 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
     };
     lowering.run()?;
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
+}
+
+/// `text` with its precision qualifiers (`lowp vec2 coord`) and default precision statements
+/// (`precision mediump float;`) blanked out, every line and column kept; `None` without any.
+/// They change nothing on desktop GLSL, and naga takes a qualifier on a global declaration
+/// alone.
+fn without_precision(text: &str, tokens: &[Token]) -> Option<String> {
+    let mut spans: Vec<(usize, usize)> = Vec::new();
+    let mut i = 0;
+    while i < tokens.len() {
+        let t = &tokens[i];
+        if t.is_ident("precision") {
+            let end = (i..tokens.len()).find(|&j| tokens[j].is_punct(";")).unwrap_or(i);
+            spans.push((t.offset, tokens[end].offset + tokens[end].text.len()));
+            i = end + 1;
+            continue;
+        }
+        if t.kind == TokenKind::Ident && is_precision(t.text) {
+            spans.push((t.offset, t.offset + t.text.len()));
+        }
+        i += 1;
+    }
+    if spans.is_empty() {
+        return None;
+    }
+    let blanked = text
+        .char_indices()
+        .map(|(at, c)| if c != '\n' && spans.iter().any(|&(start, end)| start <= at && at < end) { ' ' } else { c })
+        .collect();
+    Some(blanked)
 }
 
 struct Lowering<'t, 'a> {

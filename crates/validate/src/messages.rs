@@ -28,6 +28,11 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
+    if let Some(name) = unknown_variable.as_deref() {
+        // In the words GLSL compilers use (glslang: "undeclared identifier").
+        diag.message = format!("undeclared identifier `{name}`: no variable of this name is declared where it is used");
+        return diag;
+    }
     if let Some(value) = ["NaN", "infinite"].into_iter().find(|v| diag.message.contains(&format!("Float literal is {v}"))) {
         // naga refuses a constant that folds to NaN or infinity; GLSL compilers fold it and
         // compile (Mesa does), and the value reaches whatever reads it.

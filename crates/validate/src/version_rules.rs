@@ -222,6 +222,9 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
                     w if (GPU_SHADER4_TYPES.contains(&w) && !gpu4) || w == "switch" => {
                         Some(format!("`{}` does not exist in GLSL {number}", t.text))
                     }
+                    "lowp" | "mediump" | "highp" | "precision" => {
+                        Some(format!("precision qualifiers (`{}`) are reserved words in GLSL {number}; they came with 1.30", t.text))
+                    }
                     "in" | "out" if depth == 0 && parens == 0 && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident) => {
                         Some(format!("`{}` variables need GLSL 1.30; GLSL {number} uses `attribute` and `varying`", t.text))
                     }

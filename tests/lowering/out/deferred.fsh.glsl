@@ -1,5 +1,5 @@
 #version 450
-layout(std140, set = 1, binding = 0) uniform tp_Uniforms { vec3 shadowLightPosition; mat4 gbufferProjectionInverse; }; 
+layout(std140, set = 1, binding = 0) uniform tp_Uniforms { vec3 shadowLightPosition; mat4 gbufferProjectionInverse; }; float dot(float x, float y) { return x * y; } float normalize(float x) { return x / abs(x); } 
 layout(set = 1, binding = 1) uniform texture2D colortex0; layout(set = 1, binding = 2) uniform sampler tp_sampler_colortex0;
 layout(set = 1, binding = 3) uniform texture2D colortex1; layout(set = 1, binding = 4) uniform sampler tp_sampler_colortex1;
 layout(set = 1, binding = 5) uniform texture2D depthtex0; layout(set = 1, binding = 6) uniform sampler tp_sampler_depthtex0;

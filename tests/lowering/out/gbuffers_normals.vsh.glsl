@@ -1,5 +1,5 @@
 #version 450
-layout(std140, set = 0, binding = 0) uniform tp_Uniforms { mat4 tp_ModelViewProjectionMatrix; mat3 tp_NormalMatrix; mat4 tp_ModelViewMatrix; }; layout(location = 0) in vec4 tp_Vertex; layout(location = 2) in vec3 tp_Normal; layout(location = 3) in vec4 tp_MultiTexCoord0; layout(location = 4) out float tp_FogFragCoord; layout(location = 8) in vec4 at_tangent;
+layout(std140, set = 0, binding = 0) uniform tp_Uniforms { mat4 tp_ModelViewProjectionMatrix; mat3 tp_NormalMatrix; mat4 tp_ModelViewMatrix; }; layout(location = 0) in vec4 tp_Vertex; float normalize(float x) { return x / abs(x); } layout(location = 2) in vec3 tp_Normal; layout(location = 3) in vec4 tp_MultiTexCoord0; layout(location = 4) out float tp_FogFragCoord; layout(location = 8) in vec4 at_tangent;
 mat3 tbn; layout(location = 0) out vec3 tp_tbn_0; layout(location = 1) out vec3 tp_tbn_1; layout(location = 2) out vec3 tp_tbn_2;
 layout(location = 3) out vec2 texcoord;
 void tp_main() {

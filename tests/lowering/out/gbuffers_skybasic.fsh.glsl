@@ -1,5 +1,5 @@
 #version 450
-layout(std140, set = 1, binding = 0) uniform tp_Uniforms { float viewHeight; float viewWidth; mat4 gbufferProjectionInverse; vec3 fogColor; vec3 skyColor; vec3 upPosition; }; layout(location = 1) in vec4 tp_FrontColor; layout(location = 0) out vec4 tp_FragData0; 
+layout(std140, set = 1, binding = 0) uniform tp_Uniforms { float viewHeight; float viewWidth; mat4 gbufferProjectionInverse; vec3 fogColor; vec3 skyColor; vec3 upPosition; }; float dot(float x, float y) { return x * y; } float normalize(float x) { return x / abs(x); } layout(location = 1) in vec4 tp_FrontColor; layout(location = 0) out vec4 tp_FragData0; 
 
 
 

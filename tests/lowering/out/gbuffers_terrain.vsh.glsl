@@ -1,5 +1,5 @@
 #version 450
-layout(std140, set = 0, binding = 0) uniform tp_Uniforms { float frameTimeCounter; vec3 cameraPosition; mat4 gbufferModelView; mat4 gbufferModelViewInverse; mat4 tp_ModelViewMatrix; mat4 tp_ProjectionMatrix; mat4 tp_TextureMatrix[8]; mat3 tp_NormalMatrix; }; layout(location = 0) in vec4 tp_Vertex; layout(location = 3) in vec4 tp_MultiTexCoord0; layout(location = 4) in vec4 tp_MultiTexCoord1; layout(location = 1) in vec4 tp_Color; layout(location = 2) in vec3 tp_Normal; 
+layout(std140, set = 0, binding = 0) uniform tp_Uniforms { float frameTimeCounter; vec3 cameraPosition; mat4 gbufferModelView; mat4 gbufferModelViewInverse; mat4 tp_ModelViewMatrix; mat4 tp_ProjectionMatrix; mat4 tp_TextureMatrix[8]; mat3 tp_NormalMatrix; }; layout(location = 0) in vec4 tp_Vertex; layout(location = 3) in vec4 tp_MultiTexCoord0; layout(location = 4) in vec4 tp_MultiTexCoord1; layout(location = 1) in vec4 tp_Color; float normalize(float x) { return x / abs(x); } layout(location = 2) in vec3 tp_Normal; 
 layout(location = 8) in vec4 mc_Entity;
 layout(location = 9) in vec2 mc_midTexCoord;
 layout(location = 10) in vec4 at_tangent;

@@ -1,5 +1,5 @@
 #version 450
-layout(std140, set = 1, binding = 0) uniform tp_Uniforms { vec3 skyColor; }; 
+layout(std140, set = 1, binding = 0) uniform tp_Uniforms { vec3 skyColor; }; float normalize(float x) { return x / abs(x); } float dot(float x, float y) { return x * y; } 
 layout(set = 1, binding = 1) uniform texture2D gtexture; layout(set = 1, binding = 2) uniform sampler tp_sampler_gtexture;
 layout(set = 1, binding = 3) uniform texture2D lightmap; layout(set = 1, binding = 4) uniform sampler tp_sampler_lightmap;
 
