@@ -88,9 +88,6 @@ pub struct Rewrite {
 ///   every path (its value is undefined elsewhere; wgpu has 0);
 /// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
 ///   removed;
-/// - a draw buffer a fragment stage names (`/* DRAWBUFFERS:02 */`) and never writes gets
-///   `gl_FragData[i] = vec4(0.0);` at the start of `main` (undefined otherwise: Mesa writes
-///   white, wgpu 0);
 /// - before each line of `redefined` (1-based lines of `text`, with the macro each `#define`
 ///   there redefines with another body, as the lenient preprocessor found them) a line
 ///   `#undef NAME` is inserted: the one rewrite that moves the lines after it down.
@@ -242,22 +239,6 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    // A fragment stage that names its draw buffers and leaves some unwritten leaves them
-    // undefined (Mesa writes white where wgpu writes 0): each is set to 0 first.
-    if stage == Stage::Fragment {
-        let unwritten = unwritten_draw_buffers(&tokens, &met);
-        let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
-        if let (false, Some(at)) = (unwritten.is_empty(), main_open) {
-            let zeroes: String = unwritten.iter().map(|i| format!(" gl_FragData[{i}] = vec4(0.0);")).collect();
-            replaced[significant[at + 4]] = Some(format!("{{{zeroes}"));
-            let names: Vec<String> = unwritten.iter().map(|i| format!("`gl_FragData[{i}]`")).collect();
-            rewrites.push(Rewrite {
-                line: sig[at + 4].line,
-                what: format!("draw buffers the stage never writes set to 0 at the start of main, as wgpu has them: {}", names.join(", ")),
-            });
-        }
-    }
-
     if stage == Stage::Vertex {
         let (unwritten, sometimes) = outputs_not_always_written(&met);
         let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
@@ -362,38 +343,6 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)
         }
     }
     (unwritten, sometimes)
-}
-
-/// The indices of `gl_FragData` below the count of buffers the last `DRAWBUFFERS` or
-/// `RENDERTARGETS` comment names that the stage (`met`, significant tokens) never writes, where
-/// it writes colour through `gl_FragData` with literal indices alone (or not at all): none for a
-/// stage with `gl_FragColor`, which writes every buffer, or with outputs of its own.
-fn unwritten_draw_buffers(tokens: &[Token], met: &[&Token]) -> Vec<usize> {
-    let Some(list) = tokens.iter().rev().filter(|t| t.kind == TokenKind::BlockComment).find_map(|t| {
-        let inner = t.text.trim_start_matches("/*").trim_end_matches("*/").trim();
-        inner
-            .strip_prefix("DRAWBUFFERS:")
-            .map(|digits| digits.trim().chars().filter(char::is_ascii_digit).count())
-            .or_else(|| inner.strip_prefix("RENDERTARGETS:").map(|list| list.split(',').filter(|b| !b.trim().is_empty()).count()))
-    }) else {
-        return Vec::new();
-    };
-    let own_outputs = met.windows(3).any(|w| w[0].is_ident("out") && w[1].kind == TokenKind::Ident && w[2].kind == TokenKind::Ident);
-    if own_outputs || met.iter().any(|t| t.is_ident("gl_FragColor")) {
-        return Vec::new();
-    }
-    let mut written = std::collections::BTreeSet::new();
-    for (i, t) in met.iter().enumerate() {
-        if t.is_ident("gl_FragData") {
-            match (met.get(i + 1), met.get(i + 2), met.get(i + 3)) {
-                (Some(open), Some(index), Some(close)) if open.is_punct("[") && close.is_punct("]") && index.kind == TokenKind::Number => {
-                    written.extend(index.text.parse::<usize>().ok());
-                }
-                _ => return Vec::new(),
-            }
-        }
-    }
-    (0..list).filter(|i| !written.contains(i)).collect()
 }
 
 /// A function definition in a list of significant tokens: where its name and its body's braces are.
@@ -627,19 +576,6 @@ mod tests {
         assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); uv = vec2(0);"));
         assert_eq!(rewrites.len(), 1);
         assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `uv`"), "{rewrites:?}");
-    }
-
-    #[test]
-    fn draw_buffers_a_fragment_stage_never_writes_are_set_to_zero() {
-        let text = "#version 130\nuniform sampler2D gtexture;\nin vec4 color;\n/* DRAWBUFFERS:0 */\nvoid main() {\n  // gl_FragData[0] = color;\n}\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
-        assert_eq!(out, text.replace("void main() {", "void main() { gl_FragData[0] = vec4(0.0);"));
-        assert_eq!(rewrites.len(), 1);
-        let one_of_two = "#version 120\nvoid main() {\n    /* DRAWBUFFERS: 02 */\n    gl_FragData[0] = vec4(1.0);\n}\n";
-        let (out, _) = for_strict_drivers(one_of_two, one_of_two, Stage::Fragment, &[]);
-        assert_eq!(out, one_of_two.replace("void main() {", "void main() { gl_FragData[1] = vec4(0.0);"));
-        let writes = "#version 130\nout vec4 colour;\n/* RENDERTARGETS: 0 */\nvoid main() {\n  colour = vec4(1.0);\n}\n";
-        assert_eq!(for_strict_drivers(writes, writes, Stage::Fragment, &[]).1, []);
     }
 
     #[test]

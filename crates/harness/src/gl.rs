@@ -258,6 +258,15 @@ pub(crate) unsafe fn set_blends(gl: &glow::Context, buffers: &[u8], blend_of: &d
     }
 }
 
+/// With `masked`, writes to the draw buffers `program` never writes turned off, so that they
+/// keep what they held, as wgpu keeps them; without, turned on again.
+pub(crate) unsafe fn mask_unwritten(gl: &glow::Context, program: &LoadedProgram, masked: bool) {
+    for i in program.draw_buffers_never_written() {
+        // SAFETY: the caller holds the current context.
+        unsafe { gl.color_mask_draw_buffer(i as u32, !masked, !masked, !masked, !masked) };
+    }
+}
+
 /// A 2D texture with one level, filtered and wrapped as asked.
 #[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn make_texture(

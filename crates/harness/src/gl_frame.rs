@@ -18,7 +18,7 @@ use crate::HarnessError;
 use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
-    add_mip_levels, read_as_shadow_map, set_blends,
+    add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
 };
 use crate::samplers::SamplerNaming;
 use crate::images::FloatImage;
@@ -442,7 +442,10 @@ impl<'a> GlPlanFrame<'a> {
                         sprites: step.sprites,
                         mipmapped: BTreeSet::new(),
                     };
-                    self.draw(program, step.pass, step.render_stage, &textures, step.vertices)?;
+                    mask_unwritten(gl, program, true);
+                    let drawn = self.draw(program, step.pass, step.render_stage, &textures, step.vertices);
+                    mask_unwritten(gl, program, false);
+                    drawn?;
                 }
                 None => {
                     let mut drawn = Ok(());
@@ -482,7 +485,10 @@ impl<'a> GlPlanFrame<'a> {
                 sprites: Sprites::Blocks,
                 mipmapped: BTreeSet::new(),
             };
-            self.draw(program, Pass::Shadow, render_stage, &textures, vertices)?;
+            mask_unwritten(gl, program, true);
+            let drawn = self.draw(program, Pass::Shadow, render_stage, &textures, vertices);
+            mask_unwritten(gl, program, false);
+            drawn?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             program
@@ -535,7 +541,10 @@ impl<'a> GlPlanFrame<'a> {
                 sprites: Sprites::Blocks,
                 mipmapped: mipmaps.clone(),
             };
-            self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
+            mask_unwritten(gl, program, true);
+            let drawn = self.draw(program, Pass::Fullscreen, "NONE", &textures, quad);
+            mask_unwritten(gl, program, false);
+            drawn?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             targets.into_iter().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
         }

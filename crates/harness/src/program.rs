@@ -82,6 +82,18 @@ impl LoadedStage {
 }
 
 impl LoadedProgram {
+    /// The draw buffers (positions in [`Self::render_targets`]) the fragment stage names and
+    /// never writes (`/* DRAWBUFFERS:02 */` beside `gl_FragData[0]` alone). GLSL leaves their
+    /// values undefined: wgpu leaves such a buffer as it was, Mesa writes white. `gl_FragColor`
+    /// writes every buffer.
+    pub fn draw_buffers_never_written(&self) -> Vec<usize> {
+        let outputs = &self.fragment.interface.outputs;
+        if outputs.values().any(|name| name == "gl_FragColor") {
+            return Vec::new();
+        }
+        (0..self.render_targets.len()).filter(|&i| !outputs.contains_key(&(i as u32))).collect()
+    }
+
     /// Why naga cannot read a stage of the program, if it cannot.
     pub fn naga_refusal(&self) -> Option<&str> {
         [&self.vertex, &self.fragment].into_iter().find_map(|s| s.naga.as_ref().err()).map(String::as_str)

@@ -1,10 +1,14 @@
 #version 120
-// Three things NVIDIA compiles and Mesa refuses: texture() under 1.20, an #extension after
-// code, and a reserved word as a name.
+// What NVIDIA compiles and Mesa refuses: texture() under 1.20, an #extension after code and a
+// reserved word as a name. dot() of two floats is GLSL's own (naga has it for vectors alone).
 uniform sampler2D colortex0;
 varying vec2 texcoord;
 #extension GL_EXT_gpu_shader4 : enable
+float luma(vec3 color) {
+    return dot(color, vec3(0.2126, 0.7152, 0.0722));
+}
 void main() {
     vec3 output = texture(colortex0, texcoord).rgb;
-    gl_FragData[0] = vec4(sqrt(output), 1.0);
+    float weight = dot(luma(output), 0.5);
+    gl_FragData[0] = vec4(sqrt(output) * (0.75 + weight), 1.0);
 }
