@@ -1440,7 +1440,8 @@ impl<'a> Lowering<'_, 'a> {
 
     /// `T x[3] = { a, b, c };` (GLSL 4.20's initializer lists, which naga lacks) becomes
     /// `T x[3] = T[3](a, b, c);`, and `vec3 v = { a, b, c };` becomes `vec3(a, b, c)`; the braces
-    /// of an array's elements become constructors of the element type. A list whose type the
+    /// of an array's elements become constructors of the element type, those of a matrix's
+    /// columns (`mat3 m = { {…}, {…}, {…} };`) column vectors. A list whose type the
     /// declaration does not spell out (a struct's members) is left to naga.
     fn lower_initializer_lists(&mut self) {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
@@ -1467,6 +1468,12 @@ impl<'a> Lowering<'_, 'a> {
             if self.tokens[sig[name_at]].kind != TokenKind::Ident {
                 continue;
             }
+            // The type of a list nested one level: an array's element, a matrix's column.
+            let nested = match (&size, matrix_shape(element)) {
+                (Some(_), _) => Some(element.to_string()),
+                (None, Some((_, rows))) => Some(format!("vec{rows}")),
+                (None, None) => None,
+            };
             let mut depth = 0;
             let mut count = 0;
             let mut close = None;
@@ -1474,8 +1481,8 @@ impl<'a> Lowering<'_, 'a> {
                 match text(j) {
                     "{" => {
                         depth += 1;
-                        if depth == 2 && size.is_some() {
-                            self.replace(at, at + 1, format!("{element}("));
+                        if let (2, Some(nested)) = (depth, &nested) {
+                            self.replace(at, at + 1, format!("{nested}("));
                         }
                     }
                     "}" => {
@@ -1484,7 +1491,7 @@ impl<'a> Lowering<'_, 'a> {
                             close = Some(j);
                             break;
                         }
-                        if depth == 1 && size.is_some() {
+                        if depth == 1 && nested.is_some() {
                             self.replace(at, at + 1, ")".into());
                         }
                     }

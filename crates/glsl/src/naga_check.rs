@@ -504,17 +504,15 @@ fn expected_words(expected: &ExpectedToken) -> String {
     format!("`{symbol}`")
 }
 
-/// Repairs what naga's parser refuses and GLSL allows, from the parse error: `dot` of two
-/// scalars, a swizzle assigned on a matrix column, a built-in called with mixed argument types,
+/// Repairs what naga's parser refuses and GLSL allows, from the parse error: a swizzle
+/// assigned on a matrix column, a built-in called with mixed argument types,
 /// a constant shift whose bits run out of the integer, a swizzle of a scalar where the version
 /// allows one.
 fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32, scalar_swizzles: bool) -> Option<String> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
     let span = e.meta.to_range()?;
-    if message.contains("BuiltinArgumentsInvalid(\"Dot\")") {
-        scalar_dot_at(text, span.start)
-    } else if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
-        column_swizzle_store(text, span.clone(), field).or_else(|| if scalar_swizzles { scalar_swizzle(text, span, field) } else { None })
+    if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
+        column_swizzle_store(text, span.clone(), field, scalar_swizzles).or_else(|| if scalar_swizzles { scalar_swizzle(text, span, field) } else { None })
     } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
         mixed_type_overloads(text, name, version)
     } else if message.as_ref() == "<< operation overflowed" {
@@ -535,20 +533,12 @@ fn with_stand_in(mut text: String, stand_in: &str) -> Option<String> {
     Some(text)
 }
 
-/// `dot` of two scalars (GLSL allows it; naga has only the vector forms) at byte `start`
-/// becomes a product, through a stand-in.
-fn scalar_dot_at(text: &str, start: usize) -> Option<String> {
-    if !text.get(start..)?.starts_with("dot") {
-        return None;
-    }
-    let repaired = format!("{}tp_scalar_dot{}", &text[..start], &text[start + 3..]);
-    with_stand_in(repaired, "float tp_scalar_dot(float a, float b) { return a * b; } ")
-}
-
 /// `m[i].xz = v;` (or `+=`, `-=`, `*=`, `/=`): naga's parser cannot assign a swizzle of a matrix
 /// column (`field`, the span of `.xz`); drivers can. It becomes `tp_store_xz(m[i], v);`, a
-/// stand-in that takes the column `inout` (a compound assignment passes `m[i].xz - (v)`).
-fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str) -> Option<String> {
+/// stand-in that takes the column `inout` (a compound assignment passes `m[i].xz - (v)`). Where
+/// the version swizzles scalars (`scalar_swizzles`), `s.depth.x = v;` on a float member is the
+/// same store, and `.x` gets a float overload.
+fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str, scalar_swizzles: bool) -> Option<String> {
     let set = ["xyzw", "rgba", "stpq"].into_iter().find(|set| swizzle.chars().all(|c| set.contains(c)))?;
     let highest = swizzle.chars().filter_map(|c| set.find(c)).max()?;
     if swizzle.len() > 4 || !text.get(field.clone())?.starts_with('.') {
@@ -587,10 +577,13 @@ fn column_swizzle_store(text: &str, field: std::ops::Range<usize>, swizzle: &str
     };
     let repaired = format!("{}tp_store_{swizzle}({column}, {value}){}", &text[..lhs.start], &text[value_end..]);
     let value_ty = if swizzle.len() == 1 { "float".to_string() } else { format!("vec{}", swizzle.len()) };
-    let stand_ins: String = (highest + 1..=4)
+    let mut stand_ins: String = (highest + 1..=4)
         .filter(|&n| n >= 2)
         .map(|n| format!("void tp_store_{swizzle}(inout vec{n} c, {value_ty} v) {{ c.{swizzle} = v; }} "))
         .collect();
+    if scalar_swizzles && swizzle.len() == 1 && highest == 0 {
+        stand_ins.push_str(&format!("void tp_store_{swizzle}(inout float c, float v) {{ c = v; }} "));
+    }
     with_stand_in(repaired, &stand_ins)
 }
 
@@ -903,7 +896,7 @@ fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: na
 /// Repairs what GLSL allows and naga refuses once types are known: a value GLSL converts
 /// implicitly (an `int` or `ivec` returned or stored where a `float` or `vec` is declared) gets
 /// a constructor, a scalar beside a vector a vector constructor, a function whose end is
-/// reachable without a `return` a final one, and `dot` of scalars the stand-in.
+/// reachable without a `return` a final one.
 fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32) -> Option<String> {
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
@@ -915,18 +908,6 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         return None;
     }
     let (value, target) = match source {
-        FunctionError::Expression { handle, source: ExpressionError::Type(naga::proc::ResolveError::BuiltinArgumentsInvalid(f)) }
-            if f == "Dot" =>
-        {
-            // The expression's span may be missing or start before the call; then the call is
-            // the first `dot(` from the start of the function.
-            let function_start = match error {
-                naga::valid::ValidationError::Function { handle, .. } => module.functions.get_span(*handle).to_range(),
-                _ => None,
-            };
-            let from = function.expressions.get_span(*handle).to_range().or(function_start)?.start;
-            return scalar_dot_at(text, from + text.get(from..)?.find("dot(")?);
-        }
         FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
             // Control reaches the end of a function that returns a value: GLSL leaves the value
             // undefined and drivers compile it; naga wants a `return` there.

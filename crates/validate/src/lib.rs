@@ -527,7 +527,8 @@ fn in_target_one(f: &mut Finding, target: Drivers, named: &dyn Fn(Drivers) -> St
         return true;
     }
     let accept = Drivers::ALL.without(refused);
-    f.diagnostic.notes.push(format!("refused by {}; {} accepts it", named(refused), named(accept)));
+    let verb = if accept.names().len() == 1 { "accepts" } else { "accept" };
+    f.diagnostic.notes.push(format!("refused by {}; {} {verb} it", named(refused), named(accept)));
     true
 }
 

@@ -76,7 +76,12 @@ pub(crate) fn check_program(
 /// constructs of a later GLSL version, which NVIDIA's driver compiles at any version
 /// (reported on pack trackers as "works on NVIDIA only").
 fn lenient_on_nvidia(diag: Diagnostic) -> Diagnostic {
-    if diag.is_error() { diag.refused_by(Drivers::ALL_BUT_NVIDIA) } else { diag }
+    if diag.is_error() {
+        let refused = diag.refused_by.intersection(Drivers::ALL_BUT_NVIDIA);
+        diag.refused_by(refused)
+    } else {
+        diag
+    }
 }
 
 /// Highest GLSL version macOS compiles: its OpenGL stops at 4.1 core.

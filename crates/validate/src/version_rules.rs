@@ -36,6 +36,11 @@ const REMOVED_IN_CORE: [&str; 22] = [
     "texture2DLod", "shadow2D", "texture3D",
 ];
 
+/// Of [`REMOVED_IN_CORE`], the deprecated names Mesa still compiles in a core stage before
+/// GLSL 4.20 (measured with Mesa 25.0 in a compatibility context, `#version 330` to `410`);
+/// `attribute` and `varying` too. The fixed-function vertex state it refuses at any version.
+const DEPRECATED_KEPT_BY_MESA: [&str; 6] = ["gl_FragData", "gl_FragColor", "texture2D", "texture2DLod", "shadow2D", "texture3D"];
+
 /// The `#extension NAME : BEHAVIOUR` lines of `text`: the 0-based line, the name and the
 /// behaviour.
 fn extension_directives(text: &str) -> impl Iterator<Item = (usize, &str, &str)> {
@@ -245,7 +250,11 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         if let Some(message) = problem
             && reported.insert((t.text.to_string(), t.line))
         {
-            found.push(Diagnostic::error(Code::VersionFeature, message, pre.location(t.line)));
+            let diag = Diagnostic::error(Code::VersionFeature, message, pre.location(t.line));
+            // Mesa keeps the deprecated names (not the fixed-function state) in core stages
+            // before 4.20.
+            let mesa_keeps = core && number < 420 && (DEPRECATED_KEPT_BY_MESA.contains(&t.text) || matches!(t.text, "attribute" | "varying"));
+            found.push(if mesa_keeps { diag.refused_by(Drivers::ALL.without(Drivers::MESA)) } else { diag });
         }
     }
     if number >= 130 {
