@@ -91,7 +91,8 @@ fn main() {
     } else {
         (Loader::default(), StandardMacros::default())
     };
-    let base = Options { macros: macros.clone(), loader, ..Options::default() };
+    // Compared with Mesa: what only other drivers refuse is a warning here (`--target mesa`).
+    let base = Options { macros: macros.clone(), loader, target: tidepack_glsl::Drivers::MESA, ..Options::default() };
     let gl = driver::Driver::new(&macros).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(2)
