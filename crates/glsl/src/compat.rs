@@ -88,6 +88,8 @@ pub struct Rewrite {
 ///   every path (its value is undefined elsewhere; wgpu has 0);
 /// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
 ///   removed;
+/// - in a core profile, `texture2D()`, `texture3D()`, `texture2DLod()` & co. become `texture()`,
+///   `textureLod()`, `textureProj()`;
 /// - before each line of `redefined` (1-based lines of `text`, with the macro each `#define`
 ///   there redefines with another body, as the lenient preprocessor found them) a line
 ///   `#undef NAME` is inserted: the one rewrite that moves the lines after it down.
@@ -179,6 +181,31 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
                 line: tokens[w[2]].line,
                 what: format!("the sampler `texture`, which hides the function texture() from GLSL 1.30 on, renamed to `gtexture` as Iris does ({renamed} uses)"),
             });
+        }
+    }
+
+    // A core profile (1.40 on, no `compatibility`) has the deprecated lookups no more (Mesa
+    // drops them from 4.20): they become the lookups that replaced them, as Iris renames them.
+    let core_profile = version >= 140 && !version_at.and_then(|at| significant.get(at + 3)).is_some_and(|&i| tokens[i].is_ident("compatibility"));
+    if core_profile {
+        let mut renamed = 0;
+        let mut first_line = None;
+        for (k, &i) in significant.iter().enumerate() {
+            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+            let replacement = match tokens[i].text {
+                "texture2D" | "texture3D" => "texture",
+                "texture2DLod" | "texture3DLod" => "textureLod",
+                "texture2DProj" => "textureProj",
+                _ => continue,
+            };
+            if called && met.iter().any(|t| t.is_ident(tokens[i].text)) {
+                replaced[i] = Some(replacement.into());
+                renamed += 1;
+                first_line.get_or_insert(tokens[i].line);
+            }
+        }
+        if let Some(line) = first_line {
+            rewrites.push(Rewrite { line, what: format!("texture2D() & co., which a core profile lacks, renamed to texture() & co. ({renamed} calls)") });
         }
     }
 
@@ -586,6 +613,16 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 2, what: "precision qualifiers, reserved words in GLSL 120, removed (3)".into() }]);
         let modern = text.replace("#version 120", "#version 130");
         assert_eq!(for_strict_drivers(&modern, &modern, Stage::Fragment, &[]).1, []);
+    }
+
+    #[test]
+    fn deprecated_lookups_in_a_core_profile_become_their_successors() {
+        let text = "#version 420\nuniform sampler2D colortex0;\nin vec2 uv;\nout vec4 o;\nvoid main() { o = texture2D(colortex0, uv) + texture2DLod(colortex0, uv, 1.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("texture2D(", "texture(").replace("texture2DLod(", "textureLod("));
+        assert_eq!(rewrites, [Rewrite { line: 5, what: "texture2D() & co., which a core profile lacks, renamed to texture() & co. (2 calls)".into() }]);
+        let compatibility = text.replace("#version 420", "#version 420 compatibility");
+        assert_eq!(for_strict_drivers(&compatibility, &compatibility, Stage::Fragment, &[]).1, []);
     }
 
     #[test]
