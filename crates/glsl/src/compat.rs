@@ -7,8 +7,10 @@
 //! (they fail on Mesa, AMD, Intel and macOS); the renderer applies [`for_strict_drivers`] to the
 //! text it gives OpenGL, so that such packs still render, and lists what it rewrote.
 
+use std::collections::HashSet;
+
 use crate::Stage;
-use crate::token::{Token, TokenKind, tokenize};
+use crate::token::{Token, TokenKind, function_definitions, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
@@ -308,27 +310,17 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
 
 /// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), that
 /// the stage may leave unwritten: (type, name) of those whose name appears nowhere else, and of
-/// those `main` does not assign whole (`NAME =`) outside every block of its own, so that some
-/// paths (an `if`, a function called on some) or components (`NAME.rgb =`) are left undefined.
+/// those `main` does not assign whole (`NAME =`) as a statement of its own, nor a function it
+/// calls so (one level down), so that some paths (an `if`, a loop) or components (`NAME.rgb =`)
+/// are left undefined.
 fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)>, Vec<(&'t str, &'t str)>) {
     let mut depth = 0i32;
-    let mut main_body: Option<(usize, usize)> = None;
     let mut declared = Vec::new();
     for (i, t) in toks.iter().enumerate() {
         if t.is_punct("{") {
-            if depth == 0 && i >= 4 && toks[i - 4].is_ident("void") && toks[i - 3].is_ident("main") && toks[i - 2].is_punct("(") && toks[i - 1].is_punct(")") {
-                main_body = Some((i, toks.len()));
-            }
             depth += 1;
         } else if t.is_punct("}") {
             depth -= 1;
-            if depth == 0
-                && let Some((open, close)) = &mut main_body
-                && *close == toks.len()
-                && i > *open
-            {
-                *close = i;
-            }
         } else if depth == 0
             && (t.is_ident("varying") || t.is_ident("out"))
             && let [type_, name, end] = [toks.get(i + 1), toks.get(i + 2), toks.get(i + 3)]
@@ -340,24 +332,40 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)
             declared.push((type_.text, name.text));
         }
     }
-    // Where main assigns each name at its own level (depth 1 inside its braces).
-    let mut assigned_in_main = std::collections::HashSet::new();
-    if let Some((open, close)) = main_body {
+    // Per function: the names its body assigns whole, and the functions it calls, as
+    // statements of their own at the body's own level (not the body of an `if (…)`, `else`,
+    // `for (…)` or `while (…)` without braces).
+    let statements = |open: usize, close: usize| {
+        let (mut assigned, mut called) = (HashSet::new(), HashSet::new());
         let mut depth = 0i32;
-        for k in open..close {
+        for k in open..close.min(toks.len()) {
             let t = toks[k];
             if t.is_punct("{") {
                 depth += 1;
             } else if t.is_punct("}") {
                 depth -= 1;
-            } else if depth == 1
-                && t.kind == TokenKind::Ident
-                && toks.get(k + 1).is_some_and(|e| e.is_punct("="))
-                // A statement of its own, not the body of an `if (…)`, `else`, `for (…)` or `while (…)` without braces.
-                && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p))
-            {
-                assigned_in_main.insert(t.text);
+            } else if depth == 1 && t.kind == TokenKind::Ident && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p)) {
+                match toks.get(k + 1) {
+                    Some(e) if e.is_punct("=") => {
+                        assigned.insert(t.text);
+                    }
+                    Some(p) if p.is_punct("(") => {
+                        called.insert(t.text);
+                    }
+                    _ => {}
+                }
             }
+        }
+        (assigned, called)
+    };
+    let functions: Vec<(&str, (HashSet<&str>, HashSet<&str>))> =
+        function_definitions(toks).into_iter().map(|f| (toks[f.name].text, statements(f.open, f.close))).collect();
+    let main = functions.iter().find(|(name, _)| *name == "main");
+    let mut assigned_in_main: HashSet<&str> = HashSet::new();
+    if let Some((_, (assigned, called))) = main {
+        assigned_in_main.extend(assigned);
+        for (_, (by_callee, _)) in functions.iter().filter(|(name, _)| called.contains(name)) {
+            assigned_in_main.extend(by_callee);
         }
     }
     let mut unwritten = Vec::new();
@@ -365,7 +373,7 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)
     for (type_, name) in declared {
         if toks.iter().filter(|u| u.is_ident(name)).count() == 1 {
             unwritten.push((type_, name));
-        } else if main_body.is_some() && !assigned_in_main.contains(name) {
+        } else if main.is_some() && !assigned_in_main.contains(name) {
             sometimes.push((type_, name));
         }
     }
@@ -598,11 +606,11 @@ mod tests {
 
     #[test]
     fn a_vertex_output_written_on_some_paths_is_set_to_zero_first() {
-        let text = "#version 120\nattribute vec4 mc_Entity;\nvarying float isWater;\nvarying vec4 color;\nvarying vec2 uv;\nvoid setUv() { uv = vec2(0.5); }\nvoid main() {\n    color.rgb = vec3(1.0);\n    if (mc_Entity.x == 8.0) isWater = 1.0;\n    setUv();\n    gl_Position = ftransform();\n}\n";
+        let text = "#version 120\nattribute vec4 mc_Entity;\nvarying float isWater;\nvarying vec4 color;\nvarying vec2 uv;\nvarying float fog;\nvoid setUv() { uv = vec2(0.5); }\nvoid setFog() { if (mc_Entity.y > 0.0) { fog = 1.0; } }\nvoid main() {\n    color.rgb = vec3(1.0);\n    if (mc_Entity.x == 8.0) isWater = 1.0;\n    setUv();\n    setFog();\n    gl_Position = ftransform();\n}\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
-        assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); uv = vec2(0);"));
+        assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); fog = float(0);"));
         assert_eq!(rewrites.len(), 1);
-        assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `uv`"), "{rewrites:?}");
+        assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `fog`"), "{rewrites:?}");
     }
 
     #[test]
