@@ -139,15 +139,52 @@ fn validate_text(
         return Err(vec![Diagnostic::error(Code::Glsl, message, pre.location(line))]);
     }
     // GLSL converts int to float where naga wants the types to match: each such error is
-    // repaired in the text (line for line) and naga runs again.
+    // repaired in the text (line for line) and naga runs again. naga stops at a stage's first
+    // error; after one inside a function, the function's body is blanked (its signature kept)
+    // and naga runs again, so that the errors of the other functions are found too.
     let mut text = lowered.text.clone();
     let version = pre.version.as_ref().map_or(110, |v| v.number);
     // Scalars take swizzles (`f().r`) from GLSL 4.20 or with GL_ARB_shading_language_420pack.
     let scalar_swizzles = version >= 420 || extension_enabled(&pre.text, "GL_ARB_shading_language_420pack");
+    let mut found: Vec<Diagnostic> = Vec::new();
     for repairs in 0.. {
         let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
-        let module = match parsed {
-            Ok(module) => module,
+        let (diagnostics, at) = match parsed {
+            Ok(module) => match validated.expect("a parsed module is validated") {
+                Ok(info) if found.is_empty() => {
+                    if naga_stage == naga::ShaderStage::Compute
+                        && let Some(diagnostic) = shared_memory_overflow(pre, &text, provider, &module)
+                    {
+                        return Err(vec![diagnostic]);
+                    }
+                    return Ok(ValidStage { module, info });
+                }
+                Ok(_) => return Err(found),
+                Err(e) => {
+                    if repairs < MAX_REPAIRS
+                        && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
+                    {
+                        text = repaired;
+                        continue;
+                    }
+                    let (message, span) = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
+                        let mut message = e.as_inner().to_string();
+                        let mut source = e.as_inner().source();
+                        while let Some(inner) = source {
+                            message.push_str(": ");
+                            message.push_str(&inner.to_string());
+                            source = inner.source();
+                        }
+                        (message, None)
+                    });
+                    // naga's spans go from the enclosing function to the offending expression:
+                    // use the last, unless the message knows a better place.
+                    let span = span.filter(|s| s.is_defined()).or_else(|| e.spans().map(|(span, _)| *span).filter(|s| s.is_defined()).last());
+                    let at = span.map(|span| span.location(&text));
+                    let offset = span.and_then(|s| s.to_range()).map(|r| r.start);
+                    (vec![diagnostic_at(pre, &text, provider, message, at)], offset)
+                }
+            },
             Err(errors) => {
                 if repairs < MAX_REPAIRS
                     && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles))
@@ -155,44 +192,68 @@ fn validate_text(
                     text = repaired;
                     continue;
                 }
-                return Err(errors.errors.iter().map(|e| parse_diagnostic(pre, &text, provider, e)).collect());
+                let offset = errors.errors.first().and_then(|e| e.meta.to_range()).map(|r| r.start);
+                (errors.errors.iter().map(|e| parse_diagnostic(pre, &text, provider, e)).collect(), offset)
             }
         };
-        match validated.expect("a parsed module is validated") {
-            Ok(info) => {
-                if naga_stage == naga::ShaderStage::Compute
-                    && let Some(diagnostic) = shared_memory_overflow(pre, &text, provider, &module)
-                {
-                    return Err(vec![diagnostic]);
-                }
-                return Ok(ValidStage { module, info });
+        for diagnostic in diagnostics {
+            if !found.contains(&diagnostic) {
+                found.push(diagnostic);
             }
-            Err(e) => {
-                if repairs < MAX_REPAIRS
-                    && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
-                {
-                    text = repaired;
-                    continue;
-                }
-                let (message, span) = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
-                    let mut message = e.as_inner().to_string();
-                    let mut source = e.as_inner().source();
-                    while let Some(inner) = source {
-                        message.push_str(": ");
-                        message.push_str(&inner.to_string());
-                        source = inner.source();
-                    }
-                    (message, None)
-                });
-                // naga's spans go from the enclosing function to the offending expression: use
-                // the last, unless the message knows a better place.
-                let span = span.filter(|s| s.is_defined()).or_else(|| e.spans().map(|(span, _)| *span).filter(|s| s.is_defined()).last());
-                let at = span.map(|span| span.location(&text));
-                return Err(vec![diagnostic_at(pre, &text, provider, message, at)]);
-            }
+        }
+        match at.and_then(|offset| without_body_at(&text, offset)) {
+            Some(blanked) if repairs < MAX_REPAIRS => text = blanked,
+            _ => return Err(found),
         }
     }
     unreachable!("the loop returns")
+}
+
+/// `text` with the body of the function definition around byte `offset` blanked out (every
+/// character but line breaks a space, the braces kept); in `main`, whose blank body would have
+/// errors of its own (no position), the statement there alone (see [`without_statement_at`]).
+/// `None` outside every function body, or where the body is blank already.
+fn without_body_at(text: &str, offset: usize) -> Option<String> {
+    let tokens = tokenize(text).ok()?;
+    let function = function_definitions(&tokens).into_iter().find(|f| {
+        let (open, close) = (tokens[f.open].offset, tokens.get(f.close).map_or(text.len(), |t| t.offset));
+        open < offset && offset < close
+    })?;
+    if tokens[function.name].text == "main" {
+        return without_statement_at(text, &tokens, offset);
+    }
+    let body = tokens[function.open].offset + 1..tokens.get(function.close)?.offset;
+    if text[body.clone()].trim().is_empty() {
+        return None;
+    }
+    let blank: String = text[body.clone()].chars().map(|c| if c == '\n' { '\n' } else { ' ' }).collect();
+    Some(format!("{}{blank}{}", &text[..body.start], &text[body.end..]))
+}
+
+/// `text` with the statement around byte `offset` blanked out: an expression statement whole,
+/// a declaration from its `=` on (the variable stays declared for the statements after it).
+/// `None` where the statement spans a brace, writes `gl_Position`, is a declaration without `=`,
+/// or is blank already.
+fn without_statement_at(text: &str, tokens: &[crate::token::Token], offset: usize) -> Option<String> {
+    let significant: Vec<&crate::token::Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let at = significant.iter().rposition(|t| t.offset <= offset)?;
+    let start = significant[..at].iter().rposition(|t| t.is_punct(";") || t.is_punct("{") || t.is_punct("}")).map_or(0, |k| k + 1);
+    let end = at + significant[at..].iter().position(|t| t.is_punct(";"))?;
+    let statement = significant.get(start..end)?;
+    // Without its position write a vertex stage has an error of its own.
+    if statement.is_empty() || statement.iter().any(|t| t.is_punct("{") || t.is_punct("}") || t.is_ident("gl_Position")) {
+        return None;
+    }
+    // A declaration starts with a type and a name (`vec3 x`, `const float y`, `Surface s`).
+    let first_name = statement.iter().position(|t| !matches!(t.text, "const" | "highp" | "mediump" | "lowp"))?;
+    let declaration = statement.get(first_name + 1).is_some_and(|t| t.kind == TokenKind::Ident);
+    let from = if declaration { statement.iter().position(|t| t.is_punct("="))? } else { 0 };
+    let range = statement[from].offset..significant[end].offset;
+    if text[range.clone()].trim().is_empty() {
+        return None;
+    }
+    let blank: String = text[range.clone()].chars().map(|c| if c == '\n' { '\n' } else { ' ' }).collect();
+    Some(format!("{}{blank}{}", &text[..range.start], &text[range.end..]))
 }
 
 /// Shared memory OpenGL guarantees a compute shader (the least `GL_MAX_COMPUTE_SHARED_MEMORY_SIZE`

@@ -104,6 +104,11 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         && name.starts_with("atomic")
     {
         diag = diag.with_note(format!("no form of {name}() takes these arguments: atomics take an int or uint variable (shared or in a buffer) and an int or uint value"));
+    } else if let Some(name) = unknown.as_deref()
+        && diag.message.starts_with("Unknown function '")
+    {
+        // Neither a built-in nor a function the pack declares (those get their own message).
+        diag.message = format!("undeclared function `{name}`: no function of this name is declared before this call");
     }
     diag
 }
