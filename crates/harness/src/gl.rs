@@ -474,12 +474,13 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
         .filter(|(name, _)| !name.starts_with("gl_"))
         .map(|(name, location)| (name.as_str(), *location))
         .collect();
+    // An output past the draw buffers has no buffer to bind (see `MAX_DRAW_BUFFERS`).
     let frag_data: Vec<(&str, u32)> = program
         .fragment
         .interface
         .outputs
         .iter()
-        .filter(|(_, name)| !name.starts_with("gl_"))
+        .filter(|(location, name)| !name.starts_with("gl_") && (**location as usize) < crate::program::MAX_DRAW_BUFFERS)
         .map(|(location, name)| (name.as_str(), *location))
         .collect();
     let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info()));

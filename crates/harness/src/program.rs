@@ -335,7 +335,7 @@ pub(crate) fn load_program_files(
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
             Stage::Fragment => {
-                let (text, mut epilogue, widened) = widen_fragment_outputs(&lowered_text);
+                let (text, mut epilogue, widened) = widen_fragment_outputs(&without_outputs_past_draw_buffers(&lowered_text));
                 narrow_outputs = widened;
                 if let Some(reference) = alpha_test {
                     let output = lowered_output(&lowered_text, 0)
@@ -518,6 +518,25 @@ fn widen_fragment_outputs(fragment: &str) -> (String, String, BTreeMap<u32, u8>)
     }
     (text, epilogue, widened)
 }
+
+/// Fragment outputs at a location no draw buffer has (8 on), made plain variables: the loaders
+/// bind no buffer there and drop what they hold, and wgpu refuses a pipeline with such an output
+/// (`layout(location = 0..9) out vec4 FD0..FD9;` declared in one header for every program).
+fn without_outputs_past_draw_buffers(fragment: &str) -> String {
+    let mut text = fragment.to_string();
+    for declaration in interface_declarations(fragment).iter().rev() {
+        if let [.., "out", ty, name] = declaration.words.as_slice()
+            && declaration.location as usize >= MAX_DRAW_BUFFERS
+        {
+            text.replace_range(declaration.statement.clone(), &format!("{ty} {name};"));
+        }
+    }
+    text
+}
+
+/// Colour buffers one draw can write: OpenGL's guaranteed number, and what lavapipe and
+/// llvmpipe give.
+pub(crate) const MAX_DRAW_BUFFERS: usize = 8;
 
 /// Renames the definition of `main` to `tp_shipped_main` and appends, on the last line, a new
 /// `main` that calls it and then runs `epilogue`.

@@ -380,6 +380,19 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
     assert_eq!(centre[0], 255, "{centre:?}");
 }
 
+/// Outputs declared at locations no draw buffer has (tests/packs/outputs_past_draw_buffers:
+/// 8 and 9, never written) are dropped as the loaders drop them: wgpu draws the frame and
+/// OpenGL agrees.
+#[test]
+fn outputs_past_the_draw_buffers_are_dropped() {
+    let (report, screen) = render_job("outputs_past_draw_buffers");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert_eq!(report.renderer.name, "wgpu", "{:?}", report.renderer);
+    assert_eq!(report.gl_disagreement, None);
+    assert!(report.gl.as_ref().is_some_and(|g| g.refused.is_none() && !g.steps.is_empty()), "{:?}", report.gl);
+    assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 0, 255, 255]);
+}
+
 /// A program naga refuses and OpenGL compiles (tests/packs/beyond_naga: textureLod on an
 /// unsigned-integer sampler) loads: OpenGL draws the frame, and the report gives naga's reason
 /// at the pack's file and line.
