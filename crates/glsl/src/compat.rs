@@ -308,12 +308,19 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     (out, rewrites)
 }
 
+/// A declaration's type and name.
+type TypedName<'t> = (&'t str, &'t str);
+
+/// What a function body does in statements of its own: the names it assigns whole, the
+/// functions it calls.
+type Statements<'t> = (HashSet<&'t str>, HashSet<&'t str>);
+
 /// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), that
 /// the stage may leave unwritten: (type, name) of those whose name appears nowhere else, and of
 /// those `main` does not assign whole (`NAME =`) as a statement of its own, nor a function it
 /// calls so (one level down), so that some paths (an `if`, a loop) or components (`NAME.rgb =`)
 /// are left undefined.
-fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)>, Vec<(&'t str, &'t str)>) {
+fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Vec<TypedName<'t>>) {
     let mut depth = 0i32;
     let mut declared = Vec::new();
     for (i, t) in toks.iter().enumerate() {
@@ -358,7 +365,7 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<(&'t str, &'t str)
         }
         (assigned, called)
     };
-    let functions: Vec<(&str, (HashSet<&str>, HashSet<&str>))> =
+    let functions: Vec<(&str, Statements)> =
         function_definitions(toks).into_iter().map(|f| (toks[f.name].text, statements(f.open, f.close))).collect();
     let main = functions.iter().find(|(name, _)| *name == "main");
     let mut assigned_in_main: HashSet<&str> = HashSet::new();
