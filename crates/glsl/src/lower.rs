@@ -819,7 +819,7 @@ pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
 
 fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
-    let blanked = without_precision(text, &tokens);
+    let blanked = without_unchecked_qualifiers(text, &tokens);
     let tokens = match &blanked {
         Some(blanked) => tokenize(blanked).map_err(|e| LowerError { line: e.line, message: e.message })?,
         None => tokens,
@@ -846,11 +846,14 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
 }
 
-/// `text` with its precision qualifiers (`lowp vec2 coord`) and default precision statements
-/// (`precision mediump float;`) blanked out, every line and column kept; `None` without any.
-/// They change nothing on desktop GLSL, and naga takes a qualifier on a global declaration
-/// alone.
-fn without_precision(text: &str, tokens: &[Token]) -> Option<String> {
+/// `text` with the qualifiers that change no type blanked out, every line and column kept;
+/// `None` without any:
+/// - precision qualifiers (`lowp vec2 coord`) and default precision statements (`precision
+///   mediump float;`): they change nothing on desktop GLSL, and naga takes a qualifier on a
+///   global declaration alone;
+/// - `coherent`, `volatile` and `restrict`, which order memory accesses (naga: "Not implemented:
+///   variable qualifier" on a buffer block).
+fn without_unchecked_qualifiers(text: &str, tokens: &[Token]) -> Option<String> {
     let mut spans: Vec<(usize, usize)> = Vec::new();
     let mut i = 0;
     while i < tokens.len() {
@@ -861,7 +864,7 @@ fn without_precision(text: &str, tokens: &[Token]) -> Option<String> {
             i = end + 1;
             continue;
         }
-        if t.kind == TokenKind::Ident && is_precision(t.text) {
+        if t.kind == TokenKind::Ident && (is_precision(t.text) || matches!(t.text, "coherent" | "volatile" | "restrict")) {
             spans.push((t.offset, t.offset + t.text.len()));
         }
         i += 1;

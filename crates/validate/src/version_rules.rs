@@ -7,7 +7,7 @@
 //!   is enabled for the parts it adds; `texture2DLod` & co. in fragment shaders without
 //!   `GL_ARB_shader_texture_lod` or `GL_EXT_gpu_shader4`;
 //! - before GLSL 4.20, `= { … }` initializer lists without `GL_ARB_shading_language_420pack`;
-//! - in a core profile (`#version 140`+ without `compatibility`): the removed built-ins
+//! - in a core profile (`#version 150`+ without `compatibility`): the removed built-ins
 //!   (`gl_FragData`, `gl_FragColor`, `gl_Vertex`, `ftransform`, `gl_ModelViewMatrix`,
 //!   `texture2D`, `attribute`, `varying`, …).
 
@@ -117,7 +117,9 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
 pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
-    let core = number >= 140 && version.profile.as_deref() != Some("compatibility");
+    // GLSL 1.40 has no profiles: in the compatibility contexts OptiFine draws with,
+    // ARB_compatibility keeps the deprecated built-ins there (Mesa compiles them).
+    let core = number >= 150 && version.profile.as_deref() != Some("compatibility");
     let extensions = enabled_extensions(&pre.text);
     // Before 3.30, `layout(location = N)` on inputs and outputs needs an extension.
     let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
@@ -343,8 +345,17 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
                 None => t.text.bytes().all(|b| b.is_ascii_digit()),
             }
     };
-    let uints: BTreeSet<&str> =
-        sig.windows(2).filter(|w| w[0].is_ident("uint") && w[1].kind == TokenKind::Ident).map(|w| w[1].text).collect();
+    // Names declared `uint`, but none also declared with another type somewhere (a `uint x`
+    // parameter beside a loop's `int x`): without scopes, which one a use means is not known.
+    let declared = |other: bool| -> BTreeSet<&str> {
+        sig.windows(2)
+            .filter(|w| w[1].kind == TokenKind::Ident && w[0].kind == TokenKind::Ident)
+            .filter(|w| if other { w[0].text != "uint" && is_type_name(w[0].text) } else { w[0].is_ident("uint") })
+            .map(|w| w[1].text)
+            .collect()
+    };
+    let others = declared(true);
+    let uints: BTreeSet<&str> = declared(false).into_iter().filter(|name| !others.contains(name)).collect();
     let mut found = Vec::new();
     let mut reported = BTreeSet::new();
     for (k, t) in sig.iter().enumerate() {
@@ -371,6 +382,12 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
         }
     }
     found
+}
+
+/// GLSL's scalar, vector and matrix type names.
+fn is_type_name(word: &str) -> bool {
+    matches!(word, "int" | "float" | "bool" | "double")
+        || ["vec", "ivec", "uvec", "bvec", "dvec", "mat"].iter().any(|p| word.strip_prefix(p).is_some_and(|n| matches!(n, "2" | "3" | "4")))
 }
 
 /// The parameter names of the list that opens `from` (`(float a, const in vec3 b)`), or none
