@@ -828,8 +828,8 @@ impl Preprocessor<'_> {
             list.chars().map(|c| c.to_digit(10).map(|d| d as u8)).collect::<Option<_>>()
         }
         .ok_or_else(|| format!("malformed render-target list `{list}` (buffers are 0-15)"))?;
-        if buffers.is_empty() || buffers.len() > 8 {
-            return Err(format!("a program writes 1 to 8 buffers; `{list}` lists {}", buffers.len()));
+        if buffers.is_empty() || buffers.len() > MAX_DRAW_BUFFERS {
+            return Err(format!("a program writes 1 to {MAX_DRAW_BUFFERS} buffers; `{list}` lists {}", buffers.len()));
         }
         let file = self.file_id(path);
         self.out.render_targets = Some(RenderTargets { modern, buffers, line: SourceLine { file, line } });
@@ -892,6 +892,10 @@ fn group_is_empty(lines: &[LogicalLine<'_, '_>], index: usize) -> bool {
     }
     false
 }
+
+/// Colour buffers one draw writes at most: OpenGL's guaranteed GL_MAX_DRAW_BUFFERS, which the
+/// loaders keep to and lavapipe and llvmpipe give.
+pub const MAX_DRAW_BUFFERS: usize = 8;
 
 /// The desktop GLSL versions, and the GLSL ES ones: drivers refuse any other `#version`.
 pub const GLSL_VERSIONS: [u32; 13] = [110, 120, 130, 140, 150, 330, 400, 410, 420, 430, 440, 450, 460];

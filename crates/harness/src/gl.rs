@@ -460,11 +460,11 @@ fn pass_through_vertex(fragment_text: &str, outputs: &[(String, u32)]) -> String
     text
 }
 
-/// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
-/// locations the lowering gave them (so both renderers feed and read the same slots).
 /// Vertex attributes OpenGL guarantees (GL_MAX_VERTEX_ATTRIBS).
 const MAX_VERTEX_ATTRIBUTES: usize = 16;
 
+/// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
+/// locations the lowering gave them (so both renderers feed and read the same slots).
 pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
     let attributes: Vec<(&str, u32)> = program
         .vertex
@@ -474,13 +474,13 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
         .filter(|(name, _)| !name.starts_with("gl_"))
         .map(|(name, location)| (name.as_str(), *location))
         .collect();
-    // An output past the draw buffers has no buffer to bind (see `MAX_DRAW_BUFFERS`).
+    // An output past the draw buffers has no buffer to bind (`preprocess::MAX_DRAW_BUFFERS`).
     let frag_data: Vec<(&str, u32)> = program
         .fragment
         .interface
         .outputs
         .iter()
-        .filter(|(location, name)| !name.starts_with("gl_") && (**location as usize) < crate::program::MAX_DRAW_BUFFERS)
+        .filter(|(location, name)| !name.starts_with("gl_") && (**location as usize) < tidepack_glsl::preprocess::MAX_DRAW_BUFFERS)
         .map(|(location, name)| (name.as_str(), *location))
         .collect();
     let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info()));

@@ -111,13 +111,15 @@ pub fn max_channel_difference(a: &FloatImage, b: &FloatImage) -> [f32; 4] {
     max
 }
 
+/// Whether two pixels' RGB differ by more than `threshold` in some channel, clamped to 0..1
+/// as the displayed image is (NaN on one side alone differs).
+fn pixels_differ(p: &[f32; 4], q: &[f32; 4], threshold: f32) -> bool {
+    (0..3).any(|c| (p[c].clamp(0.0, 1.0) - q[c].clamp(0.0, 1.0)).abs() > threshold || p[c].is_nan() != q[c].is_nan())
+}
+
 /// Pixels whose RGB differ by more than `threshold` in some channel.
 pub fn count_differing(a: &FloatImage, b: &FloatImage, threshold: f32) -> usize {
-    a.pixels
-        .iter()
-        .zip(&b.pixels)
-        .filter(|(p, q)| (0..3).any(|c| (p[c].clamp(0.0, 1.0) - q[c].clamp(0.0, 1.0)).abs() > threshold || p[c].is_nan() != q[c].is_nan()))
-        .count()
+    a.pixels.iter().zip(&b.pixels).filter(|(p, q)| pixels_differ(p, q, threshold)).count()
 }
 
 /// PSNR in dB over the RGB channels of two 8-bit RGBA images (infinite when identical).
@@ -149,15 +151,13 @@ pub fn difference_rgb8(a: &[u8], b: &[u8]) -> Vec<u8> {
         .collect()
 }
 
-/// White where `a` and `b` differ by more than `threshold` in some channel, black elsewhere:
-/// 8-bit RGBA, top row first, to find the few pixels where two renderers part.
+/// White on the pixels [`count_differing`] counts, black elsewhere: 8-bit RGBA, top row first,
+/// to find the few pixels where two renderers part.
 pub fn differing_mask_rgba8(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<u8> {
     let mut mask = Vec::with_capacity(a.pixels.len() * 4);
     for y in (0..a.height).rev() {
         for x in 0..a.width {
-            let (p, q) = (a.at(x, y), b.at(x, y));
-            let over = (0..4).any(|c| (p[c] - q[c]).abs() > threshold);
-            let v = if over { 255 } else { 0 };
+            let v = if pixels_differ(&a.at(x, y), &b.at(x, y), threshold) { 255 } else { 0 };
             mask.extend_from_slice(&[v, v, v, 255]);
         }
     }

@@ -526,17 +526,13 @@ fn without_outputs_past_draw_buffers(fragment: &str) -> String {
     let mut text = fragment.to_string();
     for declaration in interface_declarations(fragment).iter().rev() {
         if let [.., "out", ty, name] = declaration.words.as_slice()
-            && declaration.location as usize >= MAX_DRAW_BUFFERS
+            && declaration.location as usize >= preprocess::MAX_DRAW_BUFFERS
         {
             text.replace_range(declaration.statement.clone(), &format!("{ty} {name};"));
         }
     }
     text
 }
-
-/// Colour buffers one draw can write: OpenGL's guaranteed number, and what lavapipe and
-/// llvmpipe give.
-pub(crate) const MAX_DRAW_BUFFERS: usize = 8;
 
 /// Renames the definition of `main` to `tp_shipped_main` and appends, on the last line, a new
 /// `main` that calls it and then runs `epilogue`.
