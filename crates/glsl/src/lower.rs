@@ -213,7 +213,7 @@ fn split_sampler_type(ty: &str) -> Option<(&'static str, &'static str)> {
 }
 
 /// GLSL's own types (scalars, vectors, matrices); anything else is a struct.
-fn is_builtin_type(ty: &str) -> bool {
+pub fn is_builtin_type(ty: &str) -> bool {
     matches!(ty, "float" | "int" | "uint" | "bool" | "double")
         || matrix_shape(ty).is_some()
         || ["vec", "ivec", "uvec", "bvec", "dvec"]
@@ -854,29 +854,25 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
 /// - `coherent`, `volatile` and `restrict`, which order memory accesses (naga: "Not implemented:
 ///   variable qualifier" on a buffer block).
 fn without_unchecked_qualifiers(text: &str, tokens: &[Token]) -> Option<String> {
-    let mut spans: Vec<(usize, usize)> = Vec::new();
+    let mut spans: Vec<std::ops::Range<usize>> = Vec::new();
     let mut i = 0;
     while i < tokens.len() {
         let t = &tokens[i];
         if t.is_ident("precision") {
             let end = (i..tokens.len()).find(|&j| tokens[j].is_punct(";")).unwrap_or(i);
-            spans.push((t.offset, tokens[end].offset + tokens[end].text.len()));
+            spans.push(t.offset..tokens[end].offset + tokens[end].text.len());
             i = end + 1;
             continue;
         }
         if t.kind == TokenKind::Ident && (is_precision(t.text) || matches!(t.text, "coherent" | "volatile" | "restrict")) {
-            spans.push((t.offset, t.offset + t.text.len()));
+            spans.push(t.offset..t.offset + t.text.len());
         }
         i += 1;
     }
     if spans.is_empty() {
         return None;
     }
-    let blanked = text
-        .char_indices()
-        .map(|(at, c)| if c != '\n' && spans.iter().any(|&(start, end)| start <= at && at < end) { ' ' } else { c })
-        .collect();
-    Some(blanked)
+    Some(crate::token::blanked(text, &spans))
 }
 
 struct Lowering<'t, 'a> {

@@ -13,7 +13,7 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 use crate::diagnostic::{Diagnostic, Location};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
-use crate::token::{TokenKind, brace_depths, function_definitions, tokenize};
+use crate::token::{TokenKind, blanked, brace_depths, function_definitions, tokenize};
 
 /// One stage after lowering, ready for naga.
 #[derive(Clone, Debug)]
@@ -226,8 +226,7 @@ fn without_body_at(text: &str, offset: usize) -> Option<String> {
     if text[body.clone()].trim().is_empty() {
         return None;
     }
-    let blank: String = text[body.clone()].chars().map(|c| if c == '\n' { '\n' } else { ' ' }).collect();
-    Some(format!("{}{blank}{}", &text[..body.start], &text[body.end..]))
+    Some(blanked(text, &[body]))
 }
 
 /// `text` with the statement around byte `offset` blanked out: an expression statement whole,
@@ -252,8 +251,7 @@ fn without_statement_at(text: &str, tokens: &[crate::token::Token], offset: usiz
     if text[range.clone()].trim().is_empty() {
         return None;
     }
-    let blank: String = text[range.clone()].chars().map(|c| if c == '\n' { '\n' } else { ' ' }).collect();
-    Some(format!("{}{blank}{}", &text[..range.start], &text[range.end..]))
+    Some(blanked(text, &[range]))
 }
 
 /// Shared memory OpenGL guarantees a compute shader (the least `GL_MAX_COMPUTE_SHARED_MEMORY_SIZE`

@@ -236,6 +236,12 @@ pub struct FunctionDefinition {
     pub close: usize,
 }
 
+/// `text` with the byte ranges in `ranges` blanked out: every character in them but a line
+/// break becomes a space, so lines and the columns after them stay where they were.
+pub fn blanked(text: &str, ranges: &[std::ops::Range<usize>]) -> String {
+    text.char_indices().map(|(at, c)| if c != '\n' && ranges.iter().any(|r| r.contains(&at)) { ' ' } else { c }).collect()
+}
+
 /// The function definitions at brace depth 0, in order: a name after the return type (an
 /// identifier or an array's `]`), a parenthesised parameter list and a `{`. Prototypes, structs and interface
 /// blocks are not definitions. Trivia may be among the tokens or left out.

@@ -306,50 +306,42 @@ impl<'a> GlPlanFrame<'a> {
     /// Each texture in `written` overwritten with the reference's image of the same name
     /// (see [`render_from`]); its mipmaps are made again by the step that reads them.
     unsafe fn seed(&self, written: &[(String, glow::Texture)], reference: &[(String, FloatImage)]) -> Result<(), HarnessError> {
-        let gl = self.ctx.gl();
         for (name, texture) in written {
             let Some((_, image)) = reference.iter().find(|(n, _)| n == name) else {
                 return Err(HarnessError::Gl(format!("the reference frame has no {name} where the OpenGL frame wrote it")));
             };
             // SAFETY: the texture is this frame's, of the image's size (both frames follow one plan).
-            unsafe {
-                gl.bind_texture(glow::TEXTURE_2D, Some(*texture));
-                gl.tex_sub_image_2d(
-                    glow::TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    image.width as i32,
-                    image.height as i32,
-                    glow::RGBA,
-                    glow::FLOAT,
-                    glow::PixelUnpackData::Slice(Some(bytemuck::cast_slice(&image.pixels))),
-                );
-            }
+            unsafe { self.upload(*texture, image, glow::RGBA, bytemuck::cast_slice(&image.pixels)) };
         }
         Ok(())
     }
 
     /// depthtex0 and depthtex1 overwritten with the reference's images (see [`render_from`]).
     unsafe fn seed_depth(&self, depth0: &FloatImage, depth1: &FloatImage) {
-        let gl = self.ctx.gl();
         for (texture, image) in [(self.depth0, depth0), (self.depth1, depth1)] {
             let depths: Vec<f32> = image.pixels.iter().map(|p| p[0]).collect();
             // SAFETY: the texture is this frame's, of the frame's size, as the image is.
-            unsafe {
-                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-                gl.tex_sub_image_2d(
-                    glow::TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    image.width as i32,
-                    image.height as i32,
-                    glow::DEPTH_COMPONENT,
-                    glow::FLOAT,
-                    glow::PixelUnpackData::Slice(Some(bytemuck::cast_slice(&depths))),
-                );
-            }
+            unsafe { self.upload(texture, image, glow::DEPTH_COMPONENT, bytemuck::cast_slice(&depths)) };
+        }
+    }
+
+    /// Level 0 of `texture` replaced by `floats` (`format`, one float a channel), of `image`'s size.
+    unsafe fn upload(&self, texture: glow::Texture, image: &FloatImage, format: u32, floats: &[u8]) {
+        let gl = self.ctx.gl();
+        // SAFETY: the caller holds the current context, and `texture` has `image`'s size.
+        unsafe {
+            gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+            gl.tex_sub_image_2d(
+                glow::TEXTURE_2D,
+                0,
+                0,
+                0,
+                image.width as i32,
+                image.height as i32,
+                format,
+                glow::FLOAT,
+                glow::PixelUnpackData::Slice(Some(floats)),
+            );
         }
     }
 

@@ -350,7 +350,7 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
     let declared = |other: bool| -> BTreeSet<&str> {
         sig.windows(2)
             .filter(|w| w[1].kind == TokenKind::Ident && w[0].kind == TokenKind::Ident)
-            .filter(|w| if other { w[0].text != "uint" && is_type_name(w[0].text) } else { w[0].is_ident("uint") })
+            .filter(|w| if other { w[0].text != "uint" && tidepack_glsl::lower::is_builtin_type(w[0].text) } else { w[0].is_ident("uint") })
             .map(|w| w[1].text)
             .collect()
     };
@@ -382,12 +382,6 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
         }
     }
     found
-}
-
-/// GLSL's scalar, vector and matrix type names.
-fn is_type_name(word: &str) -> bool {
-    matches!(word, "int" | "float" | "bool" | "double")
-        || ["vec", "ivec", "uvec", "bvec", "dvec", "mat"].iter().any(|p| word.strip_prefix(p).is_some_and(|n| matches!(n, "2" | "3" | "4")))
 }
 
 /// The parameter names of the list that opens `from` (`(float a, const in vec3 b)`), or none
