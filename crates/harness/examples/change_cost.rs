@@ -1,36 +1,41 @@
 //! What a change to the shaders costs: composite time of two copies of the pack's sources,
-//! rendered in alternating rounds in one process (reported, never asserted).
+//! frame by frame in one process (reported, never asserted).
 //!
 //! `cargo run --release -p tidepack-harness --example change_cost -- --before DIR [--after DIR]
-//! [--rounds N] [--frames N] [--profile NAME] [--scene NAME]...`
+//! [--rounds N] [--profile NAME] [--scene NAME]...`
 //!
 //! `--after` defaults to shaderpack/; `--before` is typically the sources at a commit
 //! (`git archive HEAD shaderpack | tar -x -C /tmp/before`). On a shared CPU renderer one run's
-//! composite time moves by 10% or more from run to run, more than most changes save; rounds
-//! that alternate the two packs in one process see the same load, so the median of the
-//! per-round ratios after / before resolves a few percent. Each round renders each pack's
-//! scene once: one warm-up frame, then `--frames` (default 5) frames whose median is the round's.
+//! composite time moves by 10% or more from run to run, more than most changes save. Here each
+//! version draws the scene's whole frame once (640x360, as `pass_times` draws), and its
+//! composite is then timed alone over its own G-buffers ([`tidepack_harness::composite_only`]),
+//! the two versions taking turns frame by frame for N rounds (default 15) after one warm-up
+//! round, each frame followed by the one-tap pass-through. Load changes hit both alike, so the
+//! median of the per-round ratios after / before resolves a few percent; the table gives it with
+//! its interquartile range, each version's composite / pass-through, and how far the two
+//! composite images differ.
 
 use std::path::{Path, PathBuf};
 
-use tidepack_harness::{Gpu, LoadedPack, PackSelection, Scene, median, program, render_wgpu_repeated};
+use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
+use tidepack_harness::images::{count_differing, max_channel_difference};
+use tidepack_harness::uniforms::{self, Pass};
+use tidepack_harness::{Gpu, PackSelection, Scene, median, program, render_wgpu};
 use tidepack_pack::Dialect;
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let (mut before, mut after) = (None, root.join("shaderpack"));
-    let (mut rounds, mut frames) = (7usize, 5usize);
+    let mut rounds = 15usize;
     let mut profile = Some("HIGH".to_string());
     let mut scenes = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         let mut value = || args.next().unwrap_or_else(|| fail(&format!("{arg} needs a value")));
-        let positive = |v: String, name: &str| v.parse().ok().filter(|n| *n > 0).unwrap_or_else(|| fail(&format!("{name} takes a positive number")));
         match arg.as_str() {
             "--before" => before = Some(PathBuf::from(value())),
             "--after" => after = PathBuf::from(value()),
-            "--rounds" => rounds = positive(value(), "--rounds"),
-            "--frames" => frames = positive(value(), "--frames"),
+            "--rounds" => rounds = value().parse().ok().filter(|n| *n > 0).unwrap_or_else(|| fail("--rounds takes a positive number")),
             "--profile" => profile = Some(value()),
             "--scene" => scenes.push(value()),
             _ => fail(&format!("unknown argument {arg}")),
@@ -46,22 +51,53 @@ fn main() {
     };
     let packs = [load(before), load(after)];
     let gpu = Gpu::new().unwrap_or_else(|e| fail(&e.to_string()));
-    println!("{}, profile {}, {rounds} rounds of {frames} frames after 1 warm-up, composite ms", gpu.describe(), packs[1].profile);
+    println!("{}, profile {}, {rounds} rounds after 1 warm-up, composite alone at 640x360", gpu.describe(), packs[1].profile);
     println!();
-    println!("| scene | before | after | after / before (median of rounds) | range of rounds |");
-    println!("|---|---:|---:|---:|---|");
+    println!(
+        "| scene | before: composite / pass-through | after: composite / pass-through | after / before (median of rounds, IQR) | largest difference (x/255) | pixels over 1/255 |"
+    );
+    println!("|---|---:|---:|---|---:|---:|");
     for name in &scenes {
-        let scene = Scene::load(&root.join("tests/scenes").join(format!("{name}.toml"))).unwrap_or_else(|e| fail(&e.to_string()));
-        let composite = |pack: &LoadedPack| {
-            let frame = render_wgpu_repeated(&gpu, pack, &scene, frames + 1).unwrap_or_else(|e| fail(&format!("{name}: {e}")));
-            let step = frame.passes.iter().find(|p| p.pass.starts_with("composite")).unwrap_or_else(|| fail("no composite step"));
-            median(&step.samples_ms[1..])
-        };
-        let times: Vec<[f64; 2]> = (0..rounds).map(|_| [composite(&packs[0]), composite(&packs[1])]).collect();
-        let mut ratios: Vec<f64> = times.iter().map(|[b, a]| a / b).collect();
-        ratios.sort_by(f64::total_cmp);
-        let side = |i: usize| median(&times.iter().map(|t| t[i]).collect::<Vec<_>>());
-        println!("| {name} | {:.2} | {:.2} | {:.3} | {:.3}–{:.3} |", side(0), side(1), median(&ratios), ratios[0], ratios[rounds - 1]);
+        let scene = Scene::load(&root.join("tests/scenes").join(format!("{name}.toml")))
+            .unwrap_or_else(|e| fail(&e.to_string()))
+            .with_resolution(640, 360);
+        let values = uniforms::values(&scene, Pass::Fullscreen);
+        let prepared: Vec<(GBuffers, CompositeOnly)> = packs
+            .iter()
+            .map(|pack| {
+                let frame = render_wgpu(&gpu, pack, &scene).unwrap_or_else(|e| fail(&format!("{name}: {e}")));
+                let runner = CompositeOnly::new(&gpu, pack, scene.width(), scene.height(), &values).unwrap_or_else(|e| fail(&e.to_string()));
+                (GBuffers::from_frame(&frame), runner)
+            })
+            .collect();
+        let mut ratios = [Vec::new(), Vec::new()];
+        let mut images = [None, None];
+        for round in 0..=rounds {
+            // The version that goes first alternates, so neither always follows the other.
+            for k in 0..2 {
+                let i = (k + round) % 2;
+                let (g, runner) = &prepared[i];
+                let timed = runner.time(&gpu, &packs[i], g, &values, 1).unwrap_or_else(|e| fail(&e.to_string()));
+                if round > 0 {
+                    ratios[i].push(timed.composite_ms[0] / timed.passthrough_ms[0]);
+                }
+                images[i] = Some(timed.image);
+            }
+        }
+        let [Some(before_image), Some(after_image)] = &images else { unreachable!("every round renders both versions") };
+        let largest = max_channel_difference(before_image, after_image)[..3].iter().fold(0.0f32, |m, d| m.max(*d)) * 255.0;
+        let mut after_over_before: Vec<f64> = ratios[0].iter().zip(&ratios[1]).map(|(b, a)| a / b).collect();
+        after_over_before.sort_by(f64::total_cmp);
+        let quartile = |q: f64| after_over_before[((after_over_before.len() - 1) as f64 * q).round() as usize];
+        println!(
+            "| {name} | {:.2} | {:.2} | {:.3} ({:.3}–{:.3}) | {largest:.1} | {} |",
+            median(&ratios[0]),
+            median(&ratios[1]),
+            median(&after_over_before),
+            quartile(0.25),
+            quartile(0.75),
+            count_differing(before_image, after_image, 1.0 / 255.0)
+        );
     }
 }
 
