@@ -70,12 +70,15 @@ pub struct Rewrite {
 /// `text` with what lenient compilers accept rewritten for a strict one, and the rewrites made.
 /// `text` may still hold its conditionals (the driver evaluates them); `preprocessed` is the
 /// same stage with them evaluated, which decides what the driver would meet:
-/// - an `#extension` after code, outside any `#if`, moves up to just after `#version` (its
+/// - an `#extension` after code, outside any `#if` or in a branch the driver takes, moves up to
+///   just after `#version` (its
 ///   old line is left empty, so the lines after it keep their numbers, and the ones between
 ///   move down by one);
 /// - from GLSL 1.30 on, a sampler uniform named `texture` and every use of it that is not a
 ///   call become `gtexture`, as Iris renames it;
 /// - a reserved word used as a name gets a `_` appended wherever it appears;
+/// - `#ifdef NAME`, `#ifndef NAME`, `#else` and `#endif` lose the tokens after them (lenient
+///   preprocessors ignore them);
 /// - a `#version 110` or `120` stage that calls a GLSL 1.30 function (`texture()`, …) or has a
 ///   `switch` is compiled as `#version 130`, which keeps everything 1.20 has (a compatibility
 ///   driver still takes `varying`, `gl_FragData` and `texture2D` there);
@@ -125,6 +128,30 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
                 replaced[i] = Some(new_name.clone());
             }
             rewrites.push(Rewrite { line: tokens[first].line, what: format!("`{word}`, a reserved word, renamed to `{new_name}` ({} uses)", uses.len()) });
+        }
+    }
+
+    // `#ifdef NAME …`, `#ifndef NAME …`, `#else …` and `#endif …`: lenient preprocessors read
+    // the name (or nothing) and ignore the rest, which Mesa refuses.
+    for (k, &i) in significant.iter().enumerate() {
+        let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;
+        let Some(&d) = significant.get(k + 1).filter(|_| starts_line && tokens[i].is_punct("#")) else { continue };
+        let kept = match tokens[d].text {
+            "ifdef" | "ifndef" => 1,
+            "else" | "endif" => 0,
+            _ => continue,
+        };
+        let on_line: Vec<usize> = significant[k + 2..].iter().copied().take_while(|&e| tokens[e].line == tokens[i].line).collect();
+        if on_line.len() > kept && (kept == 0 || tokens[on_line[0]].kind == TokenKind::Ident) {
+            let ignored: Vec<&str> = on_line[kept..].iter().map(|&e| tokens[e].text).collect();
+            for &e in &on_line[kept..] {
+                replaced[e] = Some(String::new());
+            }
+            let directive: Vec<&str> = std::iter::once(tokens[d].text).chain(on_line[..kept].iter().map(|&e| tokens[e].text)).collect();
+            rewrites.push(Rewrite {
+                line: tokens[i].line,
+                what: format!("`#{}` ignores what follows: `{}` removed", directive.join(" "), ignored.join(" ")),
+            });
         }
     }
 
@@ -302,7 +329,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
         out = lines.concat();
     }
-    let (out, moved) = extensions_after_version(&out, &added);
+    // Extensions the driver meets, active `#if` or not.
+    let met_extensions: Vec<&str> =
+        met.windows(3).filter(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].kind == TokenKind::Ident).map(|w| w[2].text).collect();
+    let (out, moved) = extensions_after_version(&out, &added, &met_extensions);
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
@@ -443,7 +473,7 @@ fn value_functions(toks: &[&Token]) -> Vec<Definition> {
 /// `#extension` lines after the first line of code and outside every `#if` moved to just after
 /// `#version` (or to the top without one), their old lines left empty, with the `added` lines
 /// after them; the rewrites are the moves.
-fn extensions_after_version(text: &str, added: &[String]) -> (String, Vec<Rewrite>) {
+fn extensions_after_version(text: &str, added: &[String], met: &[&str]) -> (String, Vec<Rewrite>) {
     let Ok(tokens) = tokenize(text) else { return (text.to_string(), Vec::new()) };
     // Per line: its first significant token, and whether the line holds any.
     let mut first_on_line: Vec<Option<usize>> = vec![None; text.lines().count() + 2];
@@ -455,8 +485,10 @@ fn extensions_after_version(text: &str, added: &[String]) -> (String, Vec<Rewrit
             }
         }
     }
-    let directive = |i: usize| {
-        tokens.iter().skip(i + 1).find(|t| t.kind != TokenKind::Whitespace).filter(|t| t.kind == TokenKind::Ident).map(|t| t.text)
+    // The names after a `#` at token i: the directive's, and the one after it.
+    let words = |i: usize| {
+        let mut names = tokens.iter().skip(i + 1).filter(|t| t.kind != TokenKind::Whitespace).map(|t| (t.kind == TokenKind::Ident).then_some(t.text));
+        (names.next().flatten(), names.next().flatten())
     };
     let (mut depth, mut code_seen, mut version_line) = (0i32, false, None);
     let mut moved_lines = Vec::new();
@@ -466,11 +498,12 @@ fn extensions_after_version(text: &str, added: &[String]) -> (String, Vec<Rewrit
             code_seen = true;
             continue;
         }
-        match directive(i) {
-            Some("if" | "ifdef" | "ifndef") => depth += 1,
-            Some("endif") => depth -= 1,
-            Some("version") => version_line = Some(line),
-            Some("extension") if code_seen && depth == 0 => moved_lines.push(line),
+        match words(i) {
+            (Some("if" | "ifdef" | "ifndef"), _) => depth += 1,
+            (Some("endif"), _) => depth -= 1,
+            (Some("version"), _) => version_line = Some(line),
+            // Inside an `#if`, one the driver meets (its branch is taken).
+            (Some("extension"), name) if code_seen && (depth == 0 || name.is_some_and(|n| met.contains(&n))) => moved_lines.push(line),
             _ => {}
         }
     }
@@ -504,12 +537,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_extension_after_code_moves_up_and_one_inside_an_if_stays() {
+    fn an_extension_after_code_moves_up_unless_in_a_branch_not_taken() {
         let text = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n";
-        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        let without_x = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, without_x, Stage::Fragment, &[]);
         assert_eq!(out, "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nuniform float a;\n\n#ifdef X\n#extension GL_ARB_shader_texture_lod : enable\n#endif\nvoid main() {}\n");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 3);
+        // With X defined the driver meets the second one too.
+        let with_x = "#version 120\nuniform float a;\n#extension GL_EXT_gpu_shader4 : enable\n#extension GL_ARB_shader_texture_lod : enable\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, with_x, Stage::Fragment, &[]);
+        assert!(out.starts_with("#version 120\n#extension GL_EXT_gpu_shader4 : enable\n#extension GL_ARB_shader_texture_lod : enable\nuniform float a;\n"), "{out}");
+        assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [3, 5]);
         // Before any code it is where it belongs.
         let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
         assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment, &[]), (clean.to_string(), Vec::new()));
@@ -583,6 +622,20 @@ mod tests {
         let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("return INTENSITY;", "return float( INTENSITY);").replace("return 0.5 * 2.0;", "return float( 0.5 * 2.0);"));
         assert_eq!(rewrites, [Rewrite { line: 3, what: "`glow` returns an integer where float is declared: its 2 return values converted with float()".into() }]);
+    }
+
+    #[test]
+    fn tokens_after_a_directive_that_ignores_them_are_removed() {
+        let text = "#version 120\n#ifndef BASIC && defined NORMALS\nfloat a;\n#else if defined SHADOW\nfloat b;\n#endif\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, "#version 120\nfloat a;\nvoid main() {}\n", Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("#ifndef BASIC && defined NORMALS", "#ifndef BASIC   ").replace("#else if defined SHADOW", "#else   "));
+        assert_eq!(
+            rewrites,
+            [
+                Rewrite { line: 2, what: "`#ifndef BASIC` ignores what follows: `&& defined NORMALS` removed".into() },
+                Rewrite { line: 4, what: "`#else` ignores what follows: `if defined SHADOW` removed".into() },
+            ]
+        );
     }
 
     #[test]

@@ -367,7 +367,10 @@ impl Preprocessor<'_> {
                         match name {
                             Some("if") => self.condition(args, consult, path, at)?,
                             _ => {
-                                let macro_name = single_ident(args).ok_or_else(|| {
+                                // NVIDIA's preprocessor, like C's, tests the first name and
+                                // ignores what follows it (`#ifndef A && defined B`).
+                                let leniently = || self.lenient.then(|| first_ident(args)).flatten();
+                                let macro_name = single_ident(args).or_else(leniently).ok_or_else(|| {
                                     err_at(at, format!("#{} needs exactly one macro name", name.unwrap_or("")))
                                 })?;
                                 if consult {
@@ -403,6 +406,12 @@ impl Preprocessor<'_> {
                     let top = conds.last_mut().unwrap();
                     top.active = value;
                     top.taken |= value;
+                }
+                Some(directive @ ("else" | "endif")) if !self.lenient && first_significant(args).is_some() => {
+                    return Err(err_at(
+                        at,
+                        format!("#{directive} takes nothing after it; Mesa and AMD refuse the stage (NVIDIA ignores what follows)"),
+                    ));
                 }
                 Some("else") => {
                     let Some(top) = conds.last_mut() else {
@@ -874,6 +883,11 @@ fn split_arguments(tokens: &[OwnedToken], open: usize) -> Option<(Vec<&[OwnedTok
     None
 }
 
+/// The first significant token of `args` when it is a name.
+fn first_ident<'a>(args: &[Token<'a>]) -> Option<&'a str> {
+    first_significant(args).filter(|(_, t)| t.kind == TokenKind::Ident).map(|(_, t)| t.text)
+}
+
 fn single_ident<'a>(args: &[Token<'a>]) -> Option<&'a str> {
     let sig: Vec<_> = args.iter().filter(|t| !t.is_trivia()).collect();
     match sig.as_slice() {
@@ -1266,6 +1280,26 @@ mod tests {
         let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
         assert!(out.text.contains("float x = 3.14159;"), "{}", out.text);
         assert_eq!(out.redefinitions, [(Location::line("a.fsh", 3), "PI".to_string())]);
+    }
+
+    #[test]
+    fn extra_tokens_after_an_ifndef_name_are_refused_and_ignored_leniently() {
+        let list = [("a.fsh", "#version 120\n#define A\n#ifndef A && defined B\nfloat a;\n#else\nfloat b;\n#endif\n")];
+        let err = run(&list).unwrap_err();
+        assert!(err.message.contains("#ifndef needs exactly one macro name") && err.location.unwrap().line == 3, "{}", err.message);
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("float b;") && !out.text.contains("float a;"), "{}", out.text);
+    }
+
+    #[test]
+    fn tokens_after_else_are_refused_and_ignored_leniently() {
+        let list = [("a.fsh", "#version 120\n#ifdef VERTEX\nfloat a;\n#else if defined FRAGMENT\nfloat b;\n#endif // comment\n")];
+        let err = run(&list).unwrap_err();
+        assert!(err.message.contains("#else takes nothing after it") && err.location.unwrap().line == 4, "{}", err.message);
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("float b;") && !out.text.contains("float a;"), "{}", out.text);
     }
 
     #[test]
