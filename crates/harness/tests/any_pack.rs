@@ -295,8 +295,9 @@ fn the_unrounded_screen_is_the_loaders_screen_before_rounding() {
 }
 
 /// A pack that only NVIDIA's leniency compiles (tests/packs/lenient): a sampler named `texture`
-/// called through texture() under 1.30, texture() under 1.20, an `#extension` after code, a
-/// reserved word as a name, a precision qualifier under 1.20, and values left undefined (a
+/// called through texture() under 1.30, texture() under 1.20, an `#extension` after code (one of
+/// them inside an `#if`), a reserved word as a name, words after `#ifndef NAME` and after `#else`,
+/// a precision qualifier under 1.20, and values left undefined (a
 /// vertex output only an `if` writes; a draw buffer never written, which OpenGL is kept from
 /// writing, as wgpu does not write it). OpenGL draws it with the rewrites loaders and lenient drivers
 /// apply, each listed at its file and line, and agrees with wgpu, which draws the lowering's
@@ -309,14 +310,17 @@ fn what_only_lenient_drivers_compile_is_rewritten_for_opengl_listed_and_drawn_al
     for expected in [
         "gbuffers_terrain: gbuffers_terrain.fsh:5: the sampler `texture`",
         "composite: composite.fsh:1: #version 120 raised to 130 for `texture()`",
-        "composite: composite.fsh:6: `#extension GL_EXT_gpu_shader4 : enable` after code moved up",
-        "composite: composite.fsh:11: `output`, a reserved word, renamed to `output_` (3 uses)",
+        "composite: composite.fsh:7: `#extension GL_EXT_gpu_shader4 : enable` after code moved up",
+        "composite: composite.fsh:12: `output`, a reserved word, renamed to `output_` (3 uses)",
+        "composite: composite.fsh:16: `#ifndef WARM` ignores what follows: `&& defined COLD` removed",
+        "composite: composite.fsh:18: `#else` ignores what follows: `if defined WARM` removed",
+        "composite: composite.fsh:22: `#extension GL_ARB_shader_texture_lod : enable` after code moved up",
         "gbuffers_terrain: gbuffers_terrain.vsh:12: precision qualifiers, reserved words in GLSL 120, removed (1)",
         "gbuffers_terrain: gbuffers_terrain.vsh:8: outputs not written whole on every path set to 0 at the start of main",
     ] {
         assert!(rewrites.iter().any(|r| r.starts_with(expected)), "{expected:?} is not among {rewrites:#?}");
     }
-    assert_eq!(rewrites.len(), 6, "{rewrites:#?}");
+    assert_eq!(rewrites.len(), 9, "{rewrites:#?}");
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
     let scene = scene("case4_above_near");
     let mesh = mesh::build(&scene, &pack);
