@@ -260,15 +260,6 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let met_functions = value_functions(&met);
     let met_without_return: Vec<&str> =
         met_functions.iter().filter(|f| !met[f.open..f.close].iter().any(|t| t.is_ident("return"))).map(|f| met[f.name].text).collect();
-    // A float or vector function returning an integer literal (`return 8;`, often a macro's value).
-    let met_int_return: Vec<&str> = met_functions
-        .iter()
-        .filter(|f| ["float", "vec2", "vec3", "vec4"].contains(&met[f.name - 1].text))
-        .filter(|f| {
-            met[f.open..f.close].windows(3).any(|w| w[0].is_ident("return") && w[1].kind == TokenKind::Number && w[2].is_punct(";") && is_int_literal(w[1].text))
-        })
-        .map(|f| met[f.name].text)
-        .collect();
     for f in value_functions(&sig) {
         let (name, type_) = (sig[f.name].text, sig[f.name - 1].text);
         let body = f.open..f.close;
@@ -277,20 +268,6 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             rewrites.push(Rewrite {
                 line: sig[f.name].line,
                 what: format!("`{name}` returns {type_} but has no `return`: `return {type_}(0);` added at its end"),
-            });
-        }
-        if met_int_return.contains(&name) {
-            let mut wrapped = 0;
-            for k in body.clone().filter(|&k| sig[k].is_ident("return")) {
-                if let Some(end) = (k..f.close).find(|&e| sig[e].is_punct(";")) {
-                    replaced[significant[k]] = Some(format!("return {type_}("));
-                    replaced[significant[end]] = Some(");".into());
-                    wrapped += 1;
-                }
-            }
-            rewrites.push(Rewrite {
-                line: sig[f.name].line,
-                what: format!("`{name}` returns an integer where {type_} is declared: its {wrapped} return values converted with {type_}()"),
             });
         }
     }
@@ -336,6 +313,36 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// `text` with a value on line `line` (1-based) given `constructor`, as the renderer's checks
+/// converted it in the stage naga read (`naga_check::Conversion`): `value` itself where its
+/// tokens appear once on the line; otherwise everything after the line's one `return` or
+/// assignment up to its `;` (the same value, where the line has macros naga saw expanded).
+/// Returns the new text and the text converted; `None` when neither is found.
+pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str) -> Option<(String, String)> {
+    let (tokens, wanted) = (tokenize(text).ok()?, tokenize(value).ok()?);
+    let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
+    let wanted: Vec<&str> = wanted.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+    let matches: Vec<usize> = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
+        .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()))
+        .collect();
+    let (first, last) = match matches.as_slice() {
+        [k] => (on_line[*k], on_line[*k + wanted.len() - 1]),
+        _ => {
+            let operators = ["return", "=", "+=", "-=", "*=", "/="];
+            let starts: Vec<usize> = (0..on_line.len()).filter(|&k| operators.contains(&on_line[k].text)).collect();
+            let [start] = starts.as_slice() else { return None };
+            let end = (start + 1..on_line.len()).find(|&k| on_line[k].is_punct(";"))?;
+            if end == start + 1 {
+                return None;
+            }
+            (on_line[start + 1], on_line[end - 1])
+        }
+    };
+    let end = last.offset + last.text.len();
+    let converted = &text[first.offset..end];
+    Some((format!("{}{constructor}({converted}){}", &text[..first.offset], &text[end..]), converted.to_string()))
 }
 
 /// A declaration's type and name.
@@ -422,12 +429,6 @@ struct Definition {
     name: usize,
     open: usize,
     close: usize,
-}
-
-/// Whether a number token is an integer literal (`8`, `0x1F`, `3u`), not a float.
-fn is_int_literal(number: &str) -> bool {
-    let hex = number.starts_with("0x") || number.starts_with("0X");
-    !number.contains('.') && (hex || !number.contains(['e', 'E', 'f', 'F']))
 }
 
 /// The definitions, outside every brace, of functions returning a [`VALUE_TYPES`] value.
@@ -616,15 +617,6 @@ mod tests {
     }
 
     #[test]
-    fn a_float_function_returning_an_integer_converts_its_returns() {
-        let text = "#version 330 compatibility\n#define INTENSITY 8\nfloat glow(bool on) {\n    if (on) return INTENSITY;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
-        let preprocessed = "#version 330 compatibility\n\nfloat glow(bool on) {\n    if (on) return 8;\n    return 0.5 * 2.0;\n}\nvoid main() {}\n";
-        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment, &[]);
-        assert_eq!(out, text.replace("return INTENSITY;", "return float( INTENSITY);").replace("return 0.5 * 2.0;", "return float( 0.5 * 2.0);"));
-        assert_eq!(rewrites, [Rewrite { line: 3, what: "`glow` returns an integer where float is declared: its 2 return values converted with float()".into() }]);
-    }
-
-    #[test]
     fn tokens_after_a_directive_that_ignores_them_are_removed() {
         let text = "#version 120\n#ifndef BASIC && defined NORMALS\nfloat a;\n#else if defined SHADOW\nfloat b;\n#endif\nvoid main() {}\n";
         let (out, rewrites) = for_strict_drivers(text, "#version 120\nfloat a;\nvoid main() {}\n", Stage::Fragment, &[]);
@@ -636,6 +628,20 @@ mod tests {
                 Rewrite { line: 4, what: "`#else` ignores what follows: `if defined SHADOW` removed".into() },
             ]
         );
+    }
+
+    #[test]
+    fn a_value_is_converted_where_it_appears_or_as_the_lines_right_hand_side() {
+        let text = "float a = 2.0 * texture2D(depth, uv);\nif (d < x) return i / STEPS;\nfloat b = f(1, 2), c = f(1, 2);\n";
+        let converted = |line, value| convert_on_line(text, line, "float", value).map(|(text, converted)| (text.lines().nth(line as usize - 1).unwrap().to_string(), converted));
+        assert_eq!(
+            converted(1, "2.0 * texture2D(depth, uv)"),
+            Some(("float a = float(2.0 * texture2D(depth, uv));".to_string(), "2.0 * texture2D(depth, uv)".to_string()))
+        );
+        // naga saw the macro expanded: the return's value is taken whole.
+        assert_eq!(converted(2, "i / 16u"), Some(("if (d < x) return float(i / STEPS);".to_string(), "i / STEPS".to_string())));
+        // Twice on the line, with two assignments: nothing to go by.
+        assert_eq!(convert_on_line(text, 3, "float", "f(1, 2)"), None);
     }
 
     #[test]

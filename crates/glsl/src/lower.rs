@@ -596,6 +596,9 @@ pub struct Interface {
     pub resources: BTreeMap<String, ResourceKind>,
     /// Vertex inputs (shipped names, legacy ones as `gl_*`) and their locations.
     pub inputs: BTreeMap<String, u32>,
+    /// Vertex inputs the shipped text places itself (`layout(location = 2) in vec4 normal;`),
+    /// at the location it gives.
+    pub declared_input_locations: BTreeMap<String, u32>,
     /// Fragment outputs by location: the shipped output name (`gl_FragData[1]`, `outColor1`).
     pub outputs: BTreeMap<u32, String>,
     /// Storage images by their names in the shipped text, with their types (`image2D`).
@@ -996,10 +999,14 @@ impl<'a> Lowering<'_, 'a> {
                 Storage::Uniform => self.lower_uniform(&decl, start, end)?,
                 Storage::Attribute => {
                     let mut text = String::new();
+                    let declared = decl.layout_value(self.tokens, "location");
                     for (name, suffix) in &decl.names {
                         let location = FIRST_ATTRIBUTE_LOCATION + attribute_count;
                         attribute_count += 1;
                         self.interface.inputs.insert(name.to_string(), location);
+                        if let Some(declared) = declared {
+                            self.interface.declared_input_locations.insert(name.to_string(), declared);
+                        }
                         write!(text, "layout(location = {location}) in {} {name}{}; ", decl.ty, naga_dimensions(suffix)).unwrap();
                     }
                     self.replace(start, end, text.trim_end().to_string());

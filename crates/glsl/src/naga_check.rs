@@ -41,6 +41,18 @@ pub fn lower_compute(pre: Arc<Preprocessed>) -> Result<LoweredCompute, Diagnosti
 pub struct ValidStage {
     pub module: naga::Module,
     pub info: ModuleInfo,
+    /// Values of a lenient stage ([`Preprocessed::lenient`]) converted as NVIDIA converts them
+    /// where GLSL does not.
+    pub conversions: Vec<Conversion>,
+}
+
+/// A value converted with a constructor in the text naga read: at `location` (the pack's file
+/// and line), `value` became `constructor(value)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Conversion {
+    pub location: Option<Location>,
+    pub constructor: String,
+    pub value: String,
 }
 
 /// Lowers the stages of one program with a shared varying layout.
@@ -147,6 +159,7 @@ fn validate_text(
     // Scalars take swizzles (`f().r`) from GLSL 4.20 or with GL_ARB_shading_language_420pack.
     let scalar_swizzles = version >= 420 || extension_enabled(&pre.text, "GL_ARB_shading_language_420pack");
     let mut found: Vec<Diagnostic> = Vec::new();
+    let mut conversions = Vec::new();
     for repairs in 0.. {
         let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
         let (diagnostics, at) = match parsed {
@@ -157,14 +170,18 @@ fn validate_text(
                     {
                         return Err(vec![diagnostic]);
                     }
-                    return Ok(ValidStage { module, info });
+                    return Ok(ValidStage { module, info, conversions });
                 }
                 Ok(_) => return Err(found),
                 Err(e) => {
                     if repairs < MAX_REPAIRS
-                        && let Some(repaired) = implicit_conversion(&text, &module, e.as_inner(), version)
+                        && let Some(repair) = implicit_conversion(&text, &module, e.as_inner(), version, pre.lenient)
                     {
-                        text = repaired;
+                        if let Some(lenient) = repair.lenient {
+                            let line = text[..lenient.offset].matches('\n').count() as u32 + 1;
+                            conversions.push(Conversion { location: pre.location(line), constructor: lenient.constructor, value: lenient.value });
+                        }
+                        text = repair.text;
                         continue;
                     }
                     let (message, span) = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
@@ -952,20 +969,37 @@ fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: na
     }
 }
 
+/// A repaired text, and the conversion it made beyond GLSL's (a lenient stage's) if it made one.
+struct Repair {
+    text: String,
+    lenient: Option<LenientConversion>,
+}
+
+/// Where (byte offset in the text before the repair) a value was given a constructor GLSL would
+/// not apply.
+struct LenientConversion {
+    offset: usize,
+    constructor: String,
+    value: String,
+}
+
 /// Repairs what GLSL allows and naga refuses once types are known: a value GLSL converts
 /// implicitly (an `int` or `ivec` returned or stored where a `float` or `vec` is declared) gets
 /// a constructor, a scalar beside a vector a vector constructor, a function whose end is
-/// reachable without a `return` a final one.
-fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32) -> Option<String> {
+/// reachable without a `return` a final one. In a `lenient` stage, values NVIDIA converts are
+/// converted too: returned at any version, between int, uint and float, and vectors cut to
+/// fewer components.
+fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32, lenient: bool) -> Option<Repair> {
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
     let mut type_of = expression_types(module, function);
     // GLSL 1.10 converts nothing; 1.20 converts in assignments (the lowering's `tp_init_`
     // functions return a global's initializer); returns convert from 4.20 on.
     let is_initializer = function.name.as_deref().is_some_and(|n| n.starts_with("tp_init_"));
-    if version < 120 {
+    if version < 120 && !lenient {
         return None;
     }
+    let repaired = |text: String| Some(Repair { text, lenient: None });
     let (value, target) = match source {
         FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
             // Control reaches the end of a function that returns a value: GLSL leaves the value
@@ -976,9 +1010,9 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let body = function_definitions(&tokens).into_iter().find(|f| tokens[f.open].offset >= header.start)?;
             let body_end = tokens.get(body.close)?.offset;
             let zero = glsl_type_name(&module.types[*ty].inner)?;
-            return Some(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
+            return repaired(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
         }
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 => {
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 || lenient => {
             (*value, module.types[*ty].inner.clone())
         }
         FunctionError::Expression {
@@ -1009,15 +1043,37 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             }
             let inner = text.get(span.clone())?;
             let constructor = glsl_type_name(&vector)?;
-            return Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
+            return repaired(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
         }
         FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?),
         _ => return None,
     };
-    let constructor = implicit_target(&type_of(value)?, &target)?;
+    let from = type_of(value)?;
+    let glsl_converts = version >= 120 && (!matches!(source, FunctionError::InvalidReturnType { .. }) || is_initializer || version >= 420);
+    let (constructor, beyond_glsl) = match implicit_target(&from, &target).filter(|_| glsl_converts) {
+        Some(constructor) => (constructor, false),
+        None if lenient => (lenient_target(&from, &target)?, true),
+        None => return None,
+    };
     let span = function.expressions.get_span(value).to_range()?;
     let inner = text.get(span.clone())?;
-    Some(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]))
+    let lenient = beyond_glsl.then(|| LenientConversion { offset: span.start, constructor: constructor.clone(), value: inner.to_string() });
+    Some(Repair { text: format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]), lenient })
+}
+
+/// The constructor NVIDIA applies implicitly where GLSL applies none: between int, uint and
+/// float scalars or vectors of one size, and from a vector to a scalar or a shorter vector of
+/// any of them (its first components).
+fn lenient_target(from: &naga::TypeInner, to: &naga::TypeInner) -> Option<String> {
+    use naga::{ScalarKind, TypeInner};
+    let numeric = |s: &naga::Scalar| matches!(s.kind, ScalarKind::Sint | ScalarKind::Uint | ScalarKind::Float) && s.width == 4;
+    let converts = match (from, to) {
+        (TypeInner::Scalar(a), TypeInner::Scalar(b)) => numeric(a) && numeric(b),
+        (TypeInner::Vector { size: n, scalar: a }, TypeInner::Vector { size: m, scalar: b }) => (*m as u8) <= (*n as u8) && numeric(a) && numeric(b),
+        (TypeInner::Vector { scalar: a, .. }, TypeInner::Scalar(b)) => numeric(a) && numeric(b),
+        _ => false,
+    };
+    converts.then(|| glsl_type_name(to)).flatten()
 }
 
 /// GLSL's name of a scalar or vector type of 32-bit components (or bools).

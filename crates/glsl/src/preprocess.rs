@@ -81,6 +81,9 @@ pub struct Preprocessed {
     /// With [`PreprocessOptions::lenient`]: the `#define` lines that redefined a macro with
     /// another body, and the macro's name.
     pub redefinitions: Vec<(Location, String)>,
+    /// Read as lenient drivers read it ([`PreprocessOptions::lenient`]): naga's checks then
+    /// convert values as NVIDIA does where GLSL converts nothing.
+    pub lenient: bool,
 }
 
 impl Preprocessed {
@@ -147,6 +150,7 @@ pub fn preprocess(
             tested_macros: BTreeSet::new(),
             warnings: Vec::new(),
             redefinitions: Vec::new(),
+            lenient: options.lenient,
         },
         include_stack: Vec::new(),
         seen_code: false,

@@ -588,6 +588,18 @@ impl PassValues {
         (values, problems)
     }
 
+    /// Every value [`Value::nudged`] by `relative`.
+    pub fn nudged(&self, relative: f64) -> PassValues {
+        let all = |values: &BTreeMap<String, Value>| values.iter().map(|(name, v)| (name.clone(), v.nudged(relative))).collect();
+        PassValues {
+            gbuffers: all(&self.gbuffers),
+            fullscreen: all(&self.fullscreen),
+            shadow: all(&self.shadow),
+            celestial: all(&self.celestial),
+            distant_horizons: all(&self.distant_horizons),
+        }
+    }
+
     pub fn of_pass(&self, pass: Pass) -> &BTreeMap<String, Value> {
         match pass {
             Pass::Gbuffers => &self.gbuffers,

@@ -465,15 +465,28 @@ const MAX_VERTEX_ATTRIBUTES: usize = 16;
 
 /// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
 /// locations the lowering gave them (so both renderers feed and read the same slots).
+/// Where each user vertex input of `stage` is for OpenGL: at the location the shipped text gives
+/// it (`layout(location = N)`), the others at the lowering's location, or where that is taken by
+/// a placed one, at the first location neither takes.
+fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
+    let interface = &stage.interface;
+    let placed: Vec<u32> = interface.declared_input_locations.values().copied().collect();
+    let mut taken = placed.clone();
+    let mut locations = Vec::new();
+    for (name, &lowered) in interface.inputs.iter().filter(|(name, _)| !name.starts_with("gl_")) {
+        let location = match interface.declared_input_locations.get(name) {
+            Some(&declared) => declared,
+            None if !taken.contains(&lowered) => lowered,
+            None => (0..).find(|l| !taken.contains(l)).expect("a free location"),
+        };
+        taken.push(location);
+        locations.push((name.as_str(), location));
+    }
+    locations
+}
+
 pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
-    let attributes: Vec<(&str, u32)> = program
-        .vertex
-        .interface
-        .inputs
-        .iter()
-        .filter(|(name, _)| !name.starts_with("gl_"))
-        .map(|(name, location)| (name.as_str(), *location))
-        .collect();
+    let attributes = attribute_locations(&program.vertex);
     // An output past the draw buffers has no buffer to bind (`preprocess::MAX_DRAW_BUFFERS`).
     let frag_data: Vec<(&str, u32)> = program
         .fragment
@@ -679,11 +692,9 @@ pub(crate) unsafe fn draw_program(
             (lg.tex_coord_pointer)(4, glow::FLOAT, stride, at(offset));
         }
         let mut generic = Vec::new();
-        for (name, location) in &program.vertex.interface.inputs {
-            if name.starts_with("gl_") {
-                continue;
-            }
-            match mesh::attribute_source(name) {
+        for (name, location) in attribute_locations(&program.vertex) {
+            let location = &location;
+            match mesh::input_source(name, program.vertex.interface.declared_input_locations.get(name).copied()) {
                 Some((format, offset)) => {
                     gl.enable_vertex_attrib_array(*location);
                     match format {

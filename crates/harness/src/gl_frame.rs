@@ -62,6 +62,12 @@ pub struct Reference<'r> {
     pub steps: Vec<&'r [(String, FloatImage)]>,
     pub depth0: &'r FloatImage,
     pub depth1: &'r FloatImage,
+    /// Every float uniform, float literal of the shaders and the full-screen quad's vertices
+    /// moved by this much of themselves (0: as the loader gives them); the caller nudges the
+    /// scene's mesh alike. Pixels a nudge
+    /// of a few units in the last place moves are those whose result the last bit of some
+    /// arithmetic decides (a hash, the edge of a `floor`), where two correct compilers differ.
+    pub nudge: f64,
 }
 
 /// Renders `scene` as [`render`] does, but each step starts from what `reference` left: the
@@ -125,6 +131,8 @@ struct GlPlanFrame<'a> {
     own_depth_mapping: Vec<String>,
     /// Wall time of the current step's draws and copies so far, in ms.
     step_ms: f64,
+    /// [`Reference::nudge`]: the shaders' float literals are moved by it too.
+    nudge: f64,
 }
 
 fn render_plan(
@@ -146,9 +154,10 @@ fn render_plan(
     let depth_copy = plan.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
     // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
-        let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan)?;
+        let nudge = reference.map_or(0.0, |r| r.nudge);
+        let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan, nudge)?;
         frame.clear()?;
-        let quad = mesh::fullscreen_quad();
+        let quad: Vec<PackVertex> = mesh::fullscreen_quad().iter().map(|v| v.nudged(nudge as f32)).collect();
         let mut steps = Vec::new();
         let mut step_ms = Vec::new();
         // The textures the step before wrote, by name.
@@ -218,7 +227,7 @@ struct GeometryStep<'s> {
 
 impl<'a> GlPlanFrame<'a> {
     /// The frame's textures, as the wgpu path makes them.
-    unsafe fn new(ctx: &'a GlContext, pack: &'a AnyPack, scene: &'a Scene, plan: &FramePlan) -> Result<GlPlanFrame<'a>, HarnessError> {
+    unsafe fn new(ctx: &'a GlContext, pack: &'a AnyPack, scene: &'a Scene, plan: &FramePlan, nudge: f64) -> Result<GlPlanFrame<'a>, HarnessError> {
         let gl = ctx.gl();
         let (w, h) = (scene.width() as i32, scene.height() as i32);
         unsafe {
@@ -248,7 +257,7 @@ impl<'a> GlPlanFrame<'a> {
                 shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
             }
             let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
-            let values = PassValues::of(pack, scene).0;
+            let values = PassValues::of(pack, scene).0.nudged(nudge);
             Ok(GlPlanFrame {
                 ctx,
                 pack,
@@ -268,6 +277,7 @@ impl<'a> GlPlanFrame<'a> {
                 values,
                 own_depth_mapping: Vec::new(),
                 step_ms: 0.0,
+                nudge,
             })
         }
     }
@@ -361,6 +371,13 @@ impl<'a> GlPlanFrame<'a> {
     /// vertex stage recorded by transform feedback, then a stand-in vertex stage passing its
     /// outputs on, which cannot stand in for interface blocks (the link fails).
     fn build(&mut self, program: &LoadedProgram) -> Result<(Compiled, bool), HarnessError> {
+        let nudged;
+        let program = if self.nudge == 0.0 {
+            program
+        } else {
+            nudged = program.with_float_literals_nudged(self.nudge);
+            &nudged
+        };
         match compile(self.ctx, program, DepthMapping::Harness) {
             Ok(c) => Ok((c, false)),
             Err(HarnessError::Unsupported(_)) | Err(HarnessError::Gl(_)) => {

@@ -122,6 +122,11 @@ pub fn count_differing(a: &FloatImage, b: &FloatImage, threshold: f32) -> usize 
     a.pixels.iter().zip(&b.pixels).filter(|(p, q)| pixels_differ(p, q, threshold)).count()
 }
 
+/// Per pixel, whether its RGB differ by more than `threshold` in some channel.
+pub fn differing_pixels(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<bool> {
+    a.pixels.iter().zip(&b.pixels).map(|(p, q)| pixels_differ(p, q, threshold)).collect()
+}
+
 /// PSNR in dB over the RGB channels of two 8-bit RGBA images (infinite when identical).
 pub fn psnr_rgb8(a: &[u8], b: &[u8]) -> f64 {
     assert_eq!(a.len(), b.len(), "images of different sizes");

@@ -317,6 +317,9 @@ pub struct Disagreement {
     pub texture: String,
     /// Pixels differing by more than 1/255 in some colour channel.
     pub pixels: usize,
+    /// Those of them OpenGL itself moves under a nudge ([`GlStepComparison::sensitive_pixels`]),
+    /// which the limit does not count.
+    pub sensitive: usize,
     /// The largest difference of any channel, in 1/255.
     pub max_difference_255: f32,
     /// The limit it passed.
@@ -329,16 +332,53 @@ impl GlStepsComparison {
     /// compared).
     pub fn first_disagreement(&self, max_pixels: usize) -> Option<Disagreement> {
         self.steps.iter().find_map(|step| {
-            step.pixels_over_1_255.iter().find(|(_, n)| **n > max_pixels).map(|(texture, &pixels)| Disagreement {
+            let sensitive = |texture: &str| step.sensitive_pixels.get(texture).copied().unwrap_or(0);
+            step.pixels_over_1_255.iter().find(|(texture, n)| **n - sensitive(texture) > max_pixels).map(|(texture, &pixels)| Disagreement {
                 pass: step.pass.clone(),
                 texture: texture.clone(),
                 pixels,
+                sensitive: sensitive(texture),
                 max_difference_255: step.max_difference_255.get(texture).map_or(f32::NAN, |d| d.iter().copied().fold(0.0, f32::max)),
                 max_pixels,
             })
         })
     }
+
+    /// Records, per step and texture, how many of the pixels where the renderers differ OpenGL
+    /// itself moves when every float uniform and vertex attribute is nudged by [`NUDGE`]
+    /// (`nudged`, drawn from the same inputs as `gl`). A texture whose pixels move so on more than
+    /// [`MAX_SENSITIVE_SHARE`] of it is left as it is: its comparison says nothing then.
+    fn discount_sensitive(&mut self, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame, nudged: &crate::gl_frame::GlFrame) {
+        for (step, ((pass, (_, gl_images)), (_, nudged_images))) in self.steps.iter_mut().zip(wgpu.passes.iter().zip(&gl.steps).zip(&nudged.steps)) {
+            for (((name, ours), (_, theirs)), (_, moved)) in pass.images.iter().zip(gl_images).zip(nudged_images) {
+                if let Some(sensitive) = sensitive_pixels(ours, theirs, moved).filter(|n| *n > 0) {
+                    step.sensitive_pixels.insert(name.clone(), sensitive);
+                }
+            }
+        }
+    }
 }
+
+/// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many `theirs` and
+/// `moved` (theirs drawn again, nudged) differ on too; `None` when `moved` differs from `theirs`
+/// on more than [`MAX_SENSITIVE_SHARE`] of the image.
+fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &FloatImage) -> Option<usize> {
+    let unstable = images::differing_pixels(theirs, moved, 1.0 / 255.0 + 1e-6);
+    if unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64 {
+        return None;
+    }
+    let apart = images::differing_pixels(ours, theirs, 1.0 / 255.0 + 1e-6);
+    Some(apart.iter().zip(&unstable).filter(|(a, u)| **a && **u).count())
+}
+
+/// The relative nudge of [`GlStepsComparison::discount_sensitive`]: 2^-21, four units in the
+/// last place of a float, about what two compilers' roundings of the same expression differ by
+/// (a fused multiply-add, a reciprocal for a division, another polynomial for `sin`).
+pub const NUDGE: f64 = 1.0 / (1u32 << 21) as f64;
+
+/// The largest share of a texture OpenGL may move under [`NUDGE`] for its differences there to
+/// be discounted: past it the step is noise throughout (grain, a hash of every pixel).
+pub const MAX_SENSITIVE_SHARE: f64 = 0.05;
 
 /// The screen against a blessed one.
 #[derive(Clone, Debug, Serialize)]
@@ -359,6 +399,11 @@ pub struct GlStepComparison {
     pub max_difference_255: BTreeMap<String, [f32; 4]>,
     /// Per texture: pixels differing by more than 1/255 in some channel.
     pub pixels_over_1_255: BTreeMap<String, usize>,
+    /// Per texture, when the renderers part there: how many of those pixels OpenGL itself moves
+    /// by more than 1/255 when the uniforms and vertices are nudged by [`NUDGE`]. There the last
+    /// bit of the pack's own arithmetic decides the result, as GLSL allows compilers to round it.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub sensitive_pixels: BTreeMap<String, usize>,
 }
 
 /// The OpenGL frame of any pack against the wgpu frame.
@@ -451,17 +496,16 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     // draws each step from wgpu's textures (gl_frame::render_from), so that the step where
     // they part is the one that differs, not one further down that spreads an earlier step's
     // few pixels.
-    let gl = if job.gl && !gl_primary {
-        let ctx = gl::context()?;
-        let reference = crate::gl_frame::Reference {
-            steps: frame.passes.iter().map(|p| p.images.as_slice()).collect(),
-            depth0: &frame.depth0,
-            depth1: &frame.depth1,
-        };
-        Some((ctx.info().to_string(), crate::gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference)))
-    } else {
-        None
+    let gl_context = if job.gl && !gl_primary { Some(gl::context()?) } else { None };
+    let reference = |nudge| crate::gl_frame::Reference {
+        steps: frame.passes.iter().map(|p| p.images.as_slice()).collect(),
+        depth0: &frame.depth0,
+        depth1: &frame.depth1,
+        nudge,
     };
+    let gl = gl_context
+        .as_ref()
+        .map(|ctx| (ctx.info().to_string(), crate::gl_frame::render_from(ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference(0.0))));
     let stem = file_stem(&scene.name);
     std::fs::create_dir_all(&job.out_dir)
         .map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", job.out_dir.display())))?;
@@ -491,7 +535,11 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let gl = match gl {
         Some((renderer, Ok(gl_frame))) => {
             write(".gl", &gl_frame.image)?;
-            let comparison = compare_steps(renderer, &frame, &gl_frame)?;
+            let mut comparison = compare_steps(renderer, &frame, &gl_frame)?;
+            if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
+                let nudged = crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(NUDGE as f32), ScreenOutput::AsLoader, &reference(NUDGE))?;
+                comparison.discount_sensitive(&frame, &gl_frame, &nudged);
+            }
             // Where they part: both renderers' texture and the pixels over 1/255, to look at.
             if let Some(parted) = comparison.first_disagreement(gl_max_pixels) {
                 let step = frame.passes.iter().position(|p| p.pass == parted.pass).expect("the step was compared");
@@ -600,7 +648,7 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::Frame, gl: &crate::gl_fram
             max_difference_255.insert(name.clone(), d.map(|c| c * 255.0));
             pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, 1.0 / 255.0 + 1e-6));
         }
-        steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255 });
+        steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255, sensitive_pixels: BTreeMap::new() });
     }
     Ok(GlStepsComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
 }
@@ -664,6 +712,33 @@ mod tests {
         assert_eq!(super::file_stem(""), "scene");
     }
 
+    /// Pixels where OpenGL moves under the nudge are not counted against the renderers, unless
+    /// the nudge moves too much of the texture to tell anything.
+    #[test]
+    fn differences_where_opengl_itself_moves_under_a_nudge_are_sensitive() {
+        use crate::images::FloatImage;
+        let image = |changed: &[usize]| {
+            let mut pixels = vec![[0.5f32, 0.5, 0.5, 1.0]; 100];
+            for &i in changed {
+                pixels[i][0] = 0.9;
+            }
+            FloatImage { width: 10, height: 10, pixels }
+        };
+        let (ours, theirs) = (image(&[]), image(&[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]));
+        // OpenGL nudged moves four of the ten pixels where the renderers part, and one other.
+        let mut moved = theirs.clone();
+        for i in [0, 1, 2, 3, 50] {
+            moved.pixels[i][0] = 0.5;
+        }
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), Some(4));
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &theirs), Some(0));
+        // Past 5% of the texture moved, the step is noise throughout.
+        for i in 60..62 {
+            moved.pixels[i][0] = 0.1;
+        }
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), None);
+    }
+
     /// A frame whose composite parts on most of the screen (the all-black OpenGL screen beside a
     /// plausible wgpu one): the first step over the limit is named, not a later one, and a step
     /// within the limit is agreement.
@@ -674,6 +749,7 @@ mod tests {
             pass: pass.into(),
             max_difference_255: [(texture.to_string(), [worst, 0.0, 0.0, 0.0])].into(),
             pixels_over_1_255: [(texture.to_string(), pixels)].into(),
+            sensitive_pixels: Default::default(),
         };
         let frame = GlStepsComparison {
             renderer: "llvmpipe".into(),
@@ -683,7 +759,7 @@ mod tests {
         };
         assert_eq!(
             frame.first_disagreement(16),
-            Some(Disagreement { pass: "composite".into(), texture: "colortex0".into(), pixels: 17_654, max_difference_255: 67.0, max_pixels: 16 })
+            Some(Disagreement { pass: "composite".into(), texture: "colortex0".into(), pixels: 17_654, sensitive: 0, max_difference_255: 67.0, max_pixels: 16 })
         );
         assert_eq!(frame.first_disagreement(2).map(|d| d.pass), Some("gbuffers_terrain".into()));
         assert_eq!(frame.first_disagreement(20_000), None);

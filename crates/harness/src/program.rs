@@ -3,14 +3,14 @@
 //! Also our own pack ([`LoadedPack`]): one dialect of it generated under a profile and option
 //! overrides and read as any pack is ([`crate::any_pack`]).
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider};
-use tidepack_glsl::token::{function_definitions, tokenize};
+use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Stage};
 use tidepack_loader::blocks;
 use tidepack_loader::buffers::BufferFormat;
@@ -48,7 +48,7 @@ pub struct PackSelection {
 }
 
 /// One stage ready for both renderers.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct LoadedStage {
     pub stage: Stage,
     /// Path inside `shaders/`.
@@ -82,6 +82,16 @@ impl LoadedStage {
 }
 
 impl LoadedProgram {
+    /// The program with every float literal of the text OpenGL compiles moved by `relative` of
+    /// itself ([`float_literals_nudged`]), for [`crate::gl_frame::Reference::nudge`].
+    pub fn with_float_literals_nudged(&self, relative: f64) -> LoadedProgram {
+        let nudge = |text: &str| float_literals_nudged(text, relative);
+        let mut program = self.clone();
+        program.vertex.gl_text = nudge(&self.vertex.gl_text);
+        program.fragment.gl_text = nudge(&self.fragment.gl_text);
+        program
+    }
+
     /// The draw buffers (positions in [`Self::render_targets`]) the fragment stage names and
     /// never writes (`/* DRAWBUFFERS:02 */` beside `gl_FragData[0]` alone). GLSL leaves their
     /// values undefined: wgpu leaves such a buffer as it was, Mesa writes white. `gl_FragColor`
@@ -100,7 +110,7 @@ impl LoadedProgram {
     }
 }
 
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct LoadedProgram {
     pub name: String,
     pub vertex: LoadedStage,
@@ -308,6 +318,7 @@ pub(crate) fn load_program_files(
         let path = stage.preprocessed.files[0].clone();
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
+        let mut interface = stage.lowered.interface.clone();
         let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
         // Macros the lenient preprocessor saw redefined, at the lines of the expanded text.
@@ -320,22 +331,23 @@ pub(crate) fn load_program_files(
             })
             .collect();
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
-        let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &stage.preprocessed.text, stage.stage, &redefined);
-        let gl_rewrites = rewrites
-            .iter()
-            .map(|r| match line_map.get(r.line as usize - 1).cloned().flatten() {
-                Some(at) => format!("{at}: {}", r.what),
-                None => format!("{path}: {}", r.what),
-            })
-            .collect();
-        if stage.stage == Stage::Vertex {
-            gl_text = with_lod_material_attribute(name, &gl_text)?;
-        }
+        let located = |line: u32, what: &str| match line_map.get(line as usize - 1).cloned().flatten() {
+            Some(at) => format!("{at}: {what}"),
+            None => format!("{path}: {what}"),
+        };
+        let for_opengl = |expanded: &str| {
+            let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
+            (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
+        };
+        let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
         let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
             Stage::Fragment => {
-                let (text, mut epilogue, widened) = widen_fragment_outputs(&without_outputs_past_draw_buffers(&lowered_text));
+                let (writing, kept) = without_outputs_writing_no_buffer(&lowered_text);
+                // Outputs named `gl_FragData[i]` are not declarations of the shipped text.
+                interface.outputs.retain(|location, name| name.starts_with("gl_") || kept.contains(location));
+                let (text, mut epilogue, widened) = widen_fragment_outputs(&writing);
                 narrow_outputs = widened;
                 if let Some(reference) = alpha_test {
                     let output = lowered_output(&lowered_text, 0)
@@ -348,16 +360,36 @@ pub(crate) fn load_program_files(
         let adapted = LoweredStage {
             stage: stage.stage,
             preprocessed: stage.preprocessed.clone(),
-            lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: stage.lowered.interface.clone() },
+            lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: interface.clone() },
         };
-        let naga = naga_check::validate_stage(&mut frontend, &adapted, provider)
-            .map(|valid| valid.module)
-            .map_err(|d| match diag_error(&format!("{path} does not validate"), &d) {
-                // naga names functions as the harness text has them: the shipped main is
-                // renamed for the harness's own (see `adapt_vertex`).
-                HarnessError::Pack(message) => message.replace("'tp_shipped_main'", "'main'"),
-                other => other.to_string(),
-            });
+        let validated = naga_check::validate_stage(&mut frontend, &adapted, provider);
+        // The values naga's checks converted as NVIDIA does are converted for OpenGL too, at the
+        // same lines of the pack, before the other rewrites.
+        if let Some(conversions) = validated.as_ref().ok().map(|v| &v.conversions).filter(|c| !c.is_empty()) {
+            let mut converted = expanded.clone();
+            let mut made = Vec::new();
+            for conversion in conversions {
+                let lines = line_map.iter().enumerate().filter(|(_, l)| l.is_some() && *l == &conversion.location).map(|(i, _)| i as u32 + 1);
+                for line in lines.collect::<Vec<_>>() {
+                    if let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&converted, line, &conversion.constructor, &conversion.value) {
+                        converted = text;
+                        let what = format!("`{value}` converted with {}() as NVIDIA converts it implicitly", conversion.constructor);
+                        made.push(located(line, &what));
+                    }
+                }
+            }
+            (gl_text, gl_rewrites) = for_opengl(&converted);
+            gl_rewrites.extend(made);
+        }
+        if stage.stage == Stage::Vertex {
+            gl_text = with_lod_material_attribute(name, &gl_text)?;
+        }
+        let naga = validated.map(|valid| valid.module).map_err(|d| match diag_error(&format!("{path} does not validate"), &d) {
+            // naga names functions as the harness text has them: the shipped main is renamed for
+            // the harness's own (see `adapt_vertex`).
+            HarnessError::Pack(message) => message.replace("'tp_shipped_main'", "'main'"),
+            other => other.to_string(),
+        });
         if let Some(reference) = alpha_test {
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
@@ -369,7 +401,7 @@ pub(crate) fn load_program_files(
             gl_rewrites,
             lowered_text,
             harness_text,
-            interface: stage.lowered.interface,
+            interface,
             naga,
             narrow_outputs,
         });
@@ -480,6 +512,25 @@ fn complete_vertex_outputs(vertex: &str, fragment: &str) -> String {
     insert_after_version_line(vertex, &added)
 }
 
+/// `text` with every float literal moved by `relative` of itself (`0.5` becomes `5.000002e-1`),
+/// its suffix kept; integers, hexadecimal ones included, unchanged.
+fn float_literals_nudged(text: &str, relative: f64) -> String {
+    let Ok(tokens) = tokenize(text) else { return text.to_string() };
+    tokens
+        .iter()
+        .map(|t| {
+            let hex = t.text.starts_with("0x") || t.text.starts_with("0X");
+            let digits = t.text.trim_end_matches(['f', 'F', 'l', 'L']);
+            match digits.parse::<f64>() {
+                Ok(value) if t.kind == TokenKind::Number && !hex && t.text.contains(['.', 'e', 'E']) => {
+                    format!("{:e}{}", value * (1.0 + relative), &t.text[digits.len()..])
+                }
+                _ => t.text.to_string(),
+            }
+        })
+        .collect()
+}
+
 /// `text` with `addition` at the end of its second line (the one after `#version`).
 fn insert_after_version_line(text: &str, addition: &str) -> String {
     if addition.is_empty() {
@@ -519,19 +570,30 @@ fn widen_fragment_outputs(fragment: &str) -> (String, String, BTreeMap<u32, u8>)
     (text, epilogue, widened)
 }
 
-/// Fragment outputs at a location no draw buffer has (8 on), made plain variables: the loaders
-/// bind no buffer there and drop what they hold, and wgpu refuses a pipeline with such an output
-/// (`layout(location = 0..9) out vec4 FD0..FD9;` declared in one header for every program).
-fn without_outputs_past_draw_buffers(fragment: &str) -> String {
+/// Fragment outputs that write no draw buffer, made plain variables:
+/// - those at a location no draw buffer has (8 on): the loaders bind no buffer there and drop
+///   what they hold, and wgpu refuses a pipeline with such an output (`layout(location = 0..9)
+///   out vec4 FD0..FD9;` declared in one header for every program);
+/// - those the stage never names but in their declaration: their buffers get undefined values
+///   in OpenGL, and both renderers leave them as they were
+///   ([`LoadedProgram::draw_buffers_never_written`]).
+///
+/// Returns the text and the locations of the outputs that remain.
+fn without_outputs_writing_no_buffer(fragment: &str) -> (String, BTreeSet<u32>) {
     let mut text = fragment.to_string();
+    let mut kept = BTreeSet::new();
+    let tokens = tokenize(fragment).unwrap_or_default();
+    let named_once = |name: &str| tokens.iter().filter(|t| t.text == name).count() == 1;
     for declaration in interface_declarations(fragment).iter().rev() {
-        if let [.., "out", ty, name] = declaration.words.as_slice()
-            && declaration.location as usize >= preprocess::MAX_DRAW_BUFFERS
-        {
-            text.replace_range(declaration.statement.clone(), &format!("{ty} {name};"));
+        if let [.., "out", ty, name] = declaration.words.as_slice() {
+            if declaration.location as usize >= preprocess::MAX_DRAW_BUFFERS || named_once(name) {
+                text.replace_range(declaration.statement.clone(), &format!("{ty} {name};"));
+            } else {
+                kept.insert(declaration.location);
+            }
         }
     }
-    text
+    (text, kept)
 }
 
 /// Renames the definition of `main` to `tp_shipped_main` and appends, on the last line, a new
@@ -660,6 +722,13 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn float_literals_are_nudged_and_integers_kept() {
+        let text = "float x = 0.5 * 43758.5453 + 2.0f + 1e3; int i = 3; uint u = 0x1Fu; float z = 0.0;";
+        let nudged = float_literals_nudged(text, 0.5);
+        assert_eq!(nudged, "float x = 7.5e-1 * 6.563781795e4 + 3e0f + 1.5e3; int i = 3; uint u = 0x1Fu; float z = 0e0;");
+    }
 
     #[test]
     fn a_custom_texture_over_the_budget_is_refused_before_it_is_decoded() {

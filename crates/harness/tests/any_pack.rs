@@ -91,7 +91,7 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
     let wgpu = render(&pack, &scene);
     let mut reference: Vec<Vec<(String, images::FloatImage)>> = wgpu.passes.iter().map(|p| p.images.clone()).collect();
     let draw = |r: &[Vec<(String, images::FloatImage)>]| {
-        let reference = gl_frame::Reference { steps: r.iter().map(Vec::as_slice).collect(), depth0: &wgpu.depth0, depth1: &wgpu.depth1 };
+        let reference = gl_frame::Reference { steps: r.iter().map(Vec::as_slice).collect(), depth0: &wgpu.depth0, depth1: &wgpu.depth1, nudge: 0.0 };
         gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference).unwrap_or_else(|e| panic!("{e}"))
     };
     let faithful = draw(&reference);
@@ -331,6 +331,51 @@ fn what_only_lenient_drivers_compile_is_rewritten_for_opengl_listed_and_drawn_al
             assert_eq!(images::count_differing(a, b, 1.0 / 255.0 + 1e-6), 0, "{} {texture}", pass.pass);
         }
     }
+}
+
+/// What NVIDIA's driver does implicitly (tests/packs/nvidia_implicit): inputs placed at the
+/// generic locations it aliases to the legacy position, colour and texture coordinate, a vec4
+/// stored in a float, a uint returned from a float function, and an output never written. Both
+/// renderers read the inputs from the vertex's data and convert the values as NVIDIA does (the
+/// conversions listed at their lines), and agree at every step.
+#[test]
+fn what_nvidia_does_implicitly_both_renderers_do_alike() {
+    let pack = pack("nvidia_implicit", Loader::default());
+    assert!(pack.failed.is_empty(), "{:?}", pack.failed);
+    let rewrites = pack.gl_rewrites();
+    for expected in [
+        "gbuffers_terrain: gbuffers_terrain.fsh:11: `count / 4u` converted with float()",
+        "gbuffers_terrain: gbuffers_terrain.fsh:14: `texture(gtexture, uv)` converted with float()",
+    ] {
+        assert!(rewrites.iter().any(|r| r.starts_with(expected)), "{expected:?} is not among {rewrites:#?}");
+    }
+    assert_eq!(rewrites.len(), 2, "{rewrites:#?}");
+    let (report, screen) = render_job("nvidia_implicit");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    for step in &gl.steps {
+        assert!(step.pixels_over_1_255.values().all(|&n| n == 0), "{step:?}");
+    }
+    // The never-written output's buffer is no step's.
+    assert!(gl.steps.iter().all(|s| !s.pixels_over_1_255.contains_key("colortex1")), "{:?}", gl.steps);
+    // The aliased inputs read what the legacy ones do: the same pack reading gl_Vertex, gl_Color
+    // and gl_MultiTexCoord0 draws the same screen.
+    let legacy = std::env::temp_dir().join(format!("tidepack-nvidia-legacy-{}", std::process::id()));
+    std::fs::create_dir_all(legacy.join("shaders")).unwrap_or_else(|e| panic!("{e}"));
+    for file in ["gbuffers_terrain.fsh", "composite.vsh", "composite.fsh"] {
+        std::fs::copy(root().join("tests/packs/nvidia_implicit/shaders").join(file), legacy.join("shaders").join(file)).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let vertex = std::fs::read_to_string(root().join("tests/packs/nvidia_implicit/shaders/gbuffers_terrain.vsh")).unwrap_or_else(|e| panic!("{e}"));
+    let vertex = vertex.replace("layout(location = 0) in vec4 position;", "#define position gl_Vertex");
+    let vertex = vertex.replace("layout(location = 3) in vec4 vertexColor;", "#define vertexColor gl_Color");
+    let vertex = vertex.replace("layout(location = 8) in vec4 texCoord;", "#define texCoord gl_MultiTexCoord0");
+    std::fs::write(legacy.join("shaders/gbuffers_terrain.vsh"), vertex).unwrap_or_else(|e| panic!("{e}"));
+    let legacy_pack = AnyPack::load(&legacy, &Configuration::default()).unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene("case4_above_near");
+    let (aliased, named) = (render(&pack, &scene).image, render(&legacy_pack, &scene).image);
+    std::fs::remove_dir_all(&legacy).ok();
+    assert_eq!(images::count_differing(&aliased, &named, 0.0), 0);
+    assert_eq!(screen.dimensions(), (aliased.width, aliased.height));
 }
 
 /// Our own programs need none of those rewrites.

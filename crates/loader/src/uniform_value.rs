@@ -24,6 +24,17 @@ pub enum Kind {
 }
 
 impl Value {
+    /// The value with every float component moved by `relative` of itself, ints kept.
+    pub fn nudged(&self, relative: f64) -> Value {
+        let mut value = self.clone();
+        if value.kind == Kind::Float {
+            for x in &mut value.data {
+                *x *= 1.0 + relative;
+            }
+        }
+        value
+    }
+
     pub fn float(v: f64) -> Value {
         Value { kind: Kind::Float, columns: 1, rows: 1, array: None, data: vec![v] }
     }

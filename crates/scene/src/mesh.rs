@@ -592,6 +592,54 @@ pub fn attribute_source(name: &str) -> Option<(AttributeFormat, u64)> {
     })
 }
 
+/// The data for a vertex input named `name` that the shipped text may place itself at
+/// `declared` (`layout(location = N)`): by its name ([`attribute_source`]), or else, as NVIDIA's
+/// driver aliases the generic locations 0, 2, 3, 8 and 9 to the legacy position, normal, colour
+/// and first two texture coordinates, the legacy input at that location.
+pub fn input_source(name: &str, declared: Option<u32>) -> Option<(AttributeFormat, u64)> {
+    let aliased = |location| match location {
+        0 => Some("gl_Vertex"),
+        2 => Some("gl_Normal"),
+        3 => Some("gl_Color"),
+        8 => Some("gl_MultiTexCoord0"),
+        9 => Some("gl_MultiTexCoord1"),
+        _ => None,
+    };
+    attribute_source(name).or_else(|| attribute_source(declared.and_then(aliased)?))
+}
+
+impl PackVertex {
+    /// The vertex with its position, colour, normal and texture coordinates moved by `relative`
+    /// of themselves; the block ids and the integer lightmap kept.
+    pub fn nudged(&self, relative: f32) -> PackVertex {
+        let scale = |v: &mut [f32]| v.iter_mut().for_each(|x| *x *= 1.0 + relative);
+        let mut v = *self;
+        scale(&mut v.position[..3]);
+        scale(&mut v.color);
+        scale(&mut v.normal);
+        scale(&mut v.uv0);
+        scale(&mut v.uv1);
+        v
+    }
+}
+
+impl SceneMesh {
+    /// Every vertex [`PackVertex::nudged`].
+    pub fn nudged(&self, relative: f32) -> SceneMesh {
+        let all = |vertices: &[PackVertex]| vertices.iter().map(|v| v.nudged(relative)).collect::<Vec<_>>();
+        SceneMesh {
+            terrain: all(&self.terrain),
+            translucent: all(&self.translucent),
+            overlay: self.overlay.iter().map(|(kind, vertices)| (*kind, all(vertices))).collect(),
+            sky: all(&self.sky),
+            sun: all(&self.sun),
+            moon: all(&self.moon),
+            lod_terrain: all(&self.lod_terrain),
+            lod_translucent: all(&self.lod_translucent),
+        }
+    }
+}
+
 /// The full-screen quad OptiFine draws: x, y in 0..1 under an orthographic projection,
 /// texture coordinates 0..1, as two triangles.
 pub fn fullscreen_quad() -> Vec<PackVertex> {

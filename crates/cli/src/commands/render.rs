@@ -209,7 +209,13 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
             let parts: Vec<String> = step
                 .max_difference_255
                 .iter()
-                .map(|(t, d)| format!("{t} {:.2}/{:.2} ({} px)", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t]))
+                .map(|(t, d)| {
+                    let sensitive = match step.sensitive_pixels.get(t) {
+                        Some(n) => format!(", {n} of them where a nudge moves OpenGL's own"),
+                        None => String::new(),
+                    };
+                    format!("{t} {:.2}/{:.2} ({} px{sensitive})", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t])
+                })
                 .collect();
             if !parts.is_empty() {
                 say!("    {:<38} {}", step.pass, parts.join(", "));
@@ -250,8 +256,12 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         failed = true;
     }
     if let Some(d) = &report.gl_disagreement {
+        let sensitive = match d.sensitive {
+            0 => String::new(),
+            n => format!(" ({n} of them where OpenGL's own result moves under a nudge of the inputs, not counted)"),
+        };
         tell!(
-            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255), over the {} allowed (--gl-max-pixels)",
+            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255){sensitive}, over the {} allowed (--gl-max-pixels)",
             d.pass,
             d.texture,
             d.pixels,

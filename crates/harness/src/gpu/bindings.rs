@@ -796,7 +796,7 @@ struct VertexInputs {
 fn vertex_attributes(stage: &LoadedStage) -> VertexInputs {
     let VertexInputs { mut known, mut zeroed, mut zeroed_names } = VertexInputs::default();
     for (name, location) in &stage.interface.inputs {
-        if let Some((format, offset)) = mesh::attribute_source(name) {
+        if let Some((format, offset)) = mesh::input_source(name, stage.interface.declared_input_locations.get(name).copied()) {
             known.push(wgpu::VertexAttribute { format: vertex_format(format), offset, shader_location: *location });
         } else {
             let format = match stage.module().ok().and_then(|module| input_scalar_kind(module, *location)) {
