@@ -375,7 +375,14 @@ impl Preprocessor<'_> {
                                 // ignores what follows it (`#ifndef A && defined B`).
                                 let leniently = || self.lenient.then(|| first_ident(args)).flatten();
                                 let macro_name = single_ident(args).or_else(leniently).ok_or_else(|| {
-                                    err_at(at, format!("#{} needs exactly one macro name", name.unwrap_or("")))
+                                    let directive = name.unwrap_or("");
+                                    let message = match first_ident(args) {
+                                        Some(first) => format!(
+                                            "#{directive} needs exactly one macro name; Mesa and AMD refuse what follows `{first}` (NVIDIA tests `{first}` alone)"
+                                        ),
+                                        None => format!("#{directive} needs exactly one macro name"),
+                                    };
+                                    err_at(at, message)
                                 })?;
                                 if consult {
                                     self.out.consulted_macros.insert(macro_name.to_string());

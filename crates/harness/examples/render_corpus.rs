@@ -2,13 +2,18 @@
 //! pack, whether it rendered as `render` would exit 0, the renderer that drew it (wgpu, or
 //! OpenGL where wgpu cannot, and why), how far Mesa's OpenGL screen is from wgpu's, the frame's
 //! cost against a one-tap pass-through, how many things it uses that the harness does not
-//! imitate, and why a pack failed. tools/render-corpus runs it.
+//! imitate, and why a pack failed. A pack that does not render under OptiFine is tried under
+//! Iris (a pack for Iris alone shows an "Iris required" screen under OptiFine); the row names
+//! the loader it rendered under, and a list after the table says why OptiFine did not.
+//! tools/render-corpus runs it.
 //!
 //!     render_corpus SCENE.toml OUT_DIR PACK_DIR...
 
 use std::path::PathBuf;
 
-use tidepack_harness::job::{self, AnyPackJob};
+use tidepack_harness::Loader;
+use tidepack_harness::job::{self, AnyPackJob, AnyPackReport};
+use tidepack_loader::option_space::Configuration;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -19,40 +24,54 @@ fn main() {
     println!("| pack | result | renderer | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | not imitated |");
     println!("|---|---|---|---:|---:|---:|");
     let (mut by_wgpu, mut by_opengl) = (0, 0);
+    let mut under_iris = Vec::new();
     for pack in packs {
         let path = PathBuf::from(pack);
         let name = path.file_name().map_or_else(|| pack.clone(), |n| n.to_string_lossy().into_owned());
-        let job = AnyPackJob {
-            scene: PathBuf::from(scene),
-            pack: path.clone(),
-            configuration: Default::default(),
-            out_dir: PathBuf::from(out).join(&name),
-            buffers: false,
-            gl: true,
-            frames: 3,
-            expect: None,
-            bless: false,
-            max_flip: 0.0,
-            gl_max_pixels: None,
+        let run = |loader: Loader| {
+            let job = AnyPackJob {
+                scene: PathBuf::from(scene),
+                pack: path.clone(),
+                configuration: Configuration { loader, ..Configuration::default() },
+                out_dir: PathBuf::from(out).join(&name),
+                buffers: false,
+                gl: true,
+                frames: 3,
+                expect: None,
+                bless: false,
+                max_flip: 0.0,
+                gl_max_pixels: None,
+            };
+            job::run_any_pack(&job).map_err(|e| cell(&e.to_string())).map(|report| (failure(&report), report))
         };
-        match job::run_any_pack(&job) {
-            Ok(report) => {
+        // A pack for Iris alone (one that shows an "Iris required" screen under OptiFine, or
+        // fails there) is rendered under Iris, and the row says so.
+        let mut outcome = run(Loader::default());
+        let rendered = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((None, _)));
+        if !rendered(&outcome) {
+            let optifine = match &outcome {
+                Ok((Some(why), _)) | Err(why) => why.clone(),
+                Ok((None, _)) => unreachable!("not rendered"),
+            };
+            let iris = run(Loader::Iris);
+            if rendered(&iris) {
+                outcome = iris.map(|(_, report)| (None, report));
+                under_iris.push((name.clone(), optifine));
+            }
+        }
+        match outcome {
+            Ok((failure, report)) => {
                 let gl = report.gl.as_ref();
                 let screen = gl.and_then(|g| g.steps.last()).and_then(|s| {
                     let (name, d) = s.max_difference_255.iter().next()?;
                     Some(format!("{} ({:.2})", s.pixels_over_1_255[name], d.iter().fold(0f32, |m, c| m.max(*c))))
                 });
-                let failure = if let Some(refused) = gl.and_then(|g| g.refused.as_ref()) {
-                    format!("OpenGL refuses: {}", cell(refused))
-                } else if let Some((program, why)) = report.failed_programs.first() {
-                    format!("{program} does not load: {}", cell(why))
-                } else if report.non_finite_pixels > 0 {
-                    format!("{} NaN/Inf pixels", report.non_finite_pixels)
-                } else if let Some(d) = &report.gl_disagreement {
-                    format!("the renderers part at {}: {} differs on {} pixels", d.pass, d.texture, d.pixels)
-                } else {
-                    if report.renderer.wgpu_cannot_draw.is_some() { by_opengl += 1 } else { by_wgpu += 1 }
-                    "rendered".to_string()
+                let result = match failure {
+                    Some(why) => why,
+                    None => {
+                        if report.renderer.wgpu_cannot_draw.is_some() { by_opengl += 1 } else { by_wgpu += 1 }
+                        format!("rendered ({})", report.rendered.loader)
+                    }
                 };
                 let renderer = match &report.renderer.wgpu_cannot_draw {
                     Some(why) => format!("OpenGL (wgpu: {})", cell(why)),
@@ -60,13 +79,13 @@ fn main() {
                 };
                 let t = &report.timing;
                 println!(
-                    "| {name} | {failure} | {renderer} | {} | {:.1}x | {} |",
+                    "| {name} | {result} | {renderer} | {} | {:.1}x | {} |",
                     screen.unwrap_or_else(|| "-".into()),
                     t.frame_ms / t.passthrough_ms,
                     report.not_modelled.len()
                 );
             }
-            Err(e) => println!("| {name} | {} | - | - | - | - |", cell(&e.to_string())),
+            Err(e) => println!("| {name} | {e} | - | - | - | - |"),
         }
     }
     println!(
@@ -74,6 +93,26 @@ fn main() {
         by_wgpu + by_opengl,
         packs.len()
     );
+    for (name, optifine) in &under_iris {
+        println!("- {name} rendered under Iris; under OptiFine: {optifine}");
+    }
+}
+
+/// Why a run does not count as rendered (`render` would not exit 0), or `None`.
+fn failure(report: &AnyPackReport) -> Option<String> {
+    let gl = report.gl.as_ref();
+    if let Some(refused) = gl.and_then(|g| g.refused.as_ref()) {
+        Some(format!("OpenGL refuses: {}", cell(refused)))
+    } else if let Some((program, why)) = report.failed_programs.first() {
+        Some(format!("{program} does not load: {}", cell(why)))
+    } else if report.non_finite_pixels > 0 {
+        Some(format!("{} NaN/Inf pixels", report.non_finite_pixels))
+    } else {
+        report.gl_disagreement.as_ref().map(|d| {
+            let sensitive = if d.sensitive > 0 { format!(" ({} where a nudge moves OpenGL's own)", d.sensitive) } else { String::new() };
+            format!("the renderers part at {}: {} differs on {} pixels{sensitive}", d.pass, d.texture, d.pixels)
+        })
+    }
 }
 
 /// A message on one line, short enough for a table cell, without `|`. wgpu's messages repeat
