@@ -376,11 +376,12 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Ve
             declared.push((type_.text, name.text));
         }
     }
-    // Per function: the names its body assigns whole, and the functions it calls, as
+    // Per function: the names its body assigns whole before anything else names them (`x += …`
+    // or `x.r = …` first reads or leaves the rest undefined), and the functions it calls, as
     // statements of their own at the body's own level (not the body of an `if (…)`, `else`,
     // `for (…)` or `while (…)` without braces).
     let statements = |open: usize, close: usize| {
-        let (mut assigned, mut called) = (HashSet::new(), HashSet::new());
+        let (mut assigned, mut called, mut named) = (HashSet::new(), HashSet::new(), HashSet::new());
         let mut depth = 0i32;
         for k in open..close.min(toks.len()) {
             let t = toks[k];
@@ -388,16 +389,18 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Ve
                 depth += 1;
             } else if t.is_punct("}") {
                 depth -= 1;
-            } else if depth == 1 && t.kind == TokenKind::Ident && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p)) {
+            } else if t.kind == TokenKind::Ident {
+                let statement_start = depth == 1 && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p));
                 match toks.get(k + 1) {
-                    Some(e) if e.is_punct("=") => {
+                    Some(e) if statement_start && e.is_punct("=") && !named.contains(t.text) => {
                         assigned.insert(t.text);
                     }
-                    Some(p) if p.is_punct("(") => {
+                    Some(p) if statement_start && p.is_punct("(") => {
                         called.insert(t.text);
                     }
                     _ => {}
                 }
+                named.insert(t.text);
             }
         }
         (assigned, called)
@@ -672,11 +675,12 @@ mod tests {
 
     #[test]
     fn a_vertex_output_written_on_some_paths_is_set_to_zero_first() {
-        let text = "#version 120\nattribute vec4 mc_Entity;\nvarying float isWater;\nvarying vec4 color;\nvarying vec2 uv;\nvarying float fog;\nvoid setUv() { uv = vec2(0.5); }\nvoid setFog() { if (mc_Entity.y > 0.0) { fog = 1.0; } }\nvoid main() {\n    color.rgb = vec3(1.0);\n    if (mc_Entity.x == 8.0) isWater = 1.0;\n    setUv();\n    setFog();\n    gl_Position = ftransform();\n}\n";
+        // `ray` is added to before it is first assigned whole: its first value is undefined.
+        let text = "#version 120\nattribute vec4 mc_Entity;\nvarying float isWater;\nvarying vec4 color;\nvarying vec2 uv;\nvarying float fog;\nvarying vec3 ray;\nvoid setUv() { uv = vec2(0.5); }\nvoid setFog() { if (mc_Entity.y > 0.0) { fog = 1.0; } }\nvoid main() {\n    color.rgb = vec3(1.0);\n    if (mc_Entity.x == 8.0) isWater = 1.0;\n    setUv();\n    setFog();\n    ray += vec3(0.5);\n    ray = ray * 2.0;\n    gl_Position = ftransform();\n}\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
-        assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); fog = float(0);"));
+        assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); fog = float(0); ray = vec3(0);"));
         assert_eq!(rewrites.len(), 1);
-        assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `fog`"), "{rewrites:?}");
+        assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `fog`, `ray`"), "{rewrites:?}");
     }
 
     #[test]
