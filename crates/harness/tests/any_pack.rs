@@ -378,6 +378,19 @@ fn what_nvidia_does_implicitly_both_renderers_do_alike() {
     assert_eq!(screen.dimensions(), (aliased.width, aliased.height));
 }
 
+/// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so
+/// every face on screen is a front face, red; both renderers agree.
+#[test]
+fn the_faces_on_screen_are_front_faces_in_both_renderers() {
+    let (report, screen) = render_job("front_facing");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let count = |rgb: [u8; 3]| screen.pixels().filter(|p| p.0[..3] == rgb).count();
+    assert_eq!(count([0, 0, 255]), 0, "back faces on screen");
+    assert!(count([255, 0, 0]) > screen.pixels().len() / 2, "{} front-face pixels", count([255, 0, 0]));
+}
+
 /// Our own programs need none of those rewrites.
 #[test]
 fn our_pack_is_given_to_opengl_as_written() {

@@ -634,7 +634,9 @@ impl ProgramPipeline {
                         }),
                     ],
                 },
-                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                // `adapt_vertex` flips y, which turns OpenGL's counter-clockwise front faces
+                // clockwise: gl_FrontFacing keeps OpenGL's meaning.
+                primitive: wgpu::PrimitiveState { cull_mode: None, front_face: wgpu::FrontFace::Cw, ..Default::default() },
                 depth_stencil,
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {

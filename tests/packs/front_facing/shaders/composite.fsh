@@ -1,0 +1,6 @@
+#version 120
+uniform sampler2D colortex0;
+varying vec2 texcoord;
+void main() {
+    gl_FragData[0] = texture2D(colortex0, texcoord);
+}
