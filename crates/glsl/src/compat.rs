@@ -345,6 +345,83 @@ pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str) ->
     Some((format!("{}{constructor}({converted}){}", &text[..first.offset], &text[end..]), converted.to_string()))
 }
 
+/// The lookups with an offset that [`offset_as_coordinate`] rewrites.
+const OFFSET_LOOKUPS: [&str; 3] = ["textureOffset", "textureLodOffset", "texelFetchOffset"];
+
+/// A lookup with an offset (`call`, the whole `textureOffset(s, P, offset)` &c.) as the plain
+/// lookup at the coordinate moved by the offset, in texels of the `dimensions`-dimensional
+/// texture's base level (`texture(s, P + vec2(offset) / vec2(textureSize(s, 0)))`), for an offset
+/// that is not a constant: NVIDIA takes it, GLSL and naga want a constant. The same texels but at
+/// a mipmap level above the base one, where the offset counts that level's texels. In a vertex
+/// stage, which has no derivatives, `textureOffset` reads level 0 (`textureLod`), as GLSL has it
+/// there. `None` for any other call.
+pub fn offset_as_coordinate(call: &str, dimensions: u8, vertex: bool) -> Option<String> {
+    let tokens = tokenize(call).ok()?;
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let (name, open) = (sig.first()?.text, sig.get(1)?);
+    if !OFFSET_LOOKUPS.contains(&name) || !open.is_punct("(") || !sig.last()?.is_punct(")") {
+        return None;
+    }
+    // The arguments' text, split at the commas outside brackets.
+    let mut args = Vec::new();
+    let (mut depth, mut start) = (0, open.offset + 1);
+    for t in &sig[2..] {
+        match t.text {
+            "(" | "[" => depth += 1,
+            ")" | "]" if depth > 0 => depth -= 1,
+            "," | ")" if depth == 0 => {
+                args.push(call[start..t.offset].trim());
+                start = t.offset + 1;
+            }
+            _ => {}
+        }
+    }
+    let float = format!("vec{dimensions}");
+    let moved = |sampler: &str, coordinate: &str, offset: &str, level: &str| {
+        format!("{coordinate} + {float}({offset}) / {float}(textureSize({sampler}, {level}))")
+    };
+    Some(match (name, args.as_slice()) {
+        ("textureOffset", [s, p, o]) if vertex => format!("textureLod({s}, {}, 0.0)", moved(s, p, o, "0")),
+        ("textureOffset", [s, p, o]) => format!("texture({s}, {})", moved(s, p, o, "0")),
+        ("textureOffset", [s, p, o, bias]) => format!("texture({s}, {}, {bias})", moved(s, p, o, "0")),
+        ("textureLodOffset", [s, p, lod, o]) => format!("textureLod({s}, {}, {lod})", moved(s, p, o, &format!("int({lod})"))),
+        ("texelFetchOffset", [s, p, lod, o]) => format!("texelFetch({s}, {p} + {o}, {lod})"),
+        _ => return None,
+    })
+}
+
+/// `text` with every lookup with an offset on line `line` (1-based) rewritten by
+/// [`offset_as_coordinate`]; the new text and the number rewritten, `None` when there is none.
+pub fn offsets_as_coordinates_on_line(text: &str, line: u32, dimensions: u8, vertex: bool) -> Option<(String, usize)> {
+    let tokens = tokenize(text).ok()?;
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut calls = Vec::new();
+    for (k, t) in sig.iter().enumerate() {
+        if t.line != line || !OFFSET_LOOKUPS.contains(&t.text) || !sig.get(k + 1).is_some_and(|o| o.is_punct("(")) {
+            continue;
+        }
+        let mut depth = 0;
+        let close = sig[k + 1..].iter().find(|c| {
+            match c.text {
+                "(" => depth += 1,
+                ")" => depth -= 1,
+                _ => {}
+            }
+            depth == 0
+        })?;
+        calls.push((t.offset, close.offset + 1));
+    }
+    let mut out = text.to_string();
+    let mut rewritten = 0;
+    for (start, end) in calls.into_iter().rev() {
+        if let Some(call) = offset_as_coordinate(&text[start..end], dimensions, vertex) {
+            out.replace_range(start..end, &call);
+            rewritten += 1;
+        }
+    }
+    (rewritten > 0).then_some((out, rewritten))
+}
+
 /// A declaration's type and name.
 type TypedName<'t> = (&'t str, &'t str);
 
@@ -645,6 +722,28 @@ mod tests {
         assert_eq!(converted(2, "i / 16u"), Some(("if (d < x) return float(i / STEPS);".to_string(), "i / STEPS".to_string())));
         // Twice on the line, with two assignments: nothing to go by.
         assert_eq!(convert_on_line(text, 3, "float", "f(1, 2)"), None);
+    }
+
+    #[test]
+    fn a_lookup_offset_becomes_a_moved_coordinate() {
+        assert_eq!(
+            offset_as_coordinate("textureOffset(tx, uv, curOffset * live)", 2, false).as_deref(),
+            Some("texture(tx, uv + vec2(curOffset * live) / vec2(textureSize(tx, 0)))")
+        );
+        assert_eq!(
+            offset_as_coordinate("textureLodOffset(sampler2D(tx, s), f(a, b), 2.0, ivec2(i, 1))", 2, false).as_deref(),
+            Some("textureLod(sampler2D(tx, s), f(a, b) + vec2(ivec2(i, 1)) / vec2(textureSize(sampler2D(tx, s), int(2.0))), 2.0)")
+        );
+        assert_eq!(
+            offset_as_coordinate("textureOffset(tx, uv, o)", 2, true).as_deref(),
+            Some("textureLod(tx, uv + vec2(o) / vec2(textureSize(tx, 0)), 0.0)")
+        );
+        assert_eq!(offset_as_coordinate("texture(tx, uv)", 2, false), None);
+        let text = "vec4 a = textureOffset(tx, uv, o) + textureOffset(tx, uv, -o);\nvec4 b = textureOffset(tx, uv, o);\n";
+        let (out, n) = offsets_as_coordinates_on_line(text, 1, 2, false).unwrap();
+        assert_eq!(n, 2);
+        assert_eq!(out.lines().next(), Some("vec4 a = texture(tx, uv + vec2(o) / vec2(textureSize(tx, 0))) + texture(tx, uv + vec2(-o) / vec2(textureSize(tx, 0)));"));
+        assert_eq!(out.lines().nth(1), Some("vec4 b = textureOffset(tx, uv, o);"));
     }
 
     #[test]

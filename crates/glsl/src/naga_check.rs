@@ -41,18 +41,28 @@ pub fn lower_compute(pre: Arc<Preprocessed>) -> Result<LoweredCompute, Diagnosti
 pub struct ValidStage {
     pub module: naga::Module,
     pub info: ModuleInfo,
-    /// Values of a lenient stage ([`Preprocessed::lenient`]) converted as NVIDIA converts them
-    /// where GLSL does not.
-    pub conversions: Vec<Conversion>,
+    /// What a lenient stage ([`Preprocessed::lenient`]) had repaired as NVIDIA takes it where
+    /// GLSL does not.
+    pub lenient_repairs: Vec<LenientRepair>,
 }
 
-/// A value converted with a constructor in the text naga read: at `location` (the pack's file
-/// and line), `value` became `constructor(value)`.
+/// A repair of what NVIDIA takes and GLSL refuses, made in the text naga read at `location` (the
+/// pack's file and line).
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Conversion {
+pub struct LenientRepair {
     pub location: Option<Location>,
-    pub constructor: String,
-    pub value: String,
+    pub leniency: Leniency,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Leniency {
+    /// `value` became `constructor(value)`: a value NVIDIA converts implicitly.
+    Converted { constructor: String, value: String },
+    /// A lookup with an offset that is not a constant (`textureOffset(s, uv, o)`), which NVIDIA
+    /// takes, became the plain lookup at the coordinate moved by the offset, in texels of a
+    /// `dimensions`-dimensional texture, in a vertex stage or not
+    /// ([`crate::compat::offset_as_coordinate`]).
+    OffsetAsCoordinate { dimensions: u8, vertex: bool },
 }
 
 /// Lowers the stages of one program with a shared varying layout.
@@ -159,7 +169,7 @@ fn validate_text(
     // Scalars take swizzles (`f().r`) from GLSL 4.20 or with GL_ARB_shading_language_420pack.
     let scalar_swizzles = version >= 420 || extension_enabled(&pre.text, "GL_ARB_shading_language_420pack");
     let mut found: Vec<Diagnostic> = Vec::new();
-    let mut conversions = Vec::new();
+    let mut lenient_repairs = Vec::new();
     for repairs in 0.. {
         let (parsed, validated) = run_naga(frontend, naga_stage, &text)?;
         let (diagnostics, at) = match parsed {
@@ -170,16 +180,16 @@ fn validate_text(
                     {
                         return Err(vec![diagnostic]);
                     }
-                    return Ok(ValidStage { module, info, conversions });
+                    return Ok(ValidStage { module, info, lenient_repairs });
                 }
                 Ok(_) => return Err(found),
                 Err(e) => {
                     if repairs < MAX_REPAIRS
                         && let Some(repair) = implicit_conversion(&text, &module, e.as_inner(), version, pre.lenient)
                     {
-                        if let Some(lenient) = repair.lenient {
-                            let line = text[..lenient.offset].matches('\n').count() as u32 + 1;
-                            conversions.push(Conversion { location: pre.location(line), constructor: lenient.constructor, value: lenient.value });
+                        if let Some((offset, leniency)) = repair.lenient {
+                            let line = text[..offset].matches('\n').count() as u32 + 1;
+                            lenient_repairs.push(LenientRepair { location: pre.location(line), leniency });
                         }
                         text = repair.text;
                         continue;
@@ -969,26 +979,19 @@ fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: na
     }
 }
 
-/// A repaired text, and the conversion it made beyond GLSL's (a lenient stage's) if it made one.
+/// A repaired text, and the repair beyond GLSL's (a lenient stage's) if it made one, with its
+/// byte offset in the text before the repair.
 struct Repair {
     text: String,
-    lenient: Option<LenientConversion>,
-}
-
-/// Where (byte offset in the text before the repair) a value was given a constructor GLSL would
-/// not apply.
-struct LenientConversion {
-    offset: usize,
-    constructor: String,
-    value: String,
+    lenient: Option<(usize, Leniency)>,
 }
 
 /// Repairs what GLSL allows and naga refuses once types are known: a value GLSL converts
 /// implicitly (an `int` or `ivec` returned or stored where a `float` or `vec` is declared) gets
 /// a constructor, a scalar beside a vector a vector constructor, a function whose end is
 /// reachable without a `return` a final one. In a `lenient` stage, values NVIDIA converts are
-/// converted too: returned at any version, between int, uint and float, and vectors cut to
-/// fewer components.
+/// converted too (returned at any version, between int, uint and float, and vectors cut to
+/// fewer components), and a lookup whose offset is not a constant moves its coordinate instead.
 fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::ValidationError, version: u32, lenient: bool) -> Option<Repair> {
     use naga::valid::{ExpressionError, FunctionError};
     let (function, source) = failing_function(module, error)?;
@@ -1046,6 +1049,19 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             return repaired(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
         }
         FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?),
+        FunctionError::Expression { handle, source: ExpressionError::InvalidSampleOffsetExprType } if lenient => {
+            let naga::Expression::ImageSample { image, .. } = function.expressions[*handle] else { return None };
+            let dimensions = match type_of(image)? {
+                naga::TypeInner::Image { dim: naga::ImageDimension::D2, arrayed: false, .. } => 2,
+                naga::TypeInner::Image { dim: naga::ImageDimension::D3, .. } => 3,
+                _ => return None,
+            };
+            let span = function.expressions.get_span(*handle).to_range()?;
+            let vertex = module.entry_points.iter().any(|e| e.stage == naga::ShaderStage::Vertex);
+            let call = crate::compat::offset_as_coordinate(text.get(span.clone())?, dimensions, vertex)?;
+            let lenient = Some((span.start, Leniency::OffsetAsCoordinate { dimensions, vertex }));
+            return Some(Repair { text: format!("{}{call}{}", &text[..span.start], &text[span.end..]), lenient });
+        }
         _ => return None,
     };
     let from = type_of(value)?;
@@ -1057,7 +1073,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     };
     let span = function.expressions.get_span(value).to_range()?;
     let inner = text.get(span.clone())?;
-    let lenient = beyond_glsl.then(|| LenientConversion { offset: span.start, constructor: constructor.clone(), value: inner.to_string() });
+    let lenient = beyond_glsl.then(|| (span.start, Leniency::Converted { constructor: constructor.clone(), value: inner.to_string() }));
     Some(Repair { text: format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]), lenient })
 }
 

@@ -363,22 +363,31 @@ pub(crate) fn load_program_files(
             lowered: tidepack_glsl::lower::Lowered { text: harness_text.clone(), interface: interface.clone() },
         };
         let validated = naga_check::validate_stage(&mut frontend, &adapted, provider);
-        // The values naga's checks converted as NVIDIA does are converted for OpenGL too, at the
-        // same lines of the pack, before the other rewrites.
-        if let Some(conversions) = validated.as_ref().ok().map(|v| &v.conversions).filter(|c| !c.is_empty()) {
-            let mut converted = expanded.clone();
+        // What naga's checks repaired as NVIDIA takes it is repaired for OpenGL too, at the same
+        // lines of the pack, before the other rewrites.
+        if let Some(repairs) = validated.as_ref().ok().map(|v| &v.lenient_repairs).filter(|r| !r.is_empty()) {
+            use tidepack_glsl::naga_check::Leniency;
+            let mut repaired = expanded.clone();
             let mut made = Vec::new();
-            for conversion in conversions {
-                let lines = line_map.iter().enumerate().filter(|(_, l)| l.is_some() && *l == &conversion.location).map(|(i, _)| i as u32 + 1);
+            for repair in repairs {
+                let lines = line_map.iter().enumerate().filter(|(_, l)| l.is_some() && *l == &repair.location).map(|(i, _)| i as u32 + 1);
                 for line in lines.collect::<Vec<_>>() {
-                    if let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&converted, line, &conversion.constructor, &conversion.value) {
-                        converted = text;
-                        let what = format!("`{value}` converted with {}() as NVIDIA converts it implicitly", conversion.constructor);
-                        made.push(located(line, &what));
-                    }
+                    let (text, what) = match &repair.leniency {
+                        Leniency::Converted { constructor, value } => {
+                            let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&repaired, line, constructor, value) else { continue };
+                            (text, format!("`{value}` converted with {constructor}() as NVIDIA converts it implicitly"))
+                        }
+                        Leniency::OffsetAsCoordinate { dimensions, vertex } => {
+                            let Some((text, n)) = tidepack_glsl::compat::offsets_as_coordinates_on_line(&repaired, line, *dimensions, *vertex) else { continue };
+                            let lookups = if n == 1 { "a lookup" } else { "lookups" };
+                            (text, format!("{lookups} with an offset that is not a constant (NVIDIA takes it) made at the moved coordinate ({n})"))
+                        }
+                    };
+                    repaired = text;
+                    made.push(located(line, &what));
                 }
             }
-            (gl_text, gl_rewrites) = for_opengl(&converted);
+            (gl_text, gl_rewrites) = for_opengl(&repaired);
             gl_rewrites.extend(made);
         }
         if stage.stage == Stage::Vertex {

@@ -1,7 +1,7 @@
 #version 330 compatibility
-// Values NVIDIA converts and GLSL does not: a vec4 stored in a float (its first component) and
-// a uint returned from a float function. `unused` is declared and never written (undefined: both
-// renderers leave its buffer as it was).
+// What NVIDIA takes and GLSL does not: a vec4 stored in a float (its first component), a uint
+// returned from a float function, and a lookup offset that is not a constant. `unused` is
+// declared and never written (undefined: both renderers leave its buffer as it was).
 uniform sampler2D gtexture;
 in vec2 uv;
 in vec4 tint;
@@ -12,5 +12,7 @@ float steps(uint count) {
 }
 void main() {
     float alpha = texture(gtexture, uv);
-    albedo = vec4(texture(gtexture, uv).rgb * tint.rgb * (0.5 + 0.1 * steps(5u)), alpha);
+    ivec2 neighbour = ivec2(int(tint.r * 2.0), 0);
+    vec3 beside = textureOffset(gtexture, uv, neighbour).rgb;
+    albedo = vec4(mix(texture(gtexture, uv).rgb, beside, 0.5) * tint.rgb * (0.5 + 0.1 * steps(5u)), alpha);
 }
