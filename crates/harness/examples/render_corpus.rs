@@ -109,7 +109,7 @@ fn failure(report: &AnyPackReport) -> Option<String> {
         Some(format!("{} NaN/Inf pixels", report.non_finite_pixels))
     } else {
         report.gl_disagreement.as_ref().map(|d| {
-            let sensitive = if d.sensitive > 0 { format!(" ({} where a nudge moves OpenGL's own)", d.sensitive) } else { String::new() };
+            let sensitive = if d.sensitive > 0 { format!(" ({} the pack's own noise)", d.sensitive) } else { String::new() };
             format!("the renderers part at {}: {} differs on {} pixels{sensitive}", d.pass, d.texture, d.pixels)
         })
     }

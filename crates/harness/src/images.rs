@@ -122,6 +122,26 @@ pub fn count_differing(a: &FloatImage, b: &FloatImage, threshold: f32) -> usize 
     a.pixels.iter().zip(&b.pixels).filter(|(p, q)| pixels_differ(p, q, threshold)).count()
 }
 
+/// Per pixel, whether the `side` x `side` block it lies in (blocks from the first pixel on; the
+/// last row and column of blocks may be smaller) has the same mean RGB in both images, clamped
+/// to 0..1 as the displayed image is, to within `threshold` in every channel.
+pub fn block_means_agree(a: &FloatImage, b: &FloatImage, side: u32, threshold: f32) -> Vec<bool> {
+    assert_eq!((a.width, a.height), (b.width, b.height), "images of different sizes");
+    let (w, h, side) = (a.width as usize, a.height as usize, side.max(1) as usize);
+    let mut agree = vec![false; w * h];
+    for by in (0..h).step_by(side) {
+        for bx in (0..w).step_by(side) {
+            let pixels: Vec<usize> = (by..(by + side).min(h)).flat_map(|y| (bx..(bx + side).min(w)).map(move |x| y * w + x)).collect();
+            let mean = |image: &FloatImage, c: usize| pixels.iter().map(|&i| image.pixels[i][c].clamp(0.0, 1.0)).sum::<f32>() / pixels.len() as f32;
+            let same = (0..3).all(|c| (mean(a, c) - mean(b, c)).abs() <= threshold);
+            for i in pixels {
+                agree[i] = same;
+            }
+        }
+    }
+    agree
+}
+
 /// Per pixel, whether its RGB differ by more than `threshold` in some channel.
 pub fn differing_pixels(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<bool> {
     a.pixels.iter().zip(&b.pixels).map(|(p, q)| pixels_differ(p, q, threshold)).collect()

@@ -317,8 +317,8 @@ pub struct Disagreement {
     pub texture: String,
     /// Pixels differing by more than 1/255 in some colour channel.
     pub pixels: usize,
-    /// Those of them OpenGL itself moves under a nudge ([`GlStepComparison::sensitive_pixels`]),
-    /// which the limit does not count.
+    /// Those of them that are the pack's own arithmetic noise
+    /// ([`GlStepComparison::sensitive_pixels`]), which the limit does not count.
     pub sensitive: usize,
     /// The largest difference of any channel, in 1/255.
     pub max_difference_255: f32,
@@ -344,14 +344,15 @@ impl GlStepsComparison {
         })
     }
 
-    /// Records, per step and texture, how many of the pixels where the renderers differ OpenGL
-    /// itself moves when every float uniform and vertex attribute is nudged by [`NUDGE`]
-    /// (`nudged`, drawn from the same inputs as `gl`). A texture whose pixels move so on more than
-    /// [`MAX_SENSITIVE_SHARE`] of it is left as it is: its comparison says nothing then.
+    /// Records, per step and texture, how many of the pixels where the renderers differ are the
+    /// pack's own arithmetic noise ([`sensitive_pixels`]), from `nudged`: OpenGL's frame drawn
+    /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
+    /// nudged by [`NUDGE`].
     fn discount_sensitive(&mut self, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame, nudged: &crate::gl_frame::GlFrame) {
         for (step, ((pass, (_, gl_images)), (_, nudged_images))) in self.steps.iter_mut().zip(wgpu.passes.iter().zip(&gl.steps).zip(&nudged.steps)) {
             for (((name, ours), (_, theirs)), (_, moved)) in pass.images.iter().zip(gl_images).zip(nudged_images) {
-                if let Some(sensitive) = sensitive_pixels(ours, theirs, moved).filter(|n| *n > 0) {
+                let sensitive = sensitive_pixels(ours, theirs, moved);
+                if sensitive > 0 {
                     step.sensitive_pixels.insert(name.clone(), sensitive);
                 }
             }
@@ -359,25 +360,33 @@ impl GlStepsComparison {
     }
 }
 
-/// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many `theirs` and
-/// `moved` (theirs drawn again, nudged) differ on too; `None` when `moved` differs from `theirs`
-/// on more than [`MAX_SENSITIVE_SHARE`] of the image.
-fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &FloatImage) -> Option<usize> {
-    let unstable = images::differing_pixels(theirs, moved, 1.0 / 255.0 + 1e-6);
-    if unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64 {
-        return None;
-    }
-    let apart = images::differing_pixels(ours, theirs, 1.0 / 255.0 + 1e-6);
-    Some(apart.iter().zip(&unstable).filter(|(a, u)| **a && **u).count())
+/// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many are the pack's
+/// own arithmetic noise: those `theirs` and `moved` (theirs drawn again, nudged) differ on too;
+/// or, where `moved` differs from `theirs` on more than [`MAX_SENSITIVE_SHARE`] of the image (the
+/// step is noise throughout: a dither, a hash of every pixel), those whose
+/// [`NOISE_BLOCK`]-pixel block has the same mean in both renderers to within 1/255, where the
+/// noise averages to the same picture.
+fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &FloatImage) -> usize {
+    const OVER_1_255: f32 = 1.0 / 255.0 + 1e-6;
+    let apart = images::differing_pixels(ours, theirs, OVER_1_255);
+    let unstable = images::differing_pixels(theirs, moved, OVER_1_255);
+    let noise_throughout = unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64;
+    let noise = if noise_throughout { images::block_means_agree(ours, theirs, NOISE_BLOCK, OVER_1_255) } else { unstable };
+    apart.iter().zip(&noise).filter(|(a, n)| **a && **n).count()
 }
+
+/// Side of the blocks [`sensitive_pixels`] compares by their means where a step is noise
+/// throughout: 64 pixels, over which a dither of a few levels averages out.
+pub const NOISE_BLOCK: u32 = 8;
 
 /// The relative nudge of [`GlStepsComparison::discount_sensitive`]: 2^-21, four units in the
 /// last place of a float, about what two compilers' roundings of the same expression differ by
 /// (a fused multiply-add, a reciprocal for a division, another polynomial for `sin`).
 pub const NUDGE: f64 = 1.0 / (1u32 << 21) as f64;
 
-/// The largest share of a texture OpenGL may move under [`NUDGE`] for its differences there to
-/// be discounted: past it the step is noise throughout (grain, a hash of every pixel).
+/// The largest share of a texture OpenGL may move under [`NUDGE`] for its pixels to be compared
+/// one by one: past it the step is noise throughout (grain, a hash of every pixel), compared by
+/// block means.
 pub const MAX_SENSITIVE_SHARE: f64 = 0.05;
 
 /// The screen against a blessed one.
@@ -399,9 +408,9 @@ pub struct GlStepComparison {
     pub max_difference_255: BTreeMap<String, [f32; 4]>,
     /// Per texture: pixels differing by more than 1/255 in some channel.
     pub pixels_over_1_255: BTreeMap<String, usize>,
-    /// Per texture, when the renderers part there: how many of those pixels OpenGL itself moves
-    /// by more than 1/255 when the uniforms and vertices are nudged by [`NUDGE`]. There the last
-    /// bit of the pack's own arithmetic decides the result, as GLSL allows compilers to round it.
+    /// Per texture, when the renderers part there: how many of those pixels are the pack's own
+    /// arithmetic noise ([`sensitive_pixels`]), where the last bit of its arithmetic decides the
+    /// result, as GLSL allows compilers to round it.
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     pub sensitive_pixels: BTreeMap<String, usize>,
 }
@@ -712,17 +721,17 @@ mod tests {
         assert_eq!(super::file_stem(""), "scene");
     }
 
-    /// Pixels where OpenGL moves under the nudge are not counted against the renderers, unless
-    /// the nudge moves too much of the texture to tell anything.
+    /// Pixels where OpenGL moves under the nudge are not counted against the renderers; where the
+    /// nudge moves much of the texture, pixels whose block has the same mean in both are not.
     #[test]
-    fn differences_where_opengl_itself_moves_under_a_nudge_are_sensitive() {
+    fn differences_that_are_the_packs_own_noise_are_sensitive() {
         use crate::images::FloatImage;
         let image = |changed: &[usize]| {
-            let mut pixels = vec![[0.5f32, 0.5, 0.5, 1.0]; 100];
+            let mut pixels = vec![[0.5f32, 0.5, 0.5, 1.0]; 256];
             for &i in changed {
                 pixels[i][0] = 0.9;
             }
-            FloatImage { width: 10, height: 10, pixels }
+            FloatImage { width: 16, height: 16, pixels }
         };
         let (ours, theirs) = (image(&[]), image(&[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]));
         // OpenGL nudged moves four of the ten pixels where the renderers part, and one other.
@@ -730,13 +739,20 @@ mod tests {
         for i in [0, 1, 2, 3, 50] {
             moved.pixels[i][0] = 0.5;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), Some(4));
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &theirs), Some(0));
-        // Past 5% of the texture moved, the step is noise throughout.
-        for i in 60..62 {
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), 4);
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &theirs), 0);
+        // Past 5% of the texture moved, the step is noise throughout, and the ten pixels brighten
+        // their blocks' means: not noise.
+        for i in 100..120 {
             moved.pixels[i][0] = 0.1;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), None);
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), 0);
+        // A dither that averages to the same mean over each 8x8 block is noise.
+        let mut dithered = ours.clone();
+        for (i, p) in dithered.pixels.iter_mut().enumerate() {
+            p[0] += if (i + i / 16) % 2 == 0 { 0.02 } else { -0.02 };
+        }
+        assert_eq!(super::sensitive_pixels(&ours, &dithered, &moved), 256);
     }
 
     /// A frame whose composite parts on most of the screen (the all-black OpenGL screen beside a

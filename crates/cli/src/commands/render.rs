@@ -211,7 +211,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
                 .iter()
                 .map(|(t, d)| {
                     let sensitive = match step.sensitive_pixels.get(t) {
-                        Some(n) => format!(", {n} of them where a nudge moves OpenGL's own"),
+                        Some(n) => format!(", {n} of them the pack's own noise"),
                         None => String::new(),
                     };
                     format!("{t} {:.2}/{:.2} ({} px{sensitive})", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t])
@@ -258,7 +258,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
     if let Some(d) = &report.gl_disagreement {
         let sensitive = match d.sensitive {
             0 => String::new(),
-            n => format!(" ({n} of them where OpenGL's own result moves under a nudge of the inputs, not counted)"),
+            n => format!(" ({n} of them the pack's own arithmetic noise, which a nudge of OpenGL's inputs shows, not counted)"),
         };
         tell!(
             "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255){sensitive}, over the {} allowed (--gl-max-pixels)",
