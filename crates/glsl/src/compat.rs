@@ -10,7 +10,8 @@
 use std::collections::HashSet;
 
 use crate::Stage;
-use crate::token::{Token, TokenKind, function_definitions, tokenize};
+use crate::preprocess::VersionDirective;
+use crate::token::{Token, TokenKind, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
@@ -104,7 +105,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let mut rewrites = Vec::new();
     // Replacement text per token index.
     let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
-    let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let significant = significant(&tokens);
     let taken = |name: &str| tokens.iter().any(|t| t.is_ident(name));
     // Where `#version` is, as an index into `significant`, and its number (110 without one).
     let version_at = significant.windows(2).position(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version"));
@@ -168,25 +169,15 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
 
     // Precision qualifiers are reserved words before 1.30, and change nothing after it.
     if version < 130 {
-        let mut removed = 0;
-        let mut first_line = None;
-        let mut k = 0;
-        while k < significant.len() {
-            let t = &tokens[significant[k]];
-            if t.is_ident("precision") || (t.kind == TokenKind::Ident && matches!(t.text, "lowp" | "mediump" | "highp")) {
-                let end = if t.is_ident("precision") { (k..significant.len()).find(|&j| tokens[significant[j]].is_punct(";")).unwrap_or(k) } else { k };
-                for &i in &significant[k..=end] {
-                    replaced[i] = Some(String::new());
-                }
-                removed += 1;
-                first_line.get_or_insert(t.line);
-                k = end + 1;
-            } else {
-                k += 1;
+        let qualifiers = precision_qualifiers(&tokens);
+        for &(first, last) in &qualifiers {
+            for i in (first..=last).filter(|&i| !tokens[i].is_trivia()) {
+                replaced[i] = Some(String::new());
             }
         }
-        if let Some(line) = first_line {
-            rewrites.push(Rewrite { line, what: format!("precision qualifiers, reserved words in GLSL {version}, removed ({removed})") });
+        if let Some(&(first, _)) = qualifiers.first() {
+            let what = format!("precision qualifiers, reserved words in GLSL {version}, removed ({})", qualifiers.len());
+            rewrites.push(Rewrite { line: tokens[first].line, what });
         }
     }
 
@@ -213,10 +204,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    // A core profile (1.40 on, no `compatibility`) has the deprecated lookups no more (Mesa
-    // drops them from 4.20): they become the lookups that replaced them, as Iris renames them.
-    let core_profile = version >= 140 && !version_at.and_then(|at| significant.get(at + 3)).is_some_and(|&i| tokens[i].is_ident("compatibility"));
-    if core_profile {
+    // A core profile has the deprecated lookups no more (Mesa drops them from 4.20): they
+    // become the lookups that replaced them, as Iris renames them.
+    let profile = version_at.and_then(|at| significant.get(at + 3)).map(|&i| tokens[i].text).filter(|p| matches!(*p, "core" | "compatibility" | "es"));
+    if (VersionDirective { number: version, profile: profile.map(str::to_string) }).is_core() {
         let mut renamed = 0;
         let mut first_line = None;
         for (k, &i) in significant.iter().enumerate() {
@@ -394,21 +385,14 @@ pub fn offset_as_coordinate(call: &str, dimensions: u8, vertex: bool) -> Option<
 /// [`offset_as_coordinate`]; the new text and the number rewritten, `None` when there is none.
 pub fn offsets_as_coordinates_on_line(text: &str, line: u32, dimensions: u8, vertex: bool) -> Option<(String, usize)> {
     let tokens = tokenize(text).ok()?;
-    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let sig = significant(&tokens);
     let mut calls = Vec::new();
-    for (k, t) in sig.iter().enumerate() {
-        if t.line != line || !OFFSET_LOOKUPS.contains(&t.text) || !sig.get(k + 1).is_some_and(|o| o.is_punct("(")) {
+    for (k, &i) in sig.iter().enumerate() {
+        let t = &tokens[i];
+        if t.line != line || !OFFSET_LOOKUPS.contains(&t.text) || !sig.get(k + 1).is_some_and(|&o| tokens[o].is_punct("(")) {
             continue;
         }
-        let mut depth = 0;
-        let close = sig[k + 1..].iter().find(|c| {
-            match c.text {
-                "(" => depth += 1,
-                ")" => depth -= 1,
-                _ => {}
-            }
-            depth == 0
-        })?;
+        let close = &tokens[sig[matching_close(&sig, &tokens, k + 1)?]];
         calls.push((t.offset, close.offset + 1));
     }
     let mut out = text.to_string();

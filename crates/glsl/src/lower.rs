@@ -857,21 +857,10 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
 /// - `coherent`, `volatile` and `restrict`, which order memory accesses (naga: "Not implemented:
 ///   variable qualifier" on a buffer block).
 fn without_unchecked_qualifiers(text: &str, tokens: &[Token]) -> Option<String> {
-    let mut spans: Vec<std::ops::Range<usize>> = Vec::new();
-    let mut i = 0;
-    while i < tokens.len() {
-        let t = &tokens[i];
-        if t.is_ident("precision") {
-            let end = (i..tokens.len()).find(|&j| tokens[j].is_punct(";")).unwrap_or(i);
-            spans.push(t.offset..tokens[end].offset + tokens[end].text.len());
-            i = end + 1;
-            continue;
-        }
-        if t.kind == TokenKind::Ident && (is_precision(t.text) || matches!(t.text, "coherent" | "volatile" | "restrict")) {
-            spans.push(t.offset..t.offset + t.text.len());
-        }
-        i += 1;
-    }
+    let span = |(first, last): (usize, usize)| tokens[first].offset..tokens[last].offset + tokens[last].text.len();
+    let memory = (0..tokens.len()).filter(|&i| matches!(tokens[i].text, "coherent" | "volatile" | "restrict") && tokens[i].kind == TokenKind::Ident);
+    let spans: Vec<std::ops::Range<usize>> =
+        crate::token::precision_qualifiers(tokens).into_iter().chain(memory.map(|i| (i, i))).map(span).collect();
     if spans.is_empty() {
         return None;
     }

@@ -1003,7 +1003,8 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         return None;
     }
     let repaired = |text: String| Some(Repair { text, lenient: None });
-    let (value, target) = match source {
+    // The value converted, its target type, and whether GLSL (from 1.20) converts it there.
+    let (value, target, glsl_converts) = match source {
         FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
             // Control reaches the end of a function that returns a value: GLSL leaves the value
             // undefined and drivers compile it; naga wants a `return` there.
@@ -1015,8 +1016,8 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let zero = glsl_type_name(&module.types[*ty].inner)?;
             return repaired(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
         }
-        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } if is_initializer || version >= 420 || lenient => {
-            (*value, module.types[*ty].inner.clone())
+        FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => {
+            (*value, module.types[*ty].inner.clone(), is_initializer || version >= 420)
         }
         FunctionError::Expression {
             handle,
@@ -1048,7 +1049,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let constructor = glsl_type_name(&vector)?;
             return repaired(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
         }
-        FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?),
+        FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?, true),
         FunctionError::Expression { handle, source: ExpressionError::InvalidSampleOffsetExprType } if lenient => {
             let naga::Expression::ImageSample { image, .. } = function.expressions[*handle] else { return None };
             let dimensions = match type_of(image)? {
@@ -1065,8 +1066,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         _ => return None,
     };
     let from = type_of(value)?;
-    let glsl_converts = version >= 120 && (!matches!(source, FunctionError::InvalidReturnType { .. }) || is_initializer || version >= 420);
-    let (constructor, beyond_glsl) = match implicit_target(&from, &target).filter(|_| glsl_converts) {
+    let (constructor, beyond_glsl) = match implicit_target(&from, &target).filter(|_| glsl_converts && version >= 120) {
         Some(constructor) => (constructor, false),
         None if lenient => (lenient_target(&from, &target)?, true),
         None => return None,

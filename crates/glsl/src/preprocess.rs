@@ -51,6 +51,15 @@ pub struct VersionDirective {
     pub profile: Option<String>,
 }
 
+impl VersionDirective {
+    /// A core profile: GLSL 1.50 or later without `compatibility`, where the deprecated built-ins
+    /// are gone. GLSL 1.40 has no profiles: in the compatibility contexts OptiFine and Iris draw
+    /// with, ARB_compatibility keeps them there (Mesa compiles them).
+    pub fn is_core(&self) -> bool {
+        self.number >= 150 && self.profile.as_deref() != Some("compatibility")
+    }
+}
+
 /// Which outputs of a fragment shader go to which colour buffers.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RenderTargets {
@@ -557,7 +566,7 @@ impl Preprocessor<'_> {
         let profile = match version.profile.as_deref() {
             Some("es") => Some("GL_ES"),
             Some("compatibility") => Some("GL_compatibility_profile"),
-            _ if version.number >= 150 => Some("GL_core_profile"),
+            _ if version.is_core() => Some("GL_core_profile"),
             _ => None,
         };
         if let Some(name) = profile {

@@ -236,6 +236,27 @@ pub struct FunctionDefinition {
     pub close: usize,
 }
 
+/// The precision qualifiers of `tokens` (`lowp`, `mediump`, `highp`) and default precision
+/// statements (`precision mediump float;`), each as the first and last index of its tokens.
+pub fn precision_qualifiers(tokens: &[Token<'_>]) -> Vec<(usize, usize)> {
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < tokens.len() {
+        let t = &tokens[i];
+        if t.is_ident("precision") {
+            let end = (i..tokens.len()).find(|&j| tokens[j].is_punct(";")).unwrap_or(i);
+            found.push((i, end));
+            i = end + 1;
+            continue;
+        }
+        if t.kind == TokenKind::Ident && matches!(t.text, "lowp" | "mediump" | "highp") {
+            found.push((i, i));
+        }
+        i += 1;
+    }
+    found
+}
+
 /// `text` with the byte ranges in `ranges` blanked out: every character in them but a line
 /// break becomes a space, so lines and the columns after them stay where they were.
 pub fn blanked(text: &str, ranges: &[std::ops::Range<usize>]) -> String {
@@ -277,7 +298,7 @@ pub fn function_definitions<'a, T: Borrow<Token<'a>>>(tokens: &[T]) -> Vec<Funct
 }
 
 /// The position in `sig` of the bracket that closes the one at `sig[open]` (`(` or `{`).
-fn matching_close<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], open: usize) -> Option<usize> {
+pub fn matching_close<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], open: usize) -> Option<usize> {
     let (opener, closer) = if tokens[sig[open]].borrow().is_punct("(") { ("(", ")") } else { ("{", "}") };
     let mut depth = 0usize;
     for (k, &i) in sig.iter().enumerate().skip(open) {

@@ -18,7 +18,7 @@
 use std::path::{Path, PathBuf};
 
 use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
-use tidepack_harness::images::{count_differing, max_channel_difference};
+use tidepack_harness::images::{OVER_1_255, count_differing, max_channel_difference};
 use tidepack_harness::uniforms::{self, Pass};
 use tidepack_harness::{Gpu, PackSelection, Scene, median, program, render_wgpu};
 use tidepack_pack::Dialect;
@@ -96,7 +96,7 @@ fn main() {
             median(&after_over_before),
             quartile(0.25),
             quartile(0.75),
-            count_differing(before_image, after_image, 1.0 / 255.0)
+            count_differing(before_image, after_image, OVER_1_255)
         );
     }
 }

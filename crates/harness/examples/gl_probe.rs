@@ -67,7 +67,7 @@ fn main() {
             differing("image bits", &w.image, &g.image, 0.0);
             differing("image 0.1", &w.image, &g.image, 0.1 / 255.0);
         }
-        let img = differing("image", &w.image, &g.image, 1.0 / 255.0 + 1e-6);
+        let img = differing("image", &w.image, &g.image, images::OVER_1_255);
         let max = images::max_channel_difference(&w.image, &g.image);
         println!("  SUMMARY {name:<18} max diff (x/255) {:?}, {} pixels over 1/255", max.map(|d| (d * 255.0 * 100.0).round() / 100.0), img.len());
         let mut worst = img.clone();

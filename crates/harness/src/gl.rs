@@ -463,15 +463,12 @@ fn pass_through_vertex(fragment_text: &str, outputs: &[(String, u32)]) -> String
 /// Vertex attributes OpenGL guarantees (GL_MAX_VERTEX_ATTRIBS).
 const MAX_VERTEX_ATTRIBUTES: usize = 16;
 
-/// Compiles a program's shipped text, binding user attributes and `outColorN` outputs to the
-/// locations the lowering gave them (so both renderers feed and read the same slots).
 /// Where each user vertex input of `stage` is for OpenGL: at the location the shipped text gives
 /// it (`layout(location = N)`), the others at the lowering's location, or where that is taken by
 /// a placed one, at the first location neither takes.
 fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
     let interface = &stage.interface;
-    let placed: Vec<u32> = interface.declared_input_locations.values().copied().collect();
-    let mut taken = placed.clone();
+    let mut taken: Vec<u32> = interface.declared_input_locations.values().copied().collect();
     let mut locations = Vec::new();
     for (name, &lowered) in interface.inputs.iter().filter(|(name, _)| !name.starts_with("gl_")) {
         let location = match interface.declared_input_locations.get(name) {
@@ -485,6 +482,9 @@ fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
     locations
 }
 
+/// Compiles a program's shipped text, binding user attributes ([`attribute_locations`]) and
+/// `outColorN` outputs to the locations the lowering gave them (so both renderers feed and read
+/// the same slots).
 pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapping) -> Result<Compiled, HarnessError> {
     let attributes = attribute_locations(&program.vertex);
     // An output past the draw buffers has no buffer to bind (`preprocess::MAX_DRAW_BUFFERS`).
@@ -693,20 +693,19 @@ pub(crate) unsafe fn draw_program(
         }
         let mut generic = Vec::new();
         for (name, location) in attribute_locations(&program.vertex) {
-            let location = &location;
             match mesh::input_source(name, program.vertex.interface.declared_input_locations.get(name).copied()) {
                 Some((format, offset)) => {
-                    gl.enable_vertex_attrib_array(*location);
+                    gl.enable_vertex_attrib_array(location);
                     match format {
-                        AttributeFormat::Sint32x2 => gl.vertex_attrib_pointer_i32(*location, 2, glow::INT, stride, offset as i32),
-                        _ => gl.vertex_attrib_pointer_f32(*location, format.components(), glow::FLOAT, false, stride, offset as i32),
+                        AttributeFormat::Sint32x2 => gl.vertex_attrib_pointer_i32(location, 2, glow::INT, stride, offset as i32),
+                        _ => gl.vertex_attrib_pointer_f32(location, format.components(), glow::FLOAT, false, stride, offset as i32),
                     }
-                    generic.push(*location);
+                    generic.push(location);
                 }
                 // As in the wgpu path: inputs the harness's vertices lack read zero.
                 None => {
-                    gl.disable_vertex_attrib_array(*location);
-                    gl.vertex_attrib_4_f32(*location, 0.0, 0.0, 0.0, 0.0);
+                    gl.disable_vertex_attrib_array(location);
+                    gl.vertex_attrib_4_f32(location, 0.0, 0.0, 0.0, 0.0);
                 }
             }
         }

@@ -64,9 +64,9 @@ pub struct Reference<'r> {
     pub depth1: &'r FloatImage,
     /// Every float uniform, float literal of the shaders and the full-screen quad's vertices
     /// moved by this much of themselves (0: as the loader gives them); the caller nudges the
-    /// scene's mesh alike. Pixels a nudge
-    /// of a few units in the last place moves are those whose result the last bit of some
-    /// arithmetic decides (a hash, the edge of a `floor`), where two correct compilers differ.
+    /// scene's mesh alike. Pixels a nudge of a few units in the last place moves are those whose
+    /// result the last bit of some arithmetic decides (a hash, the edge of a `floor`), where two
+    /// correct compilers differ.
     pub nudge: f64,
 }
 
@@ -399,8 +399,10 @@ impl<'a> GlPlanFrame<'a> {
             if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::NEGATIVE_ONE_TO_ONE);
             }
+            mask_unwritten(self.ctx.gl(), program, true);
             let mut drawn = Ok(());
             self.step_ms += timed(self.ctx.gl(), || drawn = draw_program(self.ctx, self.pack, program, &compiled, pass, &values, textures, vertices));
+            mask_unwritten(self.ctx.gl(), program, false);
             if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
             }
@@ -451,10 +453,7 @@ impl<'a> GlPlanFrame<'a> {
                         sprites: step.sprites,
                         mipmapped: BTreeSet::new(),
                     };
-                    mask_unwritten(gl, program, true);
-                    let drawn = self.draw(program, step.pass, step.render_stage, &textures, step.vertices);
-                    mask_unwritten(gl, program, false);
-                    drawn?;
+                    self.draw(program, step.pass, step.render_stage, &textures, step.vertices)?;
                 }
                 None => {
                     let mut drawn = Ok(());
@@ -494,10 +493,7 @@ impl<'a> GlPlanFrame<'a> {
                 sprites: Sprites::Blocks,
                 mipmapped: BTreeSet::new(),
             };
-            mask_unwritten(gl, program, true);
-            let drawn = self.draw(program, Pass::Shadow, render_stage, &textures, vertices);
-            mask_unwritten(gl, program, false);
-            drawn?;
+            self.draw(program, Pass::Shadow, render_stage, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             program
@@ -550,10 +546,7 @@ impl<'a> GlPlanFrame<'a> {
                 sprites: Sprites::Blocks,
                 mipmapped: mipmaps.clone(),
             };
-            mask_unwritten(gl, program, true);
-            let drawn = self.draw(program, Pass::Fullscreen, "NONE", &textures, quad);
-            mask_unwritten(gl, program, false);
-            drawn?;
+            self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             targets.into_iter().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
         }

@@ -111,6 +111,10 @@ pub fn max_channel_difference(a: &FloatImage, b: &FloatImage) -> [f32; 4] {
     max
 }
 
+/// The threshold the renderers' images are compared at: more than 1/255 in some channel (a hair
+/// over, so that values one 8-bit step apart after float rounding are not counted).
+pub const OVER_1_255: f32 = 1.0 / 255.0 + 1e-6;
+
 /// Whether two pixels' RGB differ by more than `threshold` in some channel, clamped to 0..1
 /// as the displayed image is (NaN on one side alone differs).
 fn pixels_differ(p: &[f32; 4], q: &[f32; 4], threshold: f32) -> bool {

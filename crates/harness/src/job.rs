@@ -10,7 +10,7 @@ use serde::Serialize;
 use tidepack_pack::Dialect;
 
 use crate::gpu::{self, StepReport};
-use crate::images::{self, FloatImage};
+use crate::images::{self, FloatImage, OVER_1_255};
 use crate::program::{self, LoadedPack, PackSelection};
 use tidepack_scene::scene::Scene;
 use crate::{Gpu, HarnessError, Loader, gl, uniforms};
@@ -230,7 +230,7 @@ pub fn run(job: &RenderJob) -> Result<RenderReport, HarnessError> {
         Some(GlComparison {
             renderer: ctx.info().to_string(),
             max_difference: images::max_channel_difference(&frame.image, &gl_frame.image),
-            pixels_over_1_255: images::count_differing(&frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6),
+            pixels_over_1_255: images::count_differing(&frame.image, &gl_frame.image, OVER_1_255),
         })
     } else {
         None
@@ -367,7 +367,6 @@ impl GlStepsComparison {
 /// [`NOISE_BLOCK`]-pixel block has the same mean in both renderers to within 1/255, where the
 /// noise averages to the same picture.
 fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &FloatImage) -> usize {
-    const OVER_1_255: f32 = 1.0 / 255.0 + 1e-6;
     let apart = images::differing_pixels(ours, theirs, OVER_1_255);
     let unstable = images::differing_pixels(theirs, moved, OVER_1_255);
     let noise_throughout = unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64;
@@ -556,7 +555,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                 if let (Some(ours), Some(theirs)) = (image_of(&frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
                     write(".parted.wgpu", &ours)?;
                     write(".parted.opengl", &theirs)?;
-                    write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, 1.0 / 255.0 + 1e-6))?;
+                    write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, OVER_1_255))?;
                 }
             }
             Some(comparison)
@@ -655,7 +654,7 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::Frame, gl: &crate::gl_fram
         for ((name, a), (_, b)) in pass.images.iter().zip(gl_images) {
             let d = images::max_channel_difference(a, b);
             max_difference_255.insert(name.clone(), d.map(|c| c * 255.0));
-            pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, 1.0 / 255.0 + 1e-6));
+            pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, OVER_1_255));
         }
         steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255, sensitive_pixels: BTreeMap::new() });
     }

@@ -11,7 +11,7 @@ use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
-use tidepack_glsl::{Diagnostic, Stage};
+use tidepack_glsl::{Diagnostic, Location, Stage};
 use tidepack_loader::blocks;
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::consts;
@@ -321,15 +321,13 @@ pub(crate) fn load_program_files(
         let mut interface = stage.lowered.interface.clone();
         let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        // The lines (1-based) of the expanded text that come from a pack file's line.
+        let lines_from = |at: &Location| -> Vec<u32> {
+            line_map.iter().enumerate().filter(|(_, l)| l.as_ref() == Some(at)).map(|(i, _)| i as u32 + 1).collect()
+        };
         // Macros the lenient preprocessor saw redefined, at the lines of the expanded text.
-        let redefined: Vec<(u32, String)> = stage
-            .preprocessed
-            .redefinitions
-            .iter()
-            .flat_map(|(at, name)| {
-                line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
-            })
-            .collect();
+        let redefined: Vec<(u32, String)> =
+            stage.preprocessed.redefinitions.iter().flat_map(|(at, name)| lines_from(at).into_iter().map(move |line| (line, name.clone()))).collect();
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
         let located = |line: u32, what: &str| match line_map.get(line as usize - 1).cloned().flatten() {
             Some(at) => format!("{at}: {what}"),
@@ -370,8 +368,7 @@ pub(crate) fn load_program_files(
             let mut repaired = expanded.clone();
             let mut made = Vec::new();
             for repair in repairs {
-                let lines = line_map.iter().enumerate().filter(|(_, l)| l.is_some() && *l == &repair.location).map(|(i, _)| i as u32 + 1);
-                for line in lines.collect::<Vec<_>>() {
+                for line in repair.location.as_ref().map(lines_from).unwrap_or_default() {
                     let (text, what) = match &repair.leniency {
                         Leniency::Converted { constructor, value } => {
                             let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&repaired, line, constructor, value) else { continue };

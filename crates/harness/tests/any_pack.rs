@@ -72,7 +72,7 @@ fn each_step_of_the_flip_chain_reads_what_the_one_before_wrote() {
             worst = worst.max((a[c].sqrt() - b[c]).abs());
         }
     }
-    assert!(worst <= 1.0 / 255.0 + 1e-6, "composite1 is not sqrt of composite's output: {}", worst * 255.0);
+    assert!(worst <= images::OVER_1_255, "composite1 is not sqrt of composite's output: {}", worst * 255.0);
     let d = images::max_channel_difference(&composite1, &frame.image);
     assert!(d.iter().all(|c| *c < 1e-6), "final passes colortex0 through, not {d:?}");
     for pass in &frame.passes {
@@ -97,7 +97,7 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
     let faithful = draw(&reference);
     for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&faithful.steps) {
         for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
-            assert_eq!(images::count_differing(a, b, 1.0 / 255.0 + 1e-6), 0, "{} {texture}", pass.pass);
+            assert_eq!(images::count_differing(a, b, images::OVER_1_255), 0, "{} {texture}", pass.pass);
         }
     }
     let composite = wgpu.passes.iter().position(|p| p.pass == "composite").expect("a composite step");
@@ -135,7 +135,7 @@ fn opengl_draws_every_step_as_wgpu_does_for_every_loader() {
                 assert_eq!(wgpu.passes.len(), gl.steps.len());
                 for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
                     for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
-                        let over = images::count_differing(a, b, 1.0 / 255.0 + 1e-6);
+                        let over = images::count_differing(a, b, images::OVER_1_255);
                         if over > allowed {
                             failures.push(format!("{name} {loader} {scene_name} {}: {texture}: {over} pixels over 1/255", pass.pass));
                         }
@@ -328,7 +328,7 @@ fn what_only_lenient_drivers_compile_is_rewritten_for_opengl_listed_and_drawn_al
     let gl = gl_frame::render(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader).unwrap_or_else(|e| panic!("Mesa refuses the rewritten text: {e}"));
     for (pass, (_, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
         for ((texture, a), (_, b)) in pass.images.iter().zip(gl_images) {
-            assert_eq!(images::count_differing(a, b, 1.0 / 255.0 + 1e-6), 0, "{} {texture}", pass.pass);
+            assert_eq!(images::count_differing(a, b, images::OVER_1_255), 0, "{} {texture}", pass.pass);
         }
     }
 }

@@ -165,7 +165,7 @@ fn opengl_and_wgpu_agree_for_every_loader() {
         for (name, frame) in frames {
             let s = scene(name);
             let gl_frame = tidepack_harness::render_gl(&ctx, &pack, &s).map_err(|e| format!("{name}: {e}"))?;
-            let over = images::count_differing(&frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
+            let over = images::count_differing(&frame.image, &gl_frame.image, images::OVER_1_255);
             if over > 0 {
                 let max = images::max_channel_difference(&frame.image, &gl_frame.image);
                 return Err(format!("{name}: {over} pixels differ by more than 1/255 (max {max:?})"));

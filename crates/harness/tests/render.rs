@@ -461,7 +461,7 @@ fn opengl_and_wgpu_agree_on_every_scene() {
                 .unwrap_or_else(|e| panic!("{name} ({dialect}): {e}"));
             assert_eq!(gl_frame.image.non_finite(), 0, "{name}: NaN/Inf from OpenGL");
             let max = images::max_channel_difference(&wgpu_frame.image, &gl_frame.image);
-            let over = images::count_differing(&wgpu_frame.image, &gl_frame.image, 1.0 / 255.0 + 1e-6);
+            let over = images::count_differing(&wgpu_frame.image, &gl_frame.image, images::OVER_1_255);
             let depth_bits = |a: &FloatImage, b: &FloatImage| a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p[0].to_bits() != q[0].to_bits()).count();
             let (d0, d1) = (depth_bits(&wgpu_frame.depth0, &gl_frame.depth0), depth_bits(&wgpu_frame.depth1, &gl_frame.depth1));
             report.push(format!(

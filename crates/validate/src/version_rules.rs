@@ -117,9 +117,7 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
 pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
-    // GLSL 1.40 has no profiles: in the compatibility contexts OptiFine draws with,
-    // ARB_compatibility keeps the deprecated built-ins there (Mesa compiles them).
-    let core = number >= 150 && version.profile.as_deref() != Some("compatibility");
+    let core = version.is_core();
     let extensions = enabled_extensions(&pre.text);
     // Before 3.30, `layout(location = N)` on inputs and outputs needs an extension.
     let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
