@@ -64,6 +64,8 @@ uniform int isEyeInWater;
 uniform ivec2 eyeBrightnessSmooth;
 
 in vec2 screenUv;
+// ripplePulse(frameTimeCounter), the same at every pixel (composite.vsh).
+in vec2 ripple;
 
 /* RENDERTARGETS: 0 */
 out vec4 outColor0;
@@ -131,11 +133,27 @@ vec3 lightDirection() {
     return safeNormalize(mat3(gbufferModelViewInverse) * shadowLightPosition, vec3(0.0, 1.0, 0.0));
 }
 
+// Whether rain, clouds or the translucent hand may lie over a pixel whose colortex0 alpha is
+// sceneAlpha. From Minecraft 1.13 on they are drawn after the water, which left that alpha at 0,
+// and add their coverage to it: where it is still 0 colortex3 holds nothing and need not be
+// read. Older versions draw rain before the water, so colortex3 is always read there.
+bool overlayMayCover(float sceneAlpha) {
+#if MC_VERSION >= 11300
+    return NEEDED(sceneAlpha > 0.0);
+#else
+    return true;
+#endif
+}
+
 // The scene at uv without the rain, clouds and translucent hand drawn over it: they lie in
 // colortex0 and, alone, in colortex3 (premultiplied colour, coverage in alpha).
 vec3 sceneBehindOverlay(vec2 uv) {
-    vec4 over = texture(colortex3, uv);
-    return (texture(colortex0, uv).rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
+    vec4 scene = texture(colortex0, uv);
+    vec4 over = vec4(0.0);
+    if (overlayMayCover(scene.a)) {
+        over = texture(colortex3, uv);
+    }
+    return (scene.rgb - over.rgb) / max(1.0 - over.a, INVISIBLE);
 }
 
 // Cases 4 and 5: the camera is above the water and this pixel is its surface, at window depth
@@ -156,12 +174,11 @@ vec3 shadeFromAbove(vec2 uv, float depth0, sampler2D floorDepth, mat4 projection
     vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
     float time = frameTimeCounter;
 
-    vec4 surfaceCross;
-    bool crossFound;
-    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, time, true, surfaceCross, crossFound);
+    SurfaceSample atSurface;
+    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, time, true, atSurface);
     vec2 surfaceXZ = surface.xz + cameraWrap.xz;
     float diffuse;
-    vec3 normal = waveNormal(colortex1, colortex2, surfaceXZ, time, distance0, surfaceCross, crossFound, diffuse);
+    vec3 normal = waveNormal(colortex1, colortex2, surfaceXZ, time, ripple, distance0, atSurface, diffuse);
     vec3 normalView = mat3(gbufferModelView) * normal;
     float cosView = clamp(dot(-rayDir, normal), 0.0, 1.0);
     vec3 scattered = scatteredColor(tint, skyLight, skyColor) * (0.65 + diffuse);
@@ -243,11 +260,10 @@ vec3 shadeFromBelow(vec2 uv, float depth0, float skyLight, vec3 scattered) {
     vec3 player0 = playerFromView(view0, gbufferModelViewInverse);
     vec3 rayDir = safeNormalize(player0 - eyePosition(), vec3(0.0, 1.0, 0.0));
     vec3 cameraWrap = wrappedCamera(cameraPosition, WAVE_TILE);
-    vec4 surfaceCross;
-    bool crossFound;
-    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, frameTimeCounter, false, surfaceCross, crossFound);
+    SurfaceSample atSurface;
+    vec3 surface = refineSurface(colortex1, player0, rayDir, cameraWrap, frameTimeCounter, false, atSurface);
     float diffuse;
-    vec3 normal = waveNormal(colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, distance0, surfaceCross, crossFound, diffuse);
+    vec3 normal = waveNormal(colortex1, colortex2, surface.xz + cameraWrap.xz, frameTimeCounter, ripple, distance0, atSurface, diffuse);
     float cosView = clamp(dot(rayDir, normal), 0.0, 1.0);
 
     // What lies above the surface, refracted more the farther it is behind the surface.
@@ -309,7 +325,10 @@ void main() {
         // Rain, clouds and the translucent hand lie in colortex0 over the water, and in
         // colortex3 alone (premultiplied, coverage in alpha): take them out to shade what lies
         // behind, then put them back on top.
-        vec4 drawnOver = ownTexel(colortex3);
+        vec4 drawnOver = vec4(0.0);
+        if (overlayMayCover(scene.a)) {
+            drawnOver = ownTexel(colortex3);
+        }
         float uncovered = 1.0 - drawnOver.a;
         vec3 behind = (scene.rgb - drawnOver.rgb) / max(uncovered, INVISIBLE);
         // Glass over water: the water behind it shows in the plain colour it left in colortex6.

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use tidepack_harness::composite_only::{CompositeOnly, GBuffers};
 use tidepack_harness::images::{OVER_1_255, count_differing, max_channel_difference};
 use tidepack_harness::uniforms::{self, Pass};
-use tidepack_harness::{Gpu, PackSelection, Scene, median, program, render_wgpu};
+use tidepack_harness::{Gpu, PackSelection, Scene, median, program, quartiles, render_wgpu};
 use tidepack_pack::Dialect;
 
 fn main() {
@@ -86,16 +86,15 @@ fn main() {
         }
         let [Some(before_image), Some(after_image)] = &images else { unreachable!("every round renders both versions") };
         let largest = max_channel_difference(before_image, after_image)[..3].iter().fold(0.0f32, |m, d| m.max(*d)) * 255.0;
-        let mut after_over_before: Vec<f64> = ratios[0].iter().zip(&ratios[1]).map(|(b, a)| a / b).collect();
-        after_over_before.sort_by(f64::total_cmp);
-        let quartile = |q: f64| after_over_before[((after_over_before.len() - 1) as f64 * q).round() as usize];
+        let after_over_before: Vec<f64> = ratios[0].iter().zip(&ratios[1]).map(|(b, a)| a / b).collect();
+        let (low, high) = quartiles(&after_over_before);
         println!(
             "| {name} | {:.2} | {:.2} | {:.3} ({:.3}–{:.3}) | {largest:.1} | {} |",
             median(&ratios[0]),
             median(&ratios[1]),
             median(&after_over_before),
-            quartile(0.25),
-            quartile(0.75),
+            low,
+            high,
             count_differing(before_image, after_image, OVER_1_255)
         );
     }

@@ -7,8 +7,10 @@
 //! (lavapipe without a GPU), pipelines made once per scene: one warm-up frame (llvmpipe
 //! compiles shader variants at the first draw), then N frames (default 9). Prints, per scene,
 //! the median time of terrain, gbuffers_water, composite and the one-tap pass-through composite
-//! measured in the same frames, and composite / pass-through. GPU timestamps when the adapter
-//! has them, else wall time (the table says which).
+//! measured in the same frames, and composite / pass-through: the median of the frames' own
+//! ratios with their interquartile range, so that a change of load between frames moves both
+//! times of a ratio alike. GPU timestamps when the adapter has them, else wall time (the table
+//! says which).
 //!
 //! Leave Mesa's shader cache on: llvmpipe compiles fragment shader variants lazily inside the
 //! timed passes, and with MESA_SHADER_CACHE_DISABLE=true that compilation lands in every
@@ -16,7 +18,7 @@
 
 use std::path::{Path, PathBuf};
 
-use tidepack_harness::{Gpu, PackSelection, Scene, program, render_wgpu_repeated};
+use tidepack_harness::{Gpu, PackSelection, Scene, median, program, quartiles, render_wgpu_repeated};
 use tidepack_pack::Dialect;
 
 /// The steps timed, by the start of their label in the frame plan.
@@ -76,7 +78,7 @@ fn main() {
         pack.profile
     );
     println!();
-    println!("| scene | terrain | gbuffers_water | composite | pass-through | composite / pass-through |");
+    println!("| scene | terrain | gbuffers_water | composite | pass-through | composite / pass-through (IQR) |");
     println!("|---|---:|---:|---:|---:|---:|");
     for path in scenes {
         let scene = Scene::load(&path).unwrap_or_else(|e| fail(&e.to_string())).with_resolution(width, height);
@@ -90,15 +92,17 @@ fn main() {
             })
             .collect();
         samples.push(frame.timing.passthrough_samples_ms[1..].to_vec());
-        let m: Vec<f64> = samples.iter().map(|s| tidepack_harness::median(s)).collect();
+        let m: Vec<f64> = samples.iter().map(|s| median(s)).collect();
+        let ratios: Vec<f64> = samples[2].iter().zip(&samples[3]).map(|(composite, passthrough)| composite / passthrough).collect();
+        let (low, high) = quartiles(&ratios);
         println!(
-            "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} |",
+            "| {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} ({low:.2}–{high:.2}) |",
             scene.name,
             m[0],
             m[1],
             m[2],
             m[3],
-            if m[3] > 0.0 { m[2] / m[3] } else { f64::NAN }
+            median(&ratios)
         );
     }
 }

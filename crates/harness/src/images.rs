@@ -231,6 +231,15 @@ pub fn median(samples: &[f64]) -> f64 {
     }
 }
 
+/// The first and third quartiles of `samples` (nearest rank; NaN for none): the spread the
+/// timing reports quote beside a median.
+pub fn quartiles(samples: &[f64]) -> (f64, f64) {
+    let mut sorted = samples.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let at = |q: f64| if sorted.is_empty() { f64::NAN } else { sorted[((sorted.len() - 1) as f64 * q).round() as usize] };
+    (at(0.25), at(0.75))
+}
+
 /// The median of a run's per-frame times without the first frame, which pays for llvmpipe's
 /// lazy shader compilation (all of them when there is one).
 pub fn settled_median(samples: &[f64]) -> f64 {

@@ -22,7 +22,7 @@ pub mod samplers;
 pub mod uniforms;
 
 pub use gpu::{Frame, Gpu, StepReport};
-pub use images::median;
+pub use images::{median, quartiles};
 pub use images::FloatImage;
 pub use tidepack_loader::Loader;
 pub use program::{LoadedPack, PackSelection};

@@ -354,12 +354,15 @@ fn map_gbuffers(runner: &CompositeOnly, g: &mut GBuffers, mut f: impl FnMut(usiz
         let (mut d0, mut d1) = (g.depth0.pixels[i][0], g.depth1.pixels[i][0]);
         f(i, &mut px, &mut d0, &mut d1);
         // gbuffers_water's blending leaves colortex0's alpha at 0 wherever it drew a translucent
-        // (shaders.properties), and composite reads the water mark only there: a mark put into
-        // colortex4 here must come with that alpha to be shaded.
+        // (shaders.properties), and rain, clouds and the hand drawn after it add their coverage
+        // (colortex3's alpha) to it. Composite reads the water mark only where that alpha is
+        // below 1, and colortex3 only where it is above 0: a mark put into colortex4 here must
+        // come with that alpha to be shaded.
+        let coverage = px.get(&3).map_or(0.0, |p| p[3]);
         if px.get(&4).is_some_and(|p| is_water_nearest(p[0] as f64) || is_water_behind_translucent(p[0] as f64))
             && let Some(scene) = px.get_mut(&0)
         {
-            scene[3] = 0.0;
+            scene[3] = coverage;
         }
         for (b, p) in px {
             let img = g.colors.get_mut(&b).expect("same buffers");

@@ -68,6 +68,23 @@ vec2 waveGradient(vec4 crossTexel, float sinPhase, float cosArgument) {
     return WAVE_AMPLITUDE_ANALYTIC * (analytic + WAVE_NOISE_WEIGHT * 2.0 * difference / 0.5);
 }
 
+// What the surface search evaluated at the point it returned, for waveNormal to reuse: the first
+// octave's height cross texel and the sine and cosine of the wave's phase there. `evaluated` is
+// false when the search ran out of steps before meeting the surface.
+struct SurfaceSample {
+    vec4 heightCross;
+    float sinPhase;
+    float cosPhase;
+    bool evaluated;
+};
+
+// How much the height texture's ripples pulse along x and z at `time`: the same for every
+// pixel, so the full-screen vertex stage works it out once.
+vec2 ripplePulse(float time) {
+    float travel = WAVE_SPEED * time;
+    return 1.0 + 0.3 * vec2(cos(travel), sin(travel));
+}
+
 // Height error below which the search stops early. Against the converged reference, 0.0005
 // block leaves every profile's error unchanged; 0.002 already cost ULTRA 6 dB PSNR.
 const float SURFACE_TOLERANCE = 0.0005;
@@ -80,29 +97,27 @@ const float SURFACE_TOLERANCE = 0.0005;
 // (waveGradient reads it from the lookup of the height), and a smooth surface is met in 2 or 3
 // lookups where the secant took 3 or 4.
 // `playerHit` is relative to the eye; `cameraWrap` turns it into a wrapped world position.
-// When the search stops on the surface, `surfaceCross` is the height cross texel of the point
-// returned and `crossFound` is true.
+// `atSurface` holds what was evaluated at the point returned.
 vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cameraWrap, float time, bool cameraAbove,
-                   out vec4 surfaceCross, out bool crossFound) {
+                   out SurfaceSample atSurface) {
     float planeY = playerHit.y;
     float near = -20.0 * WAVE_MAX_HEIGHT;
     float far = 20.0 * WAVE_MAX_HEIGHT;
     float t = 0.0;
-    surfaceCross = vec4(0.0);
-    crossFound = false;
+    atSurface = SurfaceSample(vec4(0.0), 0.0, 1.0, false);
     for (int i = 0; i < WAVE_REFINE_STEPS; i++) {
         vec3 p = playerHit + rayDir * t;
         vec2 worldXZ = p.xz + cameraWrap.xz;
         vec4 crossTexel = heightCrossTexel(heightCross1, worldXZ, time);
         float phase = wavePhase(worldXZ, time);
         float sinPhase = sin(phase);
+        float cosPhase = cos(phase);
         vec4 cosArgument;
-        float analytic = analyticWave(vec4(sinPhase), vec4(cos(phase)), cosArgument).x;
+        float analytic = analyticWave(vec4(sinPhase), vec4(cosPhase), cosArgument).x;
         float gap = p.y - planeY - waveHeight(crossTexel.b, analytic);
         // On the surface to within SURFACE_TOLERANCE: further steps cannot show.
         if (!NEEDED(abs(gap) >= SURFACE_TOLERANCE)) {
-            surfaceCross = crossTexel;
-            crossFound = true;
+            atSurface = SurfaceSample(crossTexel, sinPhase, cosPhase, true);
             break;
         }
         if ((gap > 0.0) == cameraAbove) {
@@ -132,17 +147,17 @@ vec3 refineSurface(sampler2D heightCross1, vec3 playerHit, vec3 rayDir, vec3 cam
 // octave where the height itself would take four: per texel they hold the height's
 // differences across the cross along u and v and the sum of its four ends, and bilinear
 // filtering is linear, so a lookup of those is the difference (or sum) of the four lookups.
-// `surfaceCross` is the first octave's texel when `crossFound` (from refineSurface).
-vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, float distance,
-                vec4 surfaceCross, bool crossFound, out float diffuse) {
+// `atSurface` is what refineSurface evaluated at worldXZ; `pulse` is ripplePulse(time).
+vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, float time, vec2 pulse, float distance,
+                SurfaceSample atSurface, out float diffuse) {
     float flatten = 1.0 + 0.05 * distance;
     vec2 uv = 0.5 + vec2(worldXZ.x, -worldXZ.y) / WAVE_TILE + time * WAVE_DRIFT;
 #if NORMAL_MODE == 0
     // One lookup, of the first height cross texel alone (see below): the height's differences
     // across the cross give the texture term's slope, B the height.
     const float BIAS = 128.0 / 255.0;
-    vec4 cross1 = surfaceCross;
-    if (!crossFound) {
+    vec4 cross1 = atSurface.heightCross;
+    if (!atSurface.evaluated) {
         cross1 = texture(heightCross1, fract(uv));
     }
     vec2 slope = WAVE_AMPLITUDE_ANALYTIC * WAVE_NOISE_WEIGHT * 2.0 * vec2(cross1.r - BIAS, BIAS - cross1.g) / (2.0 * 0.25);
@@ -153,8 +168,8 @@ vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, fl
     // The cross textures store differences and the neighbours' excess over the height biased
     // by 128/255. z runs along -v, so the difference along z is the one along v negated.
     const float BIAS = 128.0 / 255.0;
-    vec4 cross1 = surfaceCross;
-    if (!crossFound) {
+    vec4 cross1 = atSurface.heightCross;
+    if (!atSurface.evaluated) {
         cross1 = texture(heightCross1, fract(uv));
     }
     vec2 difference = vec2(cross1.r - BIAS, BIAS - cross1.g);
@@ -169,15 +184,18 @@ vec3 waveNormal(sampler2D heightCross1, sampler2D heightCross2, vec2 worldXZ, fl
     }
 #endif
     // A travelling phase lets the texture ripples pulse along x and z.
-    float travel = WAVE_SPEED * time;
-    float dx = difference.x * (1.0 + 0.3 * cos(travel));
-    float dz = difference.y * (1.0 + 0.3 * sin(travel));
+    float dx = difference.x * pulse.x;
+    float dz = difference.y * pulse.y;
     // The analytic wave 2.1 blocks either side in x and z: phases at fixed offsets from this
     // point's, by the angle sum formulas.
     const vec4 OFFSET = vec4(WAVE_VECTOR.x, -WAVE_VECTOR.x, WAVE_VECTOR.y, -WAVE_VECTOR.y) * 2.1;
-    float phase = wavePhase(worldXZ, time);
-    float sinPhase = sin(phase);
-    float cosPhase = cos(phase);
+    float sinPhase = atSurface.sinPhase;
+    float cosPhase = atSurface.cosPhase;
+    if (!atSurface.evaluated) {
+        float phase = wavePhase(worldXZ, time);
+        sinPhase = sin(phase);
+        cosPhase = cos(phase);
+    }
     vec4 cosArgument;
     vec4 a = analyticWave(sinPhase * cos(OFFSET) + cosPhase * sin(OFFSET), cosPhase * cos(OFFSET) - sinPhase * sin(OFFSET), cosArgument);
     diffuse = 0.35 + 0.05 * heightSum + 0.05 * (a.x + a.y + a.z + a.w);
