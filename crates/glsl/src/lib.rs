@@ -9,6 +9,7 @@
 pub mod code;
 pub mod compat;
 pub mod diagnostic;
+pub mod liveness;
 pub mod lower;
 pub mod naga_check;
 pub mod preprocess;

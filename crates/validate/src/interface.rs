@@ -8,7 +8,7 @@ use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{Token, TokenKind, brace_depths, function_definitions, tokenize};
 use tidepack_glsl::naga_check::LoweredStage;
-use tidepack_glsl::{Code, Diagnostic, Location, Stage};
+use tidepack_glsl::{Code, Diagnostic, Drivers, Location, Stage};
 
 use tidepack_loader::known;
 use tidepack_loader::loader::Loader;
@@ -72,13 +72,25 @@ fn describe(decl: &VaryingDecl) -> String {
     }
 }
 
-/// Fragment inputs the vertex stage does not write, or writes with another type.
-pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Diagnostic> {
+/// A fragment input the vertex stage declares and never writes, read in GLSL 1.10/1.20: Mesa
+/// refuses to link the program if the read survives its optimiser, which only the stage's IR
+/// can tell ([`tidepack_glsl::liveness`]).
+pub struct NeverWritten {
+    pub input: String,
+    /// What to report when the read reaches the stage's results.
+    pub refused: Diagnostic,
+    /// What to report when that cannot be told (naga does not read the stage).
+    pub unknown: Diagnostic,
+}
+
+/// Fragment inputs the vertex stage does not write, or writes with another type; and the
+/// inputs whose verdict waits for the fragment stage's IR.
+pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Diagnostic>, Vec<NeverWritten>) {
     let (Ok(outputs), Ok(inputs)) = (
         lower::varying_declarations(&vertex.text, Stage::Vertex, version_of(vertex)),
         lower::varying_declarations(&fragment.text, Stage::Fragment, version_of(fragment)),
     ) else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
     let uses = global_uses(&fragment.text);
@@ -90,6 +102,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
     let version = version_of(vertex).max(version_of(fragment));
     let mesa_links = (130..420).contains(&version);
     let mut found = Vec::new();
+    let mut never_written = Vec::new();
     for input in &inputs {
         let at = fragment.location(input.line);
         match outputs.get(input.name.as_str()) {
@@ -125,18 +138,29 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
             Some(output) if uses.contains_key(input.name.as_str()) && !vertex_uses.contains_key(output.name.as_str()) => {
                 // Declared, never named again: never written. Mesa's linker refuses the read in
                 // GLSL 1.10/1.20 ("fragment shader varying … not written by vertex shader") when
-                // its optimiser keeps the read, which tokens cannot tell; from 1.30 on it links.
+                // its optimiser keeps the read; from 1.30 on it links.
                 let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
-                let consequence = if version <= 120 {
-                    format!("Mesa refuses to link it in #version {version} where the read is not optimised away")
+                let never = format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at})", input.name);
+                if version <= 120 {
+                    let read_at = uses.get(input.name.as_str()).and_then(|&line| fragment.location(line)).or_else(|| at.clone());
+                    never_written.push(NeverWritten {
+                        input: input.name.clone(),
+                        refused: Diagnostic::error(
+                            Code::InputNeverWritten,
+                            format!("{never}, and the value read here reaches the shader's outputs: the program fails to link on Mesa in #version {version}"),
+                            read_at,
+                        )
+                        .refused_by(Drivers::MESA)
+                        .with_note(format!("write `{}` in the vertex shader, or stop reading it", input.name)),
+                        unknown: Diagnostic::warning(
+                            Code::InputNeverWritten,
+                            format!("{never}: Mesa refuses to link it in #version {version} where the read is not optimised away"),
+                            at,
+                        ),
+                    });
                 } else {
-                    "it reads undefined values".to_string()
-                };
-                found.push(Diagnostic::warning(
-                    Code::InputNeverWritten,
-                    format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at}): {consequence}", input.name),
-                    at,
-                ));
+                    found.push(Diagnostic::warning(Code::InputNeverWritten, format!("{never}: it reads undefined values"), at));
+                }
             }
             Some(output) => {
                 // From GLSL 4.30 on only the fragment stage's interpolation qualifier counts.
@@ -158,7 +182,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> Vec<Dia
         }
     }
     found.extend(check_blocks(vertex, fragment, &uses));
-    found
+    (found, never_written)
 }
 
 /// A member of an `in`/`out` interface block: its qualifiers (`flat`, `centroid`, …), type,

@@ -61,7 +61,11 @@ pub(crate) fn check_program(
     let vertex = preprocessed.iter().find(|(s, _)| *s == Stage::Vertex);
     let fragment = preprocessed.iter().find(|(s, _)| *s == Stage::Fragment);
     if let (Some((_, vs)), Some((_, fs)), true) = (vertex, fragment, linked) {
-        diags.extend(interface::check_varyings(vs, fs));
+        let (found, never_written) = interface::check_varyings(vs, fs);
+        diags.extend(found);
+        if !never_written.is_empty() {
+            diags.extend(judge_never_written(never_written, &lowered, provider));
+        }
     }
     for stage in &lowered {
         if stage.stage == Stage::Fragment {
@@ -70,6 +74,25 @@ pub(crate) fn check_program(
         diags.extend(interface::check_resources(&stage.preprocessed, &stage.lowered, &program.name, names, loader));
     }
     Ok((lowered, diags))
+}
+
+/// Reads of inputs the vertex stage never writes, judged on the fragment stage's IR: an error
+/// where the value reaches the stage's results, nothing where Mesa's optimiser drops the read
+/// (it links then), the old warning where naga does not read the stage.
+fn judge_never_written(never_written: Vec<interface::NeverWritten>, lowered: &[LoweredStage], provider: &dyn FileProvider) -> Vec<Diagnostic> {
+    let live = lowered
+        .iter()
+        .find(|s| s.stage == Stage::Fragment)
+        .and_then(|fragment| naga_check::validate_stage(&mut naga_check::Frontend::default(), fragment, provider).ok())
+        .map(|valid| tidepack_glsl::liveness::live_global_names(&valid.module));
+    never_written
+        .into_iter()
+        .filter_map(|read| match &live {
+            Some(live) if live.contains(&read.input) => Some(read.refused),
+            Some(_) => None,
+            None => Some(read.unknown),
+        })
+        .collect()
 }
 
 /// What the specification forbids and NVIDIA's compiler lets by: the version rules name
