@@ -347,11 +347,12 @@ impl GlStepsComparison {
     /// Records, per step and texture, how many of the pixels where the renderers differ are the
     /// pack's own arithmetic noise ([`sensitive_pixels`]), from `nudged`: OpenGL's frame drawn
     /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
-    /// nudged by [`NUDGE`].
-    fn discount_sensitive(&mut self, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame, nudged: &crate::gl_frame::GlFrame) {
-        for (step, ((pass, (_, gl_images)), (_, nudged_images))) in self.steps.iter_mut().zip(wgpu.passes.iter().zip(&gl.steps).zip(&nudged.steps)) {
-            for (((name, ours), (_, theirs)), (_, moved)) in pass.images.iter().zip(gl_images).zip(nudged_images) {
-                let sensitive = sensitive_pixels(ours, theirs, moved);
+    /// nudged, once by each of [`NUDGES`].
+    fn discount_sensitive(&mut self, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame]) {
+        for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.passes.iter().zip(&gl.steps)).enumerate() {
+            for (i, ((name, ours), (_, theirs))) in pass.images.iter().zip(gl_images).enumerate() {
+                let moved: Vec<&FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(k).and_then(|(_, images)| images.get(i)).map(|(_, image)| image)).collect();
+                let sensitive = sensitive_pixels(ours, theirs, &moved);
                 if sensitive > 0 {
                     step.sensitive_pixels.insert(name.clone(), sensitive);
                 }
@@ -361,14 +362,19 @@ impl GlStepsComparison {
 }
 
 /// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many are the pack's
-/// own arithmetic noise: those `theirs` and `moved` (theirs drawn again, nudged) differ on too;
-/// or, where `moved` differs from `theirs` on more than [`MAX_SENSITIVE_SHARE`] of the image (the
-/// step is noise throughout: a dither, a hash of every pixel), those whose
+/// own arithmetic noise: those where `theirs` and one of `moved` (theirs drawn again, each
+/// nudged another way) differ too; or, where the nudges move more than [`MAX_SENSITIVE_SHARE`]
+/// of the image (the step is noise throughout: a dither, a hash of every pixel), those whose
 /// [`NOISE_BLOCK`]-pixel block has the same mean in both renderers to within 1/255, where the
 /// noise averages to the same picture.
-fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &FloatImage) -> usize {
+fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]) -> usize {
     let apart = images::differing_pixels(ours, theirs, OVER_1_255);
-    let unstable = images::differing_pixels(theirs, moved, OVER_1_255);
+    let mut unstable = vec![false; apart.len()];
+    for image in moved {
+        for (u, m) in unstable.iter_mut().zip(images::differing_pixels(theirs, image, OVER_1_255)) {
+            *u |= m;
+        }
+    }
     let noise_throughout = unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64;
     let noise = if noise_throughout { images::block_means_agree(ours, theirs, NOISE_BLOCK, OVER_1_255) } else { unstable };
     apart.iter().zip(&noise).filter(|(a, n)| **a && **n).count()
@@ -382,6 +388,11 @@ pub const NOISE_BLOCK: u32 = 8;
 /// last place of a float, about what two compilers' roundings of the same expression differ by
 /// (a fused multiply-add, a reciprocal for a division, another polynomial for `sin`).
 pub const NUDGE: f64 = 1.0 / (1u32 << 21) as f64;
+
+/// The nudges OpenGL's frame is drawn again with where the renderers part: up and down by
+/// [`NUDGE`], and up by twice it. Which pixels one nudge moves depends on its sign and size as
+/// much as on the arithmetic, so each samples other roundings a second compiler may make.
+pub const NUDGES: [f64; 3] = [NUDGE, -NUDGE, 2.0 * NUDGE];
 
 /// The largest share of a texture OpenGL may move under [`NUDGE`] for its pixels to be compared
 /// one by one: past it the step is noise throughout (grain, a hash of every pixel), compared by
@@ -545,7 +556,10 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             write(".gl", &gl_frame.image)?;
             let mut comparison = compare_steps(renderer, &frame, &gl_frame)?;
             if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
-                let nudged = crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(NUDGE as f32), ScreenOutput::AsLoader, &reference(NUDGE))?;
+                let nudged = NUDGES
+                    .iter()
+                    .map(|&nudge| crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(nudge as f32), ScreenOutput::AsLoader, &reference(nudge)))
+                    .collect::<Result<Vec<_>, _>>()?;
                 comparison.discount_sensitive(&frame, &gl_frame, &nudged);
             }
             // Where they part: both renderers' texture and the pixels over 1/255, to look at.
@@ -738,20 +752,26 @@ mod tests {
         for i in [0, 1, 2, 3, 50] {
             moved.pixels[i][0] = 0.5;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), 4);
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &theirs), 0);
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved]), 4);
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&theirs]), 0);
+        // A nudge the other way moves three more: each nudge adds the pixels it moves.
+        let mut other_way = theirs.clone();
+        for i in [4, 5, 6] {
+            other_way.pixels[i][0] = 0.6;
+        }
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved, &other_way]), 7);
         // Past 5% of the texture moved, the step is noise throughout, and the ten pixels brighten
         // their blocks' means: not noise.
         for i in 100..120 {
             moved.pixels[i][0] = 0.1;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &moved), 0);
+        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved]), 0);
         // A dither that averages to the same mean over each 8x8 block is noise.
         let mut dithered = ours.clone();
         for (i, p) in dithered.pixels.iter_mut().enumerate() {
             p[0] += if (i + i / 16) % 2 == 0 { 0.02 } else { -0.02 };
         }
-        assert_eq!(super::sensitive_pixels(&ours, &dithered, &moved), 256);
+        assert_eq!(super::sensitive_pixels(&ours, &dithered, &[&moved]), 256);
     }
 
     /// A frame whose composite parts on most of the screen (the all-black OpenGL screen beside a
