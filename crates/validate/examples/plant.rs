@@ -252,6 +252,7 @@ fn main() {
     let mut per_kind = 1usize;
     let mut threads = 2usize;
     let mut behind_toggle = false;
+    let mut in_dimension = false;
     let mut mesa = false;
     let mut kinds: Vec<Kind> = KINDS.to_vec();
     let mut dirs: Vec<PathBuf> = Vec::new();
@@ -267,6 +268,7 @@ fn main() {
             "--per-kind" => per_kind = number("--per-kind") as usize,
             "--threads" => threads = number("--threads").max(1) as usize,
             "--behind-toggle" => behind_toggle = true,
+            "--in-dimension" => in_dimension = true,
             "--mesa" => mesa = true,
             "--kinds" => {
                 let list = args.next().unwrap_or_default();
@@ -285,7 +287,7 @@ fn main() {
         }
     }
     if dirs.is_empty() {
-        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] [--behind-toggle] [--mesa] [--kinds K,...] PACK_DIR...");
+        eprintln!("usage: plant [--seed N] [--per-kind N] [--threads N] [--behind-toggle] [--in-dimension] [--mesa] [--kinds K,...] PACK_DIR...");
         std::process::exit(2);
     }
     let scratch = tempfile::tempdir().expect("temporary folder");
@@ -315,7 +317,8 @@ fn main() {
             skipped.push(format!("{pack}: cannot copy ({e})"));
             continue;
         }
-        match plant_pack(&pack, &copy, &options, seed, per_kind, behind_toggle, &kinds, gl.as_ref()) {
+        let placing = Placing { behind_toggle, in_dimension };
+        match plant_pack(&pack, &copy, &options, seed, per_kind, placing, &kinds, gl.as_ref()) {
             Ok(mut found) => plants.append(&mut found),
             Err(why) => {
                 eprintln!("{pack}: {why}");
@@ -324,7 +327,7 @@ fn main() {
         }
         std::fs::remove_dir_all(&copy).ok();
     }
-    print!("{}", markdown(&plants, &skipped, seed, per_kind, threads));
+    print!("{}", markdown(&plants, &skipped, seed, per_kind, threads, in_dimension));
 }
 
 fn copy_dir(from: &Path, to: &Path) -> std::io::Result<()> {
@@ -362,16 +365,26 @@ fn toggle_on_the_menu(properties: &str) -> String {
 }
 
 #[allow(clippy::too_many_arguments)]
+/// Where mistakes go besides their line.
+#[derive(Clone, Copy)]
+struct Placing {
+    /// Inside `#ifdef PLANTED_TOGGLE`, an option off by default.
+    behind_toggle: bool,
+    /// Only into a dimension folder's own files (`world-1/…`), which only that dimension loads.
+    in_dimension: bool,
+}
+
 fn plant_pack(
     pack: &str,
     root: &Path,
     options: &Options,
     seed: u64,
     per_kind: usize,
-    behind_toggle: bool,
+    placing: Placing,
     kinds: &[Kind],
     gl: Option<&driver::Driver>,
 ) -> Result<Vec<Plant>, String> {
+    let Placing { behind_toggle, in_dimension } = placing;
     let properties = root.join("shaders/shaders.properties");
     if behind_toggle && let Ok(text) = std::fs::read_to_string(&properties) {
         std::fs::write(&properties, toggle_on_the_menu(&text)).map_err(|e| format!("shaders.properties: {e}"))?;
@@ -418,8 +431,14 @@ fn plant_pack(
             ));
         }
     }
+    if in_dimension {
+        let own = |path: &str| path.starts_with("world");
+        anchors.retain(|a| own(&a.path));
+        global_anchors.retain(|a| own(&a.path));
+    }
     if anchors.is_empty() {
-        return Err(format!("no clean program with a statement to plant after ({} clean programs)", clean.len()));
+        let where_ = if in_dimension { " in a dimension folder's own file" } else { "" };
+        return Err(format!("no clean program with a statement to plant after{where_} ({} clean programs)", clean.len()));
     }
     eprintln!("{pack}: {} clean programs, {} stages, {} anchor lines", clean.len(), stages.len(), anchors.len());
     let mut plants = Vec::new();
@@ -1224,7 +1243,7 @@ impl Tally {
     }
 }
 
-fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, threads: usize) -> String {
+fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, threads: usize, in_dimension: bool) -> String {
     let mut out = String::new();
     let packs: BTreeSet<&str> = plants.iter().map(|p| p.pack.as_str()).collect();
     let seconds: f64 = plants.iter().map(|p| p.elapsed.as_secs_f64()).sum();
@@ -1232,9 +1251,10 @@ fn markdown(plants: &[Plant], skipped: &[String], seed: u64, per_kind: usize, th
         out,
         "# Planted mistakes\n\n{} plants in {} packs (seed {seed}, {per_kind} per kind and pack, {threads} threads, \
          {seconds:.0} s validating). A plant counts as reported when a new error is at the planted file and line \
-         (missing semicolon: or the next line with code).\n",
+         (missing semicolon: or the next line with code).{}\n",
         plants.len(),
-        packs.len()
+        packs.len(),
+        if in_dimension { " Every plant is in a dimension folder's own file, which only that dimension loads." } else { "" }
     )
     .unwrap();
     let header = |first: &str| {
