@@ -106,7 +106,8 @@ fn failure(report: &AnyPackReport) -> Option<String> {
     } else if let Some((program, why)) = report.failed_programs.first() {
         Some(format!("{program} does not load: {}", cell(why)))
     } else if report.non_finite_pixels > 0 {
-        Some(format!("{} NaN/Inf pixels", report.non_finite_pixels))
+        let first = report.first_non_finite.as_ref().map_or(String::new(), |f| format!(", {f}"));
+        Some(format!("{} NaN/Inf pixels{first}", report.non_finite_pixels))
     } else {
         report.gl_disagreement.as_ref().map(|d| {
             let sensitive = if d.sensitive > 0 { format!(" ({} the pack's own noise)", d.sensitive) } else { String::new() };

@@ -482,6 +482,31 @@ fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
     locations
 }
 
+/// A driver's log with each `0:LINE(COLUMN)` it names said as the pack file and line the
+/// compiled line came from.
+fn located_log(log: &tidepack_gldriver::DriverLog, program: &LoadedProgram) -> String {
+    use tidepack_gldriver::ProgramStep;
+    let stage = match log.step {
+        ProgramStep::CompileVertex => Some(&program.vertex),
+        ProgramStep::CompileFragment => Some(&program.fragment),
+        ProgramStep::Link => None,
+    };
+    let lines: Vec<String> = log
+        .log
+        .trim_end()
+        .lines()
+        .map(|line| {
+            let message = tidepack_gldriver::parse_log(line).into_iter().next();
+            let origin = message.as_ref().zip(stage).and_then(|(m, s)| s.gl_origins.get(m.line.checked_sub(1)? as usize).cloned().flatten());
+            match (message, origin) {
+                (Some(m), Some(at)) => format!("{at}: {}: {}", m.severity, m.message.trim()),
+                _ => line.to_string(),
+            }
+        })
+        .collect();
+    format!("{} failed:\n{}", log.step, lines.join("\n"))
+}
+
 /// Compiles a program's shipped text, binding user attributes ([`attribute_locations`]) and
 /// `outColorN` outputs to the locations the lowering gave them (so both renderers feed and read
 /// the same slots).
@@ -496,7 +521,7 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
         .filter(|(location, name)| !name.starts_with("gl_") && (**location as usize) < tidepack_glsl::preprocess::MAX_DRAW_BUFFERS)
         .map(|(location, name)| (name.as_str(), *location))
         .collect();
-    let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {e}", program.name, ctx.info()));
+    let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {}", program.name, ctx.info(), located_log(&e, program)));
     match depth {
         DepthMapping::OpenGl => {
             ctx.compile_program(&program.vertex.gl_text, &program.fragment.gl_text, &attributes, &frag_data).map(Compiled::Direct).map_err(failed)

@@ -451,6 +451,34 @@ pub struct PrimaryRenderer {
     pub opengl_refused: Option<String>,
 }
 
+/// Where NaN or Inf first appeared in a frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct NonFinite {
+    /// The step, as the frame names it (`composite2`, `water (gbuffers_water)`).
+    pub step: String,
+    /// The fragment stage's file of the step's program, when the step ran one.
+    pub file: Option<String>,
+    pub texture: String,
+    pub pixels: usize,
+}
+
+impl std::fmt::Display for NonFinite {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let file = self.file.as_ref().map_or(String::new(), |file| format!(", by {file}"));
+        write!(f, "first written at the step {} into {} ({} pixels){file}", self.step, self.texture, self.pixels)
+    }
+}
+
+/// The first of `passes` that wrote NaN or Inf, with the fragment file of its program: a step is
+/// labelled with its program's name (`composite2`) or ends with it in brackets.
+fn first_non_finite(passes: &[crate::gpu::StepReport], pack: &crate::any_pack::AnyPack) -> Option<NonFinite> {
+    passes.iter().find_map(|step| {
+        let (texture, &pixels) = step.non_finite.iter().find(|(_, n)| **n > 0)?;
+        let program = pack.programs().find(|p| step.pass == p.name || step.pass.ends_with(&format!("({})", p.name)));
+        Some(NonFinite { step: step.pass.clone(), file: program.map(|p| p.fragment.path.clone()), texture: texture.clone(), pixels })
+    })
+}
+
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
 #[derive(Clone, Debug, Serialize)]
 pub struct AnyPackReport {
@@ -468,6 +496,8 @@ pub struct AnyPackReport {
     pub expected: Option<ExpectedScreen>,
     /// Pixels of the screen that are NaN or infinite.
     pub non_finite_pixels: usize,
+    /// The first step that wrote NaN or Inf into a buffer, when one did.
+    pub first_non_finite: Option<NonFinite>,
     /// What the pack uses that the frame did not imitate.
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that did not load, with why.
@@ -505,6 +535,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                     Err(e) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {e}"))),
                 },
                 Err(HarnessError::NoGlDriver(_)) => return Err(cannot),
+                Err(HarnessError::Gl(refused)) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {cannot}"))),
                 Err(refused) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {cannot}"))),
             }
         }
@@ -599,6 +630,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         pack: job.pack.display().to_string(),
         world: pack.world.clone(),
         non_finite_pixels: frame.image.non_finite(),
+        first_non_finite: first_non_finite(&frame.passes, &pack),
         passes: frame.passes,
         not_modelled: frame.not_modelled,
         failed_programs: pack.failed.clone(),

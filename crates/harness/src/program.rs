@@ -60,6 +60,9 @@ pub struct LoadedStage {
     /// The rewrites `tidepack_glsl::compat::for_strict_drivers` made to `gl_text`, each as
     /// `file:line: what` at the pack file and line it was made on.
     pub gl_rewrites: Vec<String>,
+    /// The pack file and line of each line of `gl_text` (see [`origins_of_rewritten`]), for
+    /// saying a driver's complaint where the author wrote the code.
+    pub gl_origins: Vec<Option<Location>>,
     /// The lowered GLSL 450 exactly as the toolchain produces it.
     pub lowered_text: String,
     /// The text naga parsed for wgpu: the lowered text, plus (vertex stage only) a wrapper
@@ -268,6 +271,32 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
+/// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
+/// inserts, an `#extension` moved up, a `main` wrapped.
+const REWRITE_REACH: usize = 64;
+
+/// The pack location of each line of `text`, a rewrite of `expanded` whose lines come from
+/// `origins`: a line found unchanged in `expanded` near where the rewrites left it has that
+/// line's origin; a line they changed (the line after it is the next one unchanged) has the
+/// origin of the line it replaced; a line they added has the origin of the line before it.
+pub(crate) fn origins_of_rewritten(text: &str, expanded: &str, origins: &[Option<Location>]) -> Vec<Option<Location>> {
+    let before: Vec<&str> = expanded.lines().collect();
+    let after: Vec<&str> = text.lines().collect();
+    let find = |line: &str, from: usize| (from..before.len().min(from + REWRITE_REACH)).find(|&k| before[k] == line && (!line.trim().is_empty() || k == from));
+    let mut next = 0usize;
+    let mut last: Option<Location> = None;
+    let mut found_origins = Vec::with_capacity(after.len());
+    for (i, line) in after.iter().enumerate() {
+        let replaced = || after.get(i + 1).is_some_and(|following| before.get(next + 1) == Some(following)).then_some(next);
+        if let Some(k) = find(line, next).or_else(replaced) {
+            next = k + 1;
+            last = origins.get(k).cloned().flatten().or(last);
+        }
+        found_origins.push(last.clone());
+    }
+    found_origins
+}
+
 /// The two stage files of one program, as paths inside `shaders/`.
 pub(crate) struct ProgramFiles<'a> {
     pub name: &'a str,
@@ -400,11 +429,13 @@ pub(crate) fn load_program_files(
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
         }
+        let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
         stages.push(LoadedStage {
             stage: stage.stage,
             path,
             gl_text,
             gl_rewrites,
+            gl_origins,
             lowered_text,
             harness_text,
             interface,
@@ -727,6 +758,18 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 
 #[cfg(test)]
 mod tests {
+    /// A driver's line names the pack line it came from through the compat rewrites: an inserted
+    /// line takes its predecessor's origin, a changed one too, and the lines after follow.
+    #[test]
+    fn rewritten_lines_keep_their_pack_origins() {
+        use super::{Location, origins_of_rewritten};
+        let expanded = "#version 120\nvarying vec4 c;\n#define A 1\n#define A 2\nvoid main() {\n    float f = 1;\n    gl_FragColor = c;\n}\n";
+        let origins: Vec<Option<Location>> = (1..=8).map(|l| Some(Location::line(if l == 7 { "lib/out.glsl" } else { "a.fsh" }, l))).collect();
+        let rewritten = "#version 120\nvarying vec4 c;\n#define A 1\n#undef A\n#define A 2\nvoid main() {\n    float f = float(1);\n    gl_FragColor = c;\n}\n";
+        let found: Vec<String> = origins_of_rewritten(rewritten, expanded, &origins).iter().map(|o| o.as_ref().unwrap().to_string()).collect();
+        assert_eq!(found, ["a.fsh:1", "a.fsh:2", "a.fsh:3", "a.fsh:3", "a.fsh:4", "a.fsh:5", "a.fsh:6", "lib/out.glsl:7", "a.fsh:8"]);
+    }
+
     use super::*;
 
     #[test]

@@ -271,7 +271,8 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         failed = true;
     }
     if report.non_finite_pixels > 0 {
-        tell!("error: {} pixels of the screen are NaN or Inf", report.non_finite_pixels);
+        let first = report.first_non_finite.as_ref().map_or(String::new(), |f| format!(": {f}"));
+        tell!("error: {} pixels of the screen are NaN or Inf{first}", report.non_finite_pixels);
         failed = true;
     }
     for (program, why) in &report.failed_programs {

@@ -163,6 +163,9 @@ impl Gpu {
                     message.push_str(&format!(": {inner}"));
                     source = inner.source();
                 }
+                if let Some(said) = varyings_past_the_limit(&message) {
+                    message.push_str(&format!(": {said}"));
+                }
                 // wgpu quotes the lowered text's names; the pack author wrote the GLSL ones.
                 Err(HarnessError::Wgpu(tidepack_glsl::lower::unlower_names(&message)))
             }
@@ -171,3 +174,28 @@ impl Gpu {
     }
 }
 
+/// wgpu's refusal of a pipeline whose stages pass varyings at more locations than the adapter
+/// has, said in GLSL's terms, or `None` for another error.
+fn varyings_past_the_limit(message: &str) -> Option<String> {
+    let rest = &message[message.find("output location Location[")? + "output location Location[".len()..];
+    let location: u32 = rest[..rest.find(']')?].parse().ok()?;
+    let limit_at = message.find("`max_inter_stage_shader_variables` limit (")? + "`max_inter_stage_shader_variables` limit (".len();
+    let limit: u32 = message[limit_at..].split(|c: char| !c.is_ascii_digit()).next()?.parse().ok()?;
+    Some(format!(
+        "in GLSL terms, the vertex stage's varyings (one location per vec4, a matrix one per column) reach location {location}, and this \
+         adapter passes {} (locations 0-{limit})",
+        limit + 1
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_refusal_for_too_many_varyings_is_said_in_glsl_terms() {
+        let wgpu = "gbuffers_terrain (wgpu pipeline): Validation Error: vertex shader output location Location[35] (Float32x4 interpolated as \
+                    Some(Perspective) with sampling Some(Center)) exceeds the `max_inter_stage_shader_variables` limit (30, 0-based)";
+        let said = super::varyings_past_the_limit(wgpu).expect("recognised");
+        assert!(said.contains("reach location 35") && said.contains("passes 31 (locations 0-30)"), "{said}");
+        assert_eq!(super::varyings_past_the_limit("Validation Error: Color state [2] is invalid"), None);
+    }
+}
