@@ -8,6 +8,9 @@
 //! what a stage leaves behind (its outputs, `discard`, stores to buffers and images) through
 //! stores, loads, calls and control flow, over naga's IR. It keeps every value that may reach a
 //! result: it folds no constants, so it can only keep more than the optimiser does.
+//!
+//! Beside it, [`reads_beyond_first_channel`]: whether a texture's lookups are used past their
+//! first channel, which decides how a renderer must bind a depth buffer read as a colour.
 
 use std::collections::HashSet;
 
@@ -259,8 +262,52 @@ impl<'m> Analysis<'m> {
     }
 }
 
+/// Whether `module` uses more than the first channel of a lookup of the texture `global`
+/// (`texture(depthtex0, uv).r` uses the first alone; `.rgb`, `.a` or the whole vector more).
+pub fn reads_beyond_first_channel(module: &Module, global: Handle<naga::GlobalVariable>) -> bool {
+    let functions = module.functions.iter().map(|(_, f)| f).chain(module.entry_points.iter().map(|e| &e.function));
+    functions.into_iter().any(|function| {
+        let lookups: HashSet<Handle<Expression>> = function
+            .expressions
+            .iter()
+            .filter(|(_, e)| match **e {
+                Expression::ImageSample { image, .. } | Expression::ImageLoad { image, .. } => {
+                    matches!(function.expressions[image], Expression::GlobalVariable(g) if g == global)
+                }
+                _ => false,
+            })
+            .map(|(h, _)| h)
+            .collect();
+        if lookups.is_empty() {
+            return false;
+        }
+        let first_only = |e: &Expression| match *e {
+            Expression::AccessIndex { index: 0, .. } => true,
+            Expression::Swizzle { size, pattern, .. } => pattern[..size as usize].iter().all(|c| *c == naga::SwizzleComponent::X),
+            _ => false,
+        };
+        let beyond_in_expressions =
+            function.expressions.iter().any(|(_, e)| !first_only(e) && expression_operands(e).iter().any(|o| lookups.contains(o)));
+        beyond_in_expressions || block_uses_whole(&function.body, &lookups)
+    })
+}
+
+/// Whether a statement of `block` takes one of `values` whole (stores it, passes it, returns it).
+fn block_uses_whole(block: &Block, values: &HashSet<Handle<Expression>>) -> bool {
+    block.iter().any(|statement| match *statement {
+        Statement::Block(ref inner) => block_uses_whole(inner, values),
+        Statement::If { ref accept, ref reject, .. } => block_uses_whole(accept, values) || block_uses_whole(reject, values),
+        Statement::Switch { ref cases, .. } => cases.iter().any(|c| block_uses_whole(&c.body, values)),
+        Statement::Loop { ref body, ref continuing, .. } => block_uses_whole(body, values) || block_uses_whole(continuing, values),
+        Statement::Store { value, .. } => values.contains(&value),
+        Statement::Return { value: Some(value) } => values.contains(&value),
+        Statement::Call { ref arguments, .. } => arguments.iter().any(|a| values.contains(a)),
+        _ => statement_operands(statement).iter().any(|o| values.contains(o)),
+    })
+}
+
 /// The expressions an expression reads.
-fn expression_operands(expression: &Expression) -> Vec<Handle<Expression>> {
+pub fn expression_operands(expression: &Expression) -> Vec<Handle<Expression>> {
     use Expression as E;
     let mut operands = Vec::new();
     match *expression {
@@ -369,6 +416,25 @@ mod tests {
     fn a_condition_around_discard_is_live_and_one_around_nothing_is_not() {
         let found = live(&format!("{HEAD}void main() {{ if (a.x > 0.0) discard; if (b.x > 0.0) {{ float t = 1.0; }} color = vec4(1.0); }}\n"));
         assert!(found.contains("a") && !found.contains("b"), "{found:?}");
+    }
+
+    #[test]
+    fn a_depth_lookup_used_past_its_first_channel_is_told_apart() {
+        let parse = |body: &str| {
+            let text = format!("#version 450\nlayout(set = 0, binding = 0) uniform texture2D depth;\nlayout(set = 0, binding = 1) uniform sampler s;\nlayout(location = 0) out vec4 color;\nvoid main() {{ {body} }}\n");
+            let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
+            naga::front::glsl::Frontend::default().parse(&options, &text).expect("parses")
+        };
+        let beyond = |body: &str| {
+            let module = parse(body);
+            let global = module.global_variables.iter().find(|(_, g)| g.name.as_deref() == Some("depth")).expect("declared").0;
+            reads_beyond_first_channel(&module, global)
+        };
+        assert!(!beyond("color = vec4(texture(sampler2D(depth, s), vec2(0.5)).r);"));
+        assert!(!beyond("color = texture(sampler2D(depth, s), vec2(0.5)).xxxx;"));
+        assert!(beyond("color = vec4(texture(sampler2D(depth, s), vec2(0.5)).rgb, 1.0);"));
+        assert!(beyond("color = texture(sampler2D(depth, s), vec2(0.5));"));
+        assert!(beyond("vec4 d = texture(sampler2D(depth, s), vec2(0.5)); color = vec4(d.a);"));
     }
 
     #[test]

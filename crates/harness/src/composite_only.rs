@@ -22,7 +22,7 @@ use std::collections::BTreeMap;
 use half::f16;
 
 use crate::HarnessError;
-use crate::gpu::bindings::{BindableTextures, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures};
+use crate::gpu::bindings::{BindableTextures, DepthRead, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures};
 use crate::samplers::{SamplerNaming, colour_buffers_read};
 use crate::gpu::own::PassthroughPipeline;
 use crate::gpu::readback::{read_pass_ms, read_texture};
@@ -61,6 +61,9 @@ pub struct CompositeOnly {
     formats: BTreeMap<u8, BufferFormat>,
     depth0: wgpu::Texture,
     depth1: wgpu::Texture,
+    /// The depth buffers as luminance (d, d, d, 1), written when composite binds them
+    /// (`BindableTextures::depth_read`).
+    depth_read: Option<[wgpu::Texture; 2]>,
     out: wgpu::Texture,
     composite: ProgramPipeline,
     quad: FullscreenQuad,
@@ -124,12 +127,15 @@ impl CompositeOnly {
             wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
         );
         let harness_textures = HarnessTextures::new(gpu, &pack.pack);
+        let depth_read = [texture("depthtex0 as luminance (RGBA32F)", OUT, input), texture("depthtex1 as luminance (RGBA32F)", OUT, input)];
+        let depth_read_bound = std::cell::Cell::new(false);
         let bindable = BindableTextures {
             naming: SamplerNaming::Frame,
             harness: &harness_textures,
             colors: &colors,
             depth0: &depth0,
             depth1: &depth1,
+            depth_read: DepthRead { textures: [&depth_read[0], &depth_read[1]], bound: &depth_read_bound },
             lod_depth: [&no_lods; 2],
             shadow: ShadowTextures::empty(&harness_textures),
             sprites: tidepack_scene::mesh::Sprites::Blocks,
@@ -146,6 +152,7 @@ impl CompositeOnly {
             formats,
             depth0,
             depth1,
+            depth_read: depth_read_bound.get().then_some(depth_read),
             out: texture("composite output (RGBA32F)", OUT, output),
             composite,
             quad: FullscreenQuad::new(gpu),
@@ -268,9 +275,12 @@ impl CompositeOnly {
                 BufferFormat::Rgba32F => write(texture, bytemuck::cast_slice(&flat.collect::<Vec<f32>>()), 16),
             }
         }
-        for (name, texture, image) in [("depthtex0", &self.depth0, &g.depth0), ("depthtex1", &self.depth1, &g.depth1)] {
+        for (n, (name, texture, image)) in [("depthtex0", &self.depth0, &g.depth0), ("depthtex1", &self.depth1, &g.depth1)].into_iter().enumerate() {
             check(name, image)?;
             write(texture, bytemuck::cast_slice(&image.pixels.iter().map(|p| p[0]).collect::<Vec<f32>>()), 4);
+            if let Some(read) = &self.depth_read {
+                write(&read[n], bytemuck::cast_slice(&image.pixels.iter().flat_map(|p| [p[0], p[0], p[0], 1.0]).collect::<Vec<f32>>()), 16);
+            }
         }
         self.composite.write_uniforms(gpu, pack.composite(), values)
     }

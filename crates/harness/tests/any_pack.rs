@@ -393,6 +393,20 @@ fn the_faces_on_screen_are_front_faces_in_both_renderers() {
     assert!(count([255, 0, 0]) > screen.pixels().len() / 2, "{} front-face pixels", count([255, 0, 0]));
 }
 
+/// A depth buffer read through `sampler2D` past its first channel (tests/packs/depth_as_luminance)
+/// reads as OptiFine's compatibility profile has it, (d, d, d, 1), in both renderers: green is
+/// red, blue one minus it, alpha 1.
+#[test]
+fn depth_read_as_a_colour_is_luminance_in_both_renderers() {
+    let (report, screen) = render_job("depth_as_luminance");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let luminance = screen.pixels().filter(|p| p.0[1] == p.0[0] && (i32::from(p.0[2]) - (255 - i32::from(p.0[0]))).abs() <= 1 && p.0[3] == 255).count();
+    assert_eq!(luminance, screen.pixels().len(), "pixels whose green is not their red");
+    assert!(screen.pixels().any(|p| p.0[0] < 255), "the terrain's depth is on screen");
+}
+
 /// Our own programs need none of those rewrites.
 #[test]
 fn our_pack_is_given_to_opengl_as_written() {

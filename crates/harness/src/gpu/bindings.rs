@@ -266,6 +266,11 @@ pub(crate) struct BindableTextures<'a> {
     pub colors: &'a BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     pub depth0: &'a wgpu::Texture,
     pub depth1: &'a wgpu::Texture,
+    /// depth0 and depth1 as a colour lookup reads them where a program uses more than its first
+    /// channel: RGBA32F (d, d, d, 1), as OptiFine's compatibility profile reads depth
+    /// (`GL_DEPTH_TEXTURE_MODE` `GL_LUMINANCE`); wgpu has no swizzle. Set when such a program
+    /// binds them: the caller keeps them current then.
+    pub depth_read: DepthRead<'a>,
     /// dhDepthTex0 and dhDepthTex1.
     pub lod_depth: [&'a wgpu::Texture; 2],
     pub shadow: ShadowTextures<'a>,
@@ -273,6 +278,13 @@ pub(crate) struct BindableTextures<'a> {
     pub sprites: Sprites,
     /// Colour buffers read with their mipmaps.
     pub mipmapped: &'a BTreeSet<u8>,
+}
+
+/// The copies of [`BindableTextures::depth_read`], and whether a program bound them.
+#[derive(Clone, Copy)]
+pub(crate) struct DepthRead<'a> {
+    pub textures: [&'a wgpu::Texture; 2],
+    pub bound: &'a std::cell::Cell<bool>,
 }
 
 /// No buffers read with mipmaps.
@@ -864,7 +876,7 @@ fn stage_entries(
     // Textures first, so each sampler knows whether its texture filters.
     let mut resolved: BTreeMap<String, (Source, bool)> = BTreeMap::new();
     let mut problems = Vec::new();
-    for (_, global) in module.global_variables.iter() {
+    for (handle, global) in module.global_variables.iter() {
         let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
         if let naga::TypeInner::Image { class, dim, arrayed, .. } = &module.types[global.ty].inner {
             // A shadow sampler's texture is a depth texture, sampled by comparison.
@@ -885,7 +897,19 @@ fn stage_entries(
                 }
                 continue;
             }
-            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| Ok((source, textures.texture(gpu, source, depth_class)?)));
+            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| {
+                // A depth buffer whose lookups are used past their first channel reads as
+                // luminance (see `BindableTextures::depth_read`).
+                let read = match source {
+                    Source::Depth0 | Source::Depth1 if !depth_class && tidepack_glsl::liveness::reads_beyond_first_channel(module, handle) => {
+                        textures.depth_read.bound.set(true);
+                        let texture = textures.depth_read.textures[usize::from(source == Source::Depth1)];
+                        (view(texture), false)
+                    }
+                    _ => textures.texture(gpu, source, depth_class)?,
+                };
+                Ok((source, read))
+            });
             match bound {
                 Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_)) => {
                     problems.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));

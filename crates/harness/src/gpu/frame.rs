@@ -21,7 +21,7 @@ use crate::uniforms::{self, Pass, Value};
 
 use super::Gpu;
 use super::bindings::{
-    BindableTextures, DEPTH, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, ShadowTextures,
+    BindableTextures, DEPTH, DepthRead, DrawState, FullscreenQuad, HarnessTextures, NO_MIPMAPS, OUT, PassKind, ProgramPipeline, ShadowTextures,
     UniformBinding, view,
 };
 use super::geometry::{GeometryDraw, depth_attachment};
@@ -150,6 +150,10 @@ struct FrameTextures {
     snapshots: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
     depth0: wgpu::Texture,
     depth1: wgpu::Texture,
+    /// depth0 and depth1 as a lookup used past its first channel reads them (d, d, d, 1), kept
+    /// current while `depth_read_bound` (see `BindableTextures::depth_read`).
+    depth_read: [wgpu::Texture; 2],
+    depth_read_bound: std::cell::Cell<bool>,
     /// Distant Horizons' depth buffers, dhDepthTex0 and dhDepthTex1.
     lod_depth: [wgpu::Texture; 2],
     screen: wgpu::Texture,
@@ -175,7 +179,7 @@ impl FrameTextures {
     /// is made.
     fn check_budget(gpu: &Gpu, pack: &AnyPack, plan: &FramePlan, scene: &Scene) -> Result<(), HarnessError> {
         let pixels = u64::from(scene.width()) * u64::from(scene.height());
-        let mut per_pixel = 4 * texel_bytes(DEPTH) + texel_bytes(OUT);
+        let mut per_pixel = 4 * texel_bytes(DEPTH) + 3 * texel_bytes(OUT);
         for &b in &plan.buffers {
             let bytes = texel_bytes(gpu.texture_format(pack.format_of(b))?);
             // Two to draw into and read from, one snapshot; a mip chain adds a third of a level.
@@ -230,6 +234,8 @@ impl FrameTextures {
             snapshots,
             depth0: texture("depthtex0", DEPTH),
             depth1: texture("depthtex1", DEPTH),
+            depth_read: [texture("depthtex0 as a colour lookup reads it", OUT), texture("depthtex1 as a colour lookup reads it", OUT)],
+            depth_read_bound: std::cell::Cell::new(false),
             lod_depth: [texture("dhDepthTex0", DEPTH), texture("dhDepthTex1", DEPTH)],
             screen: texture("screen (RGBA32F)", OUT),
             shadow_size,
@@ -237,6 +243,11 @@ impl FrameTextures {
             shadow_depth_read: [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)],
             shadow_colours,
         })
+    }
+
+    /// depth_read with depth0 and depth1 as `[n0, n1]` of it.
+    fn depth_read(&self, n: [usize; 2]) -> DepthRead<'_> {
+        DepthRead { textures: n.map(|i| &self.depth_read[i]), bound: &self.depth_read_bound }
     }
 
     fn shadow(&self) -> ShadowTextures<'_> {
@@ -254,6 +265,9 @@ impl FrameTextures {
             .iter()
             .flat_map(|(b, buffer)| buffer.textures.iter().map(move |t| (t, pack.clear_of(*b).colour(*b, scene.sky.fog_color))))
             .collect();
+        // depth_read[0] is depth0 as luminance, cleared with it; depth1 and its copy are not.
+        let mut colours = colours;
+        colours.push((&self.depth_read[0], [1.0; 4]));
         record_clears(encoder, &colours, &self.depth0);
         record_clears(encoder, &[], &self.lod_depth[0]);
         let mut shadow_clears: Vec<(&wgpu::Texture, [f64; 4])> =
@@ -296,6 +310,7 @@ impl<'p> PreparedSteps<'p> {
                         colors: &textures.snapshots,
                         depth0: &textures.depth1,
                         depth1: &textures.depth1,
+                        depth_read: textures.depth_read([1, 1]),
                         // Likewise dhDepthTex0 while Distant Horizons draws into it.
                         lod_depth: [&textures.lod_depth[1]; 2],
                         shadow: textures.shadow(),
@@ -319,6 +334,7 @@ impl<'p> PreparedSteps<'p> {
                         colors: &textures.shadow_colours,
                         depth0: &textures.depth1,
                         depth1: &textures.depth1,
+                        depth_read: textures.depth_read([1, 1]),
                         lod_depth: [&textures.lod_depth[1]; 2],
                         shadow: ShadowTextures::empty(harness),
                         sprites: Sprites::Blocks,
@@ -402,6 +418,7 @@ impl<'p> PreparedSteps<'p> {
             colors: &reading,
             depth0: &textures.depth0,
             depth1: &textures.depth1,
+            depth_read: textures.depth_read([0, 1]),
             lod_depth: [&textures.lod_depth[0], &textures.lod_depth[1]],
             shadow: textures.shadow(),
             sprites: Sprites::Blocks,
@@ -421,6 +438,8 @@ struct Recorder<'r> {
     textures: &'r FrameTextures,
     mipmaps: &'r MipmapPipelines,
     depth_as_luminance: &'r PassthroughPipeline,
+    /// depth0 into `FrameTextures::depth_read[0]`, where a program reads it so.
+    depth0_as_luminance: &'r PassthroughPipeline,
     quad: &'r FullscreenQuad,
 }
 
@@ -435,8 +454,16 @@ impl Recorder<'_> {
                 }
                 let depth = if *lod { &t.lod_depth[0] } else { &t.depth0 };
                 draw.record(encoder, &|b| &t.buffers[&b].textures[current[&b]], depth, stamps);
+                if !*lod && t.depth_read_bound.get() {
+                    self.depth0_as_luminance.record(encoder, &t.depth_read[0], None);
+                }
             }
-            Work::DepthCopy => encoder.copy_texture_to_texture(t.depth0.as_image_copy(), t.depth1.as_image_copy(), t.size),
+            Work::DepthCopy => {
+                encoder.copy_texture_to_texture(t.depth0.as_image_copy(), t.depth1.as_image_copy(), t.size);
+                if t.depth_read_bound.get() {
+                    encoder.copy_texture_to_texture(t.depth_read[0].as_image_copy(), t.depth_read[1].as_image_copy(), t.size);
+                }
+            }
             Work::LodDepthCopy => encoder.copy_texture_to_texture(t.lod_depth[0].as_image_copy(), t.lod_depth[1].as_image_copy(), t.size),
             Work::ShadowGeometry(draw) => {
                 draw.record(encoder, &|b| &t.shadow_colours[&b].0, &t.shadow_depth[0], stamps);
@@ -465,6 +492,7 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
     let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
     // shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
     let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
+    let depth0_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth0)?;
     let quad = FullscreenQuad::new(gpu);
 
     let mut not_modelled = pack.not_modelled.clone();
@@ -479,7 +507,8 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
     not_modelled.extend(prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}: zero (the harness has no value for it)")));
     not_modelled.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}: zero (the harness's vertices do not carry it)")));
 
-    let recorder = Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, quad: &quad };
+    let recorder =
+        Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, depth0_as_luminance: &depth0_as_luminance, quad: &quad };
     let (passes, timing) = run_frames(&recorder, pack, scene, &plan, &prepared.steps, frames)?;
     let mut images = BTreeMap::new();
     for (b, buffer) in &textures.buffers {
