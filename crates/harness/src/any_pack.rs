@@ -176,8 +176,11 @@ impl ProgramLoading<'_> {
             // An `alphaTest.<program>` setting the harness cannot imitate leaves no test.
             directives::alpha_test(properties, name, default).unwrap_or(None)
         };
-        let undeclared = if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs };
-        match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, undeclared) {
+        let reading = program::LoaderReading {
+            undeclared: if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
+            resolves_version: loader.resolves_version_first(),
+        };
+        match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {
                 if test != LoaderAlphaTest::None
                     && let Err(e) = directives::alpha_test(properties, name, None)

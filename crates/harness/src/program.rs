@@ -271,6 +271,35 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
+/// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
+/// profile) with the `#version` the preprocessor resolved on the first line and every other
+/// `#version` line left blank, as a loader that preprocesses first gives it to the driver; and
+/// what was done. `None` where `#version` already comes first or the stage has none.
+fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionDirective>) -> Option<(String, String)> {
+    let version = version?;
+    let first = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with("//"))?;
+    if first.starts_with("#version") {
+        return None;
+    }
+    let directive = match &version.profile {
+        Some(profile) => format!("#version {} {profile}", version.number),
+        None => format!("#version {}", version.number),
+    };
+    let mut resolved = format!("{directive}\n");
+    for line in text.lines() {
+        let directive_line = line.trim_start().strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with("version"));
+        resolved.push_str(if directive_line { "" } else { line });
+        resolved.push('\n');
+    }
+    Some((resolved, format!("`{directive}`, chosen inside an `#if`, put first as Iris's preprocessor leaves it")))
+}
+
+/// Where the `#version` the preprocessor kept is in the pack.
+fn version_location(pre: &preprocess::Preprocessed) -> Option<Location> {
+    let line = pre.text.lines().position(|l| l.trim_start().starts_with("#version"))?;
+    pre.location(line as u32 + 1)
+}
+
 /// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
 /// inserts, an `#extension` moved up, a `main` wrapped.
 const REWRITE_REACH: usize = 64;
@@ -304,6 +333,14 @@ pub(crate) struct ProgramFiles<'a> {
     pub fragment: String,
 }
 
+/// How the loader reads a stage's text before the driver sees it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LoaderReading {
+    pub undeclared: UndeclaredTargets,
+    /// [`Loader::resolves_version_first`].
+    pub resolves_version: bool,
+}
+
 /// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum UndeclaredTargets {
@@ -322,7 +359,7 @@ pub(crate) fn load_program_files(
     files: &ProgramFiles,
     macros: &preprocess::PreprocessOptions,
     alpha_test: &dyn Fn(&str) -> Option<f32>,
-    undeclared: UndeclaredTargets,
+    reading: LoaderReading,
 ) -> Result<LoadedProgram, HarnessError> {
     let name = files.name;
     let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
@@ -416,6 +453,12 @@ pub(crate) fn load_program_files(
             (gl_text, gl_rewrites) = for_opengl(&repaired);
             gl_rewrites.extend(made);
         }
+        if reading.resolves_version
+            && let Some((resolved, what)) = version_resolved_on_top(&gl_text, stage.preprocessed.version.as_ref())
+        {
+            gl_text = resolved;
+            gl_rewrites.push(format!("{path}: {what}"));
+        }
         if stage.stage == Stage::Vertex {
             gl_text = with_lod_material_attribute(name, &gl_text)?;
         }
@@ -429,7 +472,11 @@ pub(crate) fn load_program_files(
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
         }
-        let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
+        let mut gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
+        // A `#version` put first comes from where the preprocessor found it.
+        if let (Some(first), Some(at)) = (gl_origins.first_mut(), version_location(&stage.preprocessed)) {
+            first.get_or_insert(at);
+        }
         stages.push(LoadedStage {
             stage: stage.stage,
             path,
@@ -445,7 +492,7 @@ pub(crate) fn load_program_files(
     }
     let fragment = stages.pop().expect("two stages");
     let vertex = stages.pop().expect("two stages");
-    let render_targets = match (declared_targets, undeclared) {
+    let render_targets = match (declared_targets, reading.undeclared) {
         (Some(buffers), _) => buffers,
         (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
         (None, UndeclaredTargets::FirstOnly) => vec![0],
@@ -758,6 +805,17 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 
 #[cfg(test)]
 mod tests {
+    /// Iris gives the driver the `#version` its preprocessor chose, first; the others go.
+    #[test]
+    fn a_version_chosen_inside_an_if_is_put_first() {
+        let version = tidepack_glsl::preprocess::VersionDirective { number: 450, profile: Some("compatibility".into()) };
+        let text = "// header\n#ifdef CORE_PROFILE\n  #version 450 core\n#else\n  #version 450 compatibility\n#endif\nvoid main() {}\n";
+        let (resolved, what) = super::version_resolved_on_top(text, Some(&version)).expect("rewritten");
+        assert_eq!(resolved, "#version 450 compatibility\n// header\n#ifdef CORE_PROFILE\n\n#else\n\n#endif\nvoid main() {}\n");
+        assert!(what.contains("#version 450 compatibility"), "{what}");
+        assert!(super::version_resolved_on_top("#version 120\nvoid main() {}\n", Some(&version)).is_none());
+    }
+
     /// A driver's line names the pack line it came from through the compat rewrites: an inserted
     /// line takes its predecessor's origin, a changed one too, and the lines after follow.
     #[test]

@@ -418,14 +418,33 @@ fn our_pack_is_given_to_opengl_as_written() {
     }
 }
 
+/// A `#version` the pack chooses inside an `#if` of an include (tests/packs/version_chosen_in_include):
+/// under Iris, whose preprocessor resolves it, both renderers draw the program, OpenGL from the
+/// text with the chosen `#version` first, and the report says so.
+#[test]
+fn a_version_chosen_in_an_if_is_given_first_under_iris() {
+    let configuration = Configuration { loader: Loader::Iris, ..Configuration::default() };
+    let (report, _) = render_job_with("version_chosen_in_include", configuration);
+    assert!(report.renderer.name == "wgpu", "{:?}", report.renderer);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(report.gl_rewrites.iter().any(|r| r.contains("`#version 330 compatibility`, chosen inside an `#if`")), "{:?}", report.gl_rewrites);
+}
+
 /// `render --pack` of tests/packs/`name` on case4_above_near, two frames, with `--gl`: the
 /// report and the screen.
 fn render_job(name: &str) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {
+    render_job_with(name, Configuration::default())
+}
+
+/// [`render_job`] under `configuration`.
+fn render_job_with(name: &str, configuration: Configuration) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {
     let out = std::env::temp_dir().join(format!("tidepack-{name}-{}", std::process::id()));
     let job = tidepack_harness::job::AnyPackJob {
         scene: root().join("tests/scenes/case4_above_near.toml"),
         pack: root().join("tests/packs").join(name),
-        configuration: Configuration::default(),
+        configuration,
         out_dir: out.clone(),
         buffers: false,
         gl: true,

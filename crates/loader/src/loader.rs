@@ -91,6 +91,14 @@ impl Loader {
         }
     }
 
+    /// Whether the driver gets a stage's `#version` as the loader's own preprocessor resolved it.
+    /// Iris runs every stage through its preprocessor before its transformer reads the text, so a
+    /// `#version` inside the pack's `#if` (one per profile) reaches the driver alone, on top;
+    /// OptiFine gives the driver the text with its includes expanded, conditionals and all.
+    pub fn resolves_version_first(self) -> bool {
+        self == Loader::Iris
+    }
+
     /// Reads `blend.<program>.<buffer>`: OptiFine from 1.16.5 HD U G7, Iris from 1.4 with
     /// OpenGL 4.0. Older OptiFine skips such keys without a word.
     pub fn per_buffer_blend(self) -> bool {
