@@ -179,6 +179,9 @@ impl ProgramLoading<'_> {
         let reading = program::LoaderReading {
             undeclared: if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
             resolves_version: loader.resolves_version_first(),
+            // Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
+            // renamed sampler reads texture unit 0, colortex0, as `gcolor` does here already.
+            renames_albedo_sampler: loader.renames_albedo_sampler() && ["gbuffers_", "shadow", "dh_"].iter().any(|p| name.starts_with(p)),
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {

@@ -271,6 +271,72 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
+/// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and
+/// every use of that name that is not a call, as Iris's transformer has it (where both are
+/// declared, `texture`'s single-name declaration goes); and what was done. `None` where neither
+/// is declared as a sampler at file scope, where another declaration takes the name, or where
+/// the stage declares `gtexture` itself.
+fn albedo_sampler_as_gtexture(text: &str) -> Option<(String, String)> {
+    use tidepack_glsl::token::{TokenKind, brace_depths, significant, tokenize};
+    let tokens = tokenize(text).ok()?;
+    let depths = brace_depths(&tokens);
+    let order = significant(&tokens);
+    // The file-scope declarations naming `name`: (first token, `;`, whether a sampler, names in it).
+    let declarations = |name: &str| -> Vec<(usize, usize, bool, usize)> {
+        let mut found = Vec::new();
+        let mut start = 0usize;
+        for (k, &i) in order.iter().enumerate() {
+            if depths[i] != 0 {
+                start = k + 1;
+                continue;
+            }
+            if tokens[i].is_punct(";") || tokens[i].is_punct("}") {
+                let statement = &order[start..k];
+                if statement.iter().any(|&j| tokens[j].is_ident(name)) && !statement.iter().any(|&j| tokens[j].is_punct("(")) {
+                    let sampler = statement.iter().any(|&j| tokens[j].is_ident("uniform"))
+                        && statement.iter().any(|&j| tokens[j].kind == TokenKind::Ident && tokens[j].text == "sampler2D");
+                    let names = 1 + statement.iter().filter(|&&j| tokens[j].is_punct(",")).count();
+                    found.push((start, k, sampler, names));
+                }
+                start = k + 1;
+            }
+        }
+        found
+    };
+    if !declarations("gtexture").is_empty() {
+        return None;
+    }
+    let declared = |name: &str| {
+        let found = declarations(name);
+        (found.len() == 1 && found[0].2).then(|| found[0])
+    };
+    let (gcolor, texture) = (declared("gcolor"), declared("texture"));
+    let dropped = match (gcolor, texture) {
+        (Some(_), Some(t)) if t.3 == 1 => Some(t),
+        (Some(_), Some(_)) | (None, None) => return None,
+        _ => None,
+    };
+    let renamed: Vec<&str> = [gcolor.map(|_| "gcolor"), texture.map(|_| "texture")].into_iter().flatten().collect();
+    let mut out = String::with_capacity(text.len());
+    for (k, &i) in order.iter().enumerate() {
+        let previous_end = if k == 0 { 0 } else { tokens[order[k - 1]].offset + tokens[order[k - 1]].text.len() };
+        out.push_str(&text[previous_end..tokens[i].offset]);
+        let in_dropped = dropped.is_some_and(|(from, to, _, _)| (from..=to).contains(&k));
+        let call = order.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+        if in_dropped {
+            continue;
+        }
+        if tokens[i].kind == TokenKind::Ident && renamed.contains(&tokens[i].text) && !call {
+            out.push_str("gtexture");
+        } else {
+            out.push_str(tokens[i].text);
+        }
+    }
+    let end = order.last().map_or(0, |&i| tokens[i].offset + tokens[i].text.len());
+    out.push_str(&text[end..]);
+    Some((out, format!("`{}` named `gtexture`, as Iris's transformer names the albedo sampler", renamed.join("` and `"))))
+}
+
 /// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
 /// profile) with the `#version` the preprocessor resolved on the first line and every other
 /// `#version` line left blank, as a loader that preprocesses first gives it to the driver; and
@@ -339,6 +405,8 @@ pub(crate) struct LoaderReading {
     pub undeclared: UndeclaredTargets,
     /// [`Loader::resolves_version_first`].
     pub resolves_version: bool,
+    /// [`Loader::renames_albedo_sampler`], for this program.
+    pub renames_albedo_sampler: bool,
 }
 
 /// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
@@ -370,6 +438,11 @@ pub(crate) fn load_program_files(
         let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
+        if reading.renames_albedo_sampler
+            && let Some((renamed, _)) = albedo_sampler_as_gtexture(&p.text)
+        {
+            p.text = renamed;
+        }
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
@@ -403,7 +476,13 @@ pub(crate) fn load_program_files(
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
+        let renamed = reading.renames_albedo_sampler.then(|| albedo_sampler_as_gtexture(&expanded)).flatten();
+        let (expanded, renamed_albedo) = match renamed {
+            Some((text, what)) => (text, Some(format!("{path}: {what}"))),
+            None => (expanded, None),
+        };
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
+        gl_rewrites.extend(renamed_albedo.clone());
         let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
@@ -451,6 +530,7 @@ pub(crate) fn load_program_files(
                 }
             }
             (gl_text, gl_rewrites) = for_opengl(&repaired);
+            gl_rewrites.extend(renamed_albedo.clone());
             gl_rewrites.extend(made);
         }
         if reading.resolves_version
@@ -805,6 +885,22 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 
 #[cfg(test)]
 mod tests {
+    /// Iris names a `gcolor` or `texture` sampler `gtexture`: its declaration and every use
+    /// that is not a call; with both declared, `texture`'s declaration goes.
+    #[test]
+    fn the_albedo_sampler_is_named_gtexture_as_iris_names_it() {
+        let text = "#version 120\nuniform sampler2D gcolor;\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gcolor, uv) + texture2D(texture, uv) + texture(gtexture, uv);\n}\n";
+        let (renamed, what) = super::albedo_sampler_as_gtexture(text).expect("renamed");
+        assert_eq!(
+            renamed,
+            "#version 120\nuniform sampler2D gtexture;\n  \nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gtexture, uv) + texture2D(gtexture, uv) + texture(gtexture, uv);\n}\n"
+        );
+        assert!(what.contains("`gcolor` and `texture`"), "{what}");
+        // A stage declaring gtexture, or gcolor as something else, is left alone.
+        assert!(super::albedo_sampler_as_gtexture("uniform sampler2D gtexture;\nuniform sampler2D gcolor;\n").is_none());
+        assert!(super::albedo_sampler_as_gtexture("uniform vec4 gcolor;\nvoid main() {}\n").is_none());
+    }
+
     /// Iris gives the driver the `#version` its preprocessor chose, first; the others go.
     #[test]
     fn a_version_chosen_inside_an_if_is_put_first() {

@@ -99,6 +99,14 @@ impl Loader {
         self == Loader::Iris
     }
 
+    /// Whether a stage's `uniform sampler2D gcolor;` or `texture;` is the albedo texture under the
+    /// name `gtexture`: Iris's transformer renames such a declaration, and every use of the name
+    /// that is not a call, to `gtexture` (keeping one declaration where both exist), and binds
+    /// `gtexture` to the albedo in the world's programs.
+    pub fn renames_albedo_sampler(self) -> bool {
+        self == Loader::Iris
+    }
+
     /// Reads `blend.<program>.<buffer>`: OptiFine from 1.16.5 HD U G7, Iris from 1.4 with
     /// OpenGL 4.0. Older OptiFine skips such keys without a word.
     pub fn per_buffer_blend(self) -> bool {
