@@ -379,10 +379,13 @@ fn statement_operands(statement: &Statement) -> Vec<Handle<Expression>> {
 mod tests {
     use super::*;
 
-    fn live(fragment: &str) -> HashSet<String> {
+    fn fragment_module(text: &str) -> Module {
         let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
-        let module = naga::front::glsl::Frontend::default().parse(&options, fragment).expect("parses");
-        live_global_names(&module)
+        naga::front::glsl::Frontend::default().parse(&options, text).expect("parses")
+    }
+
+    fn live(fragment: &str) -> HashSet<String> {
+        live_global_names(&fragment_module(fragment))
     }
 
     const HEAD: &str = "#version 450\nlayout(location = 0) in vec3 a;\nlayout(location = 1) in vec3 b;\nlayout(location = 0) out vec4 color;\n";
@@ -420,13 +423,8 @@ mod tests {
 
     #[test]
     fn a_depth_lookup_used_past_its_first_channel_is_told_apart() {
-        let parse = |body: &str| {
-            let text = format!("#version 450\nlayout(set = 0, binding = 0) uniform texture2D depth;\nlayout(set = 0, binding = 1) uniform sampler s;\nlayout(location = 0) out vec4 color;\nvoid main() {{ {body} }}\n");
-            let options = naga::front::glsl::Options::from(naga::ShaderStage::Fragment);
-            naga::front::glsl::Frontend::default().parse(&options, &text).expect("parses")
-        };
         let beyond = |body: &str| {
-            let module = parse(body);
+            let module = fragment_module(&format!("#version 450\nlayout(set = 0, binding = 0) uniform texture2D depth;\nlayout(set = 0, binding = 1) uniform sampler s;\nlayout(location = 0) out vec4 color;\nvoid main() {{ {body} }}\n"));
             let global = module.global_variables.iter().find(|(_, g)| g.name.as_deref() == Some("depth")).expect("declared").0;
             reads_beyond_first_channel(&module, global)
         };

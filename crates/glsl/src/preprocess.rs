@@ -101,6 +101,11 @@ impl Preprocessed {
         let src = self.lines.get(line.checked_sub(1)? as usize)?;
         Some(Location::line(self.files[src.file as usize].clone(), src.line))
     }
+
+    /// The 1-based output line that holds `#version`, if one does.
+    pub fn version_line(&self) -> Option<u32> {
+        self.text.lines().position(|l| l.trim_start().starts_with("#version")).map(|i| i as u32 + 1)
+    }
 }
 
 #[derive(Clone, Debug, Default)]

@@ -181,7 +181,7 @@ impl ProgramLoading<'_> {
             resolves_version: loader.resolves_version_first(),
             // Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
             // renamed sampler reads texture unit 0, colortex0, as `gcolor` does here already.
-            renames_albedo_sampler: loader.renames_albedo_sampler() && ["gbuffers_", "shadow", "dh_"].iter().any(|p| name.starts_with(p)),
+            renames_albedo_sampler: loader.renames_albedo_sampler() && programs::binds_as_gbuffers(name),
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {

@@ -360,12 +360,6 @@ fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionDirec
     Some((resolved, format!("`{directive}`, chosen inside an `#if`, put first as Iris's preprocessor leaves it")))
 }
 
-/// Where the `#version` the preprocessor kept is in the pack.
-fn version_location(pre: &preprocess::Preprocessed) -> Option<Location> {
-    let line = pre.text.lines().position(|l| l.trim_start().starts_with("#version"))?;
-    pre.location(line as u32 + 1)
-}
-
 /// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
 /// inserts, an `#extension` moved up, a `main` wrapped.
 const REWRITE_REACH: usize = 64;
@@ -554,7 +548,7 @@ pub(crate) fn load_program_files(
         }
         let mut gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
         // A `#version` put first comes from where the preprocessor found it.
-        if let (Some(first), Some(at)) = (gl_origins.first_mut(), version_location(&stage.preprocessed)) {
+        if let (Some(first), Some(at)) = (gl_origins.first_mut(), stage.preprocessed.version_line().and_then(|l| stage.preprocessed.location(l))) {
             first.get_or_insert(at);
         }
         stages.push(LoadedStage {

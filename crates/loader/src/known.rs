@@ -97,9 +97,7 @@ pub fn is_sampler(name: &str) -> bool {
 /// Why `sampler` reads something else than its name says in `program` (OptiFine binds units by
 /// program group), or `None` when it is available there.
 pub fn sampler_unavailable(program: &str, sampler: &str) -> Option<&'static str> {
-    // Iris's shadow_solid, shadow_water, … bind as `shadow` does, and Distant Horizons' dh_*
-    // programs as gbuffers do.
-    let gbuffers_style = program.starts_with("gbuffers_") || program == "shadow" || program.starts_with("shadow_") || program.starts_with("dh_");
+    let gbuffers_style = crate::programs::binds_as_gbuffers(program);
     let low_colortex = matches!(sampler, "colortex0" | "colortex1" | "colortex2" | "colortex3" | "gcolor" | "gdepth" | "gnormal" | "composite");
     let atlas_units = matches!(sampler, "texture" | "gtexture" | "tex" | "lightmap" | "normals" | "specular");
     if gbuffers_style && low_colortex {

@@ -136,7 +136,7 @@ fn above_configured_glsl(pre: &Preprocessed, macros: &PreprocessOptions) -> Opti
 
 /// The 1-based line of the preprocessed text that holds `#version` (1 when none does).
 fn version_line(pre: &Preprocessed) -> u32 {
-    pre.text.lines().position(|l| l.trim_start().starts_with("#version")).map_or(1, |i| i as u32 + 1)
+    pre.version_line().unwrap_or(1)
 }
 
 fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
