@@ -50,6 +50,7 @@ impl std::error::Error for DriverError {}
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ProgramStep {
     CompileVertex,
+    CompileGeometry,
     CompileFragment,
     Link,
 }
@@ -58,6 +59,7 @@ impl fmt::Display for ProgramStep {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             ProgramStep::CompileVertex => "vertex shader compilation",
+            ProgramStep::CompileGeometry => "geometry shader compilation",
             ProgramStep::CompileFragment => "fragment shader compilation",
             ProgramStep::Link => "program link",
         })
@@ -335,17 +337,19 @@ impl GlContext {
         &self.gl
     }
 
-    /// Compiles a vertex and a fragment shader exactly as given, binds the named vertex
-    /// attributes (`glBindAttribLocation`) and fragment outputs (`glBindFragDataLocation`) to
-    /// their locations, and links. A failure returns the driver's log.
+    /// Compiles a vertex, an optional geometry and a fragment shader exactly as given, binds the
+    /// named vertex attributes (`glBindAttribLocation`) and fragment outputs
+    /// (`glBindFragDataLocation`) to their locations, and links. A failure returns the driver's
+    /// log.
     pub fn compile_program(
         &self,
         vertex_text: &str,
+        geometry_text: Option<&str>,
         fragment_text: &str,
         attributes: &[(&str, u32)],
         frag_data: &[(&str, u32)],
     ) -> Result<GlProgram, DriverLog> {
-        self.link(vertex_text, Some(fragment_text), attributes, frag_data, &[])
+        self.link(vertex_text, geometry_text, Some(fragment_text), attributes, frag_data, &[])
     }
 
     /// Compiles a vertex shader exactly as given and links it alone, recording the named outputs
@@ -358,12 +362,13 @@ impl GlContext {
         attributes: &[(&str, u32)],
         captured: &[&str],
     ) -> Result<GlProgram, DriverLog> {
-        self.link(vertex_text, None, attributes, &[], captured)
+        self.link(vertex_text, None, None, attributes, &[], captured)
     }
 
     fn link(
         &self,
         vertex_text: &str,
+        geometry_text: Option<&str>,
         fragment_text: Option<&str>,
         attributes: &[(&str, u32)],
         frag_data: &[(&str, u32)],
@@ -372,19 +377,35 @@ impl GlContext {
         let gl = &self.gl;
         // SAFETY: plain GL calls on the current context with objects created here.
         unsafe {
-            let vs = self.compile_shader(glow::VERTEX_SHADER, vertex_text, ProgramStep::CompileVertex)?;
-            let fs = match fragment_text.map(|t| self.compile_shader(glow::FRAGMENT_SHADER, t, ProgramStep::CompileFragment)) {
-                None => None,
-                Some(Ok(fs)) => Some(fs),
-                Some(Err(e)) => {
-                    gl.delete_shader(vs);
-                    return Err(e);
+            let sources = [
+                (glow::VERTEX_SHADER, Some(vertex_text), ProgramStep::CompileVertex),
+                (glow::GEOMETRY_SHADER, geometry_text, ProgramStep::CompileGeometry),
+                (glow::FRAGMENT_SHADER, fragment_text, ProgramStep::CompileFragment),
+            ];
+            let mut shaders = Vec::new();
+            for (kind, text, step) in sources {
+                let Some(text) = text else { continue };
+                match self.compile_shader(kind, text, step) {
+                    Ok(shader) => shaders.push(shader),
+                    Err(e) => {
+                        for shader in shaders {
+                            gl.delete_shader(shader);
+                        }
+                        return Err(e);
+                    }
+                }
+            }
+            let program = match gl.create_program() {
+                Ok(program) => program,
+                Err(log) => {
+                    for shader in shaders {
+                        gl.delete_shader(shader);
+                    }
+                    return Err(DriverLog { step: ProgramStep::Link, log });
                 }
             };
-            let program = gl.create_program().map_err(|log| DriverLog { step: ProgramStep::Link, log })?;
-            gl.attach_shader(program, vs);
-            if let Some(fs) = fs {
-                gl.attach_shader(program, fs);
+            for &shader in &shaders {
+                gl.attach_shader(program, shader);
             }
             for (name, location) in attributes {
                 gl.bind_attrib_location(program, *location, name);
@@ -398,19 +419,18 @@ impl GlContext {
             gl.link_program(program);
             let linked = gl.get_program_link_status(program);
             let log = gl.get_program_info_log(program);
-            let vs_log = gl.get_shader_info_log(vs);
-            let fs_log = fs.map(|fs| gl.get_shader_info_log(fs)).unwrap_or_default();
-            gl.detach_shader(program, vs);
-            gl.delete_shader(vs);
-            if let Some(fs) = fs {
-                gl.detach_shader(program, fs);
-                gl.delete_shader(fs);
+            let mut logs: Vec<String> = Vec::new();
+            for shader in shaders {
+                logs.push(gl.get_shader_info_log(shader));
+                gl.detach_shader(program, shader);
+                gl.delete_shader(shader);
             }
             if !linked {
                 gl.delete_program(program);
                 return Err(DriverLog { step: ProgramStep::Link, log });
             }
-            let log = [vs_log, fs_log, log].into_iter().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("\n");
+            logs.push(log);
+            let log = logs.into_iter().filter(|l| !l.trim().is_empty()).collect::<Vec<_>>().join("\n");
             Ok(GlProgram { raw: program, log })
         }
     }

@@ -156,10 +156,16 @@ impl ProgramLoading<'_> {
         }
         let program = self.present.get(name)?;
         let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
-        let files =
-            ProgramFiles { name, vertex: stage_file(tidepack_glsl::Stage::Vertex)?, fragment: stage_file(tidepack_glsl::Stage::Fragment)? };
-        if !program.other_stages.is_empty() {
-            self.not_modelled.push(format!("{name}: geometry and tessellation stages ({})", program.other_stages.join(", ")));
+        let (geometry, tessellation): (Vec<&String>, Vec<&String>) = program.other_stages.iter().partition(|path| path.ends_with(".gsh"));
+        let files = ProgramFiles {
+            name,
+            vertex: stage_file(tidepack_glsl::Stage::Vertex)?,
+            geometry: geometry.first().map(|path| path.to_string()),
+            fragment: stage_file(tidepack_glsl::Stage::Fragment)?,
+        };
+        if !tessellation.is_empty() {
+            let files: Vec<&str> = tessellation.iter().map(|path| path.as_str()).collect();
+            self.not_modelled.push(format!("{name}: tessellation stages ({})", files.join(", ")));
         }
         if !program.compute.is_empty() {
             self.not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
@@ -509,9 +515,8 @@ impl AnyPack {
     pub fn gl_rewrites(&self) -> Vec<String> {
         self.programs()
             .flat_map(|p| {
-                [&p.vertex, &p.fragment]
-                    .into_iter()
-                    .flat_map(move |stage| stage.gl_rewrites.iter().map(move |r| format!("{}: {r}", p.name)))
+                let geometry = p.geometry.iter().flat_map(|g| &g.gl_rewrites);
+                p.vertex.gl_rewrites.iter().chain(geometry).chain(&p.fragment.gl_rewrites).map(move |r| format!("{}: {r}", p.name))
             })
             .collect()
     }

@@ -217,8 +217,8 @@ pub(crate) unsafe fn draw_own_colour(
     let vertex = if depth == DepthMapping::Harness { COLOUR_VS_HARNESS } else { COLOUR_VS };
     let attributes = [("position", 0), ("color", 1)];
     let own = match missing {
-        MissingProgramDraws::FirstBufferOnly => ctx.compile_program(vertex, COLOUR_FS, &attributes, &[("outColor", 0)]),
-        MissingProgramDraws::EveryBuffer => ctx.compile_program(vertex, COLOUR_FS_EVERY_BUFFER, &attributes, &[]),
+        MissingProgramDraws::FirstBufferOnly => ctx.compile_program(vertex, None, COLOUR_FS, &attributes, &[("outColor", 0)]),
+        MissingProgramDraws::EveryBuffer => ctx.compile_program(vertex, None, COLOUR_FS_EVERY_BUFFER, &attributes, &[]),
     };
     let own = own.map_err(|e| HarnessError::Gl(format!("the harness's colour shader: {e}")))?;
     // SAFETY: the caller holds the current context; the vertex data outlives the draw.
@@ -486,9 +486,10 @@ fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
 /// compiled line came from.
 fn located_log(log: &tidepack_gldriver::DriverLog, program: &LoadedProgram) -> String {
     use tidepack_gldriver::ProgramStep;
-    let stage = match log.step {
-        ProgramStep::CompileVertex => Some(&program.vertex),
-        ProgramStep::CompileFragment => Some(&program.fragment),
+    let origins = match log.step {
+        ProgramStep::CompileVertex => Some(&program.vertex.gl_origins),
+        ProgramStep::CompileGeometry => program.geometry.as_ref().map(|g| &g.gl_origins),
+        ProgramStep::CompileFragment => Some(&program.fragment.gl_origins),
         ProgramStep::Link => None,
     };
     let lines: Vec<String> = log
@@ -497,7 +498,7 @@ fn located_log(log: &tidepack_gldriver::DriverLog, program: &LoadedProgram) -> S
         .lines()
         .map(|line| {
             let message = tidepack_gldriver::parse_log(line).into_iter().next();
-            let origin = message.as_ref().zip(stage).and_then(|(m, s)| s.gl_origins.get(m.line.checked_sub(1)? as usize).cloned().flatten());
+            let origin = message.as_ref().zip(origins).and_then(|(m, o)| o.get(m.line.checked_sub(1)? as usize).cloned().flatten());
             match (message, origin) {
                 (Some(m), Some(at)) => format!("{at}: {}: {}", m.severity, m.message.trim()),
                 _ => line.to_string(),
@@ -524,9 +525,17 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
     let failed = |e: tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} through {}: {}", program.name, ctx.info(), located_log(&e, program)));
     match depth {
         DepthMapping::OpenGl => {
-            ctx.compile_program(&program.vertex.gl_text, &program.fragment.gl_text, &attributes, &frag_data).map(Compiled::Direct).map_err(failed)
+            let geometry = program.geometry.as_ref().map(|g| g.gl_text.as_str());
+            ctx.compile_program(&program.vertex.gl_text, geometry, &program.fragment.gl_text, &attributes, &frag_data)
+                .map(Compiled::Direct)
+                .map_err(failed)
         }
         DepthMapping::Harness => {
+            // What the fragment stage reads comes from the geometry stage, which the recorded
+            // vertex stage does not run.
+            if let Some(geometry) = &program.geometry {
+                return Err(HarnessError::Unsupported(format!("{}: a geometry stage ({}) between the recorded vertex stage and the fragment stage", program.name, geometry.path)));
+            }
             let outputs = vertex_outputs(&program.vertex)?;
             // The pass-through vertex stage reads each output as an attribute, after the
             // position: OpenGL guarantees 16 (Mesa's llvmpipe has no more).
@@ -553,7 +562,7 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
             let mut locations = vec![("tp_position".to_string(), 0u32)];
             locations.extend((0..outputs.len()).map(|i| (format!("tp_output{i}"), i as u32 + 1)));
             let locations: Vec<(&str, u32)> = locations.iter().map(|(n, l)| (n.as_str(), *l)).collect();
-            let draw = match ctx.compile_program(&vertex, &program.fragment.gl_text, &locations, &frag_data) {
+            let draw = match ctx.compile_program(&vertex, None, &program.fragment.gl_text, &locations, &frag_data) {
                 Ok(d) => d,
                 Err(e) => {
                     ctx.delete_program(capture);

@@ -611,7 +611,7 @@ impl<'a> GlPlanFrame<'a> {
     unsafe fn time_passthrough(&self, colour: glow::Texture) -> Result<f64, HarnessError> {
         const VERTEX: &str = "#version 330 core\nvoid main() {\n    vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0;\n    gl_Position = vec4(corner, 0.0, 1.0);\n}\n";
         const FRAGMENT: &str = "#version 330 core\nuniform sampler2D colortex0;\nout vec4 color;\nvoid main() {\n    color = texelFetch(colortex0, ivec2(gl_FragCoord.xy), 0);\n}\n";
-        let program = self.ctx.compile_program(VERTEX, FRAGMENT, &[], &[("color", 0)]).map_err(|e| HarnessError::Gl(format!("the pass-through: {e}")))?;
+        let program = self.ctx.compile_program(VERTEX, None, FRAGMENT, &[], &[("color", 0)]).map_err(|e| HarnessError::Gl(format!("the pass-through: {e}")))?;
         let gl = self.ctx.gl();
         // SAFETY: the program, the textures and the framebuffer are this context's.
         let samples = unsafe {

@@ -77,6 +77,20 @@ pub struct LoadedStage {
     pub narrow_outputs: BTreeMap<u32, u8>,
 }
 
+/// A geometry stage as OpenGL compiles it: naga reads no geometry shaders, so wgpu cannot draw
+/// a program that has one.
+#[derive(Clone, Debug)]
+pub struct GeometryStage {
+    /// Path inside `shaders/`.
+    pub path: String,
+    /// As [`LoadedStage::gl_text`].
+    pub gl_text: String,
+    /// As [`LoadedStage::gl_rewrites`].
+    pub gl_rewrites: Vec<String>,
+    /// As [`LoadedStage::gl_origins`].
+    pub gl_origins: Vec<Option<Location>>,
+}
+
 impl LoadedStage {
     /// naga's module, or what wgpu cannot draw the stage for.
     pub fn module(&self) -> Result<&naga::Module, HarnessError> {
@@ -85,12 +99,21 @@ impl LoadedStage {
 }
 
 impl LoadedProgram {
+    /// Why wgpu cannot draw the program as a whole, where a stage of it has no wgpu form.
+    pub fn wgpu_cannot_draw(&self) -> Option<HarnessError> {
+        let geometry = self.geometry.as_ref()?;
+        Some(HarnessError::Unsupported(format!("{}: a geometry stage ({}), which wgpu does not run", self.name, geometry.path)))
+    }
+
     /// The program with every float literal of the text OpenGL compiles moved by `relative` of
     /// itself ([`float_literals_nudged`]), for [`crate::gl_frame::Reference::nudge`].
     pub fn with_float_literals_nudged(&self, relative: f64) -> LoadedProgram {
         let nudge = |text: &str| float_literals_nudged(text, relative);
         let mut program = self.clone();
         program.vertex.gl_text = nudge(&self.vertex.gl_text);
+        if let Some(geometry) = &mut program.geometry {
+            geometry.gl_text = nudge(&geometry.gl_text);
+        }
         program.fragment.gl_text = nudge(&self.fragment.gl_text);
         program
     }
@@ -117,6 +140,8 @@ impl LoadedProgram {
 pub struct LoadedProgram {
     pub name: String,
     pub vertex: LoadedStage,
+    /// The program's geometry stage (`.gsh`), which only OpenGL runs.
+    pub geometry: Option<GeometryStage>,
     pub fragment: LoadedStage,
     /// Buffer numbers the fragment outputs go to, in output order (RENDERTARGETS/DRAWBUFFERS).
     pub render_targets: Vec<u8>,
@@ -390,6 +415,7 @@ pub(crate) fn origins_of_rewritten(text: &str, expanded: &str, origins: &[Option
 pub(crate) struct ProgramFiles<'a> {
     pub name: &'a str,
     pub vertex: String,
+    pub geometry: Option<String>,
     pub fragment: String,
 }
 
@@ -566,12 +592,53 @@ pub(crate) fn load_program_files(
     }
     let fragment = stages.pop().expect("two stages");
     let vertex = stages.pop().expect("two stages");
+    let geometry = match &files.geometry {
+        Some(path) => Some(load_geometry_stage(provider, path, macros, &defines, reading)?),
+        None => None,
+    };
     let render_targets = match (declared_targets, reading.undeclared) {
         (Some(buffers), _) => buffers,
         (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
         (None, UndeclaredTargets::FirstOnly) => vec![0],
     };
-    Ok(LoadedProgram { name: name.to_string(), vertex, fragment, render_targets })
+    Ok(LoadedProgram { name: name.to_string(), vertex, geometry, fragment, render_targets })
+}
+
+/// A geometry stage's text for OpenGL, read as the vertex and fragment stages are, with the
+/// rewrites for strict drivers that apply to any stage but the vertex stage.
+fn load_geometry_stage(
+    provider: &dyn FileProvider,
+    path: &str,
+    macros: &preprocess::PreprocessOptions,
+    defines: &str,
+    reading: LoaderReading,
+) -> Result<GeometryStage, HarnessError> {
+    let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
+    let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
+    preprocess::assume_glsl_110(&mut preprocessed);
+    let (expanded, line_map) = preprocess::expand_includes_mapped(provider, path, defines, preprocess::IncludeQuotes::Required)
+        .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+    let redefined: Vec<(u32, String)> = preprocessed
+        .redefinitions
+        .iter()
+        .flat_map(|(at, name)| {
+            line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
+        })
+        .collect();
+    let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
+    let located = |line: u32| line_map.get(line as usize - 1).cloned().flatten().map_or_else(|| path.to_string(), |at| at.to_string());
+    let mut gl_rewrites: Vec<String> = rewrites.iter().map(|r| format!("{}: {}", located(r.line), r.what)).collect();
+    if reading.resolves_version
+        && let Some((resolved, what)) = version_resolved_on_top(&gl_text, preprocessed.version.as_ref())
+    {
+        gl_text = resolved;
+        gl_rewrites.push(format!("{path}: {what}"));
+    }
+    let mut gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
+    if let (Some(first), Some(at)) = (gl_origins.first_mut(), preprocessed.version_line().and_then(|l| preprocessed.location(l))) {
+        first.get_or_insert(at);
+    }
+    Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
 }
 
 /// `text`, a vertex stage of `program`, with `dhMaterialId` read as Iris gives it where a

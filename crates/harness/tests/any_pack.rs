@@ -477,6 +477,22 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
     assert_eq!(centre[0], 255, "{centre:?}");
 }
 
+/// A program with a geometry stage (tests/packs/geometry_stage), which naga cannot read: OpenGL
+/// draws the frame, running the geometry stage between the vertex and fragment stages, and the
+/// report says why wgpu does not.
+#[test]
+fn opengl_runs_a_geometry_stage() {
+    let (report, screen) = render_job("geometry_stage");
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    let why = report.renderer.wgpu_cannot_draw.as_deref().unwrap_or_default();
+    assert!(why.contains("a geometry stage (gbuffers_terrain.gsh)"), "{why}");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(!report.not_modelled.iter().any(|n| n.contains("geometry")), "{:?}", report.not_modelled);
+    // Only the geometry stage writes the green the terrain shows.
+    let green = screen.pixels().filter(|p| p.0[0] == 0 && p.0[1] == 255 && p.0[2] == 0).count();
+    assert!(green > screen.pixels().len() / 10, "{green} green pixels");
+}
+
 /// Outputs declared at locations no draw buffer has (tests/packs/outputs_past_draw_buffers:
 /// 8 and 9, never written) are dropped as the loaders drop them: wgpu draws the frame and
 /// OpenGL agrees.

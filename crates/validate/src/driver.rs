@@ -264,7 +264,7 @@ impl Driver {
         let vertex = texts.iter().find(|t| t.0 == Stage::Vertex);
         let fragment = texts.iter().find(|t| t.0 == Stage::Fragment);
         let result = match (vertex, fragment) {
-            (Some(v), Some(f)) => self.context.compile_program(&v.2.text, &f.2.text, &[], &[]).map(|p| self.context.delete_program(p)),
+            (Some(v), Some(f)) => self.context.compile_program(&v.2.text, None, &f.2.text, &[], &[]).map(|p| self.context.delete_program(p)),
             (Some(only), None) | (None, Some(only)) => self.context.compile_shader_only(only.0 == Stage::Vertex, &only.2.text).map(|_| ()),
             (None, None) => Ok(()),
         };
@@ -272,7 +272,7 @@ impl Driver {
         let stage_text = match log.step {
             tidepack_gldriver::ProgramStep::CompileVertex => vertex,
             tidepack_gldriver::ProgramStep::CompileFragment => fragment,
-            tidepack_gldriver::ProgramStep::Link => None,
+            tidepack_gldriver::ProgramStep::CompileGeometry | tidepack_gldriver::ProgramStep::Link => None,
         };
         let info = format!("{} by {}", log.step, self.describe());
         let mut diags: Vec<Diagnostic> = log

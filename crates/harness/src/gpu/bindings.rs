@@ -579,6 +579,9 @@ impl ProgramPipeline {
         textures: &BindableTextures,
         uniform_binding: UniformBinding,
     ) -> Result<ProgramPipeline, HarnessError> {
+        if let Some(cannot) = program.wgpu_cannot_draw() {
+            return Err(cannot);
+        }
         let device = &gpu.device;
         let gbuffers = matches!(kind, PassKind::Gbuffers(_));
         let storage = uniform_binding == UniformBinding::ReadOnlyStorage;
