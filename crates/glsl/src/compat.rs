@@ -11,7 +11,7 @@ use std::collections::HashSet;
 
 use crate::Stage;
 use crate::preprocess::VersionDirective;
-use crate::token::{Token, TokenKind, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
+use crate::token::{Token, TokenKind, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
@@ -28,6 +28,14 @@ pub const RESERVED_FROM_130: [&str; 5] = ["superp", "common", "partition", "acti
 pub const GLSL130_FUNCTIONS: [&str; 12] = [
     "texture", "textureLod", "textureProj", "textureGrad", "textureOffset", "texelFetch", "textureSize",
     "textureLodOffset", "texelFetchOffset", "textureProjLod", "textureGather", "round",
+];
+
+/// What GLSL 4.60 added that a 4.50 compiler does not know (the draw parameters, the vote
+/// functions, the atomic counter operations); a stage that uses none compiles the same as 4.50.
+pub const GLSL460_ADDITIONS: [&str; 15] = [
+    "gl_BaseVertex", "gl_BaseInstance", "gl_DrawID", "anyInvocation", "allInvocations", "allInvocationsEqual", "atomicCounterAdd",
+    "atomicCounterSubtract", "atomicCounterMin", "atomicCounterMax", "atomicCounterAnd", "atomicCounterOr", "atomicCounterXor",
+    "atomicCounterExchange", "atomicCounterCompSwap",
 ];
 
 /// Lookups with an explicit level that GLSL 1.20 allows only in vertex shaders, unless
@@ -159,12 +167,23 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     if version < 130 {
         let called = call_of(&GLSL130_FUNCTIONS)
             .map(|call| format!("{call}, a GLSL 1.30 function"))
-            .or_else(|| met.iter().any(|t| t.is_ident("switch")).then(|| "`switch`, a GLSL 1.30 statement".to_string()));
+            .or_else(|| met.iter().any(|t| t.is_ident("switch")).then(|| "`switch`, a GLSL 1.30 statement".to_string()))
+            .or_else(|| storage_qualifier_in_out(&met).map(|word| format!("`{word}` declarations, GLSL 1.30 storage qualifiers")));
         if let (Some(what), Some(number)) = (called, version_number) {
             replaced[number] = Some("130".into());
             rewrites.push(Rewrite { line: tokens[number].line, what: format!("#version {version} raised to 130 for {what}") });
             version = 130;
         }
+    }
+
+    // Mesa's OpenGL, llvmpipe's included, and macOS stop at GLSL 4.50 and 4.10.
+    if version == 460
+        && let Some(number) = version_number
+        && !met.iter().any(|t| GLSL460_ADDITIONS.contains(&t.text))
+    {
+        replaced[number] = Some("450".into());
+        rewrites.push(Rewrite { line: tokens[number].line, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() });
+        version = 450;
     }
 
     // Precision qualifiers are reserved words before 1.30, and change nothing after it.
@@ -304,6 +323,21 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// The first `in` or `out` of `met` (significant tokens) that qualifies a file-scope
+/// declaration: outside braces and parentheses, where a parameter's `in` cannot be.
+fn storage_qualifier_in_out<'t>(met: &[&Token<'t>]) -> Option<&'t str> {
+    let depths = brace_depths(met);
+    let mut parens = 0i32;
+    met.iter().zip(depths).find_map(|(t, depth)| {
+        if t.is_punct("(") {
+            parens += 1;
+        } else if t.is_punct(")") {
+            parens -= 1;
+        }
+        (depth == 0 && parens == 0 && (t.is_ident("in") || t.is_ident("out"))).then_some(t.text)
+    })
 }
 
 /// `text` with a value on line `line` (1-based) given `constructor`, as the renderer's checks
@@ -678,6 +712,27 @@ mod tests {
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `switch`, a GLSL 1.30 statement".into() }]);
+    }
+
+    #[test]
+    fn a_120_stage_declaring_in_or_out_is_compiled_as_130() {
+        let text = "#version 120\nattribute vec4 mc_Entity;\nin vec3 at_velocity;\nvarying vec2 uv;\nvoid main() { uv = at_velocity.xy; gl_Position = ftransform(); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
+        assert_eq!(out, text.replace("#version 120", "#version 130"));
+        assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `in` declarations, GLSL 1.30 storage qualifiers".into() }]);
+        // A parameter's `in` is GLSL 1.10.
+        let parameter = "#version 120\nvarying vec2 uv;\nfloat f(in float x, out float y) { y = x; return x; }\nvoid main() { float y; gl_FragColor = vec4(f(uv.x, y)); }\n";
+        assert_eq!(for_strict_drivers(parameter, parameter, Stage::Fragment, &[]), (parameter.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_460_stage_using_nothing_of_460_is_compiled_as_450() {
+        let text = "#version 460 core\nout vec4 colour;\nvoid main() { colour = vec4(1.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("#version 460", "#version 450"));
+        assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
+        let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
+        assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
     }
 
     #[test]

@@ -385,6 +385,38 @@ fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionDirec
     Some((resolved, format!("`{directive}`, chosen inside an `#if`, put first as Iris's preprocessor leaves it")))
 }
 
+/// A stage's text with its includes expanded and `defines` after `#version`, and the pack
+/// location of each of its lines; where the loader resolves `#version` first
+/// ([`LoaderReading::resolves_version`]) and the pack chose it inside an `#if`, with the chosen
+/// directive put first ([`version_resolved_on_top`]) and what was done.
+fn expanded_as_loader_gives_it(
+    provider: &dyn FileProvider,
+    path: &str,
+    defines: &str,
+    preprocessed: &preprocess::Preprocessed,
+    reading: LoaderReading,
+) -> Result<(String, Vec<Option<Location>>, Option<String>), HarnessError> {
+    let expand = |after_version: &str| {
+        preprocess::expand_includes_mapped(provider, path, after_version, preprocess::IncludeQuotes::Required)
+            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))
+    };
+    let (expanded, line_map) = expand(defines)?;
+    if !reading.resolves_version || version_resolved_on_top(&expanded, preprocessed.version.as_ref()).is_none() {
+        return Ok((expanded, line_map, None));
+    }
+    // The defines follow the chosen directive, not the first `#version` line, which may be in
+    // a branch not taken.
+    let (plain, plain_map) = expand("")?;
+    let Some((resolved, what)) = version_resolved_on_top(&plain, preprocessed.version.as_ref()) else { return Ok((expanded, line_map, None)) };
+    let (directive, rest) = resolved.split_once('\n').unwrap_or((&resolved, ""));
+    let text = format!("{directive}\n{defines}{rest}");
+    // The directive put first comes from where the preprocessor found it.
+    let mut map = vec![preprocessed.version_line().and_then(|l| preprocessed.location(l))];
+    map.extend(std::iter::repeat_n(None, defines.matches('\n').count()));
+    map.extend(plain_map);
+    Ok((text, map, Some(format!("{path}: {what}"))))
+}
+
 /// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
 /// inserts, an `#extension` moved up, a `main` wrapped.
 const REWRITE_REACH: usize = 64;
@@ -478,8 +510,7 @@ pub(crate) fn load_program_files(
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
-        let (expanded, line_map) = preprocess::expand_includes_mapped(provider, &path, &defines, preprocess::IncludeQuotes::Required)
-            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+        let (expanded, line_map, version_put_first) = expanded_as_loader_gives_it(provider, &path, &defines, &stage.preprocessed, reading)?;
         // The lines (1-based) of the expanded text that come from a pack file's line.
         let lines_from = |at: &Location| -> Vec<u32> {
             line_map.iter().enumerate().filter(|(_, l)| l.as_ref() == Some(at)).map(|(i, _)| i as u32 + 1).collect()
@@ -502,6 +533,7 @@ pub(crate) fn load_program_files(
             None => (expanded, None),
         };
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
+        gl_rewrites.extend(version_put_first.clone());
         gl_rewrites.extend(renamed_albedo.clone());
         let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
@@ -550,14 +582,9 @@ pub(crate) fn load_program_files(
                 }
             }
             (gl_text, gl_rewrites) = for_opengl(&repaired);
+            gl_rewrites.extend(version_put_first.clone());
             gl_rewrites.extend(renamed_albedo.clone());
             gl_rewrites.extend(made);
-        }
-        if reading.resolves_version
-            && let Some((resolved, what)) = version_resolved_on_top(&gl_text, stage.preprocessed.version.as_ref())
-        {
-            gl_text = resolved;
-            gl_rewrites.push(format!("{path}: {what}"));
         }
         if stage.stage == Stage::Vertex {
             gl_text = with_lod_material_attribute(name, &gl_text)?;
@@ -572,11 +599,7 @@ pub(crate) fn load_program_files(
             let output = stage.lowered.interface.outputs.get(&0).cloned().unwrap_or_else(|| "gl_FragData[0]".into());
             gl_text = with_alpha_test(&gl_text, &output, reference)?;
         }
-        let mut gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
-        // A `#version` put first comes from where the preprocessor found it.
-        if let (Some(first), Some(at)) = (gl_origins.first_mut(), stage.preprocessed.version_line().and_then(|l| stage.preprocessed.location(l))) {
-            first.get_or_insert(at);
-        }
+        let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
         stages.push(LoadedStage {
             stage: stage.stage,
             path,
@@ -616,8 +639,7 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let (expanded, line_map) = preprocess::expand_includes_mapped(provider, path, defines, preprocess::IncludeQuotes::Required)
-        .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+    let (expanded, line_map, version_put_first) = expanded_as_loader_gives_it(provider, path, defines, &preprocessed, reading)?;
     let redefined: Vec<(u32, String)> = preprocessed
         .redefinitions
         .iter()
@@ -625,19 +647,11 @@ fn load_geometry_stage(
             line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
         })
         .collect();
-    let (mut gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
+    let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
     let located = |line: u32| line_map.get(line as usize - 1).cloned().flatten().map_or_else(|| path.to_string(), |at| at.to_string());
-    let mut gl_rewrites: Vec<String> = rewrites.iter().map(|r| format!("{}: {}", located(r.line), r.what)).collect();
-    if reading.resolves_version
-        && let Some((resolved, what)) = version_resolved_on_top(&gl_text, preprocessed.version.as_ref())
-    {
-        gl_text = resolved;
-        gl_rewrites.push(format!("{path}: {what}"));
-    }
-    let mut gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
-    if let (Some(first), Some(at)) = (gl_origins.first_mut(), preprocessed.version_line().and_then(|l| preprocessed.location(l))) {
-        first.get_or_insert(at);
-    }
+    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().collect();
+    gl_rewrites.extend(rewrites.iter().map(|r| format!("{}: {}", located(r.line), r.what)));
+    let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
     Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
 }
 

@@ -138,6 +138,10 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("tp_Fog.start", Value::float(fog_start));
     put("tp_Fog.end", Value::float(fog_end));
     put("tp_Fog.scale", Value::float(1.0 / (fog_end - fog_start)));
+    // The same fog under the names OptiFine and Iris give it as uniforms.
+    put("fogStart", Value::float(fog_start));
+    put("fogEnd", Value::float(fog_end));
+    put("fogDensity", Value::float(1.0));
     put("rainStrength", Value::float(scene.sky.rain_strength));
     put("wetness", Value::float(scene.sky.rain_strength));
     put("nightVision", Value::float(0.0));

@@ -420,7 +420,8 @@ fn our_pack_is_given_to_opengl_as_written() {
 
 /// A `#version` the pack chooses inside an `#if` of an include (tests/packs/version_chosen_in_include):
 /// under Iris, whose preprocessor resolves it, both renderers draw the program, OpenGL from the
-/// text with the chosen `#version` first, and the report says so.
+/// text with the chosen `#version` first and the loader's macros after it, and the report says
+/// so.
 #[test]
 fn a_version_chosen_in_an_if_is_given_first_under_iris() {
     let configuration = Configuration { loader: Loader::Iris, ..Configuration::default() };
@@ -475,6 +476,18 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
     // The 32 varyings' red parts sum to 1: the screen is full red wherever final drew.
     let centre = screen.get_pixel(screen.width() / 2, screen.height() / 2);
     assert_eq!(centre[0], 255, "{centre:?}");
+}
+
+/// The fog uniforms (tests/packs/fog_uniforms): `fogStart` and `fogEnd` hold the game's linear
+/// fog, the one the legacy `gl_Fog` state has, in both renderers.
+#[test]
+fn fog_uniforms_hold_the_games_fog() {
+    let (report, screen) = render_job("fog_uniforms");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let fogged = screen.pixels().filter(|p| p.0 == [191, 255, 255, 255]).count();
+    assert!(fogged > screen.pixels().len() / 10, "{fogged} terrain pixels with fogStart = 0.75 far, fogEnd = far");
 }
 
 /// A program with a geometry stage (tests/packs/geometry_stage), which naga cannot read: OpenGL

@@ -128,10 +128,11 @@ impl Loader {
 
     /// The alpha test on cutout terrain (leaves): fixed-function `GREATER 0.1` up to 1.16.5;
     /// from 1.17 OptiFine adds it only to programs writing `gl_FragData`/`gl_FragColor`
-    /// (`legacy_outputs`); Iris tests cutout terrain at 0.1 in every program.
+    /// (`legacy_outputs`); so does Iris, whose transformer appends the test to a compatibility
+    /// stage's writes of `gl_FragData[0]` alone (IrisShaders/Iris `CommonTransformer`).
     pub fn cutout_alpha_test(self, legacy_outputs: bool) -> Option<f32> {
         match self {
-            Loader::OptiFine1_21 if !legacy_outputs => None,
+            Loader::OptiFine1_21 | Loader::Iris if !legacy_outputs => None,
             _ => Some(0.1),
         }
     }
@@ -240,7 +241,8 @@ mod tests {
         assert_eq!(Loader::OptiFine1_16_5.cutout_alpha_test(false), Some(0.1));
         assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(false), None);
         assert_eq!(Loader::OptiFine1_21.cutout_alpha_test(true), Some(0.1));
-        assert_eq!(Loader::Iris.cutout_alpha_test(false), Some(0.1));
+        assert_eq!(Loader::Iris.cutout_alpha_test(false), None);
+        assert_eq!(Loader::Iris.cutout_alpha_test(true), Some(0.1));
     }
 
     #[test]
