@@ -164,6 +164,35 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // `#define`, `#ifdef` and `#ifndef` whose name is not one (`#define 2D_CLOUDS`): Iris's
+    // preprocessor reports the line and skips the `#define`, and keeps the groups the others
+    // open; so does the lenient preprocessor.
+    for (k, &i) in significant.iter().enumerate() {
+        let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;
+        let Some(&d) = significant.get(k + 1).filter(|_| starts_line && tokens[i].is_punct("#")) else { continue };
+        if !matches!(tokens[d].text, "define" | "ifdef" | "ifndef") {
+            continue;
+        }
+        let on_line: Vec<usize> = significant[k + 2..].iter().copied().take_while(|&e| tokens[e].line == tokens[i].line).collect();
+        let Some(&first) = on_line.first().filter(|&&e| tokens[e].kind != TokenKind::Ident) else { continue };
+        let last = on_line.last().copied().unwrap_or(first);
+        let directive = &text[tokens[i].offset..tokens[last].offset + tokens[last].text.len()];
+        let what = if tokens[d].text == "define" {
+            for e in [i, d].into_iter().chain(on_line.iter().copied()) {
+                replaced[e] = Some(String::new());
+            }
+            format!("`{directive}`, which names no macro, removed as Iris's preprocessor skips it")
+        } else {
+            replaced[d] = Some("if".into());
+            replaced[first] = Some("1".into());
+            for &e in &on_line[1..] {
+                replaced[e] = Some(String::new());
+            }
+            format!("`{directive}`, which tests no macro, taken as Iris's preprocessor takes it")
+        };
+        rewrites.push(Rewrite { line: tokens[i].line, what });
+    }
+
     if version < 130 {
         let called = call_of(&GLSL130_FUNCTIONS)
             .map(|call| format!("{call}, a GLSL 1.30 function"))
@@ -733,6 +762,15 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
         let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
         assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn directives_naming_no_macro_are_read_as_iris_reads_them() {
+        let text = "#version 330 compatibility\n#define 2D_CLOUDS\n#ifdef 2D_CLOUDS\nint clouds;\n#endif\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, "#version 330 compatibility\n \n#if 1\nint clouds;\n#endif\nvoid main() {}\n");
+        assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [2, 3]);
+        assert_eq!(rewrites[0].what, "`#define 2D_CLOUDS`, which names no macro, removed as Iris's preprocessor skips it");
     }
 
     #[test]

@@ -384,6 +384,9 @@ impl Preprocessor<'_> {
                     let value = if active {
                         match name {
                             Some("if") => self.condition(args, consult, path, at)?,
+                            // Iris's preprocessor (JCPP) reports a group whose test is not a
+                            // name (`#ifdef 2D_CLOUDS`) and keeps it, whichever the directive.
+                            _ if self.lenient && !first_significant(args).is_some_and(|(_, t)| t.kind == TokenKind::Ident) => true,
                             _ => {
                                 // NVIDIA's preprocessor, like C's, tests the first name and
                                 // ignores what follows it (`#ifndef A && defined B`).
@@ -583,6 +586,10 @@ impl Preprocessor<'_> {
     /// definition with another body.
     fn define(&mut self, args: &[Token<'_>]) -> Result<Option<String>, String> {
         let Some((name_pos, name)) = first_significant(args).filter(|(_, t)| t.kind == TokenKind::Ident) else {
+            // Iris's preprocessor (JCPP) reports such a line and skips it.
+            if self.lenient && first_significant(args).is_some() {
+                return Ok(None);
+            }
             return Err("#define needs a macro name".into());
         };
         let after = &args[name_pos + 1..];
@@ -1305,6 +1312,16 @@ mod tests {
         let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
         assert!(out.text.contains("float x = 3.14159;"), "{}", out.text);
         assert_eq!(out.redefinitions, [(Location::line("a.fsh", 3), "PI".to_string())]);
+    }
+
+    #[test]
+    fn a_define_without_a_name_is_refused_and_skipped_leniently_with_its_groups_kept() {
+        let list = [("a.fsh", "#define 2D_CLOUDS\n#ifdef 2D_CLOUDS\nint clouds;\n#endif\n#ifndef 2D_CLOUDS\nint more;\n#endif\n")];
+        let err = preprocess(&files(&list), "a.fsh", &PreprocessOptions::default()).unwrap_err();
+        assert!(err.message.contains("#define needs a macro name"), "{}", err.message);
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("int clouds;") && out.text.contains("int more;"), "{}", out.text);
     }
 
     #[test]

@@ -188,6 +188,7 @@ impl ProgramLoading<'_> {
             // Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
             // renamed sampler reads texture unit 0, colortex0, as `gcolor` does here already.
             renames_albedo_sampler: loader.renames_albedo_sampler() && programs::binds_as_gbuffers(name),
+            removes_unused_functions: loader.removes_unused_functions(),
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {

@@ -362,6 +362,57 @@ fn albedo_sampler_as_gtexture(text: &str) -> Option<(String, String)> {
     Some((out, format!("`{}` named `gtexture`, as Iris's transformer names the albedo sampler", renamed.join("` and `"))))
 }
 
+/// `text` with the definition of every function but `main` whose name occurs only once in
+/// `seen` (the stage as Iris's transformer parses it) blanked, lines kept, as Iris's
+/// transformer removes them; and what was removed. A definition with a preprocessor directive
+/// inside, or in its return type, is kept. `None` where nothing is removed.
+fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, String)> {
+    let tokens = tokenize(text).ok()?;
+    let seen = tokenize(seen).ok()?;
+    let uses = |name: &str| seen.iter().filter(|t| t.is_ident(name)).count();
+    // Lines that hold a directive: their words are not a return type.
+    let order = tidepack_glsl::token::significant(&tokens);
+    let directive_lines: BTreeSet<u32> = order
+        .iter()
+        .enumerate()
+        .filter(|&(k, &i)| tokens[i].is_punct("#") && (k == 0 || tokens[order[k - 1]].line != tokens[i].line))
+        .map(|(_, &i)| tokens[i].line)
+        .collect();
+    let mut ranges = Vec::new();
+    let mut removed = Vec::new();
+    for definition in function_definitions(&tokens) {
+        let name = tokens[definition.name].text;
+        if name == "main" || uses(name) > 1 || definition.close >= tokens.len() {
+            continue;
+        }
+        // The return type and qualifiers: the words and array sizes before the name.
+        let mut start = definition.name;
+        for i in (0..definition.name).rev() {
+            let t = &tokens[i];
+            if t.is_trivia() {
+                continue;
+            }
+            if directive_lines.contains(&t.line) || !(t.kind == TokenKind::Ident || t.kind == TokenKind::Number || t.is_punct("[") || t.is_punct("]")) {
+                break;
+            }
+            start = i;
+        }
+        if (start..=definition.close).any(|i| directive_lines.contains(&tokens[i].line) && tokens[i].is_punct("#")) {
+            continue;
+        }
+        ranges.push(tokens[start].offset..tokens[definition.close].offset + 1);
+        let named = format!("`{name}`");
+        if !removed.contains(&named) {
+            removed.push(named);
+        }
+    }
+    if ranges.is_empty() {
+        return None;
+    }
+    let what = format!("functions nothing calls removed, as Iris's transformer removes them: {}", removed.join(", "));
+    Some((tidepack_glsl::token::blanked(text, &ranges), what))
+}
+
 /// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
 /// profile) with the `#version` the preprocessor resolved on the first line and every other
 /// `#version` line left blank, as a loader that preprocesses first gives it to the driver; and
@@ -459,6 +510,8 @@ pub(crate) struct LoaderReading {
     pub resolves_version: bool,
     /// [`Loader::renames_albedo_sampler`], for this program.
     pub renames_albedo_sampler: bool,
+    /// [`Loader::removes_unused_functions`].
+    pub removes_unused_functions: bool,
 }
 
 /// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
@@ -495,6 +548,11 @@ pub(crate) fn load_program_files(
         {
             p.text = renamed;
         }
+        if reading.removes_unused_functions
+            && let Some((removed, _)) = unused_functions_removed(&p.text, &p.text)
+        {
+            p.text = removed;
+        }
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
@@ -528,9 +586,18 @@ pub(crate) fn load_program_files(
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
         let renamed = reading.renames_albedo_sampler.then(|| albedo_sampler_as_gtexture(&expanded)).flatten();
-        let (expanded, renamed_albedo) = match renamed {
+        let (expanded, mut renamed_albedo) = match renamed {
             Some((text, what)) => (text, Some(format!("{path}: {what}"))),
             None => (expanded, None),
+        };
+        // Iris's transformer reads the stage as its preprocessor left it.
+        let removed = reading.removes_unused_functions.then(|| unused_functions_removed(&expanded, &stage.preprocessed.text)).flatten();
+        let expanded = match removed {
+            Some((text, what)) => {
+                renamed_albedo = Some(renamed_albedo.map_or_else(|| format!("{path}: {what}"), |r| format!("{r}; {what}")));
+                text
+            }
+            None => expanded,
         };
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
         gl_rewrites.extend(version_put_first.clone());
@@ -960,6 +1027,24 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 
 #[cfg(test)]
 mod tests {
+    /// Iris removes the definitions of functions nothing calls, so what only they reference
+    /// need not be declared; a function called once, `main`, and a definition with a directive
+    /// in its body stay; lines stay where they were.
+    #[test]
+    fn functions_nothing_calls_are_removed_as_iris_removes_them() {
+        let text = "#version 330 compatibility\nvec4 noise(vec2 c) {\n    return texelFetch(noisetex, ivec2(c * viewWidth), 0);\n}\nfloat half_of(float x) { return x * 0.5; }\nfloat guarded() {\n#ifdef A\n    return 1.0;\n#endif\n    return 0.0;\n}\nvoid main() { gl_FragData[0] = vec4(half_of(1.0)); }\n";
+        let (removed, what) = super::unused_functions_removed(text, text).expect("removed");
+        assert_eq!(removed.lines().count(), text.lines().count());
+        assert!(!removed.contains("noisetex") && removed.contains("float half_of") && removed.contains("float guarded"), "{removed}");
+        assert!(removed.lines().nth(1).is_some_and(|l| l.trim().is_empty()), "{removed}");
+        assert!(what.ends_with("`noise`"), "{what}");
+        // Counted in the text the transformer parses: a call left out by the preprocessor does
+        // not keep a function.
+        let seen = text.replace("half_of(1.0)", "1.0");
+        let (removed, _) = super::unused_functions_removed(text, &seen).expect("removed");
+        assert!(!removed.contains("float half_of"), "{removed}");
+    }
+
     /// Iris names a `gcolor` or `texture` sampler `gtexture`: its declaration and every use
     /// that is not a call; with both declared, `texture`'s declaration goes.
     #[test]

@@ -107,6 +107,13 @@ impl Loader {
         self == Loader::Iris
     }
 
+    /// Whether a function whose name a stage never uses is removed before the driver compiles
+    /// it: Iris's transformer drops every definition other than `main` whose name occurs once
+    /// (IrisShaders/Iris `CompatibilityTransformer`), so what it references need not exist.
+    pub fn removes_unused_functions(self) -> bool {
+        self == Loader::Iris
+    }
+
     /// Reads `blend.<program>.<buffer>`: OptiFine from 1.16.5 HD U G7, Iris from 1.4 with
     /// OpenGL 4.0. Older OptiFine skips such keys without a word.
     pub fn per_buffer_blend(self) -> bool {
