@@ -10,7 +10,8 @@
 //! Around the GLSL: the uniforms and samplers the loaders set ([`known`]), [`properties`] (the one reader of `.properties` files, conditionals
 //! included), what shaders.properties directs ([`directives`], [`custom_uniforms`]),
 //! block.properties ([`blocks`]), the buffers' names, formats and clears ([`buffers`]) and the
-//! shadow pass's settings and camera ([`shadow`]).
+//! shadow pass's settings and camera ([`shadow`]). What Iris rewrites in a stage's text before
+//! the driver reads it: [`iris`].
 
 pub mod blocks;
 pub mod buffers;
@@ -19,6 +20,7 @@ pub mod coverage;
 pub mod custom_uniforms;
 pub mod directives;
 pub mod input;
+pub mod iris;
 pub mod known;
 pub mod loader;
 pub mod macros;

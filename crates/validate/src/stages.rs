@@ -29,6 +29,11 @@ pub(crate) fn check_program(
                 if let std::borrow::Cow::Owned(declared) = with_loader_declarations(&program.name, *stage == Stage::Vertex, &pre.text) {
                     pre.text = declared;
                 }
+                if loader.removes_unused_functions()
+                    && let Some((removed, _)) = tidepack_loader::iris::unused_functions_removed(&pre.text, &pre.text)
+                {
+                    pre.text = removed;
+                }
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
                 diags.extend(version_rules::unknown_extensions(&pre));

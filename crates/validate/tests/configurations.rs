@@ -169,3 +169,15 @@ fn iris_programs_are_validated_under_iris() {
     assert_eq!(status(&iris), Some(tidepack_validate::Status::Invalid));
     assert!(errors(&iris).iter().any(|e| e.contains("undeclaredTint") && e.contains("gbuffers_terrain_cutout.fsh:2")), "{:?}", errors(&iris));
 }
+
+/// Iris removes a function nothing calls before the driver compiles the stage, so what only it
+/// reads need not be declared there; OptiFine gives the driver the function, which refuses it.
+#[test]
+fn a_function_nothing_calls_is_not_compiled_under_iris() {
+    let fragment = "#version 120\nvec4 noise() { return vec4(viewWidth); }\nvoid main() { gl_FragData[0] = vec4(1.0); }\n";
+    let files = [("composite.vsh", VERTEX), ("composite.fsh", fragment)];
+    let optifine = validate(&files, Options::default()).unwrap();
+    assert!(errors(&optifine).iter().any(|e| e.contains("viewWidth") && e.contains("composite.fsh:2")), "{:?}", errors(&optifine));
+    let iris = validate(&files, Options { loader: tidepack_loader::Loader::Iris, ..Options::default() }).unwrap();
+    assert!(errors(&iris).is_empty(), "{:?}", errors(&iris));
+}

@@ -1,0 +1,186 @@
+//! What Iris does to a stage's text before the driver compiles it (IrisShaders/Iris, its
+//! preprocessor and `CommonTransformer`/`CompatibilityTransformer`), as text-to-text rewrites
+//! that keep every line where it was, so that diagnostics still name the pack's lines. Each
+//! returns the rewritten text and what was done, or `None` where nothing applies.
+
+use std::collections::BTreeSet;
+
+use tidepack_glsl::preprocess;
+use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
+
+/// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and
+/// every use of that name that is not a call, as Iris's transformer has it (where both are
+/// declared, `texture`'s single-name declaration goes); and what was done. `None` where neither
+/// is declared as a sampler at file scope, where another declaration takes the name, or where
+/// the stage declares `gtexture` itself.
+pub fn albedo_sampler_as_gtexture(text: &str) -> Option<(String, String)> {
+    use tidepack_glsl::token::{TokenKind, brace_depths, significant, tokenize};
+    let tokens = tokenize(text).ok()?;
+    let depths = brace_depths(&tokens);
+    let order = significant(&tokens);
+    // The file-scope declarations naming `name`: (first token, `;`, whether a sampler, names in it).
+    let declarations = |name: &str| -> Vec<(usize, usize, bool, usize)> {
+        let mut found = Vec::new();
+        let mut start = 0usize;
+        for (k, &i) in order.iter().enumerate() {
+            if depths[i] != 0 {
+                start = k + 1;
+                continue;
+            }
+            if tokens[i].is_punct(";") || tokens[i].is_punct("}") {
+                let statement = &order[start..k];
+                if statement.iter().any(|&j| tokens[j].is_ident(name)) && !statement.iter().any(|&j| tokens[j].is_punct("(")) {
+                    let sampler = statement.iter().any(|&j| tokens[j].is_ident("uniform"))
+                        && statement.iter().any(|&j| tokens[j].kind == TokenKind::Ident && tokens[j].text == "sampler2D");
+                    let names = 1 + statement.iter().filter(|&&j| tokens[j].is_punct(",")).count();
+                    found.push((start, k, sampler, names));
+                }
+                start = k + 1;
+            }
+        }
+        found
+    };
+    if !declarations("gtexture").is_empty() {
+        return None;
+    }
+    let declared = |name: &str| {
+        let found = declarations(name);
+        (found.len() == 1 && found[0].2).then(|| found[0])
+    };
+    let (gcolor, texture) = (declared("gcolor"), declared("texture"));
+    let dropped = match (gcolor, texture) {
+        (Some(_), Some(t)) if t.3 == 1 => Some(t),
+        (Some(_), Some(_)) | (None, None) => return None,
+        _ => None,
+    };
+    let renamed: Vec<&str> = [gcolor.map(|_| "gcolor"), texture.map(|_| "texture")].into_iter().flatten().collect();
+    let mut out = String::with_capacity(text.len());
+    for (k, &i) in order.iter().enumerate() {
+        let previous_end = if k == 0 { 0 } else { tokens[order[k - 1]].offset + tokens[order[k - 1]].text.len() };
+        out.push_str(&text[previous_end..tokens[i].offset]);
+        let in_dropped = dropped.is_some_and(|(from, to, _, _)| (from..=to).contains(&k));
+        let call = order.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+        if in_dropped {
+            continue;
+        }
+        if tokens[i].kind == TokenKind::Ident && renamed.contains(&tokens[i].text) && !call {
+            out.push_str("gtexture");
+        } else {
+            out.push_str(tokens[i].text);
+        }
+    }
+    let end = order.last().map_or(0, |&i| tokens[i].offset + tokens[i].text.len());
+    out.push_str(&text[end..]);
+    Some((out, format!("`{}` named `gtexture`, as Iris's transformer names the albedo sampler", renamed.join("` and `"))))
+}
+
+/// `text` with the definition of every function but `main` whose name occurs only once in
+/// `seen` (the stage as Iris's transformer parses it) blanked, lines kept, as Iris's
+/// transformer removes them; and what was removed. A definition with a preprocessor directive
+/// inside, or in its return type, is kept. `None` where nothing is removed.
+pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, String)> {
+    let tokens = tokenize(text).ok()?;
+    let seen = tokenize(seen).ok()?;
+    let uses = |name: &str| seen.iter().filter(|t| t.is_ident(name)).count();
+    // Lines that hold a directive: their words are not a return type.
+    let order = tidepack_glsl::token::significant(&tokens);
+    let directive_lines: BTreeSet<u32> = order
+        .iter()
+        .enumerate()
+        .filter(|&(k, &i)| tokens[i].is_punct("#") && (k == 0 || tokens[order[k - 1]].line != tokens[i].line))
+        .map(|(_, &i)| tokens[i].line)
+        .collect();
+    let mut ranges = Vec::new();
+    let mut removed = Vec::new();
+    for definition in function_definitions(&tokens) {
+        let name = tokens[definition.name].text;
+        if name == "main" || uses(name) > 1 || definition.close >= tokens.len() {
+            continue;
+        }
+        // The return type and qualifiers: the words and array sizes before the name.
+        let mut start = definition.name;
+        for i in (0..definition.name).rev() {
+            let t = &tokens[i];
+            if t.is_trivia() {
+                continue;
+            }
+            if directive_lines.contains(&t.line) || !(t.kind == TokenKind::Ident || t.kind == TokenKind::Number || t.is_punct("[") || t.is_punct("]")) {
+                break;
+            }
+            start = i;
+        }
+        if (start..=definition.close).any(|i| directive_lines.contains(&tokens[i].line) && tokens[i].is_punct("#")) {
+            continue;
+        }
+        ranges.push(tokens[start].offset..tokens[definition.close].offset + 1);
+        let named = format!("`{name}`");
+        if !removed.contains(&named) {
+            removed.push(named);
+        }
+    }
+    if ranges.is_empty() {
+        return None;
+    }
+    let what = format!("functions nothing calls removed, as Iris's transformer removes them: {}", removed.join(", "));
+    Some((tidepack_glsl::token::blanked(text, &ranges), what))
+}
+
+/// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
+/// profile) with the `#version` the preprocessor resolved on the first line and every other
+/// `#version` line left blank, as a loader that preprocesses first gives it to the driver; and
+/// what was done. `None` where `#version` already comes first or the stage has none.
+pub fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionDirective>) -> Option<(String, String)> {
+    let version = version?;
+    let first = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with("//"))?;
+    if first.starts_with("#version") {
+        return None;
+    }
+    let directive = match &version.profile {
+        Some(profile) => format!("#version {} {profile}", version.number),
+        None => format!("#version {}", version.number),
+    };
+    let mut resolved = format!("{directive}\n");
+    for line in text.lines() {
+        let directive_line = line.trim_start().strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with("version"));
+        resolved.push_str(if directive_line { "" } else { line });
+        resolved.push('\n');
+    }
+    Some((resolved, format!("`{directive}`, chosen inside an `#if`, put first as Iris's preprocessor leaves it")))
+}
+
+#[cfg(test)]
+mod tests {
+    /// Iris removes the definitions of functions nothing calls, so what only they reference
+    /// need not be declared; a function called once, `main`, and a definition with a directive
+    /// in its body stay; lines stay where they were.
+    #[test]
+    fn functions_nothing_calls_are_removed_as_iris_removes_them() {
+        let text = "#version 330 compatibility\nvec4 noise(vec2 c) {\n    return texelFetch(noisetex, ivec2(c * viewWidth), 0);\n}\nfloat half_of(float x) { return x * 0.5; }\nfloat guarded() {\n#ifdef A\n    return 1.0;\n#endif\n    return 0.0;\n}\nvoid main() { gl_FragData[0] = vec4(half_of(1.0)); }\n";
+        let (removed, what) = super::unused_functions_removed(text, text).expect("removed");
+        assert_eq!(removed.lines().count(), text.lines().count());
+        assert!(!removed.contains("noisetex") && removed.contains("float half_of") && removed.contains("float guarded"), "{removed}");
+        assert!(removed.lines().nth(1).is_some_and(|l| l.trim().is_empty()), "{removed}");
+        assert!(what.ends_with("`noise`"), "{what}");
+        // Counted in the text the transformer parses: a call left out by the preprocessor does
+        // not keep a function.
+        let seen = text.replace("half_of(1.0)", "1.0");
+        let (removed, _) = super::unused_functions_removed(text, &seen).expect("removed");
+        assert!(!removed.contains("float half_of"), "{removed}");
+    }
+
+    /// Iris names a `gcolor` or `texture` sampler `gtexture`: its declaration and every use
+    /// that is not a call; with both declared, `texture`'s declaration goes.
+    #[test]
+    fn the_albedo_sampler_is_named_gtexture_as_iris_names_it() {
+        let text = "#version 120\nuniform sampler2D gcolor;\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gcolor, uv) + texture2D(texture, uv) + texture(gtexture, uv);\n}\n";
+        let (renamed, what) = super::albedo_sampler_as_gtexture(text).expect("renamed");
+        assert_eq!(
+            renamed,
+            "#version 120\nuniform sampler2D gtexture;\n  \nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gtexture, uv) + texture2D(gtexture, uv) + texture(gtexture, uv);\n}\n"
+        );
+        assert!(what.contains("`gcolor` and `texture`"), "{what}");
+        // A stage declaring gtexture, or gcolor as something else, is left alone.
+        assert!(super::albedo_sampler_as_gtexture("uniform sampler2D gtexture;\nuniform sampler2D gcolor;\n").is_none());
+        assert!(super::albedo_sampler_as_gtexture("uniform vec4 gcolor;\nvoid main() {}\n").is_none());
+    }
+}
