@@ -297,36 +297,46 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
-/// A stage's text with its includes expanded and `defines` after `#version`, and the pack
-/// location of each of its lines; where the loader resolves `#version` first
-/// ([`LoaderReading::resolves_version`]) and the pack chose it inside an `#if`, with the chosen
-/// directive put first ([`version_resolved_on_top`]) and what was done.
+/// A stage's text with its includes expanded and `defines` after `#version`; where the loader
+/// resolves `#version` first ([`LoaderReading::resolves_version`]) and the pack chose it inside
+/// an `#if`, with the chosen directive put first ([`iris::version_resolved_on_top`]).
 fn expanded_as_loader_gives_it(
     provider: &dyn FileProvider,
     path: &str,
     defines: &str,
     preprocessed: &preprocess::Preprocessed,
     reading: LoaderReading,
-) -> Result<(String, Vec<Option<Location>>, Option<String>), HarnessError> {
+) -> Result<ExpandedStage, HarnessError> {
     let expand = |after_version: &str| {
         preprocess::expand_includes_mapped(provider, path, after_version, preprocess::IncludeQuotes::Required)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))
     };
     let (expanded, line_map) = expand(defines)?;
     if !reading.resolves_version || iris::version_resolved_on_top(&expanded, preprocessed.version.as_ref()).is_none() {
-        return Ok((expanded, line_map, None));
+        return Ok(ExpandedStage { text: expanded, line_map, version_put_first: None });
     }
     // The defines follow the chosen directive, not the first `#version` line, which may be in
     // a branch not taken.
     let (plain, plain_map) = expand("")?;
-    let Some((resolved, what)) = iris::version_resolved_on_top(&plain, preprocessed.version.as_ref()) else { return Ok((expanded, line_map, None)) };
+    let Some((resolved, what)) = iris::version_resolved_on_top(&plain, preprocessed.version.as_ref()) else {
+        return Ok(ExpandedStage { text: expanded, line_map, version_put_first: None });
+    };
     let (directive, rest) = resolved.split_once('\n').unwrap_or((&resolved, ""));
     let text = format!("{directive}\n{defines}{rest}");
     // The directive put first comes from where the preprocessor found it.
     let mut map = vec![preprocessed.version_line().and_then(|l| preprocessed.location(l))];
     map.extend(std::iter::repeat_n(None, defines.matches('\n').count()));
     map.extend(plain_map);
-    Ok((text, map, Some(format!("{path}: {what}"))))
+    Ok(ExpandedStage { text, line_map: map, version_put_first: Some(format!("{path}: {what}")) })
+}
+
+/// A stage's text as the loader hands it to the driver, before the rewrites for strict drivers.
+struct ExpandedStage {
+    text: String,
+    /// The pack location of each line of `text`.
+    line_map: Vec<Option<Location>>,
+    /// What was done where the loader put a `#version` chosen in an `#if` first.
+    version_put_first: Option<String>,
 }
 
 /// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
@@ -429,7 +439,8 @@ pub(crate) fn load_program_files(
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
-        let (expanded, line_map, version_put_first) = expanded_as_loader_gives_it(provider, &path, &defines, &stage.preprocessed, reading)?;
+        let ExpandedStage { text: expanded, line_map, version_put_first } =
+            expanded_as_loader_gives_it(provider, &path, &defines, &stage.preprocessed, reading)?;
         // The lines (1-based) of the expanded text that come from a pack file's line.
         let lines_from = |at: &Location| -> Vec<u32> {
             line_map.iter().enumerate().filter(|(_, l)| l.as_ref() == Some(at)).map(|(i, _)| i as u32 + 1).collect()
@@ -567,7 +578,7 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let (expanded, line_map, version_put_first) = expanded_as_loader_gives_it(provider, path, defines, &preprocessed, reading)?;
+    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, defines, &preprocessed, reading)?;
     let redefined: Vec<(u32, String)> = preprocessed
         .redefinitions
         .iter()

@@ -288,7 +288,7 @@ fn the_unrounded_screen_is_the_loaders_screen_before_rounding() {
             let (worst, over_one) = (differences.iter().max().copied().unwrap_or(0), differences.iter().filter(|d| **d > 1).count());
             let at: Vec<(usize, usize)> = differences.iter().enumerate().filter(|(_, d)| **d > 2).map(|(i, _)| (i % scene.width() as usize, i / scene.width() as usize)).collect();
             assert!(over_one <= 4, "{dialect:?} {name}: largest difference {worst}/255, {over_one} pixels over 1/255, over 2/255 at {at:?}");
-            let drawn = exact.passes.iter().flat_map(|p| &p.images).filter(|(texture, _)| texture == "colortex0").last().expect("colortex0 drawn");
+            let drawn = exact.passes.iter().flat_map(|p| &p.images).rfind(|(texture, _)| texture == "colortex0").expect("colortex0 drawn");
             assert_eq!(exact.buffers[&0].pixels, drawn.1.pixels, "{dialect:?} {name}: colortex0 is what the geometry left");
         }
     }
