@@ -408,14 +408,18 @@ pub(crate) fn load_program_files(
     let name = files.name;
     let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
     let mut pre = Vec::new();
+    // Each stage as the loader's preprocessor leaves it, before Iris's transformer: what that
+    // transformer decides its rewrites on, for the text OpenGL gets too.
+    let mut as_preprocessed = BTreeMap::new();
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
         // The renderer draws what lenient drivers run (`PreprocessOptions::lenient`).
         let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
+        as_preprocessed.insert(stage, p.text.clone());
         if reading.renames_albedo_sampler
-            && let Some((renamed, _)) = iris::albedo_sampler_as_gtexture(&p.text)
+            && let Some((renamed, _)) = iris::albedo_sampler_as_gtexture(&p.text, &p.text)
         {
             p.text = renamed;
         }
@@ -457,13 +461,13 @@ pub(crate) fn load_program_files(
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
-        let renamed = reading.renames_albedo_sampler.then(|| iris::albedo_sampler_as_gtexture(&expanded)).flatten();
+        let renamed = reading.renames_albedo_sampler.then(|| iris::albedo_sampler_as_gtexture(&expanded, &as_preprocessed[&stage.stage])).flatten();
         let (expanded, mut renamed_albedo) = match renamed {
             Some((text, what)) => (text, Some(format!("{path}: {what}"))),
             None => (expanded, None),
         };
         // Iris's transformer reads the stage as its preprocessor left it.
-        let removed = reading.removes_unused_functions.then(|| iris::unused_functions_removed(&expanded, &stage.preprocessed.text)).flatten();
+        let removed = reading.removes_unused_functions.then(|| iris::unused_functions_removed(&expanded, &as_preprocessed[&stage.stage])).flatten();
         let expanded = match removed {
             Some((text, what)) => {
                 renamed_albedo = Some(renamed_albedo.map_or_else(|| format!("{path}: {what}"), |r| format!("{r}; {what}")));

@@ -6,63 +6,79 @@
 use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess;
-use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, brace_depths, function_definitions, significant, tokenize};
+
+/// A file-scope declaration of a name: its first and last significant token (the `;`), as
+/// indices into the significant tokens, whether it is a `uniform sampler2D`, and how many names
+/// it declares.
+#[derive(Clone, Copy)]
+struct Declaration {
+    first: usize,
+    last: usize,
+    sampler: bool,
+    names: usize,
+}
+
+/// The file-scope declarations naming `name` among `tokens` (`order`: the significant ones).
+fn file_scope_declarations(tokens: &[Token<'_>], order: &[usize], name: &str) -> Vec<Declaration> {
+    let depths = brace_depths(tokens);
+    let mut found = Vec::new();
+    let mut start = 0usize;
+    for (k, &i) in order.iter().enumerate() {
+        if depths[i] != 0 {
+            start = k + 1;
+            continue;
+        }
+        if tokens[i].is_punct(";") || tokens[i].is_punct("}") {
+            let statement = &order[start..k];
+            if statement.iter().any(|&j| tokens[j].is_ident(name)) && !statement.iter().any(|&j| tokens[j].is_punct("(")) {
+                let sampler = statement.iter().any(|&j| tokens[j].is_ident("uniform")) && statement.iter().any(|&j| tokens[j].is_ident("sampler2D"));
+                let names = 1 + statement.iter().filter(|&&j| tokens[j].is_punct(",")).count();
+                found.push(Declaration { first: start, last: k, sampler, names });
+            }
+            start = k + 1;
+        }
+    }
+    found
+}
 
 /// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and
 /// every use of that name that is not a call, as Iris's transformer has it (where both are
-/// declared, `texture`'s single-name declaration goes); and what was done. `None` where neither
-/// is declared as a sampler at file scope, where another declaration takes the name, or where
-/// the stage declares `gtexture` itself.
-pub fn albedo_sampler_as_gtexture(text: &str) -> Option<(String, String)> {
-    use tidepack_glsl::token::{TokenKind, brace_depths, significant, tokenize};
-    let tokens = tokenize(text).ok()?;
-    let depths = brace_depths(&tokens);
-    let order = significant(&tokens);
-    // The file-scope declarations naming `name`: (first token, `;`, whether a sampler, names in it).
-    let declarations = |name: &str| -> Vec<(usize, usize, bool, usize)> {
-        let mut found = Vec::new();
-        let mut start = 0usize;
-        for (k, &i) in order.iter().enumerate() {
-            if depths[i] != 0 {
-                start = k + 1;
-                continue;
-            }
-            if tokens[i].is_punct(";") || tokens[i].is_punct("}") {
-                let statement = &order[start..k];
-                if statement.iter().any(|&j| tokens[j].is_ident(name)) && !statement.iter().any(|&j| tokens[j].is_punct("(")) {
-                    let sampler = statement.iter().any(|&j| tokens[j].is_ident("uniform"))
-                        && statement.iter().any(|&j| tokens[j].kind == TokenKind::Ident && tokens[j].text == "sampler2D");
-                    let names = 1 + statement.iter().filter(|&&j| tokens[j].is_punct(",")).count();
-                    found.push((start, k, sampler, names));
-                }
-                start = k + 1;
-            }
-        }
-        found
-    };
-    if !declarations("gtexture").is_empty() {
+/// declared, `texture`'s single-name declaration goes); and what was done. Iris decides on the
+/// stage as its preprocessor left it, `seen`; `text` may hold branches that left out (each
+/// declaration there is renamed or dropped alike). `None` where `seen` declares neither as a
+/// sampler at file scope, declares one twice or as something else, or declares `gtexture`.
+pub fn albedo_sampler_as_gtexture(text: &str, seen: &str) -> Option<(String, String)> {
+    let seen_tokens = tokenize(seen).ok()?;
+    let seen_order = significant(&seen_tokens);
+    let in_seen = |name: &str| file_scope_declarations(&seen_tokens, &seen_order, name);
+    if !in_seen("gtexture").is_empty() {
         return None;
     }
     let declared = |name: &str| {
-        let found = declarations(name);
-        (found.len() == 1 && found[0].2).then(|| found[0])
+        let found = in_seen(name);
+        (found.len() == 1 && found[0].sampler).then(|| found[0])
     };
     let (gcolor, texture) = (declared("gcolor"), declared("texture"));
-    let dropped = match (gcolor, texture) {
-        (Some(_), Some(t)) if t.3 == 1 => Some(t),
+    let dropped_name = match (gcolor, texture) {
+        (Some(_), Some(t)) if t.names == 1 => Some("texture"),
         (Some(_), Some(_)) | (None, None) => return None,
         _ => None,
     };
     let renamed: Vec<&str> = [gcolor.map(|_| "gcolor"), texture.map(|_| "texture")].into_iter().flatten().collect();
+    let tokens = tokenize(text).ok()?;
+    let order = significant(&tokens);
+    let dropped: Vec<Declaration> = dropped_name
+        .map(|name| file_scope_declarations(&tokens, &order, name).into_iter().filter(|d| d.sampler && d.names == 1).collect())
+        .unwrap_or_default();
     let mut out = String::with_capacity(text.len());
     for (k, &i) in order.iter().enumerate() {
         let previous_end = if k == 0 { 0 } else { tokens[order[k - 1]].offset + tokens[order[k - 1]].text.len() };
         out.push_str(&text[previous_end..tokens[i].offset]);
-        let in_dropped = dropped.is_some_and(|(from, to, _, _)| (from..=to).contains(&k));
-        let call = order.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
-        if in_dropped {
+        if dropped.iter().any(|d| (d.first..=d.last).contains(&k)) {
             continue;
         }
+        let call = order.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
         if tokens[i].kind == TokenKind::Ident && renamed.contains(&tokens[i].text) && !call {
             out.push_str("gtexture");
         } else {
@@ -173,14 +189,22 @@ mod tests {
     #[test]
     fn the_albedo_sampler_is_named_gtexture_as_iris_names_it() {
         let text = "#version 120\nuniform sampler2D gcolor;\nuniform sampler2D texture;\nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gcolor, uv) + texture2D(texture, uv) + texture(gtexture, uv);\n}\n";
-        let (renamed, what) = super::albedo_sampler_as_gtexture(text).expect("renamed");
+        let (renamed, what) = super::albedo_sampler_as_gtexture(text, text).expect("renamed");
         assert_eq!(
             renamed,
             "#version 120\nuniform sampler2D gtexture;\n  \nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = texture2D(gtexture, uv) + texture2D(gtexture, uv) + texture(gtexture, uv);\n}\n"
         );
         assert!(what.contains("`gcolor` and `texture`"), "{what}");
         // A stage declaring gtexture, or gcolor as something else, is left alone.
-        assert!(super::albedo_sampler_as_gtexture("uniform sampler2D gtexture;\nuniform sampler2D gcolor;\n").is_none());
-        assert!(super::albedo_sampler_as_gtexture("uniform vec4 gcolor;\nvoid main() {}\n").is_none());
+        let both = "uniform sampler2D gtexture;\nuniform sampler2D gcolor;\n";
+        assert!(super::albedo_sampler_as_gtexture(both, both).is_none());
+        let other = "uniform vec4 gcolor;\nvoid main() {}\n";
+        assert!(super::albedo_sampler_as_gtexture(other, other).is_none());
+        // One stage of a file holding both (`#ifdef VSH` … `#ifdef FSH`): Iris decides on what its
+        // preprocessor left, one declaration, and every declaration of the file is renamed.
+        let file = "#ifdef VSH\nuniform sampler2D gcolor;\n#endif\n#ifdef FSH\nuniform sampler2D gcolor;\nvoid main() { gl_FragData[0] = texture2D(gcolor, vec2(0.0)); }\n#endif\n";
+        let seen = "uniform sampler2D gcolor;\nvoid main() { gl_FragData[0] = texture2D(gcolor, vec2(0.0)); }\n";
+        let (renamed, _) = super::albedo_sampler_as_gtexture(file, seen).expect("renamed");
+        assert!(!renamed.contains("gcolor") && renamed.matches("sampler2D gtexture;").count() == 2, "{renamed}");
     }
 }
