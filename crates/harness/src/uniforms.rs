@@ -158,6 +158,13 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("heldBlockLightValue", Value::int(0));
     put("heldBlockLightValue2", Value::int(0));
     put("playerMood", Value::float(0.0));
+    // The scenes are set in a plains biome: its legacy id, category (CAT_PLAINS), rain
+    // (PPT_RAIN), temperature and rainfall as the game defines them.
+    put("biome", Value::int(1));
+    put("biome_category", Value::int(5));
+    put("biome_precipitation", Value::int(1));
+    put("temperature", Value::float(0.8));
+    put("rainfall", Value::float(0.4));
     // The game's fog is on (GL_LINEAR), but for the sun and moon; the pack's programs apply it.
     put("fogMode", Value::int(if pass == Pass::Celestial { 0 } else { GL_LINEAR }));
     // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`with_render_stage`]).

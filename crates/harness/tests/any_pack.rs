@@ -490,6 +490,17 @@ fn fog_uniforms_hold_the_games_fog() {
     assert!(fogged > screen.pixels().len() / 10, "{fogged} terrain pixels with fogStart = 0.75 far, fogEnd = far");
 }
 
+/// The biome's uniforms (tests/packs/biome_uniform): a custom uniform on `biome`, its category
+/// and precipitation says plains, and `temperature` and `rainfall` are the plains' 0.8 and 0.4.
+#[test]
+fn biome_uniforms_say_plains() {
+    let (report, screen) = render_job("biome_uniform");
+    assert!(!report.not_modelled.iter().any(|n| n.contains("biome")), "{:?}", report.not_modelled);
+    // Blue is 0.8 * 0.4 = 0.32 of 255.
+    let plains = screen.pixels().filter(|p| p.0[0] == 0 && p.0[1] == 255 && p.0[2].abs_diff(82) <= 1).count();
+    assert!(plains > screen.pixels().len() / 10, "{plains} terrain pixels in the plains");
+}
+
 /// A program with a geometry stage (tests/packs/geometry_stage), which naga cannot read: OpenGL
 /// draws the frame, running the geometry stage between the vertex and fragment stages, and the
 /// report says why wgpu does not.
