@@ -141,7 +141,7 @@ fn expressions_too_long_for_naga_are_errors_not_crashes() {
 #[test]
 fn a_configuration_is_named_as_render_names_it() {
     let (_dir, pack) = pack_with_fragment(
-        "#version 120\n//#define GLOW\n#ifdef GLOW\nfloat glow() { return glowStrength; }\n#endif\nvoid main() { gl_FragData[0] = vec4(1.0); }\n",
+        "#version 120\n//#define GLOW\n#ifdef GLOW\nfloat glow() { return glowStrength; }\n#else\nfloat glow() { return 1.0; }\n#endif\nvoid main() { gl_FragData[0] = vec4(glow()); }\n",
     );
     let path = pack.to_str().unwrap();
     assert_eq!(validate(&[path]).status.code(), Some(0));

@@ -65,8 +65,9 @@ impl VersionDirective {
 pub struct RenderTargets {
     /// `true` for `RENDERTARGETS` (outputs `outColor<i>`), `false` for `DRAWBUFFERS`.
     pub modern: bool,
-    /// Buffer numbers in output order.
-    pub buffers: Vec<u8>,
+    /// Buffer numbers in output order; `None` for an `N`, an output drawn into no buffer
+    /// (OptiFine's directive pattern takes it; Iris's parser reads integers only).
+    pub buffers: Vec<Option<u8>>,
     pub line: SourceLine,
 }
 
@@ -863,12 +864,17 @@ impl Preprocessor<'_> {
         } else {
             return Ok(());
         };
-        let buffers: Vec<u8> = if modern {
-            list.split(',').map(|s| s.trim().parse::<u8>().ok().filter(|&b| b < 16)).collect::<Option<_>>()
+        // Each entry a buffer, or `N` for none.
+        let entry = |text: &str| match text {
+            "N" => Some(None),
+            number => number.parse::<u8>().ok().filter(|&b| b < 16).map(Some),
+        };
+        let buffers: Vec<Option<u8>> = if modern {
+            list.split(',').map(|s| entry(s.trim())).collect::<Option<_>>()
         } else {
-            list.chars().map(|c| c.to_digit(10).map(|d| d as u8)).collect::<Option<_>>()
+            list.chars().map(|c| entry(c.encode_utf8(&mut [0; 4]))).collect::<Option<_>>()
         }
-        .ok_or_else(|| format!("malformed render-target list `{list}` (buffers are 0-15)"))?;
+        .ok_or_else(|| format!("malformed render-target list `{list}` (buffers are 0-15, or N for none)"))?;
         if buffers.is_empty() || buffers.len() > MAX_DRAW_BUFFERS {
             return Err(format!("a program writes 1 to {MAX_DRAW_BUFFERS} buffers; `{list}` lists {}", buffers.len()));
         }
@@ -1450,7 +1456,7 @@ mod tests {
         let src = "#ifdef NEVER\n/* DRAWBUFFERS:0123 */\n#else\n/* RENDERTARGETS: 0,4 */\n#endif\n";
         let out = run(&[("a.fsh", src)]).unwrap();
         let targets = out.render_targets.unwrap();
-        assert_eq!((targets.modern, targets.buffers), (true, vec![0, 4]));
+        assert_eq!((targets.modern, targets.buffers), (true, vec![Some(0), Some(4)]));
         assert_eq!(targets.line.line, 4);
     }
 

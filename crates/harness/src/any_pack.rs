@@ -722,19 +722,19 @@ impl<'a> FramePlan<'a> {
         let is_final = |p: &LoadedProgram| p.name == "final";
         let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
         for program in pack.gbuffers.values() {
-            buffers.extend(program.render_targets.iter().copied());
+            buffers.extend(program.drawn_buffers());
             buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, true));
         }
         for program in &pack.fullscreen {
             if !is_final(program) {
-                buffers.extend(program.render_targets.iter().copied());
+                buffers.extend(program.drawn_buffers());
             }
             buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, false));
         }
         let mut shadow_buffers = BTreeSet::new();
         if pack.shadow_pass {
             shadow_buffers.insert(0);
-            shadow_buffers.extend(pack.shadow.values().flat_map(|p| p.render_targets.iter().copied()));
+            shadow_buffers.extend(pack.shadow.values().flat_map(|p| p.drawn_buffers()));
             for program in pack.gbuffers.values().chain(&pack.fullscreen) {
                 for stage in [&program.vertex, &program.fragment] {
                     for (name, _) in program::texture_resources(&stage.interface) {
@@ -787,7 +787,7 @@ impl<'a> FramePlan<'a> {
         let final_program = pack.fullscreen.iter().find(|p| is_final(p));
         // Without final, the last composite writing colortex0 may draw it into the screen.
         let last_into_screen = match (final_program, screen) {
-            (None, ScreenOutput::Unrounded) => composites.iter().rposition(|p| p.render_targets.contains(&0)),
+            (None, ScreenOutput::Unrounded) => composites.iter().rposition(|p| p.render_targets.contains(&Some(0))),
             _ => None,
         };
         for (i, program) in composites.into_iter().enumerate() {
@@ -888,7 +888,7 @@ impl<'a> FramePlan<'a> {
         // drawing colortex0 into the screen leaves colortex0 as it was.
         let overrides = pack.flips.get(&program.name);
         for b in self.buffers.iter().filter(|_| program.name != "final") {
-            let default = program.render_targets.contains(b);
+            let default = program.render_targets.contains(&Some(*b));
             if !(into_screen && *b == 0) && overrides.and_then(|o| o.get(b)).copied().unwrap_or(default) {
                 self.current.insert(*b, 1 - current[b]);
             }

@@ -242,9 +242,9 @@ pub(crate) unsafe fn draw_own_colour(
     Ok(())
 }
 
-/// Sets the blend of each draw buffer (draw buffer i draws into `buffers[i]`).
-pub(crate) unsafe fn set_blends(gl: &glow::Context, buffers: &[u8], blend_of: &dyn Fn(u8) -> Blend) {
-    for (i, b) in buffers.iter().enumerate() {
+/// Sets the blend of each draw buffer (draw buffer i draws into `buffers[i]`, or nothing).
+pub(crate) unsafe fn set_blends(gl: &glow::Context, buffers: &[Option<u8>], blend_of: &dyn Fn(u8) -> Blend) {
+    for (i, b) in buffers.iter().enumerate().filter_map(|(i, b)| Some((i, b.as_ref()?))) {
         // SAFETY: the caller holds the current context.
         unsafe {
             match blend_of(*b) {
@@ -327,17 +327,18 @@ pub(crate) unsafe fn read_as_shadow_map(gl: &glow::Context, t: glow::Texture, ne
 
 /// Attaches `attachments` as colour attachments 0.. (draw buffers in that order) and `depth`
 /// to the bound framebuffer.
-pub(crate) unsafe fn attach(gl: &glow::Context, attachments: &[glow::Texture], depth: Option<glow::Texture>) -> Result<(), HarnessError> {
+pub(crate) unsafe fn attach(gl: &glow::Context, attachments: &[Option<glow::Texture>], depth: Option<glow::Texture>) -> Result<(), HarnessError> {
     // SAFETY: the caller holds the current context with a framebuffer bound.
     unsafe {
         for i in 0..8 {
             gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i, glow::TEXTURE_2D, None, 0);
         }
         for (i, t) in attachments.iter().enumerate() {
-            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i as u32, glow::TEXTURE_2D, Some(*t), 0);
+            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0 + i as u32, glow::TEXTURE_2D, *t, 0);
         }
         gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::DEPTH_ATTACHMENT, glow::TEXTURE_2D, depth, 0);
-        let draw: Vec<u32> = (0..attachments.len() as u32).map(|i| glow::COLOR_ATTACHMENT0 + i).collect();
+        // An output drawn into no buffer (`N`) has GL_NONE as its draw buffer.
+        let draw: Vec<u32> = attachments.iter().enumerate().map(|(i, t)| if t.is_some() { glow::COLOR_ATTACHMENT0 + i as u32 } else { glow::NONE }).collect();
         gl.draw_buffers(&draw);
         let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
         if status != glow::FRAMEBUFFER_COMPLETE {
@@ -353,9 +354,9 @@ pub(crate) unsafe fn read(gl: &glow::Context, t: glow::Texture, is_depth: bool, 
     // SAFETY: the caller holds the current context with a framebuffer bound.
     unsafe {
         if is_depth {
-            attach(gl, &[scratch], Some(t))?;
+            attach(gl, &[Some(scratch)], Some(t))?;
         } else {
-            attach(gl, &[t], None)?;
+            attach(gl, &[Some(t)], None)?;
             gl.read_buffer(glow::COLOR_ATTACHMENT0);
         }
         let mut image = FloatImage::new(w as u32, h as u32);

@@ -291,7 +291,7 @@ impl<'a> GlPlanFrame<'a> {
             for (b, (textures, _, _)) in &self.buffers {
                 let c = self.pack.clear_of(*b).colour(*b, self.scene.sky.fog_color).map(|v| v as f32);
                 for t in textures {
-                    attach(gl, &[*t], Some(self.depth0))?;
+                    attach(gl, &[Some(*t)], Some(self.depth0))?;
                     gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
                 }
             }
@@ -300,7 +300,7 @@ impl<'a> GlPlanFrame<'a> {
             attach(gl, &[], Some(self.lod_depth[0]))?;
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
             for (b, t) in &self.shadow_colours {
-                attach(gl, &[*t], Some(self.shadow_depth[0]))?;
+                attach(gl, &[Some(*t)], Some(self.shadow_depth[0]))?;
                 gl.clear_buffer_f32_slice(glow::COLOR, 0, &self.pack.shadow_clear_of(*b).shadow_colour().map(|v| v as f32));
             }
             for depth in self.shadow_depth {
@@ -422,14 +422,14 @@ impl<'a> GlPlanFrame<'a> {
                 let (textures, snapshot, _) = &self.buffers[b];
                 gl.copy_image_sub_data(textures[current[b]], glow::TEXTURE_2D, 0, 0, 0, 0, *snapshot, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
             }
-            let drawn: Vec<u8> = match step.program {
+            let drawn: Vec<Option<u8>> = match step.program {
                 Some(p) => p.render_targets.clone(),
                 None => match self.pack.loader.missing_program_draws() {
-                    MissingProgramDraws::FirstBufferOnly => vec![0],
-                    MissingProgramDraws::EveryBuffer => self.buffers.keys().copied().collect(),
+                    MissingProgramDraws::FirstBufferOnly => vec![Some(0)],
+                    MissingProgramDraws::EveryBuffer => self.buffers.keys().copied().map(Some).collect(),
                 },
             };
-            let targets: Vec<glow::Texture> = drawn.iter().map(|b| self.buffers[b].0[current[b]]).collect();
+            let targets: Vec<Option<glow::Texture>> = drawn.iter().map(|b| b.map(|b| self.buffers[&b].0[current[&b]])).collect();
             // Distant Horizons draws into its own depth buffer.
             let depth = if step.pass == Pass::DistantHorizons { self.lod_depth[0] } else { self.depth0 };
             attach(gl, &targets, Some(depth))?;
@@ -464,7 +464,12 @@ impl<'a> GlPlanFrame<'a> {
             }
             set_blends(gl, &drawn, &|_| Blend::Off);
             gl.depth_mask(true);
-            drawn.iter().zip(&targets).map(|(b, t)| Ok(Written { name: format!("colortex{b}"), texture: *t, image: self.read_colour(*t)? })).collect()
+            drawn
+                .iter()
+                .zip(&targets)
+                .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
+                .map(|(b, t)| Ok(Written { name: format!("colortex{b}"), texture: *t, image: self.read_colour(*t)? }))
+                .collect()
         }
     }
 
@@ -473,7 +478,7 @@ impl<'a> GlPlanFrame<'a> {
         let gl = self.ctx.gl();
         let side = self.shadow_side;
         unsafe {
-            let targets: Vec<glow::Texture> = program.render_targets.iter().map(|b| self.shadow_colours[b]).collect();
+            let targets: Vec<Option<glow::Texture>> = program.render_targets.iter().map(|b| b.map(|b| self.shadow_colours[&b])).collect();
             attach(gl, &targets, Some(self.shadow_depth[0]))?;
             set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
             gl.enable(glow::DEPTH_TEST);
@@ -500,6 +505,7 @@ impl<'a> GlPlanFrame<'a> {
                 .render_targets
                 .iter()
                 .zip(&targets)
+                .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
                 .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, false, self.screen, side, side)? }))
                 .collect()
         }
@@ -521,15 +527,15 @@ impl<'a> GlPlanFrame<'a> {
                 gl.bind_texture(glow::TEXTURE_2D, Some(self.buffers[b].0[current[b]]));
                 gl.generate_mipmap(glow::TEXTURE_2D);
             }
-            let targets: Vec<(String, glow::Texture)> = program
+            let targets: Vec<Option<(String, glow::Texture)>> = program
                 .render_targets
                 .iter()
-                .map(|b| match (into_screen, *b) {
-                    (true, 0) => ("screen".to_string(), self.screen),
-                    _ => (format!("colortex{b}"), self.buffers[b].0[1 - current[b]]),
+                .map(|b| match (into_screen, (*b)?) {
+                    (true, 0) => Some(("screen".to_string(), self.screen)),
+                    (_, b) => Some((format!("colortex{b}"), self.buffers[&b].0[1 - current[&b]])),
                 })
                 .collect();
-            let attachments: Vec<glow::Texture> = targets.iter().map(|(_, t)| *t).collect();
+            let attachments: Vec<Option<glow::Texture>> = targets.iter().map(|t| t.as_ref().map(|(_, t)| *t)).collect();
             attach(gl, &attachments, None)?;
             set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
             gl.disable(glow::DEPTH_TEST);
@@ -548,7 +554,7 @@ impl<'a> GlPlanFrame<'a> {
             };
             self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            targets.into_iter().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
+            targets.into_iter().flatten().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
         }
     }
 
@@ -561,7 +567,7 @@ impl<'a> GlPlanFrame<'a> {
             gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(read_fbo));
             gl.framebuffer_texture_2d(glow::READ_FRAMEBUFFER, glow::COLOR_ATTACHMENT0, glow::TEXTURE_2D, Some(self.buffers[&0].0[current]), 0);
             gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(self.fbo));
-            attach(gl, &[self.screen], None)?;
+            attach(gl, &[Some(self.screen)], None)?;
             gl.blit_framebuffer(0, 0, w, h, 0, 0, w, h, glow::COLOR_BUFFER_BIT, glow::NEAREST);
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             gl.delete_framebuffer(read_fbo);
@@ -618,7 +624,7 @@ impl<'a> GlPlanFrame<'a> {
             let vertex_array = gl.create_vertex_array().map_err(|e| HarnessError::Gl(format!("vertex array: {e}")))?;
             gl.bind_vertex_array(Some(vertex_array));
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
-            attach(gl, &[self.screen], None)?;
+            attach(gl, &[Some(self.screen)], None)?;
             gl.disable(glow::DEPTH_TEST);
             gl.disable(glow::BLEND);
             gl.use_program(Some(program.raw));

@@ -144,8 +144,16 @@ pub struct LoadedProgram {
     /// The program's geometry stage (`.gsh`), which only OpenGL runs.
     pub geometry: Option<GeometryStage>,
     pub fragment: LoadedStage,
-    /// Buffer numbers the fragment outputs go to, in output order (RENDERTARGETS/DRAWBUFFERS).
-    pub render_targets: Vec<u8>,
+    /// Buffer numbers the fragment outputs go to, in output order (RENDERTARGETS/DRAWBUFFERS);
+    /// `None` where the list says `N`, an output drawn into no buffer.
+    pub render_targets: Vec<Option<u8>>,
+}
+
+impl LoadedProgram {
+    /// The buffers the program draws into, in output order.
+    pub fn drawn_buffers(&self) -> impl Iterator<Item = u8> + '_ {
+        self.render_targets.iter().flatten().copied()
+    }
 }
 
 /// What binding a program's samplers needs of its pack besides the program itself.
@@ -564,8 +572,8 @@ pub(crate) fn load_program_files(
     };
     let render_targets = match (declared_targets, reading.undeclared) {
         (Some(buffers), _) => buffers,
-        (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).collect(),
-        (None, UndeclaredTargets::FirstOnly) => vec![0],
+        (None, UndeclaredTargets::Outputs) => (0..fragment.interface.outputs.keys().max().map_or(1, |m| m + 1) as u8).map(Some).collect(),
+        (None, UndeclaredTargets::FirstOnly) => vec![Some(0)],
     };
     Ok(LoadedProgram { name: name.to_string(), vertex, geometry, fragment, render_targets })
 }

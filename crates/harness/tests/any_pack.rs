@@ -501,6 +501,20 @@ fn biome_uniforms_say_plains() {
     assert!(plains > screen.pixels().len() / 10, "{plains} terrain pixels in the plains");
 }
 
+/// `N` in a DRAWBUFFERS list (tests/packs/drawn_into_no_buffer): that output is drawn into no
+/// buffer and the next into colortex0, in both renderers.
+#[test]
+fn an_output_listed_as_n_is_drawn_into_no_buffer() {
+    let (report, screen) = render_job("drawn_into_no_buffer");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let green = screen.pixels().filter(|p| p.0 == [0, 255, 0, 255]).count();
+    let red = screen.pixels().filter(|p| p.0[0] == 255 && p.0[1] == 0).count();
+    assert!(green > screen.pixels().len() / 10 && red == 0, "{green} green, {red} red pixels");
+}
+
 /// A program with a geometry stage (tests/packs/geometry_stage), which naga cannot read: OpenGL
 /// draws the frame, running the geometry stage between the vertex and fragment stages, and the
 /// report says why wgpu does not.

@@ -388,11 +388,11 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
     let Some(targets) = &fragment.render_targets else { return Vec::new() };
     let directive_at = Location::line(fragment.files[targets.line.file as usize].clone(), targets.line.line);
     let name = if targets.modern { "RENDERTARGETS" } else { "DRAWBUFFERS" };
-    let listed: Vec<String> = targets.buffers.iter().map(u8::to_string).collect();
+    let listed: Vec<String> = targets.buffers.iter().map(|b| b.map_or_else(|| "N".to_string(), |b| b.to_string())).collect();
     let shown = if targets.modern { format!("/* RENDERTARGETS: {} */", listed.join(",")) } else { format!("/* DRAWBUFFERS:{} */", listed.join("")) };
     let mut found = Vec::new();
     let mut seen = BTreeSet::new();
-    for b in &targets.buffers {
+    for b in targets.buffers.iter().flatten() {
         if !seen.insert(b) {
             found.push(Diagnostic::error(
                 Code::DrawBuffers,
@@ -427,6 +427,7 @@ pub fn check_render_targets(fragment: &Preprocessed, lowered: &LoweredStage) -> 
     let broadcast = outputs.values().any(|s| s == "gl_FragColor");
     if !broadcast {
         for (i, buffer) in targets.buffers.iter().enumerate() {
+            let Some(buffer) = buffer else { continue };
             if !written.contains_key(&(i as u32)) {
                 let output = if targets.modern { format!("outColor{i}") } else { format!("gl_FragData[{i}]") };
                 found.push(Diagnostic::warning(

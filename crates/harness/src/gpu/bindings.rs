@@ -513,6 +513,11 @@ fn color_targets(
     let mut alternates = BTreeMap::new();
     let mut color_targets = Vec::new();
     for (location, &b) in program.render_targets.iter().enumerate() {
+        // An output drawn into no buffer (`N`) has no target.
+        let Some(b) = b else {
+            color_targets.push(None);
+            continue;
+        };
         // A target the fragment stage has no output for is left as it is.
         let location = location as u32;
         let write_mask = match program.fragment.narrow_outputs.get(&location) {
@@ -714,12 +719,12 @@ impl ProgramPipeline {
         quad: &FullscreenQuad,
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let views: Vec<wgpu::TextureView> = program.render_targets.iter().map(|b| view(target(*b))).collect();
+        let views: Vec<Option<wgpu::TextureView>> = program.render_targets.iter().map(|b| b.map(|b| view(target(b)))).collect();
         let attachments: Vec<_> = views
             .iter()
             .map(|v| {
                 Some(wgpu::RenderPassColorAttachment {
-                    view: v,
+                    view: v.as_ref()?,
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },

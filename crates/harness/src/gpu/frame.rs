@@ -318,7 +318,7 @@ impl<'p> PreparedSteps<'p> {
                         mipmapped: &NO_MIPMAPS,
                     };
                     let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
-                    let written = draw.buffers().iter().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(*b, current[b]))).collect();
+                    let written = draw.buffers().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(b, current[&b]))).collect();
                     (Work::Geometry { draw, current, snapshots, lod: *pass == Pass::DistantHorizons }, written)
                 }
                 PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
@@ -341,18 +341,17 @@ impl<'p> PreparedSteps<'p> {
                         mipmapped: &NO_MIPMAPS,
                     };
                     let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, Some(program), &state, vertices, &step.label)?;
-                    let written = draw.buffers().iter().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(*b))).collect();
+                    let written = draw.buffers().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(b))).collect();
                     (Work::ShadowGeometry(draw), written)
                 }
                 PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
                 PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
                     let pipeline = prepared.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
                     let written = program
-                        .render_targets
-                        .iter()
-                        .map(|b| match (*into_screen, *b) {
+                        .drawn_buffers()
+                        .map(|b| match (*into_screen, b) {
                             (true, 0) => ("screen".to_string(), WrittenTexture::Screen),
-                            _ => (format!("colortex{b}"), WrittenTexture::Buffer(*b, 1 - current[b])),
+                            _ => (format!("colortex{b}"), WrittenTexture::Buffer(b, 1 - current[&b])),
                         })
                         .collect();
                     (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)

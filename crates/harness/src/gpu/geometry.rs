@@ -22,7 +22,7 @@ use super::own::ColourPipeline;
 pub(crate) struct GeometryDraw {
     pub label: String,
     drawer: Drawer,
-    buffers: Vec<u8>,
+    buffers: Vec<Option<u8>>,
     vertices: wgpu::Buffer,
     count: u32,
 }
@@ -59,7 +59,7 @@ impl GeometryDraw {
                 };
                 let formats: Vec<(wgpu::TextureFormat, Option<wgpu::BlendState>)> =
                     buffers.iter().map(|b| (textures.colors[b].1, wgpu_blend(&(state.blend_of)(*b)))).collect();
-                (Drawer::Harness(ColourPipeline::new(gpu, scene, &formats, state.depth_write)?), buffers)
+                (Drawer::Harness(ColourPipeline::new(gpu, scene, &formats, state.depth_write)?), buffers.into_iter().map(Some).collect())
             }
         };
         // wgpu refuses empty buffers: an empty mesh uploads one unused vertex and draws nothing.
@@ -81,8 +81,8 @@ impl GeometryDraw {
     }
 
     /// The colour buffers the draw writes.
-    pub(crate) fn buffers(&self) -> &[u8] {
-        &self.buffers
+    pub(crate) fn buffers(&self) -> impl Iterator<Item = u8> + '_ {
+        self.buffers.iter().flatten().copied()
     }
 
     /// Records the draw into the colour buffers `buffer` gives for each number and `depth0`.
@@ -94,8 +94,8 @@ impl GeometryDraw {
         timestamps: Option<wgpu::RenderPassTimestampWrites>,
     ) {
         let depth0_view = view(depth0);
-        let views: Vec<wgpu::TextureView> = self.buffers.iter().map(|b| view(buffer(*b))).collect();
-        let attachments: Vec<_> = views.iter().map(|v| Some(load_attachment(v))).collect();
+        let views: Vec<Option<wgpu::TextureView>> = self.buffers.iter().map(|b| b.map(|b| view(buffer(b)))).collect();
+        let attachments: Vec<_> = views.iter().map(|v| v.as_ref().map(load_attachment)).collect();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(&self.label),
             color_attachments: &attachments,
