@@ -333,6 +333,37 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // Locals read before anything writes them: GLSL leaves their value undefined (Mesa's may be
+    // anything, NaN included), wgpu's is 0. Decided on what the driver meets, given in every
+    // declaration of the name: a 0 where the stage writes first changes nothing.
+    let unset = locals_read_unset(&met);
+    let mut declared_at: Vec<(&str, u32)> = Vec::new();
+    let mut depth = 0i32;
+    for (k, w) in sig.windows(3).enumerate() {
+        if w[0].is_punct("{") {
+            depth += 1;
+        } else if w[0].is_punct("}") {
+            depth -= 1;
+        }
+        let statement_start = k.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| sig[p].is_punct(x)));
+        if depth > 0
+            && statement_start
+            && w[2].is_punct(";")
+            && let Some((type_, name)) = unset.iter().find(|(type_, name)| w[0].is_ident(type_) && w[1].is_ident(name))
+        {
+            replaced[significant[k + 1]] = Some(format!("{name} = {type_}(0)"));
+            if !declared_at.iter().any(|(n, _)| n == name) {
+                declared_at.push((name, w[1].line));
+            }
+        }
+    }
+    for (name, line) in declared_at {
+        rewrites.push(Rewrite {
+            line,
+            what: format!("`{name}`, which may be read before it is written whole, set to 0 where declared (undefined in GLSL; 0 as wgpu has it)"),
+        });
+    }
+
     let mut out: String = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
     if !redefined.is_empty() {
         let mut lines: Vec<String> = out.split_inclusive('\n').map(str::to_string).collect();
@@ -352,6 +383,57 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// Locals (type, name) of `toks` (significant tokens) declared `TYPE NAME;` inside a function
+/// whose first use after the declaration, in the text's order, is neither a whole assignment
+/// (`NAME = …`, a branch's included) nor a bare argument of a call (an `out` parameter may
+/// write it): `NAME += …`, `NAME.x = …` or a read.
+fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
+    let mut found: Vec<TypedName<'t>> = Vec::new();
+    let mut depth = 0i32;
+    for (i, t) in toks.iter().enumerate() {
+        if t.is_punct("{") {
+            depth += 1;
+            continue;
+        }
+        if t.is_punct("}") {
+            depth -= 1;
+            continue;
+        }
+        let declaration = depth > 0
+            && VALUE_TYPES.contains(&t.text)
+            && toks.get(i + 2).is_some_and(|e| e.is_punct(";"))
+            && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident)
+            && i.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| toks[p].is_punct(x)));
+        if !declaration {
+            continue;
+        }
+        let name = toks[i + 1].text;
+        // The first use in the same block (the scope ends with the block's closing brace).
+        let mut level = 0i32;
+        for k in i + 3..toks.len() {
+            let u = toks[k];
+            if u.is_punct("{") {
+                level += 1;
+            } else if u.is_punct("}") {
+                level -= 1;
+                if level < 0 {
+                    break;
+                }
+            } else if u.is_ident(name) {
+                let statement_start = ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x));
+                let whole_assignment = statement_start && toks.get(k + 1).is_some_and(|e| e.is_punct("="));
+                // A bare argument may be an `out` parameter, which writes it.
+                let argument = ["(", ","].iter().any(|x| toks[k - 1].is_punct(x)) && toks.get(k + 1).is_some_and(|e| e.is_punct(")") || e.is_punct(","));
+                if !whole_assignment && !argument && !found.iter().any(|(_, n)| *n == name) {
+                    found.push((t.text, name));
+                }
+                break;
+            }
+        }
+    }
+    found
 }
 
 /// The first `in` or `out` of `met` (significant tokens) that qualifies a file-scope
@@ -771,6 +853,22 @@ mod tests {
         assert_eq!(out, "#version 330 compatibility\n \n#if 1\nint clouds;\n#endif\nvoid main() {}\n");
         assert_eq!(rewrites.iter().map(|r| r.line).collect::<Vec<_>>(), [2, 3]);
         assert_eq!(rewrites[0].what, "`#define 2D_CLOUDS`, which names no macro, removed as Iris's preprocessor skips it");
+    }
+
+    #[test]
+    fn a_local_read_before_anything_writes_it_is_set_to_0() {
+        let text = "#version 120\nvoid main() {\n    vec3 col;\n    float kept;\n    kept = 1.0;\n    for (int i = 0; i < 2; i++) { col += vec3(kept); }\n    gl_FragColor = vec4(col, 1.0);\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("vec3 col;", "vec3 col = vec3(0);"));
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 3);
+        assert!(rewrites[0].what.starts_with("`col`, which may be read before it is written whole"), "{}", rewrites[0].what);
+        // Written in part first: the rest is undefined.
+        let part = "#version 120\nvoid main() {\n    vec2 v;\n    v.x = 1.0;\n    gl_FragColor = vec4(v, 0.0, 1.0);\n}\n";
+        assert_eq!(for_strict_drivers(part, part, Stage::Fragment, &[]).0, part.replace("vec2 v;", "vec2 v = vec2(0);"));
+        // Written by each branch of an `if`, or through an `out` parameter: left as it is.
+        let branches = "#version 120\nuniform float u;\nvoid set(out float y) { y = 1.0; }\nvoid main() {\n    float x;\n    if (u > 0.0) { x = 1.0; } else { x = 2.0; }\n    float y;\n    set(y);\n    gl_FragColor = vec4(x, y, 0.0, 1.0);\n}\n";
+        assert_eq!(for_strict_drivers(branches, branches, Stage::Fragment, &[]), (branches.to_string(), Vec::new()));
     }
 
     #[test]

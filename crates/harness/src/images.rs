@@ -146,6 +146,18 @@ pub fn block_means_agree(a: &FloatImage, b: &FloatImage, side: u32, threshold: f
     agree
 }
 
+/// Per pixel of a `width`x`height` image, whether its `side`-pixel block holds a pixel `mask`
+/// marks.
+pub fn blocks_holding(mask: &[bool], width: u32, height: u32, side: u32) -> Vec<bool> {
+    let (w, h, side) = (width as usize, height as usize, side.max(1) as usize);
+    let blocks_across = w.div_ceil(side);
+    let mut held = vec![false; blocks_across * h.div_ceil(side)];
+    for (i, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
+        held[(i / w) / side * blocks_across + (i % w) / side] = true;
+    }
+    (0..w * h).map(|i| held[(i / w) / side * blocks_across + (i % w) / side]).collect()
+}
+
 /// Per pixel, whether its RGB differ by more than `threshold` in some channel.
 pub fn differing_pixels(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<bool> {
     a.pixels.iter().zip(&b.pixels).map(|(p, q)| pixels_differ(p, q, threshold)).collect()

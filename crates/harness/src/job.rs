@@ -363,10 +363,12 @@ impl GlStepsComparison {
 
 /// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many are the pack's
 /// own arithmetic noise: those where `theirs` and one of `moved` (theirs drawn again, each
-/// nudged another way) differ too; or, where the nudges move more than [`MAX_SENSITIVE_SHARE`]
-/// of the image (the step is noise throughout: a dither, a hash of every pixel), those whose
-/// [`NOISE_BLOCK`]-pixel block has the same mean in both renderers to within 1/255, where the
-/// noise averages to the same picture.
+/// nudged another way) differ too, and those whose [`NOISE_BLOCK`]-pixel block holds such a
+/// pixel and has the same mean in both renderers to within 1/255 (the last bits of the
+/// arithmetic decide there, as the nudges show, and what they decide averages to the same
+/// picture). Where the nudges move more than [`MAX_SENSITIVE_SHARE`] of the image (the step is
+/// noise throughout: a dither, a hash of every pixel), those of every block whose means agree,
+/// and no other.
 fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]) -> usize {
     let apart = images::differing_pixels(ours, theirs, OVER_1_255);
     let mut unstable = vec![false; apart.len()];
@@ -376,8 +378,10 @@ fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage
         }
     }
     let noise_throughout = unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64;
-    let noise = if noise_throughout { images::block_means_agree(ours, theirs, NOISE_BLOCK, OVER_1_255) } else { unstable };
-    apart.iter().zip(&noise).filter(|(a, n)| **a && **n).count()
+    let means_agree = images::block_means_agree(ours, theirs, NOISE_BLOCK, OVER_1_255);
+    let sensitive_blocks = images::blocks_holding(&unstable, ours.width, ours.height, NOISE_BLOCK);
+    let noise = (0..apart.len()).map(|i| if noise_throughout { means_agree[i] } else { unstable[i] || (means_agree[i] && sensitive_blocks[i]) });
+    apart.iter().zip(noise).filter(|(a, n)| **a && *n).count()
 }
 
 /// Side of the blocks [`sensitive_pixels`] compares by their means where a step is noise
@@ -792,6 +796,17 @@ mod tests {
             other_way.pixels[i][0] = 0.6;
         }
         assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved, &other_way]), 7);
+        // Pixels apart beside moved ones, in a block whose means agree, are noise too; in a block
+        // whose mean they shift, they are not (above: ten bright pixels shift their block's).
+        let (faint_ours, mut faint_theirs) = (image(&[]), image(&[]));
+        for i in [0, 1, 2, 3, 4] {
+            faint_theirs.pixels[i][0] = 0.52;
+        }
+        faint_theirs.pixels[5][0] = 0.48;
+        let mut faint_moved = faint_theirs.clone();
+        faint_moved.pixels[0][0] = 0.5;
+        assert_eq!(super::sensitive_pixels(&faint_ours, &faint_theirs, &[&faint_moved]), 6);
+        assert_eq!(super::sensitive_pixels(&faint_ours, &faint_theirs, &[&faint_theirs]), 0);
         // Past 5% of the texture moved, the step is noise throughout, and the ten pixels brighten
         // their blocks' means: not noise.
         for i in 100..120 {
