@@ -338,15 +338,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // declaration of the name: a 0 where the stage writes first changes nothing.
     let unset = locals_read_unset(&met);
     let mut declared_at: Vec<(&str, u32)> = Vec::new();
-    let mut depth = 0i32;
+    let bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
     for (k, w) in sig.windows(3).enumerate() {
-        if w[0].is_punct("{") {
-            depth += 1;
-        } else if w[0].is_punct("}") {
-            depth -= 1;
-        }
         let statement_start = k.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| sig[p].is_punct(x)));
-        if depth > 0
+        if bodies.iter().any(|b| b.contains(&k))
             && statement_start
             && w[2].is_punct(";")
             && let Some((type_, name)) = unset.iter().find(|(type_, name)| w[0].is_ident(type_) && w[1].is_ident(name))
@@ -391,45 +386,41 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
 /// write it): `NAME += …`, `NAME.x = …` or a read.
 fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
     let mut found: Vec<TypedName<'t>> = Vec::new();
-    let mut depth = 0i32;
-    for (i, t) in toks.iter().enumerate() {
-        if t.is_punct("{") {
-            depth += 1;
-            continue;
-        }
-        if t.is_punct("}") {
-            depth -= 1;
-            continue;
-        }
-        let declaration = depth > 0
-            && VALUE_TYPES.contains(&t.text)
-            && toks.get(i + 2).is_some_and(|e| e.is_punct(";"))
-            && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident)
-            && i.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| toks[p].is_punct(x)));
-        if !declaration {
-            continue;
-        }
-        let name = toks[i + 1].text;
-        // The first use in the same block (the scope ends with the block's closing brace).
-        let mut level = 0i32;
-        for k in i + 3..toks.len() {
-            let u = toks[k];
-            if u.is_punct("{") {
-                level += 1;
-            } else if u.is_punct("}") {
-                level -= 1;
-                if level < 0 {
+    for function in function_definitions(toks) {
+        let body = function.open + 1..function.close.min(toks.len());
+        for i in body.clone() {
+            let t = toks[i];
+            let declaration = VALUE_TYPES.contains(&t.text)
+                && toks.get(i + 2).is_some_and(|e| e.is_punct(";"))
+                && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident)
+                && ["{", "}", ";"].iter().any(|x| toks[i - 1].is_punct(x));
+            if !declaration {
+                continue;
+            }
+            let name = toks[i + 1].text;
+            // The first use in the same block (the scope ends with the block's closing brace);
+            // `other.NAME` is another variable's member.
+            let mut level = 0i32;
+            for k in i + 3..body.end {
+                let u = toks[k];
+                if u.is_punct("{") {
+                    level += 1;
+                } else if u.is_punct("}") {
+                    level -= 1;
+                    if level < 0 {
+                        break;
+                    }
+                } else if u.is_ident(name) && !toks[k - 1].is_punct(".") {
+                    let statement_start = ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x));
+                    let whole_assignment = statement_start && toks.get(k + 1).is_some_and(|e| e.is_punct("="));
+                    // A bare argument may be an `out` parameter, which writes it.
+                    let argument =
+                        ["(", ","].iter().any(|x| toks[k - 1].is_punct(x)) && toks.get(k + 1).is_some_and(|e| e.is_punct(")") || e.is_punct(","));
+                    if !whole_assignment && !argument && !found.iter().any(|(_, n)| *n == name) {
+                        found.push((t.text, name));
+                    }
                     break;
                 }
-            } else if u.is_ident(name) {
-                let statement_start = ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x));
-                let whole_assignment = statement_start && toks.get(k + 1).is_some_and(|e| e.is_punct("="));
-                // A bare argument may be an `out` parameter, which writes it.
-                let argument = ["(", ","].iter().any(|x| toks[k - 1].is_punct(x)) && toks.get(k + 1).is_some_and(|e| e.is_punct(")") || e.is_punct(","));
-                if !whole_assignment && !argument && !found.iter().any(|(_, n)| *n == name) {
-                    found.push((t.text, name));
-                }
-                break;
             }
         }
     }
@@ -863,6 +854,9 @@ mod tests {
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 3);
         assert!(rewrites[0].what.starts_with("`col`, which may be read before it is written whole"), "{}", rewrites[0].what);
+        // A struct's member of the same name is not a local.
+        let member = "#version 120\nstruct Light { vec3 col; };\nvoid main() {\n    Light l;\n    l.col = vec3(1.0);\n    gl_FragColor = vec4(l.col, 1.0);\n}\n";
+        assert_eq!(for_strict_drivers(member, member, Stage::Fragment, &[]), (member.to_string(), Vec::new()));
         // Written in part first: the rest is undefined.
         let part = "#version 120\nvoid main() {\n    vec2 v;\n    v.x = 1.0;\n    gl_FragColor = vec4(v, 0.0, 1.0);\n}\n";
         assert_eq!(for_strict_drivers(part, part, Stage::Fragment, &[]).0, part.replace("vec2 v;", "vec2 v = vec2(0);"));
