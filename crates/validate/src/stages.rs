@@ -35,6 +35,7 @@ pub(crate) fn check_program(
                     pre.text = removed;
                 }
                 diags.extend(pre.warnings.iter().cloned());
+                diags.extend(no_buffer_under_iris(&pre, loader));
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
                 diags.extend(version_rules::unknown_extensions(&pre));
                 diags.extend(glsl_rules::check(&pre, *stage));
@@ -103,6 +104,20 @@ fn judge_never_written(never_written: Vec<interface::NeverWritten>, lowered: &[L
 /// What the specification forbids and NVIDIA's compiler lets by: the version rules name
 /// constructs of a later GLSL version, which NVIDIA's driver compiles at any version
 /// (reported on pack trackers as "works on NVIDIA only").
+/// An `N` in a draw-buffer list, which OptiFine takes as an output drawn into no buffer and
+/// Iris cannot read: it parses each entry as a number (`Integer.parseInt`, `Character.digit`)
+/// and fails to load the pack.
+fn no_buffer_under_iris(pre: &Preprocessed, loader: Loader) -> Option<Diagnostic> {
+    let targets = pre.render_targets.as_ref().filter(|t| loader == Loader::Iris && t.buffers.contains(&None))?;
+    let name = if targets.modern { "RENDERTARGETS" } else { "DRAWBUFFERS" };
+    let at = Location::line(pre.files[targets.line.file as usize].clone(), targets.line.line);
+    Some(Diagnostic::error(
+        Code::DrawBuffers,
+        format!("`N` in {name} (an output drawn into no buffer) is OptiFine's: Iris reads every entry as a buffer number and does not load the pack"),
+        Some(at),
+    ))
+}
+
 fn lenient_on_nvidia(diag: Diagnostic) -> Diagnostic {
     if diag.is_error() {
         let refused = diag.refused_by.intersection(Drivers::ALL_BUT_NVIDIA);

@@ -181,3 +181,15 @@ fn a_function_nothing_calls_is_not_compiled_under_iris() {
     let iris = validate(&files, Options { loader: tidepack_loader::Loader::Iris, ..Options::default() }).unwrap();
     assert!(errors(&iris).is_empty(), "{:?}", errors(&iris));
 }
+
+/// `N` in a draw-buffer list: an output OptiFine draws into no buffer; Iris cannot read the
+/// list and does not load the pack.
+#[test]
+fn an_output_drawn_into_no_buffer_is_optifines_alone() {
+    let fragment = "#version 120\nvoid main() {\n/* DRAWBUFFERS:N0 */\ngl_FragData[0] = vec4(1.0);\ngl_FragData[1] = vec4(0.5);\n}\n";
+    let files = [("composite.vsh", VERTEX), ("composite.fsh", fragment)];
+    let optifine = validate(&files, Options::default()).unwrap();
+    assert!(errors(&optifine).is_empty(), "{:?}", errors(&optifine));
+    let iris = validate(&files, Options { loader: tidepack_loader::Loader::Iris, ..Options::default() }).unwrap();
+    assert!(errors(&iris).iter().any(|e| e.contains("`N` in DRAWBUFFERS") && e.contains("composite.fsh:3")), "{:?}", errors(&iris));
+}
