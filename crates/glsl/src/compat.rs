@@ -140,57 +140,48 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    // `#ifdef NAME …`, `#ifndef NAME …`, `#else …` and `#endif …`: lenient preprocessors read
-    // the name (or nothing) and ignore the rest, which Mesa refuses.
-    for (k, &i) in significant.iter().enumerate() {
-        let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;
-        let Some(&d) = significant.get(k + 1).filter(|_| starts_line && tokens[i].is_punct("#")) else { continue };
-        let kept = match tokens[d].text {
-            "ifdef" | "ifndef" => 1,
-            "else" | "endif" => 0,
-            _ => continue,
-        };
-        let on_line: Vec<usize> = significant[k + 2..].iter().copied().take_while(|&e| tokens[e].line == tokens[i].line).collect();
-        if on_line.len() > kept && (kept == 0 || tokens[on_line[0]].kind == TokenKind::Ident) {
-            let ignored: Vec<&str> = on_line[kept..].iter().map(|&e| tokens[e].text).collect();
-            for &e in &on_line[kept..] {
-                replaced[e] = Some(String::new());
+    for (i, d, on_line) in directive_lines(&tokens, &significant) {
+        let no_name = on_line.first().is_some_and(|&e| tokens[e].kind != TokenKind::Ident);
+        match tokens[d].text {
+            // `#define`, `#ifdef` and `#ifndef` whose name is not one (`#define 2D_CLOUDS`):
+            // Iris's preprocessor reports the line and skips the `#define`, and keeps the groups
+            // the others open; so does the lenient preprocessor.
+            "define" | "ifdef" | "ifndef" if no_name => {
+                let last = on_line[on_line.len() - 1];
+                let directive = &text[tokens[i].offset..tokens[last].offset + tokens[last].text.len()];
+                let what = if tokens[d].text == "define" {
+                    for e in [i, d].into_iter().chain(on_line.iter().copied()) {
+                        replaced[e] = Some(String::new());
+                    }
+                    format!("`{directive}`, which names no macro, removed as Iris's preprocessor skips it")
+                } else {
+                    replaced[d] = Some("if".into());
+                    replaced[on_line[0]] = Some("1".into());
+                    for &e in &on_line[1..] {
+                        replaced[e] = Some(String::new());
+                    }
+                    format!("`{directive}`, which tests no macro, taken as Iris's preprocessor takes it")
+                };
+                rewrites.push(Rewrite { line: tokens[i].line, what });
             }
-            let directive: Vec<&str> = std::iter::once(tokens[d].text).chain(on_line[..kept].iter().map(|&e| tokens[e].text)).collect();
-            rewrites.push(Rewrite {
-                line: tokens[i].line,
-                what: format!("`#{}` ignores what follows: `{}` removed", directive.join(" "), ignored.join(" ")),
-            });
+            // `#ifdef NAME …`, `#ifndef NAME …`, `#else …` and `#endif …`: lenient preprocessors
+            // read the name (or nothing) and ignore the rest, which Mesa refuses.
+            word @ ("ifdef" | "ifndef" | "else" | "endif") => {
+                let kept = if matches!(word, "ifdef" | "ifndef") { 1 } else { 0 };
+                if on_line.len() > kept {
+                    let ignored: Vec<&str> = on_line[kept..].iter().map(|&e| tokens[e].text).collect();
+                    for &e in &on_line[kept..] {
+                        replaced[e] = Some(String::new());
+                    }
+                    let directive: Vec<&str> = std::iter::once(word).chain(on_line[..kept].iter().map(|&e| tokens[e].text)).collect();
+                    rewrites.push(Rewrite {
+                        line: tokens[i].line,
+                        what: format!("`#{}` ignores what follows: `{}` removed", directive.join(" "), ignored.join(" ")),
+                    });
+                }
+            }
+            _ => {}
         }
-    }
-
-    // `#define`, `#ifdef` and `#ifndef` whose name is not one (`#define 2D_CLOUDS`): Iris's
-    // preprocessor reports the line and skips the `#define`, and keeps the groups the others
-    // open; so does the lenient preprocessor.
-    for (k, &i) in significant.iter().enumerate() {
-        let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;
-        let Some(&d) = significant.get(k + 1).filter(|_| starts_line && tokens[i].is_punct("#")) else { continue };
-        if !matches!(tokens[d].text, "define" | "ifdef" | "ifndef") {
-            continue;
-        }
-        let on_line: Vec<usize> = significant[k + 2..].iter().copied().take_while(|&e| tokens[e].line == tokens[i].line).collect();
-        let Some(&first) = on_line.first().filter(|&&e| tokens[e].kind != TokenKind::Ident) else { continue };
-        let last = on_line.last().copied().unwrap_or(first);
-        let directive = &text[tokens[i].offset..tokens[last].offset + tokens[last].text.len()];
-        let what = if tokens[d].text == "define" {
-            for e in [i, d].into_iter().chain(on_line.iter().copied()) {
-                replaced[e] = Some(String::new());
-            }
-            format!("`{directive}`, which names no macro, removed as Iris's preprocessor skips it")
-        } else {
-            replaced[d] = Some("if".into());
-            replaced[first] = Some("1".into());
-            for &e in &on_line[1..] {
-                replaced[e] = Some(String::new());
-            }
-            format!("`{directive}`, which tests no macro, taken as Iris's preprocessor takes it")
-        };
-        rewrites.push(Rewrite { line: tokens[i].line, what });
     }
 
     if version < 130 {
@@ -378,6 +369,19 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
     (out, rewrites)
+}
+
+/// The preprocessor directives of `tokens` (`significant`: the indices of its significant
+/// tokens): the `#`, the directive's word, and the significant tokens after it on its line.
+fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize, Vec<usize>)> {
+    let mut found = Vec::new();
+    for (k, &i) in significant.iter().enumerate() {
+        let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;
+        let Some(&d) = significant.get(k + 1).filter(|_| starts_line && tokens[i].is_punct("#")) else { continue };
+        let on_line: Vec<usize> = significant[k + 2..].iter().copied().take_while(|&e| tokens[e].line == tokens[i].line).collect();
+        found.push((i, d, on_line));
+    }
+    found
 }
 
 /// Locals (type, name) of `toks` (significant tokens) declared `TYPE NAME;` inside a function

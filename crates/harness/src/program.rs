@@ -335,7 +335,47 @@ fn expanded_as_loader_gives_it(
     let mut map = vec![preprocessed.version_line().and_then(|l| preprocessed.location(l))];
     map.extend(std::iter::repeat_n(None, defines.matches('\n').count()));
     map.extend(plain_map);
-    Ok(ExpandedStage { text, line_map: map, version_put_first: Some(format!("{path}: {what}")) })
+    Ok(ExpandedStage { text, line_map: map, version_put_first: Some(what) })
+}
+
+/// `text` with the rewrites of Iris's transformer that `reading` asks for (the albedo sampler
+/// named `gtexture`, functions nothing calls removed), each decided on `seen`, the stage as
+/// Iris's preprocessor leaves it; and what was done.
+fn as_iris_transforms(mut text: String, seen: &str, reading: LoaderReading) -> (String, Vec<String>) {
+    let mut done = Vec::new();
+    if reading.renames_albedo_sampler
+        && let Some((rewritten, what)) = iris::albedo_sampler_as_gtexture(&text, seen)
+    {
+        text = rewritten;
+        done.push(what);
+    }
+    if reading.removes_unused_functions
+        && let Some((rewritten, what)) = iris::unused_functions_removed(&text, seen)
+    {
+        text = rewritten;
+        done.push(what);
+    }
+    (text, done)
+}
+
+/// The lines (1-based) of an expanded text, whose pack locations are `line_map`, that come from
+/// the pack line `at`.
+fn lines_from(line_map: &[Option<Location>], at: &Location) -> Vec<u32> {
+    line_map.iter().enumerate().filter(|(_, l)| l.as_ref() == Some(at)).map(|(i, _)| i as u32 + 1).collect()
+}
+
+/// The macros the lenient preprocessor saw redefined in `preprocessed`, at the lines of its
+/// expanded text.
+fn redefined_lines(preprocessed: &preprocess::Preprocessed, line_map: &[Option<Location>]) -> Vec<(u32, String)> {
+    preprocessed.redefinitions.iter().flat_map(|(at, name)| lines_from(line_map, at).into_iter().map(move |line| (line, name.clone()))).collect()
+}
+
+/// `what` was done at `line` of an expanded text of `path`: said at the pack line it came from.
+fn located_rewrite(line_map: &[Option<Location>], path: &str, line: u32, what: &str) -> String {
+    match line_map.get(line as usize - 1).cloned().flatten() {
+        Some(at) => format!("{at}: {what}"),
+        None => format!("{path}: {what}"),
+    }
 }
 
 /// A stage's text as the loader hands it to the driver, before the rewrites for strict drivers.
@@ -426,16 +466,7 @@ pub(crate) fn load_program_files(
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
         as_preprocessed.insert(stage, p.text.clone());
-        if reading.renames_albedo_sampler
-            && let Some((renamed, _)) = iris::albedo_sampler_as_gtexture(&p.text, &p.text)
-        {
-            p.text = renamed;
-        }
-        if reading.removes_unused_functions
-            && let Some((removed, _)) = iris::unused_functions_removed(&p.text, &p.text)
-        {
-            p.text = removed;
-        }
+        (p.text, _) = as_iris_transforms(p.text.clone(), &as_preprocessed[&stage], reading);
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
@@ -453,39 +484,18 @@ pub(crate) fn load_program_files(
         let mut interface = stage.lowered.interface.clone();
         let ExpandedStage { text: expanded, line_map, version_put_first } =
             expanded_as_loader_gives_it(provider, &path, &defines, &stage.preprocessed, reading)?;
-        // The lines (1-based) of the expanded text that come from a pack file's line.
-        let lines_from = |at: &Location| -> Vec<u32> {
-            line_map.iter().enumerate().filter(|(_, l)| l.as_ref() == Some(at)).map(|(i, _)| i as u32 + 1).collect()
-        };
-        // Macros the lenient preprocessor saw redefined, at the lines of the expanded text.
-        let redefined: Vec<(u32, String)> =
-            stage.preprocessed.redefinitions.iter().flat_map(|(at, name)| lines_from(at).into_iter().map(move |line| (line, name.clone()))).collect();
+        let lines_from = |at: &Location| lines_from(&line_map, at);
+        let redefined = redefined_lines(&stage.preprocessed, &line_map);
+        let located = |line: u32, what: &str| located_rewrite(&line_map, &path, line, what);
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
-        let located = |line: u32, what: &str| match line_map.get(line as usize - 1).cloned().flatten() {
-            Some(at) => format!("{at}: {what}"),
-            None => format!("{path}: {what}"),
-        };
         let for_opengl = |expanded: &str| {
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
-        let renamed = reading.renames_albedo_sampler.then(|| iris::albedo_sampler_as_gtexture(&expanded, &as_preprocessed[&stage.stage])).flatten();
-        let (expanded, mut renamed_albedo) = match renamed {
-            Some((text, what)) => (text, Some(format!("{path}: {what}"))),
-            None => (expanded, None),
-        };
-        // Iris's transformer reads the stage as its preprocessor left it.
-        let removed = reading.removes_unused_functions.then(|| iris::unused_functions_removed(&expanded, &as_preprocessed[&stage.stage])).flatten();
-        let expanded = match removed {
-            Some((text, what)) => {
-                renamed_albedo = Some(renamed_albedo.map_or_else(|| format!("{path}: {what}"), |r| format!("{r}; {what}")));
-                text
-            }
-            None => expanded,
-        };
+        let (expanded, iris_rewrites) = as_iris_transforms(expanded, &as_preprocessed[&stage.stage], reading);
+        let iris_rewrites: Vec<String> = version_put_first.into_iter().chain(iris_rewrites).map(|what| format!("{path}: {what}")).collect();
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
-        gl_rewrites.extend(version_put_first.clone());
-        gl_rewrites.extend(renamed_albedo.clone());
+        gl_rewrites.extend(iris_rewrites.iter().cloned());
         let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
@@ -533,8 +543,7 @@ pub(crate) fn load_program_files(
                 }
             }
             (gl_text, gl_rewrites) = for_opengl(&repaired);
-            gl_rewrites.extend(version_put_first.clone());
-            gl_rewrites.extend(renamed_albedo.clone());
+            gl_rewrites.extend(iris_rewrites.iter().cloned());
             gl_rewrites.extend(made);
         }
         if stage.stage == Stage::Vertex {
@@ -591,17 +600,10 @@ fn load_geometry_stage(
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
     let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, defines, &preprocessed, reading)?;
-    let redefined: Vec<(u32, String)> = preprocessed
-        .redefinitions
-        .iter()
-        .flat_map(|(at, name)| {
-            line_map.iter().enumerate().filter(move |(_, l)| l.as_ref() == Some(at)).map(move |(i, _)| (i as u32 + 1, name.clone()))
-        })
-        .collect();
+    let redefined = redefined_lines(&preprocessed, &line_map);
     let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
-    let located = |line: u32| line_map.get(line as usize - 1).cloned().flatten().map_or_else(|| path.to_string(), |at| at.to_string());
-    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().collect();
-    gl_rewrites.extend(rewrites.iter().map(|r| format!("{}: {}", located(r.line), r.what)));
+    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().map(|what| format!("{path}: {what}")).collect();
+    gl_rewrites.extend(rewrites.iter().map(|r| located_rewrite(&line_map, path, r.line, &r.what)));
     let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
     Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
 }
@@ -911,18 +913,6 @@ pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {
 
 #[cfg(test)]
 mod tests {
-
-    /// Iris gives the driver the `#version` its preprocessor chose, first; the others go.
-    #[test]
-    fn a_version_chosen_inside_an_if_is_put_first() {
-        let version = tidepack_glsl::preprocess::VersionDirective { number: 450, profile: Some("compatibility".into()) };
-        let text = "// header\n#ifdef CORE_PROFILE\n  #version 450 core\n#else\n  #version 450 compatibility\n#endif\nvoid main() {}\n";
-        let (resolved, what) = super::iris::version_resolved_on_top(text, Some(&version)).expect("rewritten");
-        assert_eq!(resolved, "#version 450 compatibility\n// header\n#ifdef CORE_PROFILE\n\n#else\n\n#endif\nvoid main() {}\n");
-        assert!(what.contains("#version 450 compatibility"), "{what}");
-        assert!(super::iris::version_resolved_on_top("#version 120\nvoid main() {}\n", Some(&version)).is_none());
-    }
-
     /// A driver's line names the pack line it came from through the compat rewrites: an inserted
     /// line takes its predecessor's origin, a changed one too, and the lines after follow.
     #[test]

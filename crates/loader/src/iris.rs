@@ -6,7 +6,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_glsl::preprocess;
-use tidepack_glsl::token::{Token, TokenKind, brace_depths, function_definitions, significant, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, blanked, brace_depths, function_definitions, significant, tokenize};
 
 /// A file-scope declaration of a name: its first and last significant token (the `;`), as
 /// indices into the significant tokens, whether it is a `uniform sampler2D`, and how many names
@@ -99,7 +99,7 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
     let seen = tokenize(seen).ok()?;
     let uses = |name: &str| seen.iter().filter(|t| t.is_ident(name)).count();
     // Lines that hold a directive: their words are not a return type.
-    let order = tidepack_glsl::token::significant(&tokens);
+    let order = significant(&tokens);
     let directive_lines: BTreeSet<u32> = order
         .iter()
         .enumerate()
@@ -138,7 +138,7 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
         return None;
     }
     let what = format!("functions nothing calls removed, as Iris's transformer removes them: {}", removed.join(", "));
-    Some((tidepack_glsl::token::blanked(text, &ranges), what))
+    Some((blanked(text, &ranges), what))
 }
 
 /// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
@@ -206,5 +206,16 @@ mod tests {
         let seen = "uniform sampler2D gcolor;\nvoid main() { gl_FragData[0] = texture2D(gcolor, vec2(0.0)); }\n";
         let (renamed, _) = super::albedo_sampler_as_gtexture(file, seen).expect("renamed");
         assert!(!renamed.contains("gcolor") && renamed.matches("sampler2D gtexture;").count() == 2, "{renamed}");
+    }
+
+    /// Iris gives the driver the `#version` its preprocessor chose, first; the others go.
+    #[test]
+    fn a_version_chosen_inside_an_if_is_put_first() {
+        let version = tidepack_glsl::preprocess::VersionDirective { number: 450, profile: Some("compatibility".into()) };
+        let text = "// header\n#ifdef CORE_PROFILE\n  #version 450 core\n#else\n  #version 450 compatibility\n#endif\nvoid main() {}\n";
+        let (resolved, what) = super::version_resolved_on_top(text, Some(&version)).expect("rewritten");
+        assert_eq!(resolved, "#version 450 compatibility\n// header\n#ifdef CORE_PROFILE\n\n#else\n\n#endif\nvoid main() {}\n");
+        assert!(what.contains("#version 450 compatibility"), "{what}");
+        assert!(super::version_resolved_on_top("#version 120\nvoid main() {}\n", Some(&version)).is_none());
     }
 }

@@ -66,7 +66,6 @@ pub fn runs(name: &str, loader: Loader) -> bool {
             && (IRIS_ONLY.contains(&name) || IRIS_SHADOW.contains(&name) || numbered(name, "begin") || numbered(name, "setup")))
 }
 
-/// The programs Iris runs for Distant Horizons' LODs when the mod is installed.
 /// Whether `program` draws the world and binds its textures as gbuffers programs do (the atlas,
 /// lightmap, normals and specular maps on the low units): gbuffers_*, `shadow` and Iris's
 /// shadow_solid, shadow_water, … , and Distant Horizons' dh_*. Not shadowcomp, a full-screen pass.
@@ -74,6 +73,7 @@ pub fn binds_as_gbuffers(program: &str) -> bool {
     program.starts_with("gbuffers_") || program == "shadow" || program.starts_with("shadow_") || program.starts_with("dh_")
 }
 
+/// The programs Iris runs for Distant Horizons' LODs when the mod is installed.
 pub const DISTANT_HORIZONS_PROGRAMS: [&str; 4] = ["dh_terrain", "dh_water", "dh_shadow", "dh_generic"];
 
 /// [`runs`], and with Distant Horizons beside Iris also its `dh_*` programs.
