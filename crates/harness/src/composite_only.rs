@@ -25,7 +25,7 @@ use crate::HarnessError;
 use crate::gpu::bindings::{BindableTextures, DepthRead, FullscreenQuad, HarnessTextures, OUT, PassKind, ProgramPipeline, ShadowTextures};
 use crate::samplers::{SamplerNaming, colour_buffers_read};
 use crate::gpu::own::PassthroughPipeline;
-use crate::gpu::readback::{read_pass_ms, read_texture};
+use crate::gpu::readback::{read_pass_ms, read_texture, write_texture};
 use crate::gpu::{Frame, Gpu};
 use crate::images::FloatImage;
 use crate::program::{LoadedPack, PackResources as _};
@@ -250,36 +250,16 @@ impl CompositeOnly {
             }
             Ok(())
         };
-        let write = |texture: &wgpu::Texture, bytes: &[u8], texel: u32| {
-            gpu.queue.write_texture(
-                texture.as_image_copy(),
-                bytes,
-                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * texel), rows_per_image: Some(h) },
-                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-            );
-        };
-        for (b, (texture, _)) in &self.colors {
+        for (b, (texture, format)) in &self.colors {
             let image = g.colors.get(b).ok_or_else(|| HarnessError::Scene(format!("no colortex{b} supplied")))?;
             check(&format!("colortex{b}"), image)?;
-            let flat = image.pixels.iter().flatten().copied();
-            match self.formats[b] {
-                BufferFormat::Rgba8 => write(texture, &flat.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8).collect::<Vec<u8>>(), 4),
-                BufferFormat::Rgba16 => {
-                    let texels: Vec<u16> = flat.map(|c| (c.clamp(0.0, 1.0) * 65535.0).round() as u16).collect();
-                    write(texture, bytemuck::cast_slice(&texels), 8)
-                }
-                BufferFormat::Rgba16F => {
-                    let texels: Vec<u16> = flat.map(|c| f16::from_f32(c).to_bits()).collect();
-                    write(texture, bytemuck::cast_slice(&texels), 8)
-                }
-                BufferFormat::Rgba32F => write(texture, bytemuck::cast_slice(&flat.collect::<Vec<f32>>()), 16),
-            }
+            write_texture(gpu, texture, *format, image)?;
         }
         for (n, (name, texture, image)) in [("depthtex0", &self.depth0, &g.depth0), ("depthtex1", &self.depth1, &g.depth1)].into_iter().enumerate() {
             check(name, image)?;
-            write(texture, bytemuck::cast_slice(&image.pixels.iter().map(|p| p[0]).collect::<Vec<f32>>()), 4);
+            write_texture(gpu, texture, DEPTH_AS, image)?;
             if let Some(read) = &self.depth_read {
-                write(&read[n], bytemuck::cast_slice(&image.pixels.iter().flat_map(|p| [p[0], p[0], p[0], 1.0]).collect::<Vec<f32>>()), 16);
+                write_texture(gpu, &read[n], OUT, &FloatImage { pixels: image.pixels.iter().map(|p| [p[0], p[0], p[0], 1.0]).collect(), ..*image })?;
             }
         }
         self.composite.write_uniforms(gpu, pack.composite(), values)

@@ -41,6 +41,9 @@ pub struct GlFrame {
     pub depth1: FloatImage,
     /// Per step, in plan order: the textures it wrote, named as the wgpu path names them.
     pub steps: Vec<(String, Vec<(String, FloatImage)>)>,
+    /// Per step, in plan order: the depth buffer a geometry step drew into (depthtex0,
+    /// dhDepthTex0 or shadowtex0) as it left it, for a renderer that cannot draw that step.
+    pub depth_written: Vec<Option<FloatImage>>,
     /// Programs drawn with OpenGL's depth range (see the module doc).
     pub own_depth_mapping: Vec<String>,
     /// Per step, in plan order: wall time of its draws and copies between two `glFinish`, in
@@ -62,6 +65,10 @@ pub struct Reference<'r> {
     pub steps: Vec<&'r [(String, FloatImage)]>,
     pub depth0: &'r FloatImage,
     pub depth1: &'r FloatImage,
+    /// Per step, the depth buffer a geometry step left ([`GlFrame::depth_written`]), for a
+    /// renderer that takes a step it cannot draw from the reference; empty for one that draws
+    /// every step.
+    pub depth_written: Vec<Option<&'r FloatImage>>,
     /// Every float uniform, float literal of the shaders and the full-screen quad's vertices
     /// moved by this much of themselves (0: as the loader gives them); the caller nudges the
     /// scene's mesh alike. Pixels a nudge of a few units in the last place moves are those whose
@@ -160,6 +167,7 @@ fn render_plan(
         let quad: Vec<PackVertex> = mesh::fullscreen_quad().iter().map(|v| v.nudged(nudge as f32)).collect();
         let mut steps = Vec::new();
         let mut step_ms = Vec::new();
+        let mut depth_written = Vec::new();
         // The textures the step before wrote, by name.
         let mut last_written: Vec<(String, glow::Texture)> = Vec::new();
         for (index, step) in plan.steps.iter().enumerate() {
@@ -202,8 +210,9 @@ fn render_plan(
             last_written = written.iter().map(|w| (w.name.clone(), w.texture)).collect();
             steps.push((step.label.clone(), written.into_iter().map(|w| (w.name, w.image)).collect()));
             step_ms.push(frame.step_ms);
+            depth_written.push(frame.depth_written(&step.work)?);
         }
-        frame.finish(steps, step_ms, &plan.current)
+        frame.finish(steps, depth_written, step_ms, &plan.current)
     }
 }
 
@@ -360,6 +369,34 @@ impl<'a> GlPlanFrame<'a> {
         let gl = self.ctx.gl();
         // SAFETY: both textures are this frame's.
         self.step_ms += timed(gl, || unsafe { gl.copy_image_sub_data(from, glow::TEXTURE_2D, 0, 0, 0, 0, to, glow::TEXTURE_2D, 0, 0, 0, 0, w, h, 1) });
+    }
+
+    /// The depth buffer `work` drew into, read back, when it is a geometry step.
+    unsafe fn depth_written(&self, work: &PlannedWork) -> Result<Option<FloatImage>, HarnessError> {
+        let (texture, side) = match work {
+            PlannedWork::Geometry { pass: Pass::DistantHorizons, .. } => (self.lod_depth[0], None),
+            PlannedWork::Geometry { .. } => (self.depth0, None),
+            PlannedWork::ShadowGeometry { .. } => (self.shadow_depth[0], Some(self.shadow_side)),
+            _ => return Ok(None),
+        };
+        let gl = self.ctx.gl();
+        // SAFETY: the textures are this frame's. The shadow map, of its own size, is attached
+        // alone: a framebuffer reads only where all its attachments overlap.
+        unsafe {
+            match side {
+                None => read(gl, texture, true, self.screen, self.w, self.h).map(Some),
+                Some(side) => {
+                    attach(gl, &[], Some(texture))?;
+                    let mut depths = vec![0f32; (side * side) as usize];
+                    gl.read_pixels(0, 0, side, side, glow::DEPTH_COMPONENT, glow::FLOAT, glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut depths))));
+                    let mut image = FloatImage::new(side as u32, side as u32);
+                    for (px, d) in image.pixels.iter_mut().zip(depths) {
+                        *px = [d, d, d, 1.0];
+                    }
+                    Ok(Some(image))
+                }
+            }
+        }
     }
 
     unsafe fn read_colour(&self, t: glow::Texture) -> Result<FloatImage, HarnessError> {
@@ -579,6 +616,7 @@ impl<'a> GlPlanFrame<'a> {
     unsafe fn finish(
         self,
         steps: Vec<(String, Vec<(String, FloatImage)>)>,
+        depth_written: Vec<Option<FloatImage>>,
         step_ms: Vec<f64>,
         current: &BTreeMap<u8, usize>,
     ) -> Result<GlFrame, HarnessError> {
@@ -608,7 +646,7 @@ impl<'a> GlPlanFrame<'a> {
             if error != glow::NO_ERROR {
                 return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
             }
-            Ok(GlFrame { image, buffers, depth0, depth1, steps, own_depth_mapping: self.own_depth_mapping, step_ms, passthrough_ms })
+            Ok(GlFrame { image, buffers, depth0, depth1, steps, depth_written, own_depth_mapping: self.own_depth_mapping, step_ms, passthrough_ms })
         }
     }
 

@@ -344,12 +344,25 @@ impl GlStepsComparison {
         })
     }
 
+    /// Takes the steps wgpu could not draw (`cannot_draw`, per step) out of the comparison into
+    /// `wgpu_cannot_draw`: wgpu's textures there are OpenGL's own.
+    fn set_aside(&mut self, cannot_draw: &[Option<String>]) {
+        let mut kept = Vec::new();
+        for (k, step) in std::mem::take(&mut self.steps).into_iter().enumerate() {
+            match cannot_draw.get(k).cloned().flatten() {
+                Some(why) => self.wgpu_cannot_draw.push((step.pass, why)),
+                None => kept.push(step),
+            }
+        }
+        self.steps = kept;
+    }
+
     /// Records, per step and texture, how many of the pixels where the renderers differ are the
     /// pack's own arithmetic noise ([`sensitive_pixels`]), from `nudged`: OpenGL's frame drawn
     /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
     /// nudged, once by each of [`NUDGES`].
-    fn discount_sensitive(&mut self, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame]) {
-        for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.passes.iter().zip(&gl.steps)).enumerate() {
+    fn discount_sensitive(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame]) {
+        for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.iter().zip(&gl.steps)).enumerate() {
             for (i, ((name, ours), (_, theirs))) in pass.images.iter().zip(gl_images).enumerate() {
                 let moved: Vec<&FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(k).and_then(|(_, images)| images.get(i)).map(|(_, image)| image)).collect();
                 let sensitive = sensitive_pixels(ours, theirs, &moved);
@@ -439,6 +452,10 @@ pub struct GlStepsComparison {
     /// What the driver refused (a program that does not compile or link), when it did: then
     /// there are no steps to compare.
     pub refused: Option<String>,
+    /// Where OpenGL is the primary renderer: the steps wgpu cannot draw, with why, which OpenGL
+    /// alone drew and are not among `steps` (`every step` where wgpu drew none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub wgpu_cannot_draw: Vec<(String, String)>,
 }
 
 /// The renderer whose frame a report's screen, passes and times are.
@@ -524,12 +541,15 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let gpu = Gpu::new()?;
     let mesh = mesh::build(&scene, &pack);
     let wgpu_renderer = PrimaryRenderer { name: "wgpu".into(), wgpu_cannot_draw: None, opengl_refused: None };
+    // With OpenGL as the primary renderer: its last frame, which wgpu's steps are drawn from.
+    let mut opengl_last = None;
     let (frame, renderer) = match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
         Ok(frame) => (frame, wgpu_renderer),
         Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) => {
             let by_opengl = gl::context().and_then(|ctx| Ok((opengl_frame(&ctx, &pack, &scene, &mesh, job.frames)?, ctx.info().to_string())));
             match by_opengl {
-                Ok((frame, driver)) => {
+                Ok(((frame, last), driver)) => {
+                    opengl_last = Some(last);
                     (frame, PrimaryRenderer { name: format!("OpenGL ({driver})"), wgpu_cannot_draw: Some(cannot.to_string()), opengl_refused: None })
                 }
                 // Neither draws it whole: without the programs naga cannot read (they do not
@@ -546,20 +566,33 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         Err(e) => return Err(e),
     };
     let gl_primary = renderer.wgpu_cannot_draw.is_some();
-    // With OpenGL as the primary renderer there is no second frame to compare with. OpenGL
-    // draws each step from wgpu's textures (gl_frame::render_from), so that the step where
-    // they part is the one that differs, not one further down that spreads an earlier step's
-    // few pixels.
-    let gl_context = if job.gl && !gl_primary { Some(gl::context()?) } else { None };
-    let reference = |nudge| crate::gl_frame::Reference {
-        steps: frame.passes.iter().map(|p| p.images.as_slice()).collect(),
-        depth0: &frame.depth0,
-        depth1: &frame.depth1,
-        nudge,
+    // The renderers are compared step by step, each step drawn by both from the same inputs, so
+    // that the step where they part is the one that differs, not one further down that spreads
+    // an earlier step's few pixels: OpenGL draws each step from wgpu's textures
+    // (gl_frame::render_from), or, where OpenGL is the primary renderer, wgpu draws each step it
+    // can from OpenGL's (gpu::render_from) and leaves the others to it.
+    let gl_context = if job.gl { Some(gl::context()?) } else { None };
+    // (wgpu's frame drawn from OpenGL's steps, or why wgpu drew none of them), with OpenGL primary.
+    let mut stepped = None;
+    let gl = match (&gl_context, opengl_last) {
+        (None, _) => None,
+        (Some(ctx), None) => {
+            let reference = reference_of(&frame.passes, &frame.depth0, &frame.depth1, 0.0);
+            Some((ctx.info().to_string(), crate::gl_frame::render_from(ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference)))
+        }
+        (Some(ctx), Some(last)) => {
+            let steps: Vec<&[(String, FloatImage)]> = last.steps.iter().map(|(_, images)| images.as_slice()).collect();
+            let reference = crate::gl_frame::Reference {
+                steps,
+                depth0: &last.depth0,
+                depth1: &last.depth1,
+                depth_written: last.depth_written.iter().map(Option::as_ref).collect(),
+                nudge: 0.0,
+            };
+            stepped = Some(gpu::render_from(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference));
+            Some((ctx.info().to_string(), Ok(last)))
+        }
     };
-    let gl = gl_context
-        .as_ref()
-        .map(|ctx| (ctx.info().to_string(), crate::gl_frame::render_from(ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference(0.0))));
     let stem = file_stem(&scene.name);
     std::fs::create_dir_all(&job.out_dir)
         .map_err(|e| HarnessError::Io(format!("cannot create {}: {e}", job.out_dir.display())))?;
@@ -586,22 +619,41 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         write(".depthtex1", &frame.depth1.depth_for_viewing())?;
     }
     let gl_max_pixels = job.gl_max_pixels.unwrap_or_else(|| gl_max_differing_pixels(frame.image.width, frame.image.height));
-    let gl = match gl {
-        Some((renderer, Ok(gl_frame))) => {
+    let gl = match (gl, stepped) {
+        (Some((renderer, _)), Some(Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))))) => {
+            Some(GlStepsComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: None, wgpu_cannot_draw: vec![("every step".into(), cannot.to_string())] })
+        }
+        (_, Some(Err(e))) => return Err(e),
+        (Some((renderer, Ok(gl_frame))), stepped) => {
+            let (wgpu_frame, cannot_draw) = match &stepped {
+                Some(Ok(stepped)) => (&stepped.frame, stepped.cannot_draw.as_slice()),
+                _ => (&frame, &[][..]),
+            };
             write(".gl", &gl_frame.image)?;
-            let mut comparison = compare_steps(renderer, &frame, &gl_frame)?;
+            let mut comparison = compare_steps(renderer, &wgpu_frame.passes, &gl_frame)?;
             if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
+                // OpenGL again, nudged, each step from the inputs it had in the frame compared.
+                let inputs: Vec<&[(String, FloatImage)]> = if gl_primary {
+                    gl_frame.steps.iter().map(|(_, images)| images.as_slice()).collect()
+                } else {
+                    wgpu_frame.passes.iter().map(|p| p.images.as_slice()).collect()
+                };
+                let (depth0, depth1) = if gl_primary { (&gl_frame.depth0, &gl_frame.depth1) } else { (&wgpu_frame.depth0, &wgpu_frame.depth1) };
                 let nudged = NUDGES
                     .iter()
-                    .map(|&nudge| crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(nudge as f32), ScreenOutput::AsLoader, &reference(nudge)))
+                    .map(|&nudge| {
+                        let reference = crate::gl_frame::Reference { steps: inputs.clone(), depth0, depth1, depth_written: Vec::new(), nudge };
+                        crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(nudge as f32), ScreenOutput::AsLoader, &reference)
+                    })
                     .collect::<Result<Vec<_>, _>>()?;
-                comparison.discount_sensitive(&frame, &gl_frame, &nudged);
+                comparison.discount_sensitive(&wgpu_frame.passes, &gl_frame, &nudged);
             }
+            comparison.set_aside(cannot_draw);
             // Where they part: both renderers' texture and the pixels over 1/255, to look at.
             if let Some(parted) = comparison.first_disagreement(gl_max_pixels) {
-                let step = frame.passes.iter().position(|p| p.pass == parted.pass).expect("the step was compared");
+                let step = wgpu_frame.passes.iter().position(|p| p.pass == parted.pass).expect("the step was compared");
                 let image_of = |images: &[(String, FloatImage)]| images.iter().find(|(name, _)| *name == parted.texture).map(|(_, i)| i.clone());
-                if let (Some(ours), Some(theirs)) = (image_of(&frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
+                if let (Some(ours), Some(theirs)) = (image_of(&wgpu_frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
                     write(".parted.wgpu", &ours)?;
                     write(".parted.opengl", &theirs)?;
                     write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, OVER_1_255))?;
@@ -610,11 +662,11 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             Some(comparison)
         }
         // The driver refusing a program is a finding about the pack, reported with the frame.
-        Some((renderer, Err(HarnessError::Gl(refused)))) => {
-            Some(GlStepsComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: Some(refused) })
+        (Some((renderer, Err(HarnessError::Gl(refused)))), _) => {
+            Some(GlStepsComparison { renderer, steps: Vec::new(), own_depth_mapping: Vec::new(), refused: Some(refused), wgpu_cannot_draw: Vec::new() })
         }
-        Some((_, Err(e))) => return Err(e),
-        None => None,
+        (Some((_, Err(e))), _) => return Err(e),
+        (None, _) => None,
     };
     let expected = match &job.expect {
         Some(dir) => Some(compare_with_blessed(&frame.image, dir, &stem, job, &mut write_rgba8)?),
@@ -647,8 +699,14 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
 }
 
 /// The frame drawn by OpenGL as the primary renderer, `frames` times: the last frame's images,
-/// and each step's and the pass-through's settled median wall time.
-fn opengl_frame(ctx: &tidepack_gldriver::GlContext, pack: &AnyPack, scene: &Scene, mesh: &mesh::SceneMesh, frames: usize) -> Result<gpu::Frame, HarnessError> {
+/// and each step's and the pass-through's settled median wall time; and the last frame as drawn.
+fn opengl_frame(
+    ctx: &tidepack_gldriver::GlContext,
+    pack: &AnyPack,
+    scene: &Scene,
+    mesh: &mesh::SceneMesh,
+    frames: usize,
+) -> Result<(gpu::Frame, crate::gl_frame::GlFrame), HarnessError> {
     let mut rendered = Vec::new();
     for _ in 0..frames.max(1) {
         rendered.push(crate::gl_frame::render(ctx, pack, scene, mesh, ScreenOutput::AsLoader)?);
@@ -680,25 +738,31 @@ fn opengl_frame(ctx: &tidepack_gldriver::GlContext, pack: &AnyPack, scene: &Scen
         passthrough_samples_ms,
     };
     let last = rendered.pop().expect("one frame at least");
-    Ok(gpu::Frame {
-        image: last.image,
-        buffers: last.buffers,
-        depth0: last.depth0,
-        depth1: last.depth1,
+    let frame = gpu::Frame {
+        image: last.image.clone(),
+        buffers: last.buffers.clone(),
+        depth0: last.depth0.clone(),
+        depth1: last.depth1.clone(),
         passes,
         timing,
         not_modelled: pack.not_modelled.clone(),
         zeroed: Vec::new(),
-    })
+    };
+    Ok((frame, last))
 }
 
-/// The OpenGL frame's textures against the wgpu frame's, step by step.
-fn compare_steps(renderer: String, wgpu: &crate::gpu::Frame, gl: &crate::gl_frame::GlFrame) -> Result<GlStepsComparison, HarnessError> {
-    if wgpu.passes.len() != gl.steps.len() {
-        return Err(HarnessError::Gl(format!("the OpenGL frame ran {} steps, the wgpu frame {}", gl.steps.len(), wgpu.passes.len())));
+/// A wgpu frame as the reference OpenGL draws each step from.
+fn reference_of<'f>(passes: &'f [StepReport], depth0: &'f FloatImage, depth1: &'f FloatImage, nudge: f64) -> crate::gl_frame::Reference<'f> {
+    crate::gl_frame::Reference { steps: passes.iter().map(|p| p.images.as_slice()).collect(), depth0, depth1, depth_written: Vec::new(), nudge }
+}
+
+/// The OpenGL frame's textures against the wgpu frame's steps, step by step.
+fn compare_steps(renderer: String, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame) -> Result<GlStepsComparison, HarnessError> {
+    if wgpu.len() != gl.steps.len() {
+        return Err(HarnessError::Gl(format!("the OpenGL frame ran {} steps, the wgpu frame {}", gl.steps.len(), wgpu.len())));
     }
     let mut steps = Vec::new();
-    for (pass, (label, gl_images)) in wgpu.passes.iter().zip(&gl.steps) {
+    for (pass, (label, gl_images)) in wgpu.iter().zip(&gl.steps) {
         let mut max_difference_255 = BTreeMap::new();
         let mut pixels_over_1_255 = BTreeMap::new();
         for ((name, a), (_, b)) in pass.images.iter().zip(gl_images) {
@@ -708,7 +772,7 @@ fn compare_steps(renderer: String, wgpu: &crate::gpu::Frame, gl: &crate::gl_fram
         }
         steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255, sensitive_pixels: BTreeMap::new() });
     }
-    Ok(GlStepsComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None })
+    Ok(GlStepsComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None, wgpu_cannot_draw: Vec::new() })
 }
 
 /// Writes an RGBA8 image beside the screen: (file suffix, width, height, pixels top row first).

@@ -201,8 +201,12 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         if t.frames > 2 { "s after the first" } else { "" }
     );
     if let Some(gl) = &report.gl {
+        if !gl.wgpu_cannot_draw.is_empty() {
+            let steps: Vec<&str> = gl.wgpu_cannot_draw.iter().map(|(step, _)| step.as_str()).collect();
+            say!("  wgpu drew every other step from OpenGL's textures; OpenGL alone drew: {}", steps.join(", "));
+        }
         say!(
-            "  OpenGL ({}), largest difference per texture after each step (x/255, colour/alpha; pixels over 1/255):",
+            "  OpenGL ({}), largest difference per texture after each step both drew (x/255, colour/alpha; pixels over 1/255):",
             gl.renderer
         );
         for step in &gl.steps {

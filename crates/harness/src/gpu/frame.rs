@@ -25,10 +25,10 @@ use super::bindings::{
     UniformBinding, view,
 };
 use super::geometry::{GeometryDraw, depth_attachment};
-use super::own::{MipmapPipelines, PassthroughPipeline};
+use super::own::{DepthWriter, MipmapPipelines, PassthroughPipeline};
 use crate::samplers::SamplerNaming;
 use tidepack_loader::buffers::mip_levels;
-use super::readback::{read_pass_ms, read_texture};
+use super::readback::{read_pass_ms, read_texture, write_texture};
 use crate::images::settled_median;
 
 /// One pass of the frame as it ran.
@@ -118,6 +118,9 @@ enum Work<'p> {
         mipmaps: &'p BTreeSet<u8>,
     },
     ScreenCopy(PassthroughPipeline),
+    /// A step wgpu cannot draw, with why: [`render_from`] takes what it wrote from the
+    /// reference.
+    Cannot(String),
 }
 
 impl Work<'_> {
@@ -279,10 +282,22 @@ impl FrameTextures {
 
     /// The texture a step wrote, read back.
     fn read(&self, gpu: &Gpu, texture: &WrittenTexture) -> Result<FloatImage, HarnessError> {
+        read_texture(gpu, self.texture(texture), self.format(texture))
+    }
+
+    fn texture(&self, texture: &WrittenTexture) -> &wgpu::Texture {
         match texture {
-            WrittenTexture::Screen => read_texture(gpu, &self.screen, OUT),
-            WrittenTexture::Buffer(b, i) => read_texture(gpu, &self.buffers[b].textures[*i], self.buffers[b].format),
-            WrittenTexture::ShadowColour(b) => read_texture(gpu, &self.shadow_colours[b].0, self.shadow_colours[b].1),
+            WrittenTexture::Screen => &self.screen,
+            WrittenTexture::Buffer(b, i) => &self.buffers[b].textures[*i],
+            WrittenTexture::ShadowColour(b) => &self.shadow_colours[b].0,
+        }
+    }
+
+    fn format(&self, texture: &WrittenTexture) -> wgpu::TextureFormat {
+        match texture {
+            WrittenTexture::Screen => OUT,
+            WrittenTexture::Buffer(b, _) => self.buffers[b].format,
+            WrittenTexture::ShadowColour(b) => self.shadow_colours[b].1,
         }
     }
 }
@@ -295,75 +310,111 @@ struct PreparedSteps<'p> {
 }
 
 impl<'p> PreparedSteps<'p> {
-    fn new(gpu: &Gpu, pack: &AnyPack, scene: &Scene, plan: &'p FramePlan, textures: &FrameTextures, harness: &HarnessTextures, values: &PassValues) -> Result<Self, HarnessError> {
+    /// Every step's work. With `tolerate`, a step whose pipeline wgpu or naga refuses becomes
+    /// [`Work::Cannot`] and the others are still built; without, the refusal is the error.
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        gpu: &Gpu,
+        pack: &AnyPack,
+        scene: &Scene,
+        plan: &'p FramePlan,
+        textures: &FrameTextures,
+        harness: &HarnessTextures,
+        values: &PassValues,
+        tolerate: bool,
+    ) -> Result<Self, HarnessError> {
         let mut prepared = PreparedSteps { steps: Vec::new(), zeroed_inputs: Vec::new(), zeroed_uniforms: Vec::new() };
         for step in &plan.steps {
-            let (work, written) = match &step.work {
-                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
-                    let values = uniforms::with_render_stage(values.of_pass(*pass), render_stage);
-                    let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
-                    let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
-                    // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
-                    let bindable = BindableTextures {
-                        naming: SamplerNaming::Frame,
-                        harness,
-                        colors: &textures.snapshots,
-                        depth0: &textures.depth1,
-                        depth1: &textures.depth1,
-                        depth_read: textures.depth_read([1, 1]),
-                        // Likewise dhDepthTex0 while Distant Horizons draws into it.
-                        lod_depth: [&textures.lod_depth[1]; 2],
-                        shadow: textures.shadow(),
-                        sprites: *sprites,
-                        mipmapped: &NO_MIPMAPS,
-                    };
-                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
-                    let written = draw.buffers().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(b, current[&b]))).collect();
-                    (Work::Geometry { draw, current, snapshots, lod: *pass == Pass::DistantHorizons }, written)
-                }
-                PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
-                PlannedWork::LodDepthCopy => (Work::LodDepthCopy, Vec::new()),
-                PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
-                    let values = uniforms::with_render_stage(&values.shadow, render_stage);
-                    let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
-                    let state = DrawState { blend_of: &blend_of, depth_write: true };
-                    // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
-                    let bindable = BindableTextures {
-                        naming: SamplerNaming::ShadowPass,
-                        harness,
-                        colors: &textures.shadow_colours,
-                        depth0: &textures.depth1,
-                        depth1: &textures.depth1,
-                        depth_read: textures.depth_read([1, 1]),
-                        lod_depth: [&textures.lod_depth[1]; 2],
-                        shadow: ShadowTextures::empty(harness),
-                        sprites: Sprites::Blocks,
-                        mipmapped: &NO_MIPMAPS,
-                    };
-                    let draw = prepared.geometry(gpu, pack, scene, &values, &bindable, Some(program), &state, vertices, &step.label)?;
-                    let written = draw.buffers().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(b))).collect();
-                    (Work::ShadowGeometry(draw), written)
-                }
-                PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
-                PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
-                    let pipeline = prepared.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
-                    let written = program
-                        .drawn_buffers()
-                        .map(|b| match (*into_screen, b) {
-                            (true, 0) => ("screen".to_string(), WrittenTexture::Screen),
-                            _ => (format!("colortex{b}"), WrittenTexture::Buffer(b, 1 - current[&b])),
-                        })
-                        .collect();
-                    (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
-                }
-                PlannedWork::ScreenCopy { current } => {
-                    let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
-                    (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
-                }
+            let built = if tolerate {
+                gpu.checked(&step.label, || prepared.step(gpu, pack, scene, step, textures, harness, values)).and_then(|built| built)
+            } else {
+                prepared.step(gpu, pack, scene, step, textures, harness, values)
+            };
+            let (work, written) = match built {
+                Ok(built) => built,
+                Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) if tolerate => (Work::Cannot(cannot.to_string()), Vec::new()),
+                Err(e) => return Err(e),
             };
             prepared.steps.push((step.label.as_str(), work, written));
         }
         Ok(prepared)
+    }
+
+    /// One step's work and the textures it writes.
+    #[allow(clippy::too_many_arguments)]
+    fn step(
+        &mut self,
+        gpu: &Gpu,
+        pack: &AnyPack,
+        scene: &Scene,
+        step: &'p crate::any_pack::PlannedStep,
+        textures: &FrameTextures,
+        harness: &HarnessTextures,
+        values: &PassValues,
+    ) -> Result<(Work<'p>, Vec<Written>), HarnessError> {
+        Ok(match &step.work {
+            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
+                let values = uniforms::with_render_stage(values.of_pass(*pass), render_stage);
+                let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
+                let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
+                // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
+                let bindable = BindableTextures {
+                    naming: SamplerNaming::Frame,
+                    harness,
+                    colors: &textures.snapshots,
+                    depth0: &textures.depth1,
+                    depth1: &textures.depth1,
+                    depth_read: textures.depth_read([1, 1]),
+                    // Likewise dhDepthTex0 while Distant Horizons draws into it.
+                    lod_depth: [&textures.lod_depth[1]; 2],
+                    shadow: textures.shadow(),
+                    sprites: *sprites,
+                    mipmapped: &NO_MIPMAPS,
+                };
+                let draw = self.geometry(gpu, pack, scene, &values, &bindable, *program, &state, vertices, &step.label)?;
+                let written = draw.buffers().map(|b| (format!("colortex{b}"), WrittenTexture::Buffer(b, current[&b]))).collect();
+                (Work::Geometry { draw, current, snapshots, lod: *pass == Pass::DistantHorizons }, written)
+            }
+            PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
+            PlannedWork::LodDepthCopy => (Work::LodDepthCopy, Vec::new()),
+            PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
+                let values = uniforms::with_render_stage(&values.shadow, render_stage);
+                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                let state = DrawState { blend_of: &blend_of, depth_write: true };
+                // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
+                let bindable = BindableTextures {
+                    naming: SamplerNaming::ShadowPass,
+                    harness,
+                    colors: &textures.shadow_colours,
+                    depth0: &textures.depth1,
+                    depth1: &textures.depth1,
+                    depth_read: textures.depth_read([1, 1]),
+                    lod_depth: [&textures.lod_depth[1]; 2],
+                    shadow: ShadowTextures::empty(harness),
+                    sprites: Sprites::Blocks,
+                    mipmapped: &NO_MIPMAPS,
+                };
+                let draw = self.geometry(gpu, pack, scene, &values, &bindable, Some(program), &state, vertices, &step.label)?;
+                let written = draw.buffers().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(b))).collect();
+                (Work::ShadowGeometry(draw), written)
+            }
+            PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
+            PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
+                let pipeline = self.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
+                let written = program
+                    .drawn_buffers()
+                    .map(|b| match (*into_screen, b) {
+                        (true, 0) => ("screen".to_string(), WrittenTexture::Screen),
+                        _ => (format!("colortex{b}"), WrittenTexture::Buffer(b, 1 - current[&b])),
+                    })
+                    .collect();
+                (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
+            }
+            PlannedWork::ScreenCopy { current } => {
+                let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
+                (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
+            }
+        })
     }
 
     /// A geometry step's draw, its zeroed inputs and uniforms noted.
@@ -480,6 +531,7 @@ impl Recorder<'_> {
                 pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, self.quad, stamps);
             }
             Work::ScreenCopy(copy) => copy.record(encoder, &t.screen, stamps),
+            Work::Cannot(_) => {}
         }
     }
 }
@@ -498,7 +550,7 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
     let (values, problems) = PassValues::of(pack, scene);
     not_modelled.extend(pack.sun_path_note(scene));
     not_modelled.extend(problems.iter().map(|problem| format!("{problem} (the uniform stays zero)")));
-    let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values)?;
+    let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values, false)?;
     let mut zeroed: Vec<String> = prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}")).collect();
     zeroed.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}")));
     zeroed.sort();
@@ -525,6 +577,149 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
         not_modelled,
         zeroed,
     })
+}
+
+/// A frame drawn by [`render_from`]: each step from the reference's inputs.
+pub struct SteppedFrame {
+    pub frame: Frame,
+    /// Per step, in plan order: why wgpu cannot draw it, where it cannot; the step's textures
+    /// are then the reference's.
+    pub cannot_draw: Vec<Option<String>>,
+}
+
+/// Draws `scene` once as [`render`] does, but each step starts from what `reference` (another
+/// renderer's frame of the same plan) left: the textures the step before wrote are replaced by
+/// the reference's, and so are the depth buffers a full-screen step reads, as
+/// [`crate::gl_frame::render_from`] does for OpenGL. A step wgpu or naga cannot draw is left to
+/// the reference: its textures, and the depth buffer a geometry step drew into, are the
+/// reference's. Each step wgpu draws is then drawn from the inputs the reference's was.
+pub fn render_from(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput, reference: &crate::gl_frame::Reference) -> Result<SteppedFrame, HarnessError> {
+    gpu.check_resolution(scene.width(), scene.height())
+        .map_err(|e| HarnessError::Scene(format!("scene {}: {e}", scene.name)))?;
+    gpu.checked("frame", || render_from_checked(gpu, pack, scene, mesh, screen, reference))?
+}
+
+fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, screen: ScreenOutput, reference: &crate::gl_frame::Reference) -> Result<SteppedFrame, HarnessError> {
+    let plan = FramePlan::new(pack, scene, mesh, screen);
+    if reference.steps.len() != plan.steps.len() || reference.depth_written.len() != plan.steps.len() {
+        return Err(HarnessError::Wgpu(format!("the reference frame ran {} steps, the wgpu frame has {}", reference.steps.len(), plan.steps.len())));
+    }
+    let textures = FrameTextures::new(gpu, pack, &plan, scene)?;
+    let harness_textures = HarnessTextures::new(gpu, pack);
+    let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
+    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
+    let depth0_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth0)?;
+    let depth1_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth1)?;
+    let depth_writer = DepthWriter::new(gpu)?;
+    let quad = FullscreenQuad::new(gpu);
+    let (values, _) = PassValues::of(pack, scene);
+    let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values, true)?;
+    let recorder =
+        Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, depth0_as_luminance: &depth0_as_luminance, quad: &quad };
+
+    let is_geometry = |work: &PlannedWork| matches!(work, PlannedWork::Geometry { .. });
+    let last_geometry = plan.steps.iter().rposition(|s| is_geometry(&s.work));
+    let depth_copy = plan.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
+    let submit = |encoder: wgpu::CommandEncoder| -> Result<f64, HarnessError> {
+        let started = Instant::now();
+        gpu.queue.submit([encoder.finish()]);
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
+        Ok(started.elapsed().as_secs_f64() * 1000.0)
+    };
+    let new_encoder = || gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+    let mut encoder = new_encoder();
+    textures.record_clears(&mut encoder, pack, scene);
+    submit(encoder)?;
+    let mut passes = Vec::new();
+    let mut cannot_draw = Vec::new();
+    for (index, ((label, work, written), step)) in prepared.steps.iter().zip(&plan.steps).enumerate() {
+        if index > 0 {
+            // What the step before wrote, as the reference has it.
+            for (name, image) in reference.steps[index - 1] {
+                if let Some(texture) = texture_written(&plan.steps[index - 1].work, name) {
+                    write_texture(gpu, textures.texture(&texture), textures.format(&texture), image)?;
+                }
+            }
+            if let (Work::Cannot(_), Some(depth)) = (&prepared.steps[index - 1].1, reference.depth_written[index - 1]) {
+                let mut encoder = new_encoder();
+                match &plan.steps[index - 1].work {
+                    PlannedWork::Geometry { pass: Pass::DistantHorizons, .. } => depth_writer.write(gpu, &textures.lod_depth[0], depth)?,
+                    PlannedWork::Geometry { .. } => {
+                        depth_writer.write(gpu, &textures.depth0, depth)?;
+                        if textures.depth_read_bound.get() {
+                            depth0_as_luminance.record(&mut encoder, &textures.depth_read[0], None);
+                        }
+                    }
+                    _ => {
+                        depth_writer.write(gpu, &textures.shadow_depth[0], depth)?;
+                        depth_as_luminance.record(&mut encoder, &textures.shadow_depth_read[0], None);
+                    }
+                }
+                submit(encoder)?;
+            }
+        }
+        if matches!(step.work, PlannedWork::Fullscreen { .. }) {
+            let after_all_geometry = last_geometry.is_none_or(|g| g < index);
+            let opaque_only = depth_copy.is_some_and(|c| c < index && !plan.steps[c..index].iter().any(|s| is_geometry(&s.work)));
+            let seeds = if after_all_geometry { Some([reference.depth0, reference.depth1]) } else if opaque_only { Some([reference.depth1; 2]) } else { None };
+            if let Some([depth0, depth1]) = seeds {
+                depth_writer.write(gpu, &textures.depth0, depth0)?;
+                depth_writer.write(gpu, &textures.depth1, depth1)?;
+                let mut encoder = new_encoder();
+                depth0_as_luminance.record(&mut encoder, &textures.depth_read[0], None);
+                depth1_as_luminance.record(&mut encoder, &textures.depth_read[1], None);
+                submit(encoder)?;
+            }
+        }
+        let (images, wall_ms) = match work {
+            Work::Cannot(why) => {
+                cannot_draw.push(Some(why.clone()));
+                (reference.steps[index].to_vec(), 0.0)
+            }
+            _ => {
+                cannot_draw.push(None);
+                let mut encoder = new_encoder();
+                recorder.record(&mut encoder, work, None);
+                let wall_ms = submit(encoder)?;
+                let mut images = Vec::new();
+                for (name, texture) in written {
+                    images.push((name.clone(), textures.read(gpu, texture)?));
+                }
+                (images, wall_ms)
+            }
+        };
+        let non_finite = images.iter().map(|(name, image)| (name.clone(), image.non_finite())).collect();
+        passes.push(StepReport { pass: label.to_string(), wall_ms, gpu_ms: None, median_ms: wall_ms, samples_ms: vec![wall_ms], non_finite, images });
+    }
+    let mut buffers = BTreeMap::new();
+    for (b, buffer) in &textures.buffers {
+        buffers.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
+    }
+    let frame = Frame {
+        image: read_texture(gpu, &textures.screen, OUT)?,
+        buffers,
+        depth0: read_texture(gpu, &textures.depth0, DEPTH)?,
+        depth1: read_texture(gpu, &textures.depth1, DEPTH)?,
+        passes,
+        timing: FrameTiming { frames: 1, frame_ms: f64::NAN, passthrough_ms: f64::NAN, passthrough_samples_ms: Vec::new() },
+        not_modelled: pack.not_modelled.clone(),
+        zeroed: Vec::new(),
+    };
+    Ok(SteppedFrame { frame, cannot_draw })
+}
+
+/// The texture of `work`'s that the reference names `name` (`colortex2`, `shadowcolor0`,
+/// `screen`), as the step writes it.
+fn texture_written(work: &PlannedWork, name: &str) -> Option<WrittenTexture> {
+    let buffer = |prefix: &str| name.strip_prefix(prefix).and_then(|n| n.parse::<u8>().ok());
+    match work {
+        PlannedWork::Geometry { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, current[&b])),
+        PlannedWork::ShadowGeometry { .. } => buffer("shadowcolor").map(WrittenTexture::ShadowColour),
+        PlannedWork::Fullscreen { .. } if name == "screen" => Some(WrittenTexture::Screen),
+        PlannedWork::Fullscreen { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, 1 - current[&b])),
+        PlannedWork::ScreenCopy { .. } if name == "screen" => Some(WrittenTexture::Screen),
+        _ => None,
+    }
 }
 
 /// Runs `frames` frames of the prepared steps, each followed by a one-tap pass-through of

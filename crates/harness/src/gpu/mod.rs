@@ -20,5 +20,5 @@ pub mod readback;
 
 pub use bindings::UniformBinding;
 pub use device::{Gpu, VULKAN_PACKAGE};
-pub use frame::{Frame, FrameTiming, StepReport, render};
+pub use frame::{Frame, FrameTiming, StepReport, SteppedFrame, render, render_from};
 pub use readback::read_texture;

@@ -194,6 +194,86 @@ impl PassthroughPipeline {
     }
 }
 
+/// Depth from an R32Float texture into the depth buffer drawn into, texel for texel: a depth
+/// buffer cannot be a copy's destination.
+const DEPTH_FROM_FLOATS_WGSL: &str = r#"
+@group(0) @binding(0) var depths: texture_2d<f32>;
+@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let p = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(p * 2.0 - 1.0, 0.0, 1.0);
+}
+@fragment fn fs(@builtin(position) p: vec4<f32>) -> @builtin(frag_depth) f32 {
+    return textureLoad(depths, vec2<i32>(p.xy), 0).r;
+}
+"#;
+
+/// Writes depth buffers from images: a step another renderer drew leaves its depth so.
+pub(crate) struct DepthWriter {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl DepthWriter {
+    pub(crate) fn new(gpu: &Gpu) -> Result<DepthWriter, HarnessError> {
+        let device = &gpu.device;
+        let module = gpu.checked("depth writer shader", || {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("depth from floats"),
+                source: wgpu::ShaderSource::Wgsl(DEPTH_FROM_FLOATS_WGSL.into()),
+            })
+        })?;
+        let pipeline = gpu.checked("depth writer pipeline", || {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("depth from floats"),
+                layout: None,
+                vertex: wgpu::VertexState { module: &module, entry_point: Some("vs"), compilation_options: Default::default(), buffers: &[] },
+                primitive: Default::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState { module: &module, entry_point: Some("fs"), compilation_options: Default::default(), targets: &[] }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })?;
+        Ok(DepthWriter { pipeline })
+    }
+
+    /// Replaces `depth` (a [`DEPTH`] texture) with `image`'s first channel.
+    pub(crate) fn write(&self, gpu: &Gpu, depth: &wgpu::Texture, image: &crate::images::FloatImage) -> Result<(), HarnessError> {
+        let floats = gpu.texture("depth to write (R32Float)", depth.size(), wgpu::TextureFormat::R32Float, wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST);
+        super::readback::write_texture(gpu, &floats, wgpu::TextureFormat::R32Float, image)?;
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("depth from floats"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(&floats)) }],
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let target = view(depth);
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("depth from floats"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &target,
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                ..Default::default()
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+}
+
 /// Each mip level from the one above it by linear filtering at the level's texel centres: what
 /// Mesa's `glGenerateMipmap` does (a linear blit per level), so both renderers agree.
 const MIPMAP_WGSL: &str = r#"

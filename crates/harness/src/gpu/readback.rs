@@ -105,3 +105,29 @@ pub fn read_texture(gpu: &Gpu, texture: &wgpu::Texture, format: wgpu::TextureFor
     }
     Ok(image)
 }
+
+/// Replaces level 0 of `texture` (of `format`, the image's size) with `image`, bottom row first
+/// as [`read_texture`] gives it: unorm channels clamped and rounded, floats as they are.
+pub(crate) fn write_texture(gpu: &Gpu, texture: &wgpu::Texture, format: wgpu::TextureFormat, image: &FloatImage) -> Result<(), HarnessError> {
+    let (w, h) = (texture.width(), texture.height());
+    if (image.width, image.height) != (w, h) {
+        return Err(HarnessError::Wgpu(format!("a {}x{} image for a {w}x{h} texture", image.width, image.height)));
+    }
+    let channels = image.pixels.iter().flatten().copied();
+    let unorm = |c: f32, max: f32| (c.clamp(0.0, 1.0) * max).round();
+    let (bytes, texel): (Vec<u8>, u32) = match format {
+        wgpu::TextureFormat::Rgba8Unorm => (channels.map(|c| unorm(c, 255.0) as u8).collect(), 4),
+        wgpu::TextureFormat::Rgba16Unorm => (channels.flat_map(|c| (unorm(c, 65535.0) as u16).to_le_bytes()).collect(), 8),
+        wgpu::TextureFormat::Rgba16Float => (channels.flat_map(|c| f16::from_f32(c).to_le_bytes()).collect(), 8),
+        wgpu::TextureFormat::Rgba32Float => (channels.flat_map(f32::to_le_bytes).collect(), 16),
+        wgpu::TextureFormat::R32Float => (image.pixels.iter().flat_map(|p| p[0].to_le_bytes()).collect(), 4),
+        other => return Err(HarnessError::Unsupported(format!("writing {other:?}"))),
+    };
+    gpu.queue.write_texture(
+        texture.as_image_copy(),
+        &bytes,
+        wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(w * texel), rows_per_image: Some(h) },
+        texture.size(),
+    );
+    Ok(())
+}
