@@ -902,6 +902,7 @@ mod tests {
             steps: vec![step("gbuffers_terrain", "colortex0", 3, 1.5), step("composite", "colortex0", 17_654, 67.0), step("final", "screen", 20_000, 70.0)],
             own_depth_mapping: vec![],
             refused: None,
+            wgpu_cannot_draw: vec![],
         };
         assert_eq!(
             frame.first_disagreement(16),
@@ -909,7 +910,12 @@ mod tests {
         );
         assert_eq!(frame.first_disagreement(2).map(|d| d.pass), Some("gbuffers_terrain".into()));
         assert_eq!(frame.first_disagreement(20_000), None);
-        let refused = GlStepsComparison { steps: vec![], refused: Some("link error".into()), ..frame };
+        let refused = GlStepsComparison { steps: vec![], refused: Some("link error".into()), ..frame.clone() };
         assert_eq!(refused.first_disagreement(0), None);
+        // A step wgpu could not draw is set aside, not compared: its textures are OpenGL's own.
+        let mut beside = frame;
+        beside.set_aside(&[None, Some("naga cannot read composite".into()), None]);
+        assert_eq!(beside.wgpu_cannot_draw, [("composite".to_string(), "naga cannot read composite".to_string())]);
+        assert_eq!(beside.first_disagreement(16).map(|d| d.pass), Some("final".into()));
     }
 }
