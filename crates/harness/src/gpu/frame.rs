@@ -310,8 +310,9 @@ struct PreparedSteps<'p> {
 }
 
 impl<'p> PreparedSteps<'p> {
-    /// Every step's work. With `tolerate`, a step whose pipeline wgpu or naga refuses becomes
-    /// [`Work::Cannot`] and the others are still built; without, the refusal is the error.
+    /// Every step's work. With `tolerate`, a step whose pipeline cannot be built (wgpu or naga
+    /// refuses it, a binding the harness cannot make) becomes [`Work::Cannot`] and the others
+    /// are still built; without, the first such error is the frame's.
     #[allow(clippy::too_many_arguments)]
     fn new(
         gpu: &Gpu,
@@ -332,7 +333,7 @@ impl<'p> PreparedSteps<'p> {
             };
             let (work, written) = match built {
                 Ok(built) => built,
-                Err(cannot @ (HarnessError::Unsupported(_) | HarnessError::Wgpu(_))) if tolerate => (Work::Cannot(cannot.to_string()), Vec::new()),
+                Err(cannot) if tolerate => (Work::Cannot(cannot.to_string()), Vec::new()),
                 Err(e) => return Err(e),
             };
             prepared.steps.push((step.label.as_str(), work, written));
