@@ -73,9 +73,15 @@ fn main() {
                         format!("rendered ({})", report.rendered.loader)
                     }
                 };
-                let renderer = match &report.renderer.wgpu_cannot_draw {
-                    Some(why) => format!("OpenGL (wgpu: {})", cell(why)),
-                    None => "wgpu".to_string(),
+                let renderer = match (&report.renderer.wgpu_cannot_draw, gl) {
+                    (Some(why), Some(gl)) => format!(
+                        "OpenGL; wgpu beside it on {} steps, not on {} (wgpu: {})",
+                        gl.steps.len(),
+                        gl.wgpu_cannot_draw.len(),
+                        cell(why)
+                    ),
+                    (Some(why), None) => format!("OpenGL (wgpu: {})", cell(why)),
+                    (None, _) => "wgpu".to_string(),
                 };
                 let t = &report.timing;
                 println!(
@@ -89,7 +95,7 @@ fn main() {
         }
     }
     println!(
-        "\n{} of {} packs rendered as `render --pack --gl` exits 0: {by_wgpu} by wgpu with OpenGL agreeing, {by_opengl} by OpenGL where wgpu cannot draw them",
+        "\n{} of {} packs rendered as `render --pack --gl` exits 0: {by_wgpu} by wgpu with OpenGL agreeing, {by_opengl} by OpenGL where wgpu cannot draw a program (wgpu agreeing on the steps it draws)",
         by_wgpu + by_opengl,
         packs.len()
     );
