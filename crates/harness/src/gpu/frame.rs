@@ -280,6 +280,33 @@ impl FrameTextures {
         record_clears(encoder, &[], &self.shadow_depth[1]);
     }
 
+    /// The frame as these textures end it: the screen, each buffer's current texture and the
+    /// depth buffers read back, with what the run gives.
+    fn frame_as_ended(
+        &self,
+        gpu: &Gpu,
+        plan: &FramePlan,
+        passes: Vec<StepReport>,
+        timing: FrameTiming,
+        not_modelled: Vec<String>,
+        zeroed: Vec<String>,
+    ) -> Result<Frame, HarnessError> {
+        let mut buffers = BTreeMap::new();
+        for (b, buffer) in &self.buffers {
+            buffers.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
+        }
+        Ok(Frame {
+            image: read_texture(gpu, &self.screen, OUT)?,
+            buffers,
+            depth0: read_texture(gpu, &self.depth0, DEPTH)?,
+            depth1: read_texture(gpu, &self.depth1, DEPTH)?,
+            passes,
+            timing,
+            not_modelled,
+            zeroed,
+        })
+    }
+
     /// The texture a step wrote, read back.
     fn read(&self, gpu: &Gpu, texture: &WrittenTexture) -> Result<FloatImage, HarnessError> {
         read_texture(gpu, self.texture(texture), self.format(texture))
@@ -487,11 +514,25 @@ impl<'p> PreparedSteps<'p> {
 struct Recorder<'r> {
     gpu: &'r Gpu,
     textures: &'r FrameTextures,
-    mipmaps: &'r MipmapPipelines,
-    depth_as_luminance: &'r PassthroughPipeline,
+    mipmaps: MipmapPipelines,
+    /// shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
+    depth_as_luminance: PassthroughPipeline,
     /// depth0 into `FrameTextures::depth_read[0]`, where a program reads it so.
-    depth0_as_luminance: &'r PassthroughPipeline,
-    quad: &'r FullscreenQuad,
+    depth0_as_luminance: PassthroughPipeline,
+    quad: FullscreenQuad,
+}
+
+impl<'r> Recorder<'r> {
+    fn new(gpu: &'r Gpu, plan: &FramePlan, textures: &'r FrameTextures) -> Result<Recorder<'r>, HarnessError> {
+        Ok(Recorder {
+            gpu,
+            textures,
+            mipmaps: MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?,
+            depth_as_luminance: PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?,
+            depth0_as_luminance: PassthroughPipeline::depth_as_luminance(gpu, &textures.depth0)?,
+            quad: FullscreenQuad::new(gpu),
+        })
+    }
 }
 
 impl Recorder<'_> {
@@ -529,7 +570,7 @@ impl Recorder<'_> {
                     self.mipmaps.record(self.gpu, encoder, &t.buffers[b].textures[current[b]]);
                 }
                 let target = |b: u8| if *into_screen && b == 0 { &t.screen } else { &t.buffers[&b].textures[1 - current[&b]] };
-                pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, self.quad, stamps);
+                pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, &self.quad, stamps);
             }
             Work::ScreenCopy(copy) => copy.record(encoder, &t.screen, stamps),
             Work::Cannot(_) => {}
@@ -541,11 +582,7 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
     let plan = FramePlan::new(pack, scene, mesh, screen);
     let textures = FrameTextures::new(gpu, pack, &plan, scene)?;
     let harness_textures = HarnessTextures::new(gpu, pack);
-    let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
-    // shadowtex0 as sampler2D reads it after each shadow draw; shadowtex1's is copied with it.
-    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
-    let depth0_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth0)?;
-    let quad = FullscreenQuad::new(gpu);
+    let recorder = Recorder::new(gpu, &plan, &textures)?;
 
     let mut not_modelled = pack.not_modelled.clone();
     let (values, problems) = PassValues::of(pack, scene);
@@ -559,25 +596,10 @@ fn render_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMesh, sc
     not_modelled.extend(prepared.zeroed_uniforms.iter().map(|name| format!("uniform {name}: zero (the harness has no value for it)")));
     not_modelled.extend(prepared.zeroed_inputs.iter().map(|input| format!("vertex input {input}: zero (the harness's vertices do not carry it)")));
 
-    let recorder =
-        Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, depth0_as_luminance: &depth0_as_luminance, quad: &quad };
     let (passes, timing) = run_frames(&recorder, pack, scene, &plan, &prepared.steps, frames)?;
-    let mut images = BTreeMap::new();
-    for (b, buffer) in &textures.buffers {
-        images.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
-    }
     not_modelled.sort();
     not_modelled.dedup();
-    Ok(Frame {
-        image: read_texture(gpu, &textures.screen, OUT)?,
-        buffers: images,
-        depth0: read_texture(gpu, &textures.depth0, DEPTH)?,
-        depth1: read_texture(gpu, &textures.depth1, DEPTH)?,
-        passes,
-        timing,
-        not_modelled,
-        zeroed,
-    })
+    textures.frame_as_ended(gpu, &plan, passes, timing, not_modelled, zeroed)
 }
 
 /// A frame drawn by [`render_from`]: each step from the reference's inputs.
@@ -607,16 +629,12 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
     }
     let textures = FrameTextures::new(gpu, pack, &plan, scene)?;
     let harness_textures = HarnessTextures::new(gpu, pack);
-    let mipmaps = MipmapPipelines::new(gpu, plan.mipmapped.iter().map(|b| textures.buffers[b].format))?;
-    let depth_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.shadow_depth[0])?;
-    let depth0_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth0)?;
+    let recorder = Recorder::new(gpu, &plan, &textures)?;
+    let (depth_as_luminance, depth0_as_luminance) = (&recorder.depth_as_luminance, &recorder.depth0_as_luminance);
     let depth1_as_luminance = PassthroughPipeline::depth_as_luminance(gpu, &textures.depth1)?;
     let depth_writer = DepthWriter::new(gpu)?;
-    let quad = FullscreenQuad::new(gpu);
     let (values, _) = PassValues::of(pack, scene);
     let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values, true)?;
-    let recorder =
-        Recorder { gpu, textures: &textures, mipmaps: &mipmaps, depth_as_luminance: &depth_as_luminance, depth0_as_luminance: &depth0_as_luminance, quad: &quad };
 
     let is_geometry = |work: &PlannedWork| matches!(work, PlannedWork::Geometry { .. });
     let last_geometry = plan.steps.iter().rposition(|s| is_geometry(&s.work));
@@ -692,20 +710,8 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
         let non_finite = images.iter().map(|(name, image)| (name.clone(), image.non_finite())).collect();
         passes.push(StepReport { pass: label.to_string(), wall_ms, gpu_ms: None, median_ms: wall_ms, samples_ms: vec![wall_ms], non_finite, images });
     }
-    let mut buffers = BTreeMap::new();
-    for (b, buffer) in &textures.buffers {
-        buffers.insert(*b, read_texture(gpu, &buffer.textures[plan.current[b]], buffer.format)?);
-    }
-    let frame = Frame {
-        image: read_texture(gpu, &textures.screen, OUT)?,
-        buffers,
-        depth0: read_texture(gpu, &textures.depth0, DEPTH)?,
-        depth1: read_texture(gpu, &textures.depth1, DEPTH)?,
-        passes,
-        timing: FrameTiming { frames: 1, frame_ms: f64::NAN, passthrough_ms: f64::NAN, passthrough_samples_ms: Vec::new() },
-        not_modelled: pack.not_modelled.clone(),
-        zeroed: Vec::new(),
-    };
+    let untimed = FrameTiming { frames: 1, frame_ms: f64::NAN, passthrough_ms: f64::NAN, passthrough_samples_ms: Vec::new() };
+    let frame = textures.frame_as_ended(gpu, &plan, passes, untimed, pack.not_modelled.clone(), Vec::new())?;
     Ok(SteppedFrame { frame, cannot_draw })
 }
 
