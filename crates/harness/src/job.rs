@@ -529,8 +529,54 @@ pub struct AnyPackReport {
     /// With `gl`: what the text given to OpenGL had rewritten of what only lenient compilers
     /// accept (`program: path:line: what`); wgpu draws the program as the lowering reads it.
     pub gl_rewrites: Vec<String>,
+    /// Per step, in frame order: which renderer drew it, and whether the other drew it too
+    /// and was compared ([`StepRenderers`]).
+    pub step_renderers: Vec<(String, StepRenderers)>,
     /// Files written, relative to the output folder.
     pub files: Vec<String>,
+}
+
+/// Who drew a step of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StepRenderers {
+    /// wgpu alone (no `--gl`).
+    Wgpu,
+    /// wgpu, and OpenGL from wgpu's inputs, compared.
+    WgpuWithOpenGl,
+    /// OpenGL, and wgpu from OpenGL's inputs, compared.
+    OpenGlWithWgpu,
+    /// OpenGL alone: wgpu cannot draw the step (or, without `--gl`, the frame).
+    OpenGl,
+}
+
+impl StepRenderers {
+    /// Who drew each of `passes`, the primary renderer's steps, given the comparison made.
+    fn of(passes: &[StepReport], opengl_primary: bool, gl: Option<&GlStepsComparison>) -> Vec<(String, StepRenderers)> {
+        let compared = |step: &str| gl.is_some_and(|g| g.refused.is_none() && g.steps.iter().any(|s| s.pass == step));
+        passes
+            .iter()
+            .map(|p| {
+                let by = match (opengl_primary, compared(&p.pass)) {
+                    (false, true) => StepRenderers::WgpuWithOpenGl,
+                    (false, false) => StepRenderers::Wgpu,
+                    (true, true) => StepRenderers::OpenGlWithWgpu,
+                    (true, false) => StepRenderers::OpenGl,
+                };
+                (p.pass.clone(), by)
+            })
+            .collect()
+    }
+
+    /// As the command prints it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            StepRenderers::Wgpu => "wgpu",
+            StepRenderers::WgpuWithOpenGl => "wgpu; OpenGL compared",
+            StepRenderers::OpenGlWithWgpu => "OpenGL; wgpu compared",
+            StepRenderers::OpenGl => "OpenGL alone",
+        }
+    }
 }
 
 /// Renders the job's scene with any pack and writes the files; returns the report (also
@@ -678,6 +724,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     files.push(json_name.clone());
     let report = AnyPackReport {
         gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(gl_max_pixels)),
+        step_renderers: StepRenderers::of(&frame.passes, gl_primary, gl.as_ref()),
         gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites() } else { Vec::new() },
         renderer,
         gl,

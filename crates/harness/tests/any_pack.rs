@@ -552,6 +552,12 @@ fn wgpu_draws_the_steps_it_can_beside_opengl() {
     assert!(compared.contains(&"water (gbuffers_water)") && compared.contains(&"composite"), "{compared:?}");
     assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
     assert_eq!(report.gl_disagreement, None);
+    // The report names who drew each step.
+    use tidepack_harness::job::StepRenderers;
+    let by = |step: &str| report.step_renderers.iter().find(|(s, _)| s == step).map(|(_, by)| *by);
+    assert_eq!(by("terrain (gbuffers_terrain)"), Some(StepRenderers::OpenGl));
+    assert_eq!(by("water (gbuffers_water)"), Some(StepRenderers::OpenGlWithWgpu));
+    assert_eq!(by("composite"), Some(StepRenderers::OpenGlWithWgpu));
     // The terrain's green, and the water halved by composite where it lies in front of it.
     let green = screen.pixels().filter(|p| p.0 == [0, 255, 0, 255]).count();
     let water = screen.pixels().filter(|p| p.0 == [0, 0, 128, 255]).count();
@@ -567,6 +573,7 @@ fn outputs_past_the_draw_buffers_are_dropped() {
     assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
     assert_eq!(report.renderer.name, "wgpu", "{:?}", report.renderer);
     assert_eq!(report.gl_disagreement, None);
+    assert!(report.step_renderers.iter().all(|(_, by)| *by == tidepack_harness::job::StepRenderers::WgpuWithOpenGl), "{:?}", report.step_renderers);
     assert!(report.gl.as_ref().is_some_and(|g| g.refused.is_none() && !g.steps.is_empty()), "{:?}", report.gl);
     assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 0, 255, 255]);
 }

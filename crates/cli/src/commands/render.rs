@@ -186,10 +186,13 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         say!("  OpenGL refuses the frame too, so wgpu drew it without the programs naga cannot read: {refused}");
     }
     let source = if report.passes.iter().any(|p| p.gpu_ms.is_some()) { "GPU" } else { "wall" };
-    for p in &report.passes {
+    // Which renderer drew each step, where any step was not wgpu's alone.
+    let tagged = report.step_renderers.iter().any(|(_, by)| *by != job::StepRenderers::Wgpu);
+    for (p, (_, by)) in report.passes.iter().zip(&report.step_renderers) {
         let time = format!("{:>9.3} ms", p.median_ms);
+        let by = if tagged { format!("  [{}]", by.describe()) } else { String::new() };
         let bad: Vec<String> = p.non_finite.iter().filter(|(_, n)| **n > 0).map(|(b, n)| format!("{b}: {n} NaN/Inf")).collect();
-        say!("  {:<40} {time}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
+        say!("  {:<40} {time}{by}{}", p.pass, if bad.is_empty() { String::new() } else { format!("  {}", bad.join(", ")) });
     }
     let t = &report.timing;
     say!(
