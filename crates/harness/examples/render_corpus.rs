@@ -117,7 +117,8 @@ fn failure(report: &AnyPackReport) -> Option<String> {
     } else {
         report.gl_disagreement.as_ref().map(|d| {
             let sensitive = if d.sensitive > 0 { format!(" ({} the pack's own noise)", d.sensitive) } else { String::new() };
-            format!("the renderers part at {}: {} differs on {} pixels{sensitive}", d.pass, d.texture, d.pixels)
+            let file = d.file.as_ref().map_or(String::new(), |file| format!(" ({file})"));
+            format!("the renderers part at {}{file}: {} differs on {} pixels{sensitive}", d.pass, d.texture, d.pixels)
         })
     }
 }

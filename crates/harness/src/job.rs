@@ -314,6 +314,8 @@ pub fn gl_max_differing_pixels(width: u32, height: u32) -> usize {
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Disagreement {
     pub pass: String,
+    /// The fragment stage's file of the step's program, when the step ran one.
+    pub file: Option<String>,
     pub texture: String,
     /// Pixels differing by more than 1/255 in some colour channel.
     pub pixels: usize,
@@ -335,6 +337,7 @@ impl GlStepsComparison {
             let sensitive = |texture: &str| step.sensitive_pixels.get(texture).copied().unwrap_or(0);
             step.pixels_over_1_255.iter().find(|(texture, n)| **n - sensitive(texture) > max_pixels).map(|(texture, &pixels)| Disagreement {
                 pass: step.pass.clone(),
+                file: None,
                 texture: texture.clone(),
                 pixels,
                 sensitive: sensitive(texture),
@@ -490,14 +493,18 @@ impl std::fmt::Display for NonFinite {
     }
 }
 
-/// The first of `passes` that wrote NaN or Inf, with the fragment file of its program: a step is
-/// labelled with its program's name (`composite2`) or ends with it in brackets.
+/// The first of `passes` that wrote NaN or Inf, with the fragment file of its program.
 fn first_non_finite(passes: &[crate::gpu::StepReport], pack: &crate::any_pack::AnyPack) -> Option<NonFinite> {
     passes.iter().find_map(|step| {
         let (texture, &pixels) = step.non_finite.iter().find(|(_, n)| **n > 0)?;
-        let program = pack.programs().find(|p| step.pass == p.name || step.pass.ends_with(&format!("({})", p.name)));
-        Some(NonFinite { step: step.pass.clone(), file: program.map(|p| p.fragment.path.clone()), texture: texture.clone(), pixels })
+        Some(NonFinite { step: step.pass.clone(), file: step_file(pack, &step.pass), texture: texture.clone(), pixels })
     })
+}
+
+/// The fragment stage's file of the program a step ran: a step is labelled with its program's
+/// name (`composite2`) or ends with it in brackets (`water (gbuffers_water)`).
+fn step_file(pack: &crate::any_pack::AnyPack, step: &str) -> Option<String> {
+    pack.programs().find(|p| step == p.name || step.ends_with(&format!("({})", p.name))).map(|p| p.fragment.path.clone())
 }
 
 /// The JSON report of [`run_any_pack`] (`<scene>.json`).
@@ -723,7 +730,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let json_name = format!("{stem}.json");
     files.push(json_name.clone());
     let report = AnyPackReport {
-        gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(gl_max_pixels)),
+        gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(gl_max_pixels)).map(|d| Disagreement { file: step_file(&pack, &d.pass), ..d }),
         step_renderers: StepRenderers::of(&frame.passes, gl_primary, gl.as_ref()),
         gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites() } else { Vec::new() },
         renderer,
@@ -954,7 +961,7 @@ mod tests {
         };
         assert_eq!(
             frame.first_disagreement(16),
-            Some(Disagreement { pass: "composite".into(), texture: "colortex0".into(), pixels: 17_654, sensitive: 0, max_difference_255: 67.0, max_pixels: 16 })
+            Some(Disagreement { pass: "composite".into(), file: None, texture: "colortex0".into(), pixels: 17_654, sensitive: 0, max_difference_255: 67.0, max_pixels: 16 })
         );
         assert_eq!(frame.first_disagreement(2).map(|d| d.pass), Some("gbuffers_terrain".into()));
         assert_eq!(frame.first_disagreement(20_000), None);

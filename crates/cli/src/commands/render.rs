@@ -267,8 +267,9 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
             0 => String::new(),
             n => format!(" ({n} of them the pack's own arithmetic noise, which a nudge of OpenGL's inputs shows, not counted)"),
         };
+        let file = d.file.as_ref().map_or(String::new(), |file| format!(" ({file})"));
         tell!(
-            "error: wgpu and OpenGL part at step {}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255){sensitive}, over the {} allowed (--gl-max-pixels)",
+            "error: wgpu and OpenGL part at step {}{file}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255){sensitive}, over the {} allowed (--gl-max-pixels)",
             d.pass,
             d.texture,
             d.pixels,
