@@ -564,6 +564,22 @@ fn wgpu_draws_the_steps_it_can_beside_opengl() {
     assert!(green > 1000 && water > screen.pixels().len() / 2, "{green} green, {water} water pixels");
 }
 
+/// The shadow pass drawn by OpenGL alone (tests/packs/shadow_geometry_stage_beside_wgpu: its
+/// geometry stage): wgpu's composite reads the shadow map OpenGL drew, handed over after each
+/// shadow step, and shows its depth as OpenGL's does.
+#[test]
+fn wgpu_reads_the_shadow_map_opengl_drew() {
+    let (report, screen) = render_job("shadow_geometry_stage_beside_wgpu");
+    let gl = report.gl.as_ref().expect("the steps compared");
+    let left: Vec<&str> = gl.wgpu_cannot_draw.iter().map(|(step, _)| step.as_str()).collect();
+    assert_eq!(left, ["shadow terrain (shadow)", "shadow water (shadow)"], "{:?}", gl.wgpu_cannot_draw);
+    assert!(gl.steps.iter().any(|s| s.pass == "composite"), "{:?}", gl.steps);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    // The shadow map's depth, nearer than its far plane where the terrain and water drew.
+    let drawn = screen.pixels().filter(|p| p.0[0] < 250).count();
+    assert!(drawn > 1000, "{drawn} pixels of the shadow map hold a surface");
+}
+
 /// Outputs declared at locations no draw buffer has (tests/packs/outputs_past_draw_buffers:
 /// 8 and 9, never written) are dropped as the loaders drop them: wgpu draws the frame and
 /// OpenGL agrees.
