@@ -717,7 +717,35 @@ pub struct FramePlan<'a> {
     pub current: BTreeMap<u8, usize>,
 }
 
+/// The depth buffers a renderer drawing a step from another's frame takes from it
+/// ([`FramePlan::depth_seed`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthSeed {
+    /// Both as the frame ended: the step comes after the last geometry.
+    AsEnded,
+    /// The opaque depth for both: the step comes after the depth copy and before the next
+    /// geometry, when depthtex0 held what depthtex1 holds at the end.
+    OpaqueOnly,
+}
+
 impl<'a> FramePlan<'a> {
+    /// For a full-screen step `index`, which depth buffers of the reference's final ones hold
+    /// what the step reads; None for other steps, or where neither does.
+    pub fn depth_seed(&self, index: usize) -> Option<DepthSeed> {
+        if !matches!(self.steps[index].work, PlannedWork::Fullscreen { .. }) {
+            return None;
+        }
+        let is_geometry = |step: &PlannedStep| matches!(step.work, PlannedWork::Geometry { .. });
+        let depth_copy = self.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
+        if self.steps.iter().rposition(is_geometry).is_none_or(|g| g < index) {
+            Some(DepthSeed::AsEnded)
+        } else if depth_copy.is_some_and(|c| c < index && !self.steps[c..index].iter().any(is_geometry)) {
+            Some(DepthSeed::OpaqueOnly)
+        } else {
+            None
+        }
+    }
+
     pub fn new(pack: &'a AnyPack, scene: &Scene, mesh: &'a SceneMesh, screen: ScreenOutput) -> FramePlan<'a> {
         let is_final = |p: &LoadedProgram| p.name == "final";
         let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);

@@ -15,7 +15,7 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, legacy};
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork, ScreenOutput};
+use crate::any_pack::{AnyPack, DepthSeed, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
     add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
@@ -52,6 +52,20 @@ pub struct GlFrame {
     /// Wall time of a one-tap pass-through of colortex0 into the screen, timed as the steps
     /// are (the median of five draws).
     pub passthrough_ms: f64,
+}
+
+impl GlFrame {
+    /// This frame as the reference another renderer draws each step from, with its inputs
+    /// moved by `nudge` ([`Reference::nudge`]).
+    pub fn as_reference(&self, nudge: f64) -> Reference<'_> {
+        Reference {
+            steps: self.steps.iter().map(|(_, images)| images.as_slice()).collect(),
+            depth0: &self.depth0,
+            depth1: &self.depth1,
+            depth_written: self.depth_written.iter().map(Option::as_ref).collect(),
+            nudge,
+        }
+    }
 }
 
 /// Renders `scene` with the pack's shipped text through OpenGL.
@@ -156,9 +170,6 @@ fn render_plan(
     {
         return Err(HarnessError::Gl(format!("the reference frame ran {} steps, the OpenGL frame has {}", reference.steps.len(), plan.steps.len())));
     }
-    let is_geometry = |work: &PlannedWork| matches!(work, PlannedWork::Geometry { .. });
-    let last_geometry = plan.steps.iter().rposition(|s| is_geometry(&s.work));
-    let depth_copy = plan.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
     // SAFETY: every call is on the context current on this thread, with objects it made.
     unsafe {
         let nudge = reference.map_or(0.0, |r| r.nudge);
@@ -175,14 +186,10 @@ fn render_plan(
                 if index > 0 {
                     frame.seed(&last_written, reference.steps[index - 1])?;
                 }
-                if matches!(step.work, PlannedWork::Fullscreen { .. }) {
-                    let after_all_geometry = last_geometry.is_none_or(|g| g < index);
-                    let opaque_only = depth_copy.is_some_and(|c| c < index && !plan.steps[c..index].iter().any(|s| is_geometry(&s.work)));
-                    if after_all_geometry {
-                        frame.seed_depth(reference.depth0, reference.depth1);
-                    } else if opaque_only {
-                        frame.seed_depth(reference.depth1, reference.depth1);
-                    }
+                match plan.depth_seed(index) {
+                    Some(DepthSeed::AsEnded) => frame.seed_depth(reference.depth0, reference.depth1),
+                    Some(DepthSeed::OpaqueOnly) => frame.seed_depth(reference.depth1, reference.depth1),
+                    None => {}
                 }
             }
             frame.step_ms = 0.0;

@@ -634,15 +634,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             Some((ctx.info().to_string(), crate::gl_frame::render_from(ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference)))
         }
         (Some(ctx), Some(last)) => {
-            let steps: Vec<&[(String, FloatImage)]> = last.steps.iter().map(|(_, images)| images.as_slice()).collect();
-            let reference = crate::gl_frame::Reference {
-                steps,
-                depth0: &last.depth0,
-                depth1: &last.depth1,
-                depth_written: last.depth_written.iter().map(Option::as_ref).collect(),
-                nudge: 0.0,
-            };
-            stepped = Some(gpu::render_from(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference));
+            stepped = Some(gpu::render_from(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, &last.as_reference(0.0)));
             Some((ctx.info().to_string(), Ok(last)))
         }
     };
@@ -687,16 +679,14 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             let mut comparison = compare_steps(renderer, &wgpu_frame.passes, &gl_frame)?;
             if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
                 // OpenGL again, nudged, each step from the inputs it had in the frame compared.
-                let inputs: Vec<&[(String, FloatImage)]> = if gl_primary {
-                    gl_frame.steps.iter().map(|(_, images)| images.as_slice()).collect()
-                } else {
-                    wgpu_frame.passes.iter().map(|p| p.images.as_slice()).collect()
-                };
-                let (depth0, depth1) = if gl_primary { (&gl_frame.depth0, &gl_frame.depth1) } else { (&wgpu_frame.depth0, &wgpu_frame.depth1) };
                 let nudged = NUDGES
                     .iter()
                     .map(|&nudge| {
-                        let reference = crate::gl_frame::Reference { steps: inputs.clone(), depth0, depth1, depth_written: Vec::new(), nudge };
+                        let reference = if gl_primary {
+                            gl_frame.as_reference(nudge)
+                        } else {
+                            reference_of(&wgpu_frame.passes, &wgpu_frame.depth0, &wgpu_frame.depth1, nudge)
+                        };
                         crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(nudge as f32), ScreenOutput::AsLoader, &reference)
                     })
                     .collect::<Result<Vec<_>, _>>()?;

@@ -151,6 +151,20 @@ impl Gpu {
         })
     }
 
+    /// Submits `encoder`'s commands and waits until the device has run them; the wall time
+    /// that took, in ms.
+    pub(crate) fn submit_and_wait(&self, encoder: wgpu::CommandEncoder) -> Result<f64, HarnessError> {
+        let started = std::time::Instant::now();
+        self.queue.submit([encoder.finish()]);
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
+        Ok(started.elapsed().as_secs_f64() * 1000.0)
+    }
+
+    /// A command encoder of this device.
+    pub(crate) fn encoder(&self) -> wgpu::CommandEncoder {
+        self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None })
+    }
+
     /// Runs `f` inside a validation error scope and turns a captured error into a HarnessError.
     pub(crate) fn checked<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, HarnessError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);

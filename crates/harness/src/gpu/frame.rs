@@ -8,10 +8,9 @@
 //! Buffers are stored in OpenGL orientation (row 0 at the bottom): the vertex shaders flip y.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::time::Instant;
 
 use crate::HarnessError;
-use crate::any_pack::{AnyPack, FramePlan, PassValues, PlannedWork, ScreenOutput};
+use crate::any_pack::{AnyPack, DepthSeed, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::images::FloatImage;
 use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
@@ -636,22 +635,12 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
     let (values, _) = PassValues::of(pack, scene);
     let prepared = PreparedSteps::new(gpu, pack, scene, &plan, &textures, &harness_textures, &values, true)?;
 
-    let is_geometry = |work: &PlannedWork| matches!(work, PlannedWork::Geometry { .. });
-    let last_geometry = plan.steps.iter().rposition(|s| is_geometry(&s.work));
-    let depth_copy = plan.steps.iter().position(|s| matches!(s.work, PlannedWork::DepthCopy));
-    let submit = |encoder: wgpu::CommandEncoder| -> Result<f64, HarnessError> {
-        let started = Instant::now();
-        gpu.queue.submit([encoder.finish()]);
-        gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
-        Ok(started.elapsed().as_secs_f64() * 1000.0)
-    };
-    let new_encoder = || gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-    let mut encoder = new_encoder();
+    let mut encoder = gpu.encoder();
     textures.record_clears(&mut encoder, pack, scene);
-    submit(encoder)?;
+    gpu.submit_and_wait(encoder)?;
     let mut passes = Vec::new();
     let mut cannot_draw = Vec::new();
-    for (index, ((label, work, written), step)) in prepared.steps.iter().zip(&plan.steps).enumerate() {
+    for (index, (label, work, written)) in prepared.steps.iter().enumerate() {
         if index > 0 {
             // What the step before wrote, as the reference has it.
             for (name, image) in reference.steps[index - 1] {
@@ -660,7 +649,7 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
                 }
             }
             if let (Work::Cannot(_), Some(depth)) = (&prepared.steps[index - 1].1, reference.depth_written[index - 1]) {
-                let mut encoder = new_encoder();
+                let mut encoder = gpu.encoder();
                 match &plan.steps[index - 1].work {
                     PlannedWork::Geometry { pass: Pass::DistantHorizons, .. } => depth_writer.write(gpu, &textures.lod_depth[0], depth)?,
                     PlannedWork::Geometry { .. } => {
@@ -674,21 +663,21 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
                         depth_as_luminance.record(&mut encoder, &textures.shadow_depth_read[0], None);
                     }
                 }
-                submit(encoder)?;
+                gpu.submit_and_wait(encoder)?;
             }
         }
-        if matches!(step.work, PlannedWork::Fullscreen { .. }) {
-            let after_all_geometry = last_geometry.is_none_or(|g| g < index);
-            let opaque_only = depth_copy.is_some_and(|c| c < index && !plan.steps[c..index].iter().any(|s| is_geometry(&s.work)));
-            let seeds = if after_all_geometry { Some([reference.depth0, reference.depth1]) } else if opaque_only { Some([reference.depth1; 2]) } else { None };
-            if let Some([depth0, depth1]) = seeds {
-                depth_writer.write(gpu, &textures.depth0, depth0)?;
-                depth_writer.write(gpu, &textures.depth1, depth1)?;
-                let mut encoder = new_encoder();
-                depth0_as_luminance.record(&mut encoder, &textures.depth_read[0], None);
-                depth1_as_luminance.record(&mut encoder, &textures.depth_read[1], None);
-                submit(encoder)?;
-            }
+        let seeds = match plan.depth_seed(index) {
+            Some(DepthSeed::AsEnded) => Some([reference.depth0, reference.depth1]),
+            Some(DepthSeed::OpaqueOnly) => Some([reference.depth1; 2]),
+            None => None,
+        };
+        if let Some([depth0, depth1]) = seeds {
+            depth_writer.write(gpu, &textures.depth0, depth0)?;
+            depth_writer.write(gpu, &textures.depth1, depth1)?;
+            let mut encoder = gpu.encoder();
+            depth0_as_luminance.record(&mut encoder, &textures.depth_read[0], None);
+            depth1_as_luminance.record(&mut encoder, &textures.depth_read[1], None);
+            gpu.submit_and_wait(encoder)?;
         }
         let (images, wall_ms) = match work {
             Work::Cannot(why) => {
@@ -697,9 +686,9 @@ fn render_from_checked(gpu: &Gpu, pack: &AnyPack, scene: &Scene, mesh: &SceneMes
             }
             _ => {
                 cannot_draw.push(None);
-                let mut encoder = new_encoder();
+                let mut encoder = gpu.encoder();
                 recorder.record(&mut encoder, work, None);
-                let wall_ms = submit(encoder)?;
+                let wall_ms = gpu.submit_and_wait(encoder)?;
                 let mut images = Vec::new();
                 for (name, texture) in written {
                     images.push((name.clone(), textures.read(gpu, texture)?));
@@ -749,13 +738,6 @@ fn run_frames(
     let queries = gpu.timestamps.then(|| {
         device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("pass timestamps"), ty: wgpu::QueryType::Timestamp, count: render_passes * 2 })
     });
-    let new_encoder = || device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-    let submit = |encoder: wgpu::CommandEncoder| -> Result<f64, HarnessError> {
-        let started = Instant::now();
-        gpu.queue.submit([encoder.finish()]);
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| HarnessError::Wgpu(format!("waiting for the GPU: {e}")))?;
-        Ok(started.elapsed().as_secs_f64() * 1000.0)
-    };
     let frames = frames.max(1);
     let mut reports: Vec<StepReport> = Vec::new();
     // Per frame: each step's time (GPU where timestamps exist, else wall) and the floor's.
@@ -763,9 +745,9 @@ fn run_frames(
     let mut floor_ms = Vec::new();
     for frame in 0..frames {
         let last = frame + 1 == frames;
-        let mut encoder = new_encoder();
+        let mut encoder = gpu.encoder();
         textures.record_clears(&mut encoder, pack, scene);
-        submit(encoder)?;
+        gpu.submit_and_wait(encoder)?;
         let mut timed = 0u32;
         let mut stamp = |timestamps: bool| {
             let q = queries.as_ref().filter(|_| timestamps)?;
@@ -778,9 +760,9 @@ fn run_frames(
         };
         let mut walls = Vec::new();
         for (label, work, written) in steps {
-            let mut encoder = new_encoder();
+            let mut encoder = gpu.encoder();
             recorder.record(&mut encoder, work, stamp(!work.is_copy()));
-            let wall_ms = submit(encoder)?;
+            let wall_ms = gpu.submit_and_wait(encoder)?;
             walls.push(wall_ms);
             if last {
                 let mut non_finite = BTreeMap::new();
@@ -793,9 +775,9 @@ fn run_frames(
                 reports.push(StepReport { pass: label.to_string(), wall_ms, gpu_ms: None, median_ms: 0.0, samples_ms: Vec::new(), non_finite, images });
             }
         }
-        let mut encoder = new_encoder();
+        let mut encoder = gpu.encoder();
         floor.record(&mut encoder, &floor_target, stamp(true));
-        walls.push(submit(encoder)?);
+        walls.push(gpu.submit_and_wait(encoder)?);
         let gpu_ms = match &queries {
             Some(q) => Some(read_pass_ms(gpu, q, render_passes)?),
             None => None,

@@ -252,7 +252,7 @@ impl DepthWriter {
             layout: &self.pipeline.get_bind_group_layout(0),
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view(&floats)) }],
         });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let mut encoder = gpu.encoder();
         {
             let target = view(depth);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
