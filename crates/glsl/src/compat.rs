@@ -100,6 +100,7 @@ pub struct Rewrite {
 /// - a vertex stage's output that nothing writes gets 0 at the start of `main` (Mesa refuses
 ///   to link a fragment stage that reads it), and so does one `main` does not write whole on
 ///   every path (its value is undefined elsewhere; wgpu has 0);
+/// - a `#version 100` stage (GLSL ES 1.00) is compiled as desktop `#version 120`;
 /// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
 ///   removed;
 /// - in a core profile, `texture2D()`, `texture3D()`, `texture2DLod()` & co. become `texture()`,
@@ -182,6 +183,18 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             }
             _ => {}
         }
+    }
+
+    // GLSL ES 1.00 in a desktop context: Mesa holds the stage to ES's rules (a fragment shader
+    // needs a default float precision; ES and desktop stages do not link), NVIDIA compiles it
+    // as desktop GLSL.
+    if let (100, Some(number)) = (version, version_number) {
+        replaced[number] = Some("120".into());
+        rewrites.push(Rewrite {
+            line: tokens[number].line,
+            what: "#version 100 (GLSL ES 1.00) compiled as desktop #version 120, as NVIDIA compiles it in a desktop context".into(),
+        });
+        version = 120;
     }
 
     if version < 130 {
@@ -810,6 +823,16 @@ mod tests {
         assert_eq!(for_strict_drivers(flat, flat, Stage::Fragment, &[]).1[0].what, "GL_EXT_gpu_shader4 enabled after #version for `flat`");
         let enabled = text.replace("#version 120\n", "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n");
         assert_eq!(for_strict_drivers(&enabled, &enabled, Stage::Fragment, &[]).1, []);
+    }
+
+    #[test]
+    fn a_glsl_es_100_stage_is_compiled_as_desktop_120() {
+        let text = "#version 100\nprecision mediump float;\nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(tex, uv); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        // ES's precision statement is a reserved word in desktop 1.20, so it goes too.
+        assert_eq!(out, "#version 120\n  \nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(tex, uv); }\n");
+        assert_eq!(rewrites[0].what, "#version 100 (GLSL ES 1.00) compiled as desktop #version 120, as NVIDIA compiles it in a desktop context");
+        assert_eq!(rewrites.len(), 2);
     }
 
     #[test]

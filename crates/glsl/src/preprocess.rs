@@ -58,6 +58,11 @@ impl VersionDirective {
     pub fn is_core(&self) -> bool {
         self.number >= 150 && self.profile.as_deref() != Some("compatibility")
     }
+
+    /// GLSL ES: `#version 100`, or a version with the `es` profile.
+    pub fn is_es(&self) -> bool {
+        self.number == 100 || self.profile.as_deref() == Some("es")
+    }
 }
 
 /// Which outputs of a fragment shader go to which colour buffers.

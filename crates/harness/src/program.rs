@@ -496,7 +496,10 @@ pub(crate) fn load_program_files(
         let iris_rewrites: Vec<String> = version_put_first.into_iter().chain(iris_rewrites).map(|what| format!("{path}: {what}")).collect();
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
         gl_rewrites.extend(iris_rewrites.iter().cloned());
-        let alpha_test = if stage.stage == Stage::Fragment { alpha_test(&gl_text) } else { None };
+        // A fragment stage that writes no output 0 (one that only discards) leaves the test
+        // nothing to read: it draws untested.
+        let writes_output_0 = lowered_output(&lowered_text, 0).is_some();
+        let alpha_test = if stage.stage == Stage::Fragment && writes_output_0 { alpha_test(&gl_text) } else { None };
         let harness_text = match stage.stage {
             Stage::Vertex => adapt_vertex(&complete_vertex_outputs(&lowered_text, &fragment_lowered))?,
             Stage::Fragment => {
@@ -505,9 +508,7 @@ pub(crate) fn load_program_files(
                 interface.outputs.retain(|location, name| name.starts_with("gl_") || kept.contains(location));
                 let (text, mut epilogue, widened) = widen_fragment_outputs(&writing);
                 narrow_outputs = widened;
-                if let Some(reference) = alpha_test {
-                    let output = lowered_output(&lowered_text, 0)
-                        .ok_or_else(|| HarnessError::Pack(format!("{} has no output 0 for the loader's alpha test", files.fragment)))?;
+                if let (Some(reference), Some(output)) = (alpha_test, lowered_output(&lowered_text, 0)) {
                     epilogue.push_str(&alpha_test_statement(&output, reference));
                 }
                 if epilogue.is_empty() { text } else { wrap_main(&text, &epilogue)? }

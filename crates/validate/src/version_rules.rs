@@ -257,6 +257,9 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
             found.push(if mesa_keeps { diag.refused_by(Drivers::ALL.without(Drivers::MESA)) } else { diag });
         }
     }
+    if version.is_es() && stage == Stage::Fragment {
+        found.extend(float_without_precision(pre, &sig, &shown_version));
+    }
     if number >= 130 {
         found.extend(hidden_builtin_calls(pre, &sig, loader));
     }
@@ -265,6 +268,40 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     }
     found.extend(warnings);
     found
+}
+
+/// The first declaration of a float type in a GLSL ES fragment shader before any
+/// `precision … float;`: ES gives float no default precision in fragment shaders (Mesa: "No
+/// precision specified in this scope for type `vec2'"). NVIDIA's desktop driver compiles such a
+/// stage as desktop GLSL and accepts it.
+fn float_without_precision(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>], shown_version: &str) -> Option<Diagnostic> {
+    const QUALIFIERS: [&str; 3] = ["lowp", "mediump", "highp"];
+    let is_float_type = |text: &str| {
+        text == "float" || matches!(text, "vec2" | "vec3" | "vec4") || (text.starts_with("mat") && text[3..].chars().all(|c| matches!(c, '2'..='4' | 'x')))
+    };
+    for (k, t) in sig.iter().enumerate() {
+        if t.is_ident("precision") && sig.get(k + 2).is_some_and(|n| n.is_ident("float")) {
+            return None;
+        }
+        let declares = sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident);
+        let qualified = k > 0 && QUALIFIERS.iter().any(|q| sig[k - 1].is_ident(q));
+        if t.kind == TokenKind::Ident && is_float_type(t.text) && declares && !qualified {
+            return Some(
+                Diagnostic::error(
+                    Code::VersionFeature,
+                    format!(
+                        "`{shown_version}` is GLSL ES, whose fragment shaders give float no default precision: `{}` needs \
+                         `precision mediump float;` (or highp) before it (Mesa: \"No precision specified in this scope for type \
+                         `{}'\"); for desktop OpenGL write `#version 120`",
+                        t.text, t.text
+                    ),
+                    pre.location(t.line),
+                )
+                .refused_by(Drivers::ALL.without(Drivers::NVIDIA)),
+            );
+        }
+    }
+    None
 }
 
 /// Calls of a GLSL 1.30 function (`texture(…)`) after a global variable of the same name was
