@@ -632,13 +632,13 @@ unsafe fn set_uniforms(
                         continue;
                     }
                 };
-                if shadow && !matches!(resolved, Ok(Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_))) {
-                    missing.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
-                    continue;
-                }
+                // A shadow sampler over a colour buffer reads undefined values in OpenGL. The
+                // loaders bind the buffer as it is, without a comparison, and so does this; wgpu
+                // cannot bind it at all, so OpenGL draws such a step alone.
+                let compares = shadow && matches!(resolved, Ok(Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_)));
                 gl.active_texture(glow::TEXTURE0 + unit);
                 gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-                gl.bind_sampler(unit, shadow.then_some(harness.comparison));
+                gl.bind_sampler(unit, compares.then_some(harness.comparison));
                 // A colour buffer reads its mipmaps only in the programs that asked for them.
                 if let Ok(Source::Color(n)) = resolved {
                     let filter = if textures.mipmapped.contains(&n) { glow::LINEAR_MIPMAP_LINEAR } else { glow::LINEAR };

@@ -486,6 +486,24 @@ fn opengl_draws_the_frame_where_wgpu_cannot() {
     assert_eq!(centre[0], 255, "{centre:?}");
 }
 
+/// A shadow colour buffer read through a shadow sampler (tests/packs/shadow_sampler_on_colour):
+/// wgpu cannot bind it, so OpenGL draws that composite alone, the buffer bound as the loaders
+/// bind it, and wgpu draws and agrees on every step before it.
+#[test]
+fn a_shadow_sampler_over_a_colour_buffer_is_drawn_by_opengl() {
+    let (report, _) = render_job("shadow_sampler_on_colour");
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    let gl = report.gl.as_ref().expect("the steps compared");
+    assert_eq!(gl.wgpu_cannot_draw.len(), 1, "{:?}", gl.wgpu_cannot_draw);
+    let (step, why) = &gl.wgpu_cannot_draw[0];
+    assert_eq!(step, "composite");
+    assert!(why.contains("composite.fsh: shadowcolor0 is read as a shadow sampler but is not a depth buffer"), "{why}");
+    assert!(!why.contains("tp_"), "{why}");
+    assert!(gl.steps.iter().any(|s| s.pass.starts_with("water")), "{:?}", gl.steps);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+}
+
 /// The fog uniforms (tests/packs/fog_uniforms): `fogStart` and `fogEnd` hold the game's linear
 /// fog, the one the legacy `gl_Fog` state has, in both renderers.
 #[test]

@@ -884,6 +884,7 @@ fn stage_entries(
     // Textures first, so each sampler knows whether its texture filters.
     let mut resolved: BTreeMap<String, (Source, bool)> = BTreeMap::new();
     let mut problems = Vec::new();
+    let mut beyond_wgpu = Vec::new();
     for (handle, global) in module.global_variables.iter() {
         let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
         if let naga::TypeInner::Image { class, dim, arrayed, .. } = &module.types[global.ty].inner {
@@ -920,7 +921,8 @@ fn stage_entries(
             });
             match bound {
                 Ok((source, _)) if depth_class && !matches!(source, Source::Depth0 | Source::Depth1 | Source::LodDepth(_) | Source::ShadowDepth(_)) => {
-                    problems.push(format!("{name} is read as a shadow sampler but is not a depth buffer"));
+                    // OpenGL binds it (its results are undefined there) and draws the step.
+                    beyond_wgpu.push(format!("{name} is read as a shadow sampler but is not a depth buffer, which wgpu cannot bind"));
                 }
                 Ok((source, (view, filters))) => {
                     resolved.insert(name.clone(), (source, filters));
@@ -936,8 +938,10 @@ fn stage_entries(
         if let naga::TypeInner::Sampler { comparison } = &module.types[global.ty].inner {
             let texture = name.strip_prefix("tp_sampler_").unwrap_or(name);
             let Some(&(source, filters)) = resolved.get(texture) else {
-                if !problems.iter().any(|p| p.contains(texture)) {
-                    problems.push(format!("sampler {name} has no texture {texture}"));
+                // The lowering splits each GLSL sampler into a texture and this sampler: a
+                // texture that could not be bound has said so already.
+                if !problems.iter().chain(&beyond_wgpu).any(|p| p.contains(texture)) {
+                    problems.push(format!("no texture is bound to the sampler {texture}"));
                 }
                 continue;
             };
@@ -953,6 +957,9 @@ fn stage_entries(
     }
     if !problems.is_empty() {
         return Err(HarnessError::Uniform(format!("{}: {}", stage.path, problems.join("; "))));
+    }
+    if !beyond_wgpu.is_empty() {
+        return Err(HarnessError::Unsupported(format!("{}: {}", stage.path, beyond_wgpu.join("; "))));
     }
     Ok(entries)
 }
