@@ -616,9 +616,6 @@ impl Preprocessor<'_> {
         };
         let mut body = owned_tokens(body);
         trim_whitespace(&mut body);
-        if body.iter().any(|t| t.text == "##") {
-            return Err(format!("token pasting (##) in #define {} is not supported by GLSL drivers", name.text));
-        }
         let definition = Macro { params, body };
         let redefined = self.macros.get(name.text).is_some_and(|previous| !previous.same_definition(&definition));
         if redefined && !self.lenient {
@@ -732,7 +729,7 @@ impl Preprocessor<'_> {
         self.out.consulted_macros.insert(name.clone());
         let mac = self.macros[&name].clone();
         let (body, consumed) = match &mac.params {
-            None => (mac.body.clone(), 1),
+            None => (paste_tokens(mac.body.clone(), &name)?, 1),
             Some(params) => {
                 let Some(open) = (at + 1..tokens.len()).find(|&i| !is_trivia_kind(tokens[i].kind)) else {
                     return Ok((vec![tokens[at].clone()], 1));
@@ -749,20 +746,30 @@ impl Preprocessor<'_> {
                 if args.len() != params.len() {
                     return Err(format!("macro {name} takes {} arguments, {} given", params.len(), args.len()));
                 }
+                let mut raw_args = Vec::with_capacity(args.len());
                 let mut expanded_args = Vec::with_capacity(args.len());
                 for arg in args {
                     let mut arg = arg.to_vec();
                     trim_whitespace(&mut arg);
                     expanded_args.push(self.expand_all(&arg, disabled, depth + 1)?);
+                    raw_args.push(arg);
                 }
                 let mut body = Vec::with_capacity(mac.body.len());
-                for t in &mac.body {
+                for (i, t) in mac.body.iter().enumerate() {
                     match params.iter().position(|p| t.kind == TokenKind::Ident && *p == t.text) {
+                        // An operand of `##` is the argument as written, not expanded; an empty
+                        // one leaves a placemarker, so that `##` does not reach past it.
+                        Some(p) if beside_paste(&mac.body, i) => {
+                            body.extend(raw_args[p].iter().cloned());
+                            if raw_args[p].is_empty() {
+                                body.push(OwnedToken { kind: TokenKind::Punct, text: String::new() });
+                            }
+                        }
                         Some(p) => body.extend(expanded_args[p].iter().cloned()),
                         None => body.push(t.clone()),
                     }
                 }
-                (body, close + 1 - at)
+                (paste_tokens(body, &name)?, close + 1 - at)
             }
         };
         disabled.push(name);
@@ -887,6 +894,52 @@ impl Preprocessor<'_> {
         self.out.render_targets = Some(RenderTargets { modern, buffers, line: SourceLine { file, line } });
         Ok(())
     }
+}
+
+/// Whether `body[i]` is an operand of a `##`, white space aside.
+fn beside_paste(body: &[OwnedToken], i: usize) -> bool {
+    let significant = |t: &&OwnedToken| !is_trivia_kind(t.kind);
+    body[..i].iter().rev().find(significant).is_some_and(|t| t.text == "##") || body[i + 1..].iter().find(significant).is_some_and(|t| t.text == "##")
+}
+
+/// `tokens` with the tokens either side of each `##` joined into one, as C's preprocessor (and
+/// Mesa's, glslang's and Iris's) pastes them; placemarkers (empty tokens) are dropped after.
+fn paste_tokens(tokens: Vec<OwnedToken>, macro_name: &str) -> Result<Vec<OwnedToken>, String> {
+    if !tokens.iter().any(|t| t.text == "##" || t.text.is_empty()) {
+        return Ok(tokens);
+    }
+    let mut out: Vec<OwnedToken> = Vec::with_capacity(tokens.len());
+    let mut pasting = false;
+    for t in tokens {
+        if t.kind == TokenKind::Punct && t.text == "##" {
+            while out.last().is_some_and(|l| is_trivia_kind(l.kind)) {
+                out.pop();
+            }
+            if out.is_empty() {
+                return Err(format!("`##` cannot begin the body of macro {macro_name}"));
+            }
+            pasting = true;
+        } else if pasting && is_trivia_kind(t.kind) {
+            continue;
+        } else if pasting {
+            pasting = false;
+            let left = out.pop().expect("a token before ##");
+            let text = left.text + &t.text;
+            let kind = match tokenize(&text).as_deref() {
+                Ok([]) => TokenKind::Punct,
+                Ok([one]) => one.kind,
+                _ => return Err(format!("pasting `{text}` in macro {macro_name} does not give one token")),
+            };
+            out.push(OwnedToken { kind, text });
+        } else {
+            out.push(t);
+        }
+    }
+    if pasting {
+        return Err(format!("`##` cannot end the body of macro {macro_name}"));
+    }
+    out.retain(|t| !(t.kind == TokenKind::Punct && t.text.is_empty()));
+    Ok(out)
 }
 
 fn is_trivia_kind(kind: TokenKind) -> bool {
@@ -1280,6 +1333,21 @@ mod tests {
         assert_eq!(out.text.matches('\n').count(), out.lines.len(), "{:?}", out.text);
         let y = out.text.lines().position(|l| l.contains("undeclared")).unwrap() as u32 + 1;
         assert_eq!(out.location(y), Some(Location::line("a.fsh", 6)));
+    }
+
+    #[test]
+    fn token_pasting_joins_the_operands_as_written() {
+        let text = "#version 330\n#define SUFFIX _b\n#define JOIN(a, b) a ## b\n#define NAME(x) color ## x\n#define WHOLE val ## ue\n\
+                    float JOIN(f, SUFFIX) = 1.0;\nfloat NAME(2) = NAME() + WHOLE;\nint x = JOIN(1, 2);\n";
+        let out = run(&[("a.fsh", text)]).unwrap();
+        // An operand is not expanded first: `f ## SUFFIX` is `fSUFFIX`.
+        assert!(out.text.contains("float fSUFFIX = 1.0;"), "{}", out.text);
+        // An empty argument pastes nothing, and no further than its own place.
+        assert!(out.text.contains("float color2 = color + value;"), "{}", out.text);
+        assert!(out.text.contains("int x = 12;"), "{}", out.text);
+        let bad = "#version 330\n#define JOIN(a, b) a ## b\nfloat x = JOIN(+, /);\n";
+        let error = run(&[("a.fsh", bad)]).unwrap_err();
+        assert!(error.message.contains("pasting `+/` in macro JOIN does not give one token"), "{}", error.message);
     }
 
     #[test]
