@@ -729,7 +729,7 @@ impl Preprocessor<'_> {
         self.out.consulted_macros.insert(name.clone());
         let mac = self.macros[&name].clone();
         let (body, consumed) = match &mac.params {
-            None => (paste_tokens(mac.body.clone(), &name)?, 1),
+            None => (paste_tokens(mac.body.clone(), &name, self.lenient)?, 1),
             Some(params) => {
                 let Some(open) = (at + 1..tokens.len()).find(|&i| !is_trivia_kind(tokens[i].kind)) else {
                     return Ok((vec![tokens[at].clone()], 1));
@@ -769,7 +769,7 @@ impl Preprocessor<'_> {
                         None => body.push(t.clone()),
                     }
                 }
-                (paste_tokens(body, &name)?, close + 1 - at)
+                (paste_tokens(body, &name, self.lenient)?, close + 1 - at)
             }
         };
         disabled.push(name);
@@ -904,7 +904,9 @@ fn beside_paste(body: &[OwnedToken], i: usize) -> bool {
 
 /// `tokens` with the tokens either side of each `##` joined into one, as C's preprocessor (and
 /// Mesa's, glslang's and Iris's) pastes them; placemarkers (empty tokens) are dropped after.
-fn paste_tokens(tokens: Vec<OwnedToken>, macro_name: &str) -> Result<Vec<OwnedToken>, String> {
+/// A paste that does not give one token (`name ## (`) is an error, which Mesa reports; read
+/// `lenient`ly, as Iris's preprocessor reads it, its text is read again as the tokens it holds.
+fn paste_tokens(tokens: Vec<OwnedToken>, macro_name: &str, lenient: bool) -> Result<Vec<OwnedToken>, String> {
     if !tokens.iter().any(|t| t.text == "##" || t.text.is_empty()) {
         return Ok(tokens);
     }
@@ -925,12 +927,12 @@ fn paste_tokens(tokens: Vec<OwnedToken>, macro_name: &str) -> Result<Vec<OwnedTo
             pasting = false;
             let left = out.pop().expect("a token before ##");
             let text = left.text + &t.text;
-            let kind = match tokenize(&text).as_deref() {
-                Ok([]) => TokenKind::Punct,
-                Ok([one]) => one.kind,
+            match tokenize(&text).as_deref() {
+                Ok([]) => out.push(OwnedToken { kind: TokenKind::Punct, text }),
+                Ok([one]) => out.push(OwnedToken { kind: one.kind, text }),
+                Ok(several) if lenient => out.extend(several.iter().map(|t| OwnedToken { kind: t.kind, text: t.text.to_string() })),
                 _ => return Err(format!("pasting `{text}` in macro {macro_name} does not give one token")),
-            };
-            out.push(OwnedToken { kind, text });
+            }
         } else {
             out.push(t);
         }
@@ -1348,6 +1350,12 @@ mod tests {
         let bad = "#version 330\n#define JOIN(a, b) a ## b\nfloat x = JOIN(+, /);\n";
         let error = run(&[("a.fsh", bad)]).unwrap_err();
         assert!(error.message.contains("pasting `+/` in macro JOIN does not give one token"), "{}", error.message);
+        // Read leniently, as Iris's preprocessor reads it, the pasted text is its tokens.
+        let call = "#version 330\n#define CALL(f, x) f ## (x)\nfloat y = CALL(abs, -1.0);\n";
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&[("a.fsh", call)]), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("float y = abs(-1.0);"), "{}", out.text);
+        assert!(run(&[("a.fsh", call)]).is_err());
     }
 
     #[test]
