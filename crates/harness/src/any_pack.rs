@@ -308,7 +308,7 @@ fn read_formats(text: &str, kind: &str, number: fn(&str) -> Option<u8>, formats:
                 }
                 formats.insert(buffer, format);
             }
-            None => not_modelled.push(format!("{kind}{buffer}Format = {name}: stored as Rgba8 (integer formats are not rendered)")),
+            None => not_modelled.push(format!("{kind}{buffer}Format = {name}: not a format the loaders know; stored as Rgba8")),
         }
     }
 }

@@ -176,6 +176,7 @@ impl CompositeOnly {
             Some(BufferFormat::Rgba16) => (v.clamp(0.0, 1.0) * 65535.0).round() / 65535.0,
             Some(BufferFormat::Rgba16F) => f16::from_f32(v).to_f32(),
             Some(BufferFormat::Rgba32F) | None => v,
+            Some(BufferFormat::Rgba32Ui | BufferFormat::Rgba32I) => v.round(),
         }
     }
 

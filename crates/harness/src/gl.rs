@@ -83,6 +83,18 @@ pub(crate) fn internal_format(format: BufferFormat) -> u32 {
         BufferFormat::Rgba16 => glow::RGBA16,
         BufferFormat::Rgba16F => glow::RGBA16F,
         BufferFormat::Rgba32F => glow::RGBA32F,
+        BufferFormat::Rgba32Ui => glow::RGBA32UI,
+        BufferFormat::Rgba32I => glow::RGBA32I,
+    }
+}
+
+/// The pixel format and type a buffer of `format` is uploaded and read back in: integer
+/// buffers take integers.
+pub(crate) fn pixel_transfer(format: BufferFormat) -> (u32, u32) {
+    match format {
+        BufferFormat::Rgba32Ui => (glow::RGBA_INTEGER, glow::UNSIGNED_INT),
+        BufferFormat::Rgba32I => (glow::RGBA_INTEGER, glow::INT),
+        _ => (glow::RGBA, glow::FLOAT),
     }
 }
 
@@ -196,8 +208,8 @@ pub(crate) struct Textures<'a> {
     pub lod_depth: [glow::Texture; 2],
     /// shadowtex0 and shadowtex1.
     pub shadow_depth: [glow::Texture; 2],
-    /// The shadow colour buffers by number (one not here reads white).
-    pub shadow_colours: BTreeMap<u8, glow::Texture>,
+    /// The shadow colour buffers by number, with their formats (one not here reads white).
+    pub shadow_colours: BTreeMap<u8, (glow::Texture, BufferFormat)>,
     /// What `gtexture` holds.
     pub sprites: Sprites,
     /// Colour buffers read with their mipmaps.
@@ -348,9 +360,30 @@ pub(crate) unsafe fn attach(gl: &glow::Context, attachments: &[Option<glow::Text
     }
 }
 
+/// Clears colour attachment 0 of the bound framebuffer, of `format`, to `colour`: an integer
+/// buffer takes integers (a float clear leaves it undefined).
+pub(crate) unsafe fn clear_colour(gl: &glow::Context, format: BufferFormat, colour: [f64; 4]) {
+    // SAFETY: the caller holds the current context with a framebuffer bound.
+    unsafe {
+        match format {
+            BufferFormat::Rgba32Ui => gl.clear_buffer_u32_slice(glow::COLOR, 0, &colour.map(|v| v.max(0.0) as u32)),
+            BufferFormat::Rgba32I => gl.clear_buffer_i32_slice(glow::COLOR, 0, &colour.map(|v| v as i32)),
+            _ => gl.clear_buffer_f32_slice(glow::COLOR, 0, &colour.map(|v| v as f32)),
+        }
+    }
+}
+
+/// What a texture read back holds.
+#[derive(Clone, Copy)]
+pub(crate) enum Held {
+    Depth,
+    Colour(BufferFormat),
+}
+
 /// Reads a colour texture, or a depth texture (attached beside the colour texture `scratch`),
-/// as floats, bottom row first.
-pub(crate) unsafe fn read(gl: &glow::Context, t: glow::Texture, is_depth: bool, scratch: glow::Texture, w: i32, h: i32) -> Result<FloatImage, HarnessError> {
+/// as floats, bottom row first; an integer texture's values become floats.
+pub(crate) unsafe fn read(gl: &glow::Context, t: glow::Texture, held: Held, scratch: glow::Texture, w: i32, h: i32) -> Result<FloatImage, HarnessError> {
+    let is_depth = matches!(held, Held::Depth);
     // SAFETY: the caller holds the current context with a framebuffer bound.
     unsafe {
         if is_depth {
@@ -362,8 +395,17 @@ pub(crate) unsafe fn read(gl: &glow::Context, t: glow::Texture, is_depth: bool, 
         let mut image = FloatImage::new(w as u32, h as u32);
         let channels = if is_depth { 1 } else { 4 };
         let mut floats = vec![0f32; (w * h) as usize * channels];
-        let format = if is_depth { glow::DEPTH_COMPONENT } else { glow::RGBA };
-        gl.read_pixels(0, 0, w, h, format, glow::FLOAT, glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut floats))));
+        if let Held::Colour(format @ (BufferFormat::Rgba32Ui | BufferFormat::Rgba32I)) = held {
+            let mut words = vec![0u32; floats.len()];
+            let (pixels, ty) = pixel_transfer(format);
+            gl.read_pixels(0, 0, w, h, pixels, ty, glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut words))));
+            for (f, word) in floats.iter_mut().zip(words) {
+                *f = if format == BufferFormat::Rgba32Ui { word as f32 } else { word as i32 as f32 };
+            }
+        } else {
+            let format = if is_depth { glow::DEPTH_COMPONENT } else { glow::RGBA };
+            gl.read_pixels(0, 0, w, h, format, glow::FLOAT, glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut floats))));
+        }
         for (i, px) in image.pixels.iter_mut().enumerate() {
             let f = |c: usize| floats[i * channels + c];
             *px = if is_depth { [f(0), f(0), f(0), 1.0] } else { [f(0), f(1), f(2), f(3)] };
@@ -599,7 +641,7 @@ unsafe fn set_uniforms(
             }
             let name = active.name.trim_end_matches("[0]").to_string();
             let location = gl.get_uniform_location(raw, &active.name);
-            if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW) {
+            if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW | glow::UNSIGNED_INT_SAMPLER_2D | glow::INT_SAMPLER_2D) {
                 let shadow = active.utype == glow::SAMPLER_2D_SHADOW;
                 let resolved = textures.naming.resolve(pack, &name, gbuffers);
                 let harness = textures.harness;
@@ -614,7 +656,7 @@ unsafe fn set_uniforms(
                     Ok(Source::Custom(i)) => harness.custom[i],
                     Ok(Source::FlatNormals) => harness.flat_normals,
                     Ok(Source::NoSpecular) => harness.no_specular,
-                    Ok(Source::ShadowColour(n)) => textures.shadow_colours.get(&n).copied().unwrap_or(harness.white),
+                    Ok(Source::ShadowColour(n)) => textures.shadow_colours.get(&n).map_or(harness.white, |(t, _)| *t),
                     Ok(Source::ShadowDepth(n)) => textures.shadow_depth[n as usize],
                     Ok(Source::Unbound) => harness.unbound,
                     Ok(Source::Depth0) => textures.depth0,
@@ -640,7 +682,10 @@ unsafe fn set_uniforms(
                 gl.bind_texture(glow::TEXTURE_2D, Some(texture));
                 gl.bind_sampler(unit, compares.then_some(harness.comparison));
                 // A colour buffer reads its mipmaps only in the programs that asked for them.
-                if let Ok(Source::Color(n)) = resolved {
+                // Integer buffers are never filtered.
+                if let Ok(Source::Color(n)) = resolved
+                    && !textures.colors.get(&n).is_some_and(|(_, format)| format.is_integer())
+                {
                     let filter = if textures.mipmapped.contains(&n) { glow::LINEAR_MIPMAP_LINEAR } else { glow::LINEAR };
                     gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MIN_FILTER, filter as i32);
                 }
@@ -744,9 +789,16 @@ pub(crate) unsafe fn draw_program(
                 }
             }
         }
-        // Captured: the vertex stage alone, its outputs recorded, nothing rasterised.
+        // Captured: the vertex stage alone, its outputs recorded, nothing rasterised. With no
+        // fragment stage no draw buffer may be on: Mesa refuses such a draw into an integer
+        // buffer even with rasterisation off. The draw buffers come back for the draw after it.
+        let mut draw_buffers = Vec::new();
         let feedback = match compiled {
             Compiled::Captured { components, .. } if !vertices.is_empty() => {
+                for i in 0..tidepack_glsl::preprocess::MAX_DRAW_BUFFERS as u32 {
+                    draw_buffers.push(gl.get_parameter_i32(glow::DRAW_BUFFER0 + i) as u32);
+                }
+                gl.draw_buffers(&[glow::NONE]);
                 let size = components.iter().sum::<i32>() as usize * 4 * vertices.len();
                 let buffer = gl.create_buffer().map_err(gl_err("buffer"))?;
                 gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, Some(buffer));
@@ -776,6 +828,7 @@ pub(crate) unsafe fn draw_program(
         if let (Some(buffer), Compiled::Captured { draw, components, .. }) = (feedback, compiled) {
             gl.end_transform_feedback();
             gl.disable(glow::RASTERIZER_DISCARD);
+            gl.draw_buffers(&draw_buffers);
             gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, None);
             // The shipped fragment stage behind the pass-through vertex shader.
             gl.use_program(Some(draw.raw));

@@ -17,8 +17,8 @@ use tidepack_gldriver::{GlContext, legacy};
 use crate::HarnessError;
 use crate::any_pack::{AnyPack, DepthSeed, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::gl::{
-    Compiled, DepthMapping, GlHarnessTextures, Textures, attach, compile, draw_own_colour, draw_program, internal_format, make_texture, read,
-    add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
+    Compiled, DepthMapping, GlHarnessTextures, Held, Textures, attach, clear_colour, compile, draw_own_colour, draw_program, internal_format, make_texture,
+    pixel_transfer, read, add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
 };
 use crate::samplers::SamplerNaming;
 use crate::images::FloatImage;
@@ -144,7 +144,7 @@ struct GlPlanFrame<'a> {
     lod_depth: [glow::Texture; 2],
     shadow_side: i32,
     shadow_depth: [glow::Texture; 2],
-    shadow_colours: BTreeMap<u8, glow::Texture>,
+    shadow_colours: BTreeMap<u8, (glow::Texture, BufferFormat)>,
     screen: glow::Texture,
     harness: GlHarnessTextures,
     fbo: glow::Framebuffer,
@@ -247,12 +247,16 @@ impl<'a> GlPlanFrame<'a> {
         let gl = ctx.gl();
         let (w, h) = (scene.width() as i32, scene.height() as i32);
         unsafe {
-            let colour = |format| make_texture(gl, internal_format(format), glow::RGBA, glow::FLOAT, w, h, None, true, false);
+            // Integer buffers are never filtered: a linear filter leaves them incomplete.
+            let colour = |format: BufferFormat| {
+                let (pixels, ty) = pixel_transfer(format);
+                make_texture(gl, internal_format(format), pixels, ty, w, h, None, !format.is_integer(), false)
+            };
             let mut buffers = BTreeMap::new();
             for &b in &plan.buffers {
                 let format = pack.format_of(b);
                 let flipped = [colour(format)?, colour(format)?];
-                if plan.mipmapped.contains(&b) {
+                if plan.mipmapped.contains(&b) && !format.is_integer() {
                     for t in flipped {
                         add_mip_levels(gl, t, internal_format(format), w, h);
                     }
@@ -269,8 +273,10 @@ impl<'a> GlPlanFrame<'a> {
             }
             let mut shadow_colours = BTreeMap::new();
             for &b in &plan.shadow_buffers {
-                let format = internal_format(pack.shadow_format_of(b));
-                shadow_colours.insert(b, make_texture(gl, format, glow::RGBA, glow::FLOAT, shadow_side, shadow_side, None, true, false)?);
+                let format = pack.shadow_format_of(b);
+                let (pixels, ty) = pixel_transfer(format);
+                let texture = make_texture(gl, internal_format(format), pixels, ty, shadow_side, shadow_side, None, !format.is_integer(), false)?;
+                shadow_colours.insert(b, (texture, format));
             }
             let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
             let values = PassValues::of(pack, scene).0.nudged(nudge);
@@ -304,20 +310,20 @@ impl<'a> GlPlanFrame<'a> {
         unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             gl.viewport(0, 0, self.w, self.h);
-            for (b, (textures, _, _)) in &self.buffers {
-                let c = self.pack.clear_of(*b).colour(*b, self.scene.sky.fog_color).map(|v| v as f32);
+            for (b, (textures, _, format)) in &self.buffers {
+                let c = self.pack.clear_of(*b).colour(*b, self.scene.sky.fog_color);
                 for t in textures {
                     attach(gl, &[Some(*t)], Some(self.depth0))?;
-                    gl.clear_buffer_f32_slice(glow::COLOR, 0, &c);
+                    clear_colour(gl, *format, c);
                 }
             }
             gl.depth_mask(true);
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
             attach(gl, &[], Some(self.lod_depth[0]))?;
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-            for (b, t) in &self.shadow_colours {
+            for (b, (t, format)) in &self.shadow_colours {
                 attach(gl, &[Some(*t)], Some(self.shadow_depth[0]))?;
-                gl.clear_buffer_f32_slice(glow::COLOR, 0, &self.pack.shadow_clear_of(*b).shadow_colour().map(|v| v as f32));
+                clear_colour(gl, *format, self.pack.shadow_clear_of(*b).shadow_colour());
             }
             for depth in self.shadow_depth {
                 attach(gl, &[], Some(depth))?;
@@ -391,7 +397,7 @@ impl<'a> GlPlanFrame<'a> {
         // alone: a framebuffer reads only where all its attachments overlap.
         unsafe {
             match side {
-                None => read(gl, texture, true, self.screen, self.w, self.h).map(Some),
+                None => read(gl, texture, Held::Depth, self.screen, self.w, self.h).map(Some),
                 Some(side) => {
                     attach(gl, &[], Some(texture))?;
                     let mut depths = vec![0f32; (side * side) as usize];
@@ -408,7 +414,20 @@ impl<'a> GlPlanFrame<'a> {
 
     unsafe fn read_colour(&self, t: glow::Texture) -> Result<FloatImage, HarnessError> {
         // SAFETY: `t` and the scratch screen are this frame's, of the frame's size.
-        unsafe { read(self.ctx.gl(), t, false, self.screen, self.w, self.h) }
+        unsafe { read(self.ctx.gl(), t, Held::Colour(self.format_of(t)), self.screen, self.w, self.h) }
+    }
+
+    /// `blend`, or none into an integer buffer: blending applies to float and normalised
+    /// buffers only, and Mesa refuses to draw with it on into an integer one.
+    fn unless_integer(&self, blend: Blend, format: Option<BufferFormat>) -> Blend {
+        if format.is_some_and(BufferFormat::is_integer) { Blend::Off } else { blend }
+    }
+
+    /// The format of one of the frame's colour textures (the screen's is RGBA32F).
+    fn format_of(&self, t: glow::Texture) -> BufferFormat {
+        let buffers = self.buffers.values().find(|(flipped, snapshot, _)| flipped.contains(&t) || *snapshot == t).map(|(_, _, format)| *format);
+        let shadow = || self.shadow_colours.values().find(|(texture, _)| *texture == t).map(|(_, format)| *format);
+        buffers.or_else(shadow).unwrap_or(BufferFormat::Rgba32F)
     }
 
     /// Compiles `program` with the harness's depth mapping where the outputs allow it: the
@@ -477,7 +496,7 @@ impl<'a> GlPlanFrame<'a> {
             // Distant Horizons draws into its own depth buffer.
             let depth = if step.pass == Pass::DistantHorizons { self.lod_depth[0] } else { self.depth0 };
             attach(gl, &targets, Some(depth))?;
-            set_blends(gl, &drawn, &|b| self.pack.blend_of(step.program, b, step.default_blend));
+            set_blends(gl, &drawn, &|b| self.unless_integer(self.pack.blend_of(step.program, b, step.default_blend), self.buffers.get(&b).map(|(_, _, format)| *format)));
             gl.enable(glow::DEPTH_TEST);
             gl.depth_mask(step.depth_write);
             match step.program {
@@ -522,9 +541,9 @@ impl<'a> GlPlanFrame<'a> {
         let gl = self.ctx.gl();
         let side = self.shadow_side;
         unsafe {
-            let targets: Vec<Option<glow::Texture>> = program.render_targets.iter().map(|b| b.map(|b| self.shadow_colours[&b])).collect();
+            let targets: Vec<Option<glow::Texture>> = program.render_targets.iter().map(|b| b.map(|b| self.shadow_colours[&b].0)).collect();
             attach(gl, &targets, Some(self.shadow_depth[0]))?;
-            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            set_blends(gl, &program.render_targets, &|b| self.unless_integer(self.pack.blend_of(Some(program), b, &Blend::Off), self.shadow_colours.get(&b).map(|(_, format)| *format)));
             gl.enable(glow::DEPTH_TEST);
             gl.depth_mask(true);
             gl.viewport(0, 0, side, side);
@@ -550,7 +569,7 @@ impl<'a> GlPlanFrame<'a> {
                 .iter()
                 .zip(&targets)
                 .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
-                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, false, self.screen, side, side)? }))
+                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.format_of(*t)), self.screen, side, side)? }))
                 .collect()
         }
     }
@@ -567,7 +586,8 @@ impl<'a> GlPlanFrame<'a> {
     ) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         unsafe {
-            for b in mipmaps {
+            // Integer buffers have no mip chain (OpenGL makes none for them).
+            for b in mipmaps.iter().filter(|b| !self.buffers[b].2.is_integer()) {
                 gl.bind_texture(glow::TEXTURE_2D, Some(self.buffers[b].0[current[b]]));
                 gl.generate_mipmap(glow::TEXTURE_2D);
             }
@@ -581,7 +601,7 @@ impl<'a> GlPlanFrame<'a> {
                 .collect();
             let attachments: Vec<Option<glow::Texture>> = targets.iter().map(|t| t.as_ref().map(|(_, t)| *t)).collect();
             attach(gl, &attachments, None)?;
-            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            set_blends(gl, &program.render_targets, &|b| self.unless_integer(self.pack.blend_of(Some(program), b, &Blend::Off), self.buffers.get(&b).map(|(_, _, format)| *format)));
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
             let textures = Textures {
@@ -639,13 +659,13 @@ impl<'a> GlPlanFrame<'a> {
             for (b, (textures, _, _)) in &self.buffers {
                 buffers.insert(*b, self.read_colour(textures[current[b]])?);
             }
-            let depth0 = read(gl, self.depth0, true, self.screen, self.w, self.h)?;
-            let depth1 = read(gl, self.depth1, true, self.screen, self.w, self.h)?;
+            let depth0 = read(gl, self.depth0, Held::Depth, self.screen, self.w, self.h)?;
+            let depth1 = read(gl, self.depth1, Held::Depth, self.screen, self.w, self.h)?;
             let error = gl.get_error();
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
             gl.delete_framebuffer(self.fbo);
             self.harness.delete(gl);
-            let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().copied());
+            let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().map(|(t, _)| *t));
             let buffer_textures = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
             for t in [self.depth0, self.depth1, self.lod_depth[0], self.lod_depth[1], self.screen].into_iter().chain(buffer_textures).chain(shadow_textures) {
                 gl.delete_texture(t);

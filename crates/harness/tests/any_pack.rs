@@ -504,6 +504,26 @@ fn a_shadow_sampler_over_a_colour_buffer_is_drawn_by_opengl() {
     assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
 }
 
+/// An unsigned integer buffer (tests/packs/integer_buffer: composite packs bits into an R32UI
+/// colortex1, composite1 unpacks them through a `usampler2D`). OpenGL stores it as RGBA32UI and
+/// draws the frame, every value arriving whole; wgpu's frames hold no integer buffer, and the
+/// report says so.
+#[test]
+fn an_integer_buffer_keeps_its_bits() {
+    let (report, screen) = render_job("integer_buffer");
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.not_modelled.iter().any(|n| n == "colortex1Format = R32UI: stored as Rgba32Ui"), "{:?}", report.not_modelled);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.wgpu_cannot_draw.iter().any(|(_, why)| why.contains("integer buffer")), "{:?}", gl.wgpu_cannot_draw);
+    let magenta = screen.pixels().filter(|p| p.0 == [255, 0, 255, 255]).count();
+    assert_eq!(magenta, 0, "pixels whose bits did not arrive whole");
+    // Bright pixels carry the flag in green, the others none: both are on the screen.
+    let flagged = screen.pixels().filter(|p| p.0[1] == 255).count();
+    let unflagged = screen.pixels().filter(|p| p.0[1] == 0).count();
+    assert!(flagged > 0 && unflagged > 0 && flagged + unflagged == screen.pixels().len(), "{flagged} flagged, {unflagged} not");
+}
+
 /// The fog uniforms (tests/packs/fog_uniforms): `fogStart` and `fogEnd` hold the game's linear
 /// fog, the one the legacy `gl_Fog` state has, in both renderers.
 #[test]

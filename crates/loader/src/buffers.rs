@@ -32,12 +32,22 @@ pub enum BufferFormat {
     Rgba16,
     Rgba16F,
     Rgba32F,
+    /// Unsigned integers, read through `usampler2D`, never filtered or blended.
+    Rgba32Ui,
+    /// Signed integers, read through `isampler2D`, never filtered or blended.
+    Rgba32I,
 }
 
 impl BufferFormat {
+    /// Whether the buffer holds integers: it is read unfiltered through an integer sampler.
+    pub fn is_integer(self) -> bool {
+        matches!(self, BufferFormat::Rgba32Ui | BufferFormat::Rgba32I)
+    }
+
     /// The format a pack's format name is stored in, and whether exactly: formats the renderers
     /// lack (fewer channels, packed, signed) are stored in the RGBA format that holds every
-    /// value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F, `RGB10_A2` in RGBA16).
+    /// value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F, `RGB10_A2` in RGBA16,
+    /// `R32UI` in RGBA32UI).
     pub fn stand_in(name: &str) -> Option<(BufferFormat, bool)> {
         if let Some(exact) = BufferFormat::parse(name) {
             return Some((exact, true));
@@ -52,6 +62,10 @@ impl BufferFormat {
                 BufferFormat::Rgba32F
             }
             "R32F" | "RG32F" => BufferFormat::Rgba32F,
+            "R8UI" | "RG8UI" | "RGB8UI" | "RGBA8UI" | "R16UI" | "RG16UI" | "RGB16UI" | "RGBA16UI" | "R32UI" | "RG32UI" | "RGB32UI" | "RGB10_A2UI" => {
+                BufferFormat::Rgba32Ui
+            }
+            "R8I" | "RG8I" | "RGB8I" | "RGBA8I" | "R16I" | "RG16I" | "RGB16I" | "RGBA16I" | "R32I" | "RG32I" | "RGB32I" => BufferFormat::Rgba32I,
             _ => return None,
         };
         Some((stand_in, false))
@@ -64,6 +78,8 @@ impl BufferFormat {
             "RGBA16" | "RGB16" => BufferFormat::Rgba16,
             "RGBA16F" | "RGB16F" => BufferFormat::Rgba16F,
             "RGBA32F" | "RGB32F" => BufferFormat::Rgba32F,
+            "RGBA32UI" => BufferFormat::Rgba32Ui,
+            "RGBA32I" => BufferFormat::Rgba32I,
             _ => return None,
         })
     }
@@ -119,6 +135,9 @@ mod tests {
         assert_eq!(shadow_colour_number("shadowcolor1"), Some(1));
         assert_eq!(BufferFormat::stand_in("R11F_G11F_B10F"), Some((BufferFormat::Rgba16F, false)));
         assert_eq!(BufferFormat::stand_in("RGBA16F"), Some((BufferFormat::Rgba16F, true)));
-        assert_eq!(BufferFormat::stand_in("RGBA32UI"), None);
+        assert_eq!(BufferFormat::stand_in("R32UI"), Some((BufferFormat::Rgba32Ui, false)));
+        assert_eq!(BufferFormat::stand_in("RGBA32UI"), Some((BufferFormat::Rgba32Ui, true)));
+        assert_eq!(BufferFormat::stand_in("RG16I"), Some((BufferFormat::Rgba32I, false)));
+        assert_eq!(BufferFormat::stand_in("RGBA64UI"), None);
     }
 }

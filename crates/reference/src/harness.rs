@@ -24,7 +24,7 @@ pub fn settings_of(pack: &LoadedPack) -> Result<ReferenceSettings, String> {
 }
 
 /// The filter gpu/bindings.rs binds a colour buffer's sampler with in a full-screen program: linear
-/// when its format filters, nearest otherwise (always clamp). Whether RGBA32F filters depends on
+/// when its format filters, nearest otherwise (integer formats never filter; always clamp). Whether RGBA32F filters depends on
 /// the adapter (wgpu's `FLOAT32_FILTERABLE`): `float32_filterable` says so, and `None` (not
 /// known) makes an RGBA32F buffer an error.
 pub fn colour_filter(format: BufferFormat, float32_filterable: Option<bool>) -> Result<Filter, String> {
@@ -32,6 +32,7 @@ pub fn colour_filter(format: BufferFormat, float32_filterable: Option<bool>) -> 
         (BufferFormat::Rgba8 | BufferFormat::Rgba16 | BufferFormat::Rgba16F, _) | (BufferFormat::Rgba32F, Some(true)) => Ok(Filter::Linear),
         (BufferFormat::Rgba32F, Some(false)) => Ok(Filter::Nearest),
         (BufferFormat::Rgba32F, None) => Err("it is not known whether Rgba32F filters on this adapter".to_string()),
+        (BufferFormat::Rgba32Ui | BufferFormat::Rgba32I, _) => Ok(Filter::Nearest),
     }
 }
 

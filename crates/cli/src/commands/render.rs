@@ -204,7 +204,10 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         if t.frames > 2 { "s after the first" } else { "" }
     );
     if let Some(gl) = &report.gl {
-        if !gl.wgpu_cannot_draw.is_empty() {
+        if gl.steps.is_empty() && !gl.wgpu_cannot_draw.is_empty() {
+            let why: Vec<&str> = gl.wgpu_cannot_draw.iter().map(|(_, why)| why.as_str()).collect();
+            say!("  wgpu drew none of the steps beside OpenGL, which drew them alone: {}", why.join("; "));
+        } else if !gl.wgpu_cannot_draw.is_empty() {
             let steps: Vec<&str> = gl.wgpu_cannot_draw.iter().map(|(step, _)| step.as_str()).collect();
             say!("  wgpu drew every other step from OpenGL's textures; OpenGL alone drew: {}", steps.join(", "));
         }

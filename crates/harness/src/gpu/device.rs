@@ -118,6 +118,11 @@ impl Gpu {
             }
             BufferFormat::Rgba16F => wgpu::TextureFormat::Rgba16Float,
             BufferFormat::Rgba32F => wgpu::TextureFormat::Rgba32Float,
+            BufferFormat::Rgba32Ui | BufferFormat::Rgba32I => {
+                return Err(HarnessError::Unsupported(format!(
+                    "the pack declares an integer buffer ({format:?}), which the harness's wgpu frames do not hold; OpenGL draws it"
+                )));
+            }
         })
     }
 
