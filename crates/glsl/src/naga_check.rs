@@ -1049,6 +1049,19 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let constructor = glsl_type_name(&vector)?;
             return repaired(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
         }
+        FunctionError::Expression { source: ExpressionError::InvalidUnaryOperandType(naga::UnaryOperator::Negate, operand), .. } => {
+            // GLSL negates unsigned integers (modulo 2^32), naga does not: `-u` becomes `0u - u`.
+            let ty = type_of(*operand)?;
+            let unsigned = matches!(ty, naga::TypeInner::Scalar(s) | naga::TypeInner::Vector { scalar: s, .. } if s.kind == naga::ScalarKind::Uint);
+            if !unsigned {
+                return None;
+            }
+            let span = whole_span(text, function, *operand)?;
+            let minus = text[..span.start].trim_end().strip_suffix('-')?.len();
+            let zero = glsl_type_name(&ty)?;
+            let inner = text.get(span.clone())?;
+            return repaired(format!("{}({zero}(0u) - {inner}){}", &text[..minus], &text[span.end..]));
+        }
         FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?, true),
         FunctionError::Expression { handle, source: ExpressionError::InvalidSampleOffsetExprType } if lenient => {
             let naga::Expression::ImageSample { image, .. } = function.expressions[*handle] else { return None };
@@ -1071,10 +1084,50 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         None if lenient => (lenient_target(&from, &target)?, true),
         None => return None,
     };
-    let span = function.expressions.get_span(value).to_range()?;
+    let span = whole_span(text, function, value)?;
     let inner = text.get(span.clone())?;
     let lenient = beyond_glsl.then(|| (span.start, Leniency::Converted { constructor: constructor.clone(), value: inner.to_string() }));
     Some(Repair { text: format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]), lenient })
+}
+
+/// The text range of `expression` whole: naga gives a swizzle or a member's span from its `.`
+/// on (`.xy` of `textureSize(s, 0).xy`), so the range reaches back over what it applies to.
+fn whole_span(text: &str, function: &naga::Function, expression: naga::Handle<naga::Expression>) -> Option<std::ops::Range<usize>> {
+    let span = function.expressions.get_span(expression).to_range()?;
+    let mut start = span.start;
+    while text.get(start..)?.starts_with('.') {
+        start = postfix_base_start(text, start)?;
+        // A member of a member (`a.b.xy`): on to the first.
+        if start > 0 && text.as_bytes()[start - 1] == b'.' {
+            start -= 1;
+        }
+    }
+    Some(start..span.end)
+}
+
+/// Where the operand ends at `end` begins: a call or bracketed group with the name before it,
+/// or a name.
+fn postfix_base_start(text: &str, end: usize) -> Option<usize> {
+    let bytes = text.as_bytes();
+    let mut i = end;
+    if matches!(bytes.get(i.checked_sub(1)?), Some(b')' | b']')) {
+        let mut depth = 0i32;
+        loop {
+            i = i.checked_sub(1)?;
+            match bytes[i] {
+                b')' | b']' => depth += 1,
+                b'(' | b'[' => depth -= 1,
+                _ => {}
+            }
+            if depth == 0 {
+                break;
+            }
+        }
+    }
+    while i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_') {
+        i -= 1;
+    }
+    (i < end).then_some(i)
 }
 
 /// The constructor NVIDIA applies implicitly where GLSL applies none: between int, uint and
