@@ -462,6 +462,17 @@ fn struct_locations(sig: &[&Token<'_>]) -> BTreeMap<String, u32> {
     structs
 }
 
+/// A matrix varying, which travels as its columns: the matrix the stage reads and writes is
+/// the global `matrix`; its columns are `{columns_in}tp_{member}_{c}` (`columns_in` is a block
+/// instance's `name.`, or empty).
+struct MatrixVarying {
+    matrix: String,
+    columns_in: String,
+    member: String,
+    column_ty: String,
+    columns: u32,
+}
+
 /// Columns and rows of a float matrix type (`mat3` → 3×3, `mat2x4` → 2 columns of 4).
 fn matrix_shape(ty: &str) -> Option<(u32, u32)> {
     let dims = ty.strip_prefix("mat")?;
@@ -888,8 +899,8 @@ struct Lowering<'t, 'a> {
     varyings: &'t VaryingLayout,
     /// Type definitions the uniform block needs, put before it.
     prelude: String,
-    /// Matrix varyings, passed as column vectors: (name, column type, columns).
-    matrix_varyings: Vec<(String, String, u32)>,
+    /// Matrix varyings, passed as column vectors.
+    matrix_varyings: Vec<MatrixVarying>,
     /// Globals whose initializer runs at the start of `main` (`tp_init_<name>()`), in
     /// declaration order.
     global_initializers: Vec<String>,
@@ -1026,7 +1037,13 @@ impl<'a> Lowering<'_, 'a> {
                                 )
                                 .unwrap();
                             }
-                            self.matrix_varyings.push((name.to_string(), column_ty, columns));
+                            self.matrix_varyings.push(MatrixVarying {
+                                matrix: name.to_string(),
+                                columns_in: String::new(),
+                                member: name.to_string(),
+                                column_ty,
+                                columns,
+                            });
                             continue;
                         }
                         // An integer vertex output need not be `flat` from GLSL 1.50 on (the
@@ -1153,11 +1170,16 @@ impl<'a> Lowering<'_, 'a> {
             k += 1;
         }
         // naga takes no matrices as stage inputs or outputs, in a block or not: a matrix member
-        // of a block without an instance name (`out Data { flat mat3 tbn; };`, used as `tbn`)
         // passes its columns, and the matrix becomes a global the `main` wrapper fills from them
-        // (vertex: the columns from it), as for a plain matrix varying.
+        // (vertex: the columns from it), as for a plain matrix varying. Without an instance name
+        // (`out Data { flat mat3 tbn; };`) the global has the member's name; with one
+        // (`out Data { mat4 mv; } v;`) it is `tp_v_mv`, and every `v.mv` reads it.
         let unnamed = sig.get(k + 1).is_some_and(|&i| self.tokens[i].is_punct(";"));
-        if unnamed && !self.compute {
+        let instance = (!unnamed && sig.get(k + 2).is_some_and(|&i| self.tokens[i].is_punct(";")))
+            .then(|| sig.get(k + 1).map(|&i| self.tokens[i]))
+            .flatten()
+            .filter(|t| t.kind == TokenKind::Ident);
+        if (unnamed || instance.is_some()) && !self.compute {
             let mut matrices = String::new();
             let mut start = open + 1;
             for end in (open + 1..k).filter(|&j| self.tokens[sig[j]].is_punct(";")) {
@@ -1178,15 +1200,34 @@ impl<'a> Lowering<'_, 'a> {
                 let column_ty = format!("vec{rows}");
                 let cols: Vec<String> = (0..columns).map(|c| format!("{column_ty} {RESERVED_PREFIX}{}_{c}", member.text)).collect();
                 self.replace(name.0, name.1 + 1, cols.join("; "));
-                write!(matrices, " {ty} {};", member.text).unwrap();
-                self.matrix_varyings.push((member.text.to_string(), column_ty, columns));
+                let (matrix, columns_in) = match instance {
+                    Some(instance) => {
+                        let matrix = format!("{RESERVED_PREFIX}{}_{}", instance.text, member.text);
+                        self.rename_member_uses(sig[k + 2], instance.text, member.text, &matrix);
+                        (matrix, format!("{}.", instance.text))
+                    }
+                    None => (member.text.to_string(), String::new()),
+                };
+                write!(matrices, " {ty} {matrix};").unwrap();
+                self.matrix_varyings.push(MatrixVarying { matrix, columns_in, member: member.text.to_string(), column_ty, columns });
             }
             if !matrices.is_empty() {
-                let semicolon = sig[k + 1];
+                let semicolon = sig[if unnamed { k + 1 } else { k + 2 }];
                 self.replace(semicolon, semicolon + 1, format!(";{matrices}"));
             }
         }
         Ok(true)
+    }
+
+    /// Every `instance.member` after token `after` becomes `global`.
+    fn rename_member_uses(&mut self, after: usize, instance: &str, member: &str, global: &str) {
+        let sig: Vec<usize> = (after + 1..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        for w in sig.windows(3) {
+            let [a, dot, m] = [w[0], w[1], w[2]];
+            if self.tokens[a].is_ident(instance) && self.tokens[dot].is_punct(".") && self.tokens[m].is_ident(member) {
+                self.replace(a, m + 1, global.to_string());
+            }
+        }
     }
 
     /// A buffer or uniform block with an explicit `binding` in a vertex or fragment stage goes
@@ -2379,17 +2420,17 @@ impl<'a> Lowering<'_, 'a> {
         let initializers: String =
             self.global_initializers.iter().map(|name| format!(" {name} = {RESERVED_PREFIX}init_{name}();")).collect();
         let mut copies = String::new();
-        for (name, column_ty, columns) in &self.matrix_varyings {
-            let cols: Vec<String> = (0..*columns).map(|c| format!("{RESERVED_PREFIX}{name}_{c}")).collect();
+        for MatrixVarying { matrix, columns_in, member, column_ty, columns } in &self.matrix_varyings {
+            let cols: Vec<String> = (0..*columns).map(|c| format!("{columns_in}{RESERVED_PREFIX}{member}_{c}")).collect();
             match self.stage {
                 Stage::Vertex => {
                     for (c, col) in cols.iter().enumerate() {
-                        write!(copies, " {col} = {column_ty}({name}[{c}]);").unwrap();
+                        write!(copies, " {col} = {column_ty}({matrix}[{c}]);").unwrap();
                     }
                 }
                 Stage::Fragment => {
                     let ty = format!("mat{columns}x{}", &column_ty[3..]);
-                    write!(copies, " {name} = {ty}({});", cols.join(", ")).unwrap();
+                    write!(copies, " {matrix} = {ty}({});", cols.join(", ")).unwrap();
                 }
             }
         }

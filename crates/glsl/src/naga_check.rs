@@ -1023,7 +1023,13 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             handle,
             source: ExpressionError::InvalidBinaryOperandTypes { lhs_expr, rhs_expr, .. },
         } => {
-            // A vector and a scalar (`ivec2 % int`): GLSL applies the scalar to each component.
+            // A vector and a scalar (`ivec2 % int`): GLSL applies the scalar to each component,
+            // in arithmetic and bitwise operations; comparisons take operands of one type.
+            use naga::BinaryOperator as Op;
+            let naga::Expression::Binary { op, .. } = function.expressions[*handle] else { return None };
+            if matches!(op, Op::Equal | Op::NotEqual | Op::Less | Op::LessEqual | Op::Greater | Op::GreaterEqual | Op::LogicalAnd | Op::LogicalOr) {
+                return None;
+            }
             let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
             let (scalar, other, vector) = match (&lhs, &rhs) {
                 (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, *lhs_expr, lhs),
