@@ -63,6 +63,20 @@ pub const GPU_SHADER4_TYPES: [&str; 6] = ["uint", "uvec2", "uvec3", "uvec4", "us
 /// Operators GLSL 1.10 and 1.20 reserve that [`GPU_SHADER4`] allows.
 pub const GPU_SHADER4_OPERATORS: [&str; 13] = ["%", "%=", "<<", ">>", "<<=", ">>=", "~", "&", "|", "^", "&=", "|=", "^="];
 
+/// The lookups `GL_ARB_shader_texture_lod` names with an `ARB` suffix (`texture2DGradARB`,
+/// `texture2DLodARB`, `shadow2DProjGradARB`, …): no GLSL version has them without it.
+pub fn is_texture_lod_arb(name: &str) -> bool {
+    name.strip_suffix("ARB").is_some_and(|base| (base.starts_with("texture") || base.starts_with("shadow")) && (base.ends_with("Lod") || base.ends_with("Grad")))
+}
+
+/// The GLSL 1.30 lookup that does what a `GL_EXT_gpu_shader4` one does (`texture2DGrad` →
+/// `textureGrad`, `texelFetch2D` → `texelFetch`, `textureSize2D` → `textureSize`).
+pub fn glsl130_name(name: &str) -> String {
+    let base = ["texelFetch", "textureSize", "texture", "shadow"].iter().find(|b| name.starts_with(**b)).copied().unwrap_or("texture");
+    let rest = name[base.len()..].trim_start_matches(['1', '2', '3', 'D']).trim_start_matches("Array").trim_start_matches("Rect").trim_start_matches("Cube");
+    format!("{}{rest}", if base == "shadow" { "texture" } else { base })
+}
+
 /// The types a function can return that `T(0)` constructs.
 const VALUE_TYPES: [&str; 19] = [
     "float", "vec2", "vec3", "vec4", "int", "ivec2", "ivec3", "ivec4", "uint", "uvec2", "uvec3", "uvec4", "bool", "bvec2", "bvec3", "bvec4",
@@ -291,11 +305,35 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             })
             .map(|t| format!("`{}`", t.text))
     };
-    let needed = [(TEXTURE_LOD, call_of(&VERTEX_ONLY_LOD)), (GPU_SHADER4, call_of(&GPU_SHADER4_FUNCTIONS).or_else(operator))];
+    let arb_lookup = || met.windows(2).find(|w| is_texture_lod_arb(w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text));
+    let needed = [
+        (TEXTURE_LOD, call_of(&VERTEX_ONLY_LOD).filter(|_| version < 130).or_else(arb_lookup)),
+        (GPU_SHADER4, call_of(&GPU_SHADER4_FUNCTIONS).or_else(operator).filter(|_| version < 130)),
+    ];
     for (extension, used) in needed {
-        if let (true, Some(used)) = (version < 130 && !tokens.iter().any(|t| t.is_ident(extension)), used) {
+        if let (true, Some(used)) = (!tokens.iter().any(|t| t.is_ident(extension)), used) {
             added.push(format!("#extension {extension} : enable"));
             rewrites.push(Rewrite { line: version_line, what: format!("{extension} enabled after #version for {used}") });
+        }
+    }
+    // From 1.30 on, GL_EXT_gpu_shader4's lookups have GLSL names of their own, which lenient
+    // drivers take them as.
+    if version >= 130 && !tokens.iter().any(|t| t.is_ident(GPU_SHADER4)) {
+        let mut renamed = 0;
+        let mut first_line = None;
+        for (k, &i) in significant.iter().enumerate() {
+            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+            if called && GPU_SHADER4_FUNCTIONS.contains(&tokens[i].text) && met.iter().any(|t| t.is_ident(tokens[i].text)) {
+                replaced[i] = Some(glsl130_name(tokens[i].text));
+                renamed += 1;
+                first_line.get_or_insert(tokens[i].line);
+            }
+        }
+        if let Some(line) = first_line {
+            rewrites.push(Rewrite {
+                line,
+                what: format!("{GPU_SHADER4}'s lookups (texture2DGrad() & co.), which GLSL {version} lacks, renamed to its own ({renamed} calls)"),
+            });
         }
     }
 
@@ -833,6 +871,26 @@ mod tests {
         assert_eq!(out, "#version 120\n  \nuniform sampler2D tex;\nvarying vec2 uv;\nvoid main() { gl_FragColor = texture2D(tex, uv); }\n");
         assert_eq!(rewrites[0].what, "#version 100 (GLSL ES 1.00) compiled as desktop #version 120, as NVIDIA compiles it in a desktop context");
         assert_eq!(rewrites.len(), 2);
+    }
+
+    #[test]
+    fn extension_lookups_a_130_stage_lacks_are_enabled_or_renamed() {
+        let text = "#version 130\nuniform sampler2D s;\nin vec2 uv;\nvoid main() { gl_FragData[0] = texture2DGradARB(s, uv, uv, uv) + texture2DGrad(s, uv, uv, uv) + texelFetch2D(s, ivec2(0), 0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert!(out.starts_with("#version 130\n#extension GL_ARB_shader_texture_lod : enable\n"), "{out}");
+        assert!(out.contains("texture2DGradARB(s, uv, uv, uv) + textureGrad(s, uv, uv, uv) + texelFetch(s, ivec2(0), 0)"), "{out}");
+        let whats: Vec<&str> = rewrites.iter().map(|r| r.what.as_str()).collect();
+        assert_eq!(
+            whats,
+            [
+                "GL_ARB_shader_texture_lod enabled after #version for `texture2DGradARB()`",
+                "GL_EXT_gpu_shader4's lookups (texture2DGrad() & co.), which GLSL 130 lacks, renamed to its own (2 calls)"
+            ]
+        );
+        assert_eq!(glsl130_name("texture2DArrayLod"), "textureLod");
+        assert_eq!(glsl130_name("textureSizeCube"), "textureSize");
+        assert_eq!(glsl130_name("texelFetch2DOffset"), "texelFetchOffset");
+        assert!(is_texture_lod_arb("shadow2DProjGradARB") && !is_texture_lod_arb("texture2DARB"));
     }
 
     #[test]

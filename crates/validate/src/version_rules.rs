@@ -14,7 +14,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_glsl::compat::{
-    GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, TEXTURE_LOD, VERTEX_ONLY_LOD,
+    GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, glsl130_name, is_texture_lod_arb, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, TEXTURE_LOD, VERTEX_ONLY_LOD,
 };
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
@@ -204,6 +204,16 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
                 "{}() needs GLSL 4.00 or `#extension {TEXTURE_QUERY_LOD} : enable` (Mesa: \"no function with name '{}'\" in \
                  `{shown_version}`)",
                 t.text, t.text
+            ))
+        } else if next_is_call && is_texture_lod_arb(t.text) && !extensions.contains(TEXTURE_LOD) {
+            Some(format!("{}() needs `#extension {TEXTURE_LOD} : enable` (Mesa: \"no function with name '{}'\")", t.text, t.text))
+        } else if next_is_call && number >= 130 && !core && GPU_SHADER4_FUNCTIONS.contains(&t.text) && !gpu4 {
+            Some(format!(
+                "{}() is not a GLSL {number} function: it comes from {GPU_SHADER4}, which `{shown_version}` does not enable (Mesa: \"no \
+                 function with name '{}'\"); use {}()",
+                t.text,
+                t.text,
+                glsl130_name(t.text)
             ))
         } else if !legacy_rules {
             None
