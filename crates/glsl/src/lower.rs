@@ -64,7 +64,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::preprocess::literal_integer_expression;
-use crate::token::{Token, TokenKind, brace_depths, function_definitions, tokenize};
+use crate::token::{Token, TokenKind, brace_depths, function_definitions, matching_close, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -913,6 +913,22 @@ struct Lowering<'t, 'a> {
 impl<'a> Lowering<'_, 'a> {
     fn descriptor_set(&self) -> u32 {
         if self.compute { COMPUTE_DESCRIPTOR_SET } else { self.stage.descriptor_set() }
+    }
+
+    /// The number of arguments of the call whose `(` is `sig[open]`.
+    fn call_arguments(&self, sig: &[usize], open: usize) -> usize {
+        let Some(close) = matching_close(sig, &self.tokens, open) else { return 0 };
+        let mut depth = 0usize;
+        let mut commas = 0;
+        for &i in &sig[open + 1..close] {
+            match self.tokens[i].text {
+                "(" | "[" => depth += 1,
+                ")" | "]" => depth = depth.saturating_sub(1),
+                "," if depth == 0 => commas += 1,
+                _ => {}
+            }
+        }
+        if close == open + 1 { 0 } else { commas + 1 }
     }
 
     fn err(&self, index: usize, message: impl Into<String>) -> LowerError {
@@ -2073,6 +2089,18 @@ impl<'a> Lowering<'_, 'a> {
                 && followed_by_call
             {
                 let base_level = !implicit_level && *new_name == "texture";
+                // A third argument is a bias, which only a fragment stage has derivatives for.
+                if base_level && self.call_arguments(&sig, k + 1) > 2 {
+                    return Err(self.err(
+                        i,
+                        format!(
+                            "{name}() takes a bias only in fragment shaders; this {stage} stage has no level to bias (Mesa: \"no matching \
+                             function for call to `{name}'\"): read a level with {name}Lod(…, 0.0)",
+                            name = t.text,
+                            stage = if self.compute { "compute" } else { "vertex" }
+                        ),
+                    ));
+                }
                 let new_name = if base_level { "textureLod" } else { new_name };
                 if *shadow {
                     self.replace(i, i + 1, format!("vec4(vec3({new_name}"));
