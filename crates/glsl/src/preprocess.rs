@@ -923,10 +923,10 @@ fn paste_tokens(tokens: Vec<OwnedToken>, macro_name: &str, lenient: bool) -> Res
             pasting = true;
         } else if pasting && is_trivia_kind(t.kind) {
             continue;
-        } else if pasting {
+        } else if let (true, Some(left)) = (pasting, out.last()) {
             pasting = false;
-            let left = out.pop().expect("a token before ##");
-            let text = left.text + &t.text;
+            let text = format!("{}{}", left.text, t.text);
+            out.pop();
             match tokenize(&text).as_deref() {
                 Ok([]) => out.push(OwnedToken { kind: TokenKind::Punct, text }),
                 Ok([one]) => out.push(OwnedToken { kind: one.kind, text }),
