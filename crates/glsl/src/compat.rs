@@ -7,7 +7,7 @@
 //! (they fail on Mesa, AMD, Intel and macOS); the renderer applies [`for_strict_drivers`] to the
 //! text it gives OpenGL, so that such packs still render, and lists what it rewrote.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use crate::Stage;
 use crate::preprocess::VersionDirective;
@@ -378,6 +378,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // Locals read before anything writes them: GLSL leaves their value undefined (Mesa's may be
     // anything, NaN included), wgpu's is 0. Decided on what the driver meets, given in every
     // declaration of the name: a 0 where the stage writes first changes nothing.
+    let zeros = struct_zeros(&met, version);
     let unset = locals_read_unset(&met);
     let mut declared_at: Vec<(&str, u32)> = Vec::new();
     let bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
@@ -398,6 +399,26 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         rewrites.push(Rewrite {
             line,
             what: format!("`{name}`, which may be read before it is written whole, set to 0 where declared (undefined in GLSL; 0 as wgpu has it)"),
+        });
+    }
+
+    // Struct instances declared without a value (`struct Sky { … } sky;`, `Sky sky;`) hold
+    // undefined members until written (Mesa's may be NaN; SEUS's composites read a member they
+    // never set); wgpu's are 0.
+    let met_globals: Vec<(&str, &str)> = unset_globals(&met, &zeros);
+    let mut zeroed = Vec::new();
+    for (type_, name, at) in unset_globals_at(&sig, &zeros) {
+        if met_globals.contains(&(type_, name)) {
+            let shown = replaced[significant[at]].clone().unwrap_or_else(|| name.to_string());
+            replaced[significant[at]] = Some(format!("{shown} = {}", zeros[type_]));
+            zeroed.push((name, sig[at].line));
+        }
+    }
+    if let Some(&(_, line)) = zeroed.first() {
+        let names: Vec<String> = zeroed.iter().map(|(name, _)| format!("`{name}`")).collect();
+        rewrites.push(Rewrite {
+            line,
+            what: format!("struct instances declared without a value set to 0 (undefined in GLSL; 0 as wgpu has them): {}", names.join(", ")),
         });
     }
 
@@ -439,6 +460,77 @@ fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize
 /// whose first use after the declaration, in the text's order, is neither a whole assignment
 /// (`NAME = …`, a branch's included) nor a bare argument of a call (an `out` parameter may
 /// write it): `NAME += …`, `NAME.x = …` or a read.
+/// The zero value of each struct type `toks` defines, as a constructor (`Sky(vec3(0), 0.0 …)`),
+/// for the types whose members are value types, arrays of them of a literal size (from GLSL
+/// 1.20, which has array constructors) or structs defined before.
+fn struct_zeros<'t>(toks: &[&'t Token], version: u32) -> HashMap<&'t str, String> {
+    let mut zeros: HashMap<&'t str, String> = HashMap::new();
+    for (k, w) in toks.windows(3).enumerate() {
+        if !(w[0].is_ident("struct") && w[1].kind == TokenKind::Ident && w[2].is_punct("{")) {
+            continue;
+        }
+        let Some(close) = (k + 3..toks.len()).find(|&j| toks[j].is_punct("}")) else { continue };
+        let mut members = Vec::new();
+        let complete = toks[k + 3..close].split(|t| t.is_punct(";")).filter(|m| !m.is_empty()).all(|member| {
+            let words: Vec<&Token> = member.iter().copied().filter(|t| !matches!(t.text, "lowp" | "mediump" | "highp")).collect();
+            let Some((ty, declarators)) = words.split_first() else { return false };
+            let zero = if VALUE_TYPES.contains(&ty.text) { format!("{}(0)", ty.text) } else if let Some(z) = zeros.get(ty.text) { z.clone() } else { return false };
+            declarators.split(|t| t.is_punct(",")).all(|declarator| match declarator {
+                [name] if name.kind == TokenKind::Ident => {
+                    members.push(zero.clone());
+                    true
+                }
+                [name, open, size, close] if name.kind == TokenKind::Ident && open.is_punct("[") && close.is_punct("]") && version >= 120 => {
+                    let Ok(n) = size.text.parse::<usize>() else { return false };
+                    members.push(format!("{}[{n}]({})", ty.text, vec![zero.as_str(); n].join(", ")));
+                    n > 0
+                }
+                _ => false,
+            })
+        });
+        if complete && !members.is_empty() {
+            zeros.insert(w[1].text, format!("{}({})", w[1].text, members.join(", ")));
+        }
+    }
+    zeros
+}
+
+/// [`unset_globals_at`] without the places.
+fn unset_globals<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>) -> Vec<TypedName<'t>> {
+    unset_globals_at(toks, struct_zeros).into_iter().map(|(type_, name, _)| (type_, name)).collect()
+}
+
+/// Globals of a struct type declared without a value and without a storage qualifier:
+/// `S NAME;` outside any braces, or `struct S { … } NAME;`. Each with the index of its name.
+fn unset_globals_at<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>) -> Vec<(&'t str, &'t str, usize)> {
+    let mut found = Vec::new();
+    let depths = brace_depths(toks);
+    let mut struct_open: Vec<(i32, &'t str)> = Vec::new();
+    for i in 0..toks.len() {
+        let t = toks[i];
+        if t.is_punct("{") && i >= 2 && toks[i - 2].is_ident("struct") {
+            struct_open.push((depths[i], toks[i - 1].text));
+        }
+        let ends_statement = |j: usize| toks.get(j).is_some_and(|e| e.is_punct(";"));
+        // `} NAME;` closing a struct definition at the top level.
+        if t.is_punct("}")
+            && depths[i] == 1
+            && let Some(&(1, struct_name)) = struct_open.last()
+        {
+            struct_open.pop();
+            if toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && ends_statement(i + 2) && struct_zeros.contains_key(struct_name) {
+                found.push((struct_name, toks[i + 1].text, i + 1));
+            }
+            continue;
+        }
+        let statement_start = i == 0 || ["{", "}", ";"].iter().any(|x| toks[i - 1].is_punct(x));
+        if depths[i] == 0 && statement_start && struct_zeros.contains_key(t.text) && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && ends_statement(i + 2) {
+            found.push((t.text, toks[i + 1].text, i + 1));
+        }
+    }
+    found
+}
+
 fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
     let mut found: Vec<TypedName<'t>> = Vec::new();
     for function in function_definitions(toks) {

@@ -524,6 +524,18 @@ fn an_integer_buffer_keeps_its_bits() {
     assert!(flagged > 0 && unflagged > 0 && flagged + unflagged == screen.pixels().len(), "{flagged} flagged, {unflagged} not");
 }
 
+/// A struct instance declared without a value and read before anything writes it
+/// (tests/packs/unset_global: declared with its struct, holding a nested struct and an array):
+/// OpenGL is given it as 0, as wgpu has it, the rewrite is listed, and the two agree.
+#[test]
+fn struct_instances_declared_without_a_value_are_zero_in_both_renderers() {
+    let (report, _) = render_job("unset_global");
+    let expected = "composite: composite.fsh:15: struct instances declared without a value set to 0 (undefined in GLSL; 0 as wgpu has them): `surface`";
+    assert!(report.gl_rewrites.iter().any(|r| r == expected), "{:#?}", report.gl_rewrites);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+}
+
 /// The fog uniforms (tests/packs/fog_uniforms): `fogStart` and `fogEnd` hold the game's linear
 /// fog, the one the legacy `gl_Fog` state has, in both renderers.
 #[test]
