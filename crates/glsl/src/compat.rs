@@ -274,23 +274,16 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // become the lookups that replaced them, as Iris renames them.
     let profile = version_at.and_then(|at| significant.get(at + 3)).map(|&i| tokens[i].text).filter(|p| matches!(*p, "core" | "compatibility" | "es"));
     if (VersionDirective { number: version, profile: profile.map(str::to_string) }).is_core() {
-        let mut renamed = 0;
-        let mut first_line = None;
-        for (k, &i) in significant.iter().enumerate() {
-            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
-            let replacement = match tokens[i].text {
+        let replacement = |name: &str| {
+            Some(match name {
                 "texture2D" | "texture3D" => "texture",
                 "texture2DLod" | "texture3DLod" => "textureLod",
                 "texture2DProj" => "textureProj",
-                _ => continue,
-            };
-            if called && met.iter().any(|t| t.is_ident(tokens[i].text)) {
-                replaced[i] = Some(replacement.into());
-                renamed += 1;
-                first_line.get_or_insert(tokens[i].line);
-            }
-        }
-        if let Some(line) = first_line {
+                _ => return None,
+            })
+            .map(str::to_string)
+        };
+        if let Some((line, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
             rewrites.push(Rewrite { line, what: format!("texture2D() & co., which a core profile lacks, renamed to texture() & co. ({renamed} calls)") });
         }
     }
@@ -319,17 +312,8 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // From 1.30 on, GL_EXT_gpu_shader4's lookups have GLSL names of their own, which lenient
     // drivers take them as.
     if version >= 130 && !tokens.iter().any(|t| t.is_ident(GPU_SHADER4)) {
-        let mut renamed = 0;
-        let mut first_line = None;
-        for (k, &i) in significant.iter().enumerate() {
-            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
-            if called && GPU_SHADER4_FUNCTIONS.contains(&tokens[i].text) && met.iter().any(|t| t.is_ident(tokens[i].text)) {
-                replaced[i] = Some(glsl130_name(tokens[i].text));
-                renamed += 1;
-                first_line.get_or_insert(tokens[i].line);
-            }
-        }
-        if let Some(line) = first_line {
+        let replacement = |name: &str| GPU_SHADER4_FUNCTIONS.contains(&name).then(|| glsl130_name(name));
+        if let Some((line, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
             rewrites.push(Rewrite {
                 line,
                 what: format!("{GPU_SHADER4}'s lookups (texture2DGrad() & co.), which GLSL {version} lacks, renamed to its own ({renamed} calls)"),
@@ -405,7 +389,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // Struct instances declared without a value (`struct Sky { … } sky;`, `Sky sky;`) hold
     // undefined members until written (Mesa's may be NaN; SEUS's composites read a member they
     // never set); wgpu's are 0.
-    let met_globals: Vec<(&str, &str)> = unset_globals(&met, &zeros);
+    let met_globals: Vec<(&str, &str)> = unset_globals_at(&met, &zeros).into_iter().map(|(type_, name, _)| (type_, name)).collect();
     let mut zeroed = Vec::new();
     for (type_, name, at) in unset_globals_at(&sig, &zeros) {
         if met_globals.contains(&(type_, name)) {
@@ -460,6 +444,31 @@ fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize
 /// whose first use after the declaration, in the text's order, is neither a whole assignment
 /// (`NAME = …`, a branch's included) nor a bare argument of a call (an `out` parameter may
 /// write it): `NAME += …`, `NAME.x = …` or a read.
+/// Renames each call (a name before `(`) of the significant tokens to what `replacement` gives
+/// for its name, where the driver meets that name; the line of the first renamed and how many.
+fn rename_calls(
+    tokens: &[Token],
+    significant: &[usize],
+    met: &[&Token],
+    replaced: &mut [Option<String>],
+    replacement: impl Fn(&str) -> Option<String>,
+) -> Option<(u32, usize)> {
+    let mut renamed = 0;
+    let mut first_line = None;
+    for (k, &i) in significant.iter().enumerate() {
+        let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+        if !called {
+            continue;
+        }
+        if let Some(new_name) = replacement(tokens[i].text).filter(|_| met.iter().any(|t| t.is_ident(tokens[i].text))) {
+            replaced[i] = Some(new_name);
+            renamed += 1;
+            first_line.get_or_insert(tokens[i].line);
+        }
+    }
+    first_line.map(|line| (line, renamed))
+}
+
 /// The zero value of each struct type `toks` defines, as a constructor (`Sky(vec3(0), 0.0 …)`),
 /// for the types whose members are value types, arrays of them of a literal size (from GLSL
 /// 1.20, which has array constructors) or structs defined before.
@@ -493,11 +502,6 @@ fn struct_zeros<'t>(toks: &[&'t Token], version: u32) -> HashMap<&'t str, String
         }
     }
     zeros
-}
-
-/// [`unset_globals_at`] without the places.
-fn unset_globals<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>) -> Vec<TypedName<'t>> {
-    unset_globals_at(toks, struct_zeros).into_iter().map(|(type_, name, _)| (type_, name)).collect()
 }
 
 /// Globals of a struct type declared without a value and without a storage qualifier:

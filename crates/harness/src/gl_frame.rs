@@ -129,6 +129,9 @@ fn render_seeded(
 /// A colour buffer in OpenGL: its two textures, the snapshot gbuffers programs read, its format.
 type GlBuffer = ([glow::Texture; 2], glow::Texture, BufferFormat);
 
+/// The format of the texture standing in for the screen (made RGBA32F).
+const SCREEN_FORMAT: BufferFormat = BufferFormat::Rgba32F;
+
 /// One frame of the plan in OpenGL: the textures and framebuffer it draws with, the uniform
 /// values of each kind of pass, and the programs drawn with OpenGL's own depth range.
 struct GlPlanFrame<'a> {
@@ -293,7 +296,7 @@ impl<'a> GlPlanFrame<'a> {
                 shadow_side,
                 shadow_depth,
                 shadow_colours,
-                screen: make_texture(gl, glow::RGBA32F, glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
+                screen: make_texture(gl, internal_format(SCREEN_FORMAT), glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
                 harness: GlHarnessTextures::new(gl, pack)?,
                 fbo,
                 values,
@@ -412,23 +415,11 @@ impl<'a> GlPlanFrame<'a> {
         }
     }
 
-    unsafe fn read_colour(&self, t: glow::Texture) -> Result<FloatImage, HarnessError> {
+    unsafe fn read_colour(&self, t: glow::Texture, format: BufferFormat) -> Result<FloatImage, HarnessError> {
         // SAFETY: `t` and the scratch screen are this frame's, of the frame's size.
-        unsafe { read(self.ctx.gl(), t, Held::Colour(self.format_of(t)), self.screen, self.w, self.h) }
+        unsafe { read(self.ctx.gl(), t, Held::Colour(format), self.screen, self.w, self.h) }
     }
 
-    /// `blend`, or none into an integer buffer: blending applies to float and normalised
-    /// buffers only, and Mesa refuses to draw with it on into an integer one.
-    fn unless_integer(&self, blend: Blend, format: Option<BufferFormat>) -> Blend {
-        if format.is_some_and(BufferFormat::is_integer) { Blend::Off } else { blend }
-    }
-
-    /// The format of one of the frame's colour textures (the screen's is RGBA32F).
-    fn format_of(&self, t: glow::Texture) -> BufferFormat {
-        let buffers = self.buffers.values().find(|(flipped, snapshot, _)| flipped.contains(&t) || *snapshot == t).map(|(_, _, format)| *format);
-        let shadow = || self.shadow_colours.values().find(|(texture, _)| *texture == t).map(|(_, format)| *format);
-        buffers.or_else(shadow).unwrap_or(BufferFormat::Rgba32F)
-    }
 
     /// Compiles `program` with the harness's depth mapping where the outputs allow it: the
     /// vertex stage recorded by transform feedback, then a stand-in vertex stage passing its
@@ -496,7 +487,7 @@ impl<'a> GlPlanFrame<'a> {
             // Distant Horizons draws into its own depth buffer.
             let depth = if step.pass == Pass::DistantHorizons { self.lod_depth[0] } else { self.depth0 };
             attach(gl, &targets, Some(depth))?;
-            set_blends(gl, &drawn, &|b| self.unless_integer(self.pack.blend_of(step.program, b, step.default_blend), self.buffers.get(&b).map(|(_, _, format)| *format)));
+            set_blends(gl, &drawn, &|b| self.pack.blend_of(step.program, b, step.default_blend));
             gl.enable(glow::DEPTH_TEST);
             gl.depth_mask(step.depth_write);
             match step.program {
@@ -531,7 +522,7 @@ impl<'a> GlPlanFrame<'a> {
                 .iter()
                 .zip(&targets)
                 .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
-                .map(|(b, t)| Ok(Written { name: format!("colortex{b}"), texture: *t, image: self.read_colour(*t)? }))
+                .map(|(b, t)| Ok(Written { name: format!("colortex{b}"), texture: *t, image: self.read_colour(*t, self.buffers[b].2)? }))
                 .collect()
         }
     }
@@ -543,7 +534,7 @@ impl<'a> GlPlanFrame<'a> {
         unsafe {
             let targets: Vec<Option<glow::Texture>> = program.render_targets.iter().map(|b| b.map(|b| self.shadow_colours[&b].0)).collect();
             attach(gl, &targets, Some(self.shadow_depth[0]))?;
-            set_blends(gl, &program.render_targets, &|b| self.unless_integer(self.pack.blend_of(Some(program), b, &Blend::Off), self.shadow_colours.get(&b).map(|(_, format)| *format)));
+            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
             gl.enable(glow::DEPTH_TEST);
             gl.depth_mask(true);
             gl.viewport(0, 0, side, side);
@@ -569,7 +560,7 @@ impl<'a> GlPlanFrame<'a> {
                 .iter()
                 .zip(&targets)
                 .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
-                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.format_of(*t)), self.screen, side, side)? }))
+                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.shadow_colours[b].1), self.screen, side, side)? }))
                 .collect()
         }
     }
@@ -591,17 +582,17 @@ impl<'a> GlPlanFrame<'a> {
                 gl.bind_texture(glow::TEXTURE_2D, Some(self.buffers[b].0[current[b]]));
                 gl.generate_mipmap(glow::TEXTURE_2D);
             }
-            let targets: Vec<Option<(String, glow::Texture)>> = program
+            let targets: Vec<Option<(String, glow::Texture, BufferFormat)>> = program
                 .render_targets
                 .iter()
                 .map(|b| match (into_screen, (*b)?) {
-                    (true, 0) => Some(("screen".to_string(), self.screen)),
-                    (_, b) => Some((format!("colortex{b}"), self.buffers[&b].0[1 - current[&b]])),
+                    (true, 0) => Some(("screen".to_string(), self.screen, SCREEN_FORMAT)),
+                    (_, b) => Some((format!("colortex{b}"), self.buffers[&b].0[1 - current[&b]], self.buffers[&b].2)),
                 })
                 .collect();
-            let attachments: Vec<Option<glow::Texture>> = targets.iter().map(|t| t.as_ref().map(|(_, t)| *t)).collect();
+            let attachments: Vec<Option<glow::Texture>> = targets.iter().map(|t| t.as_ref().map(|(_, t, _)| *t)).collect();
             attach(gl, &attachments, None)?;
-            set_blends(gl, &program.render_targets, &|b| self.unless_integer(self.pack.blend_of(Some(program), b, &Blend::Off), self.buffers.get(&b).map(|(_, _, format)| *format)));
+            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
             let textures = Textures {
@@ -618,7 +609,7 @@ impl<'a> GlPlanFrame<'a> {
             };
             self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            targets.into_iter().flatten().map(|(name, texture)| Ok(Written { name, texture, image: self.read_colour(texture)? })).collect()
+            targets.into_iter().flatten().map(|(name, texture, format)| Ok(Written { name, texture, image: self.read_colour(texture, format)? })).collect()
         }
     }
 
@@ -635,7 +626,7 @@ impl<'a> GlPlanFrame<'a> {
             gl.blit_framebuffer(0, 0, w, h, 0, 0, w, h, glow::COLOR_BUFFER_BIT, glow::NEAREST);
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             gl.delete_framebuffer(read_fbo);
-            Ok(vec![Written { name: "screen".to_string(), texture: self.screen, image: self.read_colour(self.screen)? }])
+            Ok(vec![Written { name: "screen".to_string(), texture: self.screen, image: self.read_colour(self.screen, SCREEN_FORMAT)? }])
         }
     }
 
@@ -650,14 +641,14 @@ impl<'a> GlPlanFrame<'a> {
         let gl = self.ctx.gl();
         unsafe {
             gl.finish();
-            let image = self.read_colour(self.screen)?;
+            let image = self.read_colour(self.screen, SCREEN_FORMAT)?;
             let passthrough_ms = match self.buffers.get(&0) {
                 Some((textures, _, _)) => self.time_passthrough(textures[current[&0]])?,
                 None => f64::NAN,
             };
             let mut buffers = BTreeMap::new();
-            for (b, (textures, _, _)) in &self.buffers {
-                buffers.insert(*b, self.read_colour(textures[current[b]])?);
+            for (b, (textures, _, format)) in &self.buffers {
+                buffers.insert(*b, self.read_colour(textures[current[b]], *format)?);
             }
             let depth0 = read(gl, self.depth0, Held::Depth, self.screen, self.w, self.h)?;
             let depth1 = read(gl, self.depth1, Held::Depth, self.screen, self.w, self.h)?;
