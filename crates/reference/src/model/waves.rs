@@ -14,6 +14,8 @@ pub(crate) const WAVE_AMPLITUDE_ANALYTIC: f64 = 0.10;
 pub(crate) const WAVE_NOISE_WEIGHT: f64 = 0.6;
 pub const WAVE_MAX_HEIGHT: f64 = WAVE_AMPLITUDE_ANALYTIC * (1.0 + WAVE_NOISE_WEIGHT);
 pub(crate) const WAVE_DRIFT: DVec2 = DVec2::new(36.0 / 3600.0, 24.0 / 3600.0);
+pub(crate) const LANDING_GAP: f64 = 0.004;
+pub(crate) const LANDING_STEP: f64 = 0.02;
 
 /// `heightTexel`.
 pub(crate) fn height_texel(water: &Texture, world_xz: DVec2, time: f64, scale: f64) -> f64 {
@@ -45,7 +47,8 @@ pub(crate) fn wave_gradient(water: &Texture, world_xz: DVec2, time: f64) -> DVec
 }
 
 /// `refineSurface` (A1): Newton's search along the ray from the flat hit, kept inside the
-/// bracket where the crossing must lie.
+/// bracket where the crossing must lie. With the pack's tolerance (`EARLY_OUTS`) a short Newton
+/// step from near the surface ends it, as the shader's landing does.
 pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3, camera_wrap: DVec3, time: f64, camera_above: bool, s: &ReferenceSettings) -> DVec3 {
     let plane_y = player_hit.y;
     let (mut near, mut far) = (-20.0 * WAVE_MAX_HEIGHT, 20.0 * WAVE_MAX_HEIGHT);
@@ -68,6 +71,10 @@ pub(crate) fn refine_surface(water: &Texture, player_hit: DVec3, ray_dir: DVec3,
             let crossing = t - gap / slope;
             if crossing >= near && crossing <= far {
                 next = crossing;
+                // `LANDING_GAP`, `LANDING_STEP`: a short step from near the surface is the last.
+                if s.surface_tolerance > 0.0 && gap.abs() < LANDING_GAP && (gap / slope).abs() < LANDING_STEP {
+                    return player_hit + ray_dir * next;
+                }
             }
         }
         t = next;
@@ -189,5 +196,29 @@ mod tests {
             let gap = q.y - hit.y - wave_height(&water, DVec2::new(q.x, q.z), 12.5);
             assert!(gap.abs() < crate::settings::SURFACE_TOLERANCE, "{steps} steps along {dir}: gap {gap}");
         }
+    }
+
+    /// The landing (a short Newton step from near the surface ends the search with no lookup
+    /// after it) stays within the tolerance on the pack's own height texture, at every
+    /// elevation from steep to grazing.
+    #[test]
+    fn a_landed_search_is_within_the_tolerance_on_the_pack_texture() {
+        let image = image::load_from_memory(&tidepack_pack::textures::water_texture().png).unwrap().to_rgba8();
+        let water = Texture::from_rgba8(image.width() as usize, image.height() as usize, image.as_raw(), crate::Filter::Linear, crate::Wrap::Repeat);
+        let pack = ReferenceSettings { surface_tolerance: crate::settings::SURFACE_TOLERANCE, wave_refine_steps: 8, ..ReferenceSettings::converged() };
+        let mut worst: f64 = 0.0;
+        for elevation in [60.0_f64, 30.0, 15.0, 8.0, 4.0] {
+            for k in 0..500 {
+                let azimuth = k as f64 * 2.399;
+                let (sin_e, cos_e) = elevation.to_radians().sin_cos();
+                let dir = DVec3::new(cos_e * azimuth.cos(), -sin_e, cos_e * azimuth.sin());
+                let hit = DVec3::new((k as f64 * 7.31) % 64.0, -3.0, (k as f64 * 3.77) % 64.0);
+                let time = k as f64 * 9.13;
+                let q = refine_surface(&water, hit, dir, DVec3::ZERO, time, true, &pack);
+                let gap = q.y - hit.y - wave_height(&water, DVec2::new(q.x, q.z), time);
+                worst = worst.max(gap.abs());
+            }
+        }
+        assert!(worst < crate::settings::SURFACE_TOLERANCE, "largest gap {worst}");
     }
 }
