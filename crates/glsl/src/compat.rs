@@ -10,6 +10,7 @@
 use std::collections::{HashMap, HashSet};
 
 use crate::Stage;
+use crate::lower::is_implicit_level_lookup;
 use crate::preprocess::VersionDirective;
 use crate::token::{Token, TokenKind, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
@@ -288,6 +289,42 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // A bias in a vertex stage, which has no level to bias: NVIDIA takes it as the level.
+    if stage == Stage::Vertex {
+        let mut biased = Vec::new();
+        for (k, &i) in significant.iter().enumerate() {
+            let name = tokens[i].text;
+            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
+            if !called || tokens[i].kind != TokenKind::Ident || !is_implicit_level_lookup(name) || !met.iter().any(|t| t.is_ident(name)) {
+                continue;
+            }
+            let Some(close) = matching_close(&significant, &tokens, k + 1) else { continue };
+            let mut depth = 0usize;
+            let commas = significant[k + 2..close]
+                .iter()
+                .filter(|&&a| {
+                    match tokens[a].text {
+                        "(" | "[" => depth += 1,
+                        ")" | "]" => depth = depth.saturating_sub(1),
+                        _ => {}
+                    }
+                    depth == 0 && tokens[a].is_punct(",")
+                })
+                .count();
+            if commas == 2 {
+                let lod = format!("{}Lod", replaced[i].as_deref().unwrap_or(name));
+                biased.push((tokens[i].line, name, lod.clone()));
+                replaced[i] = Some(lod);
+            }
+        }
+        if let Some(&(line, name, ref lod)) = biased.first() {
+            rewrites.push(Rewrite {
+                line,
+                what: format!("`{name}()` with a bias in a vertex stage, which has no level to bias, reads the bias as the level as NVIDIA does: {lod}() ({} calls)", biased.len()),
+            });
+        }
+    }
+
     let mut added = Vec::new();
     let version_line = version_at.map_or(1, |at| tokens[significant[at]].line);
     let operator = || {
@@ -537,7 +574,8 @@ fn unset_globals_at<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>
 
 fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
     let mut found: Vec<TypedName<'t>> = Vec::new();
-    for function in function_definitions(toks) {
+    let definitions = function_definitions(toks);
+    for function in &definitions {
         let body = function.open + 1..function.close.min(toks.len());
         for i in body.clone() {
             let t = toks[i];
@@ -564,10 +602,12 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
                 } else if u.is_ident(name) && !toks[k - 1].is_punct(".") {
                     let statement_start = ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x));
                     let whole_assignment = statement_start && toks.get(k + 1).is_some_and(|e| e.is_punct("="));
-                    // A bare argument may be an `out` parameter, which writes it.
+                    // A bare argument may be an `out` parameter, which writes it; one the stage
+                    // defines as `in` or `inout` is read.
                     let argument =
                         ["(", ","].iter().any(|x| toks[k - 1].is_punct(x)) && toks.get(k + 1).is_some_and(|e| e.is_punct(")") || e.is_punct(","));
-                    if !whole_assignment && !argument && !found.iter().any(|(_, n)| *n == name) {
+                    let written = argument && !argument_is_read(toks, &definitions, k);
+                    if !whole_assignment && !written && !found.contains(&(t.text, name)) {
                         found.push((t.text, name));
                     }
                     break;
@@ -576,6 +616,44 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
         }
     }
     found
+}
+
+/// Whether the bare argument `toks[at]` of a call is read: the called function is defined among
+/// `definitions` and no definition of it takes that argument `out`. A call of a function not
+/// defined there (a built-in such as `modf`) may write it.
+fn argument_is_read(toks: &[&Token], definitions: &[crate::token::FunctionDefinition], at: usize) -> bool {
+    // The call's `(` and the argument's position in it.
+    let (mut depth, mut index, mut open) = (0i32, 0usize, None);
+    for k in (0..at).rev() {
+        match toks[k].text {
+            ")" | "]" => depth += 1,
+            "(" | "[" if depth > 0 => depth -= 1,
+            "(" => {
+                open = Some(k);
+                break;
+            }
+            "," if depth == 0 => index += 1,
+            _ => {}
+        }
+    }
+    let Some(callee) = open.and_then(|o| o.checked_sub(1)).map(|c| toks[c]).filter(|c| c.kind == TokenKind::Ident) else { return false };
+    let mut defined = definitions.iter().filter(|f| toks[f.name].text == callee.text).peekable();
+    if defined.peek().is_none() {
+        return false;
+    }
+    defined.all(|f| {
+        // The parameter at `index`: its tokens between the commas of the list.
+        let (mut depth, mut position) = (0i32, 0usize);
+        !toks[f.name + 2..f.open].iter().any(|t| {
+            match t.text {
+                "(" | "[" => depth += 1,
+                ")" | "]" => depth -= 1,
+                "," if depth == 0 => position += 1,
+                _ => {}
+            }
+            position == index && t.is_ident("out")
+        })
+    })
 }
 
 /// The first `in` or `out` of `met` (significant tokens) that qualifies a file-scope
@@ -907,6 +985,24 @@ mod tests {
     }
 
     #[test]
+    fn a_bias_in_a_vertex_stage_is_read_as_the_level() {
+        let text = "#version 120\nuniform sampler2D tex;\nvec2 f(vec2 a, float b) { return a * b; }\n\
+                    vec4 reflected(vec2 uv) { return texture2D(tex, f(uv, 2.0), 0.0) + texture2D(tex, uv); }\n\
+                    void main() { gl_Position = vec4(0.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
+        assert!(out.contains("texture2DLod(tex, f(uv, 2.0), 0.0) + texture2D(tex, uv)"), "{out}");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 4);
+        assert!(rewrites[0].what.starts_with("`texture2D()` with a bias in a vertex stage"), "{}", rewrites[0].what);
+        // A fragment stage has a level to bias.
+        assert_eq!(for_strict_drivers(text, text, Stage::Fragment, &[]), (text.to_string(), Vec::new()));
+        // From 1.30, `texture()` too.
+        let core = "#version 330 core\nuniform sampler2D tex;\nin vec2 uv;\nvoid main() { gl_Position = texture(tex, uv, 1.0); }\n";
+        let (out, _) = for_strict_drivers(core, core, Stage::Vertex, &[]);
+        assert!(out.contains("textureLod(tex, uv, 1.0)"), "{out}");
+    }
+
+    #[test]
     fn a_sampler_named_texture_is_renamed_where_it_hides_the_function() {
         let text = "#version 130\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragColor = texture2D(texture, uv) + texture(texture, uv); }\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
@@ -1044,6 +1140,15 @@ mod tests {
         // Written by each branch of an `if`, or through an `out` parameter: left as it is.
         let branches = "#version 120\nuniform float u;\nvoid set(out float y) { y = 1.0; }\nvoid main() {\n    float x;\n    if (u > 0.0) { x = 1.0; } else { x = 2.0; }\n    float y;\n    set(y);\n    gl_FragColor = vec4(x, y, 0.0, 1.0);\n}\n";
         assert_eq!(for_strict_drivers(branches, branches, Stage::Fragment, &[]), (branches.to_string(), Vec::new()));
+        // Handed to an `inout` parameter, it is read (Cynun/CRShaders' bloom); to a built-in
+        // that may write it, left as it is.
+        // Another function's local of the same name and another type counts on its own.
+        let inout = "#version 120\nvec3 blur() { vec3 bloom; bloom += vec3(1.0); return bloom; }\n\
+                     void add(inout vec4 sum, float x) { sum.rgb += vec3(x); }\nvoid main() {\n    vec4 bloom;\n    add(bloom, 1.0);\n\
+                     float whole;\n    float part = modf(1.5, whole);\n    gl_FragColor = bloom + vec4(whole + blur(), 1.0);\n}\n";
+        let (out, rewrites) = for_strict_drivers(inout, inout, Stage::Fragment, &[]);
+        assert_eq!(out, inout.replace("vec4 bloom;", "vec4 bloom = vec4(0);").replace("vec3 bloom;", "vec3 bloom = vec3(0);"));
+        assert_eq!(rewrites.len(), 1, "{rewrites:?}");
     }
 
     #[test]

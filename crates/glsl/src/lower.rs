@@ -212,6 +212,12 @@ fn split_sampler_type(ty: &str) -> Option<(&'static str, &'static str)> {
     })
 }
 
+/// Whether `name` is a lookup at the implicit level of detail (`texture`, `texture2D`,
+/// `shadow2D`, …): the ones a third argument gives a bias, and whose level form is `name` + `Lod`.
+pub(crate) fn is_implicit_level_lookup(name: &str) -> bool {
+    name == "texture" || LEGACY_SAMPLING.iter().any(|&(old, new, _)| old == name && new == "texture")
+}
+
 /// GLSL's own types (scalars, vectors, matrices); anything else is a struct.
 pub fn is_builtin_type(ty: &str) -> bool {
     matches!(ty, "float" | "int" | "uint" | "bool" | "double")
@@ -820,18 +826,19 @@ struct Symbols {
     bool_uniforms: std::collections::HashSet<String>,
 }
 
-/// Lowers one preprocessed stage.
-pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
-    lower_any(text, stage, false, varyings)
+/// Lowers one preprocessed stage; a `lenient` one ([`crate::preprocess::Preprocessed::lenient`])
+/// as NVIDIA reads what GLSL refuses (a bias in a vertex stage's lookup is its level).
+pub fn lower(text: &str, stage: Stage, varyings: &VaryingLayout, lenient: bool) -> Result<Lowered, LowerError> {
+    lower_any(text, stage, false, varyings, lenient)
 }
 
 /// Lowers one preprocessed compute stage (`.csh`): uniforms into a block, samplers split,
 /// images given bindings, everything else as written (compute stages have no varyings).
 pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
-    lower_any(text, Stage::Vertex, true, &VaryingLayout::default())
+    lower_any(text, Stage::Vertex, true, &VaryingLayout::default(), false)
 }
 
-fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) -> Result<Lowered, LowerError> {
+fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, lenient: bool) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let blanked = without_unchecked_qualifiers(text, &tokens);
     let tokens = match &blanked {
@@ -842,6 +849,7 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout) 
         tokens: &tokens,
         stage,
         compute,
+        lenient,
         version: 0,
         replacements: BTreeMap::new(),
         header: String::new(),
@@ -884,6 +892,8 @@ struct Lowering<'t, 'a> {
     stage: Stage,
     /// A compute stage: no varyings, outputs or legacy built-ins.
     compute: bool,
+    /// Read as NVIDIA reads it (see [`lower`]).
+    lenient: bool,
     version: u32,
     /// Token index → (end index exclusive, replacement text).
     replacements: BTreeMap<usize, (usize, String)>,
@@ -913,6 +923,19 @@ struct Lowering<'t, 'a> {
 impl<'a> Lowering<'_, 'a> {
     fn descriptor_set(&self) -> u32 {
         if self.compute { COMPUTE_DESCRIPTOR_SET } else { self.stage.descriptor_set() }
+    }
+
+    /// A lookup with a bias (token `i`) in a stage with no implicit level.
+    fn bias_outside_fragment(&self, i: usize) -> LowerError {
+        self.err(
+            i,
+            format!(
+                "{name}() takes a bias only in fragment shaders; this {stage} stage has no level to bias (Mesa: \"no matching \
+                 function for call to `{name}'\"): read a level with {name}Lod(…, 0.0)",
+                name = self.tokens[i].text,
+                stage = if self.compute { "compute" } else { "vertex" }
+            ),
+        )
     }
 
     /// The number of arguments of the call whose `(` is `sig[open]`.
@@ -2090,30 +2113,31 @@ impl<'a> Lowering<'_, 'a> {
             {
                 let base_level = !implicit_level && *new_name == "texture";
                 // A third argument is a bias, which only a fragment stage has derivatives for.
-                if base_level && self.call_arguments(&sig, k + 1) > 2 {
-                    return Err(self.err(
-                        i,
-                        format!(
-                            "{name}() takes a bias only in fragment shaders; this {stage} stage has no level to bias (Mesa: \"no matching \
-                             function for call to `{name}'\"): read a level with {name}Lod(…, 0.0)",
-                            name = t.text,
-                            stage = if self.compute { "compute" } else { "vertex" }
-                        ),
-                    ));
+                // NVIDIA takes it as the level, there being none to bias.
+                let bias_as_level = base_level && self.call_arguments(&sig, k + 1) > 2;
+                if bias_as_level && !self.lenient {
+                    return Err(self.bias_outside_fragment(i));
                 }
                 let new_name = if base_level { "textureLod" } else { new_name };
+                let level = if base_level && !bias_as_level { ", 0.0" } else { "" };
                 if *shadow {
                     self.replace(i, i + 1, format!("vec4(vec3({new_name}"));
-                    closers.push((paren_depth + 1, if base_level { ", 0.0)), 1.0)" } else { ")), 1.0)" }));
+                    closers.push((paren_depth + 1, if level.is_empty() { ")), 1.0)" } else { ", 0.0)), 1.0)" }));
                 } else {
                     self.replace(i, i + 1, new_name.to_string());
-                    if base_level {
+                    if !level.is_empty() {
                         closers.push((paren_depth + 1, ", 0.0)"));
                     }
                 }
             } else if t.text == "texture" && followed_by_call && !implicit_level {
+                let bias_as_level = self.call_arguments(&sig, k + 1) > 2;
+                if bias_as_level && !self.lenient {
+                    return Err(self.bias_outside_fragment(i));
+                }
                 self.replace(i, i + 1, "textureLod".to_string());
-                closers.push((paren_depth + 1, ", 0.0)"));
+                if !bias_as_level {
+                    closers.push((paren_depth + 1, ", 0.0)"));
+                }
             } else if followed_by_call && self.symbols.sampler_functions.contains_key(t.text) {
                 if let Some((name, stand_in)) = GATHER_STAND_INS.iter().find(|(name, _)| *name == t.text) {
                     if name.starts_with("textureGather") {
@@ -2557,9 +2581,9 @@ mod tests {
     #[test]
     fn a_replacement_keeps_the_line_breaks_it_covers() {
         let text = "#version 120\nconst float weights[\n] = float[\n](1.0, 2.0);\nvoid main() { gl_FragColor = vec4(weights[1]); }\n";
-        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
         assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "{}", lowered.text);
-        let lowered = lower("#version 3\n[\n]l[](", Stage::Fragment, &VaryingLayout::default());
+        let lowered = lower("#version 3\n[\n]l[](", Stage::Fragment, &VaryingLayout::default(), false);
         assert!(lowered.is_err() || lowered.unwrap().text.matches('\n').count() == 2);
     }
 
@@ -2568,7 +2592,7 @@ mod tests {
     #[test]
     fn a_stage_that_is_only_its_version_line_keeps_its_line_count() {
         for text in ["#version 120", "#version 120 \u{FFFD}\u{FFFD}", "#version 330 compatibility\n"] {
-            if let Ok(lowered) = lower(text, Stage::Fragment, &VaryingLayout::default()) {
+            if let Ok(lowered) = lower(text, Stage::Fragment, &VaryingLayout::default(), false) {
                 assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "{text:?} -> {:?}", lowered.text);
             }
         }
@@ -2578,7 +2602,7 @@ mod tests {
     fn outputs_declared_beside_gl_frag_color_and_never_written_are_dropped() {
         let text = "#version 430 compatibility\nlayout(location = 0) out vec4 unused0;\nlayout(location = 1) out vec4 unused1;\n\
                     void main() { gl_FragColor = vec4(1.0); }\n";
-        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
         assert!(!lowered.text.contains("unused0") && !lowered.text.contains("unused1"), "{}", lowered.text);
         assert_eq!(lowered.interface.outputs.len(), 1, "{:?}", lowered.interface.outputs);
         assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
@@ -2588,7 +2612,7 @@ mod tests {
     fn a_vector_made_from_a_bool_converts_it_first() {
         let text = "#version 330\nout vec4 color;\nuniform float r;\nvoid main() { vec3 disk = vec3(r < 0.5); ivec2 on = ivec2(!(r > 1.0)); \
                     vec2 kept = vec2(r < 0.5 ? 1.0 : 0.0); color = vec4(disk, float(on.x) + kept.x); }\n";
-        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default()).unwrap();
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
         assert!(lowered.text.contains("vec3(float(r < 0.5))"), "{}", lowered.text);
         assert!(lowered.text.contains("ivec2(int(!(r > 1.0)))"), "{}", lowered.text);
         assert!(lowered.text.contains("vec2(r < 0.5 ? 1.0 : 0.0)"), "{}", lowered.text);
@@ -2613,8 +2637,22 @@ mod tests {
     #[test]
     fn a_legacy_varying_outside_the_layout_gets_a_location_of_its_own() {
         let text = "#version 120\nvoid main() {\n    gl_Position = ftransform();\n    gl_FrontColor = gl_Color;\n    gl_TexCoord[0] = gl_MultiTexCoord0;\n}\n";
-        let lowered = lower(text, Stage::Vertex, &VaryingLayout::default()).unwrap();
+        let lowered = lower(text, Stage::Vertex, &VaryingLayout::default(), false).unwrap();
         assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
         assert!(lowered.text.contains("out vec4 tp_FrontColor;") && lowered.text.contains("out vec4 tp_TexCoord0;"), "{}", lowered.text);
+    }
+
+    /// A bias in a vertex stage: an error in GLSL's terms, and in a lenient stage the level,
+    /// as NVIDIA reads it.
+    #[test]
+    fn a_bias_in_a_vertex_stage_is_the_level_when_read_leniently() {
+        let text = "#version 120\nuniform sampler2D tex;\nvoid main() { gl_Position = texture2D(tex, vec2(0.5), 2.0) + texture(tex, vec2(0.5), 1.0) + texture2D(tex, vec2(0.5)); }\n";
+        let error = lower(text, Stage::Vertex, &VaryingLayout::default(), false).unwrap_err();
+        assert!(error.message.starts_with("texture2D() takes a bias only in fragment shaders"), "{}", error.message);
+        let lowered = lower(text, Stage::Vertex, &VaryingLayout::default(), true).unwrap();
+        assert_eq!(lowered.text.matches("vec2(0.5), 2.0)").count(), 1, "{}", lowered.text);
+        assert_eq!(lowered.text.matches("vec2(0.5), 1.0)").count(), 1, "{}", lowered.text);
+        assert_eq!(lowered.text.matches("vec2(0.5), 0.0)").count(), 1, "{}", lowered.text);
+        assert_eq!(lowered.text.matches("textureLod(").count(), 3, "{}", lowered.text);
     }
 }

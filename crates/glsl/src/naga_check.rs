@@ -77,7 +77,7 @@ pub fn lower_program(stages: &[(Stage, Arc<Preprocessed>)]) -> Result<Vec<Lowere
     stages
         .iter()
         .map(|(stage, pre)| {
-            let lowered = lower::lower(&pre.text, *stage, &layout)
+            let lowered = lower::lower(&pre.text, *stage, &layout, pre.lenient)
                 .map_err(|e| Diagnostic::error(Code::Glsl, e.message, pre.location(e.line)))?;
             Ok(LoweredStage { stage: *stage, preprocessed: pre.clone(), lowered })
         })
@@ -1024,10 +1024,12 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             source: ExpressionError::InvalidBinaryOperandTypes { lhs_expr, rhs_expr, .. },
         } => {
             // A vector and a scalar (`ivec2 % int`): GLSL applies the scalar to each component,
-            // in arithmetic and bitwise operations; comparisons take operands of one type.
+            // in arithmetic and bitwise operations; comparisons take operands of one type, and
+            // NVIDIA makes a vector of the scalar for `==` and `!=` (`vec2 != 0`).
             use naga::BinaryOperator as Op;
             let naga::Expression::Binary { op, .. } = function.expressions[*handle] else { return None };
-            if matches!(op, Op::Equal | Op::NotEqual | Op::Less | Op::LessEqual | Op::Greater | Op::GreaterEqual | Op::LogicalAnd | Op::LogicalOr) {
+            let equality = matches!(op, Op::Equal | Op::NotEqual);
+            if matches!(op, Op::Less | Op::LessEqual | Op::Greater | Op::GreaterEqual | Op::LogicalAnd | Op::LogicalOr) || (equality && !lenient) {
                 return None;
             }
             let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
@@ -1053,7 +1055,9 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             }
             let inner = text.get(span.clone())?;
             let constructor = glsl_type_name(&vector)?;
-            return repaired(format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]));
+            let converted = format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]);
+            let lenient = equality.then(|| (span.start, Leniency::Converted { constructor, value: inner.to_string() }));
+            return Some(Repair { text: converted, lenient });
         }
         FunctionError::Expression { source: ExpressionError::InvalidUnaryOperandType(naga::UnaryOperator::Negate, operand), .. } => {
             // GLSL negates unsigned integers (modulo 2^32), naga does not: `-u` becomes `0u - u`.

@@ -252,7 +252,7 @@ pub mod targets {
         let text = String::from_utf8_lossy(rest);
         let stage = if selector & 1 == 0 { Stage::Vertex } else { Stage::Fragment };
         let layout = if selector & 2 == 0 { VaryingLayout::default() } else { VaryingLayout::for_program(&[(stage, &text, 330)]).unwrap_or_default() };
-        if let Ok(lowered) = lower_stage(&text, stage, &layout) {
+        if let Ok(lowered) = lower_stage(&text, stage, &layout, false) {
             assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count(), "the lowering moved lines");
         }
     }

@@ -12,3 +12,9 @@ void main() {
     uv = (gl_TextureMatrix[0] * texCoord).xy;
     tint = vertexColor;
 }
+// Never called here, as in packs whose stages share one library: a bias where there is no level
+// to bias, which NVIDIA takes as the level.
+uniform sampler2D gtexture;
+vec4 blurredColour(vec2 at) {
+    return texture2D(gtexture, at, 2.0);
+}
