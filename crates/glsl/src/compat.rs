@@ -359,6 +359,20 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    // A function named as a statement of its own, with no call (`atmosphereCommons;`): NVIDIA
+    // ignores it, Mesa refuses it.
+    let named = functions_named_as_statements(&sig);
+    if let Some(&first) = named.first().filter(|&&k| met.iter().any(|t| t.is_ident(tokens[significant[k]].text))) {
+        let name = tokens[significant[first]].text;
+        for &k in &named {
+            replaced[significant[k]] = Some(String::new());
+        }
+        rewrites.push(Rewrite {
+            line: tokens[significant[first]].line,
+            what: format!("`{name};`, a function named without a call, which NVIDIA ignores, removed ({} statements)", named.len()),
+        });
+    }
+
     let met_functions = value_functions(&met);
     let met_without_return: Vec<&str> =
         met_functions.iter().filter(|f| !met[f.open..f.close].iter().any(|t| t.is_ident("return"))).map(|f| met[f.name].text).collect();
@@ -618,6 +632,23 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
     found
 }
 
+/// Indices into `toks` (significant tokens) of the names of functions the text defines that
+/// stand as statements of their own, with no call (`atmosphereCommons;`).
+pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
+    let definitions = function_definitions(toks);
+    let defined: HashSet<&str> = definitions.iter().map(|f| toks[f.name].text).collect();
+    let bodies: Vec<std::ops::Range<usize>> = definitions.iter().map(|f| f.open + 1..f.close).collect();
+    (1..toks.len().saturating_sub(1))
+        .filter(|&k| {
+            toks[k].kind == TokenKind::Ident
+                && defined.contains(toks[k].text)
+                && toks[k + 1].is_punct(";")
+                && ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x))
+                && bodies.iter().any(|b| b.contains(&k))
+        })
+        .collect()
+}
+
 /// Whether the bare argument `toks[at]` of a call is read: the called function is defined among
 /// `definitions` and no definition of it takes that argument `out`. A call of a function not
 /// defined there (a built-in such as `modf`) may write it.
@@ -672,16 +703,22 @@ fn storage_qualifier_in_out<'t>(met: &[&Token<'t>]) -> Option<&'t str> {
 }
 
 /// `text` with a value on line `line` (1-based) given `constructor`, as the renderer's checks
-/// converted it in the stage naga read (`naga_check::Conversion`): `value` itself where its
-/// tokens appear once on the line; otherwise everything after the line's one `return` or
-/// assignment up to its `;` (the same value, where the line has macros naga saw expanded).
-/// Returns the new text and the text converted; `None` when neither is found.
-pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str) -> Option<(String, String)> {
+/// converted it in the stage naga read (`naga_check::Leniency::Converted`): `value` itself where
+/// its tokens appear once on the line, or once next to the operator `beside`; otherwise
+/// everything after the line's one `return` or assignment up to its `;` (the same value, where
+/// the line has macros naga saw expanded). Returns the new text and the text converted; `None`
+/// when neither is found.
+pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str, beside: Option<&str>) -> Option<(String, String)> {
     let (tokens, wanted) = (tokenize(text).ok()?, tokenize(value).ok()?);
     let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
     let wanted: Vec<&str> = wanted.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+    let next_to = |k: usize| {
+        beside.is_none_or(|op| {
+            k.checked_sub(1).is_some_and(|p| on_line[p].text == op) || on_line.get(k + wanted.len()).is_some_and(|n| n.text == op)
+        })
+    };
     let matches: Vec<usize> = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
-        .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()))
+        .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()) && next_to(k))
         .collect();
     let (first, last) = match matches.as_slice() {
         [k] => (on_line[*k], on_line[*k + wanted.len() - 1]),
@@ -985,6 +1022,18 @@ mod tests {
     }
 
     #[test]
+    fn a_function_named_without_a_call_is_removed() {
+        let text = "#version 430 compatibility\nvoid commons() {}\nvoid main() {\n    commons;\n    commons();\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
+        assert_eq!(out, text.replace("    commons;", "    ;"));
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 4);
+        // A variable of that name is a statement drivers take.
+        let variable = "#version 430 compatibility\nvoid main() {\n    float commons = 1.0;\n    commons;\n}\n";
+        assert_eq!(for_strict_drivers(variable, variable, Stage::Vertex, &[]), (variable.to_string(), Vec::new()));
+    }
+
+    #[test]
     fn a_bias_in_a_vertex_stage_is_read_as_the_level() {
         let text = "#version 120\nuniform sampler2D tex;\nvec2 f(vec2 a, float b) { return a * b; }\n\
                     vec4 reflected(vec2 uv) { return texture2D(tex, f(uv, 2.0), 0.0) + texture2D(tex, uv); }\n\
@@ -1168,7 +1217,7 @@ mod tests {
     #[test]
     fn a_value_is_converted_where_it_appears_or_as_the_lines_right_hand_side() {
         let text = "float a = 2.0 * texture2D(depth, uv);\nif (d < x) return i / STEPS;\nfloat b = f(1, 2), c = f(1, 2);\n";
-        let converted = |line, value| convert_on_line(text, line, "float", value).map(|(text, converted)| (text.lines().nth(line as usize - 1).unwrap().to_string(), converted));
+        let converted = |line, value| convert_on_line(text, line, "float", value, None).map(|(text, converted)| (text.lines().nth(line as usize - 1).unwrap().to_string(), converted));
         assert_eq!(
             converted(1, "2.0 * texture2D(depth, uv)"),
             Some(("float a = float(2.0 * texture2D(depth, uv));".to_string(), "2.0 * texture2D(depth, uv)".to_string()))
@@ -1176,7 +1225,11 @@ mod tests {
         // naga saw the macro expanded: the return's value is taken whole.
         assert_eq!(converted(2, "i / 16u"), Some(("if (d < x) return float(i / STEPS);".to_string(), "i / STEPS".to_string())));
         // Twice on the line, with two assignments: nothing to go by.
-        assert_eq!(convert_on_line(text, 3, "float", "f(1, 2)"), None);
+        assert_eq!(convert_on_line(text, 3, "float", "f(1, 2)", None), None);
+        // Told by the operator beside it.
+        let compared = "void main() {\n    if (a > 0 || c != 0) {}\n}\n";
+        let (text, value) = convert_on_line(compared, 2, "vec2", "0", Some("!=")).unwrap();
+        assert_eq!((text.lines().nth(1).unwrap(), value.as_str()), ("    if (a > 0 || c != vec2(0)) {}", "0"));
     }
 
     #[test]

@@ -840,7 +840,15 @@ pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
 
 fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, lenient: bool) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
-    let blanked = without_unchecked_qualifiers(text, &tokens);
+    let mut blanked = without_unchecked_qualifiers(text, &tokens);
+    if lenient {
+        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let names: Vec<std::ops::Range<usize>> =
+            crate::compat::functions_named_as_statements(&sig).into_iter().map(|k| sig[k].offset..sig[k].offset + sig[k].text.len()).collect();
+        if !names.is_empty() {
+            blanked = Some(crate::token::blanked(blanked.as_deref().unwrap_or(text), &names));
+        }
+    }
     let tokens = match &blanked {
         Some(blanked) => tokenize(blanked).map_err(|e| LowerError { line: e.line, message: e.message })?,
         None => tokens,

@@ -57,7 +57,9 @@ pub struct LenientRepair {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Leniency {
     /// `value` became `constructor(value)`: a value NVIDIA converts implicitly.
-    Converted { constructor: String, value: String },
+    /// `beside`: an operator next to the value, which tells it from the same text elsewhere
+    /// on its line (`count != 0` among other `0`s).
+    Converted { constructor: String, value: String, beside: Option<String> },
     /// A lookup with an offset that is not a constant (`textureOffset(s, uv, o)`), which NVIDIA
     /// takes, became the plain lookup at the coordinate moved by the offset, in texels of a
     /// `dimensions`-dimensional texture, in a vertex stage or not
@@ -1056,7 +1058,8 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let inner = text.get(span.clone())?;
             let constructor = glsl_type_name(&vector)?;
             let converted = format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]);
-            let lenient = equality.then(|| (span.start, Leniency::Converted { constructor, value: inner.to_string() }));
+            let beside = Some(if op == Op::Equal { "==" } else { "!=" }.to_string());
+            let lenient = equality.then(|| (span.start, Leniency::Converted { constructor, value: inner.to_string(), beside }));
             return Some(Repair { text: converted, lenient });
         }
         FunctionError::Expression { source: ExpressionError::InvalidUnaryOperandType(naga::UnaryOperator::Negate, operand), .. } => {
@@ -1096,7 +1099,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     };
     let span = whole_span(text, function, value)?;
     let inner = text.get(span.clone())?;
-    let lenient = beyond_glsl.then(|| (span.start, Leniency::Converted { constructor: constructor.clone(), value: inner.to_string() }));
+    let lenient = beyond_glsl.then(|| (span.start, Leniency::Converted { constructor: constructor.clone(), value: inner.to_string(), beside: None }));
     Some(Repair { text: format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]), lenient })
 }
 

@@ -529,8 +529,8 @@ pub(crate) fn load_program_files(
             for repair in repairs {
                 for line in repair.location.as_ref().map(lines_from).unwrap_or_default() {
                     let (text, what) = match &repair.leniency {
-                        Leniency::Converted { constructor, value } => {
-                            let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&repaired, line, constructor, value) else { continue };
+                        Leniency::Converted { constructor, value, beside } => {
+                            let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&repaired, line, constructor, value, beside.as_deref()) else { continue };
                             (text, format!("`{value}` converted with {constructor}() as NVIDIA converts it implicitly"))
                         }
                         Leniency::OffsetAsCoordinate { dimensions, vertex } => {

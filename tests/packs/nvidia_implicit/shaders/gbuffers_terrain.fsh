@@ -15,6 +15,6 @@ void main() {
     float alpha = texture(gtexture, uv);
     ivec2 neighbour = ivec2(int(tint.r * 2.0), 0);
     vec3 beside = textureOffset(gtexture, uv, neighbour).rgb;
-    float lit = tint.rg != 0 ? 1.0 : 0.5;
+    float lit = int(tint.a * 2.0) >= 0 && tint.rg != 0 ? 1.0 : 0.5;
     albedo = vec4(mix(texture(gtexture, uv).rgb, beside, 0.5) * tint.rgb * lit * (0.5 + 0.1 * steps(5u)), alpha);
 }

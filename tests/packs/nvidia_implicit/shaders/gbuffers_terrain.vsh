@@ -7,14 +7,16 @@ layout(location = 3) in vec4 vertexColor;
 layout(location = 8) in vec4 texCoord;
 out vec2 uv;
 out vec4 tint;
-void main() {
-    gl_Position = gl_ModelViewProjectionMatrix * position;
-    uv = (gl_TextureMatrix[0] * texCoord).xy;
-    tint = vertexColor;
-}
-// Never called here, as in packs whose stages share one library: a bias where there is no level
+// Only named, never called, as in packs whose stages share one library: a bias where there is no level
 // to bias, which NVIDIA takes as the level.
 uniform sampler2D gtexture;
 vec4 blurredColour(vec2 at) {
     return texture2D(gtexture, at, 2.0);
+}
+void main() {
+    gl_Position = gl_ModelViewProjectionMatrix * position;
+    uv = (gl_TextureMatrix[0] * texCoord).xy;
+    tint = vertexColor;
+    // A function named with no call: NVIDIA ignores the statement.
+    blurredColour;
 }
