@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use crate::Stage;
 use crate::lower::is_implicit_level_lookup;
 use crate::preprocess::VersionDirective;
-use crate::token::{Token, TokenKind, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
+use crate::token::{Token, TokenKind, argument_qualifiers, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
@@ -588,8 +588,7 @@ fn unset_globals_at<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>
 
 fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
     let mut found: Vec<TypedName<'t>> = Vec::new();
-    let definitions = function_definitions(toks);
-    for function in &definitions {
+    for function in function_definitions(toks) {
         let body = function.open + 1..function.close.min(toks.len());
         for i in body.clone() {
             let t = toks[i];
@@ -620,7 +619,7 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
                     // defines as `in` or `inout` is read.
                     let argument =
                         ["(", ","].iter().any(|x| toks[k - 1].is_punct(x)) && toks.get(k + 1).is_some_and(|e| e.is_punct(")") || e.is_punct(","));
-                    let written = argument && !argument_is_read(toks, &definitions, k);
+                    let written = argument && !argument_is_read(toks, k);
                     if !whole_assignment && !written && !found.contains(&(t.text, name)) {
                         found.push((t.text, name));
                     }
@@ -649,42 +648,11 @@ pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
         .collect()
 }
 
-/// Whether the bare argument `toks[at]` of a call is read: the called function is defined among
-/// `definitions` and no definition of it takes that argument `out`. A call of a function not
-/// defined there (a built-in such as `modf`) may write it.
-fn argument_is_read(toks: &[&Token], definitions: &[crate::token::FunctionDefinition], at: usize) -> bool {
-    // The call's `(` and the argument's position in it.
-    let (mut depth, mut index, mut open) = (0i32, 0usize, None);
-    for k in (0..at).rev() {
-        match toks[k].text {
-            ")" | "]" => depth += 1,
-            "(" | "[" if depth > 0 => depth -= 1,
-            "(" => {
-                open = Some(k);
-                break;
-            }
-            "," if depth == 0 => index += 1,
-            _ => {}
-        }
-    }
-    let Some(callee) = open.and_then(|o| o.checked_sub(1)).map(|c| toks[c]).filter(|c| c.kind == TokenKind::Ident) else { return false };
-    let mut defined = definitions.iter().filter(|f| toks[f.name].text == callee.text).peekable();
-    if defined.peek().is_none() {
-        return false;
-    }
-    defined.all(|f| {
-        // The parameter at `index`: its tokens between the commas of the list.
-        let (mut depth, mut position) = (0i32, 0usize);
-        !toks[f.name + 2..f.open].iter().any(|t| {
-            match t.text {
-                "(" | "[" => depth += 1,
-                ")" | "]" => depth -= 1,
-                "," if depth == 0 => position += 1,
-                _ => {}
-            }
-            position == index && t.is_ident("out")
-        })
-    })
+/// Whether the bare argument `toks[at]` of a call is read: the stage defines the called function
+/// and no definition of it takes that argument `out`. A function not defined there (a built-in
+/// such as `modf`) may write it.
+fn argument_is_read(toks: &[&Token], at: usize) -> bool {
+    argument_qualifiers(toks, at).is_some_and(|qualifiers| !qualifiers.is_empty() && !qualifiers.contains(&"out"))
 }
 
 /// The first `in` or `out` of `met` (significant tokens) that qualifies a file-scope

@@ -263,6 +263,44 @@ pub fn blanked(text: &str, ranges: &[std::ops::Range<usize>]) -> String {
     text.char_indices().map(|(at, c)| if c != '\n' && ranges.iter().any(|r| r.contains(&at)) { ' ' } else { c }).collect()
 }
 
+/// For the argument that starts at `sig[at]` (significant tokens) of a call: the qualifier of the
+/// parameter it goes to (`in`, `out`, `inout`, or `""` for none) in each definition of the called
+/// function among `sig`. `None` where `sig[at]` is in no call's parentheses; empty where the
+/// function is not defined there (a built-in).
+pub fn argument_qualifiers<'a>(sig: &[&Token<'a>], at: usize) -> Option<Vec<&'a str>> {
+    // The call's `(`: the nearest unmatched one before the argument, counting commas on the way.
+    let (mut depth, mut index, mut open) = (0usize, 0usize, None);
+    for k in (0..at).rev() {
+        match sig[k].text {
+            ")" | "]" => depth += 1,
+            "(" | "[" if depth > 0 => depth -= 1,
+            "(" => {
+                open = Some(k);
+                break;
+            }
+            "," if depth == 0 => index += 1,
+            _ => {}
+        }
+    }
+    let callee = open.and_then(|o| o.checked_sub(1)).map(|c| sig[c]).filter(|c| c.kind == TokenKind::Ident)?;
+    let qualifiers = function_definitions(sig).into_iter().filter(|d| sig[d.name].text == callee.text).map(|definition| {
+        // The parameter list from the `(` after the name to its `)`, split at top-level commas.
+        let (mut parameter, mut depth) = (0usize, 0usize);
+        for t in &sig[definition.name + 2..definition.open] {
+            match t.text {
+                "(" | "[" => depth += 1,
+                ")" | "]" if depth > 0 => depth -= 1,
+                ")" => break,
+                "," if depth == 0 => parameter += 1,
+                q @ ("in" | "out" | "inout") if parameter == index => return q,
+                _ => {}
+            }
+        }
+        ""
+    });
+    Some(qualifiers.collect())
+}
+
 /// The function definitions at brace depth 0, in order: a name after the return type (an
 /// identifier or an array's `]`), a parenthesised parameter list and a `{`. Prototypes, structs and interface
 /// blocks are not definitions. Trivia may be among the tokens or left out.

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use tidepack_glsl::lower::{self, ResourceKind, VaryingDecl};
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{Token, TokenKind, brace_depths, function_definitions, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, argument_qualifiers, brace_depths, tokenize};
 use tidepack_glsl::naga_check::LoweredStage;
 use tidepack_glsl::{Code, Diagnostic, Drivers, Location, Stage};
 
@@ -342,38 +342,7 @@ fn first_write_of(pre: &Preprocessed, needle: &[&str]) -> Option<u32> {
 /// Whether the argument starting at `sig[at]` goes to an `out` or `inout` parameter of the
 /// function called there, as the stage defines it.
 fn passed_to_out_parameter(sig: &[&Token<'_>], at: usize) -> bool {
-    // The call's `(`: the nearest unmatched one before the argument, counting commas on the way.
-    let (mut depth, mut index) = (0usize, 0usize);
-    let mut open = None;
-    for k in (0..at).rev() {
-        match sig[k].text {
-            ")" | "]" => depth += 1,
-            "(" | "[" if depth > 0 => depth -= 1,
-            "(" => {
-                open = Some(k);
-                break;
-            }
-            "," if depth == 0 => index += 1,
-            _ => {}
-        }
-    }
-    let Some(callee) = open.and_then(|o| o.checked_sub(1)).map(|c| sig[c].text) else { return false };
-    function_definitions(sig).iter().filter(|d| sig[d.name].text == callee).any(|definition| {
-        // The parameter list from the `(` after the name to its `)`, split at top-level commas.
-        let mut parameter = 0usize;
-        let mut depth = 0usize;
-        for t in &sig[definition.name + 2..definition.open] {
-            match t.text {
-                "(" | "[" => depth += 1,
-                ")" | "]" if depth > 0 => depth -= 1,
-                ")" => break,
-                "," if depth == 0 => parameter += 1,
-                "out" | "inout" if parameter == index => return true,
-                _ => {}
-            }
-        }
-        false
-    })
+    argument_qualifiers(sig, at).is_some_and(|qualifiers| qualifiers.iter().any(|q| matches!(*q, "out" | "inout")))
 }
 
 fn output_tokens(shipped: &str) -> Vec<&str> {
