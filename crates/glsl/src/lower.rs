@@ -111,6 +111,9 @@ pub const INTERFACE_BLOCK_STRIDE: u32 = 64;
 
 /// Prefix of every name the lowering adds.
 pub const RESERVED_PREFIX: &str = "tp_";
+/// The block member a `uniform bool NAME` becomes: an int, `BOOL_UNIFORM_PREFIX` + NAME, read as
+/// `!= 0` (a bool cannot live in a uniform buffer).
+pub const BOOL_UNIFORM_PREFIX: &str = "tp_bool_";
 /// Fragment outputs packed beside another by `layout(component = c)` are lowered to location
 /// `PACKED_OUTPUT_LOCATION + 4 * location + c`, clear of every render target.
 pub const PACKED_OUTPUT_LOCATION: u32 = 16;
@@ -1942,7 +1945,7 @@ impl<'a> Lowering<'_, 'a> {
                 if !suffix.is_empty() {
                     return Err(self.err(start, format!("bool uniform arrays (`{name}{suffix}`) are not supported")));
                 }
-                self.block.push(format!("int {RESERVED_PREFIX}bool_{name};"));
+                self.block.push(format!("int {BOOL_UNIFORM_PREFIX}{name};"));
                 self.symbols.bool_uniforms.insert(name.to_string());
                 self.interface.resources.insert(name.to_string(), ResourceKind::Uniform { ty: "bool".into() });
             }
@@ -2163,7 +2166,7 @@ impl<'a> Lowering<'_, 'a> {
                 let passes_both = self.passes_sampler_halves(&calls, paren_depth);
                 self.replace(i, i + 1, combined_use(&lowered, &ty, passes_both));
             } else if self.symbols.bool_uniforms.contains(t.text) {
-                self.replace(i, i + 1, format!("({RESERVED_PREFIX}bool_{} != 0)", t.text));
+                self.replace(i, i + 1, format!("({BOOL_UNIFORM_PREFIX}{} != 0)", t.text));
             } else if !followed_by_call && self.is_keyword_only_to_naga(t.text) {
                 self.rename_vulkan_keyword(i);
             } else if followed_by_call

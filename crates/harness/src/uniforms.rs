@@ -10,6 +10,7 @@ use glam::{DMat3, DMat4, DVec3, DVec4};
 use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
+use tidepack_glsl::lower::BOOL_UNIFORM_PREFIX;
 use tidepack_scene::scene::Scene;
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
 pub use tidepack_loader::uniform_value::{Kind, Value};
@@ -302,6 +303,19 @@ fn fill(
         for member in members {
             let name = member.name.clone().unwrap_or_default();
             names.push(name.clone());
+            // A `uniform bool` is an int member, set from the value of the pack's name as a loader
+            // sets a bool: 0 is false, anything else true.
+            if let Some(pack_name) = name.strip_prefix(BOOL_UNIFORM_PREFIX) {
+                match values.get(pack_name).filter(|v| v.array.is_none() && v.columns == 1 && v.rows == 1) {
+                    Some(v) => {
+                        let as_int = Value::int(i64::from(v.data.first().is_some_and(|&x| x != 0.0)));
+                        write_member(module, &layouter, member.ty, member.offset as usize, &as_int, &mut bytes)
+                            .map_err(|m| HarnessError::Uniform(format!("{stage_name}: uniform {pack_name}: {m}")))?;
+                    }
+                    None => missing.push(pack_name.to_string()),
+                }
+                continue;
+            }
             // A struct member (`gl_Fog`) is filled field by field from `name.field` values.
             let fields: Vec<(String, naga::Handle<naga::Type>, u32)> = match &module.types[member.ty].inner {
                 TypeInner::Struct { members: fields, .. } => fields
@@ -334,6 +348,9 @@ fn fill(
 
 /// The shipped name of a block member (`tp_ModelViewMatrix` → `gl_ModelViewMatrix`).
 pub fn shipped_name(member: &str) -> String {
+    if let Some(pack_name) = member.strip_prefix(BOOL_UNIFORM_PREFIX) {
+        return pack_name.to_string();
+    }
     match member.strip_prefix("tp_") {
         Some(rest) => format!("gl_{rest}"),
         None => member.to_string(),

@@ -554,10 +554,14 @@ fn fog_uniforms_hold_the_games_fog() {
 
 /// The biome's uniforms (tests/packs/biome_uniform): a custom uniform on `biome`, its category
 /// and precipitation says plains, and `temperature` and `rainfall` are the plains' 0.8 and 0.4.
+/// A custom `uniform bool` (the still camera) is true in both renderers.
 #[test]
 fn biome_uniforms_say_plains() {
     let (report, screen) = render_job("biome_uniform");
-    assert!(!report.not_modelled.iter().any(|n| n.contains("biome")), "{:?}", report.not_modelled);
+    assert!(!report.not_modelled.iter().any(|n| n.contains("biome") || n.contains("cameraStill")), "{:?}", report.not_modelled);
+    // The custom `uniform bool` is true in both renderers.
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
     // Blue is 0.8 * 0.4 = 0.32 of 255.
     let plains = screen.pixels().filter(|p| p.0[0] == 0 && p.0[1] == 255 && p.0[2].abs_diff(82) <= 1).count();
     assert!(plains > screen.pixels().len() / 10, "{plains} terrain pixels in the plains");
