@@ -156,8 +156,25 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // Conditionals open at each directive, to tell an `#endif` with none open.
+    let mut open_conditionals = 0usize;
     for (i, d, on_line) in directive_lines(&tokens, &significant) {
         let no_name = on_line.first().is_some_and(|&e| tokens[e].kind != TokenKind::Ident);
+        match tokens[d].text {
+            "if" | "ifdef" | "ifndef" => open_conditionals += 1,
+            "endif" if open_conditionals == 0 => {
+                for e in [i, d].into_iter().chain(on_line.iter().copied()) {
+                    replaced[e] = Some(String::new());
+                }
+                rewrites.push(Rewrite {
+                    line: tokens[i].line,
+                    what: "`#endif` with no `#if` open, which Iris's preprocessor reports and skips, removed".into(),
+                });
+                continue;
+            }
+            "endif" => open_conditionals -= 1,
+            _ => {}
+        }
         match tokens[d].text {
             // `#define`, `#ifdef` and `#ifndef` whose name is not one (`#define 2D_CLOUDS`):
             // Iris's preprocessor reports the line and skips the `#define`, and keeps the groups
@@ -987,6 +1004,15 @@ mod tests {
         // Before any code it is where it belongs.
         let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
         assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment, &[]), (clean.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn an_endif_with_no_if_open_is_removed() {
+        let text = "#version 120\n#ifdef A\nfloat a;\n#endif\nfloat b;\n#endif\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, "#version 120\n#ifdef A\nfloat a;\n#endif\nfloat b;\n\nvoid main() {}\n");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 6);
     }
 
     #[test]

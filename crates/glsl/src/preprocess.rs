@@ -459,7 +459,9 @@ impl Preprocessor<'_> {
                     top.taken = true;
                 }
                 Some("endif") => {
-                    if conds.pop().is_none() {
+                    // Iris's preprocessor (JCPP) reports an `#endif` with no `#if` open and goes
+                    // on without it; so does the lenient reading.
+                    if conds.pop().is_none() && !self.lenient {
                         return Err(err_at(at, "#endif without #if".into()));
                     }
                 }
@@ -1409,6 +1411,16 @@ mod tests {
         let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
         let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
         assert!(out.text.contains("int clouds;") && out.text.contains("int more;"), "{}", out.text);
+    }
+
+    #[test]
+    fn an_endif_with_no_if_open_is_refused_and_skipped_leniently() {
+        let list = [("a.fsh", "#version 120\n#include \"/b.glsl\"\nfloat b;\n"), ("b.glsl", "#ifdef A\nfloat a;\n#endif\nfloat c;\n#endif\n")];
+        let err = run(&list).unwrap_err();
+        assert!(err.message.contains("#endif without #if") && err.location.unwrap().line == 5, "{}", err.message);
+        let lenient = PreprocessOptions { lenient: true, ..PreprocessOptions::default() };
+        let out = preprocess(&files(&list), "a.fsh", &lenient).unwrap();
+        assert!(out.text.contains("float c;") && out.text.contains("float b;") && !out.text.contains("float a;"), "{}", out.text);
     }
 
     #[test]

@@ -327,6 +327,12 @@ fn shadow_map_reads(
     for (program, naming) in all_programs {
         let gbuffers_program = program.name.starts_with("gbuffers_");
         for stage in [&program.vertex, &program.fragment] {
+            for name in program::image_uniforms(&stage.gl_text) {
+                not_modelled.push(format!(
+                    "image {name} in {}: bound empty (custom images are not held): it reads zero and what the program stores in it is not kept; OpenGL draws the program",
+                    program.name
+                ));
+            }
             for (name, _) in program::texture_resources(&stage.interface) {
                 water_shadow |= name == "watershadow";
                 match naming.resolve(&NoCustomTextures, &name, gbuffers_program) {

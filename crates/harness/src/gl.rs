@@ -133,6 +133,59 @@ pub(crate) struct GlHarnessTextures {
     /// `shadowHardwareFiltering`, clamped.
     comparison: glow::Sampler,
     unbound: glow::Texture,
+    /// Zero textures of the other kinds a program may declare (3D, cube, array, integer) and of
+    /// its images, made at their first use, by [`EmptyKind`].
+    empties: std::cell::RefCell<BTreeMap<EmptyKind, glow::Texture>>,
+}
+
+/// A zero 1x1(x1) texture's target and the kind of value it holds. Samplers and images the
+/// harness makes nothing for read it, as wgpu's empty texture of their kind: 0. A store to an
+/// image bound to it lands outside it, or on its one texel, and is not kept for any other draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct EmptyKind {
+    target: u32,
+    /// glow::FLOAT, glow::INT or glow::UNSIGNED_INT.
+    scalar: u32,
+}
+
+impl EmptyKind {
+    /// The empty texture a sampler or image uniform of GL type `utype` reads, and whether it is
+    /// an image; `None` for a plain 2D sampler (bound by name) and for types with no such
+    /// stand-in (1D, buffer and multisampled textures, shadow cubes and arrays).
+    fn of_uniform(utype: u32) -> Option<(EmptyKind, bool)> {
+        let (target, scalar, image) = match utype {
+            glow::SAMPLER_3D => (glow::TEXTURE_3D, glow::FLOAT, false),
+            glow::INT_SAMPLER_3D => (glow::TEXTURE_3D, glow::INT, false),
+            glow::UNSIGNED_INT_SAMPLER_3D => (glow::TEXTURE_3D, glow::UNSIGNED_INT, false),
+            glow::SAMPLER_CUBE => (glow::TEXTURE_CUBE_MAP, glow::FLOAT, false),
+            glow::INT_SAMPLER_CUBE => (glow::TEXTURE_CUBE_MAP, glow::INT, false),
+            glow::UNSIGNED_INT_SAMPLER_CUBE => (glow::TEXTURE_CUBE_MAP, glow::UNSIGNED_INT, false),
+            glow::SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::FLOAT, false),
+            glow::INT_SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::INT, false),
+            glow::UNSIGNED_INT_SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::UNSIGNED_INT, false),
+            glow::IMAGE_2D => (glow::TEXTURE_2D, glow::FLOAT, true),
+            glow::INT_IMAGE_2D => (glow::TEXTURE_2D, glow::INT, true),
+            glow::UNSIGNED_INT_IMAGE_2D => (glow::TEXTURE_2D, glow::UNSIGNED_INT, true),
+            glow::IMAGE_3D => (glow::TEXTURE_3D, glow::FLOAT, true),
+            glow::INT_IMAGE_3D => (glow::TEXTURE_3D, glow::INT, true),
+            glow::UNSIGNED_INT_IMAGE_3D => (glow::TEXTURE_3D, glow::UNSIGNED_INT, true),
+            glow::IMAGE_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::FLOAT, true),
+            glow::INT_IMAGE_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::INT, true),
+            glow::UNSIGNED_INT_IMAGE_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::UNSIGNED_INT, true),
+            _ => return None,
+        };
+        Some((EmptyKind { target, scalar }, image))
+    }
+
+    /// Internal format, pixel format and type of its texel (an image is bound with the
+    /// internal format).
+    fn formats(self) -> (u32, u32, u32) {
+        match self.scalar {
+            glow::INT => (glow::RGBA32I, glow::RGBA_INTEGER, glow::INT),
+            glow::UNSIGNED_INT => (glow::RGBA32UI, glow::RGBA_INTEGER, glow::UNSIGNED_INT),
+            _ => (glow::RGBA32F, glow::RGBA, glow::FLOAT),
+        }
+    }
 }
 
 impl GlHarnessTextures {
@@ -172,7 +225,39 @@ impl GlHarnessTextures {
             },
             comparison,
             unbound: one_texel([0; 4])?,
+            empties: Default::default(),
         })
+    }
+
+    /// The zero texture of `kind`, made at its first use.
+    unsafe fn empty(&self, gl: &glow::Context, kind: EmptyKind) -> Result<glow::Texture, HarnessError> {
+        if let Some(&t) = self.empties.borrow().get(&kind) {
+            return Ok(t);
+        }
+        let (internal, format, ty) = kind.formats();
+        let zero = [0u8; 16];
+        let data = || glow::PixelUnpackData::Slice(Some(&zero[..]));
+        // SAFETY: the caller holds the current context.
+        let t = unsafe {
+            let t = gl.create_texture().map_err(gl_err("texture"))?;
+            gl.bind_texture(kind.target, Some(t));
+            match kind.target {
+                glow::TEXTURE_3D | glow::TEXTURE_2D_ARRAY => gl.tex_image_3d(kind.target, 0, internal as i32, 1, 1, 1, 0, format, ty, data()),
+                glow::TEXTURE_CUBE_MAP => {
+                    for face in 0..6 {
+                        gl.tex_image_2d(glow::TEXTURE_CUBE_MAP_POSITIVE_X + face, 0, internal as i32, 1, 1, 0, format, ty, data());
+                    }
+                }
+                _ => gl.tex_image_2d(kind.target, 0, internal as i32, 1, 1, 0, format, ty, data()),
+            }
+            gl.tex_parameter_i32(kind.target, glow::TEXTURE_MIN_FILTER, glow::NEAREST as i32);
+            gl.tex_parameter_i32(kind.target, glow::TEXTURE_MAG_FILTER, glow::NEAREST as i32);
+            gl.tex_parameter_i32(kind.target, glow::TEXTURE_MAX_LEVEL, 0);
+            gl.bind_texture(kind.target, None);
+            t
+        };
+        self.empties.borrow_mut().insert(kind, t);
+        Ok(t)
     }
 
     pub(crate) unsafe fn delete(&self, gl: &glow::Context) {
@@ -188,7 +273,7 @@ impl GlHarnessTextures {
             self.empty_shadow_depth,
             self.unbound,
         ];
-        for t in own.into_iter().chain(self.custom.iter().copied()) {
+        for t in own.into_iter().chain(self.custom.iter().copied()).chain(self.empties.borrow().values().copied()) {
             // SAFETY: the caller holds the current context that made the texture.
             unsafe { gl.delete_texture(t) };
         }
@@ -632,7 +717,7 @@ unsafe fn set_uniforms(
 ) -> Result<(), HarnessError> {
     // SAFETY: the caller holds the current context and `raw` is in use.
     unsafe {
-        let mut unit = 0u32;
+        let (mut unit, mut image_unit) = (0u32, 0u32);
         let mut missing = Vec::new();
         for index in 0..gl.get_active_uniforms(raw) {
             let Some(active) = gl.get_active_uniform(raw, index) else { continue };
@@ -691,6 +776,23 @@ unsafe fn set_uniforms(
                 }
                 gl.uniform_1_i32(location.as_ref(), unit as i32);
                 unit += 1;
+                continue;
+            }
+            // Samplers of the other kinds and images read zero from a texture of their own
+            // kind, each on a unit of its own (samplers of two types on one unit are an error).
+            if let Some((kind, image)) = EmptyKind::of_uniform(active.utype) {
+                let texture = textures.harness.empty(gl, kind)?;
+                if image {
+                    gl.bind_image_texture(image_unit, Some(texture), 0, true, 0, glow::READ_WRITE, kind.formats().0);
+                    gl.uniform_1_i32(location.as_ref(), image_unit as i32);
+                    image_unit += 1;
+                } else {
+                    gl.active_texture(glow::TEXTURE0 + unit);
+                    gl.bind_texture(kind.target, Some(texture));
+                    gl.bind_sampler(unit, None);
+                    gl.uniform_1_i32(location.as_ref(), unit as i32);
+                    unit += 1;
+                }
                 continue;
             }
             // Uniforms the harness has no value for keep OpenGL's initial zero, as the wgpu

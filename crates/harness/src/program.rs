@@ -899,6 +899,26 @@ pub(crate) fn block_ids(provider: &dyn FileProvider, macros: &Macros) -> HashMap
     blocks::ids(&Properties::parse(&text, macros), "block")
 }
 
+/// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the
+/// type) a stage's text declares at file scope, by name.
+pub fn image_uniforms(text: &str) -> Vec<String> {
+    let Ok(tokens) = tokenize(text) else { return Vec::new() };
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let is_image_type = |t: &str| ["image", "iimage", "uimage"].iter().any(|p| t.strip_prefix(p).is_some_and(|rest| rest.ends_with('D') || rest.contains("Array") || rest == "Cube" || rest == "Buffer"));
+    let mut names = Vec::new();
+    for (k, t) in sig.iter().enumerate() {
+        if t.kind != TokenKind::Ident || !t.is_ident("uniform") {
+            continue;
+        }
+        // Qualifiers between `uniform` and the type (`coherent`, `writeonly`, …).
+        let Some(type_at) = (k + 1..sig.len()).find(|&m| sig[m].kind != TokenKind::Ident || !matches!(sig[m].text, "coherent" | "volatile" | "restrict" | "readonly" | "writeonly" | "highp" | "mediump" | "lowp")) else { continue };
+        if is_image_type(sig[type_at].text) && let Some(name) = sig.get(type_at + 1).filter(|n| n.kind == TokenKind::Ident) {
+            names.push(name.text.to_string());
+        }
+    }
+    names
+}
+
 /// The shipped name of a lowered resource: the interface maps shipped names to resource kinds;
 /// textures lowered from the atlas name `texture` are called `gtexture`.
 pub fn texture_resources(interface: &Interface) -> Vec<(String, u32)> {

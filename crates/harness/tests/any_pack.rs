@@ -654,6 +654,22 @@ fn outputs_past_the_draw_buffers_are_dropped() {
     assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 0, 255, 255]);
 }
 
+/// A storage image (tests/packs/storage_image: an Iris custom image that composite stores into)
+/// beside samplers of three other kinds: OpenGL draws the program, each sampler on a texture
+/// unit of its own and the image on an image unit, reading zero as wgpu's empty textures do; the
+/// renderers agree on every other step, and the report says the image is not held.
+#[test]
+fn a_storage_image_is_drawn_by_opengl_beside_samplers_of_other_kinds() {
+    let (report, screen) = render_job("storage_image");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(report.step_renderers.iter().any(|(step, renderer)| step == "composite" && matches!(renderer, StepRenderers::OpenGl)), "{:?}", report.step_renderers);
+    assert!(report.not_modelled.iter().any(|n| n.starts_with("image marks in composite: bound empty")), "{:?}", report.not_modelled);
+    assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() - 10).0, [0, 255, 0, 255]);
+}
+
 /// A program naga refuses and OpenGL compiles (tests/packs/beyond_naga: textureLod on an
 /// unsigned-integer sampler) loads: OpenGL draws the frame, and the report gives naga's reason
 /// at the pack's file and line.

@@ -902,6 +902,9 @@ fn stage_entries(
                         resolved.insert(name.clone(), (Source::Unbound, filters));
                         entries.push((binding.group, binding.binding, Entry::Texture(view, sample_type, dimension)));
                     }
+                    None if matches!(class, naga::ImageClass::Storage { .. }) => {
+                        beyond_wgpu.push(format!("{name} is a storage image, which the harness's wgpu frames do not hold"))
+                    }
                     None => problems.push(format!("texture {name} is not a plain sampler2D")),
                 }
                 continue;
