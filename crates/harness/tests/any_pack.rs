@@ -665,7 +665,7 @@ fn a_storage_image_is_drawn_by_opengl_beside_samplers_of_other_kinds() {
     let gl = report.gl.as_ref().expect("an OpenGL frame");
     assert!(gl.refused.is_none(), "{:?}", gl.refused);
     assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
-    assert!(report.step_renderers.iter().any(|(step, renderer)| step == "composite" && matches!(renderer, StepRenderers::OpenGl)), "{:?}", report.step_renderers);
+    assert!(report.step_renderers.iter().any(|(step, renderer)| step == "composite" && matches!(renderer, tidepack_harness::job::StepRenderers::OpenGl)), "{:?}", report.step_renderers);
     assert!(report.not_modelled.iter().any(|n| n.starts_with("image marks in composite: bound empty")), "{:?}", report.not_modelled);
     assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() - 10).0, [0, 255, 0, 255]);
 }
