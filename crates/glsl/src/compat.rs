@@ -390,6 +390,39 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         });
     }
 
+    // A local `const` whose initializer is not a constant expression (`const float c = a + b;`
+    // with `a` a parameter): NVIDIA takes it as a read-only local, Mesa refuses it. Decided on
+    // what the driver meets; the `const` (or the macro holding it, `cfloat`) goes from each
+    // declaration of that name inside a function.
+    let not_constant = constants_not_constant(&met);
+    let raw_bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
+    let mut unconst: Vec<(u32, &str)> = Vec::new();
+    for k in 1..sig.len().saturating_sub(1) {
+        let Some((_, name, type_tokens)) = not_constant.iter().find(|(_, name, _)| sig[k].is_ident(name)) else { continue };
+        if !sig[k + 1].is_punct("=") || !raw_bodies.iter().any(|b| b.contains(&k)) {
+            continue;
+        }
+        let start = sig[..k].iter().rposition(|t| ["{", "}", ";"].iter().any(|x| t.is_punct(x))).map_or(0, |p| p + 1);
+        let before = start..k;
+        if let Some(c) = before.clone().find(|&j| sig[j].is_ident("const")) {
+            replaced[significant[c]] = Some(String::new());
+        } else if before.len() == 1 && sig[start].kind == TokenKind::Ident && !VALUE_TYPES.contains(&sig[start].text) {
+            replaced[significant[start]] = Some(type_tokens.join(" "));
+        } else {
+            continue;
+        }
+        unconst.push((sig[k].line, name));
+    }
+    if let Some(&(line, name)) = unconst.first() {
+        rewrites.push(Rewrite {
+            line,
+            what: format!(
+                "`const` dropped from `{name}`, whose initializer is not a constant expression, as NVIDIA takes it ({} declarations)",
+                unconst.len()
+            ),
+        });
+    }
+
     let met_functions = value_functions(&met);
     let met_without_return: Vec<&str> =
         met_functions.iter().filter(|f| !met[f.open..f.close].iter().any(|t| t.is_ident("return"))).map(|f| met[f.name].text).collect();
@@ -663,6 +696,51 @@ pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
                 && bodies.iter().any(|b| b.contains(&k))
         })
         .collect()
+}
+
+/// The `const` declarations inside functions of `toks` (significant tokens) whose initializer is
+/// not a constant expression: it reads a variable that is not itself a constant (a parameter, a
+/// uniform, a plain local) or calls a function the text defines. Each as (line, name, the type's
+/// tokens without `const`).
+fn constants_not_constant<'t>(toks: &[&'t Token]) -> Vec<(u32, &'t str, Vec<&'t str>)> {
+    let definitions = function_definitions(toks);
+    let functions: HashSet<&str> = definitions.iter().map(|f| toks[f.name].text).collect();
+    let bodies: Vec<std::ops::Range<usize>> = definitions.iter().map(|f| f.open + 1..f.close).collect();
+    let mut constants: HashSet<&str> = HashSet::new();
+    let mut found = Vec::new();
+    // Whether toks[k - 1] ends a directive's line (`#version 120`).
+    let after_directive = |k: usize| {
+        let line = toks[k - 1].line;
+        let first = toks[..k].iter().rposition(|t| t.line != line).map_or(0, |p| p + 1);
+        line != toks[k].line && toks[first].is_punct("#")
+    };
+    for k in 0..toks.len() {
+        let statement_start = k == 0 || ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x)) || after_directive(k);
+        if !statement_start || !toks[k].is_ident("const") {
+            continue;
+        }
+        // `const TYPE NAME = INIT;` (qualifiers and a precision may come between).
+        let Some(eq) = (k + 1..toks.len()).take_while(|&m| !toks[m].is_punct(";")).find(|&m| toks[m].is_punct("=")) else { continue };
+        let Some(end) = (eq..toks.len()).find(|&m| toks[m].is_punct(";")) else { continue };
+        if eq < k + 3 || toks[eq - 1].kind != TokenKind::Ident {
+            continue;
+        }
+        let name = toks[eq - 1].text;
+        let reads_variable = (eq + 1..end).any(|m| {
+            let t = toks[m];
+            let member = toks[m - 1].is_punct(".");
+            let called = toks.get(m + 1).is_some_and(|n| n.is_punct("("));
+            t.kind == TokenKind::Ident
+                && !member
+                && if called { functions.contains(t.text) } else { !constants.contains(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") }
+        });
+        if !reads_variable {
+            constants.insert(name);
+        } else if bodies.iter().any(|b| b.contains(&k)) {
+            found.push((toks[eq - 1].line, name, toks[k + 1..eq - 1].iter().map(|t| t.text).collect()));
+        }
+    }
+    found
 }
 
 /// Whether the bare argument `toks[at]` of a call is read: the stage defines the called function
@@ -1013,6 +1091,20 @@ mod tests {
         assert_eq!(out, "#version 120\n#ifdef A\nfloat a;\n#endif\nfloat b;\n\nvoid main() {}\n");
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 6);
+    }
+
+    #[test]
+    fn a_local_const_from_a_variable_loses_its_const() {
+        // As Ebin writes it: `cfloat` is `const float`, and the parameter is no constant.
+        let text = "#version 120\n#define cfloat const float\nconst float halfway = 0.5;\nfloat f(cfloat depth) {\n    cfloat centre = depth * halfway;\n    const float scale = 2.0 * halfway;\n    const float twice = centre * 2.0;\n    return twice * scale;\n}\nvoid main() { gl_FragColor = vec4(f(1.0)); }\n";
+        let met = "#version 120\n\nconst float halfway = 0.5;\nfloat f(const float depth) {\n    const float centre = depth * halfway;\n    const float scale = 2.0 * halfway;\n    const float twice = centre * 2.0;\n    return twice * scale;\n}\nvoid main() { gl_FragColor = vec4(f(1.0)); }\n";
+        let (out, rewrites) = for_strict_drivers(text, met, Stage::Fragment, &[]);
+        assert!(out.contains("    float centre = depth * halfway;"), "{out}");
+        assert!(out.contains("     float twice = centre * 2.0;"), "{out}");
+        assert!(out.contains("const float scale = 2.0 * halfway;") && out.contains("float f(cfloat depth)"), "{out}");
+        assert_eq!(rewrites.len(), 1, "{rewrites:?}");
+        assert_eq!(rewrites[0].line, 5);
+        assert!(rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);
     }
 
     #[test]
