@@ -207,10 +207,14 @@ fn split_sampler_type(ty: &str) -> Option<(&'static str, &'static str)> {
         "samplerCube" => ("textureCube", "sampler"),
         "sampler2DShadow" => ("texture2D", "samplerShadow"),
         "sampler2DArray" => ("texture2DArray", "sampler"),
+        "isampler1D" => ("itexture1D", "sampler"),
+        "usampler1D" => ("utexture1D", "sampler"),
         "isampler2D" => ("itexture2D", "sampler"),
         "usampler2D" => ("utexture2D", "sampler"),
         "isampler3D" => ("itexture3D", "sampler"),
         "usampler3D" => ("utexture3D", "sampler"),
+        "isampler2DArray" => ("itexture2DArray", "sampler"),
+        "usampler2DArray" => ("utexture2DArray", "sampler"),
         _ => return None,
     })
 }

@@ -151,9 +151,12 @@ pub(crate) struct EmptyKind {
 impl EmptyKind {
     /// The empty texture a sampler or image uniform of GL type `utype` reads, and whether it is
     /// an image; `None` for a plain 2D sampler (bound by name) and for types with no such
-    /// stand-in (1D, buffer and multisampled textures, shadow cubes and arrays).
+    /// stand-in (buffer and multisampled textures, shadow cubes and arrays).
     fn of_uniform(utype: u32) -> Option<(EmptyKind, bool)> {
         let (target, scalar, image) = match utype {
+            glow::SAMPLER_1D => (glow::TEXTURE_1D, glow::FLOAT, false),
+            glow::INT_SAMPLER_1D => (glow::TEXTURE_1D, glow::INT, false),
+            glow::UNSIGNED_INT_SAMPLER_1D => (glow::TEXTURE_1D, glow::UNSIGNED_INT, false),
             glow::SAMPLER_3D => (glow::TEXTURE_3D, glow::FLOAT, false),
             glow::INT_SAMPLER_3D => (glow::TEXTURE_3D, glow::INT, false),
             glow::UNSIGNED_INT_SAMPLER_3D => (glow::TEXTURE_3D, glow::UNSIGNED_INT, false),
@@ -242,6 +245,7 @@ impl GlHarnessTextures {
             let t = gl.create_texture().map_err(gl_err("texture"))?;
             gl.bind_texture(kind.target, Some(t));
             match kind.target {
+                glow::TEXTURE_1D => gl.tex_image_1d(kind.target, 0, internal as i32, 1, 0, format, ty, data()),
                 glow::TEXTURE_3D | glow::TEXTURE_2D_ARRAY => gl.tex_image_3d(kind.target, 0, internal as i32, 1, 1, 1, 0, format, ty, data()),
                 glow::TEXTURE_CUBE_MAP => {
                     for face in 0..6 {

@@ -657,7 +657,7 @@ fn outputs_past_the_draw_buffers_are_dropped() {
 }
 
 /// A storage image (tests/packs/storage_image: an Iris custom image that composite stores into)
-/// beside samplers of three other kinds: OpenGL draws the program, each sampler on a texture
+/// beside samplers of four other kinds: OpenGL draws the program, each sampler on a texture
 /// unit of its own and the image on an image unit, reading zero as wgpu's empty textures do; the
 /// renderers agree on every other step, and the report says the image is not held.
 #[test]
