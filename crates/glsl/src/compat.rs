@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use crate::Stage;
 use crate::lower::is_implicit_level_lookup;
 use crate::preprocess::VersionDirective;
-use crate::token::{Token, TokenKind, argument_qualifiers, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
+use crate::token::{Token, TokenKind, argument_count, argument_qualifiers, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
@@ -315,20 +315,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             if !called || tokens[i].kind != TokenKind::Ident || !is_implicit_level_lookup(name) || !met.iter().any(|t| t.is_ident(name)) {
                 continue;
             }
-            let Some(close) = matching_close(&significant, &tokens, k + 1) else { continue };
-            let mut depth = 0usize;
-            let commas = significant[k + 2..close]
-                .iter()
-                .filter(|&&a| {
-                    match tokens[a].text {
-                        "(" | "[" => depth += 1,
-                        ")" | "]" => depth = depth.saturating_sub(1),
-                        _ => {}
-                    }
-                    depth == 0 && tokens[a].is_punct(",")
-                })
-                .count();
-            if commas == 2 {
+            if argument_count(&significant, &tokens, k + 1) == 3 {
                 let lod = format!("{}Lod", replaced[i].as_deref().unwrap_or(name));
                 biased.push((tokens[i].line, name, lod.clone()));
                 replaced[i] = Some(lod);

@@ -64,7 +64,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::preprocess::literal_integer_expression;
-use crate::token::{Token, TokenKind, brace_depths, function_definitions, matching_close, tokenize};
+use crate::token::{Token, TokenKind, argument_count, brace_depths, function_definitions, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -955,18 +955,7 @@ impl<'a> Lowering<'_, 'a> {
 
     /// The number of arguments of the call whose `(` is `sig[open]`.
     fn call_arguments(&self, sig: &[usize], open: usize) -> usize {
-        let Some(close) = matching_close(sig, &self.tokens, open) else { return 0 };
-        let mut depth = 0usize;
-        let mut commas = 0;
-        for &i in &sig[open + 1..close] {
-            match self.tokens[i].text {
-                "(" | "[" => depth += 1,
-                ")" | "]" => depth = depth.saturating_sub(1),
-                "," if depth == 0 => commas += 1,
-                _ => {}
-            }
-        }
-        if close == open + 1 { 0 } else { commas + 1 }
+        argument_count(sig, self.tokens, open)
     }
 
     fn err(&self, index: usize, message: impl Into<String>) -> LowerError {

@@ -353,6 +353,22 @@ pub fn matching_close<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], ope
     None
 }
 
+/// The number of arguments of the call whose `(` is `sig[open]`: commas outside inner brackets,
+/// plus one unless the list is empty; 0 where nothing closes it.
+pub fn argument_count<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], open: usize) -> usize {
+    let Some(close) = matching_close(sig, tokens, open) else { return 0 };
+    let (mut depth, mut commas) = (0usize, 0usize);
+    for &i in &sig[open + 1..close] {
+        match tokens[i].borrow().text {
+            "(" | "[" => depth += 1,
+            ")" | "]" => depth = depth.saturating_sub(1),
+            "," if depth == 0 => commas += 1,
+            _ => {}
+        }
+    }
+    if close == open + 1 { 0 } else { commas + 1 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
