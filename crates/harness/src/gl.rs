@@ -140,19 +140,20 @@ pub(crate) struct GlHarnessTextures {
 
 /// A zero 1x1(x1) texture's target and the kind of value it holds. Samplers and images the
 /// harness makes nothing for read it, as wgpu's empty texture of their kind: 0. A store to an
-/// image bound to it lands outside it, or on its one texel, and is not kept for any other draw.
+/// image lands outside it or on its one texel, which images alone share (never a sampler).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct EmptyKind {
     target: u32,
     /// glow::FLOAT, glow::INT or glow::UNSIGNED_INT.
     scalar: u32,
+    image: bool,
 }
 
 impl EmptyKind {
-    /// The empty texture a sampler or image uniform of GL type `utype` reads, and whether it is
-    /// an image; `None` for a plain 2D sampler (bound by name) and for types with no such
-    /// stand-in (buffer and multisampled textures, shadow cubes and arrays).
-    fn of_uniform(utype: u32) -> Option<(EmptyKind, bool)> {
+    /// The empty texture a sampler or image uniform of GL type `utype` reads; `None` for a plain
+    /// 2D sampler (bound by name) and for types with no such stand-in (buffer and multisampled
+    /// textures, shadow cubes and arrays).
+    fn of_uniform(utype: u32) -> Option<EmptyKind> {
         let (target, scalar, image) = match utype {
             glow::SAMPLER_1D => (glow::TEXTURE_1D, glow::FLOAT, false),
             glow::INT_SAMPLER_1D => (glow::TEXTURE_1D, glow::INT, false),
@@ -177,7 +178,7 @@ impl EmptyKind {
             glow::UNSIGNED_INT_IMAGE_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::UNSIGNED_INT, true),
             _ => return None,
         };
-        Some((EmptyKind { target, scalar }, image))
+        Some(EmptyKind { target, scalar, image })
     }
 
     /// Internal format, pixel format and type of its texel (an image is bound with the
@@ -784,9 +785,9 @@ unsafe fn set_uniforms(
             }
             // Samplers of the other kinds and images read zero from a texture of their own
             // kind, each on a unit of its own (samplers of two types on one unit are an error).
-            if let Some((kind, image)) = EmptyKind::of_uniform(active.utype) {
+            if let Some(kind) = EmptyKind::of_uniform(active.utype) {
                 let texture = textures.harness.empty(gl, kind)?;
-                if image {
+                if kind.image {
                     gl.bind_image_texture(image_unit, Some(texture), 0, true, 0, glow::READ_WRITE, kind.formats().0);
                     gl.uniform_1_i32(location.as_ref(), image_unit as i32);
                     image_unit += 1;
