@@ -14,6 +14,9 @@ use crate::lower::is_implicit_level_lookup;
 use crate::preprocess::VersionDirective;
 use crate::token::{Token, TokenKind, argument_count, argument_qualifiers, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
 
+/// Tokens no paste joins into one with what comes before them.
+const PASTE_NEVER_JOINS: [&str; 8] = ["(", ")", ",", ";", "[", "]", "{", "}"];
+
 /// Words GLSL reserves in every version (Mesa: "illegal use of reserved word").
 pub const RESERVED: [&str; 35] = [
     "asm", "class", "union", "enum", "typedef", "template", "this", "packed", "goto", "inline", "noinline", "volatile", "public",
@@ -160,6 +163,25 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let mut open_conditionals = 0usize;
     for (i, d, on_line) in directive_lines(&tokens, &significant) {
         let no_name = on_line.first().is_some_and(|&e| tokens[e].kind != TokenKind::Ident);
+        // A paste with a bracket or separator (`b ##(x)`) gives no single token: Mesa refuses
+        // it, Iris's preprocessor keeps the two tokens, as the text without the `##` has them.
+        if tokens[d].is_ident("define") {
+            let lone = on_line.windows(2).filter(|w| tokens[w[0]].is_punct("##") && PASTE_NEVER_JOINS.iter().any(|p| tokens[w[1]].is_punct(p)));
+            let pastes: Vec<usize> = lone.map(|w| w[0]).collect();
+            if let (Some(&name), false) = (on_line.first(), pastes.is_empty()) {
+                for &e in &pastes {
+                    replaced[e] = Some(String::new());
+                }
+                rewrites.push(Rewrite {
+                    line: tokens[i].line,
+                    what: format!(
+                        "`##` before a bracket or separator in the macro `{}`, which gives no single token, removed as Iris's preprocessor keeps the two tokens ({} pastes)",
+                        tokens[name].text,
+                        pastes.len()
+                    ),
+                });
+            }
+        }
         match tokens[d].text {
             "if" | "ifdef" | "ifndef" => open_conditionals += 1,
             "endif" if open_conditionals == 0 => {
@@ -1069,6 +1091,16 @@ mod tests {
         // Before any code it is where it belongs.
         let clean = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n";
         assert_eq!(for_strict_drivers(clean, clean, Stage::Fragment, &[]), (clean.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_paste_before_a_bracket_is_removed() {
+        let text = "#version 330\n#define CONVERT(a, b, x) convert_ ## a ## _to_ ## b ##(x)\nvec3 convert_1_to_2(vec3 c) { return c; }\nvoid main() { gl_FragColor = vec4(CONVERT(1, 2, vec3(1.0)), 1.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert!(out.contains("#define CONVERT(a, b, x) convert_ ## a ## _to_ ## b (x)"), "{out}");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 2);
+        assert!(rewrites[0].what.contains("`CONVERT`"), "{}", rewrites[0].what);
     }
 
     #[test]

@@ -17,9 +17,17 @@ use crate::token::{Token, TokenKind, tokenize};
 
 /// OptiFine's limit on `#include` nesting.
 pub const MAX_INCLUDE_DEPTH: usize = 10;
+/// The `#include` nesting followed for Iris, which has no limit of its own (Luna5ama/Alpha-Piscium
+/// nests 13 deep); a bound on this tool's recursion.
+pub const MAX_IRIS_INCLUDE_DEPTH: usize = 32;
 /// Largest preprocessed text of one stage, in bytes: includes repeated many times over, or
 /// macros that expand exponentially, stop here with an error instead of exhausting memory.
 pub const MAX_OUTPUT_BYTES: usize = 8 << 20;
+/// Largest text of one stage with its `#include`s spliced in, before any `#if` is read. Iris
+/// splices every include whatever its guards say (its `IncludeProcessor`), so a released pack
+/// that includes its libraries from many files reaches tens of MB here (Luna5ama/Alpha-Piscium:
+/// 24 MB) and a few hundred KB once its guards are read.
+pub const MAX_SPLICED_BYTES: usize = 64 << 20;
 /// Largest number of tokens one macro invocation may expand to.
 pub const MAX_EXPANSION_TOKENS: usize = 1 << 18;
 /// Deepest nesting of parentheses and operators in an `#if` expression.
@@ -119,7 +127,7 @@ pub struct PreprocessOptions {
     /// Macros defined before the first line, in order (OptiFine's standard macros).
     pub predefined: Vec<(String, String)>,
     /// How the loader reads an `#include` line's path.
-    pub include_quotes: IncludeQuotes,
+    pub include_rules: IncludeRules,
     /// Take what NVIDIA's compiler takes and Mesa and AMD refuse: an `#extension` after code, a
     /// macro redefined with another body (the last definition holds; each is recorded in
     /// [`Preprocessed::redefinitions`]). The renderer draws what lenient drivers run, and
@@ -127,23 +135,32 @@ pub struct PreprocessOptions {
     pub lenient: bool,
 }
 
-/// Whether an `#include` path must be quoted: OptiFine takes `#include "path"` only (any other
-/// line reaches the compiler as written); Iris also takes `#include path`, dropping a quote at
-/// either end.
+/// How the loader reads `#include`s. OptiFine takes `#include "path"` only (any other line
+/// reaches the compiler as written) and stops at 10 levels; Iris also takes `#include path`,
+/// dropping a quote at either end, and follows any depth, of which this tool follows
+/// [`MAX_IRIS_INCLUDE_DEPTH`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum IncludeQuotes {
+pub enum IncludeRules {
     #[default]
-    Required,
-    Optional,
+    OptiFine,
+    Iris,
 }
 
-impl IncludeQuotes {
+impl IncludeRules {
+    /// The deepest nesting of includes followed, and what it is.
+    fn depth_limit(self) -> (usize, &'static str) {
+        match self {
+            IncludeRules::OptiFine => (MAX_INCLUDE_DEPTH, "OptiFine's limit"),
+            IncludeRules::Iris => (MAX_IRIS_INCLUDE_DEPTH, "Iris has none; this tool follows no deeper"),
+        }
+    }
+
     /// The path an `#include` line names, given the rest of the line after `include`.
     fn target(self, rest: &str) -> Option<&str> {
         let rest = rest.trim();
         match self {
-            IncludeQuotes::Required => rest.strip_prefix('"').and_then(|r| r.split('"').next()),
-            IncludeQuotes::Optional => {
+            IncludeRules::OptiFine => rest.strip_prefix('"').and_then(|r| r.split('"').next()),
+            IncludeRules::Iris => {
                 let rest = rest.strip_prefix('"').unwrap_or(rest);
                 Some(rest.strip_suffix('"').unwrap_or(rest)).filter(|t| !t.is_empty())
             }
@@ -174,7 +191,7 @@ pub fn preprocess(
         },
         include_stack: Vec::new(),
         seen_code: false,
-        include_quotes: options.include_quotes,
+        include_rules: options.include_rules,
         lenient: options.lenient,
     };
     for (name, value) in &options.predefined {
@@ -262,7 +279,7 @@ struct Preprocessor<'p> {
     include_stack: Vec<(String, u32)>,
     /// A line of code (not a directive) has been emitted.
     seen_code: bool,
-    include_quotes: IncludeQuotes,
+    include_rules: IncludeRules,
     lenient: bool,
 }
 
@@ -551,9 +568,10 @@ impl Preprocessor<'_> {
 
     fn include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, at)));
-        let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
-        if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
-            return Err(err_at(format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)")));
+        let resolved = included_path(path, args, self.include_rules).map_err(err_at)?;
+        let (depth, why) = self.include_rules.depth_limit();
+        if self.include_stack.len() >= depth {
+            return Err(err_at(format!("includes nest deeper than {depth} levels ({why})")));
         }
         if resolved == path || self.include_stack.iter().any(|(p, _)| *p == resolved) {
             let mut chain: Vec<String> = self.include_stack.iter().map(|(p, _)| p.clone()).collect();
@@ -634,8 +652,8 @@ impl Preprocessor<'_> {
     /// preprocessing: the files must exist, as they must for OptiFine.
     fn check_inactive_include(&mut self, path: &str, at: u32, args: &[Token<'_>]) -> Result<(), Diagnostic> {
         let err_at = |msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, at)));
-        let resolved = included_path(path, args, self.include_quotes).map_err(err_at)?;
-        expand_includes_mapped(self.provider, &resolved, "", self.include_quotes).map(drop).map_err(|e| {
+        let resolved = included_path(path, args, self.include_rules).map_err(err_at)?;
+        expand_includes_mapped(self.provider, &resolved, "", self.include_rules).map(drop).map_err(|e| {
             let note = "OptiFine splices includes in before it evaluates #if, so this include is resolved although its branch is not taken";
             let e = if e.location.is_none() { Diagnostic { location: Some(Location::line(path, at)), ..e } } else { e };
             e.with_note(note)
@@ -1040,7 +1058,7 @@ fn parse_version(args: &[Token<'_>]) -> Result<VersionDirective, String> {
 /// (includes inside inactive conditionals are expanded too), and inserts `after_version` after
 /// the `#version` line. The result is what a GL driver or glslangValidator compiles.
 pub fn expand_includes(provider: &dyn FileProvider, entry: &str, after_version: &str) -> Result<String, Diagnostic> {
-    expand_includes_mapped(provider, entry, after_version, IncludeQuotes::Required).map(|(text, _)| text)
+    expand_includes_mapped(provider, entry, after_version, IncludeRules::OptiFine).map(|(text, _)| text)
 }
 
 /// [`expand_includes`] with a map from each line of the result to the pack file and line it
@@ -1049,11 +1067,11 @@ pub fn expand_includes_mapped(
     provider: &dyn FileProvider,
     entry: &str,
     after_version: &str,
-    quotes: IncludeQuotes,
+    rules: IncludeRules,
 ) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
     fn expand(
         provider: &dyn FileProvider,
-        quotes: IncludeQuotes,
+        rules: IncludeRules,
         path: &str,
         stack: &mut Vec<String>,
         out: &mut String,
@@ -1070,7 +1088,7 @@ pub fn expand_includes_mapped(
                 map.push(at());
                 continue;
             };
-            let target = quotes
+            let target = rules
                 .target(rest)
                 .ok_or_else(|| Diagnostic::error(Code::Preprocessor, format!("#include expects a \"quoted\" path, found `{}`", rest.trim()), at()))?;
             let resolved = resolve_include(path, target).map_err(|m| Diagnostic::error(Code::Preprocessor, m, at()))?;
@@ -1078,21 +1096,18 @@ pub fn expand_includes_mapped(
                 let chain = format!("{} -> {resolved}", stack.join(" -> "));
                 return Err(Diagnostic::error(Code::Preprocessor, format!("include cycle: {chain}"), at()));
             }
-            if stack.len() > MAX_INCLUDE_DEPTH {
+            let (depth, why) = rules.depth_limit();
+            if stack.len() > depth {
+                return Err(Diagnostic::error(Code::Preprocessor, format!("includes nest deeper than {depth} levels ({why})"), at()));
+            }
+            if out.len() > MAX_SPLICED_BYTES {
                 return Err(Diagnostic::error(
                     Code::Preprocessor,
-                    format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels (OptiFine's limit)"),
+                    format!("the shader with its includes spliced in grows past {} MiB here", MAX_SPLICED_BYTES >> 20),
                     at(),
                 ));
             }
-            if out.len() > MAX_OUTPUT_BYTES {
-                return Err(Diagnostic::error(
-                    Code::Preprocessor,
-                    format!("the expanded shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20),
-                    at(),
-                ));
-            }
-            expand(provider, quotes, &resolved, stack, out, map)
+            expand(provider, rules, &resolved, stack, out, map)
                 .map_err(|e| if e.location.is_none() { Diagnostic { location: at(), ..e } } else { e })?;
         }
         stack.pop();
@@ -1100,7 +1115,7 @@ pub fn expand_includes_mapped(
     }
     let mut body = String::new();
     let mut map = Vec::new();
-    expand(provider, quotes, entry, &mut Vec::new(), &mut body, &mut map)?;
+    expand(provider, rules, entry, &mut Vec::new(), &mut body, &mut map)?;
     // After the `#version` line, wherever it is (comments may come first), as OptiFine does.
     let inserted = vec![None; after_version.matches('\n').count()];
     let version_line = body.split_inclusive('\n').position(|line| line.trim_start().starts_with("#version"));
@@ -1118,9 +1133,9 @@ pub fn expand_includes_mapped(
 
 /// The pack path an `#include "…"` directive of file `from` names (its arguments after the
 /// directive name).
-fn included_path(from: &str, args: &[Token<'_>], quotes: IncludeQuotes) -> Result<String, String> {
+fn included_path(from: &str, args: &[Token<'_>], rules: IncludeRules) -> Result<String, String> {
     let raw: String = args.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-    let target = quotes.target(&raw).ok_or_else(|| format!("#include expects a \"quoted\" path, found `{raw}`"))?;
+    let target = rules.target(&raw).ok_or_else(|| format!("#include expects a \"quoted\" path, found `{raw}`"))?;
     resolve_include(from, target)
 }
 
@@ -1385,11 +1400,32 @@ mod tests {
         let list = [("a.fsh", "#version 120\n#include lib/b.glsl\nvoid main() {}\n"), ("lib/b.glsl", "float b;\n")];
         let err = run(&list).unwrap_err();
         assert!(err.message.contains("expects a \"quoted\" path") && err.location.unwrap().line == 2, "{}", err.message);
-        let iris = PreprocessOptions { include_quotes: IncludeQuotes::Optional, ..PreprocessOptions::default() };
+        let iris = PreprocessOptions { include_rules: IncludeRules::Iris, ..PreprocessOptions::default() };
         let out = preprocess(&files(&list), "a.fsh", &iris).unwrap();
         assert!(out.text.contains("float b;"), "{}", out.text);
-        assert_eq!(IncludeQuotes::Optional.target(" \"lib/c.glsl\" "), Some("lib/c.glsl"));
-        assert_eq!(IncludeQuotes::Required.target(" \"lib/c.glsl\" // why"), Some("lib/c.glsl"));
+        assert_eq!(IncludeRules::Iris.target(" \"lib/c.glsl\" "), Some("lib/c.glsl"));
+        assert_eq!(IncludeRules::OptiFine.target(" \"lib/c.glsl\" // why"), Some("lib/c.glsl"));
+    }
+
+    #[test]
+    fn iris_follows_includes_deeper_than_optifine_and_stops_at_its_own_bound() {
+        // a.fsh includes l1.glsl, which includes l2.glsl, … down to l{n}.glsl.
+        let chain = |n: usize| -> Vec<(String, String)> {
+            let mut list = vec![("a.fsh".to_string(), "#version 120\n#include \"/l1.glsl\"\nvoid main() {}\n".to_string())];
+            for k in 1..n {
+                list.push((format!("l{k}.glsl"), format!("#include \"/l{}.glsl\"\n", k + 1)));
+            }
+            list.push((format!("l{n}.glsl"), "float deepest;\n".to_string()));
+            list
+        };
+        let provider = |list: &[(String, String)]| list.iter().map(|(p, t)| (p.clone(), Arc::from(t.as_str()))).collect::<HashMap<String, Arc<str>>>();
+        let iris = PreprocessOptions { include_rules: IncludeRules::Iris, ..PreprocessOptions::default() };
+        let thirteen = provider(&chain(13));
+        let err = preprocess(&thirteen, "a.fsh", &PreprocessOptions::default()).unwrap_err();
+        assert!(err.message.contains("deeper than 10 levels (OptiFine's limit)"), "{}", err.message);
+        assert!(preprocess(&thirteen, "a.fsh", &iris).unwrap().text.contains("float deepest;"));
+        let err = preprocess(&provider(&chain(MAX_IRIS_INCLUDE_DEPTH + 2)), "a.fsh", &iris).unwrap_err();
+        assert!(err.message.contains(&format!("deeper than {MAX_IRIS_INCLUDE_DEPTH} levels")), "{}", err.message);
     }
 
     #[test]
@@ -1591,11 +1627,11 @@ mod tests {
         ]);
         let out = expand_includes(&map, "a.fsh", "#define MC_VERSION 12104\n").unwrap();
         assert_eq!(out, "#version 120\n#define MC_VERSION 12104\n#ifdef NEVER\nfloat x;\n#endif\nvoid main() {}\n");
-        let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n", IncludeQuotes::Required).unwrap();
+        let (_, map) = expand_includes_mapped(&map, "a.fsh", "#define A\n", IncludeRules::OptiFine).unwrap();
         let shown: Vec<String> = map.iter().map(|l| l.as_ref().map_or("-".into(), |l| l.to_string())).collect();
         assert_eq!(shown, ["a.fsh:1", "-", "a.fsh:2", "lib/x.glsl:1", "a.fsh:4", "a.fsh:5"]);
         let late = files(&[("a.fsh", "// banner\n\n#version 150 compatibility\nvoid main() {}\n")]);
-        let (text, map) = expand_includes_mapped(&late, "a.fsh", "#define A\n", IncludeQuotes::Required).unwrap();
+        let (text, map) = expand_includes_mapped(&late, "a.fsh", "#define A\n", IncludeRules::OptiFine).unwrap();
         assert_eq!(text, "// banner\n\n#version 150 compatibility\n#define A\nvoid main() {}\n");
         assert_eq!(map[3], None);
         assert_eq!(map[4], Some(Location::line("a.fsh", 4)));

@@ -316,7 +316,7 @@ fn expanded_as_loader_gives_it(
     reading: LoaderReading,
 ) -> Result<ExpandedStage, HarnessError> {
     let expand = |after_version: &str| {
-        preprocess::expand_includes_mapped(provider, path, after_version, preprocess::IncludeQuotes::Required)
+        preprocess::expand_includes_mapped(provider, path, after_version, preprocess::IncludeRules::OptiFine)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))
     };
     let (expanded, line_map) = expand(defines)?;

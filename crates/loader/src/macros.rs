@@ -4,7 +4,7 @@
 //! OptiFine's set, or Iris's, which adds its own names and fixes the quality settings at 1).
 //! This is the one set every part of the toolchain defines.
 
-use tidepack_glsl::preprocess::{IncludeQuotes, PreprocessOptions};
+use tidepack_glsl::preprocess::{IncludeRules, PreprocessOptions};
 
 use crate::loader::Loader;
 
@@ -198,12 +198,12 @@ impl StandardMacros {
     }
 
     pub fn preprocess_options(&self) -> PreprocessOptions {
-        PreprocessOptions { predefined: self.definitions(), include_quotes: self.include_quotes(), lenient: false }
+        PreprocessOptions { predefined: self.definitions(), include_rules: self.include_rules(), lenient: false }
     }
 
     /// How the loader these macros stand for reads `#include` paths: Iris also without quotes.
-    pub fn include_quotes(&self) -> IncludeQuotes {
-        if self.iris_version.is_some() { IncludeQuotes::Optional } else { IncludeQuotes::Required }
+    pub fn include_rules(&self) -> IncludeRules {
+        if self.iris_version.is_some() { IncludeRules::Iris } else { IncludeRules::OptiFine }
     }
 
     /// The macros as `#define` lines, for text handed to a GL driver or glslangValidator.

@@ -7,7 +7,7 @@ use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::programs::with_loader_declarations;
-use tidepack_glsl::preprocess::{IncludeQuotes, expand_includes_mapped};
+use tidepack_glsl::preprocess::{IncludeRules, expand_includes_mapped};
 use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 use tidepack_loader::programs::Program;
@@ -42,14 +42,14 @@ struct StageText {
 pub struct Driver {
     context: GlContext,
     defines: String,
-    include_quotes: IncludeQuotes,
+    include_rules: IncludeRules,
 }
 
 impl Driver {
     /// A headless context; the error names the packages to install.
     pub fn new(macros: &StandardMacros) -> Result<Driver, Diagnostic> {
         let context = GlContext::new().map_err(|e| Diagnostic::error(Code::Driver, e.message, None))?;
-        Ok(Driver { context, defines: macros.define_lines(), include_quotes: macros.include_quotes() })
+        Ok(Driver { context, defines: macros.define_lines(), include_rules: macros.include_rules() })
     }
 
     pub fn describe(&self) -> String {
@@ -80,7 +80,7 @@ impl Driver {
     /// [`within_version`]); `None` when it cannot be expanded (tidepack's preprocessor reported
     /// that already).
     fn stage_text(&self, program: &Program, vertex: bool, path: &str, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Option<StageText> {
-        let (text, map) = expand_includes_mapped(provider, path, &self.defines, self.include_quotes).ok()?;
+        let (text, map) = expand_includes_mapped(provider, path, &self.defines, self.include_rules).ok()?;
         let highest = self.highest_glsl();
         let (text, asked) = within_version(declared(program, vertex, text), highest);
         let version_note = asked.map(|asked| {

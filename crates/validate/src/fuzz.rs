@@ -209,7 +209,7 @@ pub mod targets {
 
     use tidepack_glsl::Stage;
     use tidepack_glsl::lower::{VaryingLayout, lower as lower_stage};
-    use tidepack_glsl::preprocess::{IncludeQuotes, PreprocessOptions, preprocess as preprocess_program};
+    use tidepack_glsl::preprocess::{IncludeRules, PreprocessOptions, preprocess as preprocess_program};
     use tidepack_loader::custom_uniforms::evaluate;
     use tidepack_loader::input::{Limits, read_zip_bytes};
     use tidepack_loader::option_space::{ProfileResolver, profiles};
@@ -234,8 +234,8 @@ pub mod targets {
         let (program, include) = text.split_once('\0').unwrap_or((&text, "float included;\n"));
         let files: HashMap<String, Arc<str>> =
             [("composite.fsh".to_string(), Arc::from(program)), ("lib/a.glsl".to_string(), Arc::from(include))].into();
-        let include_quotes = if data.first().is_some_and(|b| b & 1 == 1) { IncludeQuotes::Optional } else { IncludeQuotes::Required };
-        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_quotes, lenient: false };
+        let include_rules = if data.first().is_some_and(|b| b & 1 == 1) { IncludeRules::Iris } else { IncludeRules::OptiFine };
+        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_rules, lenient: false };
         if let Ok(pre) = preprocess_program(&files, "composite.fsh", &options) {
             for line in 1..=pre.text.matches('\n').count() as u32 {
                 if let Some(at) = pre.location(line) {
