@@ -314,7 +314,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // become the lookups that replaced them, as Iris renames them.
     let profile = version_at.and_then(|at| significant.get(at + 3)).map(|&i| tokens[i].text).filter(|p| matches!(*p, "core" | "compatibility" | "es"));
     if (VersionDirective { number: version, profile: profile.map(str::to_string) }).is_core() {
-        let replacement = |name: &str| {
+        let replacement = |_: usize, name: &str| {
             Some(match name {
                 "texture2D" | "texture3D" => "texture",
                 "texture2DLod" | "texture3DLod" => "textureLod",
@@ -323,30 +323,24 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             })
             .map(str::to_string)
         };
-        if let Some((line, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
-            rewrites.push(Rewrite { line, what: format!("texture2D() & co., which a core profile lacks, renamed to texture() & co. ({renamed} calls)") });
+        if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
+            rewrites.push(Rewrite {
+                line: tokens[first].line,
+                what: format!("texture2D() & co., which a core profile lacks, renamed to texture() & co. ({renamed} calls)"),
+            });
         }
     }
 
     // A bias in a vertex stage, which has no level to bias: NVIDIA takes it as the level.
     if stage == Stage::Vertex {
-        let mut biased = Vec::new();
-        for (k, &i) in significant.iter().enumerate() {
-            let name = tokens[i].text;
-            let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
-            if !called || tokens[i].kind != TokenKind::Ident || !is_implicit_level_lookup(name) || !met.iter().any(|t| t.is_ident(name)) {
-                continue;
-            }
-            if argument_count(&significant, &tokens, k + 1) == 3 {
-                let lod = format!("{}Lod", replaced[i].as_deref().unwrap_or(name));
-                biased.push((tokens[i].line, name, lod.clone()));
-                replaced[i] = Some(lod);
-            }
-        }
-        if let Some(&(line, name, ref lod)) = biased.first() {
+        let with_bias = |k: usize, name: &str| {
+            (is_implicit_level_lookup(name) && argument_count(&significant, &tokens, k + 1) == 3).then(|| format!("{name}Lod"))
+        };
+        if let Some((first, biased)) = rename_calls(&tokens, &significant, &met, &mut replaced, with_bias) {
+            let (name, lod) = (tokens[first].text, replaced[first].as_deref().unwrap_or_default());
             rewrites.push(Rewrite {
-                line,
-                what: format!("`{name}()` with a bias in a vertex stage, which has no level to bias, reads the bias as the level as NVIDIA does: {lod}() ({} calls)", biased.len()),
+                line: tokens[first].line,
+                what: format!("`{name}()` with a bias in a vertex stage, which has no level to bias, reads the bias as the level as NVIDIA does: {lod}() ({biased} calls)"),
             });
         }
     }
@@ -375,16 +369,18 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // From 1.30 on, GL_EXT_gpu_shader4's lookups have GLSL names of their own, which lenient
     // drivers take them as.
     if version >= 130 && !tokens.iter().any(|t| t.is_ident(GPU_SHADER4)) {
-        let replacement = |name: &str| GPU_SHADER4_FUNCTIONS.contains(&name).then(|| glsl130_name(name));
-        if let Some((line, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
+        let replacement = |_: usize, name: &str| GPU_SHADER4_FUNCTIONS.contains(&name).then(|| glsl130_name(name));
+        if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
             rewrites.push(Rewrite {
-                line,
+                line: tokens[first].line,
                 what: format!("{GPU_SHADER4}'s lookups (texture2DGrad() & co.), which GLSL {version} lacks, renamed to its own ({renamed} calls)"),
             });
         }
     }
 
     let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    // The function bodies of the text, as ranges of `sig`.
+    let bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
     // A function named as a statement of its own, with no call (`atmosphereCommons;`): NVIDIA
     // ignores it, Mesa refuses it.
     let named = functions_named_as_statements(&sig);
@@ -404,11 +400,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // what the driver meets; the `const` (or the macro holding it, `cfloat`) goes from each
     // declaration of that name inside a function.
     let not_constant = constants_not_constant(&met);
-    let raw_bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
     let mut unconst: Vec<(u32, &str)> = Vec::new();
     for k in 1..sig.len().saturating_sub(1) {
         let Some((_, name, type_tokens)) = not_constant.iter().find(|(_, name, _)| sig[k].is_ident(name)) else { continue };
-        if !sig[k + 1].is_punct("=") || !raw_bodies.iter().any(|b| b.contains(&k)) {
+        if !sig[k + 1].is_punct("=") || !bodies.iter().any(|b| b.contains(&k)) {
             continue;
         }
         let start = sig[..k].iter().rposition(|t| ["{", "}", ";"].iter().any(|x| t.is_punct(x))).map_or(0, |p| p + 1);
@@ -475,7 +470,6 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let zeros = struct_zeros(&met, version);
     let unset = locals_read_unset(&met);
     let mut declared_at: Vec<(&str, u32)> = Vec::new();
-    let bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
     for (k, w) in sig.windows(3).enumerate() {
         let statement_start = k.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| sig[p].is_punct(x)));
         if bodies.iter().any(|b| b.contains(&k))
@@ -555,28 +549,30 @@ fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize
 /// (`NAME = …`, a branch's included) nor a bare argument of a call (an `out` parameter may
 /// write it): `NAME += …`, `NAME.x = …` or a read.
 /// Renames each call (a name before `(`) of the significant tokens to what `replacement` gives
-/// for its name, where the driver meets that name; the line of the first renamed and how many.
+/// for its place in `significant` and its name as the text stands so far (a rewrite before may
+/// have renamed it), where the driver meets the name; the token index of the first renamed and
+/// how many.
 fn rename_calls(
     tokens: &[Token],
     significant: &[usize],
     met: &[&Token],
     replaced: &mut [Option<String>],
-    replacement: impl Fn(&str) -> Option<String>,
-) -> Option<(u32, usize)> {
+    replacement: impl Fn(usize, &str) -> Option<String>,
+) -> Option<(usize, usize)> {
     let mut renamed = 0;
-    let mut first_line = None;
+    let mut first = None;
     for (k, &i) in significant.iter().enumerate() {
         let called = significant.get(k + 1).is_some_and(|&n| tokens[n].is_punct("("));
-        if !called {
+        if !called || !met.iter().any(|t| t.is_ident(tokens[i].text)) {
             continue;
         }
-        if let Some(new_name) = replacement(tokens[i].text).filter(|_| met.iter().any(|t| t.is_ident(tokens[i].text))) {
+        if let Some(new_name) = replacement(k, replaced[i].as_deref().unwrap_or(tokens[i].text)) {
             replaced[i] = Some(new_name);
             renamed += 1;
-            first_line.get_or_insert(tokens[i].line);
+            first.get_or_insert(i);
         }
     }
-    first_line.map(|line| (line, renamed))
+    first.map(|first| (first, renamed))
 }
 
 /// The zero value of each struct type `toks` defines, as a constructor (`Sky(vec3(0), 0.0 …)`),

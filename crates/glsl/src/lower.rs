@@ -238,8 +238,13 @@ fn is_varying_qualifier(word: &str) -> bool {
     matches!(word, "flat" | "smooth" | "noperspective" | "centroid" | "invariant")
 }
 
-fn is_memory_qualifier(word: &str) -> bool {
+pub fn is_memory_qualifier(word: &str) -> bool {
     matches!(word, "readonly" | "writeonly" | "coherent" | "volatile" | "restrict")
+}
+
+/// Whether `ty` names a storage image type (`image2D`, `uimage3D`, `iimageCube`, `imageBuffer`, …).
+pub fn is_image_type(ty: &str) -> bool {
+    ["image", "iimage", "uimage"].iter().any(|p| ty.strip_prefix(p).is_some_and(|rest| rest.starts_with(['1', '2', '3', 'C', 'B'])))
 }
 
 /// Storage image types and the format an image of that type gets when it declares none.

@@ -902,16 +902,17 @@ pub(crate) fn block_ids(provider: &dyn FileProvider, macros: &Macros) -> HashMap
 /// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the
 /// type) a stage's text declares at file scope, by name.
 pub fn image_uniforms(text: &str) -> Vec<String> {
+    use tidepack_glsl::lower::{is_image_type, is_memory_qualifier};
     let Ok(tokens) = tokenize(text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    let is_image_type = |t: &str| ["image", "iimage", "uimage"].iter().any(|p| t.strip_prefix(p).is_some_and(|rest| rest.ends_with('D') || rest.contains("Array") || rest == "Cube" || rest == "Buffer"));
     let mut names = Vec::new();
     for (k, t) in sig.iter().enumerate() {
-        if t.kind != TokenKind::Ident || !t.is_ident("uniform") {
+        if !t.is_ident("uniform") {
             continue;
         }
-        // Qualifiers between `uniform` and the type (`coherent`, `writeonly`, …).
-        let Some(type_at) = (k + 1..sig.len()).find(|&m| sig[m].kind != TokenKind::Ident || !matches!(sig[m].text, "coherent" | "volatile" | "restrict" | "readonly" | "writeonly" | "highp" | "mediump" | "lowp")) else { continue };
+        // Memory and precision qualifiers may stand between `uniform` and the type.
+        let qualifier = |m: &usize| sig[*m].kind == TokenKind::Ident && (is_memory_qualifier(sig[*m].text) || matches!(sig[*m].text, "highp" | "mediump" | "lowp"));
+        let Some(type_at) = (k + 1..sig.len()).find(|m| !qualifier(m)) else { continue };
         if is_image_type(sig[type_at].text) && let Some(name) = sig.get(type_at + 1).filter(|n| n.kind == TokenKind::Ident) {
             names.push(name.text.to_string());
         }

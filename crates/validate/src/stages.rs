@@ -177,8 +177,7 @@ fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
     let significant: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     for (k, t) in significant.iter().enumerate() {
         let storage_block = t.is_ident("buffer") && significant.get(k + 1).is_some_and(|n| n.kind == tidepack_glsl::token::TokenKind::Ident);
-        let image = t.kind == tidepack_glsl::token::TokenKind::Ident
-            && ["image", "iimage", "uimage"].iter().any(|p| t.text.strip_prefix(p).is_some_and(|rest| rest.starts_with(['1', '2', '3', 'C', 'B'])));
+        let image = t.kind == tidepack_glsl::token::TokenKind::Ident && tidepack_glsl::lower::is_image_type(t.text);
         if storage_block || image {
             let what = if storage_block { "shader storage blocks (`buffer`) need OpenGL 4.3" } else { "images need OpenGL 4.2" };
             found.push(macos(format!("{what}; macOS stops at 4.1, so the program does not load there"), pre.location(t.line)));
