@@ -305,18 +305,19 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
-/// A stage's text with its includes expanded and `defines` after `#version`; where the loader
-/// resolves `#version` first ([`LoaderReading::resolves_version`]) and the pack chose it inside
+/// A stage's text with its includes expanded by the loader's rules (`macros`) and `defines`
+/// after `#version`; where the loader resolves `#version` first ([`LoaderReading::resolves_version`]) and the pack chose it inside
 /// an `#if`, with the chosen directive put first ([`iris::version_resolved_on_top`]).
 fn expanded_as_loader_gives_it(
     provider: &dyn FileProvider,
     path: &str,
+    macros: &preprocess::PreprocessOptions,
     defines: &str,
     preprocessed: &preprocess::Preprocessed,
     reading: LoaderReading,
 ) -> Result<ExpandedStage, HarnessError> {
     let expand = |after_version: &str| {
-        preprocess::expand_includes_mapped(provider, path, after_version, preprocess::IncludeRules::OptiFine)
+        preprocess::expand_includes_mapped(provider, path, after_version, macros.include_rules)
             .map_err(|d| diag_error(&format!("{path} includes"), &[d]))
     };
     let (expanded, line_map) = expand(defines)?;
@@ -483,7 +484,7 @@ pub(crate) fn load_program_files(
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
         let ExpandedStage { text: expanded, line_map, version_put_first } =
-            expanded_as_loader_gives_it(provider, &path, &defines, &stage.preprocessed, reading)?;
+            expanded_as_loader_gives_it(provider, &path, macros, &defines, &stage.preprocessed, reading)?;
         let lines_from = |at: &Location| lines_from(&line_map, at);
         let redefined = redefined_lines(&stage.preprocessed, &line_map);
         let located = |line: u32, what: &str| located_rewrite(&line_map, &path, line, what);
@@ -600,7 +601,7 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, defines, &preprocessed, reading)?;
+    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, reading)?;
     let redefined = redefined_lines(&preprocessed, &line_map);
     let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
     let mut gl_rewrites: Vec<String> = version_put_first.into_iter().map(|what| format!("{path}: {what}")).collect();

@@ -426,10 +426,11 @@ fn our_pack_is_given_to_opengl_as_written() {
     }
 }
 
-/// A `#version` the pack chooses inside an `#if` of an include (tests/packs/version_chosen_in_include):
-/// under Iris, whose preprocessor resolves it, both renderers draw the program, OpenGL from the
-/// text with the chosen `#version` first and the loader's macros after it, and the report says
-/// so.
+/// A `#version` the pack chooses inside an `#if` of an include (tests/packs/version_chosen_in_include),
+/// which composite.fsh includes by an unquoted path, as Iris alone reads it: under Iris, whose
+/// preprocessor resolves it, both renderers draw the program, OpenGL from the text with its
+/// includes spliced by Iris's rules, the chosen `#version` first and the loader's macros after
+/// it, and the report says so.
 #[test]
 fn a_version_chosen_in_an_if_is_given_first_under_iris() {
     let configuration = Configuration { loader: Loader::Iris, ..Configuration::default() };

@@ -1,4 +1,4 @@
-#include "/lib/version.glsl"
+#include /lib/version.glsl
 uniform sampler2D colortex0;
 varying vec2 texcoord;
 void main() {
