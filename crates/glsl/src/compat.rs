@@ -260,6 +260,27 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             replaced[number] = Some("130".into());
             rewrites.push(Rewrite { line: tokens[number].line, what: format!("#version {version} raised to 130 for {what}") });
             version = 130;
+            // GLSL 1.30 keeps `varying` but refuses an interpolation qualifier on it, which
+            // GL_EXT_gpu_shader4 had allowed: `flat varying` becomes `flat out` or `flat in`.
+            let direction = match stage {
+                Stage::Vertex => Some("out"),
+                Stage::Fragment => Some("in"),
+                _ => None,
+            };
+            let qualified: Vec<usize> = significant
+                .windows(2)
+                .filter(|w| GPU_SHADER4_QUALIFIERS.iter().chain(&["smooth"]).any(|q| tokens[w[0]].is_ident(q)) && tokens[w[1]].is_ident("varying"))
+                .map(|w| w[1])
+                .collect();
+            if let (Some(direction), Some(&first)) = (direction, qualified.first()) {
+                for &i in &qualified {
+                    replaced[i] = Some(direction.into());
+                }
+                rewrites.push(Rewrite {
+                    line: tokens[first].line,
+                    what: format!("`varying` after an interpolation qualifier, which GLSL 1.30 refuses, made `{direction}` ({} declarations)", qualified.len()),
+                });
+            }
         }
     }
 
@@ -1241,6 +1262,17 @@ mod tests {
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 120", "#version 130"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 120 raised to 130 for `switch`, a GLSL 1.30 statement".into() }]);
+    }
+
+    #[test]
+    fn a_flat_varying_of_a_stage_raised_to_130_is_declared_in_or_out() {
+        let vertex = "#version 120\nuniform int mode;\nflat varying vec3 n;\nvarying vec2 uv;\nvoid main() { switch (mode) { default: break; } n = gl_Normal; uv = vec2(0.0); gl_Position = ftransform(); }\n";
+        let (out, rewrites) = for_strict_drivers(vertex, vertex, Stage::Vertex, &[]);
+        assert_eq!(out, vertex.replace("#version 120", "#version 130").replace("flat varying", "flat out"));
+        assert_eq!(rewrites[1], Rewrite { line: 3, what: "`varying` after an interpolation qualifier, which GLSL 1.30 refuses, made `out` (1 declarations)".into() });
+        let fragment = "#version 120\nflat varying vec3 n;\nvoid main() { gl_FragColor = vec4(round(n), 1.0); }\n";
+        let (out, _) = for_strict_drivers(fragment, fragment, Stage::Fragment, &[]);
+        assert_eq!(out, fragment.replace("#version 120", "#version 130").replace("flat varying", "flat in"));
     }
 
     #[test]

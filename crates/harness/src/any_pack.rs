@@ -104,6 +104,9 @@ pub struct AnyPack {
     pub properties: Properties,
     /// What the pack uses that the frame does not imitate, one line each.
     pub not_modelled: Vec<String>,
+    /// Files the programs name that the pack holds only under a name differing in case, read
+    /// from that file as Windows reads a pack folder: the name, and the file's.
+    pub read_by_case: BTreeMap<String, String>,
     /// Programs the loader would run that could not be loaded, with the reason.
     pub failed: Vec<(String, String)>,
     /// Programs `program.<name>.enabled` turns off for the chosen options: as if the pack had
@@ -380,7 +383,7 @@ impl AnyPack {
         let property_macros = property_macros(&standard, &declared, &options);
         let properties_text = files.texts.get(properties::PATH).map_or("", |t| &**t);
         let properties = Properties::parse(properties_text, &property_macros);
-        let provider = SetProvider::new(files, &options);
+        let provider = SetProvider::new(files, &options).ignoring_case();
         let all = find_programs(files.files.keys());
         let world = files.world_folder(&configuration.dimension, loader);
         let present: BTreeMap<&str, &programs::Program> =
@@ -488,6 +491,7 @@ impl AnyPack {
             properties,
             disabled,
             not_modelled,
+            read_by_case: provider.read_by_case(),
             failed,
         })
     }
@@ -518,14 +522,17 @@ impl AnyPack {
     }
 
     /// What the OpenGL text of each program had rewritten for a strict driver, as
-    /// `program: file:line: what`, in program order.
+    /// `program: file:line: what`, in program order, after the files read by a name differing
+    /// in case.
     pub fn gl_rewrites(&self) -> Vec<String> {
-        self.programs()
-            .flat_map(|p| {
-                let geometry = p.geometry.iter().flat_map(|g| &g.gl_rewrites);
-                p.vertex.gl_rewrites.iter().chain(geometry).chain(&p.fragment.gl_rewrites).map(move |r| format!("{}: {r}", p.name))
-            })
-            .collect()
+        let by_case = self.read_by_case.iter().map(|(name, file)| {
+            format!("`{name}` read from `{file}`, whose name differs only in case, as Windows' file system gives a pack folder")
+        });
+        let programs = self.programs().flat_map(|p| {
+            let geometry = p.geometry.iter().flat_map(|g| &g.gl_rewrites);
+            p.vertex.gl_rewrites.iter().chain(geometry).chain(&p.fragment.gl_rewrites).map(move |r| format!("{}: {r}", p.name))
+        });
+        by_case.chain(programs).collect()
     }
 
     /// The first program of `chain` the pack has: what the loader draws with.

@@ -126,24 +126,25 @@ pub fn count_differing(a: &FloatImage, b: &FloatImage, threshold: f32) -> usize 
     a.pixels.iter().zip(&b.pixels).filter(|(p, q)| pixels_differ(p, q, threshold)).count()
 }
 
-/// Per pixel, whether the `side` x `side` block it lies in (blocks from the first pixel on; the
-/// last row and column of blocks may be smaller) has the same mean RGB in both images, clamped
-/// to 0..1 as the displayed image is, to within `threshold` in every channel.
-pub fn block_means_agree(a: &FloatImage, b: &FloatImage, side: u32, threshold: f32) -> Vec<bool> {
+/// Per pixel, how far apart the mean RGB of the `side` x `side` block it lies in is between the
+/// two images (blocks from the first pixel on; the last row and column of blocks may be
+/// smaller): the largest channel's difference, with both clamped to 0..1 as the displayed image
+/// is.
+pub fn block_mean_differences(a: &FloatImage, b: &FloatImage, side: u32) -> Vec<f32> {
     assert_eq!((a.width, a.height), (b.width, b.height), "images of different sizes");
     let (w, h, side) = (a.width as usize, a.height as usize, side.max(1) as usize);
-    let mut agree = vec![false; w * h];
+    let mut apart = vec![0.0; w * h];
     for by in (0..h).step_by(side) {
         for bx in (0..w).step_by(side) {
             let pixels: Vec<usize> = (by..(by + side).min(h)).flat_map(|y| (bx..(bx + side).min(w)).map(move |x| y * w + x)).collect();
             let mean = |image: &FloatImage, c: usize| pixels.iter().map(|&i| image.pixels[i][c].clamp(0.0, 1.0)).sum::<f32>() / pixels.len() as f32;
-            let same = (0..3).all(|c| (mean(a, c) - mean(b, c)).abs() <= threshold);
+            let difference = (0..3).map(|c| (mean(a, c) - mean(b, c)).abs()).fold(0.0, f32::max);
             for i in pixels {
-                agree[i] = same;
+                apart[i] = difference;
             }
         }
     }
-    agree
+    apart
 }
 
 /// Per pixel of a `width`x`height` image, whether its `side`-pixel block holds a pixel `mask`
@@ -192,13 +193,19 @@ pub fn difference_rgb8(a: &[u8], b: &[u8]) -> Vec<u8> {
         .collect()
 }
 
-/// White on the pixels [`count_differing`] counts, black elsewhere: 8-bit RGBA, top row first,
-/// to find the few pixels where two renderers part.
-pub fn differing_mask_rgba8(a: &FloatImage, b: &FloatImage, threshold: f32) -> Vec<u8> {
+/// On the pixels [`count_differing`] counts, white, or grey where `set_aside` (per pixel, bottom
+/// row first as the images are) marks them; black elsewhere: 8-bit RGBA, top row first, to find
+/// the few pixels where two renderers part.
+pub fn differing_mask_rgba8(a: &FloatImage, b: &FloatImage, threshold: f32, set_aside: &[bool]) -> Vec<u8> {
     let mut mask = Vec::with_capacity(a.pixels.len() * 4);
     for y in (0..a.height).rev() {
         for x in 0..a.width {
-            let v = if pixels_differ(&a.at(x, y), &b.at(x, y), threshold) { 255 } else { 0 };
+            let grey = set_aside.get((y * a.width + x) as usize).copied().unwrap_or(false);
+            let v = match (pixels_differ(&a.at(x, y), &b.at(x, y), threshold), grey) {
+                (false, _) => 0,
+                (true, true) => 96,
+                (true, false) => 255,
+            };
             mask.extend_from_slice(&[v, v, v, 255]);
         }
     }

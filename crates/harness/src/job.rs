@@ -361,14 +361,14 @@ impl GlStepsComparison {
     }
 
     /// Records, per step and texture, how many of the pixels where the renderers differ are the
-    /// pack's own arithmetic noise ([`sensitive_pixels`]), from `nudged`: OpenGL's frame drawn
+    /// pack's own arithmetic noise ([`noise_pixels`]), from `nudged`: OpenGL's frame drawn
     /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
     /// nudged, once by each of [`NUDGES`].
     fn discount_sensitive(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame]) {
         for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.iter().zip(&gl.steps)).enumerate() {
             for (i, ((name, ours), (_, theirs))) in pass.images.iter().zip(gl_images).enumerate() {
                 let moved: Vec<&FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(k).and_then(|(_, images)| images.get(i)).map(|(_, image)| image)).collect();
-                let sensitive = sensitive_pixels(ours, theirs, &moved);
+                let sensitive = noise_pixels(ours, theirs, &moved).iter().filter(|n| **n).count();
                 if sensitive > 0 {
                     step.sensitive_pixels.insert(name.clone(), sensitive);
                 }
@@ -377,15 +377,15 @@ impl GlStepsComparison {
     }
 }
 
-/// Of the pixels where `ours` and `theirs` differ by more than 1/255, how many are the pack's
-/// own arithmetic noise: those where `theirs` and one of `moved` (theirs drawn again, each
+/// Per pixel, whether `ours` and `theirs` differ there by more than 1/255 as the pack's own
+/// arithmetic noise: where `theirs` and one of `moved` (theirs drawn again, each
 /// nudged another way) differ too, and those whose [`NOISE_BLOCK`]-pixel block holds such a
 /// pixel and has the same mean in both renderers to within 1/255 (the last bits of the
 /// arithmetic decide there, as the nudges show, and what they decide averages to the same
 /// picture). Where the nudges move more than [`MAX_SENSITIVE_SHARE`] of the image (the step is
 /// noise throughout: a dither, a hash of every pixel), those of every block whose means agree,
 /// and no other.
-fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]) -> usize {
+fn noise_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]) -> Vec<bool> {
     let apart = images::differing_pixels(ours, theirs, OVER_1_255);
     let mut unstable = vec![false; apart.len()];
     for image in moved {
@@ -394,13 +394,20 @@ fn sensitive_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage
         }
     }
     let noise_throughout = unstable.iter().filter(|u| **u).count() as f64 > MAX_SENSITIVE_SHARE * unstable.len() as f64;
-    let means_agree = images::block_means_agree(ours, theirs, NOISE_BLOCK, OVER_1_255);
+    // A block's means agree to within 1/255 and what a nudge alone moves that block's mean by.
+    let mut nudge_moves_mean = vec![0.0f32; apart.len()];
+    for image in moved {
+        for (most, d) in nudge_moves_mean.iter_mut().zip(images::block_mean_differences(theirs, image, NOISE_BLOCK)) {
+            *most = most.max(d);
+        }
+    }
+    let means_agree: Vec<bool> = images::block_mean_differences(ours, theirs, NOISE_BLOCK).iter().zip(&nudge_moves_mean).map(|(d, nudged)| *d <= OVER_1_255 + nudged).collect();
     let sensitive_blocks = images::blocks_holding(&unstable, ours.width, ours.height, NOISE_BLOCK);
     let noise = (0..apart.len()).map(|i| if noise_throughout { means_agree[i] } else { unstable[i] || (means_agree[i] && sensitive_blocks[i]) });
-    apart.iter().zip(noise).filter(|(a, n)| **a && *n).count()
+    apart.iter().zip(noise).map(|(a, n)| *a && n).collect()
 }
 
-/// Side of the blocks [`sensitive_pixels`] compares by their means where a step is noise
+/// Side of the blocks [`noise_pixels`] compares by their means where a step is noise
 /// throughout: 64 pixels, over which a dither of a few levels averages out.
 pub const NOISE_BLOCK: u32 = 8;
 
@@ -439,7 +446,7 @@ pub struct GlStepComparison {
     /// Per texture: pixels differing by more than 1/255 in some channel.
     pub pixels_over_1_255: BTreeMap<String, usize>,
     /// Per texture, when the renderers part there: how many of those pixels are the pack's own
-    /// arithmetic noise ([`sensitive_pixels`]), where the last bit of its arithmetic decides the
+    /// arithmetic noise ([`noise_pixels`]), where the last bit of its arithmetic decides the
     /// result, as GLSL allows compilers to round it.
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     pub sensitive_pixels: BTreeMap<String, usize>,
@@ -677,9 +684,10 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             };
             write(".gl", &gl_frame.image)?;
             let mut comparison = compare_steps(renderer, &wgpu_frame.passes, &gl_frame)?;
+            let mut nudged = Vec::new();
             if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
                 // OpenGL again, nudged, each step from the inputs it had in the frame compared.
-                let nudged = NUDGES
+                nudged = NUDGES
                     .iter()
                     .map(|&nudge| {
                         let reference = if gl_primary {
@@ -693,14 +701,17 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                 comparison.discount_sensitive(&wgpu_frame.passes, &gl_frame, &nudged);
             }
             comparison.set_aside(cannot_draw);
-            // Where they part: both renderers' texture and the pixels over 1/255, to look at.
+            // Where they part: both renderers' texture and the pixels over 1/255, to look at
+            // (white where they count against the limit, grey where they are the pack's noise).
             if let Some(parted) = comparison.first_disagreement(gl_max_pixels) {
                 let step = wgpu_frame.passes.iter().position(|p| p.pass == parted.pass).expect("the step was compared");
                 let image_of = |images: &[(String, FloatImage)]| images.iter().find(|(name, _)| *name == parted.texture).map(|(_, i)| i.clone());
                 if let (Some(ours), Some(theirs)) = (image_of(&wgpu_frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
+                    let moved: Vec<FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(step).and_then(|(_, images)| image_of(images))).collect();
+                    let noise = noise_pixels(&ours, &theirs, &moved.iter().collect::<Vec<_>>());
                     write(".parted.wgpu", &ours)?;
                     write(".parted.opengl", &theirs)?;
-                    write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, OVER_1_255))?;
+                    write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, OVER_1_255, &noise))?;
                 }
             }
             Some(comparison)
@@ -883,6 +894,7 @@ mod tests {
     /// nudge moves much of the texture, pixels whose block has the same mean in both are not.
     #[test]
     fn differences_that_are_the_packs_own_noise_are_sensitive() {
+        let noise_count = |ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]| super::noise_pixels(ours, theirs, moved).iter().filter(|n| **n).count();
         use crate::images::FloatImage;
         let image = |changed: &[usize]| {
             let mut pixels = vec![[0.5f32, 0.5, 0.5, 1.0]; 256];
@@ -897,14 +909,14 @@ mod tests {
         for i in [0, 1, 2, 3, 50] {
             moved.pixels[i][0] = 0.5;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved]), 4);
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&theirs]), 0);
+        assert_eq!(noise_count(&ours, &theirs, &[&moved]), 4);
+        assert_eq!(noise_count(&ours, &theirs, &[&theirs]), 0);
         // A nudge the other way moves three more: each nudge adds the pixels it moves.
         let mut other_way = theirs.clone();
         for i in [4, 5, 6] {
             other_way.pixels[i][0] = 0.6;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved, &other_way]), 7);
+        assert_eq!(noise_count(&ours, &theirs, &[&moved, &other_way]), 7);
         // Pixels apart beside moved ones, in a block whose means agree, are noise too; in a block
         // whose mean they shift, they are not (above: ten bright pixels shift their block's).
         let (faint_ours, mut faint_theirs) = (image(&[]), image(&[]));
@@ -914,20 +926,28 @@ mod tests {
         faint_theirs.pixels[5][0] = 0.48;
         let mut faint_moved = faint_theirs.clone();
         faint_moved.pixels[0][0] = 0.5;
-        assert_eq!(super::sensitive_pixels(&faint_ours, &faint_theirs, &[&faint_moved]), 6);
-        assert_eq!(super::sensitive_pixels(&faint_ours, &faint_theirs, &[&faint_theirs]), 0);
+        assert_eq!(noise_count(&faint_ours, &faint_theirs, &[&faint_moved]), 6);
+        assert_eq!(noise_count(&faint_ours, &faint_theirs, &[&faint_theirs]), 0);
+        // Where a nudge moves a block's mean as far as the renderers part on it, the pixels apart
+        // in that block are noise: the nudge darkens the second row of the first block as much
+        // as the bright pixels 0 to 7 brighten it, and leaves the second block (pixels 8, 9) be.
+        let mut second_row_moved = theirs.clone();
+        for i in 16..24 {
+            second_row_moved.pixels[i][0] = 0.1;
+        }
+        assert_eq!(noise_count(&ours, &theirs, &[&second_row_moved]), 8);
         // Past 5% of the texture moved, the step is noise throughout, and the ten pixels brighten
-        // their blocks' means: not noise.
-        for i in 100..120 {
+        // their blocks' means, which the nudge moves in other blocks: not noise.
+        for i in 200..220 {
             moved.pixels[i][0] = 0.1;
         }
-        assert_eq!(super::sensitive_pixels(&ours, &theirs, &[&moved]), 0);
+        assert_eq!(noise_count(&ours, &theirs, &[&moved]), 0);
         // A dither that averages to the same mean over each 8x8 block is noise.
         let mut dithered = ours.clone();
         for (i, p) in dithered.pixels.iter_mut().enumerate() {
             p[0] += if (i + i / 16) % 2 == 0 { 0.02 } else { -0.02 };
         }
-        assert_eq!(super::sensitive_pixels(&ours, &dithered, &[&moved]), 256);
+        assert_eq!(noise_count(&ours, &dithered, &[&moved]), 256);
     }
 
     /// A frame whose composite parts on most of the screen (the all-black OpenGL screen beside a

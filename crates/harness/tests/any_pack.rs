@@ -442,6 +442,23 @@ fn a_version_chosen_in_an_if_is_given_first_under_iris() {
     assert!(report.gl_rewrites.iter().any(|r| r.contains("`#version 330 compatibility`, chosen inside an `#if`")), "{:?}", report.gl_rewrites);
 }
 
+/// A pack written on Windows for NVIDIA (tests/packs/windows_habits): an include named in
+/// another case than its file, which Windows' file system reads, and a `flat varying` in a stage
+/// raised to GLSL 1.30 for its `switch`. Both renderers draw each face in its colour, and the
+/// report lists both readings.
+#[test]
+fn a_pack_made_on_windows_renders_with_its_readings_listed() {
+    let (report, screen) = render_job("windows_habits");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let said = |what: &str| report.gl_rewrites.iter().any(|r| r.contains(what));
+    assert!(said("`lib/Shading.glsl` read from `lib/shading.glsl`"), "{:?}", report.gl_rewrites);
+    assert!(said("`varying` after an interpolation qualifier, which GLSL 1.30 refuses, made `out`"), "{:?}", report.gl_rewrites);
+    // The top faces, green, fill the lower half of the shore scene.
+    assert!(screen.pixels().filter(|p| p.0[..3] == [0, 255, 0]).count() > screen.pixels().len() / 4);
+}
+
 /// `render --pack` of tests/packs/`name` on case4_above_near, two frames, with `--gl`: the
 /// report and the screen.
 fn render_job(name: &str) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {

@@ -40,6 +40,7 @@ use std::fmt;
 use rand_core::{Rng as _, SeedableRng as _};
 use rand_xoshiro::SplitMix64;
 
+use crate::macros::{BIOME_CATEGORIES, PRECIPITATIONS};
 use crate::properties::Properties;
 use crate::uniform_value::{Kind, Value};
 
@@ -653,29 +654,6 @@ const BOOL_PARAMETERS: [&str; 18] = [
     "hasCeiling",
     "hasSkylight",
 ];
-
-/// Biome categories in OptiFine's documented order (values 0 to 16).
-const BIOME_CATEGORIES: [&str; 17] = [
-    "CAT_NONE",
-    "CAT_TAIGA",
-    "CAT_EXTREME_HILLS",
-    "CAT_JUNGLE",
-    "CAT_MESA",
-    "CAT_PLAINS",
-    "CAT_SAVANNA",
-    "CAT_ICY",
-    "CAT_THE_END",
-    "CAT_BEACH",
-    "CAT_FOREST",
-    "CAT_OCEAN",
-    "CAT_DESERT",
-    "CAT_RIVER",
-    "CAT_SWAMP",
-    "CAT_MUSHROOM",
-    "CAT_NETHER",
-];
-
-const PRECIPITATIONS: [&str; 3] = ["PPT_NONE", "PPT_RAIN", "PPT_SNOW"];
 
 fn from_standard(name: &str, value: &Value) -> std::result::Result<Val, String> {
     if value.array.is_some() {

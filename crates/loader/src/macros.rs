@@ -187,6 +187,9 @@ impl StandardMacros {
             ] {
                 out.push((name.to_string(), value));
             }
+            for names in [&BIOME_CATEGORIES[..], &PRECIPITATIONS[..]] {
+                out.extend(names.iter().enumerate().map(|(value, name)| (name.to_string(), value.to_string())));
+            }
             for (value, block) in DH_BLOCKS.iter().enumerate() {
                 out.push((format!("DH_BLOCK_{block}"), value.to_string()));
             }
@@ -211,6 +214,34 @@ impl StandardMacros {
         self.definitions().iter().map(|(k, v)| format!("#define {k} {v}\n")).collect()
     }
 }
+
+/// Biome categories by value: OptiFine documents the first 17 (`CAT_NONE` 0 to `CAT_NETHER` 16)
+/// for custom uniforms; Iris adds `CAT_MOUNTAIN` and `CAT_UNDERGROUND`, and also defines every
+/// one as a macro in the shaders.
+pub const BIOME_CATEGORIES: [&str; 19] = [
+    "CAT_NONE",
+    "CAT_TAIGA",
+    "CAT_EXTREME_HILLS",
+    "CAT_JUNGLE",
+    "CAT_MESA",
+    "CAT_PLAINS",
+    "CAT_SAVANNA",
+    "CAT_ICY",
+    "CAT_THE_END",
+    "CAT_BEACH",
+    "CAT_FOREST",
+    "CAT_OCEAN",
+    "CAT_DESERT",
+    "CAT_RIVER",
+    "CAT_SWAMP",
+    "CAT_MUSHROOM",
+    "CAT_NETHER",
+    "CAT_MOUNTAIN",
+    "CAT_UNDERGROUND",
+];
+
+/// Precipitation kinds by value, as `biome_precipitation` holds them (and Iris's macros).
+pub const PRECIPITATIONS: [&str; 3] = ["PPT_NONE", "PPT_RAIN", "PPT_SNOW"];
 
 /// A float literal that always has a decimal point (`1` → `1.0`).
 fn float(value: f32) -> String {
@@ -294,9 +325,13 @@ mod tests {
         assert_eq!(value(&iris, "IRIS_VERSION"), Some("10801".into()));
         assert_eq!(value(&iris, "DH_BLOCK_WATER"), Some("12".into()));
         assert!(value(&iris, "IS_IRIS").is_some());
+        assert_eq!(value(&iris, "CAT_NETHER"), Some("16".into()));
+        assert_eq!(value(&iris, "CAT_UNDERGROUND"), Some("18".into()));
+        assert_eq!(value(&iris, "PPT_SNOW"), Some("2".into()));
         let optifine = names(Loader::OptiFine1_12_2);
         assert_eq!(value(&optifine, "MC_VERSION"), Some("11202".into()));
         assert_eq!(value(&optifine, "IS_IRIS"), None);
+        assert_eq!(value(&optifine, "CAT_NETHER"), None);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! A pack's files read under one option set, as OptiFine hands them to the preprocessor.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::sync::{Arc, Mutex};
 
 use crate::option_lines::{self, OptionSet};
@@ -13,11 +13,25 @@ pub struct SetProvider<'a> {
     pack: &'a PackFiles,
     set: &'a OptionSet,
     cache: Mutex<HashMap<String, Arc<str>>>,
+    ignore_case: bool,
+    read_by_case: Mutex<BTreeMap<String, String>>,
 }
 
 impl<'a> SetProvider<'a> {
     pub fn new(pack: &'a PackFiles, set: &'a OptionSet) -> Self {
-        SetProvider { pack, set, cache: Mutex::new(HashMap::new()) }
+        SetProvider { pack, set, cache: Mutex::new(HashMap::new()), ignore_case: false, read_by_case: Mutex::new(BTreeMap::new()) }
+    }
+
+    /// Reads a path the pack lacks from a file whose name differs only in case, as Windows'
+    /// file system gives a pack folder to OptiFine (zips, Iris's folders on Linux and macOS
+    /// refuse it). Each such read is kept ([`SetProvider::read_by_case`]).
+    pub fn ignoring_case(self) -> Self {
+        SetProvider { ignore_case: true, ..self }
+    }
+
+    /// The paths read from a file whose name differs only in case, each with that file's.
+    pub fn read_by_case(&self) -> BTreeMap<String, String> {
+        self.read_by_case.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }
 }
 
@@ -38,11 +52,16 @@ impl FileProvider for SetProvider<'_> {
                 Err(e) => return Err(format!("not a text file: byte {} is not UTF-8", e.valid_up_to())),
             },
             (None, None) => {
-            let lower = path.to_lowercase();
-            return Err(match self.pack.files.keys().find(|p| p.to_lowercase() == lower) {
-                Some(p) => format!("no such file in the pack; `{p}` differs only in case (Iris and Linux are case-sensitive)"),
-                None => "no such file in the pack".into(),
-            });
+                let lower = path.to_lowercase();
+                return match self.pack.files.keys().find(|p| p.to_lowercase() == lower) {
+                    Some(p) if self.ignore_case => {
+                        let text = self.read(p)?;
+                        self.read_by_case.lock().unwrap_or_else(|e| e.into_inner()).insert(path.to_string(), p.clone());
+                        Ok(text)
+                    }
+                    Some(p) => Err(format!("no such file in the pack; `{p}` differs only in case (Iris and Linux are case-sensitive)")),
+                    None => Err("no such file in the pack".into()),
+                };
             }
         };
         let text: Arc<str> = match option_lines::apply(text, self.set) {
