@@ -263,16 +263,15 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             // GLSL 1.30 keeps `varying` but refuses an interpolation qualifier on it, which
             // GL_EXT_gpu_shader4 had allowed: `flat varying` becomes `flat out` or `flat in`.
             let direction = match stage {
-                Stage::Vertex => Some("out"),
-                Stage::Fragment => Some("in"),
-                _ => None,
+                Stage::Vertex => "out",
+                Stage::Fragment => "in",
             };
             let qualified: Vec<usize> = significant
                 .windows(2)
                 .filter(|w| GPU_SHADER4_QUALIFIERS.iter().chain(&["smooth"]).any(|q| tokens[w[0]].is_ident(q)) && tokens[w[1]].is_ident("varying"))
                 .map(|w| w[1])
                 .collect();
-            if let (Some(direction), Some(&first)) = (direction, qualified.first()) {
+            if let Some(&first) = qualified.first() {
                 for &i in &qualified {
                     replaced[i] = Some(direction.into());
                 }
@@ -418,25 +417,54 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
 
     // A local `const` whose initializer is not a constant expression (`const float c = a + b;`
     // with `a` a parameter): NVIDIA takes it as a read-only local, Mesa refuses it. Decided on
-    // what the driver meets; the `const` (or the macro holding it, `cfloat`) goes from each
-    // declaration of that name inside a function.
+    // what the driver meets, per function; the declaration of that name in that function loses
+    // its `const`, also where a macro gives the `const` (`cfloat`, `cv(float)`) or declares the
+    // whole constant (`cRCP(float, total);`, expanded in place).
     let not_constant = constants_not_constant(&met);
+    let definitions = function_definitions(&sig);
+    let function_at = |k: usize| definitions.iter().find(|f| (f.open + 1..f.close).contains(&k)).map(|f| sig[f.name].text);
+    let declared_not_constant = |k: usize, name: &str| function_at(k).is_some_and(|f| not_constant.contains(&(f, name)));
+    let const_macros = macros_giving_const(&tokens, &significant);
+    // A macro call starting at `sig[start]` and ending before `sig[end]`, expanded without
+    // `const`.
+    let without_const = |start: usize, end: usize| -> Option<Vec<String>> {
+        let (params, body) = const_macros.get(sig[start].text)?;
+        let expansion = match params {
+            None if end == start + 1 => body.iter().map(|t| t.to_string()).collect(),
+            Some(params) if sig[start + 1].is_punct("(") && matching_close(&significant, &tokens, start + 1) == Some(end - 1) => {
+                expand_pasting(params, body, &arguments(&sig[start + 2..end - 1]))
+            }
+            _ => return None,
+        };
+        Some(expansion.into_iter().filter(|t| t != "const").collect())
+    };
     let mut unconst: Vec<(u32, &str)> = Vec::new();
+    let replace_span = |replaced: &mut Vec<Option<String>>, start: usize, end: usize, text: String| {
+        replaced[significant[start]] = Some(text);
+        for j in start + 1..end {
+            replaced[significant[j]] = Some(String::new());
+        }
+    };
     for k in 1..sig.len().saturating_sub(1) {
-        let Some((_, name, type_tokens)) = not_constant.iter().find(|(_, name, _)| sig[k].is_ident(name)) else { continue };
-        if !sig[k + 1].is_punct("=") || !bodies.iter().any(|b| b.contains(&k)) {
+        if sig[k].kind != TokenKind::Ident || !sig[k + 1].is_punct("=") || !declared_not_constant(k, sig[k].text) {
             continue;
         }
-        let start = sig[..k].iter().rposition(|t| ["{", "}", ";"].iter().any(|x| t.is_punct(x))).map_or(0, |p| p + 1);
-        let before = start..k;
-        if let Some(c) = before.clone().find(|&j| sig[j].is_ident("const")) {
+        let mut start = sig[..k].iter().rposition(|t| ["{", "}", ";"].iter().any(|x| t.is_punct(x))).map_or(0, |p| p + 1);
+        // Past the directives' lines in between (`#endif`).
+        while start < k && sig[start].is_punct("#") {
+            let line = sig[start].line;
+            while start < k && sig[start].line == line {
+                start += 1;
+            }
+        }
+        if let Some(c) = (start..k).find(|&j| sig[j].is_ident("const")) {
             replaced[significant[c]] = Some(String::new());
-        } else if before.len() == 1 && sig[start].kind == TokenKind::Ident && !VALUE_TYPES.contains(&sig[start].text) {
-            replaced[significant[start]] = Some(type_tokens.join(" "));
+        } else if let Some(type_) = without_const(start, k) {
+            replace_span(&mut replaced, start, k, type_.join(" "));
         } else {
             continue;
         }
-        unconst.push((sig[k].line, name));
+        unconst.push((sig[k].line, sig[k].text));
     }
     if let Some(&(line, name)) = unconst.first() {
         rewrites.push(Rewrite {
@@ -444,6 +472,27 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             what: format!(
                 "`const` dropped from `{name}`, whose initializer is not a constant expression, as NVIDIA takes it ({} declarations)",
                 unconst.len()
+            ),
+        });
+    }
+    let mut expanded_in_place = Vec::new();
+    for s in 1..sig.len().saturating_sub(1) {
+        let at_statement = ["{", "}", ";"].iter().any(|x| sig[s - 1].is_punct(x)) && sig[s + 1].is_punct("(") && const_macros.contains_key(sig[s].text);
+        let Some(end) = matching_close(&significant, &tokens, s + 1).map(|c| c + 1).filter(|&e| at_statement && sig.get(e).is_some_and(|t| t.is_punct(";"))) else {
+            continue;
+        };
+        let Some(expansion) = without_const(s, end) else { continue };
+        let declared = expansion.iter().position(|t| t == "=").and_then(|eq| eq.checked_sub(1)).map(|n| expansion[n].clone());
+        let Some(name) = declared.filter(|d| declared_not_constant(s, d)) else { continue };
+        replace_span(&mut replaced, s, end, expansion.join(" "));
+        expanded_in_place.push((sig[s].line, sig[s].text, name));
+    }
+    if let Some((line, macro_name, name)) = expanded_in_place.first() {
+        rewrites.push(Rewrite {
+            line: *line,
+            what: format!(
+                "`{macro_name}(…)`, which declares `{name}` `const` from a value that is not constant, expanded in place without `const`, as NVIDIA takes it ({} calls)",
+                expanded_in_place.len()
             ),
         });
     }
@@ -726,19 +775,26 @@ pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
 
 /// The `const` declarations inside functions of `toks` (significant tokens) whose initializer is
 /// not a constant expression: it reads a variable that is not itself a constant (a parameter, a
-/// uniform, a plain local) or calls a function the text defines. Each as (line, name, the type's
-/// tokens without `const`).
-fn constants_not_constant<'t>(toks: &[&'t Token]) -> Vec<(u32, &'t str, Vec<&'t str>)> {
+/// uniform, a plain local) or calls a function the text defines. Each as (function, name).
+fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(&'t str, &'t str)> {
     let definitions = function_definitions(toks);
     let functions: HashSet<&str> = definitions.iter().map(|f| toks[f.name].text).collect();
-    let bodies: Vec<std::ops::Range<usize>> = definitions.iter().map(|f| f.open + 1..f.close).collect();
-    let mut constants: HashSet<&str> = HashSet::new();
-    let mut found = Vec::new();
+    // Constants by where they were declared: a function (its index) or the file's scope (None).
+    let mut constants: HashSet<(Option<usize>, &str)> = HashSet::new();
+    let mut found = HashSet::new();
     // Whether toks[k - 1] ends a directive's line (`#version 120`).
     let after_directive = |k: usize| {
         let line = toks[k - 1].line;
         let first = toks[..k].iter().rposition(|t| t.line != line).map_or(0, |p| p + 1);
         line != toks[k].line && toks[first].is_punct("#")
+    };
+    // A function's parameter names: a name before `,`, `)` or `[` in its list (they hide
+    // constants of the file's scope).
+    let parameters = |f: usize| -> Vec<&str> {
+        let list = definitions[f].name + 2..definitions[f].open.saturating_sub(1);
+        list.filter(|&m| toks[m].kind == TokenKind::Ident && toks.get(m + 1).is_some_and(|n| [",", ")", "["].iter().any(|p| n.is_punct(p))))
+            .map(|m| toks[m].text)
+            .collect()
     };
     for k in 0..toks.len() {
         let statement_start = k == 0 || ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x)) || after_directive(k);
@@ -752,21 +808,94 @@ fn constants_not_constant<'t>(toks: &[&'t Token]) -> Vec<(u32, &'t str, Vec<&'t 
             continue;
         }
         let name = toks[eq - 1].text;
+        let function = definitions.iter().position(|f| (f.open + 1..f.close).contains(&k));
+        let hidden = function.map(parameters).unwrap_or_default();
+        let is_constant =
+            |name: &str| !hidden.contains(&name) && (constants.contains(&(function, name)) || constants.contains(&(None, name)));
         let reads_variable = (eq + 1..end).any(|m| {
             let t = toks[m];
             let member = toks[m - 1].is_punct(".");
             let called = toks.get(m + 1).is_some_and(|n| n.is_punct("("));
             t.kind == TokenKind::Ident
                 && !member
-                && if called { functions.contains(t.text) } else { !constants.contains(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") }
+                && if called { functions.contains(t.text) } else { !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") }
         });
-        if !reads_variable {
-            constants.insert(name);
-        } else if bodies.iter().any(|b| b.contains(&k)) {
-            found.push((toks[eq - 1].line, name, toks[k + 1..eq - 1].iter().map(|t| t.text).collect()));
+        match (reads_variable, function) {
+            (false, _) => {
+                constants.insert((function, name));
+            }
+            (true, Some(f)) => {
+                found.insert((toks[definitions[f].name].text, name));
+            }
+            (true, None) => {}
         }
     }
     found
+}
+
+/// The macros `#define`d in `tokens` whose body starts with `const`, object-like (`cfloat`) or
+/// function-like (`cv(type)`): by name, the parameters of a function-like one and the body's
+/// token texts.
+fn macros_giving_const<'t>(tokens: &[Token<'t>], significant: &[usize]) -> HashMap<&'t str, (Option<Vec<&'t str>>, Vec<&'t str>)> {
+    directive_lines(tokens, significant)
+        .into_iter()
+        .filter_map(|(_, d, on_line)| {
+            let (&name, rest) = on_line.split_first()?;
+            if !tokens[d].is_ident("define") {
+                return None;
+            }
+            let function_like = rest.first().is_some_and(|&open| tokens[open].is_punct("(") && tokens[open].offset == tokens[name].offset + tokens[name].text.len());
+            let (params, body) = if function_like {
+                let close = rest.iter().position(|&e| tokens[e].is_punct(")"))?;
+                (Some(rest[1..close].iter().map(|&e| tokens[e].text).filter(|t| *t != ",").collect()), &rest[close + 1..])
+            } else {
+                (None, rest)
+            };
+            let body: Vec<&str> = body.iter().map(|&e| tokens[e].text).collect();
+            (body.first() == Some(&"const")).then_some((tokens[name].text, (params, body)))
+        })
+        .collect()
+}
+
+/// The arguments of a call, from the significant tokens between its brackets: each the tokens'
+/// text joined, split at the commas outside inner brackets.
+fn arguments(inside: &[&Token]) -> Vec<String> {
+    let mut found = vec![Vec::new()];
+    let mut depth = 0i32;
+    for t in inside {
+        match t.text {
+            "(" | "[" => depth += 1,
+            ")" | "]" => depth -= 1,
+            "," if depth == 0 && t.kind == TokenKind::Punct => {
+                found.push(Vec::new());
+                continue;
+            }
+            _ => {}
+        }
+        found.last_mut().expect("one argument at least").push(t.text);
+    }
+    found.into_iter().map(|a| a.join(" ")).collect()
+}
+
+/// A function-like macro's `body` (token texts) with each of `params` replaced by its argument
+/// and `##` joining its neighbours: the tokens the call gives, where the body calls no other
+/// macro.
+fn expand_pasting(params: &[&str], body: &[&str], args: &[String]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut paste = false;
+    for &t in body {
+        if t == "##" {
+            paste = true;
+            continue;
+        }
+        let text = params.iter().position(|p| *p == t).and_then(|i| args.get(i)).cloned().unwrap_or_else(|| t.to_string());
+        match (paste, out.last_mut()) {
+            (true, Some(last)) => last.push_str(&text),
+            _ => out.push(text),
+        }
+        paste = false;
+    }
+    out
 }
 
 /// Whether the bare argument `toks[at]` of a call is read: the stage defines the called function
@@ -1141,6 +1270,35 @@ mod tests {
         assert_eq!(rewrites.len(), 1, "{rewrites:?}");
         assert_eq!(rewrites[0].line, 5);
         assert!(rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);
+    }
+
+    #[test]
+    fn a_const_from_a_variable_given_by_a_macro_loses_its_const() {
+        // As HalcyonShaders writes it: `cv(float)` is `const float`, and `cRCP(float, total)`
+        // declares `const float totalRCP = 1.0 / total`, from a parameter both.
+        let text = "#version 120\n#define cv(type) const type\n#define cRCP(type, name) const type name##RCP = 1.0 / name\nfloat f(float angle, float total) {\n    cv(float) c = cos(angle);\n    cRCP(float, total);\n    return c * totalRCP;\n}\nvoid main() { gl_FragColor = vec4(f(1.0, 2.0)); }\n";
+        let met = "#version 120\n\n\nfloat f(float angle, float total) {\n    const float c = cos(angle);\n    const float totalRCP = 1.0 / total;\n    return c * totalRCP;\n}\nvoid main() { gl_FragColor = vec4(f(1.0, 2.0)); }\n";
+        let (out, rewrites) = for_strict_drivers(text, met, Stage::Fragment, &[]);
+        assert!(out.contains("    float c = cos(angle);"), "{out}");
+        assert!(out.contains("    float totalRCP = 1.0 / total ;"), "{out}");
+        assert_eq!(rewrites.len(), 2, "{rewrites:?}");
+        assert_eq!((rewrites[0].line, rewrites[1].line), (5, 6));
+        assert!(rewrites[1].what.starts_with("`cRCP(…)`, which declares `totalRCP`"), "{}", rewrites[1].what);
+        // A directive's line between the statement before and the declaration.
+        let after_directive = text.replace("    cv(float) c", "    #ifdef NEVER\n    #endif\n    cv(float) c");
+        let met_after_directive = met.replace("    const float c", "\n\n    const float c");
+        let (out, _) = for_strict_drivers(&after_directive, &met_after_directive, Stage::Fragment, &[]);
+        assert!(out.contains("    #endif\n    float c = cos(angle);"), "{out}");
+        // A constant of that name in another function keeps its `const`.
+        let other = text.replace("void main()", "float g() { cv(vec3) c = vec3(1.0); return c.x; }\nvoid main()");
+        let met_other = met.replace("void main()", "float g() { const vec3 c = vec3(1.0); return c.x; }\nvoid main()");
+        let (out, _) = for_strict_drivers(&other, &met_other, Stage::Fragment, &[]);
+        assert!(out.contains("    float c = cos(angle);") && out.contains("{ cv(vec3) c = vec3(1.0);"), "{out}");
+        // A call outside a function stays as written.
+        let global = text.replace("float f(", "const float size = 2.0;\ncRCP(float, size);\nfloat f(");
+        let met_global = met.replace("float f(", "const float size = 2.0;\nconst float sizeRCP = 1.0 / size;\nfloat f(");
+        let (out, _) = for_strict_drivers(&global, &met_global, Stage::Fragment, &[]);
+        assert!(out.contains("\ncRCP(float, size);\n"), "{out}");
     }
 
     #[test]
