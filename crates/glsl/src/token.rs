@@ -316,8 +316,11 @@ pub fn function_definitions<'a, T: Borrow<Token<'a>>>(tokens: &[T]) -> Vec<Funct
             k = matching_close(&sig, tokens, k).map_or(sig.len(), |c| c + 1);
             continue;
         }
+        // A function-like macro whose body is a block (`#define print(s) { … }`) is no definition.
+        let macro_name = k > 1 && token(k - 1).is_some_and(|p| p.is_ident("define")) && token(k - 2).is_some_and(|p| p.is_punct("#"));
         let header = t.kind == TokenKind::Ident
             && k > 0
+            && !macro_name
             && token(k - 1).is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct("]"))
             && token(k + 1).is_some_and(|n| n.is_punct("("));
         if header
@@ -424,7 +427,7 @@ mod tests {
 
     #[test]
     fn function_definitions_are_the_top_level_bodies() {
-        let src = "struct S { float f(); };\nvec3 g(float x);\nuniform B { int h; } b;\nvoid main() { if (x) { y(); } }\nfloat[2] k(int a) { return float[2](0.0, 1.0); }\n";
+        let src = "struct S { float f(); };\nvec3 g(float x);\nuniform B { int h; } b;\n#define print(s) { y(s); }\nvoid main() { if (x) { y(); } }\nfloat[2] k(int a) { return float[2](0.0, 1.0); }\n";
         let tokens = tokenize(src).unwrap();
         let defs = function_definitions(&tokens);
         let names: Vec<&str> = defs.iter().map(|d| tokens[d.name].text).collect();

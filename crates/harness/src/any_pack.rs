@@ -48,7 +48,7 @@ enum LoaderAlphaTest {
 
 /// Resolving sampler names before the custom textures are read: a custom texture replaces a
 /// name OptiFine binds anyway, so it never turns an unbound name into a bound one.
-struct NoCustomTextures;
+struct NoCustomTextures(Loader);
 
 impl PackResources for NoCustomTextures {
     fn format_of(&self, _: u8) -> BufferFormat {
@@ -57,6 +57,10 @@ impl PackResources for NoCustomTextures {
 
     fn custom_textures(&self) -> &[CustomTexture] {
         &[]
+    }
+
+    fn loader(&self) -> Loader {
+        self.0
     }
 }
 
@@ -129,6 +133,10 @@ impl PackResources for AnyPack {
 
     fn water_shadow(&self) -> bool {
         self.water_shadow
+    }
+
+    fn loader(&self) -> Loader {
+        self.loader
     }
 }
 
@@ -322,6 +330,7 @@ fn shadow_map_reads(
     gbuffers: &BTreeMap<String, LoadedProgram>,
     fullscreen: &[LoadedProgram],
     shadow: &BTreeMap<String, LoadedProgram>,
+    loader: Loader,
     not_modelled: &mut Vec<String>,
 ) -> (bool, bool) {
     let mut reads_shadow_maps = false;
@@ -338,7 +347,7 @@ fn shadow_map_reads(
             }
             for (name, _) in program::texture_resources(&stage.interface) {
                 water_shadow |= name == "watershadow";
-                match naming.resolve(&NoCustomTextures, &name, gbuffers_program) {
+                match naming.resolve(&NoCustomTextures(loader), &name, gbuffers_program) {
                     Ok(Source::Unbound) => {
                         not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name))
                     }
@@ -421,7 +430,7 @@ impl AnyPack {
             not_modelled.push(format!("{name}: {why}"));
         }
 
-        let (reads_shadow_maps, water_shadow) = shadow_map_reads(&gbuffers, &fullscreen, &shadow, &mut not_modelled);
+        let (reads_shadow_maps, water_shadow) = shadow_map_reads(&gbuffers, &fullscreen, &shadow, loader, &mut not_modelled);
         if !SKY_TEXTURED_CHAIN.iter().any(|name| gbuffers.contains_key(*name)) {
             not_modelled.push("the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn".into());
         }

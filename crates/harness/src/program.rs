@@ -171,6 +171,10 @@ pub trait PackResources {
     fn water_shadow(&self) -> bool {
         false
     }
+    /// The loader binding the samplers: Iris binds names of its own (`shadowtex0HW`).
+    fn loader(&self) -> Loader {
+        Loader::default()
+    }
 }
 
 /// Our own pack, generated from its sources and read as the loader reads what ships: its

@@ -5,6 +5,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_loader::buffers::{colour_buffer_number, shadow_colour_number};
+use tidepack_loader::loader::Loader;
 
 use crate::program::{LoadedProgram, PackResources, texture_resources};
 
@@ -73,6 +74,9 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
         ("shadow", _) => Source::ShadowDepth(if pack.water_shadow() { 1 } else { 0 }),
         ("shadowtex0" | "watershadow", _) => Source::ShadowDepth(0),
         ("shadowtex1", _) => Source::ShadowDepth(1),
+        // Iris's SEPARATE_HARDWARE_SAMPLERS: the shadow maps again, for comparison lookups.
+        ("shadowtex0HW", _) if pack.loader() == Loader::Iris => Source::ShadowDepth(0),
+        ("shadowtex1HW", _) if pack.loader() == Loader::Iris => Source::ShadowDepth(1),
         ("dhDepthTex" | "dhDepthTex0", _) => Source::LodDepth(0),
         ("dhDepthTex1", _) => Source::LodDepth(1),
         _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
