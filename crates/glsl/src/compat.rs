@@ -12,7 +12,10 @@ use std::collections::{HashMap, HashSet};
 use crate::Stage;
 use crate::lower::is_implicit_level_lookup;
 use crate::preprocess::VersionDirective;
-use crate::token::{Token, TokenKind, argument_count, argument_qualifiers, brace_depths, function_definitions, matching_close, precision_qualifiers, significant, tokenize};
+use crate::token::{
+    Token, TokenKind, argument_count, argument_qualifiers, brace_depths, depth_read_never_written, function_definitions, matching_close, precision_qualifiers, significant,
+    tokenize,
+};
 
 /// Tokens no paste joins into one with what comes before them.
 const PASTE_NEVER_JOINS: [&str; 8] = ["(", ")", ",", ";", "[", "]", "{", "}"];
@@ -495,6 +498,21 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
                 expanded_in_place.len()
             ),
         });
+    }
+
+    // `gl_FragDepth` read and never written is undefined; the fragment keeps the depth it was
+    // rasterised at, which wgpu's frame reads there too.
+    if stage == Stage::Fragment && !depth_read_never_written(&met).is_empty() {
+        let reads = depth_read_never_written(&sig);
+        for &k in &reads {
+            replaced[significant[k]] = Some("gl_FragCoord.z".into());
+        }
+        if let Some(&first) = reads.first() {
+            rewrites.push(Rewrite {
+                line: sig[first].line,
+                what: format!("`gl_FragDepth`, read and never written (undefined), read as the fragment's own depth, `gl_FragCoord.z` ({} reads)", reads.len()),
+            });
+        }
     }
 
     let met_functions = value_functions(&met);
@@ -1299,6 +1317,18 @@ mod tests {
         let met_global = met.replace("float f(", "const float size = 2.0;\nconst float sizeRCP = 1.0 / size;\nfloat f(");
         let (out, _) = for_strict_drivers(&global, &met_global, Stage::Fragment, &[]);
         assert!(out.contains("\ncRCP(float, size);\n"), "{out}");
+    }
+
+    #[test]
+    fn the_fragment_depth_read_and_never_written_reads_as_the_fragments_own() {
+        // As jbritain/glint-shaders' shadow pass reads it.
+        let text = "#version 450 compatibility\nout vec4 data;\nvoid main() {\n    float depthToOpaque = gl_FragDepth - 0.5;\n    data = vec4(depthToOpaque);\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("gl_FragDepth", "gl_FragCoord.z"));
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 4);
+        let written = text.replace("    data =", "    gl_FragDepth = 0.5;\n    data =");
+        assert_eq!(for_strict_drivers(&written, &written, Stage::Fragment, &[]), (written.clone(), Vec::new()));
     }
 
     #[test]

@@ -861,6 +861,24 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
             blanked = Some(crate::token::blanked(blanked.as_deref().unwrap_or(text), &names));
         }
     }
+    // `gl_FragDepth` read and never written keeps the depth the fragment was rasterised at:
+    // naga would make it the depth output, unset.
+    if stage == Stage::Fragment && !compute {
+        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let reads = crate::token::depth_read_never_written(&sig);
+        if !reads.is_empty() {
+            let source = blanked.as_deref().unwrap_or(text);
+            let mut read_as_coordinate = String::with_capacity(source.len());
+            let mut from = 0;
+            for &k in &reads {
+                read_as_coordinate.push_str(&source[from..sig[k].offset]);
+                read_as_coordinate.push_str("gl_FragCoord.z");
+                from = sig[k].offset + sig[k].text.len();
+            }
+            read_as_coordinate.push_str(&source[from..]);
+            blanked = Some(read_as_coordinate);
+        }
+    }
     let tokens = match &blanked {
         Some(blanked) => tokenize(blanked).map_err(|e| LowerError { line: e.line, message: e.message })?,
         None => tokens,
@@ -2615,6 +2633,15 @@ mod tests {
         assert!(!lowered.text.contains("unused0") && !lowered.text.contains("unused1"), "{}", lowered.text);
         assert_eq!(lowered.interface.outputs.len(), 1, "{:?}", lowered.interface.outputs);
         assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
+    }
+
+    #[test]
+    fn the_fragment_depth_read_and_never_written_is_the_fragments_own() {
+        let text = "#version 450 compatibility\nlayout(location = 0) out vec4 colour;\nvoid main() { colour = vec4(gl_FragDepth - 0.5); }\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
+        assert!(lowered.text.contains("vec4(gl_FragCoord.z - 0.5)") && !lowered.text.contains("gl_FragDepth"), "{}", lowered.text);
+        let written = text.replace("colour = vec4(gl_FragDepth - 0.5);", "gl_FragDepth = 0.5; colour = vec4(gl_FragDepth);");
+        assert!(lower(&written, Stage::Fragment, &VaryingLayout::default(), false).unwrap().text.contains("gl_FragDepth = 0.5"));
     }
 
     #[test]

@@ -263,6 +263,22 @@ pub fn blanked(text: &str, ranges: &[std::ops::Range<usize>]) -> String {
     text.char_indices().map(|(at, c)| if c != '\n' && ranges.iter().any(|r| r.contains(&at)) { ' ' } else { c }).collect()
 }
 
+/// Where a fragment stage reads `gl_FragDepth` and never writes it: the positions in `sig`
+/// (significant tokens) of its uses; empty where it writes it or names it nowhere. Unwritten,
+/// its value is undefined and the fragment keeps the depth it was rasterised at, which
+/// `gl_FragCoord.z` holds.
+pub fn depth_read_never_written(sig: &[&Token]) -> Vec<usize> {
+    // A redeclaration (`out float gl_FragDepth;`) is no use.
+    let uses: Vec<usize> = (0..sig.len()).filter(|&k| sig[k].is_ident("gl_FragDepth") && (k == 0 || sig[k - 1].kind != TokenKind::Ident)).collect();
+    let written = uses.iter().any(|&k| {
+        let assigned = sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Punct && ["=", "+=", "-=", "*=", "/=", "++", "--"].contains(&n.text));
+        let stepped = k > 0 && (sig[k - 1].is_punct("++") || sig[k - 1].is_punct("--"));
+        let handed_out = argument_qualifiers(sig, k).is_some_and(|q| q.iter().any(|q| *q == "out" || *q == "inout"));
+        assigned || stepped || handed_out
+    });
+    if written { Vec::new() } else { uses }
+}
+
 /// For the argument that starts at `sig[at]` (significant tokens) of a call: the qualifier of the
 /// parameter it goes to (`in`, `out`, `inout`, or `""` for none) in each definition of the called
 /// function among `sig`. `None` where `sig[at]` is in no call's parentheses; empty where the
@@ -440,6 +456,19 @@ mod tests {
         assert_eq!((sig[defs[0].name].text, sig[defs[0].open].text, sig[defs[0].close].text), ("main", "{", "}"));
         let unclosed = tokenize("void main() { x;").unwrap();
         assert_eq!(function_definitions(&unclosed)[0].close, unclosed.len());
+    }
+
+    #[test]
+    fn the_fragment_depth_read_and_never_written_is_found() {
+        let uses = |src: &str| {
+            let tokens = tokenize(src).unwrap();
+            let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+            depth_read_never_written(&sig).len()
+        };
+        assert_eq!(uses("out float gl_FragDepth;\nvoid main() { float d = gl_FragDepth - 0.5; d += max(gl_FragDepth, 0.0); }"), 2);
+        assert_eq!(uses("void main() { float d = gl_FragDepth; gl_FragDepth = d; }"), 0);
+        assert_eq!(uses("void set(out float d) { d = 0.5; }\nvoid main() { float e = gl_FragDepth; set(gl_FragDepth); }"), 0);
+        assert_eq!(uses("void main() { gl_FragColor = vec4(1.0); }"), 0);
     }
 
     #[test]
