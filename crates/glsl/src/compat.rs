@@ -530,13 +530,13 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    if stage == Stage::Vertex {
-        let (unwritten, sometimes) = outputs_not_always_written(&met);
+    {
+        let (unwritten, sometimes) = outputs_not_always_written(&met, stage);
         let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
         if let (false, Some(at)) = (unwritten.is_empty() && sometimes.is_empty(), main_open) {
             let zeroes: String = unwritten.iter().chain(&sometimes).map(|(type_, name)| format!(" {name} = {type_}(0);")).collect();
             replaced[significant[at + 4]] = Some(format!("{{{zeroes}"));
-            let names = |outputs: &[(&str, &str)]| outputs.iter().map(|(_, name)| format!("`{name}`")).collect::<Vec<_>>().join(", ");
+            let names = |outputs: &[(String, String)]| outputs.iter().map(|(_, name)| format!("`{name}`")).collect::<Vec<_>>().join(", ");
             if !unwritten.is_empty() {
                 rewrites.push(Rewrite { line: sig[at + 4].line, what: format!("outputs nothing writes set to 0 at the start of main: {}", names(&unwritten)) });
             }
@@ -1047,32 +1047,45 @@ pub fn offsets_as_coordinates_on_line(text: &str, line: u32, dimensions: u8, ver
 /// A declaration's type and name.
 type TypedName<'t> = (&'t str, &'t str);
 
-/// What a function body does in statements of its own: the names it assigns whole, the
-/// functions it calls.
-type Statements<'t> = (HashSet<&'t str>, HashSet<&'t str>);
+/// What a function body does in statements of its own: the outputs it assigns whole (by name,
+/// `gl_FragData[1]` written out), the functions it calls.
+type Statements<'t> = (HashSet<String>, HashSet<&'t str>);
 
-/// Outputs declared outside every brace, one name each (`[flat] varying|out TYPE NAME;`), that
-/// the stage may leave unwritten: (type, name) of those whose name appears nowhere else, and of
-/// those `main` does not assign whole (`NAME =`) as a statement of its own, nor a function it
-/// calls so (one level down), so that some paths (an `if`, a loop) or components (`NAME.rgb =`)
-/// are left undefined.
-fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Vec<TypedName<'t>>) {
+/// Outputs the stage may leave unwritten: those declared outside every brace, one name each
+/// (`[flat] varying|out TYPE NAME;`, `out` alone in a fragment stage), and in a fragment stage
+/// each `gl_FragData[N]` written somewhere. As (type, name): those whose name appears nowhere else
+/// (vertex stages only: a fragment output named nowhere is no draw buffer), and those `main`
+/// does not assign whole (`NAME =`) as a statement of its own, nor a function it calls so (one
+/// level down), so that some paths (an `if`, a loop) or components (`NAME.rgb =`) are left
+/// undefined.
+fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, String)>, Vec<(String, String)>) {
     let mut depth = 0i32;
-    let mut declared = Vec::new();
+    let mut declared: Vec<(String, String)> = Vec::new();
+    // `gl_FragData[N]` at `toks[k]`, with N a literal: its name as written whole.
+    let frag_data = |k: usize| {
+        let index = toks.get(k + 2).filter(|n| n.kind == TokenKind::Number && toks[k + 1].is_punct("[") && toks.get(k + 3).is_some_and(|c| c.is_punct("]")));
+        index.filter(|_| toks[k].is_ident("gl_FragData")).map(|n| format!("gl_FragData[{}]", n.text))
+    };
     for (i, t) in toks.iter().enumerate() {
         if t.is_punct("{") {
             depth += 1;
         } else if t.is_punct("}") {
             depth -= 1;
         } else if depth == 0
-            && (t.is_ident("varying") || t.is_ident("out"))
+            && (t.is_ident("out") || (t.is_ident("varying") && stage == Stage::Vertex))
             && let [type_, name, end] = [toks.get(i + 1), toks.get(i + 2), toks.get(i + 3)]
             && let (Some(type_), Some(name), Some(end)) = (type_, name, end)
             && VALUE_TYPES.contains(&type_.text)
             && name.kind == TokenKind::Ident
             && end.is_punct(";")
         {
-            declared.push((type_.text, name.text));
+            declared.push((type_.text.to_string(), name.text.to_string()));
+        } else if stage == Stage::Fragment
+            && let Some(name) = frag_data(i)
+            && toks.get(i + 4).is_some_and(|e| e.is_punct("="))
+            && !declared.iter().any(|(_, d)| *d == name)
+        {
+            declared.push(("vec4".to_string(), name));
         }
     }
     // Per function: the names its body assigns whole before anything else names them (`x += …`
@@ -1090,16 +1103,20 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Ve
                 depth -= 1;
             } else if t.kind == TokenKind::Ident {
                 let statement_start = depth == 1 && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p));
-                match toks.get(k + 1) {
-                    Some(e) if statement_start && e.is_punct("=") && !named.contains(t.text) => {
-                        assigned.insert(t.text);
+                let (name, after) = match frag_data(k) {
+                    Some(name) => (name, k + 4),
+                    None => (t.text.to_string(), k + 1),
+                };
+                match toks.get(after) {
+                    Some(e) if statement_start && e.is_punct("=") && !named.contains(&name) => {
+                        assigned.insert(name.clone());
                     }
                     Some(p) if statement_start && p.is_punct("(") => {
                         called.insert(t.text);
                     }
                     _ => {}
                 }
-                named.insert(t.text);
+                named.insert(name);
             }
         }
         (assigned, called)
@@ -1107,7 +1124,7 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Ve
     let functions: Vec<(&str, Statements)> =
         function_definitions(toks).into_iter().map(|f| (toks[f.name].text, statements(f.open, f.close))).collect();
     let main = functions.iter().find(|(name, _)| *name == "main");
-    let mut assigned_in_main: HashSet<&str> = HashSet::new();
+    let mut assigned_in_main: HashSet<&String> = HashSet::new();
     if let Some((_, (assigned, called))) = main {
         assigned_in_main.extend(assigned);
         for (_, (by_callee, _)) in functions.iter().filter(|(name, _)| called.contains(name)) {
@@ -1117,9 +1134,12 @@ fn outputs_not_always_written<'t>(toks: &[&'t Token]) -> (Vec<TypedName<'t>>, Ve
     let mut unwritten = Vec::new();
     let mut sometimes = Vec::new();
     for (type_, name) in declared {
-        if toks.iter().filter(|u| u.is_ident(name)).count() == 1 {
-            unwritten.push((type_, name));
-        } else if main.is_some() && !assigned_in_main.contains(name) {
+        let named_elsewhere = name.starts_with("gl_FragData") || toks.iter().filter(|u| u.is_ident(&name)).count() > 1;
+        if !named_elsewhere {
+            if stage == Stage::Vertex {
+                unwritten.push((type_, name));
+            }
+        } else if main.is_some() && !assigned_in_main.contains(&name) {
             sometimes.push((type_, name));
         }
     }
@@ -1609,6 +1629,17 @@ mod tests {
         assert_eq!(out, text.replace("void main() {", "void main() { isWater = float(0); color = vec4(0); fog = float(0); ray = vec3(0);"));
         assert_eq!(rewrites.len(), 1);
         assert!(rewrites[0].what.contains("not written whole on every path") && rewrites[0].what.ends_with("`isWater`, `color`, `fog`, `ray`"), "{rewrites:?}");
+    }
+
+    #[test]
+    fn a_fragment_output_written_on_some_paths_is_set_to_zero_first() {
+        // As Makenbo/pretty-aesthetic-minecraft-shader's water writes its normal: Mesa's
+        // compiler took the undefined value as the one written, wgpu's is 0.
+        let text = "#version 330 compatibility\nvarying vec3 normal;\nvarying float water;\nlayout(location = 2) out vec4 extra;\nvoid main() {\n    if (water > 0.5) gl_FragData[1] = vec4(normal, 1.0);\n    gl_FragData[0] = vec4(1.0);\n    if (water > 0.5) { extra = vec4(water); }\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("void main() {", "void main() { extra = vec4(0); gl_FragData[1] = vec4(0);"));
+        assert_eq!(rewrites.len(), 1);
+        assert!(rewrites[0].what.ends_with("`extra`, `gl_FragData[1]`"), "{rewrites:?}");
     }
 
     #[test]

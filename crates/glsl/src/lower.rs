@@ -43,7 +43,8 @@
 //!   and vertex `gl_SecondaryColor` reserved inputs from [`RARE_LEGACY_INPUT_LOCATION`].
 //! - `uniform bool b` becomes the block member `int tp_bool_b`, read as `(tp_bool_b != 0)`;
 //!   uniforms of a struct type get a block of their own on their line; uniform initializers are
-//!   dropped (the loader sets the value).
+//!   dropped, their text kept in [`Interface::uniform_initializers`] (the value until the
+//!   loader sets one).
 //!
 //! - Storage images (`layout(rgba16f) uniform image2D colorimg0;`) get a set and binding; an
 //!   image without a format (allowed for `writeonly`) gets the 32-bit four-component format of
@@ -632,6 +633,9 @@ pub struct Interface {
     pub outputs: BTreeMap<u32, String>,
     /// Storage images by their names in the shipped text, with their types (`image2D`).
     pub images: BTreeMap<String, String>,
+    /// Uniforms declared with an initializer (`uniform int gamut = 5;`), by name: the
+    /// initializer's text, the value until the loader sets one.
+    pub uniform_initializers: BTreeMap<String, String>,
 }
 
 #[derive(Clone, Debug)]
@@ -1920,7 +1924,14 @@ impl<'a> Lowering<'_, 'a> {
 
     fn lower_uniform(&mut self, decl: &Declaration<'a>, start: usize, end: usize) -> Result<(), LowerError> {
         // A uniform's initializer only sets its value before the loader does: drop it (the
-        // declarator suffix stops before `=`).
+        // declarator suffix stops before `=`), and keep its text for the harness to fill the
+        // uniform with where the loader sets nothing.
+        for ((name, _), initializer) in decl.names.iter().zip(&decl.initializers) {
+            if let Some((equals, end)) = *initializer {
+                let text: Vec<&str> = (equals + 1..end).filter(|&i| !self.tokens[i].is_trivia()).map(|i| self.tokens[i].text).collect();
+                self.interface.uniform_initializers.insert(name.to_string(), text.join(" "));
+            }
+        }
         let set = self.descriptor_set();
         if let Some(default_format) = image_default_format(decl.ty) {
             return self.lower_image(decl, start, end, default_format);

@@ -4,13 +4,14 @@
 //!
 //! A member the harness has no value for is an error naming it, never a silent zero.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
-use tidepack_glsl::lower::BOOL_UNIFORM_PREFIX;
+use tidepack_glsl::lower::{BOOL_UNIFORM_PREFIX, Interface, ResourceKind};
 use tidepack_scene::scene::Scene;
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
 pub use tidepack_loader::uniform_value::{Kind, Value};
@@ -245,6 +246,66 @@ pub struct FilledBlock {
     pub members: Vec<String>,
 }
 
+/// The value a uniform's initializer gives where it is a literal or a constructor of literals
+/// (`5`, `- 0.5`, `vec3 ( 1.0 , 0.5 , 0.0 )`, `true`), for a scalar or vector type `ty`; None
+/// for anything else (an expression, a matrix).
+pub fn initializer_value(ty: &str, text: &str) -> Option<Value> {
+    let (kind, rows) = match ty {
+        "float" => (Kind::Float, 1),
+        "int" | "uint" | "bool" => (Kind::Int, 1),
+        _ => {
+            let (base, n) = ty.split_at(ty.len().checked_sub(1)?);
+            let rows: u8 = n.parse().ok().filter(|n| (2..=4).contains(n))?;
+            match base {
+                "vec" => (Kind::Float, rows),
+                "ivec" | "uvec" | "bvec" => (Kind::Int, rows),
+                _ => return None,
+            }
+        }
+    };
+    let scalar = |text: &str| -> Option<f64> {
+        let text = text.replace(' ', "");
+        match text.as_str() {
+            "true" => Some(1.0),
+            "false" => Some(0.0),
+            _ => text.trim_end_matches(['f', 'F', 'u', 'U']).parse::<f64>().ok().filter(|v| v.is_finite()),
+        }
+    };
+    let text = text.trim();
+    let args: Vec<&str> = match text.strip_prefix(ty).map(str::trim) {
+        Some(call) => call.strip_prefix('(')?.strip_suffix(')')?.split(',').collect(),
+        None => vec![text],
+    };
+    let mut data = args.iter().map(|a| scalar(a)).collect::<Option<Vec<f64>>>()?;
+    if data.len() == 1 {
+        data = vec![data[0]; rows as usize];
+    }
+    if kind == Kind::Int {
+        data = data.into_iter().map(f64::trunc).collect();
+    }
+    (data.len() == rows as usize).then_some(Value { kind, columns: 1, rows, array: None, data })
+}
+
+/// `values` with the value of each uniform of `interface` that the loader leaves unset and that
+/// its declaration initialises ([`initializer_value`]): what the driver holds there.
+pub fn with_initializers<'v>(values: &'v BTreeMap<String, Value>, interface: &Interface) -> Cow<'v, BTreeMap<String, Value>> {
+    let initial: Vec<(String, Value)> = interface
+        .uniform_initializers
+        .iter()
+        .filter(|(name, _)| !values.contains_key(*name))
+        .filter_map(|(name, text)| match interface.resources.get(name) {
+            Some(ResourceKind::Uniform { ty }) => initializer_value(ty, text).map(|v| (name.clone(), v)),
+            _ => None,
+        })
+        .collect();
+    if initial.is_empty() {
+        return Cow::Borrowed(values);
+    }
+    let mut with = values.clone();
+    with.extend(initial);
+    Cow::Owned(with)
+}
+
 /// Finds the module's uniform block and writes every member from `values`. `stage_name`
 /// names the stage in errors; a member without a value is an error.
 pub fn fill_block(module: &naga::Module, values: &BTreeMap<String, Value>, stage_name: &str) -> Result<Option<FilledBlock>, HarnessError> {
@@ -414,4 +475,23 @@ fn write_member(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn initializers_of_literals_and_constructors_are_read() {
+        assert_eq!(initializer_value("int", "5"), Some(Value::int(5)));
+        assert_eq!(initializer_value("float", "- 0.5f"), Some(Value::float(-0.5)));
+        assert_eq!(initializer_value("vec3", "vec3 ( 1.0 , 0.5 , 0.0 )"), Some(Value::vec3(DVec3::new(1.0, 0.5, 0.0))));
+        assert_eq!(initializer_value("vec4", "vec4 ( 0.25 )").map(|v| v.data), Some(vec![0.25; 4]));
+        assert_eq!(initializer_value("bool", "true"), Some(Value::int(1)));
+        assert_eq!(initializer_value("ivec2", "ivec2 ( 2 , 4 )"), Some(Value::ivec2(2, 4)));
+        // Expressions and matrices are not read.
+        assert_eq!(initializer_value("float", "1.0 / 3.0"), None);
+        assert_eq!(initializer_value("mat3", "mat3 ( 1.0 )"), None);
+        assert_eq!(initializer_value("vec3", "vec3 ( 1.0 , 2.0 )"), None);
+    }
 }

@@ -574,7 +574,8 @@ fn fog_uniforms_hold_the_games_fog() {
 
 /// The biome's uniforms (tests/packs/biome_uniform): a custom uniform on `biome`, its category
 /// and precipitation says plains, and `temperature` and `rainfall` are the plains' 0.8 and 0.4.
-/// A custom `uniform bool` (the still camera) is true in both renderers.
+/// A custom `uniform bool` (the still camera) is true in both renderers, and uniforms the
+/// loader does not set hold their initializers in both.
 #[test]
 fn biome_uniforms_say_plains() {
     let (report, screen) = render_job("biome_uniform");

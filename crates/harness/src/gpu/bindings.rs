@@ -425,7 +425,7 @@ fn binding_entries(
             tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
         };
         let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
-        if let Some(block) = fill(stage.module()?, values, &stage.path)? {
+        if let Some(block) = fill(stage.module()?, &uniforms::with_initializers(values, &stage.interface), &stage.path)? {
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{} uniforms", stage.path)),
                 contents: &block.bytes,
