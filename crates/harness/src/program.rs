@@ -343,26 +343,6 @@ fn expanded_as_loader_gives_it(
     Ok(ExpandedStage { text, line_map: map, version_put_first: Some(what) })
 }
 
-/// `text` with the rewrites of Iris's transformer that `reading` asks for (the albedo sampler
-/// named `gtexture`, functions nothing calls removed), each decided on `seen`, the stage as
-/// Iris's preprocessor leaves it; and what was done.
-fn as_iris_transforms(mut text: String, seen: &str, reading: LoaderReading) -> (String, Vec<String>) {
-    let mut done = Vec::new();
-    if reading.renames_albedo_sampler
-        && let Some((rewritten, what)) = iris::albedo_sampler_as_gtexture(&text, seen)
-    {
-        text = rewritten;
-        done.push(what);
-    }
-    if reading.removes_unused_functions
-        && let Some((rewritten, what)) = iris::unused_functions_removed(&text, seen)
-    {
-        text = rewritten;
-        done.push(what);
-    }
-    (text, done)
-}
-
 /// The lines (1-based) of an expanded text, whose pack locations are `line_map`, that come from
 /// the pack line `at`.
 fn lines_from(line_map: &[Option<Location>], at: &Location) -> Vec<u32> {
@@ -471,7 +451,7 @@ pub(crate) fn load_program_files(
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
         as_preprocessed.insert(stage, p.text.clone());
-        (p.text, _) = as_iris_transforms(p.text.clone(), &as_preprocessed[&stage], reading);
+        (p.text, _) = iris::as_transformed(p.text.clone(), &as_preprocessed[&stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
@@ -497,7 +477,7 @@ pub(crate) fn load_program_files(
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
-        let (expanded, iris_rewrites) = as_iris_transforms(expanded, &as_preprocessed[&stage.stage], reading);
+        let (expanded, iris_rewrites) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
         let iris_rewrites: Vec<String> = version_put_first.into_iter().chain(iris_rewrites).map(|what| format!("{path}: {what}")).collect();
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
         gl_rewrites.extend(iris_rewrites.iter().cloned());

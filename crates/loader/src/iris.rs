@@ -42,6 +42,22 @@ fn file_scope_declarations(tokens: &[Token<'_>], order: &[usize], name: &str) ->
     found
 }
 
+/// `text` with the rewrites of Iris's transformer asked for (the albedo sampler named
+/// `gtexture`, functions nothing calls removed), each decided on `seen`, the stage as Iris's
+/// preprocessor leaves it; and what was done.
+pub fn as_transformed(mut text: String, seen: &str, renames_albedo_sampler: bool, removes_unused_functions: bool) -> (String, Vec<String>) {
+    let mut done = Vec::new();
+    if renames_albedo_sampler && let Some((rewritten, what)) = albedo_sampler_as_gtexture(&text, seen) {
+        text = rewritten;
+        done.push(what);
+    }
+    if removes_unused_functions && let Some((rewritten, what)) = unused_functions_removed(&text, seen) {
+        text = rewritten;
+        done.push(what);
+    }
+    (text, done)
+}
+
 /// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and
 /// every use of that name that is not a call, as Iris's transformer has it (where both are
 /// declared, `texture`'s single-name declaration goes); and what was done. Iris decides on the

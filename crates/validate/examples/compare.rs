@@ -32,7 +32,7 @@ fn main() {
     }
     let tmp = std::env::temp_dir().join(format!("tidepack-compare-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let defines = tidepack_loader::macros::StandardMacros::default().define_lines();
+    let macros = tidepack_loader::macros::StandardMacros::default();
     let (mut programs_total, mut glslang_seconds, mut glslang_programs) = (0usize, 0.0f64, 0usize);
     let mut agree_glslang = [[0usize; 2]; 2]; // [tidepack rejects][glslang rejects]
     let mut agree_mesa = [[0usize; 2]; 2];
@@ -70,7 +70,7 @@ fn main() {
             };
             agree_mesa[tidepack_rejects as usize][mesa_rejects as usize] += 1;
             let provider = SetProvider::new(pack, &set);
-            match glslang::check(&program, &provider, &defines, &tmp).unwrap_or_else(|e| panic!("{e}")) {
+            match glslang::check(&program, &provider, &macros, &tmp).unwrap_or_else(|e| panic!("{e}")) {
                 Some(v) => {
                     let rejects = v.rejects;
                     glslang_seconds += v.elapsed.as_secs_f64();

@@ -97,7 +97,6 @@ fn main() {
         eprintln!("{e}");
         std::process::exit(2)
     });
-    let defines = macros.define_lines();
     let scratch = std::env::temp_dir().join(format!("tidepack-corpus-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).unwrap();
     let mut rows = Vec::new();
@@ -128,7 +127,7 @@ fn main() {
             let started = Instant::now();
             let mesa = gl.check(&program, &provider);
             row.mesa += started.elapsed();
-            if let Ok(Some(verdict)) = glslang::check(&program, &provider, &defines, &scratch) {
+            if let Ok(Some(verdict)) = glslang::check(&program, &provider, &macros, &scratch) {
                 row.glslang += verdict.elapsed;
                 row.glslang_programs += 1;
             }

@@ -7,10 +7,11 @@ use tidepack_gldriver::GlContext;
 use tidepack_gldriver::glow::{self, HasContext};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::programs::with_loader_declarations;
-use tidepack_glsl::preprocess::{IncludeRules, expand_includes_mapped};
 use tidepack_glsl::{Code, Diagnostic, Location, Stage};
 
 use tidepack_loader::programs::Program;
+
+use crate::loader_text::as_loader_hands_it;
 
 /// How the driver's verdicts compare with tidepack's, per program and option set.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -41,15 +42,14 @@ struct StageText {
 
 pub struct Driver {
     context: GlContext,
-    defines: String,
-    include_rules: IncludeRules,
+    macros: StandardMacros,
 }
 
 impl Driver {
     /// A headless context; the error names the packages to install.
     pub fn new(macros: &StandardMacros) -> Result<Driver, Diagnostic> {
         let context = GlContext::new().map_err(|e| Diagnostic::error(Code::Driver, e.message, None))?;
-        Ok(Driver { context, defines: macros.define_lines(), include_rules: macros.include_rules() })
+        Ok(Driver { context, macros: macros.clone() })
     }
 
     pub fn describe(&self) -> String {
@@ -75,12 +75,12 @@ impl Driver {
         }
     }
 
-    /// A stage's text as the driver gets it: includes expanded, the standard macros, what the
-    /// loader declares, and a `#version` above the driver's lowered to its highest (see
-    /// [`within_version`]); `None` when it cannot be expanded (tidepack's preprocessor reported
-    /// that already).
+    /// A stage's text as the driver gets it: as the loader hands it
+    /// ([`as_loader_hands_it`]), with what the loader declares, and a `#version` above the
+    /// driver's lowered to its highest (see [`within_version`]); `None` when it cannot be
+    /// expanded (tidepack's preprocessor reported that already).
     fn stage_text(&self, program: &Program, vertex: bool, path: &str, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Option<StageText> {
-        let (text, map) = expand_includes_mapped(provider, path, &self.defines, self.include_rules).ok()?;
+        let (text, map) = as_loader_hands_it(provider, path, &self.macros).ok()?;
         let highest = self.highest_glsl();
         let (text, asked) = within_version(declared(program, vertex, text), highest);
         let version_note = asked.map(|asked| {

@@ -34,6 +34,7 @@ pub mod fuzz;
 pub mod glslang;
 pub mod interface;
 pub mod levels;
+pub mod loader_text;
 mod messages;
 mod naga_pool;
 pub mod output;

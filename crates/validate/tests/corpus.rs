@@ -4,13 +4,15 @@
 //! - every case in `accepted/` (constructs drivers accept) validates with no error and no
 //!   warning but "not checked";
 //! - every case in `planted/` reports each mistake listed in its `expect.txt`
-//!   (`severity path:line message-substring`) at that file and line; `args.txt` may name a
-//!   profile (`--profile NAME`);
+//!   (`severity path:line message-substring`) at that file and line; a case's `args.txt` may
+//!   name a profile (`--profile NAME`) and a loader (`--loader NAME`);
 //! - a corpus pack zipped inside a wrapper folder, together with hostile entries, gives the same
 //!   verdict plus one warning per hostile entry.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+mod common;
 
 use tidepack_validate::{Options, Profiles, Report, validate_path};
 
@@ -60,7 +62,7 @@ fn constructs_drivers_accept_are_not_errors() {
     assert!(cases.len() >= 7, "accepted cases missing");
     let mut problems = Vec::new();
     for case in &cases {
-        let report = validate_path(case, &options(Profiles::Defaults)).unwrap_or_else(|e| panic!("{}: {e}", case.display()));
+        let report = validate_path(case, &common::case_options(case)).unwrap_or_else(|e| panic!("{}: {e}", case.display()));
         let validated = report.programs.iter().filter(|p| p.status == tidepack_validate::Status::Valid).count();
         let unexpected = report.diagnostics.iter().any(|d| d.is_error() || !d.message.contains("is not checked"));
         if unexpected || validated == 0 {
@@ -101,13 +103,7 @@ fn planted_mistakes_are_reported_where_they_were_planted() {
     assert!(cases.len() >= 10, "planted cases missing");
     let mut problems = Vec::new();
     for case in &cases {
-        let args = std::fs::read_to_string(case.join("args.txt")).unwrap_or_default();
-        let profiles = match args.split_whitespace().collect::<Vec<_>>().as_slice() {
-            ["--profile", name] => Profiles::Named(name.to_string()),
-            [] => Profiles::Defaults,
-            other => panic!("{}: unsupported args {other:?}", case.display()),
-        };
-        let report = validate_path(case, &options(profiles)).unwrap();
+        let report = validate_path(case, &common::case_options(case)).unwrap();
         let expected = expectations(case);
         assert!(!expected.is_empty());
         for e in &expected {

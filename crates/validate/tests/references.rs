@@ -3,6 +3,8 @@
 //! glslang-tools and libegl1 libegl-mesa0 libgl1-mesa-dri); without them these tests fail, they
 //! never skip.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use tidepack_loader::option_lines::OptionSet;
@@ -20,18 +22,11 @@ fn packs() -> Vec<PathBuf> {
     dirs
 }
 
-fn profile_of(dir: &Path) -> Profiles {
-    match std::fs::read_to_string(dir.join("args.txt")).unwrap_or_default().split_whitespace().collect::<Vec<_>>().as_slice() {
-        ["--profile", name] => Profiles::Named(name.to_string()),
-        _ => Profiles::Defaults,
-    }
-}
-
 #[test]
 fn mesa_agrees_with_tidepack_on_every_program() {
     let mut compared = 0;
     for dir in packs() {
-        let options = Options { profiles: profile_of(&dir), driver: true, threads: 2, ..Options::default() };
+        let options = Options { driver: true, ..common::case_options(&dir) };
         let report = validate_path(&dir, &options).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
         let driver = report.driver.as_ref().expect("a driver summary");
         assert!(
@@ -46,13 +41,13 @@ fn mesa_agrees_with_tidepack_on_every_program() {
 
 #[test]
 fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
-    let defines = tidepack_loader::macros::StandardMacros::default().define_lines();
     let scratch = tempfile::tempdir().unwrap();
     let (mut agree, mut total) = (0, 0);
     let mut unexplained = Vec::new();
     for dir in packs() {
-        let report = validate_path(&dir, &Options { profiles: profile_of(&dir), threads: 2, ..Options::default() }).unwrap();
-        let set = match profile_of(&dir) {
+        let options = common::case_options(&dir);
+        let report = validate_path(&dir, &options).unwrap();
+        let set = match options.profiles {
             Profiles::Named(name) => Configuration { profile: Some(name), ..Configuration::default() }.option_set_of(&report.pack).unwrap().0,
             _ => OptionSet::new(),
         };
@@ -61,7 +56,7 @@ fn glslang_disagrees_only_where_it_is_stricter_or_does_not_link() {
             let Some(ours) = report.programs.iter().find(|p| p.id == program.id() && !matches!(p.status, Status::Skipped(_))) else {
                 continue;
             };
-            let Some(verdict) = glslang::check(&program, &provider, &defines, scratch.path()).unwrap_or_else(|e| panic!("{e}")) else {
+            let Some(verdict) = glslang::check(&program, &provider, &options.macros, scratch.path()).unwrap_or_else(|e| panic!("{e}")) else {
                 continue;
             };
             total += 1;
