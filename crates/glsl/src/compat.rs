@@ -418,6 +418,37 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         });
     }
 
+    // Default values of parameters: the values written out in each call that leaves them.
+    let (edits, functions) = default_arguments_spelled_out(&tokens, &significant);
+    if let (Some(&(first, _)), false) = (edits.first(), functions.is_empty()) {
+        for (i, text) in edits {
+            replaced[i] = Some(text);
+        }
+        rewrites.push(Rewrite {
+            line: tokens[first].line,
+            what: format!("default values of parameters, which GLSL lacks and NVIDIA takes, given in the calls that leave them out: {}", functions.join(", ")),
+        });
+    }
+
+    // A function returning a sampler (`sampler2D opticalDepth() { return gaux4; }`): GLSL has no
+    // such function, NVIDIA takes it. Decided on what the driver meets; each definition (one per
+    // branch of an `#if`, say) becomes a macro giving its sampler.
+    let met_sampler_functions = functions_returning_samplers(&met);
+    for f in functions_returning_samplers(&sig).into_iter().filter(|f| met_sampler_functions.iter().any(|m| m.name == f.name)) {
+        let first_on_line = tokens[..significant[f.start]].iter().rev().take_while(|t| t.kind != TokenKind::Newline).all(|t| t.is_trivia());
+        if !first_on_line {
+            continue;
+        }
+        replaced[significant[f.start]] = Some(format!("#define {}() {}", f.name, f.returned));
+        for k in f.start + 1..=f.close {
+            replaced[significant[k]] = Some(String::new());
+        }
+        rewrites.push(Rewrite {
+            line: sig[f.start].line,
+            what: format!("`{}()`, a function returning the sampler `{}`, which GLSL forbids and NVIDIA takes, made a macro", f.name, f.returned),
+        });
+    }
+
     // A local `const` whose initializer is not a constant expression (`const float c = a + b;`
     // with `a` a parameter): NVIDIA takes it as a read-only local, Mesa refuses it. Decided on
     // what the driver meets, per function; the declaration of that name in that function loses
@@ -787,6 +818,89 @@ pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
                 && toks[k + 1].is_punct(";")
                 && ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x))
                 && bodies.iter().any(|b| b.contains(&k))
+        })
+        .collect()
+}
+
+/// A function that returns the sampler it names (`sampler2D opticalDepth() { return gaux4; }`),
+/// which GLSL forbids (a sampler is no return type) and NVIDIA takes: positions in the
+/// significant tokens of its return type and closing brace, its name and the sampler.
+pub(crate) struct SamplerFunction<'t> {
+    pub start: usize,
+    pub close: usize,
+    pub name: &'t str,
+    pub returned: &'t str,
+}
+
+/// Default values of parameters (`vec4 move(in vec3 at = vec3(0.0))`), which GLSL lacks and
+/// NVIDIA takes: the edits that spell them out, as (index into `tokens`, replacement): each
+/// `= value` of a definition or prototype removed, and each call giving fewer arguments than
+/// the function has parameters given the missing values before its `)`. Empty without them.
+pub(crate) fn default_arguments_spelled_out(tokens: &[Token], significant: &[usize]) -> (Vec<(usize, String)>, Vec<String>) {
+    let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    let mut edits = Vec::new();
+    // Per function: each parameter's default, as text.
+    let mut defaults: HashMap<&str, Vec<Option<String>>> = HashMap::new();
+    let mut headers = HashSet::new();
+    for k in 1..sig.len().saturating_sub(1) {
+        // `TYPE NAME (`, the type not a directive's word (`#endif` before a `for (`).
+        let type_line_start = sig[..k].iter().rposition(|t| t.line != sig[k - 1].line).map_or(0, |p| p + 1);
+        let header = sig[k].kind == TokenKind::Ident
+            && !["for", "while", "if", "switch", "return"].contains(&sig[k].text)
+            && sig[k - 1].kind == TokenKind::Ident
+            && !sig[type_line_start].is_punct("#")
+            && sig[k + 1].is_punct("(");
+        let Some(close) = matching_close(significant, tokens, k + 1).filter(|_| header) else { continue };
+        let list = &sig[k + 2..close];
+        if !list.iter().any(|t| t.is_punct("=")) || !sig.get(close + 1).is_some_and(|t| t.is_punct("{") || t.is_punct(";")) {
+            continue;
+        }
+        let mut values = Vec::new();
+        let (mut depth, mut equals) = (0i32, None);
+        for (j, t) in list.iter().enumerate().chain(std::iter::once((list.len(), &sig[close]))) {
+            match t.text {
+                "(" | "[" => depth += 1,
+                ")" | "]" if j < list.len() => depth -= 1,
+                "=" if depth == 0 => equals = Some(j),
+                _ => {}
+            }
+            if (t.is_punct(",") && depth == 0) || j == list.len() {
+                values.push(equals.map(|e| list[e + 1..j].iter().map(|t| t.text).collect::<Vec<_>>().join(" ")));
+                if let Some(e) = equals.take() {
+                    for m in e..j {
+                        edits.push((significant[k + 2 + m], String::new()));
+                    }
+                }
+            }
+        }
+        headers.insert(k);
+        defaults.insert(sig[k].text, values);
+    }
+    for k in 0..sig.len().saturating_sub(1) {
+        let Some(values) = defaults.get(sig[k].text).filter(|_| sig[k + 1].is_punct("(") && !headers.contains(&k)) else { continue };
+        let Some(close) = matching_close(significant, tokens, k + 1) else { continue };
+        let given = argument_count(significant, tokens, k + 1);
+        let missing: Vec<&str> = values[given.min(values.len())..].iter().map_while(|v| v.as_deref()).collect();
+        if !missing.is_empty() {
+            let separator = if given == 0 { "" } else { ", " };
+            edits.push((significant[close], format!("{separator}{})", missing.join(", "))));
+        }
+    }
+    (edits, defaults.keys().map(|n| n.to_string()).collect())
+}
+
+/// The [`SamplerFunction`]s `toks` (significant tokens) defines.
+pub(crate) fn functions_returning_samplers<'t>(toks: &[&'t Token]) -> Vec<SamplerFunction<'t>> {
+    function_definitions(toks)
+        .into_iter()
+        .filter_map(|f| {
+            let returns_sampler = toks[f.name - 1].text.trim_start_matches(['i', 'u']).starts_with("sampler");
+            let no_parameters = f.open == f.name + 3 && toks[f.name + 2].is_punct(")");
+            let returned = match &toks[f.open + 1..f.close] {
+                [r, n, end] if r.is_ident("return") && n.kind == TokenKind::Ident && end.is_punct(";") => n.text,
+                _ => return None,
+            };
+            (returns_sampler && no_parameters).then_some(SamplerFunction { start: f.name - 1, close: f.close, name: toks[f.name].text, returned })
         })
         .collect()
 }
@@ -1349,6 +1463,26 @@ mod tests {
         assert_eq!(rewrites[0].line, 4);
         let written = text.replace("    data =", "    gl_FragDepth = 0.5;\n    data =");
         assert_eq!(for_strict_drivers(&written, &written, Stage::Fragment, &[]), (written.clone(), Vec::new()));
+    }
+
+    #[test]
+    fn nvidia_only_functions_are_spelled_out() {
+        // As saadam1n/MinecraftShaders writes them: a function returning a sampler, one
+        // definition per branch, and parameters with default values.
+        let text = "#version 120\nuniform sampler2D gaux4;\nuniform sampler2D depthtex1;\n#ifdef GBUFFERS\nsampler2D depthSource() {\n    return gaux4;\n}\n#else\nsampler2D depthSource() {\n    return depthtex1;\n}\n#endif\n\
+                    vec4 move(in vec3 at = vec3(0.0), in float by = 1.0) { return vec4(at * by, 1.0); }\n\
+                    void main() {\n    #endif\n    for (float i = 0.0; i < 2.0; i++) {}\n    gl_FragColor = texture2D(depthSource(), move().xy) + move(vec3(1.0)) + move(vec3(1.0), 2.0);\n}\n";
+        let met = "#version 120\nuniform sampler2D gaux4;\nuniform sampler2D depthtex1;\n\n\n\n\n\nsampler2D depthSource() {\n    return depthtex1;\n}\n\n\
+                   vec4 move(in vec3 at = vec3(0.0), in float by = 1.0) { return vec4(at * by, 1.0); }\n\
+                   void main() {\n\n    for (float i = 0.0; i < 2.0; i++) {}\n    gl_FragColor = texture2D(depthSource(), move().xy) + move(vec3(1.0)) + move(vec3(1.0), 2.0);\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, met, Stage::Fragment, &[]);
+        assert!(out.contains("\n#define depthSource() gaux4 ") && out.contains("\n#define depthSource() depthtex1 "), "{out}");
+        assert!(out.contains("vec4 move(in vec3 at  , in float by  ) {"), "{out}");
+        assert!(out.contains("move(vec3 ( 0.0 ), 1.0).xy) + move(vec3(1.0), 1.0) + move(vec3(1.0), 2.0)"), "{out}");
+        assert!(out.contains("for (float i = 0.0;"), "{out}");
+        assert_eq!(out.lines().count(), text.lines().count());
+        assert!(rewrites.iter().any(|r| r.what.starts_with("default values of parameters")), "{rewrites:?}");
+        assert_eq!(rewrites.iter().filter(|r| r.what.contains("made a macro")).count(), 2, "{rewrites:?}");
     }
 
     #[test]

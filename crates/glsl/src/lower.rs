@@ -859,19 +859,47 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
     let mut blanked = without_unchecked_qualifiers(text, &tokens);
     if lenient {
         let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-        let names: Vec<std::ops::Range<usize>> =
+        let mut names: Vec<std::ops::Range<usize>> =
             crate::compat::functions_named_as_statements(&sig).into_iter().map(|k| sig[k].offset..sig[k].offset + sig[k].text.len()).collect();
+        // A function returning a sampler, which NVIDIA takes, goes; its calls read the sampler.
+        let sampler_functions = crate::compat::functions_returning_samplers(&sig);
+        names.extend(sampler_functions.iter().map(|f| sig[f.start].offset..sig[f.close].offset + 1));
         if !names.is_empty() {
             blanked = Some(crate::token::blanked(blanked.as_deref().unwrap_or(text), &names));
+        }
+        // Default values of parameters, which NVIDIA takes, written out in the calls.
+        let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+        let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
+        let mut edits: Vec<(std::ops::Range<usize>, String)> =
+            defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)).collect();
+        for k in 0..sig.len().saturating_sub(2) {
+            let Some(f) = sampler_functions.iter().find(|f| sig[k].is_ident(f.name) && !(f.start..=f.close).contains(&k)) else { continue };
+            if sig[k + 1].is_punct("(") && sig[k + 2].is_punct(")") {
+                edits.push((sig[k].offset..sig[k + 2].offset + 1, f.returned.to_string()));
+            }
+        }
+        if !edits.is_empty() {
+            edits.sort_by_key(|(range, _)| range.start);
+            let source = blanked.as_deref().unwrap_or(text);
+            let mut edited = String::with_capacity(source.len());
+            let mut from = 0;
+            for (range, with) in edits {
+                edited.push_str(&source[from..range.start]);
+                edited.push_str(&with);
+                from = range.end;
+            }
+            edited.push_str(&source[from..]);
+            blanked = Some(edited);
         }
     }
     // `gl_FragDepth` read and never written keeps the depth the fragment was rasterised at:
     // naga would make it the depth output, unset.
-    if stage == Stage::Fragment && !compute {
-        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    if stage == Stage::Fragment && !compute && text.contains("gl_FragDepth") {
+        let source = blanked.as_deref().unwrap_or(text);
+        let current = tokenize(source).map_err(|e| LowerError { line: e.line, message: e.message })?;
+        let sig: Vec<&Token> = current.iter().filter(|t| !t.is_trivia()).collect();
         let reads = crate::token::depth_read_never_written(&sig);
         if !reads.is_empty() {
-            let source = blanked.as_deref().unwrap_or(text);
             let mut read_as_coordinate = String::with_capacity(source.len());
             let mut from = 0;
             for &k in &reads {
@@ -2653,6 +2681,19 @@ mod tests {
         assert!(lowered.text.contains("vec4(gl_FragCoord.z - 0.5)") && !lowered.text.contains("gl_FragDepth"), "{}", lowered.text);
         let written = text.replace("colour = vec4(gl_FragDepth - 0.5);", "gl_FragDepth = 0.5; colour = vec4(gl_FragDepth);");
         assert!(lower(&written, Stage::Fragment, &VaryingLayout::default(), false).unwrap().text.contains("gl_FragDepth = 0.5"));
+    }
+
+    #[test]
+    fn nvidia_only_functions_are_read_leniently() {
+        let text = "#version 120\nuniform sampler2D gaux4;\nsampler2D depthSource() {\n    return gaux4;\n}\n\
+                    vec2 move(in vec2 at = vec2(0.5), in float by = 1.0) { return at * by; }\n\
+                    void main() { gl_FragColor = texture2D(depthSource(), move()) + vec4(move(vec2(1.0)), move(vec2(1.0), 2.0)); }\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), true).unwrap();
+        assert!(!lowered.text.contains("depthSource") && !lowered.text.contains("= vec2(0.5)"), "{}", lowered.text);
+        assert!(lowered.text.contains("move(vec2 ( 0.5 ), 1.0)") && lowered.text.contains("move(vec2(1.0), 1.0)"), "{}", lowered.text);
+        assert_eq!(lowered.text.matches('\n').count(), text.matches('\n').count());
+        // Read strictly, they stay for naga to refuse.
+        assert!(lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap().text.contains("depthSource"));
     }
 
     #[test]
