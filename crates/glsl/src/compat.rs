@@ -832,6 +832,77 @@ pub(crate) struct SamplerFunction<'t> {
     pub returned: &'t str,
 }
 
+/// The number of components of a float type (`float` 1, `vec2` … `vec4`).
+fn float_components(ty: &str) -> Option<usize> {
+    match ty {
+        "float" => Some(1),
+        "vec2" => Some(2),
+        "vec3" => Some(3),
+        "vec4" => Some(4),
+        _ => None,
+    }
+}
+
+/// The file-scope declarations `KEYWORD TYPE NAME;` of `text` with KEYWORD one of `keywords`,
+/// TYPE a float type: (name, type, position in the significant tokens of its type).
+fn float_declarations<'t>(sig: &[&'t Token], keywords: &[&str]) -> Vec<(&'t str, &'t str, usize)> {
+    let depths = brace_depths(sig);
+    (0..sig.len().saturating_sub(3))
+        .filter(|&k| depths[k] == 0 && keywords.iter().any(|w| sig[k].is_ident(w)))
+        .filter(|&k| float_components(sig[k + 1].text).is_some() && sig[k + 2].kind == TokenKind::Ident && sig[k + 3].is_punct(";"))
+        .map(|k| (sig[k + 2].text, sig[k + 1].text, k + 1))
+        .collect()
+}
+
+/// Varyings the vertex stage declares at one float type and the fragment stage at another
+/// (`out vec2 texcoord;` and `in vec4 texcoord;`), which NVIDIA links and Mesa refuses: (name,
+/// the vertex stage's type, the fragment stage's).
+pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, String)> {
+    let (Ok(vertex), Ok(fragment)) = (tokenize(vertex), tokenize(fragment)) else { return Vec::new() };
+    let vertex: Vec<&Token> = vertex.iter().filter(|t| !t.is_trivia()).collect();
+    let fragment: Vec<&Token> = fragment.iter().filter(|t| !t.is_trivia()).collect();
+    let written = float_declarations(&vertex, &["varying", "out"]);
+    float_declarations(&fragment, &["varying", "in"])
+        .into_iter()
+        .filter_map(|(name, read_as, _)| {
+            let (_, written_as, _) = written.iter().find(|(n, ..)| *n == name)?;
+            (*written_as != read_as).then(|| (name.to_string(), written_as.to_string(), read_as.to_string()))
+        })
+        .collect()
+}
+
+/// `fragment` reading each varying of `resized` ([`varyings_resized`]) at the type the vertex
+/// stage writes: its declaration given that type, and each use widened as a vertex input's
+/// missing components are (`vec4(texcoord, 0.0, 1.0)`) or cut (`texcoord.xy`) to the type it
+/// declared; and what was done. None where it declares none of them.
+pub fn inputs_resized(fragment: &str, resized: &[(String, String, String)]) -> Option<(String, String)> {
+    let tokens = tokenize(fragment).ok()?;
+    let significant = significant(&tokens);
+    let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
+    let mut done = Vec::new();
+    for (name, written_as, read_as) in resized {
+        let Some((_, _, at)) = float_declarations(&sig, &["varying", "in"]).into_iter().find(|(n, ..)| n == name) else { continue };
+        let (written, read) = (float_components(written_as)?, float_components(read_as)?);
+        replaced[significant[at]] = Some(written_as.clone());
+        let as_read = if written < read {
+            let missing: Vec<&str> = (written..read).map(|c| if c == 3 { "1.0" } else { "0.0" }).collect();
+            format!("{read_as}({name}, {})", missing.join(", "))
+        } else {
+            format!("{name}.{}", &"xyzw"[..read])
+        };
+        for k in (0..sig.len()).filter(|&k| k != at + 1 && sig[k].is_ident(name) && (k == 0 || !sig[k - 1].is_punct("."))) {
+            replaced[significant[k]] = Some(as_read.clone());
+        }
+        done.push(format!("`{name}`"));
+    }
+    if done.is_empty() {
+        return None;
+    }
+    let text = tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect();
+    Some((text, format!("varyings the vertex stage writes at another size read at that size, as NVIDIA links them: {}", done.join(", "))))
+}
+
 /// Default values of parameters (`vec4 move(in vec3 at = vec3(0.0))`), which GLSL lacks and
 /// NVIDIA takes: the edits that spell them out, as (index into `tokens`, replacement): each
 /// `= value` of a definition or prototype removed, and each call giving fewer arguments than

@@ -971,6 +971,20 @@ fn operator_symbol(op: naga::BinaryOperator) -> &'static str {
     }
 }
 
+/// Where `operator` stands in `text` outside every bracket, the first time.
+fn top_level_operator(text: &str, operator: &str) -> Option<usize> {
+    let mut depth = 0i32;
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ if depth == 0 && text[i..].starts_with(operator) => return Some(i),
+            _ => {}
+        }
+    }
+    None
+}
+
 /// The type a pointer expression points to.
 fn type_of_pointee(module: &naga::Module, function: &naga::Function, pointer: naga::Handle<naga::Expression>) -> Option<naga::TypeInner> {
     match expression_types(module, function)(pointer)? {
@@ -1041,20 +1055,27 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
                 _ => return None,
             };
             let whole = function.expressions.get_span(*handle).to_range()?;
-            let other = function.expressions.get_span(other).to_range()?;
-            // A named constant's span is its declaration's: the operand at this use is the part
-            // of the whole expression beside the other operand (and the operator).
-            let mut span = function.expressions.get_span(scalar).to_range()?;
-            if !(whole.start <= span.start && span.end <= whole.end) {
-                let operator_chars: &[char] = &['%', '*', '/', '+', '-', '&', '|', '^', '<', '>', ' ', '\t'];
-                span = if scalar == *rhs_expr {
-                    let after = other.end + text.get(other.end..whole.end)?.find(|c: char| !operator_chars.contains(&c))?;
-                    after..whole.end
-                } else {
-                    let before = whole.start + text.get(whole.start..other.start)?.trim_end_matches(operator_chars).len();
-                    whole.start..before
-                };
-            }
+            let operand_span = |e: naga::Handle<naga::Expression>| function.expressions.get_span(e).to_range().filter(|s| whole.start <= s.start && s.end <= whole.end);
+            // A named constant's span is its declaration's, and a built-in's call (`sign(x)`) has
+            // none: the operand at this use is then the part of the whole expression beside the
+            // other operand and the operator, or, without the other's span either, the side of
+            // `==` or `!=` found outside brackets.
+            let operator_chars: &[char] = &['%', '*', '/', '+', '-', '&', '|', '^', '<', '>', '=', '!', ' ', '\t'];
+            let span = match (operand_span(scalar), operand_span(other)) {
+                (Some(span), _) => span,
+                (None, Some(other)) if scalar == *rhs_expr => {
+                    other.end + text.get(other.end..whole.end)?.find(|c: char| !operator_chars.contains(&c))?..whole.end
+                }
+                (None, Some(other)) => whole.start..whole.start + text.get(whole.start..other.start)?.trim_end_matches(operator_chars).len(),
+                (None, None) => {
+                    let operator = if op == Op::Equal { "==" } else { "!=" };
+                    let at = whole.start + top_level_operator(text.get(whole.clone())?, operator).filter(|_| equality)?;
+                    let side = if scalar == *rhs_expr { at + 2..whole.end } else { whole.start..at };
+                    let written = text.get(side.clone())?;
+                    let start = side.start + (written.len() - written.trim_start().len());
+                    start..start + written.trim().len()
+                }
+            };
             let inner = text.get(span.clone())?;
             let constructor = glsl_type_name(&vector)?;
             let converted = format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]);

@@ -712,11 +712,12 @@ impl Preprocessor<'_> {
                     if self.out.text.len() + expansion.len() > MAX_OUTPUT_BYTES {
                         return Err(err_at(format!("the preprocessed shader grows past {} MiB here", MAX_OUTPUT_BYTES >> 20)));
                     }
-                    self.out.text.push_str(&expansion);
+                    push_apart(&mut self.out.text, &expansion);
                     i += consumed;
                     continue;
                 }
-                _ => self.out.text.push_str(t.text),
+                // After an expansion, a token may meet what it ended with.
+                _ => push_apart(&mut self.out.text, t.text),
             }
             i += 1;
         }
@@ -730,7 +731,10 @@ impl Preprocessor<'_> {
             tokens[start..].iter().map(|t| OwnedToken { kind: t.kind, text: t.text.to_string() }).collect();
         let mut disabled = Vec::new();
         let (expanded, consumed) = self.expand_one(&owned, 0, &mut disabled, 0)?;
-        let text = expanded.iter().map(|t| t.text.as_str()).collect();
+        let mut text = String::new();
+        for t in &expanded {
+            push_apart(&mut text, &t.text);
+        }
         Ok((text, consumed))
     }
 
@@ -920,6 +924,44 @@ impl Preprocessor<'_> {
 fn beside_paste(body: &[OwnedToken], i: usize) -> bool {
     let significant = |t: &&OwnedToken| !is_trivia_kind(t.kind);
     body[..i].iter().rev().find(significant).is_some_and(|t| t.text == "##") || body[i + 1..].iter().find(significant).is_some_and(|t| t.text == "##")
+}
+
+/// Appends `text` to `out`, with a space between where the two would read as other tokens
+/// than they are: a macro's `-5` after a `-` is two minus signs, not a decrement (`- -5`).
+fn push_apart(out: &mut String, text: &str) {
+    // The word `out` ends with is a number where it starts with a digit (`1` before `.5`).
+    let trailing_word = out.trim_end_matches(|c: char| c.is_ascii_alphanumeric() || c == '_');
+    let ends_in_number = out[trailing_word.len()..].starts_with(|c: char| c.is_ascii_digit());
+    if let (Some(a), Some(b)) = (out.chars().next_back(), text.chars().next())
+        && would_join(a, b, ends_in_number)
+    {
+        out.push(' ');
+    }
+    out.push_str(text);
+}
+
+/// Whether a token ending in `a` (a number's last digit where `number`) followed directly by one
+/// starting with `b` reads as other tokens: two words or numbers run together, a number and a
+/// `.`, or two operator characters that make one (`--`, `+=`, `<<`, `&&`, `//`, …).
+fn would_join(a: char, b: char, number: bool) -> bool {
+    let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    (word(a) && word(b))
+        || (a == '.' && b.is_ascii_digit())
+        || (number && b == '.')
+        || matches!(
+            (a, b),
+            ('+', '+' | '=')
+                | ('-', '-' | '=')
+                | ('<', '<' | '=')
+                | ('>', '>' | '=')
+                | ('=' | '!' | '*' | '%', '=')
+                | ('&', '&' | '=')
+                | ('|', '|' | '=')
+                | ('^', '^' | '=')
+                | ('/', '/' | '*' | '=')
+                | ('*', '/')
+                | ('#', '#')
+        )
 }
 
 /// `tokens` with the tokens either side of each `##` joined into one, as C's preprocessor (and
@@ -1426,6 +1468,15 @@ mod tests {
         assert!(preprocess(&thirteen, "a.fsh", &iris).unwrap().text.contains("float deepest;"));
         let err = preprocess(&provider(&chain(MAX_IRIS_INCLUDE_DEPTH + 2)), "a.fsh", &iris).unwrap_err();
         assert!(err.message.contains(&format!("deeper than {MAX_IRIS_INCLUDE_DEPTH} levels")), "{}", err.message);
+    }
+
+    #[test]
+    fn tokens_an_expansion_brings_together_stay_apart() {
+        // As RetroMaidRage/ImmersiveShaders counts a loop from `-BLOOM_QUALITY2`, itself `-5`.
+        let text = "#define NEG -5\n#define MINUS(x) -x\nint i = -NEG; int j = MINUS(-1); int k = NEG-1; float f = tex0.x; vec2 v = vec2(NEG.0);\n";
+        let out = preprocess(&files(&[("a.fsh", text)]), "a.fsh", &PreprocessOptions::default()).unwrap();
+        assert!(out.text.contains("int i = - -5; int j = - -1; int k = -5-1; float f = tex0.x;"), "{}", out.text);
+        assert!(out.text.contains("vec2(-5 .0)"), "{}", out.text);
     }
 
     #[test]

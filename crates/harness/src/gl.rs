@@ -800,8 +800,8 @@ unsafe fn set_uniforms(
                 }
                 continue;
             }
-            // Uniforms the harness has no value for keep OpenGL's initial zero, as the wgpu
-            // path fills them with zero.
+            // Uniforms the harness has no value for, or one of another type, keep OpenGL's
+            // initial value, as the wgpu path leaves them zero or their initializer's.
             let Some(value) = values.get(&name) else { continue };
             set_uniform(gl, location.as_ref(), active.utype, value)
                 .map_err(|m| HarnessError::Uniform(format!("{} (OpenGL): uniform {name}: {m}", program.name)))?;
@@ -959,29 +959,47 @@ pub(crate) unsafe fn draw_program(
     Ok(())
 }
 
+/// Sets one uniform of GL type `ty` from `value`; a value of another type sets nothing (a
+/// loader's `glUniform` of the wrong type fails and leaves the uniform as it was, as the wgpu
+/// path leaves it zero).
 unsafe fn set_uniform(gl: &glow::Context, location: Option<&glow::UniformLocation>, ty: u32, value: &Value) -> Result<(), String> {
-    let expect = |glsl: &str| -> Result<(), String> {
-        if value.glsl_type().split('[').next() == Some(glsl) { Ok(()) } else { Err(format!("declared {glsl}, the harness provides {}", value.glsl_type())) }
+    let declared = match ty {
+        glow::FLOAT => "float",
+        glow::FLOAT_VEC2 => "vec2",
+        glow::FLOAT_VEC3 => "vec3",
+        glow::FLOAT_VEC4 => "vec4",
+        glow::INT => "int",
+        glow::INT_VEC2 => "ivec2",
+        glow::INT_VEC3 => "ivec3",
+        glow::INT_VEC4 => "ivec4",
+        glow::BOOL => "bool",
+        glow::FLOAT_MAT3 => "mat3",
+        glow::FLOAT_MAT4 => "mat4",
+        other => return Err(format!("GL type 0x{other:x} is not supported by the harness")),
     };
+    let provided = value.glsl_type();
+    let provided = provided.split('[').next().unwrap_or_default();
+    // OpenGL sets a `bool` from an int (0 is false), as OptiFine sets a pack's `uniform bool
+    // isEyeInWater;` from the int it has.
+    if provided != declared && !(ty == glow::BOOL && provided == "int") {
+        return Ok(());
+    }
     let f = value.as_f32();
     let i = value.as_i32();
     // SAFETY: the caller holds the current context and the program is in use.
     unsafe {
         match ty {
-            glow::FLOAT => expect("float").map(|_| gl.uniform_1_f32_slice(location, &f)),
-            glow::FLOAT_VEC2 => expect("vec2").map(|_| gl.uniform_2_f32_slice(location, &f)),
-            glow::FLOAT_VEC3 => expect("vec3").map(|_| gl.uniform_3_f32_slice(location, &f)),
-            glow::FLOAT_VEC4 => expect("vec4").map(|_| gl.uniform_4_f32_slice(location, &f)),
-            glow::INT => expect("int").map(|_| gl.uniform_1_i32_slice(location, &i)),
-            glow::INT_VEC2 => expect("ivec2").map(|_| gl.uniform_2_i32_slice(location, &i)),
-            glow::INT_VEC3 => expect("ivec3").map(|_| gl.uniform_3_i32_slice(location, &i)),
-            glow::INT_VEC4 => expect("ivec4").map(|_| gl.uniform_4_i32_slice(location, &i)),
-            // OpenGL sets a `bool` from an int (0 is false), as OptiFine sets a pack's
-            // `uniform bool isEyeInWater;` from the int it has.
-            glow::BOOL => expect("int").or_else(|_| expect("bool")).map(|_| gl.uniform_1_i32_slice(location, &i)),
-            glow::FLOAT_MAT3 => expect("mat3").map(|_| gl.uniform_matrix_3_f32_slice(location, false, &f)),
-            glow::FLOAT_MAT4 => expect("mat4").map(|_| gl.uniform_matrix_4_f32_slice(location, false, &f)),
-            other => Err(format!("GL type 0x{other:x} is not supported by the harness")),
+            glow::FLOAT => gl.uniform_1_f32_slice(location, &f),
+            glow::FLOAT_VEC2 => gl.uniform_2_f32_slice(location, &f),
+            glow::FLOAT_VEC3 => gl.uniform_3_f32_slice(location, &f),
+            glow::FLOAT_VEC4 => gl.uniform_4_f32_slice(location, &f),
+            glow::INT | glow::BOOL => gl.uniform_1_i32_slice(location, &i),
+            glow::INT_VEC2 => gl.uniform_2_i32_slice(location, &i),
+            glow::INT_VEC3 => gl.uniform_3_i32_slice(location, &i),
+            glow::INT_VEC4 => gl.uniform_4_i32_slice(location, &i),
+            glow::FLOAT_MAT3 => gl.uniform_matrix_3_f32_slice(location, false, &f),
+            _ => gl.uniform_matrix_4_f32_slice(location, false, &f),
         }
     }
+    Ok(())
 }

@@ -457,6 +457,14 @@ pub(crate) fn load_program_files(
         }
         pre.push((stage, Arc::new(p)));
     }
+    // Varyings the stages declare at other float sizes, which NVIDIA links: the fragment stage
+    // reads them at the vertex stage's, for naga here and for OpenGL below.
+    let resized = tidepack_glsl::compat::varyings_resized(&pre[0].1.text, &pre[1].1.text);
+    if let Some((text, _)) = tidepack_glsl::compat::inputs_resized(&pre[1].1.text, &resized)
+        && let Some(fragment) = Arc::get_mut(&mut pre[1].1)
+    {
+        fragment.text = text;
+    }
     let declared_targets = pre[1].1.render_targets.as_ref().map(|rt| rt.buffers.clone());
     let lowered = naga_check::lower_program(&pre).map_err(|d| diag_error(&format!("{name} does not lower"), &[d]))?;
     let fragment_lowered = lowered.iter().find(|s| s.stage == Stage::Fragment).map(|s| s.lowered.text.clone()).unwrap_or_default();
@@ -477,10 +485,16 @@ pub(crate) fn load_program_files(
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
-        let (expanded, iris_rewrites) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
-        let iris_rewrites: Vec<String> = version_put_first.into_iter().chain(iris_rewrites).map(|what| format!("{path}: {what}")).collect();
+        let (mut expanded, transformed) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
+        let mut loader_rewrites: Vec<String> = version_put_first.into_iter().chain(transformed).map(|what| format!("{path}: {what}")).collect();
+        if stage.stage == Stage::Fragment
+            && let Some((text, what)) = tidepack_glsl::compat::inputs_resized(&expanded, &resized)
+        {
+            expanded = text;
+            loader_rewrites.push(format!("{path}: {what}"));
+        }
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
-        gl_rewrites.extend(iris_rewrites.iter().cloned());
+        gl_rewrites.extend(loader_rewrites.iter().cloned());
         // A fragment stage that writes no output 0 (one that only discards) leaves the test
         // nothing to read: it draws untested.
         let writes_output_0 = lowered_output(&lowered_text, 0).is_some();
@@ -529,7 +543,7 @@ pub(crate) fn load_program_files(
                 }
             }
             (gl_text, gl_rewrites) = for_opengl(&repaired);
-            gl_rewrites.extend(iris_rewrites.iter().cloned());
+            gl_rewrites.extend(loader_rewrites.iter().cloned());
             gl_rewrites.extend(made);
         }
         if stage.stage == Stage::Vertex {

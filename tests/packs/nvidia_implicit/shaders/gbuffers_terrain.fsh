@@ -20,5 +20,6 @@ void main() {
     ivec2 neighbour = ivec2(int(tint.r * 2.0), 0);
     vec3 beside = textureOffset(gtexture, uv, neighbour).rgb;
     float lit = int(tint.a * 2.0) >= 0 && tint.rg != 0 ? 1.0 : 0.5;
+    lit *= sign(tint.rgb - 0.5) == sign(uv.x - 2.0) ? 0.75 : 1.0;
     albedo = vec4(mix(texture(gtexture, uv).rgb, beside, 0.5) * tint.rgb * lit * dimmed(2.0) * (0.5 + 0.1 * steps(5u)), alpha);
 }
