@@ -921,7 +921,7 @@ pub(crate) fn default_arguments_spelled_out(tokens: &[Token], significant: &[usi
             && sig[k - 1].kind == TokenKind::Ident
             && !sig[type_line_start].is_punct("#")
             && sig[k + 1].is_punct("(");
-        let Some(close) = matching_close(significant, tokens, k + 1).filter(|_| header) else { continue };
+        let Some(close) = header.then(|| matching_close(significant, tokens, k + 1)).flatten() else { continue };
         let list = &sig[k + 2..close];
         if !list.iter().any(|t| t.is_punct("=")) || !sig.get(close + 1).is_some_and(|t| t.is_punct("{") || t.is_punct(";")) {
             continue;

@@ -363,7 +363,8 @@ pub fn matching_close<'a, T: Borrow<Token<'a>>>(sig: &[usize], tokens: &[T], ope
         if t.is_punct(opener) {
             depth += 1;
         } else if t.is_punct(closer) {
-            depth -= 1;
+            // A closer before any opener (`sig[open]` was neither bracket) closes nothing.
+            depth = depth.checked_sub(1)?;
             if depth == 0 {
                 return Some(k);
             }
@@ -469,6 +470,13 @@ mod tests {
         assert_eq!(uses("void main() { float d = gl_FragDepth; gl_FragDepth = d; }"), 0);
         assert_eq!(uses("void set(out float d) { d = 0.5; }\nvoid main() { float e = gl_FragDepth; set(gl_FragDepth); }"), 0);
         assert_eq!(uses("void main() { gl_FragColor = vec4(1.0); }"), 0);
+    }
+
+    #[test]
+    fn a_closer_before_any_opener_closes_nothing() {
+        let tokens = tokenize("a; } )").unwrap();
+        let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+        assert_eq!(matching_close(&sig, &tokens, 1), None);
     }
 
     #[test]
