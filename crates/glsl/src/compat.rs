@@ -1292,6 +1292,12 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
                     Some(name) => (name, k + 4),
                     None => (t.text.to_string(), k + 1),
                 };
+                // Handed whole to an `out` parameter (`outputs(colour, outColor0);`).
+                let bare_argument = (toks[k - 1].is_punct("(") || toks[k - 1].is_punct(","))
+                    && toks.get(after).is_some_and(|n| n.is_punct(",") || n.is_punct(")"));
+                if depth == 1 && bare_argument && !named.contains(&name) && argument_qualifiers(toks, k).is_some_and(|q| q.contains(&"out")) {
+                    assigned.insert(name.clone());
+                }
                 match toks.get(after) {
                     Some(e) if statement_start && e.is_punct("=") && !named.contains(&name) => {
                         assigned.insert(name.clone());
@@ -1845,6 +1851,9 @@ mod tests {
         assert_eq!(out, text.replace("void main() {", "void main() { extra = vec4(0); gl_FragData[1] = vec4(0);"));
         assert_eq!(rewrites.len(), 1);
         assert!(rewrites[0].what.ends_with("`extra`, `gl_FragData[1]`"), "{rewrites:?}");
+        // Outputs handed whole to `out` parameters, as our own water writes them, are written.
+        let handed = "#version 330 compatibility\nout vec4 colour;\nout vec4 data;\nvoid outputs(in float a, out vec4 c, out vec4 d) { c = vec4(a); d = vec4(a); }\nvoid main() {\n    outputs(0.5, colour, data);\n}\n";
+        assert_eq!(for_strict_drivers(handed, handed, Stage::Fragment, &[]), (handed.to_string(), Vec::new()));
     }
 
     #[test]
