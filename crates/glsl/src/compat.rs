@@ -1159,6 +1159,20 @@ pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str, be
     Some((format!("{}{constructor}({converted}){}", &text[..first.offset], &text[end..]), converted.to_string()))
 }
 
+/// `text` with the tokens of `written` on `line` (the one place they stand there) replaced by
+/// `with`.
+pub fn replace_on_line(text: &str, line: u32, written: &str, with: &str) -> Option<String> {
+    let (tokens, wanted) = (tokenize(text).ok()?, tokenize(written).ok()?);
+    let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
+    let wanted: Vec<&str> = wanted.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+    let matches: Vec<usize> = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
+        .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()))
+        .collect();
+    let [k] = matches.as_slice() else { return None };
+    let (first, last) = (on_line[*k], on_line[*k + wanted.len() - 1]);
+    Some(format!("{}{with}{}", &text[..first.offset], &text[last.offset + last.text.len()..]))
+}
+
 /// The lookups with an offset that [`offset_as_coordinate`] rewrites.
 const OFFSET_LOOKUPS: [&str; 3] = ["textureOffset", "textureLodOffset", "texelFetchOffset"];
 

@@ -65,6 +65,9 @@ pub enum Leniency {
     /// `dimensions`-dimensional texture, in a vertex stage or not
     /// ([`crate::compat::offset_as_coordinate`]).
     OffsetAsCoordinate { dimensions: u8, vertex: bool },
+    /// `written` became `with`: an operation NVIDIA applies component by component that GLSL
+    /// defines for scalars alone (`bvec2 || bvec2`).
+    Replaced { written: String, with: String },
 }
 
 /// Lowers the stages of one program with a shared varying layout.
@@ -216,9 +219,13 @@ fn validate_text(
             },
             Err(errors) => {
                 if repairs < MAX_REPAIRS
-                    && let Some(repaired) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles))
+                    && let Some(repair) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles, pre.lenient))
                 {
-                    text = repaired;
+                    if let Some((offset, leniency)) = repair.lenient {
+                        let line = text[..offset].matches('\n').count() as u32 + 1;
+                        lenient_repairs.push(LenientRepair { location: pre.location(line), leniency });
+                    }
+                    text = repair.text;
                     continue;
                 }
                 let offset = errors.errors.first().and_then(|e| e.meta.to_range()).map(|r| r.start);
@@ -595,19 +602,47 @@ fn expected_words(expected: &ExpectedToken) -> String {
 /// Repairs what naga's parser refuses and GLSL allows, from the parse error: a swizzle
 /// assigned on a matrix column, a built-in called with mixed argument types,
 /// a constant shift whose bits run out of the integer, a swizzle of a scalar where the version
-/// allows one.
-fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32, scalar_swizzles: bool) -> Option<String> {
+/// allows one; in a `lenient` stage, `||` and `&&` of bool vectors, which NVIDIA applies
+/// component by component.
+fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32, scalar_swizzles: bool, lenient: bool) -> Option<Repair> {
     let ErrorKind::SemanticError(message) = &e.kind else { return None };
     let span = e.meta.to_range()?;
+    let repaired = |text: Option<String>| text.map(|text| Repair { text, lenient: None });
     if let Some(field) = message.strip_prefix("Can't lookup field on this type \"").and_then(|m| m.strip_suffix('"')) {
-        column_swizzle_store(text, span.clone(), field, scalar_swizzles).or_else(|| if scalar_swizzles { scalar_swizzle(text, span, field) } else { None })
+        repaired(column_swizzle_store(text, span.clone(), field, scalar_swizzles).or_else(|| if scalar_swizzles { scalar_swizzle(text, span, field) } else { None }))
     } else if let Some(name) = message.strip_prefix("Ambiguous best function for '").and_then(|m| m.strip_suffix('\'')) {
-        mixed_type_overloads(text, name, version)
+        repaired(mixed_type_overloads(text, name, version))
     } else if message.as_ref() == "<< operation overflowed" {
-        literal_shift(text, span)
+        repaired(literal_shift(text, span))
+    } else if let (true, Some((operator, size))) = (lenient, logical_operator_on_vectors(message)) {
+        // The sum of the two vectors' ints says where one or both hold.
+        let written = text.get(span.clone())?;
+        let at = top_level_operator(written, operator)?;
+        let (left, right) = (written[..at].trim(), written[at + 2..].trim());
+        let ints = format!("ivec{size}");
+        let with = if operator == "||" {
+            format!("notEqual({ints}({left}) + {ints}({right}), {ints}(0))")
+        } else {
+            format!("equal({ints}({left}) + {ints}({right}), {ints}(2))")
+        };
+        let text = format!("{}{with}{}", &text[..span.start], &text[span.end..]);
+        Some(Repair { text, lenient: Some((span.start, Leniency::Replaced { written: written.to_string(), with })) })
     } else {
         None
     }
+}
+
+/// `||` or `&&` and the vectors' size, where naga's parser says the operator met bool vectors
+/// (`Can't resolve type: IncompatibleOperands("LogicalOr(vec2<bool>, _)")`).
+pub fn logical_operator_on_vectors(message: &str) -> Option<(&'static str, char)> {
+    let operands = message.strip_prefix("Can't resolve type: IncompatibleOperands(\"")?;
+    let (operator, rest) = if let Some(rest) = operands.strip_prefix("LogicalOr(vec") {
+        ("||", rest)
+    } else {
+        ("&&", operands.strip_prefix("LogicalAnd(vec")?)
+    };
+    let size = rest.chars().next().filter(|c| ('2'..='4').contains(c))?;
+    rest[1..].starts_with("<bool>").then_some((operator, size))
 }
 
 /// `text` with `stand_in` on the lowering's header line (the line after `#version`), once.
@@ -1045,10 +1080,10 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             use naga::BinaryOperator as Op;
             let naga::Expression::Binary { op, .. } = function.expressions[*handle] else { return None };
             let equality = matches!(op, Op::Equal | Op::NotEqual);
+            let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
             if matches!(op, Op::Less | Op::LessEqual | Op::Greater | Op::GreaterEqual | Op::LogicalAnd | Op::LogicalOr) || (equality && !lenient) {
                 return None;
             }
-            let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
             let (scalar, other, vector) = match (&lhs, &rhs) {
                 (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, *lhs_expr, lhs),
                 (naga::TypeInner::Scalar(_), naga::TypeInner::Vector { .. }) => (*lhs_expr, *rhs_expr, rhs),

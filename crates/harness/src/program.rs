@@ -532,6 +532,10 @@ pub(crate) fn load_program_files(
                             let Some((text, value)) = tidepack_glsl::compat::convert_on_line(&repaired, line, constructor, value, beside.as_deref()) else { continue };
                             (text, format!("`{value}` converted with {constructor}() as NVIDIA converts it implicitly"))
                         }
+                        Leniency::Replaced { written, with } => {
+                            let Some(text) = tidepack_glsl::compat::replace_on_line(&repaired, line, written, with) else { continue };
+                            (text, format!("`{written}`, which NVIDIA takes component by component, written `{with}`"))
+                        }
                         Leniency::OffsetAsCoordinate { dimensions, vertex } => {
                             let Some((text, n)) = tidepack_glsl::compat::offsets_as_coordinates_on_line(&repaired, line, *dimensions, *vertex) else { continue };
                             let lookups = if n == 1 { "a lookup" } else { "lookups" };

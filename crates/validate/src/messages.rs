@@ -28,6 +28,12 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
+    if let Some((operator, size)) = tidepack_glsl::naga_check::logical_operator_on_vectors(&diag.message) {
+        diag.message = format!(
+            "`{operator}` takes two bools, and here it meets bvec{size}s: GLSL has no `{operator}` of vectors (NVIDIA applies it to each component; elsewhere write `any()`, `all()`, or `notEqual(ivec{size}(a) + ivec{size}(b), ivec{size}(0))`)"
+        );
+        return diag;
+    }
     if let Some(what) = diag.message.strip_prefix("Not implemented: ") {
         // Valid GLSL naga's front-end has no code for: not the pack's mistake.
         let what = what.to_string();

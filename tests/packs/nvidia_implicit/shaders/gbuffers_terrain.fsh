@@ -21,5 +21,6 @@ void main() {
     vec3 beside = textureOffset(gtexture, uv, neighbour).rgb;
     float lit = int(tint.a * 2.0) >= 0 && tint.rg != 0 ? 1.0 : 0.5;
     lit *= sign(tint.rgb - 0.5) == sign(uv.x - 2.0) ? 0.75 : 1.0;
+    lit *= any(lessThan(uv, vec2(-1.0)) || greaterThan(uv, vec2(2.0))) ? 0.5 : 1.0;
     albedo = vec4(mix(texture(gtexture, uv).rgb, beside, 0.5) * tint.rgb * lit * dimmed(2.0) * (0.5 + 0.1 * steps(5u)), alpha);
 }
