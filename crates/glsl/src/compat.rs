@@ -7,6 +7,7 @@
 //! (they fail on Mesa, AMD, Intel and macOS); the renderer applies [`for_strict_drivers`] to the
 //! text it gives OpenGL, so that such packs still render, and lists what it rewrote.
 
+use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 
 use crate::Stage;
@@ -402,8 +403,9 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    let definitions = function_definitions(&sig);
     // The function bodies of the text, as ranges of `sig`.
-    let bodies: Vec<std::ops::Range<usize>> = function_definitions(&sig).into_iter().map(|f| f.open + 1..f.close).collect();
+    let bodies: Vec<std::ops::Range<usize>> = definitions.iter().map(|f| f.open + 1..f.close).collect();
     // A function named as a statement of its own, with no call (`atmosphereCommons;`): NVIDIA
     // ignores it, Mesa refuses it.
     let named = functions_named_as_statements(&sig);
@@ -455,7 +457,6 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // its `const`, also where a macro gives the `const` (`cfloat`, `cv(float)`) or declares the
     // whole constant (`cRCP(float, total);`, expanded in place).
     let not_constant = constants_not_constant(&met);
-    let definitions = function_definitions(&sig);
     let function_at = |k: usize| definitions.iter().find(|f| (f.open + 1..f.close).contains(&k)).map(|f| sig[f.name].text);
     let declared_not_constant = |k: usize, name: &str| function_at(k).is_some_and(|f| not_constant.contains(&(f, name)));
     let const_macros = macros_giving_const(&tokens, &significant);
@@ -483,7 +484,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         if sig[k].kind != TokenKind::Ident || !sig[k + 1].is_punct("=") || !declared_not_constant(k, sig[k].text) {
             continue;
         }
-        let mut start = sig[..k].iter().rposition(|t| ["{", "}", ";"].iter().any(|x| t.is_punct(x))).map_or(0, |p| p + 1);
+        let mut start = sig[..k].iter().rposition(|t| t.ends_statement()).map_or(0, |p| p + 1);
         // Past the directives' lines in between (`#endif`).
         while start < k && sig[start].is_punct("#") {
             let line = sig[start].line;
@@ -511,7 +512,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
     let mut expanded_in_place = Vec::new();
     for s in 1..sig.len().saturating_sub(1) {
-        let at_statement = ["{", "}", ";"].iter().any(|x| sig[s - 1].is_punct(x)) && sig[s + 1].is_punct("(") && const_macros.contains_key(sig[s].text);
+        let at_statement = sig[s - 1].ends_statement() && sig[s + 1].is_punct("(") && const_macros.contains_key(sig[s].text);
         let Some(end) = matching_close(&significant, &tokens, s + 1).map(|c| c + 1).filter(|&e| at_statement && sig.get(e).is_some_and(|t| t.is_punct(";"))) else {
             continue;
         };
@@ -590,7 +591,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let unset = locals_read_unset(&met);
     let mut declared_at: Vec<(&str, u32)> = Vec::new();
     for (k, w) in sig.windows(3).enumerate() {
-        let statement_start = k.checked_sub(1).is_none_or(|p| ["{", "}", ";"].iter().any(|x| sig[p].is_punct(x)));
+        let statement_start = k.checked_sub(1).is_none_or(|p| sig[p].ends_statement());
         if bodies.iter().any(|b| b.contains(&k))
             && statement_start
             && w[2].is_punct(";")
@@ -740,20 +741,20 @@ fn unset_globals_at<'t>(toks: &[&'t Token], struct_zeros: &HashMap<&str, String>
         if t.is_punct("{") && i >= 2 && toks[i - 2].is_ident("struct") {
             struct_open.push((depths[i], toks[i - 1].text));
         }
-        let ends_statement = |j: usize| toks.get(j).is_some_and(|e| e.is_punct(";"));
+        let semicolon_at = |j: usize| toks.get(j).is_some_and(|e| e.is_punct(";"));
         // `} NAME;` closing a struct definition at the top level.
         if t.is_punct("}")
             && depths[i] == 1
             && let Some(&(1, struct_name)) = struct_open.last()
         {
             struct_open.pop();
-            if toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && ends_statement(i + 2) && struct_zeros.contains_key(struct_name) {
+            if toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && semicolon_at(i + 2) && struct_zeros.contains_key(struct_name) {
                 found.push((struct_name, toks[i + 1].text, i + 1));
             }
             continue;
         }
-        let statement_start = i == 0 || ["{", "}", ";"].iter().any(|x| toks[i - 1].is_punct(x));
-        if depths[i] == 0 && statement_start && struct_zeros.contains_key(t.text) && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && ends_statement(i + 2) {
+        let statement_start = i == 0 || toks[i - 1].ends_statement();
+        if depths[i] == 0 && statement_start && struct_zeros.contains_key(t.text) && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident) && semicolon_at(i + 2) {
             found.push((t.text, toks[i + 1].text, i + 1));
         }
     }
@@ -769,7 +770,7 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
             let declaration = VALUE_TYPES.contains(&t.text)
                 && toks.get(i + 2).is_some_and(|e| e.is_punct(";"))
                 && toks.get(i + 1).is_some_and(|n| n.kind == TokenKind::Ident)
-                && ["{", "}", ";"].iter().any(|x| toks[i - 1].is_punct(x));
+                && toks[i - 1].ends_statement();
             if !declaration {
                 continue;
             }
@@ -787,7 +788,7 @@ fn locals_read_unset<'t>(toks: &[&'t Token]) -> Vec<TypedName<'t>> {
                         break;
                     }
                 } else if u.is_ident(name) && !toks[k - 1].is_punct(".") {
-                    let statement_start = ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x));
+                    let statement_start = toks[k - 1].ends_statement();
                     let whole_assignment = statement_start && toks.get(k + 1).is_some_and(|e| e.is_punct("="));
                     // A bare argument may be an `out` parameter, which writes it; one the stage
                     // defines as `in` or `inout` is read.
@@ -816,7 +817,7 @@ pub(crate) fn functions_named_as_statements(toks: &[&Token]) -> Vec<usize> {
             toks[k].kind == TokenKind::Ident
                 && defined.contains(toks[k].text)
                 && toks[k + 1].is_punct(";")
-                && ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x))
+                && toks[k - 1].ends_statement()
                 && bodies.iter().any(|b| b.contains(&k))
         })
         .collect()
@@ -881,8 +882,9 @@ pub fn inputs_resized(fragment: &str, resized: &[(String, String, String)]) -> O
     let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
     let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
     let mut done = Vec::new();
+    let declared = float_declarations(&sig, &["varying", "in"]);
     for (name, written_as, read_as) in resized {
-        let Some((_, _, at)) = float_declarations(&sig, &["varying", "in"]).into_iter().find(|(n, ..)| n == name) else { continue };
+        let Some(&(_, _, at)) = declared.iter().find(|(n, ..)| n == name) else { continue };
         let (written, read) = (float_components(written_as)?, float_components(read_as)?);
         replaced[significant[at]] = Some(written_as.clone());
         let as_read = if written < read {
@@ -915,12 +917,15 @@ pub(crate) fn default_arguments_spelled_out(tokens: &[Token], significant: &[usi
     let mut headers = HashSet::new();
     for k in 1..sig.len().saturating_sub(1) {
         // `TYPE NAME (`, the type not a directive's word (`#endif` before a `for (`).
-        let type_line_start = sig[..k].iter().rposition(|t| t.line != sig[k - 1].line).map_or(0, |p| p + 1);
+        let directive_word = || {
+            let type_line_start = sig[..k].iter().rposition(|t| t.line != sig[k - 1].line).map_or(0, |p| p + 1);
+            sig[type_line_start].is_punct("#")
+        };
         let header = sig[k].kind == TokenKind::Ident
-            && !["for", "while", "if", "switch", "return"].contains(&sig[k].text)
             && sig[k - 1].kind == TokenKind::Ident
-            && !sig[type_line_start].is_punct("#")
-            && sig[k + 1].is_punct("(");
+            && sig[k + 1].is_punct("(")
+            && !["for", "while", "if", "switch", "return"].contains(&sig[k].text)
+            && !directive_word();
         let Some(close) = header.then(|| matching_close(significant, tokens, k + 1)).flatten() else { continue };
         let list = &sig[k + 2..close];
         if !list.iter().any(|t| t.is_punct("=")) || !sig.get(close + 1).is_some_and(|t| t.is_punct("{") || t.is_punct(";")) {
@@ -1000,7 +1005,7 @@ fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(&'t str, &'t str)>
             .collect()
     };
     for k in 0..toks.len() {
-        let statement_start = k == 0 || ["{", "}", ";"].iter().any(|x| toks[k - 1].is_punct(x)) || after_directive(k);
+        let statement_start = k == 0 || toks[k - 1].ends_statement() || after_directive(k);
         if !statement_start || !toks[k].is_ident("const") {
             continue;
         }
@@ -1130,19 +1135,14 @@ fn storage_qualifier_in_out<'t>(met: &[&Token<'t>]) -> Option<&'t str> {
 /// the line has macros naga saw expanded). Returns the new text and the text converted; `None`
 /// when neither is found.
 pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str, beside: Option<&str>) -> Option<(String, String)> {
-    let (tokens, wanted) = (tokenize(text).ok()?, tokenize(value).ok()?);
-    let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
-    let wanted: Vec<&str> = wanted.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+    let tokens = tokenize(text).ok()?;
+    let (on_line, runs, length) = runs_on_line(&tokens, line, value)?;
     let next_to = |k: usize| {
-        beside.is_none_or(|op| {
-            k.checked_sub(1).is_some_and(|p| on_line[p].text == op) || on_line.get(k + wanted.len()).is_some_and(|n| n.text == op)
-        })
+        beside.is_none_or(|op| k.checked_sub(1).is_some_and(|p| on_line[p].text == op) || on_line.get(k + length).is_some_and(|n| n.text == op))
     };
-    let matches: Vec<usize> = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
-        .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()) && next_to(k))
-        .collect();
+    let matches: Vec<usize> = runs.into_iter().filter(|&k| next_to(k)).collect();
     let (first, last) = match matches.as_slice() {
-        [k] => (on_line[*k], on_line[*k + wanted.len() - 1]),
+        [k] => (on_line[*k], on_line[*k + length - 1]),
         _ => {
             let operators = ["return", "=", "+=", "-=", "*=", "/="];
             let starts: Vec<usize> = (0..on_line.len()).filter(|&k| operators.contains(&on_line[k].text)).collect();
@@ -1162,15 +1162,24 @@ pub fn convert_on_line(text: &str, line: u32, constructor: &str, value: &str, be
 /// `text` with the tokens of `written` on `line` (the one place they stand there) replaced by
 /// `with`.
 pub fn replace_on_line(text: &str, line: u32, written: &str, with: &str) -> Option<String> {
-    let (tokens, wanted) = (tokenize(text).ok()?, tokenize(written).ok()?);
-    let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
+    let tokens = tokenize(text).ok()?;
+    let (on_line, runs, length) = runs_on_line(&tokens, line, written)?;
+    let [k] = runs.as_slice() else { return None };
+    let (first, last) = (on_line[*k], on_line[*k + length - 1]);
+    Some(format!("{}{with}{}", &text[..first.offset], &text[last.offset + last.text.len()..]))
+}
+
+/// The significant tokens of `line`, where on them the tokens of `wanted` stand in a run (the
+/// positions of its first; none where `wanted` holds no token), and how many tokens `wanted`
+/// has.
+fn runs_on_line<'a>(tokens: &'a [Token<'a>], line: u32, wanted: &str) -> Option<(Vec<&'a Token<'a>>, Vec<usize>, usize)> {
+    let wanted = tokenize(wanted).ok()?;
     let wanted: Vec<&str> = wanted.iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-    let matches: Vec<usize> = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
+    let on_line: Vec<&Token> = tokens.iter().filter(|t| t.line == line && !t.is_trivia()).collect();
+    let runs = (0..on_line.len().saturating_sub(wanted.len().saturating_sub(1)))
         .filter(|&k| !wanted.is_empty() && on_line[k..k + wanted.len()].iter().map(|t| t.text).eq(wanted.iter().copied()))
         .collect();
-    let [k] = matches.as_slice() else { return None };
-    let (first, last) = (on_line[*k], on_line[*k + wanted.len() - 1]);
-    Some(format!("{}{with}{}", &text[..first.offset], &text[last.offset + last.text.len()..]))
+    Some((on_line, runs, wanted.len()))
 }
 
 /// The lookups with an offset that [`offset_as_coordinate`] rewrites.
@@ -1248,7 +1257,7 @@ type TypedName<'t> = (&'t str, &'t str);
 
 /// What a function body does in statements of its own: the outputs it assigns whole (by name,
 /// `gl_FragData[1]` written out), the functions it calls.
-type Statements<'t> = (HashSet<String>, HashSet<&'t str>);
+type Statements<'t> = (HashSet<Cow<'t, str>>, HashSet<&'t str>);
 
 /// Outputs the stage may leave unwritten: those declared outside every brace, one name each
 /// (`[flat] varying|out TYPE NAME;`, `out` alone in a fragment stage), and in a fragment stage
@@ -1301,10 +1310,10 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
             } else if t.is_punct("}") {
                 depth -= 1;
             } else if t.kind == TokenKind::Ident {
-                let statement_start = depth == 1 && ["{", "}", ";"].iter().any(|p| toks[k - 1].is_punct(p));
-                let (name, after) = match frag_data(k) {
-                    Some(name) => (name, k + 4),
-                    None => (t.text.to_string(), k + 1),
+                let statement_start = depth == 1 && toks[k - 1].ends_statement();
+                let (name, after): (Cow<str>, usize) = match frag_data(k) {
+                    Some(name) => (Cow::Owned(name), k + 4),
+                    None => (Cow::Borrowed(t.text), k + 1),
                 };
                 // Handed whole to an `out` parameter (`outputs(colour, outColor0);`).
                 let bare_argument = (toks[k - 1].is_punct("(") || toks[k - 1].is_punct(","))
@@ -1329,11 +1338,11 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
     let functions: Vec<(&str, Statements)> =
         function_definitions(toks).into_iter().map(|f| (toks[f.name].text, statements(f.open, f.close))).collect();
     let main = functions.iter().find(|(name, _)| *name == "main");
-    let mut assigned_in_main: HashSet<&String> = HashSet::new();
+    let mut assigned_in_main: HashSet<&str> = HashSet::new();
     if let Some((_, (assigned, called))) = main {
-        assigned_in_main.extend(assigned);
+        assigned_in_main.extend(assigned.iter().map(|n| n.as_ref()));
         for (_, (by_callee, _)) in functions.iter().filter(|(name, _)| called.contains(name)) {
-            assigned_in_main.extend(by_callee);
+            assigned_in_main.extend(by_callee.iter().map(|n| n.as_ref()));
         }
     }
     let mut unwritten = Vec::new();
@@ -1344,7 +1353,7 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
             if stage == Stage::Vertex {
                 unwritten.push((type_, name));
             }
-        } else if main.is_some() && !assigned_in_main.contains(&name) {
+        } else if main.is_some() && !assigned_in_main.contains(name.as_str()) {
             sometimes.push((type_, name));
         }
     }

@@ -857,8 +857,10 @@ pub fn lower_compute(text: &str) -> Result<Lowered, LowerError> {
 fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, lenient: bool) -> Result<Lowered, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let mut blanked = without_unchecked_qualifiers(text, &tokens);
+    // Blanking keeps every byte where it was, so that edits, by the tokens' offsets, apply after.
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     if lenient {
-        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
         let mut names: Vec<std::ops::Range<usize>> =
             crate::compat::functions_named_as_statements(&sig).into_iter().map(|k| sig[k].offset..sig[k].offset + sig[k].text.len()).collect();
         // A function returning a sampler, which NVIDIA takes, goes; its calls read the sampler.
@@ -867,49 +869,24 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
         if !names.is_empty() {
             blanked = Some(crate::token::blanked(blanked.as_deref().unwrap_or(text), &names));
         }
-        // Default values of parameters, which NVIDIA takes, written out in the calls.
-        let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
-        let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
-        let mut edits: Vec<(std::ops::Range<usize>, String)> =
-            defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)).collect();
         for k in 0..sig.len().saturating_sub(2) {
             let Some(f) = sampler_functions.iter().find(|f| sig[k].is_ident(f.name) && !(f.start..=f.close).contains(&k)) else { continue };
             if sig[k + 1].is_punct("(") && sig[k + 2].is_punct(")") {
                 edits.push((sig[k].offset..sig[k + 2].offset + 1, f.returned.to_string()));
             }
         }
-        if !edits.is_empty() {
-            edits.sort_by_key(|(range, _)| range.start);
-            let source = blanked.as_deref().unwrap_or(text);
-            let mut edited = String::with_capacity(source.len());
-            let mut from = 0;
-            for (range, with) in edits {
-                edited.push_str(&source[from..range.start]);
-                edited.push_str(&with);
-                from = range.end;
-            }
-            edited.push_str(&source[from..]);
-            blanked = Some(edited);
-        }
+        // Default values of parameters, which NVIDIA takes, written out in the calls.
+        let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+        let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
+        edits.extend(defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)));
     }
     // `gl_FragDepth` read and never written keeps the depth the fragment was rasterised at:
     // naga would make it the depth output, unset.
-    if stage == Stage::Fragment && !compute && text.contains("gl_FragDepth") {
-        let source = blanked.as_deref().unwrap_or(text);
-        let current = tokenize(source).map_err(|e| LowerError { line: e.line, message: e.message })?;
-        let sig: Vec<&Token> = current.iter().filter(|t| !t.is_trivia()).collect();
-        let reads = crate::token::depth_read_never_written(&sig);
-        if !reads.is_empty() {
-            let mut read_as_coordinate = String::with_capacity(source.len());
-            let mut from = 0;
-            for &k in &reads {
-                read_as_coordinate.push_str(&source[from..sig[k].offset]);
-                read_as_coordinate.push_str("gl_FragCoord.z");
-                from = sig[k].offset + sig[k].text.len();
-            }
-            read_as_coordinate.push_str(&source[from..]);
-            blanked = Some(read_as_coordinate);
-        }
+    if stage == Stage::Fragment && !compute {
+        edits.extend(crate::token::depth_read_never_written(&sig).into_iter().map(|k| (sig[k].offset..sig[k].offset + sig[k].text.len(), "gl_FragCoord.z".to_string())));
+    }
+    if !edits.is_empty() {
+        blanked = Some(crate::token::edited(blanked.as_deref().unwrap_or(text), edits));
     }
     let tokens = match &blanked {
         Some(blanked) => tokenize(blanked).map_err(|e| LowerError { line: e.line, message: e.message })?,

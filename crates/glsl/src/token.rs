@@ -47,6 +47,11 @@ impl Token<'_> {
         self.kind == TokenKind::Punct && self.text == p
     }
 
+    /// Whether a statement starts after this token: it is `{`, `}` or `;`.
+    pub fn ends_statement(&self) -> bool {
+        self.kind == TokenKind::Punct && matches!(self.text, "{" | "}" | ";")
+    }
+
     pub fn is_ident(&self, name: &str) -> bool {
         self.kind == TokenKind::Ident && self.text == name
     }
@@ -261,6 +266,20 @@ pub fn precision_qualifiers(tokens: &[Token<'_>]) -> Vec<(usize, usize)> {
 /// break becomes a space, so lines and the columns after them stay where they were.
 pub fn blanked(text: &str, ranges: &[std::ops::Range<usize>]) -> String {
     text.char_indices().map(|(at, c)| if c != '\n' && ranges.iter().any(|r| r.contains(&at)) { ' ' } else { c }).collect()
+}
+
+/// `text` with each byte range of `edits` (none overlapping) replaced by its text.
+pub fn edited(text: &str, mut edits: Vec<(std::ops::Range<usize>, String)>) -> String {
+    edits.sort_by_key(|(range, _)| range.start);
+    let mut out = String::with_capacity(text.len());
+    let mut from = 0;
+    for (range, with) in edits {
+        out.push_str(&text[from..range.start]);
+        out.push_str(&with);
+        from = range.end;
+    }
+    out.push_str(&text[from..]);
+    out
 }
 
 /// Where a fragment stage reads `gl_FragDepth` and never writes it: the positions in `sig`

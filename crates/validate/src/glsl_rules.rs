@@ -315,7 +315,7 @@ fn never_assigned_locals(pre: &Preprocessed, sig: &[&Token]) -> Vec<Diagnostic> 
             let declares = sig[k].kind == TokenKind::Ident
                 && is_value_type(sig[k - 1].text)
                 && sig.get(k + 1).is_some_and(|t| t.is_punct(";"))
-                && matches!(sig[k - 2].text, "{" | "}" | ";");
+                && sig[k - 2].ends_statement();
             if !declares {
                 continue;
             }
