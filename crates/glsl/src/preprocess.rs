@@ -9,6 +9,8 @@
 
 use crate::Code;
 use std::collections::{BTreeSet, HashMap};
+
+use rustc_hash::FxHashMap;
 use std::fmt::Write as _;
 use std::sync::Arc;
 
@@ -176,7 +178,7 @@ pub fn preprocess(
 ) -> Result<Preprocessed, Diagnostic> {
     let mut pp = Preprocessor {
         provider,
-        macros: HashMap::new(),
+        macros: FxHashMap::default(),
         out: Preprocessed {
             text: String::new(),
             lines: Vec::new(),
@@ -273,7 +275,7 @@ struct Conditional {
 
 struct Preprocessor<'p> {
     provider: &'p dyn FileProvider,
-    macros: HashMap<String, Macro>,
+    macros: FxHashMap<String, Macro>,
     out: Preprocessed,
     /// Paths of the files being processed, outermost first, with the including line.
     include_stack: Vec<(String, u32)>,

@@ -79,10 +79,26 @@ impl std::error::Error for TokenizeError {}
 /// Single characters GLSL uses as operators or punctuation (`"` for `#include` paths).
 const GLSL_PUNCTUATION: &[u8] = b"+-*/%<>=!&|^~?:;,.()[]{}#\"";
 
-const PUNCTUATORS: [&str; 25] = [
-    "<<=", ">>=", "++", "--", "<<", ">>", "<=", ">=", "==", "!=", "&&", "||", "^^", "+=", "-=", "*=", "/=",
-    "%=", "&=", "^=", "|=", "##", "::", "->", "..",
-];
+/// The length of the punctuator `rest` starts with (its first byte is in [`GLSL_PUNCTUATION`]):
+/// the longest of `<<=`, `>>=`, the two-character operators (`++`, `<=`, `&&`, `^^`, `+=`, ...),
+/// `##`, `::`, `->` and `..`, else 1.
+fn punctuator_len(rest: &[u8]) -> usize {
+    match rest {
+        [b'<', b'<', b'=', ..] | [b'>', b'>', b'=', ..] => 3,
+        [b'+', b'+' | b'=', ..]
+        | [b'-', b'-' | b'=' | b'>', ..]
+        | [b'<', b'<' | b'=', ..]
+        | [b'>', b'>' | b'=', ..]
+        | [b'=' | b'!' | b'*' | b'/' | b'%', b'=', ..]
+        | [b'&', b'&' | b'=', ..]
+        | [b'|', b'|' | b'=', ..]
+        | [b'^', b'^' | b'=', ..]
+        | [b'#', b'#', ..]
+        | [b':', b':', ..]
+        | [b'.', b'.', ..] => 2,
+        _ => 1,
+    }
+}
 
 /// Splits `src` into tokens. Fails only on an unterminated block comment; a stray character
 /// becomes an [`TokenKind::Unknown`] token so the caller can report it where it matters.
@@ -162,8 +178,7 @@ pub fn tokenize(src: &str) -> Result<Vec<Token<'_>>, TokenizeError> {
                 TokenKind::Ident
             }
             _ if GLSL_PUNCTUATION.contains(&c) => {
-                let rest = &src[pos..];
-                pos += PUNCTUATORS.iter().find(|p| rest.starts_with(**p)).map_or(1, |p| p.len());
+                pos += punctuator_len(&bytes[pos..]);
                 TokenKind::Punct
             }
             _ => {
@@ -173,7 +188,12 @@ pub fn tokenize(src: &str) -> Result<Vec<Token<'_>>, TokenizeError> {
             }
         };
         let token = Token { kind, text: &src[start..pos], offset: start, line };
-        line += token.newlines();
+        // Only these kinds can hold a line break (comments and whitespace through continuations).
+        line += match kind {
+            TokenKind::Newline => 1,
+            TokenKind::Whitespace | TokenKind::LineComment | TokenKind::BlockComment => token.newlines(),
+            _ => 0,
+        };
         tokens.push(token);
     }
     Ok(tokens)

@@ -5,8 +5,8 @@
 //! values, the options the preprocessor consulted become relevant, and sets are drawn from the
 //! relevant options' values; options found only under some of those sets join and the search
 //! repeats until it is closed ([`covering_sets`]). Which sets:
-//! - all combinations of the relevant options, when there are at most
-//!   [`MAX_EXHAUSTIVE_SETS`];
+//! - under [`Coverage::Exhaustive`], all combinations of the relevant options' values, when
+//!   there are at most [`MAX_EXHAUSTIVE_SETS`];
 //! - otherwise, every combination of the options the program tests in conditionals
 //!   ([`Coverage::Exhaustive`], or [`Coverage::Pairwise`] while that product is at most
 //!   [`MAX_PAIRWISE_PRODUCT`]), with options that are only substituted as values tried once
@@ -15,11 +15,12 @@
 //!   every pair of values of any two tested options appears together in some set, plus every
 //!   profile.
 //!
-//! Past the exhaustive limit, a value option's values can be narrowed to [`representatives`]:
+//! Outside that first case, a value option's values can be narrowed to [`representatives`]:
 //! those on either side of each number its conditionals compare it with, where the rest of
 //! its values only change numbers substituted into the text. Values that do not pair (of
 //! options only substituted, and tested options' other values) are tried once per kind of
-//! literal (int, float, zero, negative, each word), many options in one set.
+//! literal (int, float, zero, negative, each word), many options in one set: substituted
+//! values that differ only by a number of the same form validate alike.
 //!
 //! Options at their default are left out of a set, so a set means the same whichever options
 //! are relevant, and the empty set is the defaults.
@@ -31,14 +32,16 @@ use crate::option_lines::{OptionKind, OptionSet, OptionValue};
 /// Largest product of all relevant options validated in full.
 pub const MAX_EXHAUSTIVE_SETS: usize = 4096;
 /// Largest product of the tested options that [`Coverage::Pairwise`] still validates in full.
-pub const MAX_PAIRWISE_PRODUCT: usize = 256;
+pub const MAX_PAIRWISE_PRODUCT: usize = 16;
 
 /// How many option combinations to validate when they are too many for all of them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Coverage {
-    /// Every combination of the options each program tests.
+    /// Every combination of the values of the options each program reads where they are at most
+    /// [`MAX_EXHAUSTIVE_SETS`], else every combination of the options it tests.
     Exhaustive,
-    /// Every pair of values of any two tested options, and every profile.
+    /// Every combination of the options each program tests while they are few, else every pair of
+    /// values of any two of them and every profile; substituted values one per kind of literal.
     #[default]
     Pairwise,
 }
@@ -59,7 +62,7 @@ impl SetsCovered {
         match self {
             SetsCovered::AllCombinations => "every combination of the options each program reads",
             SetsCovered::TestedCombinations => {
-                "every combination of the options each program tests, substituted values one at a time"
+                "every combination of the options each program tests, substituted values one per kind of literal"
             }
             SetsCovered::Pairs => "every pair of values of the options each program tests, and every profile",
         }
@@ -221,28 +224,30 @@ fn enumerate(
         let default = kind.default_value();
         kind.all_values().into_iter().map(|v| (v != default).then_some(v)).collect()
     };
-    let set_of = |names: &[&String], row: &[usize]| -> OptionSet {
-        names
-            .iter()
-            .zip(row)
-            .filter_map(|(name, &i)| Some(((*name).clone(), choices(name)[i].clone()?)))
-            .collect()
-    };
-    let all: Vec<&String> = relevant.iter().collect();
-    let sizes = |names: &[&String]| names.iter().map(|n| choices(n).len()).collect::<Vec<_>>();
-    let product_of_all = sizes(&all).iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
-    if product_of_all.is_some_and(|n| n <= MAX_EXHAUSTIVE_SETS) {
-        let sets = product(&sizes(&all)).iter().map(|row| set_of(&all, row)).collect();
-        return (sets, SetsCovered::AllCombinations);
-    }
-    // Tested options combine through their representatives; their other values join the
-    // substituted ones, one at a time.
+    // Tested options combine through their representatives; their other values, like those of
+    // options only substituted, stand one per kind of literal for the rest.
     let narrowed = |name: &String| -> Vec<Option<OptionValue>> {
         match representatives.get(name) {
             Some(values) => choices(name).into_iter().filter(|v| v.as_ref().is_none_or(|v| values.contains(v))).collect(),
             None => choices(name),
         }
     };
+    let paired = |name: &String| if tested.contains(name) { narrowed(name) } else { vec![None] };
+    let singles = |name: &String| -> Vec<OptionValue> {
+        let paired = paired(name);
+        let mut forms: BTreeSet<String> = BTreeSet::new();
+        choices(name).into_iter().filter(|v| !paired.contains(v)).flatten().filter(|v| forms.insert(literal_form(v))).collect()
+    };
+    // Every value of every option, where that is few enough and asked for.
+    let all: Vec<&String> = relevant.iter().collect();
+    let sizes: Vec<usize> = all.iter().map(|name| choices(name).len()).collect();
+    if coverage == Coverage::Exhaustive && sizes.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n)).is_some_and(|n| n <= MAX_EXHAUSTIVE_SETS) {
+        let sets = product(&sizes)
+            .iter()
+            .map(|row| all.iter().zip(row).filter_map(|(name, &i)| Some(((*name).clone(), choices(name)[i].clone()?))).collect())
+            .collect();
+        return (sets, SetsCovered::AllCombinations);
+    }
     let structural: Vec<&String> = relevant.iter().filter(|n| tested.contains(*n)).collect();
     let structural_sizes: Vec<usize> = structural.iter().map(|n| narrowed(n).len()).collect();
     let tested_product = structural_sizes.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
@@ -257,22 +262,9 @@ fn enumerate(
         .map(|row| structural.iter().zip(row).filter_map(|(name, &i)| Some(((*name).clone(), narrowed(name)[i].clone()?))).collect())
         .collect();
     // Values that do not pair, as few sets as the option with the most of them needs: the
-    // k-th set gives every such option its k-th value. One value per kind of literal stands
-    // for the others (substituted, they differ only by a number of the same form).
-    let mut singles: Vec<(&String, Vec<OptionValue>)> = Vec::new();
-    for name in relevant {
-        let paired = if tested.contains(name) { narrowed(name) } else { vec![None] };
-        let mut forms: BTreeSet<String> = BTreeSet::new();
-        let values: Vec<OptionValue> = choices(name)
-            .into_iter()
-            .filter(|v| !paired.contains(v))
-            .flatten()
-            .filter(|v| forms.insert(literal_form(v)))
-            .collect();
-        if !values.is_empty() {
-            singles.push((name, values));
-        }
-    }
+    // k-th set gives every such option its k-th value.
+    let singles: Vec<(&String, Vec<OptionValue>)> =
+        relevant.iter().map(|name| (name, singles(name))).filter(|(_, values)| !values.is_empty()).collect();
     let rows_of_singles = singles.iter().map(|(_, values)| values.len()).max().unwrap_or(0);
     for k in 0..rows_of_singles {
         sets.push(singles.iter().filter_map(|(name, values)| Some(((*name).clone(), values.get(k)?.clone()))).collect());
@@ -405,14 +397,14 @@ mod tests {
                 .collect())
         })
         .unwrap();
-        assert_eq!(found.covered, SetsCovered::AllCombinations);
+        assert_eq!(found.covered, SetsCovered::TestedCombinations);
         assert_eq!(found.read, ["A".to_string(), "B".to_string()].into());
         assert_eq!(found.sets.len(), 4);
         assert!(found.sets.iter().all(|s| seen.contains(s)), "every set returned was consulted");
         assert_eq!(seen.len(), 4, "no set is consulted twice: {seen:?}");
     }
 
-    /// Past the exhaustive limit, values only substituted into the text are tried once per kind
+    /// Values only substituted into the text are tried once per kind
     /// of literal, several options in one set.
     #[test]
     fn substituted_values_are_tried_once_per_kind_of_literal() {

@@ -276,6 +276,9 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     if (130..400).contains(&number) && !extensions.contains(GPU_SHADER5) {
         found.extend(int_literals_for_uints(pre, &sig, &shown_version));
     }
+    if number < 120 {
+        found.extend(int_and_float_literals_mixed(pre, &sig, &shown_version));
+    }
     found.extend(warnings);
     found
 }
@@ -374,6 +377,56 @@ fn runtime_value(name: &str, parameters: &BTreeSet<&str>, globals: &Globals) -> 
     }
 }
 
+/// An int literal: decimal, octal or hex digits and no suffix (`3`, not `3u` or `3.0`).
+fn is_int_literal(t: &tidepack_glsl::token::Token<'_>) -> bool {
+    let hex = t.text.strip_prefix("0x").or_else(|| t.text.strip_prefix("0X"));
+    t.kind == TokenKind::Number
+        && match hex {
+            Some(digits) => !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_hexdigit()),
+            None => t.text.bytes().all(|b| b.is_ascii_digit()),
+        }
+}
+
+/// A float literal (`2.`, `.5`, `1e3`, `1.0f`).
+fn is_float_literal(t: &tidepack_glsl::token::Token<'_>) -> bool {
+    t.kind == TokenKind::Number && !t.text.starts_with("0x") && !t.text.starts_with("0X") && t.text.contains(['.', 'e', 'E', 'f', 'F'])
+}
+
+/// An int literal and a float literal on either side of an arithmetic operator (`18. + 258 * 2`)
+/// in GLSL 1.10, which converts nothing implicitly (1.20 brought int to float): whatever the
+/// operands around them, one side of that operator is an int and the other a float. Mesa: "could
+/// not implicitly convert operands to arithmetic operator".
+fn int_and_float_literals_mixed(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Token<'_>], shown_version: &str) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    let mut reported = BTreeSet::new();
+    for w in sig.windows(3) {
+        let [left, op, right] = w else { continue };
+        if !matches!(op.text, "+" | "-" | "*" | "/") || op.kind != TokenKind::Punct {
+            continue;
+        }
+        let int = if is_int_literal(left) && is_float_literal(right) {
+            left
+        } else if is_float_literal(left) && is_int_literal(right) {
+            right
+        } else {
+            continue;
+        };
+        let as_float = if int.text.len() > 1 && int.text.starts_with('0') { format!("float({})", int.text) } else { format!("{}.0", int.text) };
+        if reported.insert(op.line) {
+            found.push(Diagnostic::error(
+                Code::ImplicitConversion,
+                format!(
+                    "`{} {} {}` mixes an int with a float: GLSL 1.10 converts nothing implicitly (Mesa: \"could not implicitly convert \
+                     operands\" in `{shown_version}`; NVIDIA accepts it); write {as_float}, or #version 120 or later",
+                    left.text, op.text, right.text
+                ),
+                pre.location(op.line),
+            ));
+        }
+    }
+    found
+}
+
 /// An int literal (`3`, not `3u`) where a `uint` variable is assigned, initialised, compared or
 /// computed with: GLSL converts int to uint implicitly only from 4.00 (or with
 /// `GL_ARB_gpu_shader5`); Mesa: "could not implicitly convert".
@@ -381,15 +434,6 @@ fn int_literals_for_uints(pre: &Preprocessed, sig: &[&tidepack_glsl::token::Toke
     const OPERATORS: [&str; 22] = [
         "=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "+", "-", "*", "/", "%", "<", ">", "<=", ">=", "==", "!=", "&", "|",
     ];
-    // An int literal: decimal, octal or hex digits and no suffix.
-    let is_int_literal = |t: &tidepack_glsl::token::Token<'_>| {
-        let hex = t.text.strip_prefix("0x").or_else(|| t.text.strip_prefix("0X"));
-        t.kind == TokenKind::Number
-            && match hex {
-                Some(digits) => !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_hexdigit()),
-                None => t.text.bytes().all(|b| b.is_ascii_digit()),
-            }
-    };
     // Names declared `uint`, but none also declared with another type somewhere (a `uint x`
     // parameter beside a loop's `int x`): without scopes, which one a use means is not known.
     let declared = |other: bool| -> BTreeSet<&str> {
@@ -527,6 +571,16 @@ pub(crate) mod tests {
         assert!(found[1].starts_with("7: `n > 2`"), "{found:?}");
         assert!(found[2].starts_with("9: `n * 2`"), "{found:?}");
         assert!(errors(&src.replace("#version 330 compatibility", "#version 400 compatibility"), Stage::Fragment).is_empty());
+    }
+
+    #[test]
+    fn glsl_110_converts_no_int_literal_to_float() {
+        let src = "#version 110\nuniform vec2 texelSize;\nvoid main() {\n vec2 r = vec2(18. + 258 * 2, 258.) * texelSize;\n float a = 2 * 0.5;\n float b = 2.0 * 0.5 + float(2);\n gl_Position = vec4(r, a, b);\n}\n";
+        let found = errors(src, Stage::Vertex);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(found[0].starts_with("4: `18. + 258` mixes an int with a float") && found[0].contains("write 258.0"), "{found:?}");
+        assert!(found[1].starts_with("5: `2 * 0.5`"), "{found:?}");
+        assert!(errors(&src.replace("#version 110", "#version 120"), Stage::Vertex).is_empty());
     }
 
     #[test]
