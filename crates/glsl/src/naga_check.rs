@@ -199,7 +199,8 @@ fn validate_text(
                         text = repair.text;
                         continue;
                     }
-                    let (message, span) = glsl_message(&module, e.as_inner()).unwrap_or_else(|| {
+                    let said = built_in_of_another_stage(&text, e.as_inner(), naga_stage).or_else(|| glsl_message(&module, e.as_inner()));
+                    let (message, span) = said.unwrap_or_else(|| {
                         let mut message = e.as_inner().to_string();
                         let mut source = e.as_inner().source();
                         while let Some(inner) = source {
@@ -896,6 +897,38 @@ fn expression_types<'m>(
     }
 }
 
+/// naga's "built-in not available at this stage" (a vertex shader that reads `gl_FragCoord`, a
+/// fragment shader that writes `gl_Position`), said in GLSL's words at the variable's first use.
+fn built_in_of_another_stage(text: &str, error: &naga::valid::ValidationError, stage: naga::ShaderStage) -> Option<(String, Option<naga::Span>)> {
+    use naga::valid::{EntryPointError, ValidationError, VaryingError};
+    use naga::{BuiltIn, ShaderStage};
+    let ValidationError::EntryPoint {
+        source: EntryPointError::Argument(_, VaryingError::InvalidBuiltInStage(built_in)) | EntryPointError::Result(VaryingError::InvalidBuiltInStage(built_in)),
+        ..
+    } = error
+    else {
+        return None;
+    };
+    let (name, owner) = match (built_in, stage) {
+        (BuiltIn::Position { .. }, ShaderStage::Vertex) => ("gl_FragCoord", "fragment"),
+        (BuiltIn::FrontFacing, _) => ("gl_FrontFacing", "fragment"),
+        (BuiltIn::PointCoord, _) => ("gl_PointCoord", "fragment"),
+        (BuiltIn::FragDepth, _) => ("gl_FragDepth", "fragment"),
+        (BuiltIn::SampleIndex, _) => ("gl_SampleID", "fragment"),
+        (BuiltIn::Position { .. }, _) => ("gl_Position", "vertex"),
+        (BuiltIn::VertexIndex, _) => ("gl_VertexID", "vertex"),
+        (BuiltIn::InstanceIndex, _) => ("gl_InstanceID", "vertex"),
+        (BuiltIn::PointSize, _) => ("gl_PointSize", "vertex"),
+        _ => return None,
+    };
+    let this = if stage == ShaderStage::Vertex { "vertex" } else { "fragment" };
+    let tokens = tokenize(text).ok()?;
+    let first = tokens.iter().find(|t| t.is_ident(name))?;
+    let span = naga::Span::new(first.offset as u32, (first.offset + first.text.len()) as u32);
+    let message = format!("`{name}` is a {owner} shader built-in: a {this} shader has no such variable (Mesa: \"`{name}' undeclared\")");
+    Some((message, Some(span)))
+}
+
 /// naga's validation errors that name expression handles, said with GLSL's types instead.
 /// The message, and the span to point at when naga's own points elsewhere (a store's pointer
 /// spans the variable's declaration, not the assignment).
@@ -1227,6 +1260,10 @@ fn glsl_type_name(ty: &naga::TypeInner) -> Option<String> {
     match ty {
         TypeInner::Scalar(s) => names(s).map(|(_, name)| name.to_string()),
         TypeInner::Vector { size, scalar } => names(scalar).map(|(prefix, _)| format!("{prefix}vec{}", *size as u8)),
+        TypeInner::Matrix { columns, rows, scalar } if scalar.kind == ScalarKind::Float && scalar.width == 4 => {
+            let (columns, rows) = (*columns as u8, *rows as u8);
+            Some(if columns == rows { format!("mat{columns}") } else { format!("mat{columns}x{rows}") })
+        }
         _ => None,
     }
 }

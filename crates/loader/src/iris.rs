@@ -3,8 +3,6 @@
 //! that keep every line where it was, so that diagnostics still name the pack's lines. Each
 //! returns the rewritten text and what was done, or `None` where nothing applies.
 
-use std::collections::BTreeSet;
-
 use tidepack_glsl::preprocess;
 use tidepack_glsl::token::{Token, TokenKind, blanked, brace_depths, function_definitions, significant, tokenize};
 
@@ -114,14 +112,20 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
     let tokens = tokenize(text).ok()?;
     let seen = tokenize(seen).ok()?;
     let uses = |name: &str| seen.iter().filter(|t| t.is_ident(name)).count();
-    // Lines that hold a directive: their words are not a return type.
-    let order = significant(&tokens);
-    let directive_lines: BTreeSet<u32> = order
-        .iter()
-        .enumerate()
-        .filter(|&(k, &i)| tokens[i].is_punct("#") && (k == 0 || tokens[order[k - 1]].line != tokens[i].line))
-        .map(|(_, &i)| tokens[i].line)
-        .collect();
+    // Tokens of directives, to the line break that ends each (continuations included): their
+    // words are not a return type.
+    let mut in_directive = vec![false; tokens.len()];
+    let mut line_start = true;
+    let mut directive = false;
+    for (i, t) in tokens.iter().enumerate() {
+        if t.kind == TokenKind::Newline {
+            (line_start, directive) = (true, false);
+        } else if !t.is_trivia() {
+            directive |= line_start && t.is_punct("#");
+            line_start = false;
+        }
+        in_directive[i] = directive;
+    }
     let mut ranges = Vec::new();
     let mut removed = Vec::new();
     for definition in function_definitions(&tokens) {
@@ -136,12 +140,12 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
             if t.is_trivia() {
                 continue;
             }
-            if directive_lines.contains(&t.line) || !(t.kind == TokenKind::Ident || t.kind == TokenKind::Number || t.is_punct("[") || t.is_punct("]")) {
+            if in_directive[i] || !(t.kind == TokenKind::Ident || t.kind == TokenKind::Number || t.is_punct("[") || t.is_punct("]")) {
                 break;
             }
             start = i;
         }
-        if (start..=definition.close).any(|i| directive_lines.contains(&tokens[i].line) && tokens[i].is_punct("#")) {
+        if (start..=definition.close).any(|i| in_directive[i]) {
             continue;
         }
         ranges.push(tokens[start].offset..tokens[definition.close].offset + 1);
@@ -198,6 +202,11 @@ mod tests {
         let seen = text.replace("half_of(1.0)", "1.0");
         let (removed, _) = super::unused_functions_removed(text, &seen).expect("removed");
         assert!(!removed.contains("float half_of"), "{removed}");
+        // A directive continued onto the next line ends there: its last word is not the return
+        // type of the function after it.
+        let continued = "#version 120\n#if MODE == 1 \\\n    && VIEW == VIEW_B\nvoid unused() {}\n#endif\nvoid main() {}\n";
+        let (removed, _) = super::unused_functions_removed(continued, continued).expect("removed");
+        assert!(removed.contains("&& VIEW == VIEW_B\n") && !removed.contains("unused"), "{removed}");
     }
 
     /// Iris names a `gcolor` or `texture` sampler `gtexture`: its declaration and every use

@@ -1,0 +1,6 @@
+#version 330 compatibility
+uniform sampler2D colortex0;
+in vec2 uv;
+void main() {
+    gl_FragData[0] = texture(colortex0, uv);
+}
