@@ -2012,6 +2012,7 @@ impl<'a> Lowering<'_, 'a> {
     /// Rewrites uses inside every statement and function body.
     fn rewrite_bodies(&mut self) -> Result<(), LowerError> {
         let sig: Vec<usize> = (0..self.tokens.len()).filter(|&i| !self.tokens[i].is_trivia()).collect();
+        let constants = self.constant_names(&sig);
         // Sampler parameters in scope: name → combined type; reset at each function's end.
         let mut local_samplers: HashMap<String, String> = HashMap::new();
         let mut brace_depth = 0;
@@ -2204,7 +2205,7 @@ impl<'a> Lowering<'_, 'a> {
             } else if followed_by_call
                 && !in_constant
                 && RANGE_CHECKED_BUILTINS.contains(&t.text)
-                && self.literal_arguments(&sig, k + 1)
+                && self.constant_arguments(&sig, k + 1, &constants)
             {
                 // naga evaluates a built-in of constant arguments while parsing and refuses
                 // values outside its domain (`normalize(vec3(0.0))`, often in a branch not
@@ -2237,9 +2238,9 @@ impl<'a> Lowering<'_, 'a> {
         in_block && sig.get(end + 1).is_some_and(|&j| !matches!(self.tokens[j].text, "}" | "case" | "default"))
     }
 
-    /// Whether the call whose `(` is significant token `open` has only literals, constructors
-    /// and calls as arguments (no variables).
-    fn literal_arguments(&self, sig: &[usize], open: usize) -> bool {
+    /// Whether the call whose `(` is significant token `open` has only literals, constructors,
+    /// calls and `constants` as arguments (no variables).
+    fn constant_arguments(&self, sig: &[usize], open: usize, constants: &std::collections::HashSet<String>) -> bool {
         let mut depth = 0;
         for (k, &i) in sig.iter().enumerate().skip(open) {
             let t = self.tokens[i];
@@ -2253,7 +2254,7 @@ impl<'a> Lowering<'_, 'a> {
                 }
                 _ if t.kind == TokenKind::Ident => {
                     let called = sig.get(k + 1).is_some_and(|&j| self.tokens[j].is_punct("("));
-                    if !called {
+                    if !called && !constants.contains(t.text) {
                         return false;
                     }
                 }
@@ -2261,6 +2262,27 @@ impl<'a> Lowering<'_, 'a> {
             }
         }
         false
+    }
+
+    /// The names `const` declarations give (`const vec3 a = …, b = …;`), wherever they stand:
+    /// naga folds expressions of them while parsing, as it folds literals.
+    fn constant_names(&self, sig: &[usize]) -> std::collections::HashSet<String> {
+        let mut names = std::collections::HashSet::new();
+        let mut in_constant = false;
+        for (k, &i) in sig.iter().enumerate() {
+            let t = self.tokens[i];
+            match t.text {
+                "const" => in_constant = true,
+                ";" | "{" | "}" | "(" | ")" => in_constant = false,
+                _ if in_constant && t.kind == TokenKind::Ident => {
+                    if sig.get(k + 1).is_some_and(|&j| matches!(self.tokens[j].text, "=" | "[")) {
+                        names.insert(t.text.to_string());
+                    }
+                }
+                _ => {}
+            }
+        }
+        names
     }
 
     /// Whether a local or parameter of this name hides a global the lowering rewrites.

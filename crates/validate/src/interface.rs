@@ -92,7 +92,11 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
     ) else {
         return (Vec::new(), Vec::new());
     };
-    let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().map(|d| (d.name.as_str(), d)).collect();
+    // `in vec4 gl_FragCoord;` (a layout qualifier given to a built-in) redeclares a built-in:
+    // the stages do not pass it to each other.
+    let built_in = |d: &&VaryingDecl| d.name.starts_with("gl_");
+    let outputs: BTreeMap<&str, &VaryingDecl> = outputs.iter().filter(|d| !built_in(d)).map(|d| (d.name.as_str(), d)).collect();
+    let inputs: Vec<&VaryingDecl> = inputs.iter().filter(|d| !built_in(d)).collect();
     let uses = global_uses(&fragment.text);
     let vertex_uses = global_uses(&vertex.text);
     let vertex_path = vertex.files.first().cloned().unwrap_or_default();
@@ -103,7 +107,7 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
     let mesa_links = (130..420).contains(&version);
     let mut found = Vec::new();
     let mut never_written = Vec::new();
-    for input in &inputs {
+    for input in inputs {
         let at = fragment.location(input.line);
         match outputs.get(input.name.as_str()) {
             None => {
