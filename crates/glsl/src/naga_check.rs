@@ -502,6 +502,13 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
                 "{field} selects from a value that is neither a vector nor a struct: scalars take swizzles only from GLSL 4.20 (or with GL_ARB_shading_language_420pack), matrices never (Mesa refuses it)"
             )
         }
+        // naga names the indexed expression by its handle.
+        ErrorKind::SemanticError(m) if m.contains("OutOfBoundsIndex") => {
+            let index = m.rsplit("index: ").next().and_then(|rest| rest.split(|c: char| !c.is_ascii_digit()).next()).unwrap_or("this");
+            format!(
+                "the constant index {index} is past the end of the vector, matrix or array it selects from (every compiler refuses it)"
+            )
+        }
         // naga names the expression by its internal form.
         ErrorKind::SemanticError(m) if m.ends_with("cannot be in the left hand side") => {
             "this cannot be assigned to: the left side of an assignment must be a variable, an element, a field or a swizzle"
