@@ -299,9 +299,6 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     // Distinct lowered stages by digest of path and text, as indices into `stage_findings`.
     let mut seen_stages: HashMap<[u8; 32], usize> = HashMap::new();
     let mut stage_findings: Vec<Vec<Diagnostic>> = Vec::new();
-    // naga's error at a line where a GLSL rule already named the mistake says the same in
-    // naga's words: the rule's message stands alone.
-    let mut explained: HashSet<(String, u32)> = HashSet::new();
     let mut stages_validated = 0;
     let chunk_size = 16 * options.threads.max(1);
     for chunk in pairs.chunks(chunk_size) {
@@ -336,9 +333,6 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
                 }
                 Checked::Cached(diagnostics) => found.extend(diagnostics.into_iter().map(finding)),
                 Checked::Fresh { key, diagnostics, stages } => {
-                    explained.extend(
-                        diagnostics.iter().filter(|d| d.is_error()).filter_map(|d| d.location.as_ref().map(|l| (l.path.clone(), l.line))),
-                    );
                     let mut stage_ids = Vec::new();
                     for stage in stages {
                         let digest: [u8; 32] = Sha256::new()
@@ -360,20 +354,20 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             }
         }
         stages_validated += jobs.len();
-        for findings in naga_pool::run_naga(&pool, &jobs, &pack, &sets) {
-            let kept: Vec<Diagnostic> = findings
-                .into_iter()
-                .filter(|d| {
-                    let at = d.location.as_ref().map(|l| (l.path.clone(), l.line));
-                    !(d.is_error() && at.is_some_and(|at| explained.contains(&at)))
-                })
-                .collect();
-            stage_findings.push(kept);
-        }
+        stage_findings.extend(naga_pool::run_naga(&pool, &jobs, &pack, &sets));
         // naga's findings of a stage belong to every pair that has the stage, whichever pair
-        // gave it first.
+        // gave it first. naga's error at a line where one of the pair's own GLSL rules already
+        // named the mistake says the same in naga's words: the rule's message stands alone.
         for (pair, key, mut diagnostics, stage_ids) in fresh {
-            diagnostics.extend(stage_ids.iter().flat_map(|&id| stage_findings[id].iter().cloned()));
+            let explained: HashSet<(&str, u32)> =
+                diagnostics.iter().filter(|d| d.is_error()).filter_map(|d| d.location.as_ref().map(|l| (l.path.as_str(), l.line))).collect();
+            let naga_findings: Vec<Diagnostic> = stage_ids
+                .iter()
+                .flat_map(|&id| stage_findings[id].iter())
+                .filter(|d| !(d.is_error() && d.location.as_ref().is_some_and(|l| explained.contains(&(l.path.as_str(), l.line)))))
+                .cloned()
+                .collect();
+            diagnostics.extend(naga_findings);
             if let Some((cache, key)) = cache.as_ref().zip(key) {
                 cache.put(&key, &diagnostics);
             }
