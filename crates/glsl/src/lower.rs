@@ -839,7 +839,7 @@ struct Symbols {
     /// Function name → for each parameter position, whether an overload takes a sampler there.
     sampler_functions: HashMap<String, Vec<bool>>,
     /// `uniform bool` names; they live in the block as `int tp_bool_<name>`.
-    bool_uniforms: std::collections::HashSet<String>,
+    bool_uniforms: HashSet<String>,
 }
 
 /// Lowers one preprocessed stage; a `lenient` one ([`crate::preprocess::Preprocessed::lenient`])
@@ -2240,7 +2240,7 @@ impl<'a> Lowering<'_, 'a> {
 
     /// Whether the call whose `(` is significant token `open` has only literals, constructors,
     /// calls and `constants` as arguments (no variables).
-    fn constant_arguments(&self, sig: &[usize], open: usize, constants: &std::collections::HashSet<String>) -> bool {
+    fn constant_arguments(&self, sig: &[usize], open: usize, constants: &HashSet<String>) -> bool {
         let mut depth = 0;
         for (k, &i) in sig.iter().enumerate().skip(open) {
             let t = self.tokens[i];
@@ -2266,8 +2266,8 @@ impl<'a> Lowering<'_, 'a> {
 
     /// The names `const` declarations give (`const vec3 a = …, b = …;`), wherever they stand:
     /// naga folds expressions of them while parsing, as it folds literals.
-    fn constant_names(&self, sig: &[usize]) -> std::collections::HashSet<String> {
-        let mut names = std::collections::HashSet::new();
+    fn constant_names(&self, sig: &[usize]) -> HashSet<String> {
+        let mut names = HashSet::new();
         let mut in_constant = false;
         for (k, &i) in sig.iter().enumerate() {
             let t = self.tokens[i];

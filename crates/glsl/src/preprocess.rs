@@ -9,10 +9,10 @@
 
 use crate::Code;
 use std::collections::{BTreeSet, HashMap};
-
-use rustc_hash::FxHashMap;
 use std::fmt::Write as _;
 use std::sync::Arc;
+
+use rustc_hash::FxHashMap;
 
 use crate::diagnostic::{Diagnostic, Location};
 use crate::token::{Token, TokenKind, tokenize};

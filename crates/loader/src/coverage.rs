@@ -224,20 +224,6 @@ fn enumerate(
         let default = kind.default_value();
         kind.all_values().into_iter().map(|v| (v != default).then_some(v)).collect()
     };
-    // Tested options combine through their representatives; their other values, like those of
-    // options only substituted, stand one per kind of literal for the rest.
-    let narrowed = |name: &String| -> Vec<Option<OptionValue>> {
-        match representatives.get(name) {
-            Some(values) => choices(name).into_iter().filter(|v| v.as_ref().is_none_or(|v| values.contains(v))).collect(),
-            None => choices(name),
-        }
-    };
-    let paired = |name: &String| if tested.contains(name) { narrowed(name) } else { vec![None] };
-    let singles = |name: &String| -> Vec<OptionValue> {
-        let paired = paired(name);
-        let mut forms: BTreeSet<String> = BTreeSet::new();
-        choices(name).into_iter().filter(|v| !paired.contains(v)).flatten().filter(|v| forms.insert(literal_form(v))).collect()
-    };
     // Every value of every option, where that is few enough and asked for.
     let all: Vec<&String> = relevant.iter().collect();
     let sizes: Vec<usize> = all.iter().map(|name| choices(name).len()).collect();
@@ -248,6 +234,20 @@ fn enumerate(
             .collect();
         return (sets, SetsCovered::AllCombinations);
     }
+    // Tested options combine through their representatives; their other values, like those of
+    // options only substituted, stand one per kind of literal for the rest.
+    let narrowed = |name: &String| -> Vec<Option<OptionValue>> {
+        match representatives.get(name) {
+            Some(values) => choices(name).into_iter().filter(|v| v.as_ref().is_none_or(|v| values.contains(v))).collect(),
+            None => choices(name),
+        }
+    };
+    let paired = |name: &String| if tested.contains(name) { narrowed(name) } else { vec![None] };
+    let unpaired_values = |name: &String| -> Vec<OptionValue> {
+        let paired = paired(name);
+        let mut forms: BTreeSet<String> = BTreeSet::new();
+        choices(name).into_iter().filter(|v| !paired.contains(v)).flatten().filter(|v| forms.insert(literal_form(v))).collect()
+    };
     let structural: Vec<&String> = relevant.iter().filter(|n| tested.contains(*n)).collect();
     let structural_sizes: Vec<usize> = structural.iter().map(|n| narrowed(n).len()).collect();
     let tested_product = structural_sizes.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
@@ -264,7 +264,7 @@ fn enumerate(
     // Values that do not pair, as few sets as the option with the most of them needs: the
     // k-th set gives every such option its k-th value.
     let singles: Vec<(&String, Vec<OptionValue>)> =
-        relevant.iter().map(|name| (name, singles(name))).filter(|(_, values)| !values.is_empty()).collect();
+        relevant.iter().map(|name| (name, unpaired_values(name))).filter(|(_, values)| !values.is_empty()).collect();
     let rows_of_singles = singles.iter().map(|(_, values)| values.len()).max().unwrap_or(0);
     for k in 0..rows_of_singles {
         sets.push(singles.iter().filter_map(|(name, values)| Some(((*name).clone(), values.get(k)?.clone()))).collect());
