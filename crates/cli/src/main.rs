@@ -37,9 +37,9 @@ enum Command {
         /// default_profile).
         #[arg(long)]
         profile: Option<String>,
-        /// Validate every combination of the options each program tests, however many. By
-        /// default, past 256 such combinations per program, every pair of option values and
-        /// every profile are validated.
+        /// Validate every combination of the options each program tests, however many (and of
+        /// every value of each option read, up to 4096). By default, past 16 such combinations
+        /// per program, every pair of option values and every profile are validated.
         #[arg(long)]
         exhaustive: bool,
         /// Specialise the pack for one scene (tests/scenes/*.toml): the uniforms the scene

@@ -535,11 +535,14 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
     let Some(result) = &entry.function.result else { return Ok(Vec::new()) };
     // Outputs the harness declared for fragment inputs the shipped vertex stage lacks are not
     // in the shipped text: nothing to record.
-    let declared: Vec<&str> = crate::program::interface_declarations(&stage.lowered_text)
-        .into_iter()
-        .filter(|d| d.direction() == Some("out"))
-        .filter_map(|d| d.words.last().copied())
-        .collect();
+    let outputs_declared: Vec<_> =
+        crate::program::interface_declarations(&stage.lowered_text).into_iter().filter(|d| d.direction() == Some("out")).collect();
+    // naga spreads a struct output over its members, named as the struct's fields: transform
+    // feedback would need them as `name.field`.
+    if let Some(d) = outputs_declared.iter().find(|d| d.words.len() >= 2 && !tidepack_glsl::lower::is_builtin_type(d.words[d.words.len() - 2])) {
+        return Err(unsupported(format!("output {} of the struct type {}", d.words[d.words.len() - 1], d.words[d.words.len() - 2])));
+    }
+    let declared: Vec<&str> = outputs_declared.iter().filter_map(|d| d.words.last().copied()).collect();
     let naga::TypeInner::Struct { members, .. } = &module.types[result.ty].inner else {
         return Err(unsupported("the entry point does not return a struct".into()));
     };

@@ -390,6 +390,19 @@ fn what_nvidia_does_implicitly_both_renderers_do_alike() {
     assert_eq!(screen.dimensions(), (aliased.width, aliased.height));
 }
 
+/// A struct passed between the stages (tests/packs/struct_varying): naga spreads it over its
+/// fields, which transform feedback cannot record by those names, so OpenGL links the program
+/// as shipped; both renderers read the vertex stage's values.
+#[test]
+fn a_struct_varying_arrives_in_both_renderers() {
+    let (report, screen) = render_job("struct_varying");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let wrong = screen.pixels().filter(|p| p.0 != [64, 128, 191, 255]).count();
+    assert_eq!(wrong, 0, "pixels other than the vertex stage's (0.25, 0.5, 0.75)");
+}
+
 /// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so
 /// every face on screen is a front face, red; both renderers agree.
 #[test]
