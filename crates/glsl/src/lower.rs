@@ -2274,10 +2274,8 @@ impl<'a> Lowering<'_, 'a> {
             match t.text {
                 "const" => in_constant = true,
                 ";" | "{" | "}" | "(" | ")" => in_constant = false,
-                _ if in_constant && t.kind == TokenKind::Ident => {
-                    if sig.get(k + 1).is_some_and(|&j| matches!(self.tokens[j].text, "=" | "[")) {
-                        names.insert(t.text.to_string());
-                    }
+                _ if in_constant && t.kind == TokenKind::Ident && sig.get(k + 1).is_some_and(|&j| matches!(self.tokens[j].text, "=" | "[")) => {
+                    names.insert(t.text.to_string());
                 }
                 _ => {}
             }
