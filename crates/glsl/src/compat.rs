@@ -11,7 +11,7 @@ use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 
 use crate::Stage;
-use crate::lower::is_implicit_level_lookup;
+use crate::lower::{float_components, is_implicit_level_lookup};
 use crate::preprocess::VersionDirective;
 use crate::token::{
     Token, TokenKind, argument_count, argument_qualifiers, brace_depths, depth_read_never_written, function_definitions, matching_close, precision_qualifiers, significant,
@@ -831,17 +831,6 @@ pub(crate) struct SamplerFunction<'t> {
     pub close: usize,
     pub name: &'t str,
     pub returned: &'t str,
-}
-
-/// The number of components of a float type (`float` 1, `vec2` … `vec4`).
-fn float_components(ty: &str) -> Option<usize> {
-    match ty {
-        "float" => Some(1),
-        "vec2" => Some(2),
-        "vec3" => Some(3),
-        "vec4" => Some(4),
-        _ => None,
-    }
 }
 
 /// The file-scope declarations `KEYWORD TYPE NAME;` of `text` with KEYWORD one of `keywords`,

@@ -226,6 +226,17 @@ pub(crate) fn is_implicit_level_lookup(name: &str) -> bool {
     name == "texture" || LEGACY_SAMPLING.iter().any(|&(old, new, _)| old == name && new == "texture")
 }
 
+/// The number of components of a float type (`float` 1, `vec2` … `vec4`).
+pub fn float_components(ty: &str) -> Option<usize> {
+    match ty {
+        "float" => Some(1),
+        "vec2" => Some(2),
+        "vec3" => Some(3),
+        "vec4" => Some(4),
+        _ => None,
+    }
+}
+
 /// GLSL's own types (scalars, vectors, matrices); anything else is a struct.
 pub fn is_builtin_type(ty: &str) -> bool {
     matches!(ty, "float" | "int" | "uint" | "bool" | "double")
@@ -858,7 +869,8 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let mut blanked = without_unchecked_qualifiers(text, &tokens);
     // Blanking keeps every byte where it was, so that edits, by the tokens' offsets, apply after.
-    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
     let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     if lenient {
         let mut names: Vec<std::ops::Range<usize>> =
@@ -876,7 +888,6 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
             }
         }
         // Default values of parameters, which NVIDIA takes, written out in the calls.
-        let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
         let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
         edits.extend(defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)));
     }

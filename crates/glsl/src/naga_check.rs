@@ -1120,10 +1120,10 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             use naga::BinaryOperator as Op;
             let naga::Expression::Binary { op, .. } = function.expressions[*handle] else { return None };
             let equality = matches!(op, Op::Equal | Op::NotEqual);
-            let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
             if matches!(op, Op::Less | Op::LessEqual | Op::Greater | Op::GreaterEqual | Op::LogicalAnd | Op::LogicalOr) || (equality && !lenient) {
                 return None;
             }
+            let (lhs, rhs) = (type_of(*lhs_expr)?, type_of(*rhs_expr)?);
             let (scalar, other, vector) = match (&lhs, &rhs) {
                 (naga::TypeInner::Vector { .. }, naga::TypeInner::Scalar(_)) => (*rhs_expr, *lhs_expr, lhs),
                 (naga::TypeInner::Scalar(_), naga::TypeInner::Vector { .. }) => (*lhs_expr, *rhs_expr, rhs),

@@ -15,7 +15,7 @@ use std::sync::Arc;
 use rustc_hash::FxHashMap;
 
 use crate::diagnostic::{Diagnostic, Location};
-use crate::token::{Token, TokenKind, tokenize};
+use crate::token::{Token, TokenKind, punctuator_len, tokenize};
 
 /// OptiFine's limit on `#include` nesting.
 pub const MAX_INCLUDE_DEPTH: usize = 10;
@@ -944,26 +944,15 @@ fn push_apart(out: &mut String, text: &str) {
 
 /// Whether a token ending in `a` (a number's last digit where `number`) followed directly by one
 /// starting with `b` reads as other tokens: two words or numbers run together, a number and a
-/// `.`, or two operator characters that make one (`--`, `+=`, `<<`, `&&`, `//`, …).
+/// `.`, two operator characters the tokenizer reads as one (`--`, `+=`, `<<`, `&&`, `##`, …),
+/// or the start or end of a comment.
 fn would_join(a: char, b: char, number: bool) -> bool {
     let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
     (word(a) && word(b))
         || (a == '.' && b.is_ascii_digit())
         || (number && b == '.')
-        || matches!(
-            (a, b),
-            ('+', '+' | '=')
-                | ('-', '-' | '=')
-                | ('<', '<' | '=')
-                | ('>', '>' | '=')
-                | ('=' | '!' | '*' | '%', '=')
-                | ('&', '&' | '=')
-                | ('|', '|' | '=')
-                | ('^', '^' | '=')
-                | ('/', '/' | '*' | '=')
-                | ('*', '/')
-                | ('#', '#')
-        )
+        || (a.is_ascii() && b.is_ascii() && punctuator_len(&[a as u8, b as u8]) == 2)
+        || matches!((a, b), ('/', '/' | '*') | ('*', '/'))
 }
 
 /// `tokens` with the tokens either side of each `##` joined into one, as C's preprocessor (and

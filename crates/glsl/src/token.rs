@@ -82,7 +82,7 @@ const GLSL_PUNCTUATION: &[u8] = b"+-*/%<>=!&|^~?:;,.()[]{}#\"";
 /// The length of the punctuator `rest` starts with (its first byte is in [`GLSL_PUNCTUATION`]):
 /// the longest of `<<=`, `>>=`, the two-character operators (`++`, `<=`, `&&`, `^^`, `+=`, ...),
 /// `##`, `::`, `->` and `..`, else 1.
-fn punctuator_len(rest: &[u8]) -> usize {
+pub(crate) fn punctuator_len(rest: &[u8]) -> usize {
     match rest {
         [b'<', b'<', b'=', ..] | [b'>', b'>', b'=', ..] => 3,
         [b'+', b'+' | b'=', ..]

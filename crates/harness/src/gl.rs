@@ -539,8 +539,12 @@ fn vertex_outputs(stage: &LoadedStage) -> Result<Vec<(String, u32)>, HarnessErro
         crate::program::interface_declarations(&stage.lowered_text).into_iter().filter(|d| d.direction() == Some("out")).collect();
     // naga spreads a struct output over its members, named as the struct's fields: transform
     // feedback would need them as `name.field`.
-    if let Some(d) = outputs_declared.iter().find(|d| d.words.len() >= 2 && !tidepack_glsl::lower::is_builtin_type(d.words[d.words.len() - 2])) {
-        return Err(unsupported(format!("output {} of the struct type {}", d.words[d.words.len() - 1], d.words[d.words.len() - 2])));
+    for declaration in &outputs_declared {
+        if let [.., ty, name] = declaration.words.as_slice()
+            && !tidepack_glsl::lower::is_builtin_type(ty)
+        {
+            return Err(unsupported(format!("output {name} of the struct type {ty}")));
+        }
     }
     let declared: Vec<&str> = outputs_declared.iter().filter_map(|d| d.words.last().copied()).collect();
     let naga::TypeInner::Struct { members, .. } = &module.types[result.ty].inner else {

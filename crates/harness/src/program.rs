@@ -748,20 +748,16 @@ fn widen_fragment_outputs(fragment: &str) -> (String, String, BTreeMap<u32, u8>)
     // From the end, so earlier byte ranges stay valid.
     for declaration in interface_declarations(fragment).iter().rev() {
         let [.., direction, ty, name] = declaration.words.as_slice() else { continue };
-        let channels = match *ty {
-            "float" => 1,
-            "vec2" => 2,
-            "vec3" => 3,
-            _ => continue,
-        };
+        // A vec4 fills its buffer already.
+        let Some(channels) = tidepack_glsl::lower::float_components(ty).filter(|&n| n < 4) else { continue };
         if *direction != "out" || name.contains('[') {
             continue;
         }
         let location = declaration.location;
         text.replace_range(declaration.statement.clone(), &format!("{ty} {name}; layout(location = {location}) out vec4 tp_widened{location};"));
-        let zeros = ", 0.0".repeat(4 - channels as usize);
+        let zeros = ", 0.0".repeat(4 - channels);
         epilogue.push_str(&format!("tp_widened{location} = vec4({name}{zeros}); "));
-        widened.insert(location, channels);
+        widened.insert(location, channels as u8);
     }
     (text, epilogue, widened)
 }
