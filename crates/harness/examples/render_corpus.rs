@@ -116,7 +116,14 @@ fn failure(report: &AnyPackReport) -> Option<String> {
         Some(format!("{} NaN/Inf pixels{first}", report.non_finite_pixels))
     } else {
         report.gl_disagreement.as_ref().map(|d| {
-            let sensitive = if d.sensitive > 0 { format!(" ({} the pack's own noise)", d.sensitive) } else { String::new() };
+            let mut not_counted = Vec::new();
+            if d.sensitive > 0 {
+                not_counted.push(format!("{} the pack's own noise", d.sensitive));
+            }
+            if d.undefined > 0 {
+                not_counted.push(format!("{} with undefined derivatives", d.undefined));
+            }
+            let sensitive = if not_counted.is_empty() { String::new() } else { format!(" ({})", not_counted.join(", ")) };
             let file = d.file.as_ref().map_or(String::new(), |file| format!(" ({file})"));
             format!("the renderers part at {}{file}: {} differs on {} pixels{sensitive}", d.pass, d.texture, d.pixels)
         })

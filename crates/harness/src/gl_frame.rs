@@ -20,7 +20,7 @@ use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Held, Textures, attach, clear_colour, compile, draw_own_colour, draw_program, internal_format, make_texture,
     pixel_transfer, read, add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
 };
-use crate::samplers::SamplerNaming;
+use crate::samplers::{SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_scene::mesh::{self, PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
@@ -49,6 +49,10 @@ pub struct GlFrame {
     /// Per step, in plan order: wall time of its draws and copies between two `glFinish`, in
     /// ms (compiling the programs and reading the textures back are left out).
     pub step_ms: Vec<f64>,
+    /// Per step, in plan order: whether its program was drawn traced
+    /// ([`Reference::trace_derivatives`]), so that its textures hold where its implicit
+    /// derivatives are undefined.
+    pub traced: Vec<bool>,
     /// Wall time of a one-tap pass-through of colortex0 into the screen, timed as the steps
     /// are (the median of five draws).
     pub passthrough_ms: f64,
@@ -64,6 +68,7 @@ impl GlFrame {
             depth1: &self.depth1,
             depth_written: self.depth_written.iter().map(Option::as_ref).collect(),
             nudge,
+            trace_derivatives: false,
         }
     }
 }
@@ -89,6 +94,9 @@ pub struct Reference<'r> {
     /// result the last bit of some arithmetic decides (a hash, the edge of a `floor`), where two
     /// correct compilers differ.
     pub nudge: f64,
+    /// Each full-screen program is drawn traced instead ([`LoadedProgram::with_derivative_trace`]):
+    /// it writes 1 where its implicit derivatives are undefined, 0 elsewhere, unblended.
+    pub trace_derivatives: bool,
 }
 
 /// Renders `scene` as [`render`] does, but each step starts from what `reference` left: the
@@ -157,6 +165,10 @@ struct GlPlanFrame<'a> {
     step_ms: f64,
     /// [`Reference::nudge`]: the shaders' float literals are moved by it too.
     nudge: f64,
+    /// [`Reference::trace_derivatives`].
+    trace_derivatives: bool,
+    /// Whether the current step's program was drawn traced.
+    step_traced: bool,
 }
 
 fn render_plan(
@@ -177,6 +189,8 @@ fn render_plan(
     unsafe {
         let nudge = reference.map_or(0.0, |r| r.nudge);
         let mut frame = GlPlanFrame::new(ctx, pack, scene, &plan, nudge)?;
+        frame.trace_derivatives = reference.is_some_and(|r| r.trace_derivatives);
+        let mut traced = Vec::new();
         frame.clear()?;
         let quad: Vec<PackVertex> = mesh::fullscreen_quad().iter().map(|v| v.nudged(nudge as f32)).collect();
         let mut steps = Vec::new();
@@ -196,6 +210,7 @@ fn render_plan(
                 }
             }
             frame.step_ms = 0.0;
+            frame.step_traced = false;
             let written = match &step.work {
                 PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
                     let draw = GeometryStep { program: *program, vertices, default_blend, depth_write: *depth_write, sprites: *sprites, pass: *pass, render_stage };
@@ -220,9 +235,10 @@ fn render_plan(
             last_written = written.iter().map(|w| (w.name.clone(), w.texture)).collect();
             steps.push((step.label.clone(), written.into_iter().map(|w| (w.name, w.image)).collect()));
             step_ms.push(frame.step_ms);
+            traced.push(frame.step_traced);
             depth_written.push(frame.depth_written(&step.work)?);
         }
-        frame.finish(steps, depth_written, step_ms, &plan.current)
+        frame.finish(steps, depth_written, step_ms, traced, &plan.current)
     }
 }
 
@@ -303,6 +319,8 @@ impl<'a> GlPlanFrame<'a> {
                 own_depth_mapping: Vec::new(),
                 step_ms: 0.0,
                 nudge,
+                trace_derivatives: false,
+                step_traced: false,
             })
         }
     }
@@ -576,6 +594,13 @@ impl<'a> GlPlanFrame<'a> {
         quad: &[PackVertex],
     ) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
+        // Only the colour buffers read with their mipmaps have levels to pick: every other
+        // texture the harness binds has one level and one filter for both ways, so lookups in
+        // it read alike whatever the derivatives.
+        let level_free = |name: &str| !matches!(crate::samplers::resolve_any(self.pack, name, false), Ok(Source::Color(n)) if mipmaps.contains(&n));
+        let traced = if self.trace_derivatives { program.with_derivative_trace(level_free) } else { None };
+        self.step_traced = traced.is_some();
+        let program = traced.as_ref().unwrap_or(program);
         unsafe {
             // Integer buffers have no mip chain (OpenGL makes none for them).
             for b in mipmaps.iter().filter(|b| !self.buffers[b].2.is_integer()) {
@@ -592,7 +617,7 @@ impl<'a> GlPlanFrame<'a> {
                 .collect();
             let attachments: Vec<Option<glow::Texture>> = targets.iter().map(|t| t.as_ref().map(|(_, t, _)| *t)).collect();
             attach(gl, &attachments, None)?;
-            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            set_blends(gl, &program.render_targets, &|b| if self.step_traced { Blend::Off } else { self.pack.blend_of(Some(program), b, &Blend::Off) });
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
             let textures = Textures {
@@ -636,6 +661,7 @@ impl<'a> GlPlanFrame<'a> {
         steps: Vec<(String, Vec<(String, FloatImage)>)>,
         depth_written: Vec<Option<FloatImage>>,
         step_ms: Vec<f64>,
+        traced: Vec<bool>,
         current: &BTreeMap<u8, usize>,
     ) -> Result<GlFrame, HarnessError> {
         let gl = self.ctx.gl();
@@ -664,7 +690,7 @@ impl<'a> GlPlanFrame<'a> {
             if error != glow::NO_ERROR {
                 return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
             }
-            Ok(GlFrame { image, buffers, depth0, depth1, steps, depth_written, own_depth_mapping: self.own_depth_mapping, step_ms, passthrough_ms })
+            Ok(GlFrame { image, buffers, depth0, depth1, steps, depth_written, own_depth_mapping: self.own_depth_mapping, step_ms, traced, passthrough_ms })
         }
     }
 

@@ -322,6 +322,9 @@ pub struct Disagreement {
     /// Those of them that are the pack's own arithmetic noise
     /// ([`GlStepComparison::sensitive_pixels`]), which the limit does not count.
     pub sensitive: usize,
+    /// Those of them where GLSL leaves the result undefined
+    /// ([`GlStepComparison::undefined_pixels`]), which the limit does not count either.
+    pub undefined: usize,
     /// The largest difference of any channel, in 1/255.
     pub max_difference_255: f32,
     /// The limit it passed.
@@ -335,12 +338,14 @@ impl GlStepsComparison {
     pub fn first_disagreement(&self, max_pixels: usize) -> Option<Disagreement> {
         self.steps.iter().find_map(|step| {
             let sensitive = |texture: &str| step.sensitive_pixels.get(texture).copied().unwrap_or(0);
-            step.pixels_over_1_255.iter().find(|(texture, n)| **n - sensitive(texture) > max_pixels).map(|(texture, &pixels)| Disagreement {
+            let undefined = |texture: &str| step.undefined_pixels.get(texture).copied().unwrap_or(0);
+            step.pixels_over_1_255.iter().find(|(texture, n)| **n - sensitive(texture) - undefined(texture) > max_pixels).map(|(texture, &pixels)| Disagreement {
                 pass: step.pass.clone(),
                 file: None,
                 texture: texture.clone(),
                 pixels,
                 sensitive: sensitive(texture),
+                undefined: undefined(texture),
                 max_difference_255: step.max_difference_255.get(texture).map_or(f32::NAN, |d| d.iter().copied().fold(0.0, f32::max)),
                 max_pixels,
             })
@@ -363,14 +368,22 @@ impl GlStepsComparison {
     /// Records, per step and texture, how many of the pixels where the renderers differ are the
     /// pack's own arithmetic noise ([`noise_pixels`]), from `nudged`: OpenGL's frame drawn
     /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
-    /// nudged, once by each of [`NUDGES`].
-    fn discount_sensitive(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame]) {
+    /// nudged, once by each of [`NUDGES`]; and how many of the others GLSL leaves undefined,
+    /// from `undefined` ([`undefined_pixels`]).
+    fn discount_sensitive(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame], undefined: &[BTreeMap<String, Vec<bool>>]) {
         for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.iter().zip(&gl.steps)).enumerate() {
             for (i, ((name, ours), (_, theirs))) in pass.images.iter().zip(gl_images).enumerate() {
                 let moved: Vec<&FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(k).and_then(|(_, images)| images.get(i)).map(|(_, image)| image)).collect();
-                let sensitive = noise_pixels(ours, theirs, &moved).iter().filter(|n| **n).count();
+                let noise = noise_pixels(ours, theirs, &moved);
+                let sensitive = noise.iter().filter(|n| **n).count();
                 if sensitive > 0 {
                     step.sensitive_pixels.insert(name.clone(), sensitive);
+                }
+                let Some(mask) = undefined.get(k).and_then(|step| step.get(name)) else { continue };
+                let apart = images::differing_pixels(ours, theirs, OVER_1_255);
+                let undefined = apart.iter().zip(mask).zip(&noise).filter(|((a, u), n)| **a && **u && !**n).count();
+                if undefined > 0 {
+                    step.undefined_pixels.insert(name.clone(), undefined);
                 }
             }
         }
@@ -405,6 +418,22 @@ fn noise_pixels(ours: &FloatImage, theirs: &FloatImage, moved: &[&FloatImage]) -
     let sensitive_blocks = images::blocks_holding(&unstable, ours.width, ours.height, NOISE_BLOCK);
     let noise = (0..apart.len()).map(|i| if noise_throughout { means_agree[i] } else { unstable[i] || (means_agree[i] && sensitive_blocks[i]) });
     apart.iter().zip(noise).map(|(a, n)| *a && n).collect()
+}
+
+/// Per step of `traced` (OpenGL's frame drawn with [`crate::gl_frame::Reference::trace_derivatives`])
+/// and per texture it wrote: the pixels where the step's implicit derivatives are undefined,
+/// because the fragments of their 2x2 quad ran different sequences of implicit-derivative calls
+/// (a lookup inside an `if` they take differently). Steps not drawn traced have none.
+fn undefined_pixels(traced: &crate::gl_frame::GlFrame) -> Vec<BTreeMap<String, Vec<bool>>> {
+    traced
+        .steps
+        .iter()
+        .zip(&traced.traced)
+        .map(|((_, images), &was_traced)| {
+            let masks = images.iter().map(|(name, image)| (name.clone(), image.pixels.iter().map(|p| p[0] > 0.5).collect()));
+            if was_traced { masks.collect() } else { BTreeMap::new() }
+        })
+        .collect()
 }
 
 /// Side of the blocks [`noise_pixels`] compares by their means where a step is noise
@@ -450,6 +479,10 @@ pub struct GlStepComparison {
     /// result, as GLSL allows compilers to round it.
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     pub sensitive_pixels: BTreeMap<String, usize>,
+    /// Per texture, when the renderers part there: how many of the others lie where GLSL
+    /// leaves the step's result undefined ([`undefined_pixels`]).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub undefined_pixels: BTreeMap<String, usize>,
 }
 
 /// The OpenGL frame of any pack against the wgpu frame.
@@ -685,6 +718,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
             write(".gl", &gl_frame.image)?;
             let mut comparison = compare_steps(renderer, &wgpu_frame.passes, &gl_frame)?;
             let mut nudged = Vec::new();
+            let mut undefined = Vec::new();
             if let (Some(ctx), Some(_)) = (&gl_context, comparison.first_disagreement(gl_max_pixels)) {
                 // OpenGL again, nudged, each step from the inputs it had in the frame compared.
                 nudged = NUDGES
@@ -698,7 +732,15 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                         crate::gl_frame::render_from(ctx, &pack, &scene, &mesh.nudged(nudge as f32), ScreenOutput::AsLoader, &reference)
                     })
                     .collect::<Result<Vec<_>, _>>()?;
-                comparison.discount_sensitive(&wgpu_frame.passes, &gl_frame, &nudged);
+                // And once traced, from the same inputs.
+                let reference = if gl_primary { gl_frame.as_reference(0.0) } else { reference_of(&wgpu_frame.passes, &wgpu_frame.depth0, &wgpu_frame.depth1, 0.0) };
+                // Where the driver refuses a traced text, no pixel is taken for undefined.
+                match crate::gl_frame::render_from(ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &crate::gl_frame::Reference { trace_derivatives: true, ..reference }) {
+                    Ok(traced) => undefined = undefined_pixels(&traced),
+                    Err(HarnessError::Gl(_)) => {}
+                    Err(e) => return Err(e),
+                }
+                comparison.discount_sensitive(&wgpu_frame.passes, &gl_frame, &nudged, &undefined);
             }
             comparison.set_aside(cannot_draw);
             // Where they part: both renderers' texture and the pixels over 1/255, to look at
@@ -708,7 +750,12 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                 let image_of = |images: &[(String, FloatImage)]| images.iter().find(|(name, _)| *name == parted.texture).map(|(_, i)| i.clone());
                 if let (Some(ours), Some(theirs)) = (image_of(&wgpu_frame.passes[step].images), image_of(&gl_frame.steps[step].1)) {
                     let moved: Vec<FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(step).and_then(|(_, images)| image_of(images))).collect();
-                    let noise = noise_pixels(&ours, &theirs, &moved.iter().collect::<Vec<_>>());
+                    let undefined_here = undefined.get(step).and_then(|masks| masks.get(&parted.texture));
+                    let noise: Vec<bool> = noise_pixels(&ours, &theirs, &moved.iter().collect::<Vec<_>>())
+                        .iter()
+                        .enumerate()
+                        .map(|(i, n)| *n || undefined_here.is_some_and(|mask| mask[i]))
+                        .collect();
                     write(".parted.wgpu", &ours)?;
                     write(".parted.opengl", &theirs)?;
                     write_rgba8(".parted.mask", ours.width, ours.height, &images::differing_mask_rgba8(&ours, &theirs, OVER_1_255, &noise))?;
@@ -809,7 +856,7 @@ fn opengl_frame(
 
 /// A wgpu frame as the reference OpenGL draws each step from.
 fn reference_of<'f>(passes: &'f [StepReport], depth0: &'f FloatImage, depth1: &'f FloatImage, nudge: f64) -> crate::gl_frame::Reference<'f> {
-    crate::gl_frame::Reference { steps: passes.iter().map(|p| p.images.as_slice()).collect(), depth0, depth1, depth_written: Vec::new(), nudge }
+    crate::gl_frame::Reference { steps: passes.iter().map(|p| p.images.as_slice()).collect(), depth0, depth1, depth_written: Vec::new(), nudge, trace_derivatives: false }
 }
 
 /// The OpenGL frame's textures against the wgpu frame's steps, step by step.
@@ -826,7 +873,7 @@ fn compare_steps(renderer: String, wgpu: &[StepReport], gl: &crate::gl_frame::Gl
             max_difference_255.insert(name.clone(), d.map(|c| c * 255.0));
             pixels_over_1_255.insert(name.clone(), images::count_differing(a, b, OVER_1_255));
         }
-        steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255, sensitive_pixels: BTreeMap::new() });
+        steps.push(GlStepComparison { pass: label.clone(), max_difference_255, pixels_over_1_255, sensitive_pixels: BTreeMap::new(), undefined_pixels: BTreeMap::new() });
     }
     Ok(GlStepsComparison { renderer, steps, own_depth_mapping: gl.own_depth_mapping.clone(), refused: None, wgpu_cannot_draw: Vec::new() })
 }
@@ -961,6 +1008,7 @@ mod tests {
             max_difference_255: [(texture.to_string(), [worst, 0.0, 0.0, 0.0])].into(),
             pixels_over_1_255: [(texture.to_string(), pixels)].into(),
             sensitive_pixels: Default::default(),
+            undefined_pixels: Default::default(),
         };
         let frame = GlStepsComparison {
             renderer: "llvmpipe".into(),
@@ -971,7 +1019,7 @@ mod tests {
         };
         assert_eq!(
             frame.first_disagreement(16),
-            Some(Disagreement { pass: "composite".into(), file: None, texture: "colortex0".into(), pixels: 17_654, sensitive: 0, max_difference_255: 67.0, max_pixels: 16 })
+            Some(Disagreement { pass: "composite".into(), file: None, texture: "colortex0".into(), pixels: 17_654, sensitive: 0, undefined: 0, max_difference_255: 67.0, max_pixels: 16 })
         );
         assert_eq!(frame.first_disagreement(2).map(|d| d.pass), Some("gbuffers_terrain".into()));
         assert_eq!(frame.first_disagreement(20_000), None);

@@ -12,6 +12,7 @@ use std::fmt;
 
 pub mod any_pack;
 pub mod composite_only;
+mod derivatives;
 pub mod gl;
 pub mod gl_frame;
 pub mod gpu;

@@ -119,6 +119,22 @@ impl LoadedProgram {
         program
     }
 
+    /// The program with a fragment stage that writes 1 into every output where the stage's
+    /// implicit derivatives are undefined and 0 elsewhere ([`crate::derivatives::traced`]), for
+    /// [`crate::gl_frame::Reference::trace_derivatives`], lookups in the samplers `level_free`
+    /// names left out; None where the stage cannot be traced.
+    pub fn with_derivative_trace(&self, level_free: impl Fn(&str) -> bool) -> Option<LoadedProgram> {
+        let declarations = interface_declarations(&self.fragment.lowered_text);
+        let output_type = |location: u32| {
+            let declaration = declarations.iter().find(|d| d.location == location && d.direction() == Some("out"))?;
+            let [.., ty, _] = declaration.words.as_slice() else { return None };
+            Some(ty.to_string())
+        };
+        let mut program = self.clone();
+        program.fragment.gl_text = crate::derivatives::traced(&self.fragment.gl_text, &self.fragment.interface.outputs, output_type, level_free)?;
+        Some(program)
+    }
+
     /// The draw buffers (positions in [`Self::render_targets`]) the fragment stage names and
     /// never writes (`/* DRAWBUFFERS:02 */` beside `gl_FragData[0]` alone). GLSL leaves their
     /// values undefined: wgpu leaves such a buffer as it was, Mesa writes white. `gl_FragColor`

@@ -91,7 +91,7 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
     let wgpu = render(&pack, &scene);
     let mut reference: Vec<Vec<(String, images::FloatImage)>> = wgpu.passes.iter().map(|p| p.images.clone()).collect();
     let draw = |r: &[Vec<(String, images::FloatImage)>]| {
-        let reference = gl_frame::Reference { steps: r.iter().map(Vec::as_slice).collect(), depth0: &wgpu.depth0, depth1: &wgpu.depth1, depth_written: Vec::new(), nudge: 0.0 };
+        let reference = gl_frame::Reference { steps: r.iter().map(Vec::as_slice).collect(), depth0: &wgpu.depth0, depth1: &wgpu.depth1, depth_written: Vec::new(), nudge: 0.0, trace_derivatives: false };
         gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference).unwrap_or_else(|e| panic!("{e}"))
     };
     let faithful = draw(&reference);
@@ -111,6 +111,43 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
     let pixels = (scene.width() * scene.height()) as usize;
     assert!(images::count_differing(before, after, 0.1) > pixels / 2, "composite1 did not read the replaced colortex0");
     assert_eq!(images::count_differing(&faithful.steps[composite].1[0].1, &replaced.steps[composite].1[0].1, 0.0), 0, "composite itself is drawn alike");
+}
+
+/// OpenGL drawing each full-screen step traced (tests/packs/tile_lookups): composite1's
+/// mipmapped lookup inside the `if` that splits the quads of columns 100 and 101 leaves exactly
+/// those two columns undefined; its other lookups (one in a buffer without mipmaps, one under an
+/// `if` every fragment takes) leave nothing undefined, nor does composite.
+#[test]
+fn opengl_traced_marks_the_quads_a_branch_splits_around_a_mipmapped_lookup() {
+    let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
+    let pack = pack("tile_lookups", Loader::default());
+    assert!(pack.failed.is_empty(), "{:?}", pack.failed);
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let wgpu = render(&pack, &scene);
+    let reference = gl_frame::Reference {
+        steps: wgpu.passes.iter().map(|p| p.images.as_slice()).collect(),
+        depth0: &wgpu.depth0,
+        depth1: &wgpu.depth1,
+        depth_written: Vec::new(),
+        nudge: 0.0,
+        trace_derivatives: true,
+    };
+    let traced = gl_frame::render_from(&ctx, &pack, &scene, &mesh, ScreenOutput::AsLoader, &reference).unwrap_or_else(|e| panic!("{e}"));
+    let step = |pass: &str| wgpu.passes.iter().position(|p| p.pass == pass).unwrap_or_else(|| panic!("no step {pass}"));
+    let undefined_columns = |pass: &str, texture: &str| {
+        assert!(traced.traced[step(pass)], "{pass} was not drawn traced");
+        let image = &traced.steps[step(pass)].1.iter().find(|(name, _)| name == texture).unwrap_or_else(|| panic!("{pass} wrote no {texture}")).1;
+        let mut columns = std::collections::BTreeMap::new();
+        for (i, p) in image.pixels.iter().enumerate() {
+            if p[0] > 0.5 {
+                *columns.entry(i as u32 % image.width).or_insert(0u32) += 1;
+            }
+        }
+        columns
+    };
+    assert_eq!(undefined_columns("composite1", "colortex2"), std::collections::BTreeMap::from([(100, scene.height()), (101, scene.height())]));
+    assert!(undefined_columns("composite", "colortex1").is_empty());
 }
 
 #[test]

@@ -220,10 +220,13 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
                 .max_difference_255
                 .iter()
                 .map(|(t, d)| {
-                    let sensitive = match step.sensitive_pixels.get(t) {
+                    let mut sensitive = match step.sensitive_pixels.get(t) {
                         Some(n) => format!(", {n} of them the pack's own noise"),
                         None => String::new(),
                     };
+                    if let Some(n) = step.undefined_pixels.get(t) {
+                        sensitive.push_str(&format!(", {n} where GLSL leaves derivatives undefined"));
+                    }
                     format!("{t} {:.2}/{:.2} ({} px{sensitive})", d[0].max(d[1]).max(d[2]), d[3], step.pixels_over_1_255[t])
                 })
                 .collect();
@@ -266,10 +269,14 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         failed = true;
     }
     if let Some(d) = &report.gl_disagreement {
-        let sensitive = match d.sensitive {
-            0 => String::new(),
-            n => format!(" ({n} of them the pack's own arithmetic noise, which a nudge of OpenGL's inputs shows, not counted)"),
-        };
+        let mut not_counted = Vec::new();
+        if d.sensitive > 0 {
+            not_counted.push(format!("{} of them the pack's own arithmetic noise, which a nudge of OpenGL's inputs shows", d.sensitive));
+        }
+        if d.undefined > 0 {
+            not_counted.push(format!("{} where the step's implicit derivatives are undefined (a lookup in a branch its 2x2 quad takes apart)", d.undefined));
+        }
+        let sensitive = if not_counted.is_empty() { String::new() } else { format!(" ({}; not counted)", not_counted.join("; ")) };
         let file = d.file.as_ref().map_or(String::new(), |file| format!(" ({file})"));
         tell!(
             "error: wgpu and OpenGL part at step {}{file}: {} differs on {} pixels by more than 1/255 (up to {:.1}/255){sensitive}, over the {} allowed (--gl-max-pixels)",

@@ -1,0 +1,23 @@
+#version 120
+// A bloom pass's tile: the left tile reads colortex1 through its mipmaps inside an `if` that
+// splits the 2x2 quads of columns 100 and 101, where the level it picks is undefined. The
+// lookup of colortex0 (no mipmaps) under the `if` splitting rows 50 and 51 reads alike at
+// every level, and the `if` every fragment takes leaves the quads whole.
+const bool colortex1MipmapEnabled = true;
+uniform sampler2D colortex0;
+uniform sampler2D colortex1;
+varying vec2 texcoord;
+void main() {
+    vec3 color = vec3(0.0);
+    if (gl_FragCoord.x < 101.0) {
+        color = texture2D(colortex1, texcoord * 2.0).rgb;
+    }
+    if (gl_FragCoord.y < 51.0) {
+        color += texture2D(colortex0, texcoord).rgb;
+    }
+    if (gl_FragCoord.x >= 0.0) {
+        color *= texture2D(colortex1, texcoord).a;
+    }
+/* DRAWBUFFERS:2 */
+    gl_FragData[0] = vec4(color, 1.0);
+}
