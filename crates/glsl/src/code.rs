@@ -43,7 +43,7 @@ codes! {
     MixedOutputs "mixed-outputs" "a fragment shader writes both gl_FragColor/gl_FragData and its own `out` variables",
     Version "version" "a `#version` line a driver refuses, or one above what the configuration's driver compiles",
     VersionFeature "version-feature" "a built-in or construct that the stage's `#version` does not have",
-    ConstInitializer "const-initializer" "a `const` initialised from something that is not a constant expression before GLSL 4.20",
+    ConstInitializer "const-initializer" "a `const` initialised from something that is not a constant expression (outside functions, or inside them before GLSL 4.20)",
     HiddenBuiltin "hidden-builtin" "a variable hides a built-in function of the same name, which is then called",
     ImplicitConversion "implicit-conversion" "an implicit conversion the stage's GLSL version does not have (int to uint before 4.00)",
     EmptyDeclaration "empty-declaration" "a `;` after a function body, which GLSL allows only from 4.60 on",

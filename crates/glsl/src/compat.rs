@@ -31,6 +31,23 @@ pub const RESERVED: [&str; 35] = [
 /// Words GLSL reserves from 1.30 on.
 pub const RESERVED_FROM_130: [&str; 5] = ["superp", "common", "partition", "active", "filter"];
 
+/// Built-ins a core profile removed.
+pub const REMOVED_IN_CORE: [&str; 22] = [
+    "gl_FragData", "gl_FragColor", "gl_Vertex", "gl_Normal", "gl_Color", "gl_MultiTexCoord0", "gl_MultiTexCoord1",
+    "gl_MultiTexCoord2", "gl_ModelViewMatrix", "gl_ProjectionMatrix", "gl_ModelViewProjectionMatrix", "gl_NormalMatrix",
+    "gl_TextureMatrix", "gl_TexCoord", "gl_FrontColor", "gl_Fog", "gl_FogFragCoord", "ftransform", "texture2D",
+    "texture2DLod", "shadow2D", "texture3D",
+];
+
+/// Of [`REMOVED_IN_CORE`], the lookups whose successors a core profile has (`texture()` & co.).
+const LEGACY_LOOKUPS: [&str; 4] = ["texture2D", "texture2DLod", "shadow2D", "texture3D"];
+
+/// Of [`REMOVED_IN_CORE`], the deprecated names Mesa still compiles in a core stage before
+/// GLSL 4.20 (measured with Mesa 25.0 in a compatibility context, `#version 330` to `410`);
+/// `attribute` and `varying` too. The fixed-function vertex state it refuses at any version.
+pub const DEPRECATED_KEPT_BY_MESA: [&str; 6] = ["gl_FragData", "gl_FragColor", "texture2D", "texture2DLod", "shadow2D", "texture3D"];
+
+
 /// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
 /// these names.
 pub const GLSL130_FUNCTIONS: [&str; 12] = [
@@ -334,10 +351,25 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    // A core profile has the deprecated lookups no more (Mesa drops them from 4.20): they
-    // become the lookups that replaced them, as Iris renames them.
-    let profile = version_at.and_then(|at| significant.get(at + 3)).map(|&i| tokens[i].text).filter(|p| matches!(*p, "core" | "compatibility" | "es"));
-    if (VersionDirective { number: version, profile: profile.map(str::to_string) }).is_core() {
+    // A core profile has the fixed-function built-ins no more (`gl_FragColor`, `ftransform()`):
+    // NVIDIA compiles a stage that uses them as the compatibility profile, and so does this.
+    // Without them, the deprecated lookups it lacks too (Mesa drops them from 4.20) become the
+    // lookups that replaced them, as Iris renames them.
+    let profile_at = version_at.and_then(|at| significant.get(at + 3).copied()).filter(|&i| matches!(tokens[i].text, "core" | "compatibility" | "es"));
+    let profile = profile_at.map(|i| tokens[i].text);
+    let kept_by_mesa = |name: &str| LEGACY_LOOKUPS.contains(&name) || (version < 420 && DEPRECATED_KEPT_BY_MESA.contains(&name));
+    let fixed_function = met.iter().find(|t| t.kind == TokenKind::Ident && REMOVED_IN_CORE.contains(&t.text) && !kept_by_mesa(t.text));
+    let core = (VersionDirective { number: version, profile: profile.map(str::to_string) }).is_core();
+    if let (true, Some(used), Some(number)) = (core, fixed_function, version_number) {
+        match profile_at {
+            Some(at) => replaced[at] = Some("compatibility".into()),
+            None => replaced[number] = Some(format!("{version} compatibility")),
+        }
+        rewrites.push(Rewrite {
+            line: tokens[number].line,
+            what: format!("`{}`, which a core profile lacks, taken by compiling the stage as `#version {version} compatibility`, as NVIDIA takes it", used.text),
+        });
+    } else if core {
         let replacement = |_: usize, name: &str| {
             Some(match name {
                 "texture2D" | "texture3D" => "texture",
@@ -451,14 +483,15 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         });
     }
 
-    // A local `const` whose initializer is not a constant expression (`const float c = a + b;`
-    // with `a` a parameter): NVIDIA takes it as a read-only local, Mesa refuses it. Decided on
-    // what the driver meets, per function; the declaration of that name in that function loses
-    // its `const`, also where a macro gives the `const` (`cfloat`, `cv(float)`) or declares the
-    // whole constant (`cRCP(float, total);`, expanded in place).
+    // A `const` whose initializer is not a constant expression (`const float c = a + b;` with
+    // `a` a parameter, or a uniform at the file's scope): NVIDIA takes it as a read-only
+    // variable, Mesa refuses it (and takes a plain global with such an initializer). Decided on
+    // what the driver meets, per function and at the file's scope; the declaration of that name
+    // there loses its `const`, also where a macro gives the `const` (`cfloat`, `cv(float)`) or
+    // declares the whole constant (`cRCP(float, total);`, expanded in place).
     let not_constant = constants_not_constant(&met);
     let function_at = |k: usize| definitions.iter().find(|f| (f.open + 1..f.close).contains(&k)).map(|f| sig[f.name].text);
-    let declared_not_constant = |k: usize, name: &str| function_at(k).is_some_and(|f| not_constant.contains(&(f, name)));
+    let declared_not_constant = |k: usize, name: &str| not_constant.contains(&(function_at(k), name));
     let const_macros = macros_giving_const(&tokens, &significant);
     // A macro call starting at `sig[start]` and ending before `sig[end]`, expanded without
     // `const`.
@@ -970,10 +1003,11 @@ pub(crate) fn functions_returning_samplers<'t>(toks: &[&'t Token]) -> Vec<Sample
         .collect()
 }
 
-/// The `const` declarations inside functions of `toks` (significant tokens) whose initializer is
-/// not a constant expression: it reads a variable that is not itself a constant (a parameter, a
-/// uniform, a plain local) or calls a function the text defines. Each as (function, name).
-fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(&'t str, &'t str)> {
+/// The `const` declarations of `toks` (significant tokens) whose initializer is not a constant
+/// expression: it reads a variable that is not itself a constant (a parameter, a uniform, a
+/// plain local) or calls a function the text defines. Each as (the function it is declared in,
+/// None at the file's scope; name).
+fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(Option<&'t str>, &'t str)> {
     let definitions = function_definitions(toks);
     let functions: HashSet<&str> = definitions.iter().map(|f| toks[f.name].text).collect();
     // Constants by where they were declared: a function (its index) or the file's scope (None).
@@ -1017,14 +1051,10 @@ fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(&'t str, &'t str)>
                 && !member
                 && if called { functions.contains(t.text) } else { !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") }
         });
-        match (reads_variable, function) {
-            (false, _) => {
-                constants.insert((function, name));
-            }
-            (true, Some(f)) => {
-                found.insert((toks[definitions[f].name].text, name));
-            }
-            (true, None) => {}
+        if reads_variable {
+            found.insert((function.map(|f| toks[definitions[f].name].text), name));
+        } else {
+            constants.insert((function, name));
         }
     }
     found
@@ -1511,6 +1541,37 @@ mod tests {
         assert_eq!(rewrites.len(), 1, "{rewrites:?}");
         assert_eq!(rewrites[0].line, 5);
         assert!(rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);
+    }
+
+    #[test]
+    fn a_core_stage_with_fixed_function_built_ins_is_compiled_as_compatibility() {
+        // As zombye/Ozius writes its sky: `#version 420` (core) and `gl_FragColor`.
+        let text = "#version 420\nuniform sampler2D color;\nin vec2 uv;\nvoid main() {\n    gl_FragColor.rgb = texture2D(color, uv).rgb;\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert!(out.starts_with("#version 420 compatibility\n") && out.contains("texture2D(color, uv)"), "{out}");
+        assert_eq!(rewrites.len(), 1, "{rewrites:?}");
+        assert_eq!(rewrites[0].line, 1);
+        assert!(rewrites[0].what.starts_with("`gl_FragColor`, which a core profile lacks"), "{}", rewrites[0].what);
+        // Mesa keeps `gl_FragColor` in core stages before 4.20, not the fixed-function state.
+        let kept = text.replace("#version 420", "#version 330 core");
+        let (out, rewrites) = for_strict_drivers(&kept, &kept, Stage::Fragment, &[]);
+        assert!(out.starts_with("#version 330 core\n"), "{out}");
+        assert!(rewrites.iter().all(|r| r.what.starts_with("texture2D() & co.")), "{rewrites:?}");
+        let vertex = "#version 330 core\nin vec3 position;\nvoid main() { gl_Position = gl_ModelViewMatrix * vec4(position, 1.0); }\n";
+        let (out, _) = for_strict_drivers(vertex, vertex, Stage::Vertex, &[]);
+        assert!(out.starts_with("#version 330 compatibility\n"), "{out}");
+    }
+
+    #[test]
+    fn a_file_scope_const_from_a_uniform_loses_its_const_and_so_do_those_it_gives() {
+        // As zombye/Ozius writes its time: a file-scope `const` from a uniform, which NVIDIA
+        // takes and Mesa refuses; Mesa takes a plain global with that initializer.
+        let text = "#version 420 compatibility\nuniform float sunAngle;\nconst float globalTime = fract(sunAngle) * 12e2;\nconst float twice = globalTime * 2.0;\nconst float half_ = 0.5;\nvoid main() { gl_FragColor = vec4(twice * half_); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert!(out.contains("\n float globalTime = fract(sunAngle) * 12e2;\n float twice = globalTime * 2.0;\nconst float half_ = 0.5;"), "{out}");
+        assert_eq!(rewrites.len(), 1, "{rewrites:?}");
+        assert_eq!(rewrites[0].line, 3);
+        assert!(rewrites[0].what.contains("`globalTime`") && rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);
     }
 
     #[test]

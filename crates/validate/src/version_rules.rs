@@ -14,7 +14,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_glsl::compat::{
-    GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, glsl130_name, is_texture_lod_arb, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, TEXTURE_LOD, VERTEX_ONLY_LOD,
+    GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, glsl130_name, is_texture_lod_arb, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, DEPRECATED_KEPT_BY_MESA, REMOVED_IN_CORE, TEXTURE_LOD, VERTEX_ONLY_LOD,
 };
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
@@ -28,18 +28,6 @@ const EXPLICIT_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
 
-/// Built-ins a core profile removed.
-const REMOVED_IN_CORE: [&str; 22] = [
-    "gl_FragData", "gl_FragColor", "gl_Vertex", "gl_Normal", "gl_Color", "gl_MultiTexCoord0", "gl_MultiTexCoord1",
-    "gl_MultiTexCoord2", "gl_ModelViewMatrix", "gl_ProjectionMatrix", "gl_ModelViewProjectionMatrix", "gl_NormalMatrix",
-    "gl_TextureMatrix", "gl_TexCoord", "gl_FrontColor", "gl_Fog", "gl_FogFragCoord", "ftransform", "texture2D",
-    "texture2DLod", "shadow2D", "texture3D",
-];
-
-/// Of [`REMOVED_IN_CORE`], the deprecated names Mesa still compiles in a core stage before
-/// GLSL 4.20 (measured with Mesa 25.0 in a compatibility context, `#version 330` to `410`);
-/// `attribute` and `varying` too. The fixed-function vertex state it refuses at any version.
-const DEPRECATED_KEPT_BY_MESA: [&str; 6] = ["gl_FragData", "gl_FragColor", "texture2D", "texture2DLod", "shadow2D", "texture3D"];
 
 /// The `#extension NAME : BEHAVIOUR` lines of `text`: the 0-based line, the name and the
 /// behaviour.
@@ -139,9 +127,11 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     let function_ends: BTreeSet<usize> = function_definitions(&sig).iter().map(|f| f.close).collect();
     let mut depth = 0i32;
     let mut parens = 0i32;
-    // Parameters of the function being read, and whether a local `const` declaration is open.
+    // Parameters of the function being read, and whether a local or a file-scope `const`
+    // declaration is open.
     let mut parameters: BTreeSet<&str> = BTreeSet::new();
     let mut local_constant = false;
+    let mut file_constant = false;
     for (k, t) in sig.iter().enumerate() {
         match t.text {
             "{" => depth += 1,
@@ -158,8 +148,25 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
         }
         if depth > 0 && t.is_ident("const") {
             local_constant = true;
+        } else if depth == 0 && parens == 0 && t.is_ident("const") {
+            file_constant = true;
         } else if t.is_punct(";") {
             local_constant = false;
+            file_constant = false;
+        } else if let Some(what) = (file_constant && t.kind == TokenKind::Ident).then(|| runtime_value(t.text, &BTreeSet::new(), &globals)).flatten() {
+            if reported.insert((t.text.to_string(), t.line)) {
+                found.push(Diagnostic::error(
+                    Code::ConstInitializer,
+                    format!(
+                        "a `const` outside functions must be initialised with a constant expression in every GLSL version, \
+                         and the {what} `{}` is not one (Mesa: \"initializer of const variable must be a constant \
+                         expression\"); drop `const`",
+                        t.text
+                    ),
+                    pre.location(t.line),
+                ));
+            }
+            continue;
         } else if let Some(what) = (local_constant && number < 420 && t.kind == TokenKind::Ident)
             .then(|| runtime_value(t.text, &parameters, &globals))
             .flatten()
