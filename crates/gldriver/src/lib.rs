@@ -53,6 +53,8 @@ pub enum ProgramStep {
     CompileGeometry,
     CompileFragment,
     Link,
+    /// Making a shader or program object, which fails with the context, whatever the text.
+    CreateObject,
 }
 
 impl fmt::Display for ProgramStep {
@@ -62,6 +64,7 @@ impl fmt::Display for ProgramStep {
             ProgramStep::CompileGeometry => "geometry shader compilation",
             ProgramStep::CompileFragment => "fragment shader compilation",
             ProgramStep::Link => "program link",
+            ProgramStep::CreateObject => "creating a shader or program object",
         })
     }
 }
@@ -323,8 +326,9 @@ impl GlContext {
         Ok((context, gl))
     }
 
-    /// The fixed-function entry points of the compatibility profile.
+    /// The fixed-function entry points of the compatibility profile, this context current.
     pub fn legacy(&self) -> &LegacyGl {
+        self.make_current();
         &self.legacy
     }
 
@@ -332,9 +336,18 @@ impl GlContext {
         &self.info
     }
 
-    /// The OpenGL functions. The context is current on this thread.
+    /// The OpenGL functions, this context made current on this thread.
     pub fn gl(&self) -> &glow::Context {
+        self.make_current();
         &self.gl
+    }
+
+    /// Makes this context current where another one (or none) is: a thread may hold several
+    /// (a validator's driver beside a renderer's), and each is made current before it is used.
+    fn make_current(&self) {
+        if self.egl.get_current_context() != Some(self.context) {
+            let _ = self.egl.make_current(self.display, None, None, Some(self.context));
+        }
     }
 
     /// Compiles a vertex, an optional geometry and a fragment shader exactly as given, binds the
@@ -374,7 +387,7 @@ impl GlContext {
         frag_data: &[(&str, u32)],
         captured: &[&str],
     ) -> Result<GlProgram, DriverLog> {
-        let gl = &self.gl;
+        let gl = self.gl();
         // SAFETY: plain GL calls on the current context with objects created here.
         unsafe {
             let sources = [
@@ -401,7 +414,7 @@ impl GlContext {
                     for shader in shaders {
                         gl.delete_shader(shader);
                     }
-                    return Err(DriverLog { step: ProgramStep::Link, log });
+                    return Err(DriverLog { step: ProgramStep::CreateObject, log });
                 }
             };
             for &shader in &shaders {
@@ -449,10 +462,10 @@ impl GlContext {
     }
 
     unsafe fn compile_shader(&self, kind: u32, text: &str, step: ProgramStep) -> Result<glow::Shader, DriverLog> {
-        let gl = &self.gl;
+        let gl = self.gl();
         // SAFETY: the caller holds the current context.
         unsafe {
-            let shader = gl.create_shader(kind).map_err(|log| DriverLog { step, log })?;
+            let shader = gl.create_shader(kind).map_err(|log| DriverLog { step: ProgramStep::CreateObject, log })?;
             gl.shader_source(shader, text);
             gl.compile_shader(shader);
             if !gl.get_shader_compile_status(shader) {
@@ -467,13 +480,17 @@ impl GlContext {
     /// Deletes a program made by [`GlContext::compile_program`].
     pub fn delete_program(&self, program: GlProgram) {
         // SAFETY: the program belongs to this context.
-        unsafe { self.gl.delete_program(program.raw) }
+        unsafe { self.gl().delete_program(program.raw) }
     }
 }
 
 impl Drop for GlContext {
     fn drop(&mut self) {
-        let _ = self.egl.make_current(self.display, None, None, None);
+        // Released only where it is current, so that another context current on this thread
+        // stays so.
+        if self.egl.get_current_context() == Some(self.context) {
+            let _ = self.egl.make_current(self.display, None, None, None);
+        }
         let _ = self.egl.destroy_context(self.display, self.context);
         // The display is shared by every context of the process (eglGetPlatformDisplay returns
         // the same handle), so it is not terminated here: another thread may still use it.

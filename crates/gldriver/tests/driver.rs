@@ -121,3 +121,21 @@ fn a_capture_program_records_the_vertex_outputs_bit_for_bit() {
         assert_eq!(got.iter().map(|f| f.to_bits()).collect::<Vec<_>>(), expected.map(f32::to_bits).to_vec(), "vertex {v}: {got:?}");
     }
 }
+
+/// Two contexts on one thread (a validator's driver beside a renderer's): each compiles when it
+/// is used, and dropping the older one leaves the newer one working, as
+/// `tools/corpus --covering` needs from one pack to the next.
+#[test]
+fn two_contexts_on_one_thread_each_compile_and_survive_the_other_dropped() {
+    let vs = "#version 120\nvoid main() { gl_Position = ftransform(); }\n";
+    let fs = "#version 120\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+    let older = context();
+    let newer = context();
+    for ctx in [&older, &newer, &older] {
+        let program = ctx.compile_program(vs, None, fs, &[], &[]).unwrap_or_else(|e| panic!("{e}"));
+        ctx.delete_program(program);
+    }
+    drop(older);
+    let program = newer.compile_program(vs, None, fs, &[], &[]).unwrap_or_else(|e| panic!("with the other context dropped: {e}"));
+    newer.delete_program(program);
+}

@@ -630,7 +630,7 @@ fn located_log(log: &tidepack_gldriver::DriverLog, program: &LoadedProgram) -> S
         ProgramStep::CompileVertex => Some(&program.vertex.gl_origins),
         ProgramStep::CompileGeometry => program.geometry.as_ref().map(|g| &g.gl_origins),
         ProgramStep::CompileFragment => Some(&program.fragment.gl_origins),
-        ProgramStep::Link => None,
+        ProgramStep::Link | ProgramStep::CreateObject => None,
     };
     let lines: Vec<String> = log
         .log

@@ -215,7 +215,8 @@ struct Plant {
 
 #[derive(Clone, PartialEq, Eq)]
 enum MesaVerdict {
-    /// Not asked (`--mesa` not given), or the program could not be given to Mesa.
+    /// Not asked (`--mesa` not given), the program could not be given to Mesa, or Mesa gave
+    /// no verdict (it made no shader object).
     NotGiven,
     Accepts,
     /// Mesa's first error.
@@ -473,9 +474,10 @@ fn plant_pack(
                         .into_iter()
                         .find(|p| p.id() == program)
                         .map(|p| match gl.check(&p, &provider) {
-                            Ok(()) => MesaVerdict::Accepts,
-                            Err(d) if d.is_empty() => MesaVerdict::NotGiven,
-                            Err(d) => MesaVerdict::Refuses(d.into_iter().find(|d| d.is_error()).map(|d| d.to_string().replace('\n', " ")).unwrap_or_default()),
+                            Ok(Ok(())) => MesaVerdict::Accepts,
+                            Ok(Err(d)) if d.is_empty() => MesaVerdict::NotGiven,
+                            Err(_) => MesaVerdict::NotGiven,
+                            Ok(Err(d)) => MesaVerdict::Refuses(d.into_iter().find(|d| d.is_error()).map(|d| d.to_string().replace('\n', " ")).unwrap_or_default()),
                         })
                         .unwrap_or(MesaVerdict::NotGiven)
                 }

@@ -25,6 +25,9 @@ pub struct DriverSummary {
     /// Program ids only tidepack rejects (compile-level errors; render-target checks, which
     /// no driver makes, do not count).
     pub only_tidepack_rejects: Vec<String>,
+    /// Program ids the driver gave no verdict on, with why: it could not make a shader or
+    /// program object (its context failed, not the pack's text).
+    pub not_compared: Vec<String>,
 }
 
 /// Whether an error is one no GL driver can report (the loader's render-target directives).
@@ -128,8 +131,9 @@ impl Driver {
     /// Compiles and links one program (vertex, geometry, tessellation and fragment stages
     /// together; each compute stage alone); `Ok(())` when the driver accepts it, else its
     /// messages located in the pack's files. `Err` with an empty list when the text cannot be
-    /// expanded (tidepack's preprocessor reported that already).
-    pub fn check(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
+    /// expanded (tidepack's preprocessor reported that already). The outer `Err` when the
+    /// driver gave no verdict: it could not make a shader or program object (why).
+    pub fn check(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<Result<(), Vec<Diagnostic>>, String> {
         let mut results = Vec::new();
         let graphics: Vec<&String> = program.other_stages.iter().filter(|p| self.supports(p)).collect();
         if graphics.is_empty() {
@@ -157,13 +161,13 @@ impl Driver {
         let mut rejected = Vec::new();
         let mut unexpanded = false;
         for result in results {
-            match result {
+            match result? {
                 Ok(()) => {}
                 Err(diags) if diags.is_empty() => unexpanded = true,
                 Err(diags) => rejected.extend(diags),
             }
         }
-        if !rejected.is_empty() || unexpanded { Err(rejected) } else { Ok(()) }
+        Ok(if !rejected.is_empty() || unexpanded { Err(rejected) } else { Ok(()) })
     }
 
     /// Compiles the given stages with glow and links them into one program.
@@ -172,10 +176,10 @@ impl Driver {
         program: &Program,
         files: &[(u32, &str)],
         provider: &dyn tidepack_glsl::preprocess::FileProvider,
-    ) -> Result<(), Vec<Diagnostic>> {
+    ) -> Result<Result<(), Vec<Diagnostic>>, String> {
         let mut texts = Vec::new();
         for (kind, path) in files {
-            let Some(stage) = self.stage_text(program, *kind == glow::VERTEX_SHADER, path, provider) else { return Err(Vec::new()) };
+            let Some(stage) = self.stage_text(program, *kind == glow::VERTEX_SHADER, path, provider) else { return Ok(Err(Vec::new())) };
             texts.push((*kind, *path, stage));
         }
         let version_note = |path: &str| texts.iter().find(|(_, p, _)| *p == path).and_then(|(_, _, stage)| stage.version_note.clone());
@@ -212,10 +216,14 @@ impl Driver {
         unsafe {
             let mut shaders = Vec::new();
             let mut failed = Vec::new();
+            let mut not_created = None;
             for (kind, path, StageText { text, map, .. }) in &texts {
-                let Ok(shader) = gl.create_shader(*kind) else {
-                    failed.extend(located("", path, None, format!("{} creation", stage_name(*kind))));
-                    continue;
+                let shader = match gl.create_shader(*kind) {
+                    Ok(shader) => shader,
+                    Err(log) => {
+                        not_created = Some(format!("{} creation: {log}", stage_name(*kind)));
+                        break;
+                    }
                 };
                 gl.shader_source(shader, text);
                 gl.compile_shader(shader);
@@ -227,7 +235,7 @@ impl Driver {
                     gl.delete_shader(shader);
                 }
             }
-            if failed.is_empty() {
+            if failed.is_empty() && not_created.is_none() {
                 match gl.create_program() {
                     Ok(linked) => {
                         for &shader in &shaders {
@@ -244,21 +252,24 @@ impl Driver {
                         }
                         gl.delete_program(linked);
                     }
-                    Err(log) => failed.extend(located(&log, files[0].1, None, "program creation".into())),
+                    Err(log) => not_created = Some(format!("program creation: {log}")),
                 }
             }
             for shader in shaders {
                 gl.delete_shader(shader);
             }
-            if failed.is_empty() { Ok(()) } else { Err(failed) }
+            match not_created {
+                Some(why) => Err(why),
+                None => Ok(if failed.is_empty() { Ok(()) } else { Err(failed) }),
+            }
         }
     }
 
     /// The vertex and fragment stages alone, through tidepack-gldriver.
-    fn check_vertex_fragment(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<(), Vec<Diagnostic>> {
+    fn check_vertex_fragment(&self, program: &Program, provider: &dyn tidepack_glsl::preprocess::FileProvider) -> Result<Result<(), Vec<Diagnostic>>, String> {
         let mut texts = Vec::new();
         for (stage, path) in &program.stages {
-            let Some(text) = self.stage_text(program, *stage == Stage::Vertex, path, provider) else { return Err(Vec::new()) };
+            let Some(text) = self.stage_text(program, *stage == Stage::Vertex, path, provider) else { return Ok(Err(Vec::new())) };
             texts.push((*stage, path.clone(), text));
         }
         let vertex = texts.iter().find(|t| t.0 == Stage::Vertex);
@@ -268,11 +279,12 @@ impl Driver {
             (Some(only), None) | (None, Some(only)) => self.context.compile_shader_only(only.0 == Stage::Vertex, &only.2.text).map(|_| ()),
             (None, None) => Ok(()),
         };
-        let Err(log) = result else { return Ok(()) };
+        let Err(log) = result else { return Ok(Ok(())) };
         let stage_text = match log.step {
             tidepack_gldriver::ProgramStep::CompileVertex => vertex,
             tidepack_gldriver::ProgramStep::CompileFragment => fragment,
             tidepack_gldriver::ProgramStep::CompileGeometry | tidepack_gldriver::ProgramStep::Link => None,
+            tidepack_gldriver::ProgramStep::CreateObject => return Err(format!("{}: {}", log.step, log.log.trim())),
         };
         let info = format!("{} by {}", log.step, self.describe());
         let mut diags: Vec<Diagnostic> = log
@@ -296,7 +308,7 @@ impl Driver {
                 Diagnostic::error(Code::Driver, format!("the OpenGL driver rejects this program: {}", log.log.trim()), entry).with_note(info),
             );
         }
-        Err(diags)
+        Ok(Err(diags))
     }
 }
 

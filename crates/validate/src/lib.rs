@@ -695,7 +695,8 @@ fn run_driver(
                 found.push(Finding { program: index, set: set_index, diagnostic: diag });
             }
             match gl.check(program, &provider) {
-                Ok(()) if ours => {
+                Err(why) => summary.not_compared.push(format!("{name} ({why})")),
+                Ok(Ok(())) if ours => {
                     let entry = program.entry().map(|s| Location::line(s.to_string(), 1));
                     let diag = Diagnostic::warning(
                         Code::DriverAccepts,
@@ -705,10 +706,10 @@ fn run_driver(
                     found.push(Finding { program: index, set: set_index, diagnostic: diag });
                     summary.only_tidepack_rejects.push(name);
                 }
-                Ok(()) => summary.both_accept += 1,
-                Err(diags) if diags.is_empty() => {}
-                Err(_) if ours => summary.both_reject += 1,
-                Err(diags) => {
+                Ok(Ok(())) => summary.both_accept += 1,
+                Ok(Err(diags)) if diags.is_empty() => {}
+                Ok(Err(_)) if ours => summary.both_reject += 1,
+                Ok(Err(diags)) => {
                     summary.only_driver_rejects.push(name);
                     found.extend(diags.into_iter().map(|diagnostic| Finding { program: index, set: set_index, diagnostic }));
                 }

@@ -56,14 +56,19 @@ pub fn human(report: &Report, diagnostics_out: &mut dyn WriteColor) -> std::io::
     if let Some(d) = &report.driver {
         writeln!(
             summary,
-            "  driver {}: {} both accept, {} both reject, {} only the driver rejects{}, {} only tidepack rejects{}",
+            "  driver {}: {} both accept, {} both reject, {} only the driver rejects{}, {} only tidepack rejects{}{}",
             d.driver,
             plural(d.both_accept, "program"),
             d.both_reject,
             d.only_driver_rejects.len(),
             list(&d.only_driver_rejects),
             d.only_tidepack_rejects.len(),
-            list(&d.only_tidepack_rejects)
+            list(&d.only_tidepack_rejects),
+            if d.not_compared.is_empty() {
+                String::new()
+            } else {
+                format!(", {} not compared (the driver made no shader object: its context failed){}", d.not_compared.len(), list(&d.not_compared))
+            }
         )
         .unwrap();
     }
@@ -165,6 +170,7 @@ struct JsonDriver<'a> {
     both_reject: usize,
     only_driver_rejects: &'a [String],
     only_tidepack_rejects: &'a [String],
+    not_compared: &'a [String],
 }
 
 #[derive(Serialize)]
@@ -236,6 +242,7 @@ pub fn json(report: &Report) -> String {
         both_reject: d.both_reject,
         only_driver_rejects: &d.only_driver_rejects,
         only_tidepack_rejects: &d.only_tidepack_rejects,
+        not_compared: &d.not_compared,
     });
     let summary = JsonSummary {
         pack: &report.pack.display_root,
