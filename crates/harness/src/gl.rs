@@ -605,7 +605,9 @@ const MAX_VERTEX_ATTRIBUTES: usize = 16;
 
 /// Where each user vertex input of `stage` is for OpenGL: at the location the shipped text gives
 /// it (`layout(location = N)`), the others at the lowering's location, or where that is taken by
-/// a placed one, at the first location neither takes.
+/// a placed one or past the [`MAX_VERTEX_ATTRIBUTES`] OpenGL has (a stage with more than eight
+/// inputs of its own), at the first location from 1 neither takes (0 is `gl_Vertex`'s in a
+/// compatibility profile).
 fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
     let interface = &stage.interface;
     let mut taken: Vec<u32> = interface.declared_input_locations.values().copied().collect();
@@ -613,8 +615,8 @@ fn attribute_locations(stage: &LoadedStage) -> Vec<(&str, u32)> {
     for (name, &lowered) in interface.inputs.iter().filter(|(name, _)| !name.starts_with("gl_")) {
         let location = match interface.declared_input_locations.get(name) {
             Some(&declared) => declared,
-            None if !taken.contains(&lowered) => lowered,
-            None => (0..).find(|l| !taken.contains(l)).expect("a free location"),
+            None if !taken.contains(&lowered) && (lowered as usize) < MAX_VERTEX_ATTRIBUTES => lowered,
+            None => (1..MAX_VERTEX_ATTRIBUTES as u32).find(|l| !taken.contains(l)).unwrap_or(lowered),
         };
         taken.push(location);
         locations.push((name.as_str(), location));

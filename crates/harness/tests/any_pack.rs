@@ -440,6 +440,19 @@ fn a_struct_varying_arrives_in_both_renderers() {
     assert_eq!(wrong, 0, "pixels other than the vertex stage's (0.25, 0.5, 0.75)");
 }
 
+/// Nine vertex inputs of the pack's own (tests/packs/many_attributes): the ninth is past
+/// OpenGL's 16 attribute locations at the lowering's location, so OpenGL takes it at a free one
+/// below; both renderers draw the terrain alike, with no driver error.
+#[test]
+fn a_vertex_stage_with_nine_inputs_of_its_own_draws_alike_in_both_renderers() {
+    let (report, screen) = render_job("many_attributes");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(!gl.steps.is_empty());
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(screen.pixels().any(|p| p.0[..3] != [0, 0, 0]), "the terrain is on screen");
+}
+
 /// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so
 /// every face on screen is a front face, red; both renderers agree.
 #[test]
