@@ -65,6 +65,91 @@ fn global_uses(text: &str) -> HashMap<&str, u32> {
     uses
 }
 
+/// The components of the global `name` that `text` writes and reads, as bit masks (bit 0 for
+/// `x`), given `all` for the variable's every component, and the line of the first read of
+/// each component: a swizzled assignment (`texcoord.st = …`) writes its components, a plain one
+/// all of them; any other use reads what it names. Where the text does not tell, writes are
+/// taken wide and reads narrow, so that no read is found unwritten wrongly: an argument (maybe
+/// an `out` parameter) writes every component, an element (`v[i]`) writes every one and reads
+/// none, and a local of that name makes every component written and none read.
+fn component_uses(text: &str, name: &str, all: u8) -> (u8, u8, [Option<u32>; 4]) {
+    let tokens = tokenize(text).unwrap_or_default();
+    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let (mut written, mut read) = (0u8, 0u8);
+    let mut first_read = [None; 4];
+    let mut depth = 0u32;
+    for (k, t) in sig.iter().enumerate() {
+        match t.text {
+            "{" => depth += 1,
+            "}" => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        if !t.is_ident(name) || k.checked_sub(1).is_some_and(|p| sig[p].is_punct(".")) {
+            continue;
+        }
+        let previous = k.checked_sub(1).map(|p| sig[p]);
+        let declaration = previous.is_some_and(|p| p.kind == TokenKind::Ident && !matches!(p.text, "return" | "else" | "do" | "case"));
+        if declaration && depth > 0 {
+            return (all, 0, [None; 4]);
+        }
+        if declaration {
+            continue;
+        }
+        let swizzle = match (sig.get(k + 1), sig.get(k + 2)) {
+            (Some(dot), Some(s)) if dot.is_punct(".") => components(s.text),
+            _ => None,
+        };
+        let after = sig.get(if swizzle.is_some() { k + 3 } else { k + 1 }).map_or("", |a| a.text);
+        let argument = previous.is_some_and(|p| p.is_punct("(") || p.is_punct(",")) && matches!(after, ")" | ",");
+        if after == "[" {
+            written = all;
+            continue;
+        }
+        if argument {
+            written = all;
+        }
+        let mask = swizzle.unwrap_or(all);
+        // `=` writes; `+=` and the like, `++` and `--` write what they read.
+        let compound = matches!(after, "+=" | "-=" | "*=" | "/=" | "%=" | "&=" | "|=" | "^=" | "<<=" | ">>=" | "++" | "--");
+        if after == "=" || compound {
+            written |= mask;
+        }
+        if after != "=" {
+            read |= mask;
+            for (c, first) in first_read.iter_mut().enumerate() {
+                if mask & (1 << c) != 0 && first.is_none() {
+                    *first = Some(t.line);
+                }
+            }
+        }
+    }
+    (written, read, first_read)
+}
+
+/// Every component of a varying of type `ty`, as a bit mask: one per component of a vector,
+/// one for a scalar, four for what has no swizzle of its own (a matrix).
+fn component_mask(ty: &str) -> u8 {
+    let vector = ["vec", "ivec", "uvec", "bvec", "dvec"].iter().find_map(|prefix| ty.strip_prefix(prefix)).and_then(|n| n.parse::<u32>().ok());
+    match vector {
+        Some(n @ 2..=4) => (1u8 << n) - 1,
+        _ if matches!(ty, "float" | "int" | "uint" | "bool" | "double") => 1,
+        _ => 0b1111,
+    }
+}
+
+/// The components a swizzle names, as a bit mask (bit 0 for `x`, `r` or `s`); None for a word
+/// that is no swizzle.
+fn components(swizzle: &str) -> Option<u8> {
+    let sets = ["xyzw", "rgba", "stpq"];
+    let set = sets.iter().find(|set| swizzle.chars().all(|c| set.contains(c)))?;
+    (1..=4).contains(&swizzle.len()).then(|| swizzle.chars().fold(0u8, |mask, c| mask | 1 << set.find(c).unwrap_or(0)))
+}
+
+/// The components of `mask` named in the swizzle letters of `set` (`.st`).
+fn swizzle_of(mask: u8, set: &str) -> String {
+    set.chars().enumerate().filter(|(i, _)| mask & (1 << i) != 0).map(|(_, c)| c).collect()
+}
+
 fn describe(decl: &VaryingDecl) -> String {
     match decl.array {
         Some(n) => format!("{}{} {}[{n}]", decl.interpolation, decl.ty, decl.name),
@@ -105,6 +190,16 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
     // `#version` of the two; from 1.30 to 4.10 it links the program.
     let version = version_of(vertex).max(version_of(fragment));
     let mesa_links = (130..420).contains(&version);
+    // The components of an input the fragment stage reads and the vertex stage never writes.
+    let unwritten_read = |output: &VaryingDecl, input: &VaryingDecl| {
+        let all = component_mask(&input.ty);
+        let written = if vertex_uses.contains_key(output.name.as_str()) { component_uses(&vertex.text, &output.name, all).0 } else { 0 };
+        let (_, read, first_read) = component_uses(&fragment.text, &input.name, all);
+        let unwritten = read & !written;
+        // Where the first of them is read.
+        let line = (0..4).filter(|c| unwritten & (1 << c) != 0).filter_map(|c| first_read[c]).min();
+        (unwritten, line)
+    };
     let mut found = Vec::new();
     let mut never_written = Vec::new();
     for input in inputs {
@@ -139,14 +234,28 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
                     );
                 }
             }
-            Some(output) if uses.contains_key(input.name.as_str()) && !vertex_uses.contains_key(output.name.as_str()) => {
-                // Declared, never named again: never written. Mesa's linker refuses the read in
-                // GLSL 1.10/1.20 ("fragment shader varying … not written by vertex shader") when
-                // its optimiser keeps the read; from 1.30 on it links.
+            Some(output) if uses.contains_key(input.name.as_str()) && unwritten_read(output, input).0 != 0 => {
+                // Declared, never written (or written in other components than are read). Mesa's
+                // linker refuses the read in GLSL 1.10/1.20 ("fragment shader varying … not
+                // written by vertex shader") when its optimiser keeps the read; from 1.30 on it
+                // links.
                 let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
-                let never = format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at})", input.name);
+                let all = component_mask(&input.ty);
+                let written = if vertex_uses.contains_key(output.name.as_str()) { component_uses(&vertex.text, &output.name, all).0 } else { 0 };
+                let (unwritten, first_unwritten_read) = unwritten_read(output, input);
+                let never = if written == 0 {
+                    format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at})", input.name)
+                } else {
+                    let set = if input.ty.starts_with("vec") { "xyzw" } else { "" };
+                    format!(
+                        "fragment input `{}` is read in `.{}`, which the vertex shader never writes (it writes `.{}` only; declared at {out_at})",
+                        input.name,
+                        swizzle_of(unwritten, set),
+                        swizzle_of(written, set)
+                    )
+                };
                 if version <= 120 {
-                    let read_at = uses.get(input.name.as_str()).and_then(|&line| fragment.location(line)).or_else(|| at.clone());
+                    let read_at = first_unwritten_read.or(uses.get(input.name.as_str()).copied()).and_then(|line| fragment.location(line)).or_else(|| at.clone());
                     never_written.push(NeverWritten {
                         input: input.name.clone(),
                         refused: Diagnostic::error(
