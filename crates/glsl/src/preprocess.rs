@@ -193,6 +193,7 @@ pub fn preprocess(
         },
         include_stack: Vec::new(),
         seen_code: false,
+        directive_before_version: None,
         include_rules: options.include_rules,
         lenient: options.lenient,
     };
@@ -281,6 +282,9 @@ struct Preprocessor<'p> {
     include_stack: Vec<(String, u32)>,
     /// A line of code (not a directive) has been emitted.
     seen_code: bool,
+    /// The first directive other than `#include` met before `#version`, as file, line and
+    /// name: the driver meets its line before `#version` in the text OptiFine hands it.
+    directive_before_version: Option<(String, u32, String)>,
     include_rules: IncludeRules,
     lenient: bool,
 }
@@ -403,6 +407,9 @@ impl Preprocessor<'_> {
             let name = directive_pos.filter(|(_, t)| t.kind == TokenKind::Ident).map(|(_, t)| t.text);
             let args = directive_pos.map_or(&[][..], |(i, _)| &rest[i + 1..]);
             let at = line.first_line;
+            if self.out.version.is_none() && self.directive_before_version.is_none() && !matches!(name, Some("version" | "include")) {
+                self.directive_before_version = Some((path.to_string(), at, name.unwrap_or_default().to_string()));
+            }
             match name {
                 Some("if" | "ifdef" | "ifndef") => {
                     let consult = !group_is_empty(&lines, index);
@@ -511,6 +518,20 @@ impl Preprocessor<'_> {
                     // included file as long as nothing but comments and blank lines precedes it.
                     if !self.out.text.trim().is_empty() {
                         return Err(err_at(at, "#version must come before anything else in a shader".into()));
+                    }
+                    // Iris's preprocessor runs the directives itself and puts `#version` first.
+                    if let (Some((file, line, directive)), IncludeRules::OptiFine, false) =
+                        (&self.directive_before_version, self.include_rules, self.lenient)
+                    {
+                        return Err(Diagnostic::error(
+                            Code::Preprocessor,
+                            format!(
+                                "`#{directive}` comes before `#version` ({path}:{at}) once the includes are spliced in, and #version must \
+                                 come before anything else: OptiFine hands the text to the driver as it is, and Mesa refuses it \
+                                 (\"#version must appear on the first line\"); Iris puts #version first itself"
+                            ),
+                            Some(Location::line(file.as_str(), *line)),
+                        ));
                     }
                     let version = parse_version(args).map_err(|m| err_at(at, m))?;
                     let mut text = format!("#version {}", version.number);

@@ -8,15 +8,21 @@ use tidepack_loader::macros::StandardMacros;
 
 /// The text of the stage at `path` as the loader of `macros` hands it to the driver, with the
 /// pack file and line of each of its lines (`None` for the macros'). Under Iris, where its
-/// preprocessor reads the stage, the albedo sampler is named `gtexture` in every program and
-/// functions nothing calls are removed; a stage the preprocessor refuses (an `#extension` after
-/// code) goes as written.
+/// preprocessor reads the stage, the albedo sampler is named `gtexture` in every program,
+/// functions nothing calls are removed and `#version` comes first; a stage the preprocessor
+/// refuses (an `#extension` after code) goes as written.
 pub fn as_loader_hands_it(provider: &dyn FileProvider, path: &str, macros: &StandardMacros) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
-    let (mut text, map) = expand_includes_mapped(provider, path, &macros.define_lines(), macros.include_rules())?;
+    let (mut text, mut map) = expand_includes_mapped(provider, path, &macros.define_lines(), macros.include_rules())?;
     if macros.iris_version.is_some()
         && let Ok(seen) = preprocess::preprocess(provider, path, &macros.preprocess_options())
     {
         text = tidepack_loader::iris::as_transformed(text, &seen.text, true, true).0;
+        // Iris's preprocessor puts `#version` first, wherever the pack wrote it: one line more
+        // on top, which no pack line gave.
+        if let Some((resolved, _)) = tidepack_loader::iris::version_resolved_on_top(&text, seen.version.as_ref()) {
+            text = resolved;
+            map.insert(0, None);
+        }
     }
     Ok((text, map))
 }

@@ -125,6 +125,9 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
     };
     // Where each function body's `}` is, for a `;` after it.
     let function_ends: BTreeSet<usize> = function_definitions(&sig).iter().map(|f| f.close).collect();
+    // Functions the text defines or declares itself (`float round(float x)` in GLSL 1.20, where
+    // no built-in has that name): calls of them are no built-ins of a later version.
+    let own_functions = own_functions(&sig);
     let mut depth = 0i32;
     let mut parens = 0i32;
     // Parameters of the function being read, and whether a local or a file-scope `const`
@@ -250,7 +253,11 @@ pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic
                     "in" | "out" if depth == 0 && parens == 0 && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident) => {
                         Some(format!("`{}` variables need GLSL 1.30; GLSL {number} uses `attribute` and `varying`", t.text))
                     }
-                    f if next_is_call && GLSL130_FUNCTIONS.contains(&f) && !(gpu4 && matches!(f, "round")) => {
+                    f if own_functions.contains(f) => None,
+                    "round" if next_is_call && !gpu4 => {
+                        Some(format!("round() does not exist in GLSL {number} (it came with 1.30); write floor(x + 0.5) or define round() yourself"))
+                    }
+                    f if next_is_call && GLSL130_FUNCTIONS.contains(&f) && f != "round" => {
                         Some(format!("{f}() does not exist in GLSL {number} (it came with 1.30); use texture2D & co."))
                     }
                     f if next_is_call && GPU_SHADER4_FUNCTIONS.contains(&f) && !gpu4 => {
@@ -382,6 +389,25 @@ fn runtime_value(name: &str, parameters: &BTreeSet<&str>, globals: &Globals) -> 
     } else {
         None
     }
+}
+
+/// The names of the functions `sig` (significant tokens) defines or declares: a name after a
+/// type and before `(`, outside any body.
+fn own_functions<'t>(sig: &[&tidepack_glsl::token::Token<'t>]) -> BTreeSet<&'t str> {
+    let mut depth = 0u32;
+    let mut found = BTreeSet::new();
+    for (k, t) in sig.iter().enumerate() {
+        match t.text {
+            "{" => depth += 1,
+            "}" => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        let after_type = k.checked_sub(1).is_some_and(|p| sig[p].kind == TokenKind::Ident && !matches!(sig[p].text, "return" | "else"));
+        if depth == 0 && t.kind == TokenKind::Ident && after_type && sig.get(k + 1).is_some_and(|n| n.is_punct("(")) {
+            found.insert(t.text);
+        }
+    }
+    found
 }
 
 /// An int literal: decimal, octal or hex digits and no suffix (`3`, not `3u` or `3.0`).
