@@ -1049,7 +1049,11 @@ fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(Option<&'t str>, &
             let called = toks.get(m + 1).is_some_and(|n| n.is_punct("("));
             t.kind == TokenKind::Ident
                 && !member
-                && if called { functions.contains(t.text) } else { !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") }
+                && if called {
+                    functions.contains(t.text)
+                } else {
+                    !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") && !matches!(t.text, "true" | "false")
+                }
         });
         if reads_variable {
             found.insert((function.map(|f| toks[definitions[f].name].text), name));
@@ -1566,9 +1570,10 @@ mod tests {
     fn a_file_scope_const_from_a_uniform_loses_its_const_and_so_do_those_it_gives() {
         // As zombye/Ozius writes its time: a file-scope `const` from a uniform, which NVIDIA
         // takes and Mesa refuses; Mesa takes a plain global with that initializer.
-        let text = "#version 420 compatibility\nuniform float sunAngle;\nconst float globalTime = fract(sunAngle) * 12e2;\nconst float twice = globalTime * 2.0;\nconst float half_ = 0.5;\nvoid main() { gl_FragColor = vec4(twice * half_); }\n";
+        let text = "#version 420 compatibility\nuniform float sunAngle;\nconst float globalTime = fract(sunAngle) * 12e2;\nconst float twice = globalTime * 2.0;\nconst float half_ = 0.5;\nconst bool colortex2MipmapEnabled = true;\nvoid main() { gl_FragColor = vec4(twice * half_); }\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert!(out.contains("\n float globalTime = fract(sunAngle) * 12e2;\n float twice = globalTime * 2.0;\nconst float half_ = 0.5;"), "{out}");
+        assert!(out.contains("\nconst bool colortex2MipmapEnabled = true;"), "{out}");
         assert_eq!(rewrites.len(), 1, "{rewrites:?}");
         assert_eq!(rewrites[0].line, 3);
         assert!(rewrites[0].what.contains("`globalTime`") && rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);

@@ -24,7 +24,7 @@ use tidepack_loader::shadow::{ShadowSettings, SunPath};
 use tidepack_loader::{Configuration, SetProvider};
 
 use crate::HarnessError;
-use crate::samplers::{SamplerNaming, Source, colour_buffers_read};
+use crate::samplers::{ProgramStage, SamplerNaming, Source, colour_buffers_read};
 use tidepack_scene::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
     self, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
@@ -337,7 +337,7 @@ fn shadow_map_reads(
     let mut water_shadow = false;
     let all_programs = gbuffers.values().chain(fullscreen).map(|p| (p, SamplerNaming::Frame)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
     for (program, naming) in all_programs {
-        let gbuffers_program = program.name.starts_with("gbuffers_");
+        let program_stage = ProgramStage::of(&program.name);
         for stage in [&program.vertex, &program.fragment] {
             for name in program::image_uniforms(&stage.gl_text) {
                 not_modelled.push(format!(
@@ -347,7 +347,7 @@ fn shadow_map_reads(
             }
             for (name, _) in program::texture_resources(&stage.interface) {
                 water_shadow |= name == "watershadow";
-                match naming.resolve(&NoCustomTextures(loader), &name, gbuffers_program) {
+                match naming.resolve(&NoCustomTextures(loader), &name, program_stage) {
                     Ok(Source::Unbound) => {
                         not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name))
                     }
@@ -773,13 +773,13 @@ impl<'a> FramePlan<'a> {
         let mut buffers: BTreeSet<u8> = BTreeSet::from([0]);
         for program in pack.gbuffers.values() {
             buffers.extend(program.drawn_buffers());
-            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, true));
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame));
         }
         for program in &pack.fullscreen {
             if !is_final(program) {
                 buffers.extend(program.drawn_buffers());
             }
-            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame, false));
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame));
         }
         let mut shadow_buffers = BTreeSet::new();
         if pack.shadow_pass {
@@ -788,7 +788,7 @@ impl<'a> FramePlan<'a> {
             for program in pack.gbuffers.values().chain(&pack.fullscreen) {
                 for stage in [&program.vertex, &program.fragment] {
                     for (name, _) in program::texture_resources(&stage.interface) {
-                        if let Ok(Source::ShadowColour(n)) = SamplerNaming::Frame.resolve(pack, &name, true) {
+                        if let Ok(Source::ShadowColour(n)) = SamplerNaming::Frame.resolve(pack, &name, ProgramStage::of(&program.name)) {
                             shadow_buffers.insert(n);
                         }
                     }
@@ -866,7 +866,7 @@ impl<'a> FramePlan<'a> {
         sprites: Sprites,
         render_stage: &'static str,
     ) {
-        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::Frame, true)).unwrap_or_default();
+        let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::Frame)).unwrap_or_default();
         let pass = if sprites == Sprites::Blocks { Pass::Gbuffers } else { Pass::Celestial };
         let current = self.current.clone();
         self.steps.push(PlannedStep {
@@ -880,7 +880,7 @@ impl<'a> FramePlan<'a> {
     fn lod_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str, render_stage: &'static str) {
         let Some(program) = pack.resolve_lod(translucent) else { return };
         let default_blend = if translucent { DEFAULT_TRANSLUCENT_BLEND } else { Blend::Off };
-        let snapshots = colour_buffers_read(pack, program, SamplerNaming::Frame, true);
+        let snapshots = colour_buffers_read(pack, program, SamplerNaming::Frame);
         let current = self.current.clone();
         self.steps.push(PlannedStep {
             label: format!("{what} ({})", program.name),

@@ -106,7 +106,7 @@ impl CompositeOnly {
         let texture = |label: &str, format, usage| gpu.texture(label, wgpu::Extent3d { width, height, depth_or_array_layers: 1 }, format, usage);
         let input = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let output = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
-        let mut buffers = colour_buffers_read(&pack.pack, pack.composite(), SamplerNaming::Frame, false);
+        let mut buffers = colour_buffers_read(&pack.pack, pack.composite(), SamplerNaming::Frame);
         buffers.insert(0);
         let mut colors = BTreeMap::new();
         let mut formats = BTreeMap::new();

@@ -22,7 +22,7 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
-use crate::samplers::{SamplerNaming, Source};
+use crate::samplers::{ProgramStage, SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_loader::loader::MissingProgramDraws;
 use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
@@ -30,7 +30,7 @@ use crate::program::{LoadedProgram, LoadedStage, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::{Blend, BlendFactor};
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{Pass, Value};
+use crate::uniforms::Value;
 
 /// Opens the headless OpenGL context, or says which Debian packages are missing.
 pub fn context() -> Result<GlContext, HarnessError> {
@@ -726,7 +726,7 @@ unsafe fn set_uniforms(
     program: &LoadedProgram,
     raw: glow::Program,
     values: &BTreeMap<String, Value>,
-    gbuffers: bool,
+    stage: ProgramStage,
     textures: &Textures,
 ) -> Result<(), HarnessError> {
     // SAFETY: the caller holds the current context and `raw` is in use.
@@ -742,7 +742,7 @@ unsafe fn set_uniforms(
             let location = gl.get_uniform_location(raw, &active.name);
             if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW | glow::UNSIGNED_INT_SAMPLER_2D | glow::INT_SAMPLER_2D) {
                 let shadow = active.utype == glow::SAMPLER_2D_SHADOW;
-                let resolved = textures.naming.resolve(pack, &name, gbuffers);
+                let resolved = textures.naming.resolve(pack, &name, stage);
                 let harness = textures.harness;
                 let texture = match resolved {
                     Ok(Source::Atlas) => match textures.sprites {
@@ -829,14 +829,13 @@ pub(crate) unsafe fn draw_program(
     pack: &dyn PackResources,
     program: &LoadedProgram,
     compiled: &Compiled,
-    pass: Pass,
     values: &BTreeMap<String, Value>,
     textures: &Textures,
     vertices: &[PackVertex],
 ) -> Result<(), HarnessError> {
     let gl = ctx.gl();
     let lg = ctx.legacy();
-    let gbuffers = pass != Pass::Fullscreen;
+    let stage = ProgramStage::of(&program.name);
     let first = match compiled {
         Compiled::Direct(p) => p.raw,
         Compiled::Captured { capture, .. } => capture.raw,
@@ -844,7 +843,7 @@ pub(crate) unsafe fn draw_program(
     // SAFETY: the caller holds the current context.
     unsafe {
         gl.use_program(Some(first));
-        set_uniforms(gl, pack, program, first, values, gbuffers, textures)?;
+        set_uniforms(gl, pack, program, first, values, stage, textures)?;
         // Legacy matrices through the fixed-function stacks, as the wgpu path fills them.
         let matrix = |name: &str| {
             values.get(name).map(Value::as_f32).ok_or_else(|| HarnessError::Uniform(format!("the harness has no {name} for {}", program.name)))
@@ -948,7 +947,7 @@ pub(crate) unsafe fn draw_program(
             gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, None);
             // The shipped fragment stage behind the pass-through vertex shader.
             gl.use_program(Some(draw.raw));
-            set_uniforms(gl, pack, program, draw.raw, values, gbuffers, textures)?;
+            set_uniforms(gl, pack, program, draw.raw, values, stage, textures)?;
             gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
             let stride = components.iter().sum::<i32>() * 4;
             let mut offset = 0;

@@ -20,7 +20,7 @@ use crate::gl::{
     Compiled, DepthMapping, GlHarnessTextures, Held, Textures, attach, clear_colour, compile, draw_own_colour, draw_program, internal_format, make_texture,
     pixel_transfer, read, add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
 };
-use crate::samplers::{SamplerNaming, Source};
+use crate::samplers::{ProgramStage, SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_scene::mesh::{self, PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
@@ -473,7 +473,7 @@ impl<'a> GlPlanFrame<'a> {
             }
             mask_unwritten(self.ctx.gl(), program, true);
             let mut drawn = Ok(());
-            self.step_ms += timed(self.ctx.gl(), || drawn = draw_program(self.ctx, self.pack, program, &compiled, pass, &values, textures, vertices));
+            self.step_ms += timed(self.ctx.gl(), || drawn = draw_program(self.ctx, self.pack, program, &compiled, &values, textures, vertices));
             mask_unwritten(self.ctx.gl(), program, false);
             if let Some(clip_control) = clip_control {
                 clip_control(legacy::LOWER_LEFT, legacy::ZERO_TO_ONE);
@@ -597,7 +597,8 @@ impl<'a> GlPlanFrame<'a> {
         // Only the colour buffers read with their mipmaps have levels to pick: every other
         // texture the harness binds has one level and one filter for both ways, so lookups in
         // it read alike whatever the derivatives.
-        let level_free = |name: &str| !matches!(crate::samplers::resolve_any(self.pack, name, false), Ok(Source::Color(n)) if mipmaps.contains(&n));
+        let stage = ProgramStage::of(&program.name);
+        let level_free = |name: &str| !matches!(crate::samplers::resolve_any(self.pack, name, stage), Ok(Source::Color(n)) if mipmaps.contains(&n));
         let traced = if self.trace_derivatives { program.with_derivative_trace(level_free) } else { None };
         self.step_traced = traced.is_some();
         let program = traced.as_ref().unwrap_or(program);

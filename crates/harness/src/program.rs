@@ -239,10 +239,9 @@ impl LoadedPack {
         self.pack.format_of(buffer)
     }
 
-    /// The custom texture bound to a sampler name in a gbuffers or full-screen program.
-    pub fn custom_texture(&self, name: &str, gbuffers: bool) -> Option<&CustomTexture> {
-        let stage = if gbuffers { "gbuffers" } else { "composite" };
-        self.pack.custom_textures.iter().find(|t| t.stage == stage && t.unit == name)
+    /// The custom texture bound to a sampler name in the programs of `stage`.
+    pub fn custom_texture(&self, name: &str, stage: crate::samplers::ProgramStage) -> Option<&CustomTexture> {
+        self.pack.custom_textures.iter().find(|t| t.stage == stage.in_properties() && t.unit == name)
     }
 
     pub fn composite(&self) -> &LoadedProgram {
@@ -846,8 +845,8 @@ pub(crate) fn custom_textures(
     let mut unsupported = Vec::new();
     for entry in directives::textures(properties) {
         let (key, path) = (&entry.key, &entry.path);
-        if !matches!(entry.stage.as_str(), "gbuffers" | "composite") {
-            unsupported.push(format!("{key}: the harness binds custom textures in gbuffers and composite programs only"));
+        if !matches!(entry.stage.as_str(), "gbuffers" | "prepare" | "deferred" | "composite") {
+            unsupported.push(format!("{key}: the harness binds custom textures in gbuffers, prepare, deferred and composite programs only"));
             continue;
         }
         if !entry.raw.is_empty() || path.ends_with(".dat") || entry.resource {

@@ -34,6 +34,48 @@ pub enum Source {
     Unbound,
 }
 
+/// Which programs a `texture.<stage>.<name>` line of shaders.properties binds in, by the
+/// program's name: OptiFine's `gbuffers` (the gbuffers programs and the shadow pass),
+/// `deferred` and `composite` (the composite programs and final), and Iris's `prepare`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgramStage {
+    Gbuffers,
+    Prepare,
+    Deferred,
+    Composite,
+}
+
+impl ProgramStage {
+    /// The stage of the program named `program` (`world0/deferred2` too).
+    pub fn of(program: &str) -> ProgramStage {
+        let name = program.rsplit('/').next().unwrap_or(program);
+        if name.starts_with("gbuffers_") || name.starts_with("dh_") || name == "shadow" || name.starts_with("shadow_") {
+            ProgramStage::Gbuffers
+        } else if name.starts_with("deferred") {
+            ProgramStage::Deferred
+        } else if name.starts_with("prepare") {
+            ProgramStage::Prepare
+        } else {
+            ProgramStage::Composite
+        }
+    }
+
+    /// Its name in `texture.<stage>.<name>`.
+    pub fn in_properties(self) -> &'static str {
+        match self {
+            ProgramStage::Gbuffers => "gbuffers",
+            ProgramStage::Prepare => "prepare",
+            ProgramStage::Deferred => "deferred",
+            ProgramStage::Composite => "composite",
+        }
+    }
+
+    /// A geometry program: its sampler names read the game's textures and the depth being drawn.
+    pub fn is_gbuffers(self) -> bool {
+        self == ProgramStage::Gbuffers
+    }
+}
+
 /// How sampler names resolve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SamplerNaming {
@@ -45,24 +87,24 @@ pub enum SamplerNaming {
 }
 
 impl SamplerNaming {
-    /// What `name` refers to in a program of this naming (`gbuffers` or full-screen).
-    pub fn resolve(self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
+    /// What `name` refers to in a program of this naming and `stage`.
+    pub fn resolve(self, pack: &dyn PackResources, name: &str, stage: ProgramStage) -> Result<Source, String> {
         match self {
-            SamplerNaming::Frame => resolve_any(pack, name, gbuffers),
+            SamplerNaming::Frame => resolve_any(pack, name, stage),
             SamplerNaming::ShadowPass => resolve_in_shadow_pass(pack, name),
         }
     }
 }
 
-/// Resolves a sampler name as OptiFine binds it in any pack. In gbuffers programs colour
-/// buffers are read as they stood before the draw, and depthtex0 (the buffer being drawn
-/// into) is read as depthtex1; a name OptiFine binds nothing to reads transparent black.
-pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-    let stage = if gbuffers { "gbuffers" } else { "composite" };
-    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage && t.unit == name) {
+/// Resolves a sampler name as OptiFine binds it in any pack, in a program of `stage`. In
+/// gbuffers programs colour buffers are read as they stood before the draw, and depthtex0 (the
+/// buffer being drawn into) is read as depthtex1; a name OptiFine binds nothing to reads
+/// transparent black.
+pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) -> Result<Source, String> {
+    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage.in_properties() && t.unit == name) {
         return Ok(Source::Custom(i));
     }
-    Ok(match (name, gbuffers) {
+    Ok(match (name, stage.is_gbuffers()) {
         ("noisetex", _) => Source::Noise,
         ("gtexture" | "texture" | "tex", true) => Source::Atlas,
         ("lightmap", true) => Source::Lightmap,
@@ -91,19 +133,20 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, gbuffers: bool) -> Resu
 /// frame's colour and depth buffers are not bound there (custom textures are), and the shadow
 /// maps read as nothing drawn, since they are being drawn.
 pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<Source, String> {
-    Ok(match resolve_any(pack, name, true)? {
+    Ok(match resolve_any(pack, name, ProgramStage::Gbuffers)? {
         Source::Color(_) | Source::Depth0 | Source::Depth1 | Source::LodDepth(_) => Source::Unbound,
         source => source,
     })
 }
 
 /// The colour buffers a program samples, its sampler names resolved under `naming`.
-pub fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming, gbuffers: bool) -> BTreeSet<u8> {
+pub fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming) -> BTreeSet<u8> {
+    let stage = ProgramStage::of(&program.name);
     [&program.vertex, &program.fragment]
         .into_iter()
         .flat_map(|stage| texture_resources(&stage.interface))
         .filter_map(|(name, _)| {
-            match naming.resolve(pack, &name, gbuffers) {
+            match naming.resolve(pack, &name, stage) {
                 Ok(Source::Color(n)) => Some(n),
                 _ => None,
             }

@@ -217,7 +217,7 @@ fn the_shadow_pass_draws_the_terrain_copies_its_depth_then_draws_the_water() {
 
 #[test]
 fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
-    use tidepack_harness::samplers::{Source, resolve_any};
+    use tidepack_harness::samplers::{ProgramStage, Source, resolve_any};
     let load = |composite: &str| {
         let files = tidepack_loader::input::pack_from_memory(
             "test/shaders/",
@@ -233,10 +233,10 @@ fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
         "#version 120\nuniform sampler2D shadow;\nuniform sampler2D watershadow;\n\
          void main() { gl_FragData[0] = texture2D(shadow, vec2(0.5)) + texture2D(watershadow, vec2(0.5)); }\n",
     );
-    assert_eq!(resolve_any(&plain, "shadow", false), Ok(Source::ShadowDepth(0)));
-    assert_eq!(resolve_any(&with_water, "shadow", false), Ok(Source::ShadowDepth(1)));
-    assert_eq!(resolve_any(&with_water, "watershadow", false), Ok(Source::ShadowDepth(0)));
-    assert_eq!(resolve_any(&with_water, "shadowcolor", false), Ok(Source::ShadowColour(0)));
+    assert_eq!(resolve_any(&plain, "shadow", ProgramStage::Composite), Ok(Source::ShadowDepth(0)));
+    assert_eq!(resolve_any(&with_water, "shadow", ProgramStage::Composite), Ok(Source::ShadowDepth(1)));
+    assert_eq!(resolve_any(&with_water, "watershadow", ProgramStage::Composite), Ok(Source::ShadowDepth(0)));
+    assert_eq!(resolve_any(&with_water, "shadowcolor", ProgramStage::Composite), Ok(Source::ShadowColour(0)));
     // Without a shadow program the loader's own shading would draw the map: named, not drawn.
     assert!(!with_water.shadow_pass);
     assert!(with_water.not_modelled.iter().any(|l| l.contains("without a shadow program")), "{:?}", with_water.not_modelled);
@@ -451,6 +451,20 @@ fn a_vertex_stage_with_nine_inputs_of_its_own_draws_alike_in_both_renderers() {
     assert!(!gl.steps.is_empty());
     assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
     assert!(screen.pixels().any(|p| p.0[..3] != [0, 0, 0]), "the terrain is on screen");
+}
+
+/// Custom textures by stage (tests/packs/deferred_texture): `texture.deferred.colortex5` (red)
+/// is bound in deferred and `texture.composite.colortex6` (blue) in composite, in both
+/// renderers, and neither is listed as not imitated.
+#[test]
+fn a_deferred_custom_texture_is_bound_in_deferred_programs_in_both_renderers() {
+    let (report, screen) = render_job("deferred_texture");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(!report.not_modelled.iter().any(|line| line.contains("texture.")), "{:?}", report.not_modelled);
+    assert!(screen.pixels().all(|p| p.0[2] == 255), "composite's blue is not everywhere");
+    assert_eq!(screen.get_pixel(10, 10).0, [255, 0, 255, 255], "deferred's red in the sky's corner");
 }
 
 /// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so

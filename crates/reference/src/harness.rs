@@ -46,7 +46,7 @@ pub struct Textures {
 
 impl Textures {
     pub fn of(pack: &LoadedPack) -> Result<Textures, String> {
-        let custom = pack.custom_texture("colortex7", false).ok_or("the pack binds no water texture to colortex7")?;
+        let custom = pack.custom_texture("colortex7", tidepack_harness::samplers::ProgramStage::Composite).ok_or("the pack binds no water texture to colortex7")?;
         let water = Texture::from_rgba8(
             custom.width as usize,
             custom.height as usize,

@@ -13,7 +13,7 @@ use tidepack_scene::mesh::{self, AttributeFormat, Sprites, offsets};
 
 use crate::HarnessError;
 use crate::program::{LoadedProgram, LoadedStage, PackResources};
-use crate::samplers::{SamplerNaming, Source};
+use crate::samplers::{ProgramStage, SamplerNaming, Source};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;
@@ -311,8 +311,8 @@ impl<'a> ShadowTextures<'a> {
 }
 
 impl BindableTextures<'_> {
-    fn resolve(&self, pack: &dyn PackResources, name: &str, gbuffers: bool) -> Result<Source, String> {
-        self.naming.resolve(pack, name, gbuffers)
+    fn resolve(&self, pack: &dyn PackResources, name: &str, stage: ProgramStage) -> Result<Source, String> {
+        self.naming.resolve(pack, name, stage)
     }
 
     /// The view of `source` and whether it filters; `compared`: for a `sampler2DShadow`.
@@ -406,7 +406,6 @@ fn binding_entries(
     pack: &dyn PackResources,
     program: &LoadedProgram,
     values: &BTreeMap<String, Value>,
-    gbuffers: bool,
     textures: &BindableTextures,
 ) -> Result<(BindingGroups, Vec<(tidepack_glsl::Stage, wgpu::Buffer)>, Vec<String>), HarnessError> {
     let device = &gpu.device;
@@ -424,7 +423,7 @@ fn binding_entries(
             tidepack_glsl::Stage::Vertex => wgpu::ShaderStages::VERTEX,
             tidepack_glsl::Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
         };
-        let mut entries = stage_entries(gpu, pack, stage, gbuffers, textures)?;
+        let mut entries = stage_entries(gpu, pack, stage, ProgramStage::of(&program.name), textures)?;
         if let Some(block) = fill(stage.module()?, &uniforms::with_initializers(values, &stage.interface), &stage.path)? {
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(&format!("{} uniforms", stage.path)),
@@ -588,9 +587,8 @@ impl ProgramPipeline {
             return Err(cannot);
         }
         let device = &gpu.device;
-        let gbuffers = matches!(kind, PassKind::Gbuffers(_));
         let storage = uniform_binding == UniformBinding::ReadOnlyStorage;
-        let (groups, uniform_buffers, zeroed_uniforms) = binding_entries(gpu, pack, program, values, gbuffers, textures)?;
+        let (groups, uniform_buffers, zeroed_uniforms) = binding_entries(gpu, pack, program, values, textures)?;
         let (layouts, bind_groups) = bind_groups(device, &program.name, groups, storage);
         let layout_refs: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(Some).collect();
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -849,7 +847,7 @@ fn stage_entries(
     gpu: &Gpu,
     pack: &dyn PackResources,
     stage: &LoadedStage,
-    gbuffers: bool,
+    program_stage: ProgramStage,
     textures: &BindableTextures,
 ) -> Result<Vec<(u32, u32, Entry)>, HarnessError> {
     let module = stage.module()?;
@@ -909,7 +907,7 @@ fn stage_entries(
                 }
                 continue;
             }
-            let bound = textures.resolve(pack, name, gbuffers).and_then(|source| {
+            let bound = textures.resolve(pack, name, program_stage).and_then(|source| {
                 // A depth buffer whose lookups are used past their first channel reads as
                 // luminance (see `BindableTextures::depth_read`).
                 let read = match source {
