@@ -2387,6 +2387,9 @@ impl<'a> Lowering<'_, 'a> {
             return Ok(());
         }
         match name {
+            // GLSL 4.50's flag of the fragments run only for their neighbours' derivatives. naga
+            // has no such variable; a fragment that writes its outputs is never one, so false.
+            "gl_HelperInvocation" if stage == Stage::Fragment && self.version >= 450 => self.replace(i, i + 1, "false".into()),
             "gl_VertexID" | "gl_InstanceID" if stage == Stage::Vertex => {
                 // Vulkan GLSL's names; naga reads them as `uint`, GLSL's are `int`.
                 let vulkan = if name == "gl_VertexID" { "gl_VertexIndex" } else { "gl_InstanceIndex" };

@@ -1158,6 +1158,18 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let lenient = equality.then(|| (span.start, Leniency::Converted { constructor, value: inner.to_string(), beside }));
             return Some(Repair { text: converted, lenient });
         }
+        FunctionError::Expression { handle, source: ExpressionError::Compose(naga::valid::ComposeError::ComponentType { .. }) } => {
+            // `mat2(v)` of a `vec4`: GLSL fills the matrix from the vector's components, column
+            // by column; naga composes each column of the whole vector.
+            let naga::Expression::Compose { ty, ref components } = function.expressions[*handle] else { return None };
+            let naga::TypeInner::Matrix { columns: naga::VectorSize::Bi, rows: naga::VectorSize::Bi, .. } = module.types[ty].inner else { return None };
+            // naga gives each column the one vector.
+            let (Some(component), true) = (components.first(), components.windows(2).all(|w| w[0] == w[1])) else { return None };
+            let naga::TypeInner::Vector { size: naga::VectorSize::Quad, .. } = type_of(*component)? else { return None };
+            let span = whole_span(text, function, *component)?;
+            let inner = text.get(span.clone())?;
+            return repaired(format!("{}({inner}).xy, ({inner}).zw{}", &text[..span.start], &text[span.end..]));
+        }
         FunctionError::Expression { source: ExpressionError::InvalidUnaryOperandType(naga::UnaryOperator::Negate, operand), .. } => {
             // GLSL negates unsigned integers (modulo 2^32), naga does not: `-u` becomes `0u - u`.
             let ty = type_of(*operand)?;

@@ -12,17 +12,20 @@ use tidepack_loader::macros::StandardMacros;
 /// functions nothing calls are removed and `#version` comes first; a stage the preprocessor
 /// refuses (an `#extension` after code) goes as written.
 pub fn as_loader_hands_it(provider: &dyn FileProvider, path: &str, macros: &StandardMacros) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
-    let (mut text, mut map) = expand_includes_mapped(provider, path, &macros.define_lines(), macros.include_rules())?;
+    let defines = macros.define_lines();
+    let (mut text, mut map) = expand_includes_mapped(provider, path, &defines, macros.include_rules())?;
     if macros.iris_version.is_some()
         && let Ok(seen) = preprocess::preprocess(provider, path, &macros.preprocess_options())
     {
-        text = tidepack_loader::iris::as_transformed(text, &seen.text, true, true).0;
-        // Iris's preprocessor puts `#version` first, wherever the pack wrote it: one line more
-        // on top, which no pack line gave.
-        if let Some((resolved, _)) = tidepack_loader::iris::version_resolved_on_top(&text, seen.version.as_ref()) {
-            text = resolved;
-            map.insert(0, None);
+        // Iris's preprocessor puts `#version` first, wherever the pack wrote it (inside an `#if`
+        // on the loader's macros, after `#define`s), with its macros defined from the start.
+        let (plain, plain_map) = expand_includes_mapped(provider, path, "", macros.include_rules())?;
+        if let Some((resolved, _)) = tidepack_loader::iris::version_resolved_on_top(&plain, seen.version.as_ref()) {
+            let (version, rest) = resolved.split_once('\n').unwrap_or((&resolved, ""));
+            text = format!("{version}\n{defines}{rest}");
+            map = std::iter::repeat_n(None, 1 + defines.matches('\n').count()).chain(plain_map).collect();
         }
+        text = tidepack_loader::iris::as_transformed(text, &seen.text, true, true).0;
     }
     Ok((text, map))
 }
