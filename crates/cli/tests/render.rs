@@ -145,6 +145,22 @@ fn render_pack_fails_when_a_program_the_loader_runs_does_not_load() {
     assert!(stderr.contains("composite does not load") && stderr.contains("composite.fsh:4"), "{stderr}");
 }
 
+/// A pack whose programs sit where OptiFine does not look (an Iris `dimension.properties`
+/// folder) draws the game's own shading: that is no rendering of the pack.
+#[test]
+fn render_pack_fails_when_the_loader_loads_no_program_of_the_pack() {
+    let pack = pack_of(&[
+        ("dimension.properties", "dimension.dimension_overworld = *\n"),
+        ("dimension_overworld/composite.vsh", FULLSCREEN_VSH),
+        ("dimension_overworld/composite.fsh", "#version 120\nvarying vec2 uv;\nvoid main() {\n    gl_FragData[0] = vec4(uv, 0.0, 1.0);\n}\n"),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    let output = render_pack(pack.path(), out.path());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("optifine-1.21 loads no program of this pack (none in shaders/)"), "{stderr}");
+}
+
 #[test]
 fn render_pack_compares_the_screen_with_a_blessed_one() {
     let out = tempfile::tempdir().unwrap();

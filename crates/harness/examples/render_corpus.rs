@@ -44,14 +44,16 @@ fn main() {
             };
             job::run_any_pack(&job).map_err(|e| cell(&e.to_string())).map(|report| (failure(&report), report))
         };
-        // A pack for Iris alone (one that shows an "Iris required" screen under OptiFine, or
-        // fails there) is rendered under Iris, and the row says so.
+        // A pack for Iris alone (one that shows an "Iris required" screen under OptiFine, fails
+        // there, or has no program where OptiFine looks) is rendered under Iris, and the row
+        // says so.
         let mut outcome = run(Loader::default());
         let rendered = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((None, _)));
-        if !rendered(&outcome) {
+        let programs_loaded = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((_, report)) if report.pack_programs > 0);
+        if !rendered(&outcome) || !programs_loaded(&outcome) {
             let optifine = match &outcome {
                 Ok((Some(why), _)) | Err(why) => why.clone(),
-                Ok((None, _)) => unreachable!("not rendered"),
+                Ok((None, _)) => "no program of the pack where OptiFine looks: the game's own shading".to_string(),
             };
             let iris = run(Loader::Iris);
             if rendered(&iris) {

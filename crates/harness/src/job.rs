@@ -570,6 +570,9 @@ pub struct AnyPackReport {
     pub not_modelled: Vec<String>,
     /// Programs the loader would run that did not load, with why.
     pub failed_programs: Vec<(String, String)>,
+    /// How many of the pack's own programs the frame loaded: 0 where the loader's shading
+    /// alone draws it (a pack whose programs sit where this loader does not look).
+    pub pack_programs: usize,
     pub gl: Option<GlStepsComparison>,
     /// Where the renderers part beyond the job's limit, if they do.
     pub gl_disagreement: Option<Disagreement>,
@@ -793,6 +796,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
         passes: frame.passes,
         not_modelled: frame.not_modelled,
         failed_programs: pack.failed.clone(),
+        pack_programs: pack.gbuffers.len() + pack.fullscreen.len() + pack.shadow.len(),
         files,
     };
     let json = serde_json::to_string_pretty(&report).map_err(|e| HarnessError::Io(format!("report: {e}")))?;

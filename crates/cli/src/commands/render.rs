@@ -297,5 +297,10 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
         tell!("error: {program} does not load, so the frame is not the one the loader draws: {why}");
         failed = true;
     }
+    if report.pack_programs == 0 && report.failed_programs.is_empty() {
+        let folder = if report.world.is_empty() { "shaders/".to_string() } else { format!("shaders/{}/", report.world) };
+        tell!("error: {} loads no program of this pack (none in {folder}): the frame is the game's own shading, not the pack's", report.rendered.loader);
+        failed = true;
+    }
     if failed { ExitCode::from(FINDINGS) } else { ExitCode::SUCCESS }
 }
