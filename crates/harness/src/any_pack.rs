@@ -18,7 +18,7 @@ use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::option_space::{declared_options, property_macros};
-use tidepack_loader::programs::{self, RunBy, find_programs};
+use tidepack_loader::programs::{self, RunBy};
 use tidepack_loader::properties::{self, Properties};
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
 use tidepack_loader::{Configuration, SetProvider};
@@ -393,7 +393,7 @@ impl AnyPack {
         let properties_text = files.texts.get(properties::PATH).map_or("", |t| &**t);
         let properties = Properties::parse(properties_text, &property_macros);
         let provider = SetProvider::new(files, &options).ignoring_case();
-        let all = find_programs(files.files.keys());
+        let all = files.programs(loader);
         let world = files.world_folder(&configuration.dimension, loader);
         let present: BTreeMap<&str, &programs::Program> =
             all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();

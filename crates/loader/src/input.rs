@@ -40,6 +40,9 @@ impl Default for Limits {
     }
 }
 
+/// Iris's map of dimensions to program folders, in `shaders/`.
+const DIMENSION_PROPERTIES: &str = "dimension.properties";
+
 /// The files of a pack's `shaders/` folder, in memory.
 #[derive(Clone, Debug, Default)]
 pub struct PackFiles {
@@ -60,7 +63,23 @@ impl PackFiles {
     /// The world folder whose programs `loader` runs in `dimension` (`""`: the shaders folder).
     pub fn world_folder(&self, dimension: &Dimension, loader: Loader) -> String {
         let has_folder = |folder: &str| self.files.keys().any(|p| p.strip_prefix(folder).is_some_and(|rest| rest.starts_with('/')));
-        crate::programs::world_folder(dimension, loader, &has_folder)
+        crate::programs::world_folder(dimension, loader, &has_folder, &self.dimension_map(loader))
+    }
+
+    /// Iris's `dimension.properties` of the pack ([`crate::programs::dimension_map`]); empty
+    /// under OptiFine, which has none.
+    pub fn dimension_map(&self, loader: Loader) -> Vec<(String, String)> {
+        match (loader, self.texts.get(DIMENSION_PROPERTIES)) {
+            (Loader::Iris, Some(text)) => crate::programs::dimension_map(text),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Every program of the pack's world folders ([`crate::programs::find_programs_in`]), with
+    /// the folders `dimension.properties` names under Iris.
+    pub fn programs(&self, loader: Loader) -> Vec<crate::programs::Program> {
+        let named: Vec<String> = self.dimension_map(loader).into_iter().map(|(_, folder)| folder).collect();
+        crate::programs::find_programs_in(self.files.keys(), &|folder| crate::programs::is_world_folder(folder) || named.iter().any(|n| n == folder))
     }
 }
 

@@ -243,28 +243,73 @@ pub fn is_world_folder(name: &str) -> bool {
 }
 
 /// The folder whose programs `loader` runs in `dimension` (`""`: the shaders folder itself),
-/// `has_folder` telling which world folders the pack has. A dimension with a folder runs only
-/// that folder's programs (an empty one runs none); without one, the shaders folder's. Iris
-/// runs a modded dimension without a folder of its own from `world0/` when there is one.
-pub fn world_folder(dimension: &Dimension, loader: Loader, has_folder: &dyn Fn(&str) -> bool) -> String {
+/// `has_folder` telling which folders hold programs, `dimension_map` the pack's
+/// `dimension.properties` as Iris reads it ([`dimension_map`]; empty without one).
+///
+/// OptiFine runs a dimension's world folder (`world-1/`; an empty one runs nothing), else the
+/// shaders folder. Iris looks the dimension's id up in the map, which without a
+/// `dimension.properties` holds the vanilla world folders the pack has (`world0/` also for every
+/// other dimension): the folder found, where it holds programs, or else the one the map gives
+/// every dimension (`*`), or the shaders folder.
+pub fn world_folder(dimension: &Dimension, loader: Loader, has_folder: &dyn Fn(&str) -> bool, dimension_map: &[(String, String)]) -> String {
     let folder = dimension.folder();
-    if has_folder(folder) {
-        return folder.to_string();
+    if loader != Loader::Iris {
+        return if has_folder(folder) { folder.to_string() } else { String::new() };
     }
-    let vanilla = matches!(folder, "world0" | "world-1" | "world1");
-    if loader == Loader::Iris && !vanilla && has_folder("world0") {
-        return "world0".to_string();
+    let defaults: Vec<(String, String)>;
+    let map = if dimension_map.is_empty() {
+        defaults = [("minecraft:overworld", "world0"), ("*", "world0"), ("minecraft:the_nether", "world-1"), ("minecraft:the_end", "world1")]
+            .into_iter()
+            .filter(|(_, f)| has_folder(f))
+            .map(|(id, f)| (id.to_string(), f.to_string()))
+            .collect();
+        &defaults
+    } else {
+        dimension_map
+    };
+    let mapped = |id: &str| map.iter().find(|(i, _)| i == id).map(|(_, f)| f.clone());
+    let id = match folder {
+        "world0" => Some("minecraft:overworld"),
+        "world-1" => Some("minecraft:the_nether"),
+        "world1" => Some("minecraft:the_end"),
+        _ => None,
+    };
+    match id.and_then(mapped).filter(|f| has_folder(f)) {
+        Some(found) => found,
+        // A modded dimension (`world7`) with a folder of its own, as OptiFine names them.
+        None if id.is_none() && has_folder(folder) => folder.to_string(),
+        None => mapped("*").unwrap_or_default(),
     }
-    String::new()
+}
+
+/// Iris's `dimension.properties`: each `dimension.<folder> = <id> <id> …` line as (id, folder),
+/// ids namespaced (`minecraft:` where none is written), `*` for every other dimension.
+pub fn dimension_map(text: &str) -> Vec<(String, String)> {
+    let mut map = Vec::new();
+    for line in text.lines().map(str::trim).filter(|l| !l.starts_with('#') && !l.starts_with('!')) {
+        let Some((key, value)) = line.split_once(['=', ':']) else { continue };
+        let Some(folder) = key.trim().strip_prefix("dimension.") else { continue };
+        for id in value.split_whitespace() {
+            let id = if id == "*" || id.contains(':') { id.to_string() } else { format!("minecraft:{id}") };
+            map.push((id, folder.to_string()));
+        }
+    }
+    map
 }
 
 /// Every program file of the pack's world folders (the root counts as one), grouped.
 pub fn find_programs<'a>(paths: impl Iterator<Item = &'a String>) -> Vec<Program> {
+    find_programs_in(paths, &is_world_folder)
+}
+
+/// [`find_programs`] where `is_world` tells which folders hold programs (Iris's
+/// `dimension.properties` names folders of any name).
+pub fn find_programs_in<'a>(paths: impl Iterator<Item = &'a String>, is_world: &dyn Fn(&str) -> bool) -> Vec<Program> {
     let mut found: BTreeMap<(String, String), Program> = BTreeMap::new();
     for path in paths {
         let (world, file) = match path.split_once('/') {
             None => ("", path.as_str()),
-            Some((w, f)) if is_world_folder(w) && !f.contains('/') => (w, f),
+            Some((w, f)) if is_world(w) && !f.contains('/') => (w, f),
             _ => continue,
         };
         let Some((name, ext)) = file.rsplit_once('.') else { continue };
@@ -380,12 +425,35 @@ mod tests {
         let nether = Dimension::parse("nether").unwrap();
         let modded = Dimension::parse("world7").unwrap();
         let both = folders(&["world0", "world-1"]);
-        assert_eq!(world_folder(&Dimension::default(), Loader::OptiFine1_21, &both), "world0");
-        assert_eq!(world_folder(&nether, Loader::OptiFine1_21, &both), "world-1");
-        assert_eq!(world_folder(&Dimension::parse("end").unwrap(), Loader::OptiFine1_21, &both), "");
-        assert_eq!(world_folder(&modded, Loader::OptiFine1_21, &both), "");
-        assert_eq!(world_folder(&modded, Loader::Iris, &both), "world0");
-        assert_eq!(world_folder(&nether, Loader::Iris, &folders(&[])), "");
+        let end = Dimension::parse("end").unwrap();
+        assert_eq!(world_folder(&Dimension::default(), Loader::OptiFine1_21, &both, &[]), "world0");
+        assert_eq!(world_folder(&nether, Loader::OptiFine1_21, &both, &[]), "world-1");
+        assert_eq!(world_folder(&end, Loader::OptiFine1_21, &both, &[]), "");
+        assert_eq!(world_folder(&modded, Loader::OptiFine1_21, &both, &[]), "");
+        assert_eq!(world_folder(&modded, Loader::Iris, &both, &[]), "world0");
+        assert_eq!(world_folder(&nether, Loader::Iris, &folders(&[]), &[]), "");
+        // Iris runs world0/ in every dimension without a folder of its own.
+        assert_eq!(world_folder(&end, Loader::Iris, &both, &[]), "world0");
+    }
+
+    /// Iris's dimension.properties (as yanis-dubois/BloomingLightShader maps its folders): each
+    /// dimension's folder by its id, `*` for the others, and the shaders folder where a mapped
+    /// folder is missing and nothing stands for `*`.
+    #[test]
+    fn iris_reads_the_dimension_folders_of_dimension_properties() {
+        let text = "# folder of each dimension\ndimension.dimension_overworld = *\ndimension.dimension_nether = minecraft:the_nether nether\ndimension.dimension_end=the_end\n";
+        let map = dimension_map(text);
+        assert_eq!(map[0], ("*".to_string(), "dimension_overworld".to_string()));
+        assert!(map.contains(&("minecraft:nether".to_string(), "dimension_nether".to_string())), "{map:?}");
+        assert!(map.contains(&("minecraft:the_end".to_string(), "dimension_end".to_string())), "{map:?}");
+        let folders = |names: &'static [&'static str]| move |f: &str| names.contains(&f);
+        let all = folders(&["dimension_overworld", "dimension_nether", "dimension_end"]);
+        assert_eq!(world_folder(&Dimension::default(), Loader::Iris, &all, &map), "dimension_overworld");
+        assert_eq!(world_folder(&Dimension::parse("nether").unwrap(), Loader::Iris, &all, &map), "dimension_nether");
+        assert_eq!(world_folder(&Dimension::parse("end").unwrap(), Loader::Iris, &folders(&["dimension_overworld"]), &map), "dimension_overworld");
+        assert_eq!(world_folder(&Dimension::default(), Loader::OptiFine1_21, &all, &map), "");
+        let nether_only = dimension_map("dimension.dimension_nether = the_nether\n");
+        assert_eq!(world_folder(&Dimension::default(), Loader::Iris, &all, &nether_only), "");
     }
 
     #[test]

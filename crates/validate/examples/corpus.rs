@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::OptionSet;
 use tidepack_loader::{Loader, SetProvider};
-use tidepack_loader::programs::{self, RunBy};
+use tidepack_loader::programs::RunBy;
 use tidepack_validate::{Coverage, Options, Profiles, Status, driver, glslang};
 
 #[derive(Default)]
@@ -116,7 +116,7 @@ fn main() {
         row.tidepack = started.elapsed();
         let set = OptionSet::new();
         let provider = SetProvider::new(&report.pack, &set);
-        for program in programs::find_programs(report.pack.files.keys()) {
+        for program in report.pack.programs(loader) {
             if (program.run_by != RunBy::OptiFine && !iris_dh) || !program.has_stages() {
                 continue;
             }

@@ -2,7 +2,7 @@
 //! it, without a game or a GPU.
 //!
 //! Data flow: [`input::read_pack`] (in memory, hostile input refused entry by entry) →
-//! [`programs::find_programs`] (world folders, program names, other loaders' programs) →
+//! [`PackFiles::programs`](tidepack_loader::input::PackFiles::programs) (world folders, program names, other loaders' programs) →
 //! option sets (defaults, `shaders.properties` profiles) → per program and set, in `stages`:
 //! `tidepack_glsl::preprocess` with OptiFine's standard macros → `naga_check::lower_program`
 //! and the checks of [`interface`] and [`version_rules`] → in `naga_pool`: naga on each
@@ -215,7 +215,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         diagnostics.extend(stages::iris_features_on_macos(&props));
     }
     let (sets, overrides) = option_sets(&props, &declared, options, &mut diagnostics)?;
-    let mut programs = programs::find_programs(pack.files.keys());
+    let mut programs = pack.programs(options.loader);
     let mut dimension_without_programs = None;
     if let Some(dimension) = &options.dimension {
         let world = pack.world_folder(dimension, options.loader);
