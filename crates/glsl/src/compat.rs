@@ -514,7 +514,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     };
     for k in 1..sig.len().saturating_sub(1) {
-        if sig[k].kind != TokenKind::Ident || !sig[k + 1].is_punct("=") || !declared_not_constant(k, sig[k].text) {
+        // `NAME =` or `NAME[N] =`.
+        let array_end = sig[k + 1].is_punct("[").then(|| (k + 2..sig.len()).find(|&j| sig[j].is_punct("]"))).flatten();
+        let assigned = sig[k + 1].is_punct("=") || array_end.is_some_and(|j| sig.get(j + 1).is_some_and(|t| t.is_punct("=")));
+        if sig[k].kind != TokenKind::Ident || !assigned || !declared_not_constant(k, sig[k].text) {
             continue;
         }
         let mut start = sig[..k].iter().rposition(|t| t.ends_statement()).map_or(0, |p| p + 1);
@@ -1032,33 +1035,58 @@ fn constants_not_constant<'t>(toks: &[&'t Token]) -> HashSet<(Option<&'t str>, &
         if !statement_start || !toks[k].is_ident("const") {
             continue;
         }
-        // `const TYPE NAME = INIT;` (qualifiers and a precision may come between).
-        let Some(eq) = (k + 1..toks.len()).take_while(|&m| !toks[m].is_punct(";")).find(|&m| toks[m].is_punct("=")) else { continue };
-        let Some(end) = (eq..toks.len()).find(|&m| toks[m].is_punct(";")) else { continue };
-        if eq < k + 3 || toks[eq - 1].kind != TokenKind::Ident {
-            continue;
-        }
-        let name = toks[eq - 1].text;
+        // `const TYPE NAME = INIT, NAME = INIT;` (qualifiers and a precision may come between).
+        let Some(end) = (k..toks.len()).find(|&m| toks[m].is_punct(";")) else { continue };
         let function = definitions.iter().position(|f| (f.open + 1..f.close).contains(&k));
         let hidden = function.map(parameters).unwrap_or_default();
-        let is_constant =
-            |name: &str| !hidden.contains(&name) && (constants.contains(&(function, name)) || constants.contains(&(None, name)));
-        let reads_variable = (eq + 1..end).any(|m| {
-            let t = toks[m];
-            let member = toks[m - 1].is_punct(".");
-            let called = toks.get(m + 1).is_some_and(|n| n.is_punct("("));
-            t.kind == TokenKind::Ident
-                && !member
-                && if called {
-                    functions.contains(t.text)
-                } else {
-                    !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") && !matches!(t.text, "true" | "false")
-                }
-        });
-        if reads_variable {
-            found.insert((function.map(|f| toks[definitions[f].name].text), name));
-        } else {
-            constants.insert((function, name));
+        // The names the statement declares, and whether one of them reads a variable: then the
+        // `const` they share goes for all of them.
+        let mut names = Vec::new();
+        let mut any_reads_variable = false;
+        let mut from = k + 1;
+        while let Some(eq) = (from..end).find(|&m| toks[m].is_punct("=")) {
+            // This declarator's initializer ends at a `,` outside brackets, or at the `;`.
+            let mut depth = 0i32;
+            let stop = (eq + 1..end)
+                .find(|&m| {
+                    match toks[m].text {
+                        "(" | "[" | "{" => depth += 1,
+                        ")" | "]" | "}" => depth -= 1,
+                        "," => return depth == 0,
+                        _ => {}
+                    }
+                    false
+                })
+                .unwrap_or(end);
+            from = stop + 1;
+            // The declarator's name: before the `=`, or before an array's `[N]`.
+            let named_at = if toks[eq - 1].is_punct("]") { (k + 1..eq - 1).rev().find(|&m| toks[m].is_punct("[")).map(|m| m - 1) } else { Some(eq - 1) };
+            let Some(named_at) = named_at.filter(|&m| m >= k + 2 && toks[m].kind == TokenKind::Ident) else { continue };
+            let name = toks[named_at].text;
+            let is_constant = |name: &str| {
+                !hidden.contains(&name) && (constants.contains(&(function, name)) || constants.contains(&(None, name)) || names.contains(&name))
+            };
+            let reads_variable = (eq + 1..stop).any(|m| {
+                let t = toks[m];
+                let member = toks[m - 1].is_punct(".");
+                let called = toks.get(m + 1).is_some_and(|n| n.is_punct("("));
+                t.kind == TokenKind::Ident
+                    && !member
+                    && if called {
+                        functions.contains(t.text)
+                    } else {
+                        !is_constant(t.text) && !VALUE_TYPES.contains(&t.text) && !t.text.starts_with("gl_Max") && !matches!(t.text, "true" | "false")
+                    }
+            });
+            any_reads_variable |= reads_variable;
+            names.push(name);
+        }
+        for name in names {
+            if any_reads_variable {
+                found.insert((function.map(|f| toks[definitions[f].name].text), name));
+            } else {
+                constants.insert((function, name));
+            }
         }
     }
     found
@@ -1570,13 +1598,17 @@ mod tests {
     fn a_file_scope_const_from_a_uniform_loses_its_const_and_so_do_those_it_gives() {
         // As zombye/Ozius writes its time: a file-scope `const` from a uniform, which NVIDIA
         // takes and Mesa refuses; Mesa takes a plain global with that initializer.
-        let text = "#version 420 compatibility\nuniform float sunAngle;\nconst float globalTime = fract(sunAngle) * 12e2;\nconst float twice = globalTime * 2.0;\nconst float half_ = 0.5;\nconst bool colortex2MipmapEnabled = true;\nvoid main() { gl_FragColor = vec4(twice * half_); }\n";
+        let text = "#version 420 compatibility\nuniform float sunAngle;\nconst float globalTime = fract(sunAngle) * 12e2;\nconst float twice = globalTime * 2.0;\nconst float half_ = 0.5;\nconst bool colortex2MipmapEnabled = true;\nconst int _A = 0x64bd29, _B = _A, _C = int(sunAngle);\nvoid main() { const int digits[2] = int[2](_A, _B); gl_FragColor = vec4(twice * half_ * float(digits[1] + _C)); }\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert!(out.contains("\n float globalTime = fract(sunAngle) * 12e2;\n float twice = globalTime * 2.0;\nconst float half_ = 0.5;"), "{out}");
         assert!(out.contains("\nconst bool colortex2MipmapEnabled = true;"), "{out}");
+        // As espen96/Loop declares its glyphs: one `const` for many names, each judged alone;
+        // the one from a uniform takes the declaration's `const` with it.
+        assert!(out.contains("\n int _A = 0x64bd29, _B = _A, _C = int(sunAngle);"), "{out}");
         assert_eq!(rewrites.len(), 1, "{rewrites:?}");
         assert_eq!(rewrites[0].line, 3);
-        assert!(rewrites[0].what.contains("`globalTime`") && rewrites[0].what.contains("(2 declarations)"), "{}", rewrites[0].what);
+        assert!(out.contains("void main() {  int digits[2]"), "{out}");
+        assert!(rewrites[0].what.contains("`globalTime`"), "{}", rewrites[0].what);
     }
 
     #[test]

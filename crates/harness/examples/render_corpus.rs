@@ -46,19 +46,21 @@ fn main() {
         };
         // A pack for Iris alone (one that shows an "Iris required" screen under OptiFine, fails
         // there, or has no program where OptiFine looks) is rendered under Iris, and the row
-        // says so.
+        // says so; where OptiFine loads none of its programs, Iris's verdict is the pack's.
         let mut outcome = run(Loader::default());
-        let rendered = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((None, _)));
-        let programs_loaded = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((_, report)) if report.pack_programs > 0);
-        if !rendered(&outcome) || !programs_loaded(&outcome) {
+        let rendered = |o: &Result<(Option<String>, AnyPackReport), String>| matches!(o, Ok((None, report)) if report.pack_programs > 0);
+        if !rendered(&outcome) {
             let optifine = match &outcome {
                 Ok((Some(why), _)) | Err(why) => why.clone(),
                 Ok((None, _)) => "no program of the pack where OptiFine looks: the game's own shading".to_string(),
             };
+            let none_loaded = matches!(&outcome, Ok((None, _)));
             let iris = run(Loader::Iris);
             if rendered(&iris) {
                 outcome = iris.map(|(_, report)| (None, report));
                 under_iris.push((name.clone(), optifine));
+            } else if none_loaded {
+                outcome = iris.map(|(why, report)| (why.or_else(|| Some("no program of the pack loaded under either loader".to_string())), report));
             }
         }
         match outcome {
