@@ -891,6 +891,9 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
         let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
         edits.extend(defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)));
     }
+    // A local declaration of several arrays (`vec3 normals[6], points[6];`), each declarator
+    // its own declaration: naga's front end sizes the first alone.
+    edits.extend(local_array_declarators_split(&sig));
     // `gl_FragDepth` read and never written keeps the depth the fragment was rasterised at:
     // naga would make it the depth output, unset.
     if stage == Stage::Fragment && !compute {
@@ -924,6 +927,41 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
     };
     lowering.run()?;
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
+}
+
+/// Edits splitting each local declaration without initializers whose later declarators are
+/// arrays (`vec3 normals[6], points[6];`) into one declaration per declarator on the same line
+/// (`vec3 normals[6]; vec3 points[6];`): each `,` becomes `; TYPE`.
+fn local_array_declarators_split(sig: &[&Token]) -> Vec<(std::ops::Range<usize>, String)> {
+    let mut edits = Vec::new();
+    let mut depth = 0u32;
+    for k in 0..sig.len() {
+        match sig[k].text {
+            "{" => depth += 1,
+            "}" => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        let statement_start = k > 0 && sig[k - 1].ends_statement();
+        let declares = sig[k].kind == TokenKind::Ident
+            && !matches!(sig[k].text, "return" | "else" | "do" | "case" | "const")
+            && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident);
+        if depth == 0 || !statement_start || !declares {
+            continue;
+        }
+        let Some(end) = (k..sig.len()).find(|&j| sig[j].ends_statement()) else { continue };
+        let statement = &sig[k..end];
+        if !sig[end].is_punct(";") || statement.iter().any(|t| t.is_punct("=") || t.is_punct("(")) {
+            continue;
+        }
+        let commas: Vec<usize> = (k..end).filter(|&j| sig[j].is_punct(",")).collect();
+        if commas.is_empty() || !commas.iter().any(|&c| sig.get(c + 2).is_some_and(|t| t.is_punct("["))) {
+            continue;
+        }
+        for c in commas {
+            edits.push((sig[c].offset..sig[c].offset + 1, format!("; {}", sig[k].text)));
+        }
+    }
+    edits
 }
 
 /// `text` with the qualifiers that change no type blanked out, every line and column kept;

@@ -1,0 +1,3 @@
+#version 330 compatibility
+out vec2 uv;
+void main() { gl_Position = ftransform(); uv = gl_MultiTexCoord0.xy; }
