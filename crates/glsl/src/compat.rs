@@ -47,7 +47,6 @@ const LEGACY_LOOKUPS: [&str; 4] = ["texture2D", "texture2DLod", "shadow2D", "tex
 /// `attribute` and `varying` too. The fixed-function vertex state it refuses at any version.
 pub const DEPRECATED_KEPT_BY_MESA: [&str; 6] = ["gl_FragData", "gl_FragColor", "texture2D", "texture2DLod", "shadow2D", "texture3D"];
 
-
 /// Functions GLSL 1.30 added; the ones `GL_EXT_gpu_shader4` does not bring to 1.20 under
 /// these names.
 pub const GLSL130_FUNCTIONS: [&str; 12] = [

@@ -368,7 +368,7 @@ const VULKAN_ONLY_KEYWORDS: &[&str] = &[
 ];
 
 /// Words that can stand before an identifier in a statement without declaring it.
-fn is_statement_keyword(word: &str) -> bool {
+pub fn is_statement_keyword(word: &str) -> bool {
     matches!(word, "return" | "else" | "do" | "case" | "goto")
 }
 
@@ -943,7 +943,8 @@ fn local_array_declarators_split(sig: &[&Token]) -> Vec<(std::ops::Range<usize>,
         }
         let statement_start = k > 0 && sig[k - 1].ends_statement();
         let declares = sig[k].kind == TokenKind::Ident
-            && !matches!(sig[k].text, "return" | "else" | "do" | "case" | "const")
+            && !is_statement_keyword(sig[k].text)
+            && !sig[k].is_ident("const")
             && sig.get(k + 1).is_some_and(|n| n.kind == TokenKind::Ident);
         if depth == 0 || !statement_start || !declares {
             continue;

@@ -10,6 +10,7 @@
 
 use std::collections::BTreeMap;
 
+use tidepack_glsl::lower::is_statement_keyword;
 use tidepack_glsl::token::{TokenKind, function_definitions, matching_close, tokenize};
 
 /// Lookups that pick their level from implicit derivatives (those without an explicit level or
@@ -67,7 +68,7 @@ pub fn traced(
         let before = k.checked_sub(1).map(|p| &tokens[sig[p]]);
         // A member (`.texture`) or a declaration of a function of that name (after its return
         // type) is no call.
-        let declared = before.is_some_and(|b| b.kind == TokenKind::Ident && !matches!(b.text, "return" | "else" | "do"));
+        let declared = before.is_some_and(|b| b.kind == TokenKind::Ident && !is_statement_keyword(b.text));
         if declared || before.is_some_and(|b| b.is_punct(".")) || !sig.get(k + 1).is_some_and(|&n| tokens[n].is_punct("(")) {
             continue;
         }

@@ -370,7 +370,7 @@ impl GlStepsComparison {
     /// from the same inputs as `gl` with every float uniform, float literal and vertex attribute
     /// nudged, once by each of [`NUDGES`]; and how many of the others GLSL leaves undefined,
     /// from `undefined` ([`undefined_pixels`]).
-    fn discount_sensitive(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame], undefined: &[BTreeMap<String, Vec<bool>>]) {
+    fn discount_noise_and_undefined(&mut self, wgpu: &[StepReport], gl: &crate::gl_frame::GlFrame, nudged: &[crate::gl_frame::GlFrame], undefined: &[BTreeMap<String, Vec<bool>>]) {
         for (k, (step, (pass, (_, gl_images)))) in self.steps.iter_mut().zip(wgpu.iter().zip(&gl.steps)).enumerate() {
             for (i, ((name, ours), (_, theirs))) in pass.images.iter().zip(gl_images).enumerate() {
                 let moved: Vec<&FloatImage> = nudged.iter().filter_map(|frame| frame.steps.get(k).and_then(|(_, images)| images.get(i)).map(|(_, image)| image)).collect();
@@ -440,7 +440,7 @@ fn undefined_pixels(traced: &crate::gl_frame::GlFrame) -> Vec<BTreeMap<String, V
 /// throughout: 64 pixels, over which a dither of a few levels averages out.
 pub const NOISE_BLOCK: u32 = 8;
 
-/// The relative nudge of [`GlStepsComparison::discount_sensitive`]: 2^-21, four units in the
+/// The relative nudge of [`GlStepsComparison::discount_noise_and_undefined`]: 2^-21, four units in the
 /// last place of a float, about what two compilers' roundings of the same expression differ by
 /// (a fused multiply-add, a reciprocal for a division, another polynomial for `sin`).
 pub const NUDGE: f64 = 1.0 / (1u32 << 21) as f64;
@@ -743,7 +743,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                     Err(HarnessError::Gl(_)) => {}
                     Err(e) => return Err(e),
                 }
-                comparison.discount_sensitive(&wgpu_frame.passes, &gl_frame, &nudged, &undefined);
+                comparison.discount_noise_and_undefined(&wgpu_frame.passes, &gl_frame, &nudged, &undefined);
             }
             comparison.set_aside(cannot_draw);
             // Where they part: both renderers' texture and the pixels over 1/255, to look at

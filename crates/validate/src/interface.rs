@@ -46,7 +46,7 @@ fn global_uses(text: &str) -> HashMap<&str, u32> {
         }
         let previous = k.checked_sub(1).map(|p| sig[p]);
         let declared = previous.is_some_and(|p| {
-            p.kind == TokenKind::Ident && !matches!(p.text, "return" | "else" | "do" | "case" | "goto")
+            p.kind == TokenKind::Ident && !lower::is_statement_keyword(p.text)
         });
         if declared {
             if depth > 0 {
@@ -65,16 +65,14 @@ fn global_uses(text: &str) -> HashMap<&str, u32> {
     uses
 }
 
-/// The components of the global `name` that `text` writes and reads, as bit masks (bit 0 for
+/// The components of the global `name` that `sig` (a stage's significant tokens) writes and reads, as bit masks (bit 0 for
 /// `x`), given `all` for the variable's every component, and the line of the first read of
 /// each component: a swizzled assignment (`texcoord.st = …`) writes its components, a plain one
 /// all of them; any other use reads what it names. Where the text does not tell, writes are
 /// taken wide and reads narrow, so that no read is found unwritten wrongly: an argument (maybe
 /// an `out` parameter) writes every component, an element (`v[i]`) writes every one and reads
 /// none, and a local of that name makes every component written and none read.
-fn component_uses(text: &str, name: &str, all: u8) -> (u8, u8, [Option<u32>; 4]) {
-    let tokens = tokenize(text).unwrap_or_default();
-    let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+fn component_uses(sig: &[&Token], name: &str, all: u8) -> (u8, u8, [Option<u32>; 4]) {
     let (mut written, mut read) = (0u8, 0u8);
     let mut first_read = [None; 4];
     let mut depth = 0u32;
@@ -88,7 +86,7 @@ fn component_uses(text: &str, name: &str, all: u8) -> (u8, u8, [Option<u32>; 4])
             continue;
         }
         let previous = k.checked_sub(1).map(|p| sig[p]);
-        let declaration = previous.is_some_and(|p| p.kind == TokenKind::Ident && !matches!(p.text, "return" | "else" | "do" | "case"));
+        let declaration = previous.is_some_and(|p| p.kind == TokenKind::Ident && !lower::is_statement_keyword(p.text));
         if declaration && depth > 0 {
             return (all, 0, [None; 4]);
         }
@@ -145,9 +143,9 @@ fn components(swizzle: &str) -> Option<u8> {
     (1..=4).contains(&swizzle.len()).then(|| swizzle.chars().fold(0u8, |mask, c| mask | 1 << set.find(c).unwrap_or(0)))
 }
 
-/// The components of `mask` named in the swizzle letters of `set` (`.st`).
-fn swizzle_of(mask: u8, set: &str) -> String {
-    set.chars().enumerate().filter(|(i, _)| mask & (1 << i) != 0).map(|(_, c)| c).collect()
+/// The components of `mask` as a swizzle (`xy`).
+fn swizzle_of(mask: u8) -> String {
+    "xyzw".chars().enumerate().filter(|(i, _)| mask & (1 << i) != 0).map(|(_, c)| c).collect()
 }
 
 fn describe(decl: &VaryingDecl) -> String {
@@ -190,21 +188,29 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
     // `#version` of the two; from 1.30 to 4.10 it links the program.
     let version = version_of(vertex).max(version_of(fragment));
     let mesa_links = (130..420).contains(&version);
-    // The components of an input the fragment stage reads and the vertex stage never writes.
+    let (vertex_tokens, fragment_tokens) = (tokenize(&vertex.text).unwrap_or_default(), tokenize(&fragment.text).unwrap_or_default());
+    let vertex_sig: Vec<&Token> = vertex_tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let fragment_sig: Vec<&Token> = fragment_tokens.iter().filter(|t| !t.is_trivia()).collect();
+    // Of an input the fragment stage reads: the components the vertex stage writes, those the
+    // fragment stage reads and the vertex stage never writes, and the line of the first such read.
     let unwritten_read = |output: &VaryingDecl, input: &VaryingDecl| {
         let all = component_mask(&input.ty);
-        let written = if vertex_uses.contains_key(output.name.as_str()) { component_uses(&vertex.text, &output.name, all).0 } else { 0 };
-        let (_, read, first_read) = component_uses(&fragment.text, &input.name, all);
+        let written = if vertex_uses.contains_key(output.name.as_str()) { component_uses(&vertex_sig, &output.name, all).0 } else { 0 };
+        let (_, read, first_read) = component_uses(&fragment_sig, &input.name, all);
         let unwritten = read & !written;
-        // Where the first of them is read.
         let line = (0..4).filter(|c| unwritten & (1 << c) != 0).filter_map(|c| first_read[c]).min();
-        (unwritten, line)
+        (written, unwritten, line)
     };
     let mut found = Vec::new();
     let mut never_written = Vec::new();
     for input in inputs {
         let at = fragment.location(input.line);
-        match outputs.get(input.name.as_str()) {
+        let output = outputs.get(input.name.as_str());
+        let (written, unwritten, first_unwritten_read) = match output {
+            Some(output) if uses.contains_key(input.name.as_str()) => unwritten_read(output, input),
+            _ => (0, 0, None),
+        };
+        match output {
             None => {
                 // Only a statically read input must be declared by the vertex stage.
                 let Some(&read_at) = uses.get(input.name.as_str()) else { continue };
@@ -234,24 +240,20 @@ pub fn check_varyings(vertex: &Preprocessed, fragment: &Preprocessed) -> (Vec<Di
                     );
                 }
             }
-            Some(output) if uses.contains_key(input.name.as_str()) && unwritten_read(output, input).0 != 0 => {
+            Some(output) if unwritten != 0 => {
                 // Declared, never written (or written in other components than are read). Mesa's
                 // linker refuses the read in GLSL 1.10/1.20 ("fragment shader varying … not
                 // written by vertex shader") when its optimiser keeps the read; from 1.30 on it
                 // links.
                 let out_at = vertex.location(output.line).map_or(vertex_path.clone(), |l| l.to_string());
-                let all = component_mask(&input.ty);
-                let written = if vertex_uses.contains_key(output.name.as_str()) { component_uses(&vertex.text, &output.name, all).0 } else { 0 };
-                let (unwritten, first_unwritten_read) = unwritten_read(output, input);
                 let never = if written == 0 {
                     format!("fragment input `{}` is read, but the vertex shader never writes it (declared at {out_at})", input.name)
                 } else {
-                    let set = if input.ty.starts_with("vec") { "xyzw" } else { "" };
                     format!(
                         "fragment input `{}` is read in `.{}`, which the vertex shader never writes (it writes `.{}` only; declared at {out_at})",
                         input.name,
-                        swizzle_of(unwritten, set),
-                        swizzle_of(written, set)
+                        swizzle_of(unwritten),
+                        swizzle_of(written)
                     )
                 };
                 if version <= 120 {

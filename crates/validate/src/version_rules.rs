@@ -16,6 +16,7 @@ use std::collections::BTreeSet;
 use tidepack_glsl::compat::{
     GLSL130_FUNCTIONS, GPU_SHADER4, GPU_SHADER4_FUNCTIONS, glsl130_name, is_texture_lod_arb, GPU_SHADER4_OPERATORS, GPU_SHADER4_QUALIFIERS, GPU_SHADER4_TYPES, DEPRECATED_KEPT_BY_MESA, REMOVED_IN_CORE, TEXTURE_LOD, VERTEX_ONLY_LOD,
 };
+use tidepack_glsl::lower::is_statement_keyword;
 use tidepack_glsl::preprocess::Preprocessed;
 use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
@@ -402,7 +403,7 @@ fn own_functions<'t>(sig: &[&tidepack_glsl::token::Token<'t>]) -> BTreeSet<&'t s
             "}" => depth = depth.saturating_sub(1),
             _ => {}
         }
-        let after_type = k.checked_sub(1).is_some_and(|p| sig[p].kind == TokenKind::Ident && !matches!(sig[p].text, "return" | "else"));
+        let after_type = k.checked_sub(1).is_some_and(|p| sig[p].kind == TokenKind::Ident && !is_statement_keyword(sig[p].text));
         if depth == 0 && t.kind == TokenKind::Ident && after_type && sig.get(k + 1).is_some_and(|n| n.is_punct("(")) {
             found.insert(t.text);
         }
