@@ -9,6 +9,7 @@
 pub mod code;
 pub mod compat;
 pub mod diagnostic;
+pub mod known_valid;
 pub mod liveness;
 pub mod lower;
 pub mod naga_check;

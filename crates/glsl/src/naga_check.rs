@@ -11,6 +11,7 @@ use naga::front::glsl::{ErrorKind, ExpectedToken, Options, TokenValue};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
 use crate::diagnostic::{Diagnostic, Location};
+use crate::known_valid::{self, KnownValid};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
 use crate::token::{TokenKind, blanked, brace_depths, function_definitions, tokenize};
@@ -95,11 +96,27 @@ pub fn validate_stage(
     stage: &LoweredStage,
     provider: &dyn FileProvider,
 ) -> Result<ValidStage, Vec<Diagnostic>> {
-    let naga_stage = match stage.stage {
+    validate_text(frontend, naga_stage_of(stage.stage), &stage.preprocessed, &stage.lowered, provider, None).map(|valid| valid.expect("naga ran"))
+}
+
+/// [`validate_stage`] for a run that validates many stages with functions in common: naga reads
+/// the prototype of each function `known` holds valid in the same surroundings, a text it
+/// accepted before is not read again, and `known` learns what naga accepts. The verdict and the
+/// diagnostics are those of [`validate_stage`].
+pub fn validate_stage_reusing(
+    frontend: &mut Frontend,
+    stage: &LoweredStage,
+    provider: &dyn FileProvider,
+    known: &KnownValid,
+) -> Result<(), Vec<Diagnostic>> {
+    validate_text(frontend, naga_stage_of(stage.stage), &stage.preprocessed, &stage.lowered, provider, Some(known)).map(drop)
+}
+
+fn naga_stage_of(stage: Stage) -> naga::ShaderStage {
+    match stage {
         Stage::Vertex => naga::ShaderStage::Vertex,
         Stage::Fragment => naga::ShaderStage::Fragment,
-    };
-    validate_text(frontend, naga_stage, &stage.preprocessed, &stage.lowered, provider)
+    }
 }
 
 /// Parses and validates a lowered compute stage; errors point into the pack's files.
@@ -108,7 +125,17 @@ pub fn validate_compute(
     stage: &LoweredCompute,
     provider: &dyn FileProvider,
 ) -> Result<ValidStage, Vec<Diagnostic>> {
-    validate_text(frontend, naga::ShaderStage::Compute, &stage.preprocessed, &stage.lowered, provider)
+    validate_text(frontend, naga::ShaderStage::Compute, &stage.preprocessed, &stage.lowered, provider, None).map(|valid| valid.expect("naga ran"))
+}
+
+/// [`validate_compute`] as [`validate_stage_reusing`] does it.
+pub fn validate_compute_reusing(
+    frontend: &mut Frontend,
+    stage: &LoweredCompute,
+    provider: &dyn FileProvider,
+    known: &KnownValid,
+) -> Result<(), Vec<Diagnostic>> {
+    validate_text(frontend, naga::ShaderStage::Compute, &stage.preprocessed, &stage.lowered, provider, Some(known)).map(drop)
 }
 
 /// Deepest bracket nesting naga is given.
@@ -161,7 +188,8 @@ fn validate_text(
     pre: &Preprocessed,
     lowered: &Lowered,
     provider: &dyn FileProvider,
-) -> Result<ValidStage, Vec<Diagnostic>> {
+    known: Option<&KnownValid>,
+) -> Result<Option<ValidStage>, Vec<Diagnostic>> {
     if let Some((line, message)) = too_complex(&lowered.text) {
         return Err(vec![Diagnostic::error(Code::Glsl, message, pre.location(line))]);
     }
@@ -169,7 +197,21 @@ fn validate_text(
     // repaired in the text (line for line) and naga runs again. naga stops at a stage's first
     // error; after one inside a function, the function's body is blanked (its signature kept)
     // and naga runs again, so that the errors of the other functions are found too.
-    let mut text = lowered.text.clone();
+    // A lenient stage's repairs are reported, so each of its functions is read whole.
+    let known = known.filter(|_| !pre.lenient);
+    let mut functions = known.map(|_| known_valid::functions_of(&lowered.text, &format!("{naga_stage:?}"))).unwrap_or_default();
+    let mut text = match known {
+        Some(known) => known.stubbed(&lowered.text, &functions),
+        None => lowered.text.clone(),
+    };
+    let stubbed_digest = known.map(|known| known.text_digest(&format!("{naga_stage:?}"), &text));
+    if let (Some(known), Some(digest)) = (known, &stubbed_digest)
+        && known.accepted(digest)
+    {
+        return Ok(None);
+    }
+    // Lines of the functions whose bodies were blanked after an error.
+    let mut rejected: Vec<u32> = Vec::new();
     let version = pre.version.as_ref().map_or(110, |v| v.number);
     // Scalars take swizzles (`f().r`) from GLSL 4.20 or with GL_ARB_shading_language_420pack.
     let scalar_swizzles = version >= 420 || extension_enabled(&pre.text, "GL_ARB_shading_language_420pack");
@@ -185,9 +227,18 @@ fn validate_text(
                     {
                         return Err(vec![diagnostic]);
                     }
-                    return Ok(ValidStage { module, info, lenient_repairs });
+                    if let (Some(known), Some(digest)) = (known, stubbed_digest) {
+                        known.remember(&functions, &rejected);
+                        known.remember_text(digest);
+                    }
+                    return Ok(Some(ValidStage { module, info, lenient_repairs }));
                 }
-                Ok(_) => return Err(found),
+                Ok(_) => {
+                    if let Some(known) = known {
+                        known.remember(&functions, &rejected);
+                    }
+                    return Err(found);
+                }
                 Err(e) => {
                     if repairs < MAX_REPAIRS
                         && let Some(repair) = implicit_conversion(&text, &module, e.as_inner(), version, pre.lenient)
@@ -219,6 +270,25 @@ fn validate_text(
                 }
             },
             Err(errors) => {
+                // A prototype in place of a function that overloads a built-in naga declares
+                // (`float dot(float, float)`) clashes with it: that function gets a stub body
+                // instead, and naga starts over.
+                let clashes: Vec<u32> = errors
+                    .errors
+                    .iter()
+                    .filter(|e| matches!(&e.kind, ErrorKind::SemanticError(m) if m.as_ref() == "Prototype already defined"))
+                    .filter_map(|e| e.meta.to_range())
+                    .map(|span| text[..span.start].matches('\n').count() as u32 + 1)
+                    .collect();
+                if let Some(known) = known
+                    && known.stub_with_bodies(&mut functions, &clashes)
+                {
+                    text = known.stubbed(&lowered.text, &functions);
+                    found.clear();
+                    rejected.clear();
+                    lenient_repairs.clear();
+                    continue;
+                }
                 if repairs < MAX_REPAIRS
                     && let Some(repair) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles, pre.lenient))
                 {
@@ -239,7 +309,10 @@ fn validate_text(
             }
         }
         match at.and_then(|offset| without_body_at(&text, offset)) {
-            Some(blanked) if repairs < MAX_REPAIRS => text = blanked,
+            Some(blanked) if repairs < MAX_REPAIRS => {
+                rejected.push(text[..at.expect("blanked at an offset")].matches('\n').count() as u32 + 1);
+                text = blanked;
+            }
             _ => return Err(found),
         }
     }

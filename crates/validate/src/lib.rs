@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 
 use tidepack_glsl::{Code, Diagnostic, Drivers, Location};
+use tidepack_glsl::known_valid::KnownValid;
 use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
@@ -298,6 +299,8 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut off_under: HashSet<(usize, usize)> = HashSet::new();
     // Distinct lowered stages by digest of path and text, as indices into `stage_findings`.
     let mut seen_stages: HashMap<[u8; 32], usize> = HashMap::new();
+    // The functions naga accepted, which later stages give it as stubs.
+    let known = KnownValid::new();
     let mut stage_findings: Vec<Vec<Diagnostic>> = Vec::new();
     let mut stages_validated = 0;
     let chunk_size = 16 * options.threads.max(1);
@@ -354,7 +357,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             }
         }
         stages_validated += jobs.len();
-        stage_findings.extend(naga_pool::run_naga(&pool, &jobs, &pack, &sets));
+        stage_findings.extend(naga_pool::run_naga(&pool, &jobs, &pack, &sets, &known));
         // naga's findings of a stage belong to every pair that has the stage, whichever pair
         // gave it first. naga's error at a line where one of the pair's own GLSL rules already
         // named the mistake says the same in naga's words: the rule's message stands alone.
@@ -407,7 +410,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
         None
     };
     let mut reproductions =
-        if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options)) } else { BTreeMap::new() };
+        if covering.is_some() { pool.install(|| reproductions(&found, &programs, &pack, &sets, &contexts, &macros, options, &known)) } else { BTreeMap::new() };
     found = in_target(found, options.target, &mut reproductions);
     let mut silenced = levels::Silenced::default();
     diagnostics = std::mem::take(&mut diagnostics).into_iter().filter_map(|d| options.levels.apply(d, &mut silenced)).collect();
@@ -533,6 +536,7 @@ const MAX_REDUCED_ERRORS: usize = 64;
 /// For each distinct error (by its text) the defaults do not show, the fewest `--set` options
 /// found to show it: its smallest set, reduced by dropping options in halves, then quarters, …
 /// while the program still gives the same error (at the same place).
+#[allow(clippy::too_many_arguments)]
 fn reproductions(
     found: &[Finding],
     programs: &[Program],
@@ -541,6 +545,7 @@ fn reproductions(
     contexts: &[SetContext],
     macros: &PreprocessOptions,
     options: &Options,
+    known: &KnownValid,
 ) -> BTreeMap<String, OptionSet> {
     let under_defaults: HashSet<String> =
         found.iter().filter(|f| sets[f.set].1.is_empty()).map(|f| f.diagnostic.to_string()).collect();
@@ -571,7 +576,7 @@ fn reproductions(
                 diagnostics.iter().any(same) || {
                     let jobs: Vec<Job> = stages.into_iter().map(|stage| Job { stage, set: 0, position_optional: !program.other_stages.is_empty() }).collect();
                     let mut frontend = tidepack_glsl::naga_check::Frontend::default();
-                    jobs.iter().any(|job| naga_pool::check_one(&mut frontend, job, pack, set).iter().any(same))
+                    jobs.iter().any(|job| naga_pool::check_one(&mut frontend, job, pack, set, known).iter().any(same))
                 }
             };
             let mut needed: Vec<(String, tidepack_loader::option_lines::OptionValue)> =

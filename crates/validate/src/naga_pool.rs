@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use tidepack_loader::option_lines::OptionSet;
 use tidepack_glsl::preprocess::Preprocessed;
+use tidepack_glsl::known_valid::KnownValid;
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::{Code, Diagnostic, Location};
 
@@ -115,26 +116,23 @@ pub(crate) fn worker_pool(threads: usize) -> rayon::ThreadPool {
 }
 
 /// Validates the jobs with naga on `pool`; each job's diagnostics, in the order of `jobs`.
-pub(crate) fn run_naga(pool: &rayon::ThreadPool, jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Vec<Diagnostic>> {
+/// `known` holds the functions naga accepted so far in this run (see [`KnownValid`]).
+pub(crate) fn run_naga(pool: &rayon::ThreadPool, jobs: &[Job], pack: &PackFiles, sets: &[(String, OptionSet)], known: &KnownValid) -> Vec<Vec<Diagnostic>> {
     // One naga front-end per rayon job, reused for the stages it takes.
-    pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_job(frontend, job, pack, sets)).collect())
-}
-
-fn check_job(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, sets: &[(String, OptionSet)]) -> Vec<Diagnostic> {
-    check_one(frontend, job, pack, &sets[job.set].1)
+    pool.install(|| jobs.par_iter().map_init(naga_check::Frontend::default, |frontend, job| check_one(frontend, job, pack, &sets[job.set].1, known)).collect())
 }
 
 /// One job through naga under `set`; a panic inside naga becomes a warning that the stage was
 /// not checked.
-pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, set: &OptionSet) -> Vec<Diagnostic> {
+pub(crate) fn check_one(frontend: &mut naga_check::Frontend, job: &Job, pack: &PackFiles, set: &OptionSet, known: &KnownValid) -> Vec<Diagnostic> {
     let provider = SetProvider::new(pack, set);
     let entry = &job.stage.preprocessed().files[0];
     if let Some(over) = over_naga_budget(job.stage.text()) {
         return vec![Diagnostic::warning(Code::Budget, format!("not validated: {over}"), Some(Location::line(entry.clone(), 1)))];
     }
     let result = std::panic::catch_unwind(AssertUnwindSafe(|| match &job.stage {
-        JobStage::Graphics(stage) => naga_check::validate_stage(frontend, stage, &provider).map(|_| ()),
-        JobStage::Compute(stage) => naga_check::validate_compute(frontend, stage, &provider).map(|_| ()),
+        JobStage::Graphics(stage) => naga_check::validate_stage_reusing(frontend, stage, &provider, known),
+        JobStage::Compute(stage) => naga_check::validate_compute_reusing(frontend, stage, &provider, known),
     }));
     match result {
         Ok(Ok(())) => Vec::new(),
