@@ -135,6 +135,74 @@ pub struct PreprocessOptions {
     /// [`Preprocessed::redefinitions`]). The renderer draws what lenient drivers run, and
     /// `compat::for_strict_drivers` rewrites the text for OpenGL; `validate` leaves this off.
     pub lenient: bool,
+    /// Where a run that preprocesses the same files many times over (every program under every
+    /// option set) keeps their tokens.
+    pub token_cache: Option<Arc<TokenCache>>,
+}
+
+/// The tokens of the files one run has read, by their text. A file is tokenized once however
+/// many programs and option sets include it; past [`TOKEN_CACHE_BYTES`] new files are no
+/// longer kept.
+#[derive(Default)]
+pub struct TokenCache {
+    files: std::sync::Mutex<FxHashMap<u64, Vec<TokenizedFile>>>,
+    bytes: std::sync::atomic::AtomicUsize,
+}
+
+/// The most a [`TokenCache`] keeps: the texts and 16 bytes per token.
+pub const TOKEN_CACHE_BYTES: usize = 256 << 20;
+
+struct TokenizedFile {
+    text: Arc<str>,
+    tokens: Arc<[CachedToken]>,
+}
+
+#[derive(Clone, Copy)]
+struct CachedToken {
+    kind: TokenKind,
+    offset: u32,
+    len: u32,
+    line: u32,
+}
+
+impl std::fmt::Debug for TokenCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "TokenCache({} bytes)", self.bytes.load(std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
+impl TokenCache {
+    /// The tokens of `text`, from the cache when it holds them.
+    fn tokens<'t>(&self, text: &'t Arc<str>) -> Result<Vec<Token<'t>>, crate::token::TokenizeError> {
+        use std::hash::Hasher;
+        let mut hasher = rustc_hash::FxHasher::default();
+        hasher.write(text.as_bytes());
+        let hash = hasher.finish();
+        let view = |cached: &[CachedToken]| {
+            cached
+                .iter()
+                .map(|t| Token { kind: t.kind, text: &text[t.offset as usize..(t.offset + t.len) as usize], offset: t.offset as usize, line: t.line })
+                .collect()
+        };
+        let found = self.files.lock().unwrap_or_else(|e| e.into_inner()).get(&hash).and_then(|files| {
+            files.iter().find(|f| *f.text == **text).map(|f| f.tokens.clone())
+        });
+        if let Some(cached) = found {
+            return Ok(view(&cached));
+        }
+
+        let tokens = tokenize(text)?;
+        let size = text.len() + tokens.len() * std::mem::size_of::<CachedToken>();
+        // Offsets past 4 GiB do not fit; no text comes near that (MAX_SPLICED_BYTES).
+        if text.len() < u32::MAX as usize
+            && self.bytes.fetch_add(size, std::sync::atomic::Ordering::Relaxed) + size <= TOKEN_CACHE_BYTES
+        {
+            let cached: Arc<[CachedToken]> =
+                tokens.iter().map(|t| CachedToken { kind: t.kind, offset: t.offset as u32, len: t.text.len() as u32, line: t.line }).collect();
+            self.files.lock().unwrap_or_else(|e| e.into_inner()).entry(hash).or_default().push(TokenizedFile { text: text.clone(), tokens: cached });
+        }
+        Ok(tokens)
+    }
 }
 
 /// How the loader reads `#include`s. OptiFine takes `#include "path"` only (any other line
@@ -196,6 +264,7 @@ pub fn preprocess(
         directive_before_version: None,
         include_rules: options.include_rules,
         lenient: options.lenient,
+        token_cache: options.token_cache.as_deref(),
     };
     for (name, value) in &options.predefined {
         let body = owned_tokens(&tokenize(value).map_err(|e| {
@@ -287,6 +356,7 @@ struct Preprocessor<'p> {
     directive_before_version: Option<(String, u32, String)>,
     include_rules: IncludeRules,
     lenient: bool,
+    token_cache: Option<&'p TokenCache>,
 }
 
 /// A logical line: tokens up to a line break, continuations included.
@@ -340,10 +410,14 @@ impl Preprocessor<'_> {
         }
     }
 
-    fn process_file(&mut self, path: &str, text: &str) -> Result<(), Diagnostic> {
+    fn process_file(&mut self, path: &str, text: &Arc<str>) -> Result<(), Diagnostic> {
         let file = self.file_id(path);
         let err_at = |line: u32, msg: String| Diagnostic::error(Code::Preprocessor, msg, Some(Location::line(path, line)));
-        let tokens = tokenize(text).map_err(|e| err_at(e.line, e.message))?;
+        let tokens = match self.token_cache {
+            Some(cache) => cache.tokens(text),
+            None => tokenize(text),
+        }
+        .map_err(|e| err_at(e.line, e.message))?;
         let lines = logical_lines(&tokens);
         let mut conds: Vec<Conditional> = Vec::new();
         let mut index = 0;
@@ -1447,6 +1521,26 @@ mod tests {
 
     fn run(list: &[(&str, &str)]) -> Result<Preprocessed, Diagnostic> {
         preprocess(&files(list), list[0].0, &PreprocessOptions::default())
+    }
+
+    #[test]
+    fn a_token_cache_tokenizes_each_text_once_and_never_serves_another_text() {
+        let options = PreprocessOptions { token_cache: Some(Arc::new(TokenCache::default())), ..PreprocessOptions::default() };
+        let cached_bytes = || options.token_cache.as_ref().unwrap().bytes.load(std::sync::atomic::Ordering::Relaxed);
+        let pack = files(&[("a.fsh", "#version 120\n#include \"lib.glsl\"\nvoid main() { gl_FragColor = vec4(K); }\n"), ("lib.glsl", "#define K 0.5\n")]);
+        let alone = preprocess(&pack, "a.fsh", &PreprocessOptions::default()).unwrap();
+        let first = preprocess(&pack, "a.fsh", &options).unwrap();
+        let bytes = cached_bytes();
+        assert!(bytes > 0);
+        let second = preprocess(&pack, "a.fsh", &options).unwrap();
+        assert_eq!((&first.text, &first.lines), (&alone.text, &alone.lines));
+        assert_eq!((&second.text, &second.lines), (&alone.text, &alone.lines));
+        assert_eq!(cached_bytes(), bytes, "the second run read every file from the cache");
+        // The same path with other text (an option set's value) is tokenized anew.
+        let mut changed = pack.clone();
+        changed.insert("lib.glsl".into(), Arc::from("#define K 0.25\n"));
+        assert!(preprocess(&changed, "a.fsh", &options).unwrap().text.contains("vec4(0.25)"));
+        assert!(cached_bytes() > bytes);
     }
 
     #[test]

@@ -201,7 +201,7 @@ impl StandardMacros {
     }
 
     pub fn preprocess_options(&self) -> PreprocessOptions {
-        PreprocessOptions { predefined: self.definitions(), include_rules: self.include_rules(), lenient: false }
+        PreprocessOptions { predefined: self.definitions(), include_rules: self.include_rules(), lenient: false, token_cache: None }
     }
 
     /// How the loader these macros stand for reads `#include` paths: Iris also without quotes.

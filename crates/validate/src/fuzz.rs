@@ -235,7 +235,7 @@ pub mod targets {
         let files: HashMap<String, Arc<str>> =
             [("composite.fsh".to_string(), Arc::from(program)), ("lib/a.glsl".to_string(), Arc::from(include))].into();
         let include_rules = if data.first().is_some_and(|b| b & 1 == 1) { IncludeRules::Iris } else { IncludeRules::OptiFine };
-        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_rules, lenient: false };
+        let options = PreprocessOptions { predefined: vec![("MC_VERSION".into(), "12004".into())], include_rules, lenient: false, token_cache: None };
         if let Ok(pre) = preprocess_program(&files, "composite.fsh", &options) {
             for line in 1..=pre.text.matches('\n').count() as u32 {
                 if let Some(at) = pre.location(line) {

@@ -18,7 +18,7 @@ use sha2::{Digest, Sha256};
 
 use tidepack_glsl::{Code, Diagnostic, Drivers, Location};
 use tidepack_glsl::known_valid::KnownValid;
-use tidepack_glsl::preprocess::PreprocessOptions;
+use tidepack_glsl::preprocess::{PreprocessOptions, TokenCache};
 use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
 use tidepack_loader::macros::StandardMacros;
@@ -229,7 +229,8 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
             ));
         }
     }
-    let macros = options.macros.preprocess_options();
+    // Every program under every set reads the same files: each is tokenized once.
+    let macros = PreprocessOptions { token_cache: Some(std::sync::Arc::new(TokenCache::default())), ..options.macros.preprocess_options() };
     let runs = |name: &str| programs::runs_with(name, options.loader, options.macros.distant_horizons);
     let mut reports: Vec<ProgramReport> = programs
         .iter()
