@@ -62,6 +62,7 @@ codes! {
     UnknownSampler "unknown-sampler" "a sampler the loader binds nothing to: it reads texture unit 0",
     UnknownImage "unknown-image" "an image uniform the loader binds nothing to",
     UndefinedInIf "undefined-in-if" "a macro `#if` reads that is not defined there: it reads as 0",
+    FloatInIf "float-in-if" "a number with a fraction or an exponent in `#if`, which Iris reads as its integer part and drivers refuse",
     Properties "properties" "a line of shaders.properties the loader cannot use",
     Profile "profile" "a profile that names something missing, sets a value an option does not have, or loops",
     // What the pack is, as files.

@@ -651,12 +651,22 @@ impl Preprocessor<'_> {
     /// Evaluates a condition, warning about undefined names (OptiFine reads them as 0, which
     /// hides typos).
     fn condition(&mut self, args: &[Token<'_>], consult: bool, path: &str, line: u32) -> Result<bool, Diagnostic> {
-        let (value, undefined) =
+        let (value, undefined, truncated) =
             self.eval_condition(args, consult).map_err(|m| Diagnostic::error(Code::Preprocessor, m, Some(Location::line(path, line))))?;
         for name in undefined {
             self.out.warnings.push(Diagnostic::warning(
                 Code::UndefinedInIf,
                 format!("`{name}` is not defined here and reads as 0 in #if"),
+                Some(Location::line(path, line)),
+            ));
+        }
+        for (number, integer) in truncated {
+            self.out.warnings.push(Diagnostic::warning(
+                Code::FloatInIf,
+                format!(
+                    "`{number}` reads as {integer} in this #if: Iris's preprocessor keeps the integer part of a number, so the \
+                     test compares integers; OptiFine hands #if to the driver, and every driver refuses a number that is not an integer"
+                ),
                 Some(Location::line(path, line)),
             ));
         }
@@ -924,8 +934,10 @@ impl Preprocessor<'_> {
         Ok(out)
     }
 
-    /// Evaluates an `#if`/`#elif` expression; also returns the undefined names it read as 0.
-    fn eval_condition(&mut self, args: &[Token<'_>], consult: bool) -> Result<(bool, Vec<String>), String> {
+    /// Evaluates an `#if`/`#elif` expression; also returns the undefined names it read as 0 and,
+    /// under Iris's rules, the numbers it read as their integer part.
+    #[allow(clippy::type_complexity)]
+    fn eval_condition(&mut self, args: &[Token<'_>], consult: bool) -> Result<(bool, Vec<String>, Vec<(String, i64)>), String> {
         // `defined X` is resolved before macro expansion, as in C.
         let mut resolved = Vec::new();
         let sig: Vec<&Token<'_>> = args.iter().filter(|t| !t.is_trivia()).collect();
@@ -961,11 +973,19 @@ impl Preprocessor<'_> {
             self.out.consulted_macros.extend(in_expression);
         }
         let mut undefined = Vec::new();
+        let mut truncated = Vec::new();
+        let iris = self.include_rules == IncludeRules::Iris;
         let values: Vec<ExprToken> = expanded
             .iter()
             .filter(|t| !is_trivia_kind(t.kind))
             .map(|t| match t.kind {
-                TokenKind::Number => parse_int(&t.text).map(ExprToken::Num),
+                TokenKind::Number => parse_int(&t.text).map(ExprToken::Num).or_else(|e| match integer_part(&t.text) {
+                    Some(integer) if iris => {
+                        truncated.push((t.text.clone(), integer));
+                        Ok(ExprToken::Num(integer))
+                    }
+                    _ => Err(e),
+                }),
                 TokenKind::Ident => {
                     if consult {
                         self.out.consulted_macros.insert(t.text.clone());
@@ -985,7 +1005,7 @@ impl Preprocessor<'_> {
         if parser.pos != values.len() {
             return Err("unexpected tokens at the end of the #if expression".into());
         }
-        Ok((value != 0, undefined))
+        Ok((value != 0, undefined, truncated))
     }
 
     fn record_comment_directive(&mut self, comment: &str, path: &str, line: u32) -> Result<(), String> {
@@ -1317,6 +1337,31 @@ fn parse_int(text: &str) -> Result<i64, String> {
     parsed.map_err(|_| format!("`{text}` is not an integer; #if works on integers only"))
 }
 
+/// A decimal number with a fraction or an exponent as Iris's preprocessor (JCPP's
+/// `NumericValue.longValue`) reads it in `#if`: the digits before the point, times ten to the
+/// exponent, truncated (`0.5` is 0, `2.0f` is 2, `1.5e1` is 10, `5e-1` is 0).
+fn integer_part(text: &str) -> Option<i64> {
+    let t = text.trim_end_matches(['f', 'F', 'l', 'L']);
+    if t.starts_with("0x") || t.starts_with("0X") {
+        return None;
+    }
+    let (mantissa, exponent) = match t.split_once(['e', 'E']) {
+        Some((m, e)) => (m, Some(e.parse::<i32>().ok()?)),
+        None => (t, None),
+    };
+    let (integer, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = |part: &str| part.bytes().all(|b| b.is_ascii_digit());
+    if !(digits(integer) && digits(fraction)) || (!mantissa.contains('.') && exponent.is_none()) {
+        return None;
+    }
+    let value: i64 = if integer.is_empty() { 0 } else { integer.parse().ok()? };
+    Some(match exponent {
+        // Java's cast of a double to long truncates toward zero and saturates.
+        Some(e) => (value as f64 * 10f64.powi(e)) as i64,
+        None => value,
+    })
+}
+
 enum ExprToken {
     Num(i64),
     Op(String),
@@ -1521,6 +1566,20 @@ mod tests {
 
     fn run(list: &[(&str, &str)]) -> Result<Preprocessed, Diagnostic> {
         preprocess(&files(list), list[0].0, &PreprocessOptions::default())
+    }
+
+    #[test]
+    fn a_number_that_is_not_an_integer_in_if_is_an_error_but_under_iris_its_integer_part() {
+        let pack = [("a.fsh", "#if 0.5 < 1.5e1\nfloat taken;\n#endif\n")];
+        assert!(run(&pack).unwrap_err().message.contains("`0.5` is not an integer"));
+        let iris = PreprocessOptions { include_rules: IncludeRules::Iris, ..PreprocessOptions::default() };
+        let pre = preprocess(&files(&pack), "a.fsh", &iris).unwrap();
+        assert!(pre.text.contains("float taken;"), "0 < 10");
+        let read: Vec<&str> = pre.warnings.iter().filter(|w| w.code == Code::FloatInIf).map(|w| w.message.as_str()).collect();
+        assert!(read.len() == 2 && read[0].contains("`0.5` reads as 0") && read[1].contains("`1.5e1` reads as 10"), "{read:?}");
+        for (number, integer) in [("2.0f", Some(2)), (".5", Some(0)), ("5.", Some(5)), ("5e-1", Some(0)), ("12", None), ("0x1.8p1", None)] {
+            assert_eq!(integer_part(number), integer, "{number}");
+        }
     }
 
     #[test]

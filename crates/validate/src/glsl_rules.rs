@@ -140,12 +140,15 @@ impl<'a> Globals<'a> {
         let is_output = qualifiers.contains("out") || (stage == Stage::Vertex && qualifiers.contains("varying"));
         let sampler = words.iter().find(|t| t.text.starts_with("sampler")).map(|t| t.text);
         for (i, t) in words.iter().enumerate() {
-            // A name: an identifier after the type or a `,`, before a `,`, `[`, `=` or the end.
+            // A name: an identifier after the type (an array type's `]` too: `vec3[9] names`) or
+            // a `,`, before a `,`, `[`, `=` or the end; not the type of `vec3[9] names` itself.
             let next = words.get(i + 1).map(|n| n.text);
             let previous = i.checked_sub(1).map(|p| words[p]);
             let after_name = matches!(next, None | Some("," | "[" | "="));
-            let after_type = previous.is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct(","));
-            if t.kind != TokenKind::Ident || !after_name || !after_type || is_inside_parens(words, i) {
+            let after_type = previous.is_some_and(|p| p.kind == TokenKind::Ident || p.is_punct(",") || p.is_punct("]"));
+            let array_type = next == Some("[")
+                && words[i + 1..].iter().position(|w| w.is_punct("]")).and_then(|close| words.get(i + 2 + close)).is_some_and(|w| w.kind == TokenKind::Ident);
+            if t.kind != TokenKind::Ident || !after_name || !after_type || array_type || is_inside_parens(words, i) {
                 continue;
             }
             match (qualifiers.contains("uniform"), sampler) {
