@@ -582,6 +582,12 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
                 "the constant index {index} is past the end of the vector, matrix or array it selects from (every compiler refuses it)"
             )
         }
+        // naga's lookups take a sampler variable or parameter only.
+        ErrorKind::SemanticError(m) if m.as_ref() == "Bad call" => {
+            "this lookup's sampler is an expression: GLSL takes a sampler by its name, an element of a sampler array or a \
+             parameter, never the result of `?:` or of an assignment (samplers are opaque; Mesa refuses it)"
+                .to_string()
+        }
         // naga names the expression by its internal form.
         ErrorKind::SemanticError(m) if m.ends_with("cannot be in the left hand side") => {
             "this cannot be assigned to: the left side of an assignment must be a variable, an element, a field or a swizzle"
