@@ -10,7 +10,7 @@ pub use naga::front::glsl::Frontend;
 use naga::front::glsl::{ErrorKind, ExpectedToken, Options, TokenValue};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
-use crate::diagnostic::{Diagnostic, Location};
+use crate::diagnostic::{Diagnostic, Drivers, Location};
 use crate::known_valid::{self, KnownValid};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
@@ -204,7 +204,7 @@ fn validate_text(
         Some(known) => known.stubbed(&lowered.text, &functions),
         None => lowered.text.clone(),
     };
-    let stubbed_digest = known.map(|known| known.text_digest(&format!("{naga_stage:?}"), &text));
+    let mut stubbed_digest = known.map(|known| known.text_digest(&format!("{naga_stage:?}"), &text));
     if let (Some(known), Some(digest)) = (known, &stubbed_digest)
         && known.accepted(digest)
     {
@@ -250,7 +250,11 @@ fn validate_text(
                         text = repair.text;
                         continue;
                     }
-                    let said = built_in_of_another_stage(&text, e.as_inner(), naga_stage).or_else(|| glsl_message(&module, e.as_inner()));
+                    let mix_selector = scalar_mix_selector(&module, e.as_inner());
+                    let refused_by = if mix_selector.is_some() { Drivers::ALL.without(Drivers::NVIDIA) } else { Drivers::ALL };
+                    let said = mix_selector
+                        .or_else(|| built_in_of_another_stage(&text, e.as_inner(), naga_stage))
+                        .or_else(|| glsl_message(&module, e.as_inner()));
                     let (message, span) = said.unwrap_or_else(|| {
                         let mut message = e.as_inner().to_string();
                         let mut source = e.as_inner().source();
@@ -266,7 +270,7 @@ fn validate_text(
                     let span = span.filter(|s| s.is_defined()).or_else(|| e.spans().map(|(span, _)| *span).filter(|s| s.is_defined()).last());
                     let at = span.map(|span| span.location(&text));
                     let offset = span.and_then(|s| s.to_range()).map(|r| r.start);
-                    (vec![diagnostic_at(pre, &text, provider, message, at)], offset)
+                    (vec![diagnostic_at(pre, &text, provider, message, at).refused_by(refused_by)], offset)
                 }
             },
             Err(errors) => {
@@ -284,6 +288,7 @@ fn validate_text(
                     && known.stub_with_bodies(&mut functions, &clashes)
                 {
                     text = known.stubbed(&lowered.text, &functions);
+                    stubbed_digest = Some(known.text_digest(&format!("{naga_stage:?}"), &text));
                     found.clear();
                     rejected.clear();
                     lenient_repairs.clear();
@@ -1069,6 +1074,29 @@ fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> 
     Some((message, None))
 }
 
+/// `mix(vec3, vec3, bool)` said in GLSL's terms, at the call: GLSL picks the components of
+/// vectors with a bool vector of their size; NVIDIA takes one bool for every component.
+fn scalar_mix_selector(module: &naga::Module, error: &naga::valid::ValidationError) -> Option<(String, Option<naga::Span>)> {
+    use naga::valid::{ExpressionError, FunctionError};
+    let (function, FunctionError::Expression { handle, source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, 2, selector) }) =
+        failing_function(module, error)?
+    else {
+        return None;
+    };
+    // naga has made a bool vector of the bool.
+    let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
+    let naga::Expression::Math { arg, .. } = function.expressions[*handle] else { return None };
+    let vector = expression_types(module, function)(arg)?;
+    let vector = glsl_type_name(&vector)?;
+    let n = size as u8;
+    let message = format!(
+        "`mix` of two {vector}s takes a bvec{n} (GLSL 1.30 on) as its third argument to pick components, not a bool: write bvec{n}(...) \
+         (NVIDIA takes the bool for every component; Mesa, AMD, Intel and macOS refuse it)"
+    );
+    let span = [value, *handle, arg].into_iter().map(|e| function.expressions.get_span(e)).find(naga::Span::is_defined);
+    Some((message, span))
+}
+
 /// The name of the variable (or uniform block member) a pointer expression designates.
 fn pointer_name(module: &naga::Module, function: &naga::Function, pointer: naga::Handle<naga::Expression>) -> Option<String> {
     use naga::Expression as E;
@@ -1263,6 +1291,16 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             return repaired(format!("{}({zero}(0u) - {inner}){}", &text[..minus], &text[span.end..]));
         }
         FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?, true),
+        FunctionError::Expression { source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, 2, selector), .. } if lenient => {
+            // `mix(vec3, vec3, bool)`: naga makes a bool vector of the bool and refuses it as a
+            // `mix` selector; NVIDIA takes the bool for every component, which `bvec3(b)` says.
+            let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
+            let span = whole_span(text, function, value)?;
+            let inner = text.get(span.clone())?;
+            let constructor = format!("bvec{}", size as u8);
+            let lenient = Some((span.start, Leniency::Converted { constructor: constructor.clone(), value: inner.to_string(), beside: None }));
+            return Some(Repair { text: format!("{}{constructor}({inner}){}", &text[..span.start], &text[span.end..]), lenient });
+        }
         FunctionError::Expression { handle, source: ExpressionError::InvalidSampleOffsetExprType } if lenient => {
             let naga::Expression::ImageSample { image, .. } = function.expressions[*handle] else { return None };
             let dimensions = match type_of(image)? {

@@ -375,9 +375,9 @@ fn what_only_lenient_drivers_compile_is_rewritten_for_opengl_listed_and_drawn_al
 /// What NVIDIA's driver does implicitly (tests/packs/nvidia_implicit): inputs placed at the
 /// generic locations it aliases to the legacy position, colour and texture coordinate, a vec4
 /// stored in a float, a uint returned from a float function, a lookup offset that is not a
-/// constant, a vector compared with a scalar, a `const` local initialised from a parameter, a
-/// bias in a vertex stage, a function named as a statement with no call, and an output never
-/// written. Both
+/// constant, a vector compared with a scalar, a `mix` of vectors with a bool, a `const` local
+/// initialised from a parameter, a bias in a vertex stage, a function named as a statement with
+/// no call, and an output never written. Both
 /// renderers read the inputs from the vertex's data and convert the values as NVIDIA does (the
 /// conversions listed at their lines), and agree at every step.
 #[test]
@@ -386,19 +386,20 @@ fn what_nvidia_does_implicitly_both_renderers_do_alike() {
     assert!(pack.failed.is_empty(), "{:?}", pack.failed);
     let rewrites = pack.gl_rewrites();
     for expected in [
-        "gbuffers_terrain: gbuffers_terrain.fsh:12: `count / 4u` converted with float()",
-        "gbuffers_terrain: gbuffers_terrain.fsh:15: `const` dropped from `halfLight`",
-        "gbuffers_terrain: gbuffers_terrain.fsh:19: `texture(gtexture, uv)` converted with float()",
-        "gbuffers_terrain: gbuffers_terrain.fsh:21: a lookup with an offset that is not a constant",
-        "gbuffers_terrain: gbuffers_terrain.fsh:22: `0` converted with vec2()",
-        "gbuffers_terrain: gbuffers_terrain.fsh:23: `sign(uv.x - 2.0)` converted with vec3()",
-        "gbuffers_terrain: gbuffers_terrain.fsh:24: `lessThan(uv, vec2(-1.0)) || greaterThan(uv, vec2(2.0))`, which NVIDIA takes component by component",
+        "gbuffers_terrain: gbuffers_terrain.fsh:13: `count / 4u` converted with float()",
+        "gbuffers_terrain: gbuffers_terrain.fsh:16: `const` dropped from `halfLight`",
+        "gbuffers_terrain: gbuffers_terrain.fsh:20: `texture(gtexture, uv)` converted with float()",
+        "gbuffers_terrain: gbuffers_terrain.fsh:22: a lookup with an offset that is not a constant",
+        "gbuffers_terrain: gbuffers_terrain.fsh:23: `0` converted with vec2()",
+        "gbuffers_terrain: gbuffers_terrain.fsh:24: `sign(uv.x - 2.0)` converted with vec3()",
+        "gbuffers_terrain: gbuffers_terrain.fsh:25: `lessThan(uv, vec2(-1.0)) || greaterThan(uv, vec2(2.0))`, which NVIDIA takes component by component",
+        "gbuffers_terrain: gbuffers_terrain.fsh:26: `tint.b > 0.25` converted with bvec3()",
         "gbuffers_terrain: gbuffers_terrain.vsh:14: `texture2D()` with a bias in a vertex stage",
         "gbuffers_terrain: gbuffers_terrain.vsh:21: `blurredColour;`, a function named without a call",
     ] {
         assert!(rewrites.iter().any(|r| r.starts_with(expected)), "{expected:?} is not among {rewrites:#?}");
     }
-    assert_eq!(rewrites.len(), 9, "{rewrites:#?}");
+    assert_eq!(rewrites.len(), 10, "{rewrites:#?}");
     let (report, screen) = render_job("nvidia_implicit");
     let gl = report.gl.as_ref().expect("an OpenGL frame");
     assert!(gl.refused.is_none(), "{:?}", gl.refused);
