@@ -894,6 +894,9 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
     // A local declaration of several arrays (`vec3 normals[6], points[6];`), each declarator
     // its own declaration: naga's front end sizes the first alone.
     edits.extend(local_array_declarators_split(&sig));
+    // A local `const int` in an array size or an index (`float lights[n * n];`) becomes its
+    // value's expression: naga's front end reads sizes where locals are not in scope.
+    edits.extend(local_constants_in_brackets(text, &sig));
     // `gl_FragDepth` read and never written keeps the depth the fragment was rasterised at:
     // naga would make it the depth output, unset.
     if stage == Stage::Fragment && !compute {
@@ -960,6 +963,58 @@ fn local_array_declarators_split(sig: &[&Token]) -> Vec<(std::ops::Range<usize>,
         }
         for c in commas {
             edits.push((sig[c].offset..sig[c].offset + 1, format!("; {}", sig[k].text)));
+        }
+    }
+    edits
+}
+
+/// Edits replacing, inside `[` `]`, each name of a local `const int` or `const uint` declared
+/// earlier in the same function (`const int n = int(4.0 + 0.001);`) by its type and initializer
+/// (`int(int(4.0 + 0.001))`), where that initializer holds no line break; the initializers of
+/// such constants are read with the earlier ones already replaced.
+fn local_constants_in_brackets(text: &str, sig: &[&Token]) -> Vec<(std::ops::Range<usize>, String)> {
+    let mut edits = Vec::new();
+    let mut constants: HashMap<&str, String> = HashMap::new();
+    let (mut depth, mut brackets) = (0u32, 0u32);
+    for k in 0..sig.len() {
+        match sig[k].text {
+            "{" => depth += 1,
+            "}" => {
+                depth = depth.saturating_sub(1);
+                if depth == 0 {
+                    constants.clear();
+                }
+            }
+            "[" => brackets += 1,
+            "]" => brackets = brackets.saturating_sub(1),
+            _ => {}
+        }
+        if depth > 0
+            && sig[k].is_ident("const")
+            && let (Some(ty), Some(name), Some(equals)) = (sig.get(k + 1), sig.get(k + 2), sig.get(k + 3))
+            && matches!(ty.text, "int" | "uint")
+            && name.kind == TokenKind::Ident
+            && equals.is_punct("=")
+            && let Some(end) = (k + 4..sig.len()).find(|&j| sig[j].is_punct(";") || sig[j].is_punct(","))
+            && sig[end].is_punct(";")
+            && end > k + 4
+        {
+            let mut value = String::new();
+            for t in &sig[k + 4..end] {
+                value.push_str(constants.get(t.text).filter(|_| t.kind == TokenKind::Ident).map_or(t.text, String::as_str));
+                value.push(' ');
+            }
+            let initializer = &text[sig[k + 4].offset..sig[end].offset];
+            if !initializer.contains('\n') {
+                constants.insert(name.text, format!("{}({})", ty.text, value.trim_end()));
+            }
+        }
+        if brackets > 0
+            && sig[k].kind == TokenKind::Ident
+            && !(k > 0 && sig[k - 1].is_punct("."))
+            && let Some(value) = constants.get(sig[k].text)
+        {
+            edits.push((sig[k].offset..sig[k].offset + sig[k].text.len(), value.clone()));
         }
     }
     edits

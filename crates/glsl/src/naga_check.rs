@@ -1201,6 +1201,29 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         return None;
     }
     let repaired = |text: String| Some(Repair { text, lenient: None });
+    // `vec3(b)` of a bool, which GLSL makes a vector of 0.0 or 1.0: naga's front end selects
+    // 1.0 or 0.0 and leaves the vector out. The bool is converted in the text first.
+    let stored = match source {
+        FunctionError::InvalidStoreTypes { value, .. } | FunctionError::InvalidReturnType { expression: Some(value), .. } => Some(*value),
+        FunctionError::LocalVariable { handle, source: naga::valid::LocalVariableError::InitializerType, .. } => function.local_variables[*handle].init,
+        _ => None,
+    };
+    if let Some(value) = stored
+        && let naga::Expression::Select { condition, .. } = function.expressions[value]
+        && matches!(type_of(condition), Some(naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Bool, .. })))
+        && let Some(naga::TypeInner::Scalar(naga::Scalar { kind, .. })) = type_of(value)
+        && let Some(span) = whole_span(text, function, condition)
+        && let Some(before) = text[..span.start].trim_end().strip_suffix('(')
+        && ["vec", "ivec", "uvec"].iter().any(|v| before.trim_end().strip_suffix(['2', '3', '4']).is_some_and(|b| b.ends_with(v)))
+    {
+        let scalar = match kind {
+            naga::ScalarKind::Float => "float",
+            naga::ScalarKind::Sint => "int",
+            naga::ScalarKind::Uint => "uint",
+            _ => return None,
+        };
+        return repaired(format!("{}{scalar}({}){}", &text[..span.start], &text[span.clone()], &text[span.end..]));
+    }
     // The value converted, its target type, and whether GLSL (from 1.20) converts it there.
     let (value, target, glsl_converts) = match source {
         FunctionError::InvalidReturnType { expression: None, expected_ty: Some(ty) } => {
@@ -1211,8 +1234,13 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let tokens = tokenize(text).ok()?;
             let body = function_definitions(&tokens).into_iter().find(|f| tokens[f.open].offset >= header.start)?;
             let body_end = tokens.get(body.close)?.offset;
-            let zero = glsl_type_name(&module.types[*ty].inner)?;
-            return repaired(format!("{} return {zero}(0); {}", &text[..body_end], &text[body_end..]));
+            // A struct has no constructor from one number: an uninitialised value of it stands in.
+            let returned = match (glsl_type_name(&module.types[*ty].inner), &module.types[*ty]) {
+                (Some(zero), _) => format!("return {zero}(0);"),
+                (None, naga::Type { name: Some(name), inner: naga::TypeInner::Struct { .. } }) => format!("{{ {name} tp_unreached; return tp_unreached; }}"),
+                _ => return None,
+            };
+            return repaired(format!("{} {returned} {}", &text[..body_end], &text[body_end..]));
         }
         FunctionError::InvalidReturnType { expression: Some(value), expected_ty: Some(ty) } => {
             (*value, module.types[*ty].inner.clone(), is_initializer || version >= 420)
