@@ -175,7 +175,7 @@ pub(crate) fn functions_of(text: &str, stage: &str) -> Vec<Function> {
         // A definition also declares its signature.
         let open = tokens[d.open].offset;
         declarations.push(Declaration {
-            digest: Sha256::digest(text[tokens[start].offset..open].as_bytes()).into(),
+            digest: Sha256::digest(&text.as_bytes()[tokens[start].offset..open]).into(),
             start: tokens[start].offset,
             declares: vec![tokens[d.name].text],
             mentions: tokens[start..d.open].iter().filter(|t| t.kind == TokenKind::Ident).map(|t| t.text).collect(),
@@ -245,7 +245,7 @@ pub(crate) fn functions_of(text: &str, stage: &str) -> Vec<Function> {
                 let mut hasher = Sha256::new();
                 hasher.update(stage.as_bytes());
                 hasher.update(preamble);
-                hasher.update(text[begin..tokens[close].offset + 1].as_bytes());
+                hasher.update(&text.as_bytes()[begin..tokens[close].offset + 1]);
                 for (digest, before) in &used {
                     hasher.update(digest);
                     hasher.update([u8::from(*before)]);
@@ -313,7 +313,7 @@ fn declaration<'a>(text: &str, tokens: &[Token<'a>], statement: &[usize]) -> Dec
     }
     let mentions = statement.iter().filter(|&&i| tokens[i].kind == TokenKind::Ident).map(|&i| tokens[i].text).collect();
     Declaration {
-        digest: Sha256::digest(text[first.offset..last.offset + last.text.len()].as_bytes()).into(),
+        digest: Sha256::digest(&text.as_bytes()[first.offset..last.offset + last.text.len()]).into(),
         start: first.offset,
         declares,
         mentions,
