@@ -688,7 +688,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
 
 /// The preprocessor directives of `tokens` (`significant`: the indices of its significant
 /// tokens): the `#`, the directive's word, and the significant tokens after it on its line.
-fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize, Vec<usize>)> {
+pub(crate) fn directive_lines(tokens: &[Token], significant: &[usize]) -> Vec<(usize, usize, Vec<usize>)> {
     let mut found = Vec::new();
     for (k, &i) in significant.iter().enumerate() {
         let starts_line = k == 0 || tokens[significant[k - 1]].line != tokens[i].line;

@@ -50,9 +50,6 @@ pub(crate) struct Function {
     prototyped: bool,
 }
 
-/// The name a stub's result takes: the lowering's prefix, which pack code does not use.
-const STUB_RESULT: &str = "tp_known_valid_result";
-
 impl KnownValid {
     pub fn new() -> KnownValid {
         KnownValid::default()
@@ -75,7 +72,7 @@ impl KnownValid {
             if f.prototyped || f.key.is_some_and(|k| no_prototype.contains(&k)) {
                 out.push_str(&text[from..=f.open]);
                 if f.return_type != "void" {
-                    out.push_str(&format!(" {ty} {STUB_RESULT}; return {STUB_RESULT}; ", ty = f.return_type));
+                    out.push_str(&format!(" {} ", crate::lower::undefined_return(&f.return_type)));
                 }
                 out.extend(text[f.open + 1..f.close].chars().filter(|&c| c == '\n'));
                 from = f.close;
@@ -148,7 +145,8 @@ pub(crate) fn functions_of(text: &str, stage: &str) -> Vec<Function> {
     let Ok(tokens) = tokenize(text) else { return Vec::new() };
     let depths = brace_depths(&tokens);
     let definitions = function_definitions(&tokens);
-    let directive_lines: FxHashSet<u32> = directive_lines(&tokens);
+    let significant: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let directive_lines: FxHashSet<u32> = crate::compat::directive_lines(&tokens, &significant).iter().map(|&(hash, ..)| tokens[hash].line).collect();
     // First token of each definition: back from its name over the words of its return type.
     let starts: Vec<usize> = definitions
         .iter()
@@ -265,23 +263,6 @@ pub(crate) fn functions_of(text: &str, stage: &str) -> Vec<Function> {
         .collect()
 }
 
-/// The lines that hold a preprocessor directive (`#version`, `#extension`).
-fn directive_lines(tokens: &[Token<'_>]) -> FxHashSet<u32> {
-    let mut lines = FxHashSet::default();
-    let mut line_start = true;
-    for t in tokens {
-        if t.kind == TokenKind::Newline {
-            line_start = true;
-        } else if !t.is_trivia() {
-            if line_start && t.is_punct("#") {
-                lines.insert(t.line);
-            }
-            line_start = false;
-        }
-    }
-    lines
-}
-
 /// A top-level statement as a declaration. Outside brackets, it declares each word followed by
 /// `;`, `,`, `=`, `[` or `{` (a variable, a constant, a block or struct), and the word of a
 /// prototype (`float f(`, after a type); it mentions every word in it (its type, the constants
@@ -370,7 +351,7 @@ mod tests {
         let stubbed = known.stubbed(text, &functions);
         assert_eq!(stubbed.lines().count(), text.lines().count());
         assert!(stubbed.contains("float half_of(float x)\n;\n\n\n"), "{stubbed}");
-        assert!(stubbed.contains(&format!("float twice(float x) {{ float {STUB_RESULT}; return {STUB_RESULT}; }}")), "a second prototype would be refused: {stubbed}");
+        assert!(stubbed.contains(&format!("float twice(float x) {{ {} }}", crate::lower::undefined_return("float"))), "a second prototype would be refused: {stubbed}");
         assert!(stubbed.contains("void main() { }"), "{stubbed}");
         let rejected = KnownValid::new();
         rejected.remember(&functions, &[4]);

@@ -968,6 +968,13 @@ fn local_array_declarators_split(sig: &[&Token]) -> Vec<(std::ops::Range<usize>,
     edits
 }
 
+/// A block that returns an uninitialised value of the type named `type_name`: where control
+/// never gets, or where a function is known to pass, it gives naga the `return` of a value of
+/// any type (a struct has no constructor from one number).
+pub(crate) fn undefined_return(type_name: &str) -> String {
+    format!("{{ {type_name} tp_undefined; return tp_undefined; }}")
+}
+
 /// Edits replacing, inside `[` `]`, each name of a local `const int` or `const uint` declared
 /// earlier in the same function (`const int n = int(4.0 + 0.001);`) by its type and initializer
 /// (`int(int(4.0 + 0.001))`), where that initializer holds no line break; the initializers of

@@ -199,12 +199,13 @@ fn validate_text(
     // and naga runs again, so that the errors of the other functions are found too.
     // A lenient stage's repairs are reported, so each of its functions is read whole.
     let known = known.filter(|_| !pre.lenient);
-    let mut functions = known.map(|_| known_valid::functions_of(&lowered.text, &format!("{naga_stage:?}"))).unwrap_or_default();
+    let stage_name = format!("{naga_stage:?}");
+    let mut functions = known.map(|_| known_valid::functions_of(&lowered.text, &stage_name)).unwrap_or_default();
     let mut text = match known {
         Some(known) => known.stubbed(&lowered.text, &functions),
         None => lowered.text.clone(),
     };
-    let mut stubbed_digest = known.map(|known| known.text_digest(&format!("{naga_stage:?}"), &text));
+    let mut stubbed_digest = known.map(|known| known.text_digest(&stage_name, &text));
     if let (Some(known), Some(digest)) = (known, &stubbed_digest)
         && known.accepted(digest)
     {
@@ -244,7 +245,7 @@ fn validate_text(
                         && let Some(repair) = implicit_conversion(&text, &module, e.as_inner(), version, pre.lenient)
                     {
                         if let Some((offset, leniency)) = repair.lenient {
-                            let line = text[..offset].matches('\n').count() as u32 + 1;
+                            let line = line_at(&text, offset);
                             lenient_repairs.push(LenientRepair { location: pre.location(line), leniency });
                         }
                         text = repair.text;
@@ -282,13 +283,13 @@ fn validate_text(
                     .iter()
                     .filter(|e| matches!(&e.kind, ErrorKind::SemanticError(m) if m.as_ref() == "Prototype already defined"))
                     .filter_map(|e| e.meta.to_range())
-                    .map(|span| text[..span.start].matches('\n').count() as u32 + 1)
+                    .map(|span| line_at(&text, span.start))
                     .collect();
                 if let Some(known) = known
                     && known.stub_with_bodies(&mut functions, &clashes)
                 {
                     text = known.stubbed(&lowered.text, &functions);
-                    stubbed_digest = Some(known.text_digest(&format!("{naga_stage:?}"), &text));
+                    stubbed_digest = Some(known.text_digest(&stage_name, &text));
                     found.clear();
                     rejected.clear();
                     lenient_repairs.clear();
@@ -298,7 +299,7 @@ fn validate_text(
                     && let Some(repair) = errors.errors.iter().find_map(|e| parse_repair(&text, e, version, scalar_swizzles, pre.lenient))
                 {
                     if let Some((offset, leniency)) = repair.lenient {
-                        let line = text[..offset].matches('\n').count() as u32 + 1;
+                        let line = line_at(&text, offset);
                         lenient_repairs.push(LenientRepair { location: pre.location(line), leniency });
                     }
                     text = repair.text;
@@ -313,15 +314,20 @@ fn validate_text(
                 found.push(diagnostic);
             }
         }
-        match at.and_then(|offset| without_body_at(&text, offset)) {
-            Some(blanked) if repairs < MAX_REPAIRS => {
-                rejected.push(text[..at.expect("blanked at an offset")].matches('\n').count() as u32 + 1);
+        match at.and_then(|offset| Some((offset, without_body_at(&text, offset)?))) {
+            Some((offset, blanked)) if repairs < MAX_REPAIRS => {
+                rejected.push(line_at(&text, offset));
                 text = blanked;
             }
             _ => return Err(found),
         }
     }
     unreachable!("the loop returns")
+}
+
+/// The 1-based line of byte `offset` of `text`.
+fn line_at(text: &str, offset: usize) -> u32 {
+    text[..offset].matches('\n').count() as u32 + 1
 }
 
 /// `text` with the body of the function definition around byte `offset` blanked out (every
@@ -1077,15 +1083,9 @@ fn glsl_message(module: &naga::Module, error: &naga::valid::ValidationError) -> 
 /// `mix(vec3, vec3, bool)` said in GLSL's terms, at the call: GLSL picks the components of
 /// vectors with a bool vector of their size; NVIDIA takes one bool for every component.
 fn scalar_mix_selector(module: &naga::Module, error: &naga::valid::ValidationError) -> Option<(String, Option<naga::Span>)> {
-    use naga::valid::{ExpressionError, FunctionError};
-    let (function, FunctionError::Expression { handle, source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, 2, selector) }) =
-        failing_function(module, error)?
-    else {
-        return None;
-    };
-    // naga has made a bool vector of the bool.
-    let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
-    let naga::Expression::Math { arg, .. } = function.expressions[*handle] else { return None };
+    let (function, source) = failing_function(module, error)?;
+    let (mix, size, value) = bool_mix_selector(function, source)?;
+    let naga::Expression::Math { arg, .. } = function.expressions[mix] else { return None };
     let vector = expression_types(module, function)(arg)?;
     let vector = glsl_type_name(&vector)?;
     let n = size as u8;
@@ -1093,8 +1093,22 @@ fn scalar_mix_selector(module: &naga::Module, error: &naga::valid::ValidationErr
         "`mix` of two {vector}s takes a bvec{n} (GLSL 1.30 on) as its third argument to pick components, not a bool: write bvec{n}(...) \
          (NVIDIA takes the bool for every component; Mesa, AMD, Intel and macOS refuse it)"
     );
-    let span = [value, *handle, arg].into_iter().map(|e| function.expressions.get_span(e)).find(naga::Span::is_defined);
+    let span = [value, mix, arg].into_iter().map(|e| function.expressions.get_span(e)).find(naga::Span::is_defined);
     Some((message, span))
+}
+
+/// naga's error at `mix(vec3, vec3, b)` of one bool `b`, which naga's front end makes a bool
+/// vector and its validator refuses as a selector: the `mix`, the vector size and `b`.
+fn bool_mix_selector(
+    function: &naga::Function,
+    source: &naga::valid::FunctionError,
+) -> Option<(naga::Handle<naga::Expression>, naga::VectorSize, naga::Handle<naga::Expression>)> {
+    use naga::valid::{ExpressionError, FunctionError};
+    let FunctionError::Expression { handle, source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, 2, selector) } = source else {
+        return None;
+    };
+    let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
+    Some((*handle, size, value))
 }
 
 /// The name of the variable (or uniform block member) a pointer expression designates.
@@ -1211,17 +1225,14 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     if let Some(value) = stored
         && let naga::Expression::Select { condition, .. } = function.expressions[value]
         && matches!(type_of(condition), Some(naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Bool, .. })))
-        && let Some(naga::TypeInner::Scalar(naga::Scalar { kind, .. })) = type_of(value)
+        && let Some(scalar @ naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Float | naga::ScalarKind::Sint | naga::ScalarKind::Uint, .. })) =
+            type_of(value)
         && let Some(span) = whole_span(text, function, condition)
         && let Some(before) = text[..span.start].trim_end().strip_suffix('(')
-        && ["vec", "ivec", "uvec"].iter().any(|v| before.trim_end().strip_suffix(['2', '3', '4']).is_some_and(|b| b.ends_with(v)))
+        // `vec3(`, `ivec2(`, `uvec4(`.
+        && before.trim_end().strip_suffix(['2', '3', '4']).is_some_and(|b| b.ends_with("vec"))
     {
-        let scalar = match kind {
-            naga::ScalarKind::Float => "float",
-            naga::ScalarKind::Sint => "int",
-            naga::ScalarKind::Uint => "uint",
-            _ => return None,
-        };
+        let scalar = glsl_type_name(&scalar)?;
         return repaired(format!("{}{scalar}({}){}", &text[..span.start], &text[span.clone()], &text[span.end..]));
     }
     // The value converted, its target type, and whether GLSL (from 1.20) converts it there.
@@ -1234,10 +1245,9 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             let tokens = tokenize(text).ok()?;
             let body = function_definitions(&tokens).into_iter().find(|f| tokens[f.open].offset >= header.start)?;
             let body_end = tokens.get(body.close)?.offset;
-            // A struct has no constructor from one number: an uninitialised value of it stands in.
             let returned = match (glsl_type_name(&module.types[*ty].inner), &module.types[*ty]) {
                 (Some(zero), _) => format!("return {zero}(0);"),
-                (None, naga::Type { name: Some(name), inner: naga::TypeInner::Struct { .. } }) => format!("{{ {name} tp_unreached; return tp_unreached; }}"),
+                (None, naga::Type { name: Some(name), inner: naga::TypeInner::Struct { .. } }) => lower::undefined_return(name),
                 _ => return None,
             };
             return repaired(format!("{} {returned} {}", &text[..body_end], &text[body_end..]));
@@ -1319,10 +1329,10 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
             return repaired(format!("{}({zero}(0u) - {inner}){}", &text[..minus], &text[span.end..]));
         }
         FunctionError::InvalidStoreTypes { pointer, value } => (*value, type_of_pointee(module, function, *pointer)?, true),
-        FunctionError::Expression { source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, 2, selector), .. } if lenient => {
-            // `mix(vec3, vec3, bool)`: naga makes a bool vector of the bool and refuses it as a
-            // `mix` selector; NVIDIA takes the bool for every component, which `bvec3(b)` says.
-            let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
+        FunctionError::Expression { source: ExpressionError::InvalidArgumentType(naga::MathFunction::Mix, ..), .. } if lenient => {
+            // `mix(vec3, vec3, bool)`: NVIDIA takes the bool for every component, which
+            // `bvec3(b)` says.
+            let (_, size, value) = bool_mix_selector(function, source)?;
             let span = whole_span(text, function, value)?;
             let inner = text.get(span.clone())?;
             let constructor = format!("bvec{}", size as u8);

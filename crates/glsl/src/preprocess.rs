@@ -190,13 +190,12 @@ impl TokenCache {
         if let Some(cached) = found {
             return Ok(view(&cached));
         }
-
         let tokens = tokenize(text)?;
         let size = text.len() + tokens.len() * std::mem::size_of::<CachedToken>();
-        // Offsets past 4 GiB do not fit; no text comes near that (MAX_SPLICED_BYTES).
-        if text.len() < u32::MAX as usize
-            && self.bytes.fetch_add(size, std::sync::atomic::Ordering::Relaxed) + size <= TOKEN_CACHE_BYTES
-        {
+        // Offsets past 4 GiB do not fit; no text comes near that (MAX_SPLICED_BYTES). Threads
+        // adding at once may pass the budget by a file each.
+        if text.len() < u32::MAX as usize && self.bytes.load(std::sync::atomic::Ordering::Relaxed) + size <= TOKEN_CACHE_BYTES {
+            self.bytes.fetch_add(size, std::sync::atomic::Ordering::Relaxed);
             let cached: Arc<[CachedToken]> =
                 tokens.iter().map(|t| CachedToken { kind: t.kind, offset: t.offset as u32, len: t.text.len() as u32, line: t.line }).collect();
             self.files.lock().unwrap_or_else(|e| e.into_inner()).entry(hash).or_default().push(TokenizedFile { text: text.clone(), tokens: cached });

@@ -300,7 +300,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let mut off_under: HashSet<(usize, usize)> = HashSet::new();
     // Distinct lowered stages by digest of path and text, as indices into `stage_findings`.
     let mut seen_stages: HashMap<[u8; 32], usize> = HashMap::new();
-    // The functions naga accepted, which later stages give it as stubs.
+    // The functions naga accepted, which later stages give it as prototypes.
     let known = KnownValid::new();
     let mut stage_findings: Vec<Vec<Diagnostic>> = Vec::new();
     let mut stages_validated = 0;

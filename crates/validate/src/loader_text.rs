@@ -17,7 +17,7 @@ pub fn as_loader_hands_it(provider: &dyn FileProvider, path: &str, macros: &Stan
     if macros.iris_version.is_some()
         && let Ok(seen) = preprocess::preprocess(provider, path, &macros.preprocess_options())
     {
-        let mut map: Vec<Option<Location>> = seen.lines.iter().map(|l| Some(Location::line(seen.files[l.file as usize].clone(), l.line))).collect();
+        let mut map: Vec<Option<Location>> = (1..=seen.lines.len() as u32).map(|line| seen.location(line)).collect();
         // Iris puts `#version` first, wherever the pack wrote it (inside an `#if` on the loader's
         // macros, after `#define`s).
         let text = match tidepack_loader::iris::version_resolved_on_top(&seen.text, seen.version.as_ref()) {
