@@ -975,6 +975,9 @@ pub(crate) fn undefined_return(type_name: &str) -> String {
     format!("{{ {type_name} tp_undefined; return tp_undefined; }}")
 }
 
+/// Longest initializer [`local_constants_in_brackets`] writes in place of a constant's name.
+const MAX_INLINED_CONSTANT_BYTES: usize = 1024;
+
 /// Edits replacing, inside `[` `]`, each name of a local `const int` or `const uint` declared
 /// earlier in the same function (`const int n = int(4.0 + 0.001);`) by its type and initializer
 /// (`int(int(4.0 + 0.001))`), where that initializer holds no line break; the initializers of
@@ -1012,7 +1015,8 @@ fn local_constants_in_brackets(text: &str, sig: &[&Token]) -> Vec<(std::ops::Ran
                 value.push(' ');
             }
             let initializer = &text[sig[k + 4].offset..sig[end].offset];
-            if !initializer.contains('\n') {
+            // A chain of constants each read twice in the next doubles at every step.
+            if !initializer.contains('\n') && value.len() <= MAX_INLINED_CONSTANT_BYTES {
                 constants.insert(name.text, format!("{}({})", ty.text, value.trim_end()));
             }
         }
@@ -2756,6 +2760,22 @@ mod tests {
 
     /// Found by the `lower` fuzz target: brackets with a line break between them, sized by
     /// the lowering.
+    #[test]
+    fn local_constants_in_array_sizes_are_written_out_within_a_bound() {
+        let text = "#version 430\nvoid main() {\n    const int side = 2;\n    const int cells = side * side;\n    float w[cells];\n}\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
+        assert!(lowered.text.contains("float w[int(int(2) * int(2))];"), "{}", lowered.text);
+        // Each constant read twice in the next would double the text 64 times over.
+        let mut chain = String::from("#version 430\nvoid main() {\n    const int c0 = 2;\n");
+        for k in 1..64 {
+            chain.push_str(&format!("    const int c{k} = c{} * c{};\n", k - 1, k - 1));
+        }
+        chain.push_str("    float w[c63];\n}\n");
+        let lowered = lower(&chain, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
+        assert!(lowered.text.len() < chain.len() + 2 * MAX_INLINED_CONSTANT_BYTES, "{} bytes", lowered.text.len());
+        assert_eq!(lowered.text.lines().count(), chain.lines().count());
+    }
+
     #[test]
     fn a_replacement_keeps_the_line_breaks_it_covers() {
         let text = "#version 120\nconst float weights[\n] = float[\n](1.0, 2.0);\nvoid main() { gl_FragColor = vec4(weights[1]); }\n";
