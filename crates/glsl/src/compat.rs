@@ -137,7 +137,8 @@ pub struct Rewrite {
 ///   its closing brace (NVIDIA returns an undefined value; Mesa refuses the stage);
 /// - a vertex stage's output that nothing writes gets 0 at the start of `main` (Mesa refuses
 ///   to link a fragment stage that reads it), and so does one `main` does not write whole on
-///   every path (its value is undefined elsewhere; wgpu has 0);
+///   every path (its value is undefined elsewhere; wgpu has 0); so does `gl_Position` in a
+///   stage below GLSL 1.40 that never names it (Mesa refuses to link it);
 /// - a `#version 100` stage (GLSL ES 1.00) is compiled as desktop `#version 120`;
 /// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
 ///   removed;
@@ -598,7 +599,12 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     {
-        let (unwritten, sometimes) = outputs_not_always_written(&met, stage);
+        let (mut unwritten, sometimes) = outputs_not_always_written(&met, stage);
+        // Before GLSL 1.40 Mesa refuses to link a vertex stage that never writes `gl_Position`
+        // (its position is undefined: nothing is drawn where it is 0, as wgpu has it).
+        if stage == Stage::Vertex && version < 140 && !met.iter().any(|t| t.is_ident("gl_Position")) {
+            unwritten.push(("vec4".to_string(), "gl_Position".to_string()));
+        }
         let main_open = sig.windows(5).position(|w| w[0].is_ident("void") && w[1].is_ident("main") && w[2].is_punct("(") && w[3].is_punct(")") && w[4].is_punct("{"));
         if let (false, Some(at)) = (unwritten.is_empty() && sometimes.is_empty(), main_open) {
             let zeroes: String = unwritten.iter().chain(&sometimes).map(|(type_, name)| format!(" {name} = {type_}(0);")).collect();
@@ -1931,10 +1937,24 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 2, what: "`remap` returns float but has no `return`: `return float(0);` added at its end".into() }]);
     }
 
+    /// Before GLSL 1.40 Mesa refuses to link a vertex stage that never writes `gl_Position`
+    /// (MichuuMichuu18/minecraft-shaders' composite6 writes it only under an option that is
+    /// off); from 1.40 on it links.
+    #[test]
+    fn a_position_nothing_writes_is_set_to_zero_before_glsl_140() {
+        let text = "#version 120\nvarying vec2 uv;\nvoid main() {\n#ifdef GLOW\n    gl_Position = ftransform();\n#endif\n    uv = vec2(0.0);\n}\n";
+        let preprocessed = "#version 120\nvarying vec2 uv;\nvoid main() {\n\n\n\n    uv = vec2(0.0);\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Vertex, &[]);
+        assert_eq!(out, text.replace("void main() {", "void main() { gl_Position = vec4(0);"));
+        assert_eq!(rewrites, [Rewrite { line: 3, what: "outputs nothing writes set to 0 at the start of main: `gl_Position`".into() }]);
+        let core = preprocessed.replace("#version 120", "#version 140").replace("varying", "out");
+        assert_eq!(for_strict_drivers(&core, &core, Stage::Vertex, &[]).1, []);
+    }
+
     #[test]
     fn a_vertex_output_nothing_writes_is_set_to_zero() {
-        let text = "#version 130\nflat out vec2 offsets;\nout float used;\n#ifdef NEVER\nvoid f() { offsets = vec2(1.0); }\n#endif\nvoid main() {\n    used = 1.0;\n}\n";
-        let preprocessed = "#version 130\nflat out vec2 offsets;\nout float used;\n\n\n\nvoid main() {\n    used = 1.0;\n}\n";
+        let text = "#version 130\nflat out vec2 offsets;\nout float used;\n#ifdef NEVER\nvoid f() { offsets = vec2(1.0); }\n#endif\nvoid main() {\n    used = 1.0; gl_Position = vec4(used);\n}\n";
+        let preprocessed = "#version 130\nflat out vec2 offsets;\nout float used;\n\n\n\nvoid main() {\n    used = 1.0; gl_Position = vec4(used);\n}\n";
         let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Vertex, &[]);
         assert_eq!(out, text.replace("void main() {", "void main() { offsets = vec2(0);"));
         assert_eq!(rewrites, [Rewrite { line: 7, what: "outputs nothing writes set to 0 at the start of main: `offsets`".into() }]);

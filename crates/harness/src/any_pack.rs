@@ -16,8 +16,9 @@ use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
 use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
+use tidepack_loader::iris;
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
-use tidepack_loader::option_space::{declared_options, property_macros};
+use tidepack_loader::option_space::{declared_options, read_properties};
 use tidepack_loader::programs::{self, RunBy};
 use tidepack_loader::properties::{self, Properties};
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
@@ -195,11 +196,14 @@ impl ProgramLoading<'_> {
         };
         let reading = program::LoaderReading {
             undeclared: if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
-            resolves_version: loader.resolves_version_first(),
+            preprocessed_for_driver: loader.preprocesses_for_driver(),
             // Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
             // renamed sampler reads texture unit 0, colortex0, as `gcolor` does here already.
-            renames_albedo_sampler: loader.renames_albedo_sampler() && programs::binds_as_gbuffers(name),
-            removes_unused_functions: loader.removes_unused_functions(),
+            transform: iris::Transform {
+                renames_albedo_sampler: loader.renames_albedo_sampler() && programs::binds_as_gbuffers(name),
+                removes_unused_functions: loader.removes_unused_functions(),
+                raises_version: loader.raises_version_to_330(),
+            },
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {
@@ -389,9 +393,9 @@ impl AnyPack {
         let (options, _) = configuration.option_set_of(files).map_err(HarnessError::Configuration)?;
         let standard = configuration.standard_macros();
         let declared = declared_options(files);
-        let property_macros = property_macros(&standard, &declared, &options);
         let properties_text = files.texts.get(properties::PATH).map_or("", |t| &**t);
-        let properties = Properties::parse(properties_text, &property_macros);
+        let properties = read_properties(properties_text, &standard, &declared, &options);
+        let standard = standard.with_optional_features(&properties);
         let provider = SetProvider::new(files, &options).ignoring_case();
         let all = files.programs(loader);
         let world = files.world_folder(&configuration.dimension, loader);
@@ -473,7 +477,7 @@ impl AnyPack {
                 ));
             }
         }
-        let block_ids = program::block_ids(&provider, &property_macros);
+        let block_ids = program::block_ids(&provider, &standard, &declared, &options);
         not_modelled.sort();
         not_modelled.dedup();
         Ok(AnyPack {

@@ -19,11 +19,12 @@ use tidepack_loader::directives;
 use tidepack_loader::input;
 use tidepack_loader::iris;
 use tidepack_loader::loader::Loader;
-use tidepack_loader::option_lines::OptionSet;
-use tidepack_loader::option_space::Configuration;
+use tidepack_loader::macros::StandardMacros;
+use tidepack_loader::option_lines::{OptionKind, OptionSet};
+use tidepack_loader::option_space::{Configuration, read_properties};
 use tidepack_loader::programs;
 use tidepack_scene::mesh::LOD_MATERIAL_INPUT;
-use tidepack_loader::properties::{Macros, Properties};
+use tidepack_loader::properties::Properties;
 use tidepack_loader::shadow::ShadowSettings;
 use tidepack_pack::dialect::Dialect;
 use tidepack_pack::pack_options;
@@ -324,38 +325,27 @@ fn load_configured(selection: &PackSelection, specialisation: Option<&Specialisa
     Ok(LoadedPack { dialect: selection.dialect, profile, options: in_force, folded_uniforms: shipped.folded_uniforms.clone(), pack })
 }
 
-/// A stage's text with its includes expanded by the loader's rules (`macros`) and `defines`
-/// after `#version`; where the loader resolves `#version` first ([`LoaderReading::resolves_version`]) and the pack chose it inside
-/// an `#if`, with the chosen directive put first ([`iris::version_resolved_on_top`]).
+/// A stage's text as the loader gives it to the driver: under OptiFine, with its includes
+/// expanded by the loader's rules (`macros`) and `defines` after `#version`; where the loader's
+/// own preprocessor resolves the stage first ([`LoaderReading::preprocessed_for_driver`]),
+/// its output `seen`, unrewritten, with the chosen `#version` on top
+/// ([`iris::as_preprocessor_leaves_it`]). `preprocessed` is the stage as the render path read it.
 fn expanded_as_loader_gives_it(
     provider: &dyn FileProvider,
     path: &str,
     macros: &preprocess::PreprocessOptions,
     defines: &str,
     preprocessed: &preprocess::Preprocessed,
+    seen: &str,
     reading: LoaderReading,
 ) -> Result<ExpandedStage, HarnessError> {
-    let expand = |after_version: &str| {
-        preprocess::expand_includes_mapped(provider, path, after_version, macros.include_rules)
-            .map_err(|d| diag_error(&format!("{path} includes"), &[d]))
-    };
-    let (expanded, line_map) = expand(defines)?;
-    if !reading.resolves_version || iris::version_resolved_on_top(&expanded, preprocessed.version.as_ref()).is_none() {
-        return Ok(ExpandedStage { text: expanded, line_map, version_put_first: None });
+    if reading.preprocessed_for_driver {
+        let (text, line_map, version_put_first) = iris::as_preprocessor_leaves_it(seen, preprocessed);
+        return Ok(ExpandedStage { text, line_map, version_put_first });
     }
-    // The defines follow the chosen directive, not the first `#version` line, which may be in
-    // a branch not taken.
-    let (plain, plain_map) = expand("")?;
-    let Some((resolved, what)) = iris::version_resolved_on_top(&plain, preprocessed.version.as_ref()) else {
-        return Ok(ExpandedStage { text: expanded, line_map, version_put_first: None });
-    };
-    let (directive, rest) = resolved.split_once('\n').unwrap_or((&resolved, ""));
-    let text = format!("{directive}\n{defines}{rest}");
-    // The directive put first comes from where the preprocessor found it.
-    let mut map = vec![preprocessed.version_line().and_then(|l| preprocessed.location(l))];
-    map.extend(std::iter::repeat_n(None, defines.matches('\n').count()));
-    map.extend(plain_map);
-    Ok(ExpandedStage { text, line_map: map, version_put_first: Some(what) })
+    let (text, line_map) = preprocess::expand_includes_mapped(provider, path, defines, macros.include_rules)
+        .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
+    Ok(ExpandedStage { text, line_map, version_put_first: None })
 }
 
 /// The lines (1-based) of an expanded text, whose pack locations are `line_map`, that come from
@@ -425,12 +415,11 @@ pub(crate) struct ProgramFiles<'a> {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LoaderReading {
     pub undeclared: UndeclaredTargets,
-    /// [`Loader::resolves_version_first`].
-    pub resolves_version: bool,
-    /// [`Loader::renames_albedo_sampler`], for this program.
-    pub renames_albedo_sampler: bool,
-    /// [`Loader::removes_unused_functions`].
-    pub removes_unused_functions: bool,
+    /// [`Loader::preprocesses_for_driver`].
+    pub preprocessed_for_driver: bool,
+    /// What of Iris's transformer applies to this program ([`Loader::renames_albedo_sampler`],
+    /// [`Loader::removes_unused_functions`], [`Loader::raises_version_to_330`]).
+    pub transform: iris::Transform,
 }
 
 /// Where a fragment stage without RENDERTARGETS or DRAWBUFFERS writes.
@@ -466,7 +455,8 @@ pub(crate) fn load_program_files(
         let mut p = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
         preprocess::assume_glsl_110(&mut p);
         as_preprocessed.insert(stage, p.text.clone());
-        (p.text, _) = iris::as_transformed(p.text.clone(), &as_preprocessed[&stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
+        // The render path lowers the stage at the version it declares.
+        (p.text, _) = iris::as_transformed(p.text.clone(), &as_preprocessed[&stage], iris::Transform { raises_version: false, ..reading.transform }, Some(stage));
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
@@ -491,7 +481,7 @@ pub(crate) fn load_program_files(
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
         let ExpandedStage { text: expanded, line_map, version_put_first } =
-            expanded_as_loader_gives_it(provider, &path, macros, &defines, &stage.preprocessed, reading)?;
+            expanded_as_loader_gives_it(provider, &path, macros, &defines, &stage.preprocessed, &as_preprocessed[&stage.stage], reading)?;
         let lines_from = |at: &Location| lines_from(&line_map, at);
         let redefined = redefined_lines(&stage.preprocessed, &line_map);
         let located = |line: u32, what: &str| located_rewrite(&line_map, &path, line, what);
@@ -500,7 +490,7 @@ pub(crate) fn load_program_files(
             let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
-        let (mut expanded, transformed) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.renames_albedo_sampler, reading.removes_unused_functions);
+        let (mut expanded, transformed) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.transform, Some(stage.stage));
         let mut loader_rewrites: Vec<String> = version_put_first.into_iter().chain(transformed).map(|what| format!("{path}: {what}")).collect();
         if stage.stage == Stage::Fragment
             && let Some((text, what)) = tidepack_glsl::compat::inputs_resized(&expanded, &resized)
@@ -618,10 +608,11 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, reading)?;
+    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, &preprocessed.text, reading)?;
+    let (expanded, raised) = iris::as_transformed(expanded, &preprocessed.text, iris::Transform { raises_version: reading.transform.raises_version, ..Default::default() }, None);
     let redefined = redefined_lines(&preprocessed, &line_map);
     let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
-    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().map(|what| format!("{path}: {what}")).collect();
+    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().chain(raised).map(|what| format!("{path}: {what}")).collect();
     gl_rewrites.extend(rewrites.iter().map(|r| located_rewrite(&line_map, path, r.line, &r.what)));
     let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
     Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
@@ -907,10 +898,11 @@ fn decode_within_budget(bytes: &[u8], path: &str) -> Result<image::RgbaImage, St
     Ok(reader.decode().map_err(|e| format!("is not a readable image: {e}"))?.to_rgba8())
 }
 
-/// A pack's block.properties read under `macros`: block name → id.
-pub(crate) fn block_ids(provider: &dyn FileProvider, macros: &Macros) -> HashMap<String, i32> {
+/// A pack's block.properties read under `set` as the loader of `standard` reads it: block
+/// name → id.
+pub(crate) fn block_ids(provider: &dyn FileProvider, standard: &StandardMacros, declared: &BTreeMap<String, OptionKind>, set: &OptionSet) -> HashMap<String, i32> {
     let text = provider.read(blocks::BLOCK_PROPERTIES).map(|t| t.to_string()).unwrap_or_default();
-    blocks::ids(&Properties::parse(&text, macros), "block")
+    blocks::ids(&read_properties(&text, standard, declared, set), "block")
 }
 
 /// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the

@@ -522,6 +522,25 @@ fn a_version_chosen_in_an_if_is_given_first_under_iris() {
     assert!(report.gl_rewrites.iter().any(|r| r.contains("`#version 330 compatibility`, chosen inside an `#if`")), "{:?}", report.gl_rewrites);
 }
 
+/// A stage as Iris hands it to the driver (tests/packs/read_as_iris_reads_it): its
+/// preprocessor's output, so that Mesa never meets the float in `#if` or the function-like
+/// macro named `a` beside `(colour.a)`, which its own preprocessor refuses; `#version 130`
+/// raised to 3.30 compatibility, where `inverse()` exists and `flat varying` is written `flat
+/// in`/`flat out`; and `IRIS_FEATURE_CUSTOM_IMAGES` defined, as shaders.properties asks for it
+/// behind a `#define` that only a branch not taken makes (magenta where it is missing). Both
+/// renderers draw the same screen.
+#[test]
+fn a_stage_reaches_opengl_as_iris_hands_it() {
+    let configuration = Configuration { loader: Loader::Iris, ..Configuration::default() };
+    let (report, screen) = render_job_with("read_as_iris_reads_it", configuration);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let raised = "`#version 130` raised to `#version 330 compatibility`, as Iris raises every stage to GLSL 3.30, `attribute` and `varying` written `in` and `out`";
+    assert!(report.gl_rewrites.iter().filter(|r| r.contains(raised)).count() == 2, "{:?}", report.gl_rewrites);
+    assert!(screen.pixels().all(|p| p.0[..3] != [255, 0, 255]), "the feature macro is missing");
+}
+
 /// A pack written on Windows for NVIDIA (tests/packs/windows_habits): an include named in
 /// another case than its file, which Windows' file system reads, and a `flat varying` in a stage
 /// raised to GLSL 1.30 for its `switch`. Both renderers draw each face in its colour, and the

@@ -3,6 +3,7 @@
 //! that keep every line where it was, so that diagnostics still name the pack's lines. Each
 //! returns the rewritten text and what was done, or `None` where nothing applies.
 
+use tidepack_glsl::{Location, Stage};
 use tidepack_glsl::preprocess;
 use tidepack_glsl::token::{Token, TokenKind, blanked, brace_depths, function_definitions, significant, tokenize};
 
@@ -40,20 +41,85 @@ fn file_scope_declarations(tokens: &[Token<'_>], order: &[usize], name: &str) ->
     found
 }
 
-/// `text` with the rewrites of Iris's transformer asked for (the albedo sampler named
-/// `gtexture`, functions nothing calls removed), each decided on `seen`, the stage as Iris's
-/// preprocessor leaves it; and what was done.
-pub fn as_transformed(mut text: String, seen: &str, renames_albedo_sampler: bool, removes_unused_functions: bool) -> (String, Vec<String>) {
+/// What Iris's transformer does to a stage, as far as it is imitated.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Transform {
+    /// The albedo sampler named `gtexture` ([`albedo_sampler_as_gtexture`]).
+    pub renames_albedo_sampler: bool,
+    /// Functions nothing calls removed ([`unused_functions_removed`]).
+    pub removes_unused_functions: bool,
+    /// `#version` raised to 3.30 ([`version_raised_to_330`]).
+    pub raises_version: bool,
+}
+
+impl Transform {
+    /// All of it, as Iris does it to every stage of the world's programs.
+    pub const ALL: Transform = Transform { renames_albedo_sampler: true, removes_unused_functions: true, raises_version: true };
+}
+
+/// `text` with the rewrites of Iris's transformer `transform` asks for, each decided on `seen`,
+/// the stage as Iris's preprocessor leaves it, of `stage` (`None`: a geometry or other stage);
+/// and what was done.
+pub fn as_transformed(mut text: String, seen: &str, transform: Transform, stage: Option<Stage>) -> (String, Vec<String>) {
     let mut done = Vec::new();
-    if renames_albedo_sampler && let Some((rewritten, what)) = albedo_sampler_as_gtexture(&text, seen) {
+    if transform.renames_albedo_sampler && let Some((rewritten, what)) = albedo_sampler_as_gtexture(&text, seen) {
         text = rewritten;
         done.push(what);
     }
-    if removes_unused_functions && let Some((rewritten, what)) = unused_functions_removed(&text, seen) {
+    if transform.removes_unused_functions && let Some((rewritten, what)) = unused_functions_removed(&text, seen) {
+        text = rewritten;
+        done.push(what);
+    }
+    if transform.raises_version && let Some((rewritten, what)) = version_raised_to_330(&text, stage) {
         text = rewritten;
         done.push(what);
     }
     (text, done)
+}
+
+/// `text`, a stage of `stage`, with its first `#version` below 3.30 raised to 3.30, as Iris's
+/// `TransformPatcher` raises every stage before the driver sees it; and what was done. A core
+/// stage (`core`, or 1.50 and later without a profile) stays core; an older or compatibility
+/// stage becomes `#version 330 compatibility`, where the legacy built-ins it reads
+/// (`gl_FragData`, `texture2D`, `ftransform`) still exist, as Iris's transformer keeps them
+/// working by replacing them; its `attribute` and `varying` become `in` and `out`, as Iris's
+/// transformer writes them (3.30 refuses `flat varying`). Lines are kept. `None` where no
+/// `#version` is below 3.30.
+pub fn version_raised_to_330(text: &str, stage: Option<Stage>) -> Option<(String, String)> {
+    let tokens = tokenize(text).ok()?;
+    let order = significant(&tokens);
+    let at = order.windows(2).position(|w| tokens[w[0]].is_punct("#") && tokens[w[1]].is_ident("version"))?;
+    let number_at = *order.get(at + 2)?;
+    let number: u32 = tokens[number_at].text.parse().ok()?;
+    let profile_at = order.get(at + 3).copied().filter(|&i| tokens[i].line == tokens[number_at].line && tokens[i].kind == TokenKind::Ident);
+    let profile = profile_at.map(|i| tokens[i].text);
+    if number >= 330 {
+        return None;
+    }
+    let core = profile == Some("core") || (number >= 150 && profile.is_none());
+    let raised = if core { "330 core" } else { "330 compatibility" };
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut end = 0;
+    let mut storage = 0;
+    for (k, &i) in order.iter().enumerate() {
+        let t = &tokens[i];
+        let declares = k > at + 2 && (t.is_ident("varying") || t.is_ident("attribute"));
+        let replacement = match (stage, t.text) {
+            _ if i == number_at => raised,
+            _ if Some(i) == profile_at => "",
+            (Some(Stage::Vertex), "varying") if declares => "out",
+            (Some(Stage::Vertex), "attribute") | (Some(Stage::Fragment), "varying") if declares => "in",
+            _ => continue,
+        };
+        storage += usize::from(declares);
+        out.push_str(&text[end..t.offset]);
+        out.push_str(replacement);
+        end = t.offset + t.text.len();
+    }
+    out.push_str(&text[end..]);
+    let written = format!("#version {number}{}", profile.map(|p| format!(" {p}")).unwrap_or_default());
+    let storage = if storage > 0 { format!(", `attribute` and `varying` written `in` and `out` ({storage})") } else { String::new() };
+    Some((out, format!("`{written}` raised to `#version {raised}`, as Iris raises every stage to GLSL 3.30{storage}")))
 }
 
 /// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and
@@ -161,6 +227,21 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
     Some((blanked(text, &ranges), what))
 }
 
+/// A stage as Iris hands it to its transformer, and then to the driver: `text`, its
+/// preprocessor's output for the stage `seen` (every directive resolved but `#version` and
+/// `#extension`), with the `#version` it chose on the first line; the pack location of each
+/// line; and what was moved, where that `#version` was not first.
+pub fn as_preprocessor_leaves_it(text: &str, seen: &preprocess::Preprocessed) -> (String, Vec<Option<Location>>, Option<String>) {
+    let mut map: Vec<Option<Location>> = (1..=seen.lines.len() as u32).map(|line| seen.location(line)).collect();
+    match version_resolved_on_top(text, seen.version.as_ref()) {
+        Some((resolved, what)) => {
+            map.insert(0, seen.version_line().and_then(|line| seen.location(line)));
+            (resolved, map, Some(what))
+        }
+        None => (text.to_string(), map, None),
+    }
+}
+
 /// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
 /// profile) with the `#version` the preprocessor resolved on the first line and every other
 /// `#version` line left blank, as a loader that preprocesses first gives it to the driver; and
@@ -186,6 +267,24 @@ pub fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionD
 
 #[cfg(test)]
 mod tests {
+    /// Iris raises every stage to GLSL 3.30: an old stage becomes 3.30 compatibility with `in`
+    /// and `out` for `attribute` and `varying` (MichuuMichuu18/minecraft-shaders' `flat
+    /// varying`), a core one stays core, 3.30 and later is left as written; lines are kept.
+    #[test]
+    fn every_stage_is_raised_to_glsl_330() {
+        use tidepack_glsl::Stage;
+        let vertex = "#version 120\nattribute vec4 mc_Entity;\nflat varying vec3 glow; // varying\nvoid main() { gl_Position = ftransform(); }\n";
+        let (raised, what) = super::version_raised_to_330(vertex, Some(Stage::Vertex)).expect("raised");
+        assert_eq!(raised, "#version 330 compatibility\nin vec4 mc_Entity;\nflat out vec3 glow; // varying\nvoid main() { gl_Position = ftransform(); }\n");
+        assert_eq!(what, "`#version 120` raised to `#version 330 compatibility`, as Iris raises every stage to GLSL 3.30, `attribute` and `varying` written `in` and `out` (2)");
+        let fragment = vertex.replace("attribute vec4 mc_Entity;", "");
+        assert!(super::version_raised_to_330(&fragment, Some(Stage::Fragment)).expect("raised").0.contains("flat in vec3 glow;"));
+        let core = "#version 150\nin vec2 uv;\nvoid main() {}\n";
+        assert_eq!(super::version_raised_to_330(core, Some(Stage::Fragment)).expect("raised").0, core.replace("150", "330 core"));
+        assert_eq!(super::version_raised_to_330("#version 330 compatibility\nvoid main() {}\n", Some(Stage::Vertex)), None);
+        assert_eq!(super::version_raised_to_330("#version 460\nvoid main() {}\n", None), None);
+    }
+
     /// Iris removes the definitions of functions nothing calls, so what only they reference
     /// need not be declared; a function called once, `main`, and a definition with a directive
     /// in its body stay; lines stay where they were.

@@ -91,11 +91,12 @@ impl Loader {
         }
     }
 
-    /// Whether the driver gets a stage's `#version` as the loader's own preprocessor resolved it.
-    /// Iris runs every stage through its preprocessor before its transformer reads the text, so a
-    /// `#version` inside the pack's `#if` (one per profile) reaches the driver alone, on top;
-    /// OptiFine gives the driver the text with its includes expanded, conditionals and all.
-    pub fn resolves_version_first(self) -> bool {
+    /// Whether the driver gets a stage as the loader's own preprocessor left it. Iris runs every
+    /// stage through its preprocessor (JCPP) before its transformer reads the text, so the
+    /// driver sees no conditional or macro, and a `#version` inside the pack's `#if` (one per
+    /// profile) reaches it alone, on top; OptiFine gives the driver the text with its includes
+    /// expanded, conditionals and all, for the driver's preprocessor to read.
+    pub fn preprocesses_for_driver(self) -> bool {
         self == Loader::Iris
     }
 
@@ -111,6 +112,13 @@ impl Loader {
     /// it: Iris's transformer drops every definition other than `main` whose name occurs once
     /// (IrisShaders/Iris `CompatibilityTransformer`), so what it references need not exist.
     pub fn removes_unused_functions(self) -> bool {
+        self == Loader::Iris
+    }
+
+    /// Whether a stage's `#version` below 3.30 reaches the driver raised to 3.30: Iris's
+    /// `TransformPatcher` raises every stage (and then replaces the legacy built-ins), so a
+    /// `#version 130` stage may call `inverse()` (clorece/Allium's anisotropic filtering).
+    pub fn raises_version_to_330(self) -> bool {
         self == Loader::Iris
     }
 

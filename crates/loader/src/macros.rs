@@ -7,6 +7,7 @@
 use tidepack_glsl::preprocess::{IncludeRules, PreprocessOptions};
 
 use crate::loader::Loader;
+use crate::properties::Properties;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Os {
@@ -50,10 +51,30 @@ pub struct StandardMacros {
     /// Distant Horizons is installed beside Iris: `DISTANT_HORIZONS` is defined in every
     /// program, and Iris runs the `dh_*` programs.
     pub distant_horizons: bool,
+    /// The feature flags the pack's `iris.features.optional` names that Iris and this machine
+    /// support, as written: Iris defines `IRIS_FEATURE_<flag>` for each in every program
+    /// ([`StandardMacros::with_optional_features`]).
+    pub iris_optional_features: Vec<String>,
 }
 
 /// The Iris version whose macros `for_loader(Loader::Iris)` defines.
 pub const IRIS_VERSION: u32 = 10801;
+
+/// Iris's feature flags (`iris.features.required`/`optional`), each with whether macOS's
+/// OpenGL 4.1 has what it needs (image load/store, compute shaders and SSBOs came with 4.2
+/// and 4.3); every one is usable on a current Linux or Windows driver.
+pub const IRIS_FEATURE_FLAGS: [(&str, bool); 10] = [
+    ("SEPARATE_HARDWARE_SAMPLERS", true),
+    ("HIGHER_SHADOWCOLOR", true),
+    ("CUSTOM_IMAGES", false),
+    ("PER_BUFFER_BLENDING", true),
+    ("COMPUTE_SHADERS", false),
+    ("TESSELLATION_SHADERS", true),
+    ("ENTITY_TRANSLUCENT", true),
+    ("REVERSED_CULLING", true),
+    ("BLOCK_EMISSION_ATTRIBUTE", true),
+    ("SSBO", false),
+];
 
 /// Distant Horizons' material ids Iris defines as `DH_BLOCK_*`, in value order.
 pub const DH_BLOCKS: [&str; 16] = [
@@ -76,6 +97,7 @@ impl Default for StandardMacros {
             extensions: COMMON_EXTENSIONS.iter().map(|e| e.to_string()).collect(),
             iris_version: None,
             distant_horizons: false,
+            iris_optional_features: Vec::new(),
         }
     }
 }
@@ -140,6 +162,36 @@ impl StandardMacros {
         StandardMacros { mc_version, iris_version, ..StandardMacros::default() }
     }
 
+    /// Whether Iris on this machine can use the feature flag `name` (any case), as Iris's
+    /// `FeatureFlags.isUsable` decides: an unknown name cannot be used.
+    pub fn iris_feature_usable(&self, name: &str) -> bool {
+        IRIS_FEATURE_FLAGS.iter().any(|(flag, on_macos)| flag.eq_ignore_ascii_case(name) && (*on_macos || self.os != Os::Mac))
+    }
+
+    /// These macros for a pack with shaders.properties `props`: under Iris, each flag of its
+    /// `iris.features.optional` list that this machine can use is defined as
+    /// `IRIS_FEATURE_<flag>`, spelled as the pack spells it, as Iris's `ShaderPack` defines
+    /// them. OptiFine defines none.
+    pub fn with_optional_features(mut self, props: &Properties) -> StandardMacros {
+        self.iris_optional_features = match (self.iris_version, props.get("iris.features.optional")) {
+            (Some(_), Some(entry)) => entry.value.split_whitespace().filter(|flag| self.iris_feature_usable(flag)).map(str::to_string).collect(),
+            _ => Vec::new(),
+        };
+        self
+    }
+
+    /// The macros a properties file's conditionals see beside [`StandardMacros::definitions`]:
+    /// under Iris, `IRIS_FEATURE_<FLAG>` for every flag this machine can use, whatever the pack
+    /// asks for.
+    pub fn property_definitions(&self) -> Vec<(String, String)> {
+        let mut out = self.definitions();
+        if self.iris_version.is_some() {
+            let usable = IRIS_FEATURE_FLAGS.iter().filter(|(flag, _)| self.iris_feature_usable(flag));
+            out.extend(usable.map(|(flag, _)| (format!("IRIS_FEATURE_{flag}"), String::new())));
+        }
+        out
+    }
+
     /// The macros in the order the loader defines them.
     pub fn definitions(&self) -> Vec<(String, String)> {
         let mut out: Vec<(String, String)> = vec![
@@ -196,6 +248,7 @@ impl StandardMacros {
             if self.distant_horizons {
                 out.push(("DISTANT_HORIZONS".into(), String::new()));
             }
+            out.extend(self.iris_optional_features.iter().map(|flag| (format!("IRIS_FEATURE_{flag}"), String::new())));
         }
         out
     }
@@ -302,6 +355,25 @@ mod tests {
         assert_eq!(parse_gl_version("120"), Ok(120));
         assert!(parse_gl_version("4.x").unwrap_err().contains("such as 4.6 or 460"));
         assert!(parse_gl_version("4.10").is_err());
+    }
+
+    /// Iris defines `IRIS_FEATURE_<flag>` in the shaders for each optional flag the pack names
+    /// and the machine has, spelled as written, and for every usable flag in the properties'
+    /// conditionals; OptiFine defines none.
+    #[test]
+    fn iris_defines_the_optional_features_the_machine_has() {
+        let props = Properties::parse_plain("iris.features.optional = CUSTOM_IMAGES ssbo NO_SUCH_FLAG\n");
+        let iris = StandardMacros::for_loader(Loader::Iris).with_optional_features(&props);
+        let defined = |macros: &StandardMacros| -> Vec<String> {
+            macros.definitions().into_iter().map(|(name, _)| name).filter(|name| name.starts_with("IRIS_FEATURE_")).collect()
+        };
+        assert_eq!(defined(&iris), ["IRIS_FEATURE_CUSTOM_IMAGES", "IRIS_FEATURE_ssbo"]);
+        let mac = StandardMacros { os: Os::Mac, ..StandardMacros::for_loader(Loader::Iris) }.with_optional_features(&props);
+        assert!(defined(&mac).is_empty());
+        let in_properties = iris.property_definitions();
+        assert!(in_properties.iter().any(|(name, _)| name == "IRIS_FEATURE_COMPUTE_SHADERS"));
+        let optifine = StandardMacros::for_loader(Loader::OptiFine1_21).with_optional_features(&props);
+        assert!(defined(&optifine).is_empty() && optifine.property_definitions().iter().all(|(name, _)| !name.starts_with("IRIS_FEATURE_")));
     }
 
     #[test]

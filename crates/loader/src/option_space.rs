@@ -75,7 +75,7 @@ fn include_components(sources: &[(&String, &str)]) -> Vec<usize> {
 /// and every `#define` option that is on (switches) or has a value (`const` options are no
 /// macros).
 pub fn property_macros(standard: &StandardMacros, declared: &BTreeMap<String, OptionKind>, set: &OptionSet) -> Macros {
-    let mut macros: Macros = standard.definitions().into_iter().collect();
+    let mut macros: Macros = standard.property_definitions().into_iter().collect();
     for (name, kind) in declared.iter().filter(|(name, _)| !consts::OPTION_NAMES.contains(&name.as_str())) {
         match set.get(name).cloned().unwrap_or_else(|| kind.default_value()) {
             OptionValue::Switch(true) => {
@@ -90,11 +90,18 @@ pub fn property_macros(standard: &StandardMacros, declared: &BTreeMap<String, Op
     macros
 }
 
+/// A properties file's `text` read under `set` as the loader of `standard` reads it, with its
+/// macros.
+pub fn read_properties(text: &str, standard: &StandardMacros, declared: &BTreeMap<String, OptionKind>, set: &OptionSet) -> Properties {
+    let loader = if standard.iris_version.is_some() { Loader::Iris } else { Loader::default() };
+    Properties::parse(text, &property_macros(standard, declared, set), loader)
+}
+
 /// The pack's shaders.properties read under `set` with `standard`'s macros (empty when the pack
 /// has none).
 pub fn pack_properties(pack: &PackFiles, standard: &StandardMacros, set: &OptionSet) -> Properties {
     let text = pack.texts.get(properties::PATH).map_or("", |t| &**t);
-    Properties::parse(text, &property_macros(standard, &declared_options(pack), set))
+    read_properties(text, standard, &declared_options(pack), set)
 }
 
 /// The names of a pack's profiles, each with the line its entry starts on.

@@ -14,13 +14,17 @@
 //!    key given twice keeps its first place with the later value, as OptiFine's ordered
 //!    properties map does.
 //!
-//! Iris runs a C preprocessor over the file instead, which also substitutes macros inside
-//! values; packs write conditionals that read the same both ways, and that substitution is not
-//! imitated.
+//! Iris runs a C preprocessor over the file instead (JCPP, IrisShaders/Iris
+//! `PropertiesPreprocessor`): a `#define` or `#undef` in a branch not taken does nothing there,
+//! where OptiFine records it (clorece/Allium's `#ifdef MC_OS_MAC` `#define COLORED_LIGHTING 0`
+//! turns its colored lighting off everywhere under OptiFine, on macOS alone under Iris). It
+//! also substitutes macros inside values; packs write conditionals that read the same both
+//! ways, and that substitution is not imitated.
 
 use std::collections::{BTreeMap, HashMap};
 
 use crate::custom_uniforms::evaluate_condition;
+use crate::loader::Loader;
 
 /// The path of shaders.properties inside `shaders/`.
 pub const PATH: &str = "shaders.properties";
@@ -54,9 +58,9 @@ const MAX_SUBSTITUTIONS: usize = 100;
 const DIRECTIVES: [&str; 8] = ["define", "undef", "ifdef", "ifndef", "if", "else", "elif", "endif"];
 
 impl Properties {
-    /// Reads `text` with `macros` defined for its conditionals.
-    pub fn parse(text: &str, macros: &Macros) -> Properties {
-        let (active, problems) = active_lines(text, macros);
+    /// Reads `text` as `loader` reads it, with `macros` defined for its conditionals.
+    pub fn parse(text: &str, macros: &Macros, loader: Loader) -> Properties {
+        let (active, problems) = active_lines(text, macros, loader);
         let mut entries: Vec<Entry> = Vec::new();
         let mut index: HashMap<String, usize> = HashMap::new();
         for (line, logical) in logical_lines(&active) {
@@ -74,7 +78,7 @@ impl Properties {
 
     /// Reads `text` with no macro defined: every `#ifdef` false, every `#ifndef` true.
     pub fn parse_plain(text: &str) -> Properties {
-        Properties::parse(text, &Macros::new())
+        Properties::parse(text, &Macros::new(), Loader::default())
     }
 
     pub fn entries(&self) -> &[Entry] {
@@ -91,9 +95,9 @@ impl Properties {
     }
 }
 
-/// The lines of `text` OptiFine's macro processor keeps, with their 1-based numbers, and the
-/// conditions it could not evaluate.
-fn active_lines<'t>(text: &'t str, predefined: &Macros) -> (Vec<(u32, &'t str)>, Vec<(u32, String)>) {
+/// The lines of `text` the macro processor of `loader` keeps, with their 1-based numbers, and
+/// the conditions it could not evaluate.
+fn active_lines<'t>(text: &'t str, predefined: &Macros, loader: Loader) -> (Vec<(u32, &'t str)>, Vec<(u32, String)>) {
     let mut macros = predefined.clone();
     // Per open conditional: whether its current branch is taken, and whether any was.
     let mut open: Vec<(bool, bool)> = Vec::new();
@@ -119,7 +123,8 @@ fn active_lines<'t>(text: &'t str, predefined: &Macros) -> (Vec<(u32, &'t str)>,
             }
         };
         match name {
-            // Definitions count in inactive branches too, as OptiFine's processor records them.
+            // OptiFine's processor records definitions in inactive branches too; Iris's does not.
+            "define" | "undef" if !active && loader == Loader::Iris => {}
             "define" => {
                 macros.insert(word.to_string(), param[word.len()..].trim().to_string());
             }
@@ -390,9 +395,9 @@ mod tests {
     #[test]
     fn conditionals_follow_the_macros_and_keep_line_numbers() {
         let text = "#ifdef SHADOWS\nshadow=on\n#else\nshadow=off\n#endif\n#if MC_VERSION >= 11700 && defined(SHADOWS)\nnew=1\n#elif QUALITY == 2\nmid=1\n#endif\n";
-        let on = Properties::parse(text, &macros(&[("SHADOWS", ""), ("MC_VERSION", "12104")]));
+        let on = Properties::parse(text, &macros(&[("SHADOWS", ""), ("MC_VERSION", "12104")]), Loader::default());
         assert_eq!(keys(&on), [("shadow", "on", 2), ("new", "1", 7)]);
-        let off = Properties::parse(text, &macros(&[("MC_VERSION", "12104"), ("QUALITY", "2")]));
+        let off = Properties::parse(text, &macros(&[("MC_VERSION", "12104"), ("QUALITY", "2")]), Loader::default());
         assert_eq!(keys(&off), [("shadow", "off", 4), ("mid", "1", 9)]);
         assert!(off.problems.is_empty(), "{:?}", off.problems);
     }
@@ -401,6 +406,16 @@ mod tests {
     fn nested_branches_defines_and_comment_lines() {
         let text = "#define LOCAL\n#ifndef MISSING\n  #ifdef LOCAL // a comment\nx=1\n  #endif\n#else\ny=1\n#endif\n#undef LOCAL\n#ifdef LOCAL\nz=1\n#endif\n# just a comment\n";
         assert_eq!(keys(&Properties::parse_plain(text)), [("x", "1", 4)]);
+    }
+
+    /// OptiFine records a `#define` in a branch not taken; Iris's C preprocessor does not
+    /// (clorece/Allium turns its colored lighting off in a `#ifdef MC_OS_MAC` branch).
+    #[test]
+    fn a_definition_in_a_branch_not_taken_counts_under_optifine_only() {
+        let text = "#ifdef MC_OS_MAC\n#define LIGHTS 0\n#endif\n#if LIGHTS > 0\nfeatures=CUSTOM_IMAGES\n#endif\n";
+        let options = macros(&[("LIGHTS", "256")]);
+        assert!(Properties::parse(text, &options, Loader::OptiFine1_21).get("features").is_none());
+        assert_eq!(Properties::parse(text, &options, Loader::Iris).get("features").map(|e| e.line), Some(5));
     }
 
     #[test]
@@ -420,7 +435,7 @@ mod tests {
 
     #[test]
     fn self_referencing_macros_stop() {
-        let p = Properties::parse("#if A\nx=1\n#endif\n", &macros(&[("A", "A + 1")]));
+        let p = Properties::parse("#if A\nx=1\n#endif\n", &macros(&[("A", "A + 1")]), Loader::default());
         assert!(p.entries().is_empty());
         assert!(p.problems[0].1.contains("substitutions"), "{:?}", p.problems);
     }

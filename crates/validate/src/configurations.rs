@@ -14,9 +14,8 @@ use tidepack_glsl::preprocess::{self, PreprocessOptions};
 use tidepack_loader::coverage::{self, Consulted, Coverage, Representatives, SetsCovered};
 use tidepack_loader::directives::custom_names;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
-use tidepack_loader::option_space::{menu_options, property_macros};
+use tidepack_loader::option_space::{menu_options, read_properties};
 use tidepack_loader::programs::Program;
-use tidepack_loader::properties::Properties;
 use tidepack_loader::{PackFiles, SetProvider};
 
 /// A digest of what a program is under one option set: its stages' expanded texts (with the
@@ -118,7 +117,7 @@ impl<'a> Reader<'a> {
         if let Some(digest) = self.names.lock().unwrap_or_else(|e| e.into_inner()).get(set) {
             return *digest;
         }
-        let properties = Properties::parse(self.properties_text, &property_macros(self.standard, self.declared, set));
+        let properties = read_properties(self.properties_text, self.standard, self.declared, set);
         let digest: [u8; 32] = Sha256::digest(format!("{:?}", custom_names(&properties)).as_bytes()).into();
         self.names.lock().unwrap_or_else(|e| e.into_inner()).insert(set.clone(), digest);
         digest
@@ -184,7 +183,7 @@ pub(crate) fn plan(
     let global: Vec<usize> = (0..table.sets.len()).collect();
     let profiles: Vec<OptionSet> = table.sets.iter().map(|(_, set)| set.clone()).collect();
     // What a player can pick: the options the menu shows, but those `--set` holds fixed.
-    let defaults = Properties::parse(reader.properties_text, &property_macros(reader.standard, reader.declared, &OptionSet::new()));
+    let defaults = read_properties(reader.properties_text, reader.standard, reader.declared, &OptionSet::new());
     let free: BTreeMap<String, OptionKind> =
         menu_options(&defaults, reader.declared).into_iter().filter(|(name, _)| !overrides.contains_key(name)).collect();
     let representatives = match covering {

@@ -23,7 +23,7 @@ use tidepack_loader::directives::{CustomNames, custom_names};
 use tidepack_loader::input::{self, Limits, PackFiles};
 use tidepack_loader::macros::StandardMacros;
 use tidepack_loader::option_lines::{OptionKind, OptionSet};
-use tidepack_loader::option_space::{self, declared_options, property_macros};
+use tidepack_loader::option_space::{self, declared_options, read_properties};
 use tidepack_loader::programs::{self, Program, RunBy};
 use tidepack_loader::properties::{self, Properties};
 use tidepack_loader::{Configuration, Dimension, Loader, SetProvider};
@@ -208,7 +208,9 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let declared = declared_options(&pack);
     let properties_text = pack.texts.get(properties::PATH).map_or("", |t| &**t);
     // Profiles are read under the defaults; each set's own reading decides its custom names.
-    let props = Properties::parse(properties_text, &property_macros(&options.macros, &declared, &OptionSet::new()));
+    let props = read_properties(properties_text, &options.macros, &declared, &OptionSet::new());
+    let with_features = Options { macros: options.macros.clone().with_optional_features(&props), ..options.clone() };
+    let options = &with_features;
     let mut diagnostics: Vec<Diagnostic> = pack.warnings.clone();
     // OptiFine takes a conditional line it cannot evaluate as false and says so in its log.
     diagnostics.extend(props.problems.iter().map(|(line, problem)| Diagnostic::warning(Code::Properties, problem.clone(), Some(Location::line(properties::PATH, *line)))));
@@ -276,7 +278,7 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     let contexts: Vec<SetContext> = pool.install(|| {
         sets.par_iter()
             .map(|(_, set)| {
-                let properties = Properties::parse(properties_text, &property_macros(&options.macros, &declared, set));
+                let properties = read_properties(properties_text, &options.macros, &declared, set);
                 let mut problems = Vec::new();
                 let disabled = worlds
                     .iter()

@@ -10,24 +10,15 @@ use tidepack_loader::macros::StandardMacros;
 /// pack file and line of each of its lines (`None` for lines the loader adds). OptiFine splices
 /// the includes in and adds its macros after `#version`; the driver reads every other
 /// directive. Iris's preprocessor reads every directive itself, so the driver gets its output:
-/// `#version` first, the albedo sampler named `gtexture` in every program and functions nothing
-/// calls removed. A stage the preprocessor refuses (an `#extension` after code) goes as OptiFine
+/// `#version` first and raised to 3.30, the albedo sampler named `gtexture` in every program
+/// and functions nothing calls removed. A stage the preprocessor refuses (an `#extension` after code) goes as OptiFine
 /// hands it.
 pub fn as_loader_hands_it(provider: &dyn FileProvider, path: &str, macros: &StandardMacros) -> Result<(String, Vec<Option<Location>>), Diagnostic> {
     if macros.iris_version.is_some()
         && let Ok(seen) = preprocess::preprocess(provider, path, &macros.preprocess_options())
     {
-        let mut map: Vec<Option<Location>> = (1..=seen.lines.len() as u32).map(|line| seen.location(line)).collect();
-        // Iris puts `#version` first, wherever the pack wrote it (inside an `#if` on the loader's
-        // macros, after `#define`s).
-        let text = match tidepack_loader::iris::version_resolved_on_top(&seen.text, seen.version.as_ref()) {
-            Some((resolved, _)) => {
-                map.insert(0, None);
-                resolved
-            }
-            None => seen.text.clone(),
-        };
-        return Ok((tidepack_loader::iris::as_transformed(text, &seen.text, true, true).0, map));
+        let (text, map, _) = tidepack_loader::iris::as_preprocessor_leaves_it(&seen.text, &seen);
+        return Ok((tidepack_loader::iris::as_transformed(text, &seen.text, tidepack_loader::iris::Transform::ALL, tidepack_glsl::Stage::from_path(path)).0, map));
     }
     expand_includes_mapped(provider, path, &macros.define_lines(), macros.include_rules())
 }
