@@ -613,7 +613,7 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
         let end = text[..range.start].trim_end().len();
         *range = end.saturating_sub(1)..end;
     }
-    let at = span.map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
+    let at = span.clone().map(|r| naga::Span::new(r.start as u32, r.end as u32).location(text));
     let mut diagnostic = diagnostic_at(pre, text, provider, message, at);
     if let ErrorKind::SemanticError(message) = &e.kind
         && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
@@ -624,6 +624,24 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
             1 => "float".to_string(),
             n => format!("vec{n}"),
         });
+    } else if let ErrorKind::SemanticError(message) = &e.kind
+        && message.as_ref() == "Function already defined"
+        && let Some(name) = span.as_ref().and_then(|r| defined_function_name(&text[r.clone()]))
+    {
+        let definitions = declarations_of(pre, name);
+        let here = diagnostic.location.as_ref().map(|l| (l.path.clone(), l.line));
+        if definitions.iter().all(|(_, l)| l.as_ref().map(|l| (l.path.clone(), l.line)) == here) {
+            diagnostic.message = format!(
+                "`{name}` is defined a second time with the same parameters, by the same lines: their file is included twice without \
+                 a guard (`#ifndef NAME` / `#define NAME` around it), and GLSL takes one body per signature"
+            );
+        } else {
+            diagnostic.message = format!("`{name}` is defined a second time with the same parameters: GLSL takes one body per signature");
+            for (signature, location) in definitions {
+                let at = location.map_or_else(String::new, |l| format!(" at {}:{}", l.path, l.line));
+                diagnostic = diagnostic.with_note(format!("defined: `{signature}`{at}"));
+            }
+        }
     } else if let ErrorKind::SemanticError(message) = &e.kind
         && let Some(name) = message.strip_prefix("Unknown function '").and_then(|m| m.strip_suffix('\''))
     {
@@ -638,6 +656,14 @@ fn parse_diagnostic(pre: &Preprocessed, text: &str, provider: &dyn FileProvider,
         }
     }
     diagnostic
+}
+
+/// The name a function definition's text (`float phase(float a) { … }`) defines: the word before
+/// its first `(`.
+fn defined_function_name(definition: &str) -> Option<&str> {
+    let head = definition[..definition.find('(')?].trim_end();
+    let start = head.rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).map_or(0, |i| i + 1);
+    Some(&head[start..]).filter(|name| !name.is_empty())
 }
 
 /// The pack's own declarations of function `name`: their signatures as written and where.

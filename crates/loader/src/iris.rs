@@ -93,11 +93,9 @@ pub fn version_raised_to_330(text: &str, stage: Option<Stage>) -> Option<(String
     let number: u32 = tokens[number_at].text.parse().ok()?;
     let profile_at = order.get(at + 3).copied().filter(|&i| tokens[i].line == tokens[number_at].line && tokens[i].kind == TokenKind::Ident);
     let profile = profile_at.map(|i| tokens[i].text);
-    if number >= 330 {
-        return None;
-    }
-    let core = profile == Some("core") || (number >= 150 && profile.is_none());
-    let raised = if core { "330 core" } else { "330 compatibility" };
+    let written = preprocess::VersionDirective { number, profile: profile.map(str::to_string) };
+    let raised = raised_to_330(&written)?;
+    let raised = format!("330 {}", raised.profile.unwrap_or_default());
     let mut out = String::with_capacity(text.len() + 16);
     let mut end = 0;
     let mut storage = 0;
@@ -105,7 +103,7 @@ pub fn version_raised_to_330(text: &str, stage: Option<Stage>) -> Option<(String
         let t = &tokens[i];
         let declares = k > at + 2 && (t.is_ident("varying") || t.is_ident("attribute"));
         let replacement = match (stage, t.text) {
-            _ if i == number_at => raised,
+            _ if i == number_at => raised.as_str(),
             _ if Some(i) == profile_at => "",
             (Some(Stage::Vertex), "varying") if declares => "out",
             (Some(Stage::Vertex), "attribute") | (Some(Stage::Fragment), "varying") if declares => "in",
@@ -120,6 +118,17 @@ pub fn version_raised_to_330(text: &str, stage: Option<Stage>) -> Option<(String
     let written = format!("#version {number}{}", profile.map(|p| format!(" {p}")).unwrap_or_default());
     let storage = if storage > 0 { format!(", `attribute` and `varying` written `in` and `out` ({storage})") } else { String::new() };
     Some((out, format!("`{written}` raised to `#version {raised}`, as Iris raises every stage to GLSL 3.30{storage}")))
+}
+
+/// The `#version` Iris gives the driver for a stage that declares `written`: 3.30, core where
+/// the stage is (`core`, or 1.50 and later without a profile), else compatibility; `None`
+/// from 3.30 on, which Iris keeps.
+pub fn raised_to_330(written: &preprocess::VersionDirective) -> Option<preprocess::VersionDirective> {
+    if written.number >= 330 {
+        return None;
+    }
+    let core = written.profile.as_deref() == Some("core") || (written.number >= 150 && written.profile.is_none());
+    Some(preprocess::VersionDirective { number: 330, profile: Some(if core { "core" } else { "compatibility" }.to_string()) })
 }
 
 /// `text` with its `uniform sampler2D gcolor;` or `texture;` declaration named `gtexture`, and

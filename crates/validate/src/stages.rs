@@ -34,6 +34,13 @@ pub(crate) fn check_program(
                 {
                     pre.text = removed;
                 }
+                // Iris's driver compiles the stage at 3.30 at least.
+                if loader.raises_version_to_330()
+                    && let Some((raised, _)) = tidepack_loader::iris::version_raised_to_330(&pre.text, Some(*stage))
+                {
+                    pre.text = raised;
+                    pre.version = pre.version.as_ref().and_then(tidepack_loader::iris::raised_to_330);
+                }
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(no_buffer_under_iris(&pre, loader));
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
