@@ -1021,14 +1021,18 @@ impl Preprocessor<'_> {
             "N" => Some(None),
             number => number.parse::<u8>().ok().filter(|&b| b < 16).map(Some),
         };
-        let buffers: Vec<Option<u8>> = if modern {
+        // An empty list draws into no colour buffer, as Iris reads it (a shadow program that
+        // only discards, kolgushev/Pixel-Perfect-B).
+        let buffers: Vec<Option<u8>> = if list.is_empty() {
+            Some(Vec::new())
+        } else if modern {
             list.split(',').map(|s| entry(s.trim())).collect::<Option<_>>()
         } else {
             list.chars().map(|c| entry(c.encode_utf8(&mut [0; 4]))).collect::<Option<_>>()
         }
         .ok_or_else(|| format!("malformed render-target list `{list}` (buffers are 0-15, or N for none)"))?;
-        if buffers.is_empty() || buffers.len() > MAX_DRAW_BUFFERS {
-            return Err(format!("a program writes 1 to {MAX_DRAW_BUFFERS} buffers; `{list}` lists {}", buffers.len()));
+        if buffers.len() > MAX_DRAW_BUFFERS {
+            return Err(format!("a program writes at most {MAX_DRAW_BUFFERS} buffers; `{list}` lists {}", buffers.len()));
         }
         let file = self.file_id(path);
         self.out.render_targets = Some(RenderTargets { modern, buffers, line: SourceLine { file, line } });
@@ -1802,6 +1806,15 @@ mod tests {
         let targets = out.render_targets.unwrap();
         assert_eq!((targets.modern, targets.buffers), (true, vec![Some(0), Some(4)]));
         assert_eq!(targets.line.line, 4);
+    }
+
+    /// `/* DRAWBUFFERS: */` names no buffer: the program draws into none, as Iris reads it.
+    #[test]
+    fn an_empty_render_target_list_draws_into_no_buffer() {
+        for src in ["/* DRAWBUFFERS: */\n", "/* RENDERTARGETS: */\n"] {
+            let targets = run(&[("a.fsh", src)]).unwrap().render_targets.unwrap();
+            assert!(targets.buffers.is_empty(), "{src:?}");
+        }
     }
 
     #[test]
