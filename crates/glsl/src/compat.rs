@@ -139,9 +139,13 @@ pub struct Rewrite {
 ///   to link a fragment stage that reads it), and so does one `main` does not write whole on
 ///   every path (its value is undefined elsewhere; wgpu has 0); so does `gl_Position` in a
 ///   stage below GLSL 1.40 that never names it (Mesa refuses to link it);
+/// - a fragment `out` that nothing writes, in a stage writing `gl_FragData` or `gl_FragColor`,
+///   becomes a global holding 0 (Mesa refuses the mix);
 /// - a `#version 100` stage (GLSL ES 1.00) is compiled as desktop `#version 120`;
 /// - precision qualifiers and statements in a 1.10/1.20 stage, reserved words there, are
 ///   removed;
+/// - `texture2D()`, `texture3D()` and their `Lod` forms of an integer sampler (`usampler2D`)
+///   become `texture()` and `textureLod()`, which alone take one;
 /// - in a core profile, `texture2D()`, `texture3D()`, `texture2DLod()` & co. become `texture()`,
 ///   `textureLod()`, `textureProj()`;
 /// - before each line of `redefined` (1-based lines of `text`, with the macro each `#define`
@@ -387,6 +391,34 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // texture2D() & co. on an integer sampler, which only texture() & co. take: NVIDIA takes
+    // the old name for the new.
+    let integer_samplers: Vec<&str> = met
+        .windows(2)
+        .filter(|w| (w[0].text.starts_with("usampler") || w[0].text.starts_with("isampler")) && w[1].kind == TokenKind::Ident)
+        .map(|w| w[1].text)
+        .collect();
+    if !integer_samplers.is_empty() {
+        let of_integer_sampler = |k: usize, name: &str| {
+            let first_argument = significant.get(k + 2).map(|&i| tokens[i].text)?;
+            if !integer_samplers.contains(&first_argument) {
+                return None;
+            }
+            Some(match name {
+                "texture2D" | "texture3D" => "texture",
+                "texture2DLod" | "texture3DLod" => "textureLod",
+                _ => return None,
+            })
+            .map(str::to_string)
+        };
+        if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, of_integer_sampler) {
+            rewrites.push(Rewrite {
+                line: tokens[first].line,
+                what: format!("texture2D() & co. of an integer sampler, which only texture() & co. take, renamed to them as NVIDIA reads them ({renamed} calls)"),
+            });
+        }
+    }
+
     // A bias in a vertex stage, which has no level to bias: NVIDIA takes it as the level.
     if stage == Stage::Vertex {
         let with_bias = |k: usize, name: &str| {
@@ -568,6 +600,24 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         });
     }
 
+    // A user output never written beside `gl_FragData`/`gl_FragColor` (an input declared `out`):
+    // Mesa refuses the mix, NVIDIA compiles it and the reads get an undefined value. It
+    // becomes a global holding 0, as wgpu reads it.
+    let only_read = if stage == Stage::Fragment { outputs_only_read_beside_legacy_outputs(&met) } else { Vec::new() };
+    {
+        for (type_, name) in &only_read {
+            let Some(k) = sig.windows(4).position(|w| w[0].is_ident("out") && w[1].is_ident(type_) && w[2].is_ident(name) && w[3].is_punct(";")) else { continue };
+            replaced[significant[k]] = Some(String::new());
+            replaced[significant[k + 3]] = Some(format!(" = {type_}(0);"));
+            rewrites.push(Rewrite {
+                line: sig[k].line,
+                what: format!(
+                    "`out {type_} {name}`, read and never written beside `gl_FragData` (Mesa refuses the mix; NVIDIA takes it), made a global holding 0"
+                ),
+            });
+        }
+    }
+
     // `gl_FragDepth` read and never written is undefined; the fragment keeps the depth it was
     // rasterised at, which wgpu's frame reads there too.
     if stage == Stage::Fragment && !depth_read_never_written(&met).is_empty() {
@@ -599,7 +649,8 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     {
-        let (mut unwritten, sometimes) = outputs_not_always_written(&met, stage);
+        let (mut unwritten, mut sometimes) = outputs_not_always_written(&met, stage);
+        sometimes.retain(|output| !only_read.contains(output));
         // Before GLSL 1.40 Mesa refuses to link a vertex stage that never writes `gl_Position`
         // (its position is undefined: nothing is drawn where it is 0, as wgpu has it).
         if stage == Stage::Vertex && version < 140 && !met.iter().any(|t| t.is_ident("gl_Position")) {
@@ -1416,6 +1467,33 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
     (unwritten, sometimes)
 }
 
+/// File-scope `out T name;` declarations of a fragment stage that also writes `gl_FragData` or
+/// `gl_FragColor`, where nothing assigns to `name` (whole, an element or a swizzle of it).
+fn outputs_only_read_beside_legacy_outputs(toks: &[&Token]) -> Vec<(String, String)> {
+    if !toks.iter().any(|t| t.is_ident("gl_FragData") || t.is_ident("gl_FragColor")) {
+        return Vec::new();
+    }
+    let depths = brace_depths(toks);
+    let declared = toks.windows(4).enumerate().filter(|(k, w)| {
+        depths[*k] == 0 && w[0].is_ident("out") && VALUE_TYPES.contains(&w[1].text) && w[2].kind == TokenKind::Ident && w[3].is_punct(";")
+    });
+    let assigns = |name: &str| {
+        toks.iter().enumerate().filter(|(_, t)| t.is_ident(name)).any(|(k, _)| {
+            // Past `.xyz` and `[…]` to the operator after the name.
+            let mut j = k + 1;
+            loop {
+                match toks.get(j) {
+                    Some(t) if t.is_punct(".") => j += 2,
+                    Some(t) if t.is_punct("[") => j = (j..toks.len()).find(|&e| toks[e].is_punct("]")).map_or(toks.len(), |e| e + 1),
+                    Some(t) => return ["=", "+=", "-=", "*=", "/=", "++", "--"].iter().any(|op| t.is_punct(op)),
+                    None => return false,
+                }
+            }
+        })
+    };
+    declared.map(|(_, w)| (w[1].text.to_string(), w[2].text.to_string())).filter(|(_, name)| !assigns(name)).collect()
+}
+
 /// A function definition in a list of significant tokens: where its name and its body's braces are.
 struct Definition {
     name: usize,
@@ -1949,6 +2027,32 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 3, what: "outputs nothing writes set to 0 at the start of main: `gl_Position`".into() }]);
         let core = preprocessed.replace("#version 120", "#version 140").replace("varying", "out");
         assert_eq!(for_strict_drivers(&core, &core, Stage::Vertex, &[]).1, []);
+    }
+
+    /// An input declared `out` in a fragment stage that writes `gl_FragData`
+    /// (YaoYaoSiLin/fflap-shader's shadow `out float blockID`): Mesa refuses the mix; the
+    /// output, never written, becomes a global holding 0.
+    #[test]
+    fn an_output_only_read_beside_frag_data_becomes_a_global() {
+        let text = "#version 130\nout float blockID;\nout vec4 written;\nvoid main() {\n    gl_FragData[0] = vec4(blockID);\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("out float blockID;", " float blockID = float(0);").replace("out vec4 written;", " vec4 written = vec4(0);"));
+        assert_eq!(rewrites.len(), 2, "{rewrites:?}");
+        assert!(rewrites[0].what.starts_with("`out float blockID`, read and never written beside `gl_FragData`"), "{rewrites:?}");
+        let writing = text.replace("gl_FragData[0] = vec4(blockID);", "gl_FragData[0] = vec4(1.0); written.x = 1.0;");
+        let rewrites = for_strict_drivers(&writing, &writing, Stage::Fragment, &[]).1;
+        assert!(!rewrites.iter().any(|r| r.what.starts_with("`out vec4 written`")), "{rewrites:?}");
+    }
+
+    /// texture2D() of an integer sampler (YaoYaoSiLin/fflap-shader's `gaux3`, a usampler2D),
+    /// which NVIDIA takes and Mesa refuses, becomes texture(); the float sampler's call stays.
+    #[test]
+    fn a_legacy_lookup_of_an_integer_sampler_becomes_texture() {
+        let text = "#version 130\nuniform usampler2D bits;\nuniform sampler2D colour;\nvoid main() {\n    gl_FragData[0] = vec4(texture2D(bits, vec2(0.5)).r) + texture2D(colour, vec2(0.5));\n}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, text.replace("texture2D(bits", "texture(bits"));
+        assert_eq!(rewrites.len(), 1, "{rewrites:?}");
+        assert!(rewrites[0].what.starts_with("texture2D() & co. of an integer sampler"), "{rewrites:?}");
     }
 
     #[test]
