@@ -8,10 +8,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use tidepack_harness::any_pack::{AnyPack, ScreenOutput};
-use tidepack_harness::gpu;
+use tidepack_harness::any_pack::AnyPack;
 use tidepack_harness::job::file_stem;
-use tidepack_harness::{Gpu, Scene, mesh};
+use tidepack_harness::{Gpu, Scene, water_cost};
 use tidepack_loader::Configuration;
 use tidepack_pack::Dialect;
 use tidepack_pack::build::BuildOptions;
@@ -235,30 +234,16 @@ pub fn run(config: &CompareConfig) -> Result<CompareResult, CompareError> {
 
 /// One pack on one scene: the rounds with and without water, and the screen with water.
 fn measure(gpu: &Gpu, pack: &AnyPack, scene: &Scene, frames: usize, rounds: usize) -> Result<(Measurement, image::RgbImage), String> {
-    let dry_scene = Scene { water: None, ..scene.clone() };
-    let (wet_mesh, dry_mesh) = (mesh::build(scene, pack), mesh::build(&dry_scene, pack));
-    let (mut wet, mut dry, mut passthrough, mut differences) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut screen = None;
-    for _ in 0..rounds {
-        let w = gpu::render(gpu, pack, scene, &wet_mesh, ScreenOutput::AsLoader, frames).map_err(err)?;
-        let d = gpu::render(gpu, pack, &dry_scene, &dry_mesh, ScreenOutput::AsLoader, frames).map_err(err)?;
-        wet.push(w.timing.frame_ms);
-        dry.push(d.timing.frame_ms);
-        differences.push(w.timing.frame_ms - d.timing.frame_ms);
-        passthrough.extend(w.timing.passthrough_samples_ms.iter().skip(1).chain(d.timing.passthrough_samples_ms.iter().skip(1)));
-        screen.get_or_insert(w.image);
-    }
-    let image = screen.expect("at least one round");
-    let (wet_ms, dry_ms, passthrough_ms) = (tidepack_harness::median(&wet), tidepack_harness::median(&dry), tidepack_harness::median(&passthrough));
+    let (cost, image) = water_cost::measure(gpu, pack, scene, frames, rounds).map_err(err)?;
     let measurement = Measurement {
         pack: String::new(),
         scene: String::new(),
-        wet_ms,
-        dry_ms,
-        passthrough_ms,
-        frame_cost: wet_ms / passthrough_ms,
-        water_cost: tidepack_harness::median(&differences) / passthrough_ms,
-        water_cost_spread: crate::pareto::relative_spread(&differences).abs(),
+        wet_ms: cost.wet_ms,
+        dry_ms: cost.dry_ms,
+        passthrough_ms: cost.passthrough_ms,
+        frame_cost: cost.frame_cost(),
+        water_cost: cost.water_cost(),
+        water_cost_spread: crate::pareto::relative_spread(&cost.differences).abs(),
         non_finite_pixels: image.non_finite(),
         picture: String::new(),
     };

@@ -1,8 +1,9 @@
 //! Renders one scene with every pack of a folder through `render --pack --gl` and prints, per
 //! pack, whether it rendered as `render` would exit 0, the renderer that drew it (wgpu, or
 //! OpenGL where wgpu cannot, and why), how far Mesa's OpenGL screen is from wgpu's, the frame's
-//! cost against a one-tap pass-through, how many things it uses that the harness does not
-//! imitate, and why a pack failed. A pack that does not render under OptiFine is tried under
+//! cost against a one-tap pass-through, its water's cost (the scene with its water minus the
+//! same scene without, through wgpu, where wgpu draws the pack), how many things it uses that
+//! the harness does not imitate, and why a pack failed. A pack that does not render under OptiFine is tried under
 //! Iris (a pack for Iris alone shows an "Iris required" screen under OptiFine); the row names
 //! the loader it rendered under, and a list after the table says why OptiFine did not.
 //! tools/render-corpus runs it.
@@ -11,9 +12,14 @@
 
 use std::path::PathBuf;
 
-use tidepack_harness::Loader;
+use tidepack_harness::any_pack::AnyPack;
 use tidepack_harness::job::{self, AnyPackJob, AnyPackReport};
+use tidepack_harness::{Gpu, Loader, Scene, water_cost};
 use tidepack_loader::option_space::Configuration;
+
+/// Frames of each rendering and renderings with and without water for the water's cost.
+const WATER_COST_FRAMES: usize = 3;
+const WATER_COST_ROUNDS: usize = 2;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -21,8 +27,8 @@ fn main() {
         eprintln!("usage: render_corpus SCENE.toml OUT_DIR PACK_DIR...");
         std::process::exit(2);
     };
-    println!("| pack | result | renderer | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | not imitated |");
-    println!("|---|---|---|---:|---:|---:|");
+    println!("| pack | result | renderer | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | water / pass-through | not imitated |");
+    println!("|---|---|---|---:|---:|---:|---:|");
     let (mut by_wgpu, mut by_opengl) = (0, 0);
     let mut under_iris = Vec::new();
     for pack in packs {
@@ -88,14 +94,19 @@ fn main() {
                     (None, _) => "wgpu".to_string(),
                 };
                 let t = &report.timing;
+                let water = if report.renderer.wgpu_cannot_draw.is_none() && report.pack_programs > 0 {
+                    water_cost_of(&path, &report.rendered.loader, scene).unwrap_or_else(|e| format!("- ({})", cell(&e)))
+                } else {
+                    "-".to_string()
+                };
                 println!(
-                    "| {name} | {result} | {renderer} | {} | {:.1}x | {} |",
+                    "| {name} | {result} | {renderer} | {} | {:.1}x | {water} | {} |",
                     screen.unwrap_or_else(|| "-".into()),
                     t.frame_ms / t.passthrough_ms,
                     report.not_modelled.len()
                 );
             }
-            Err(e) => println!("| {name} | {e} | - | - | - | - |"),
+            Err(e) => println!("| {name} | {e} | - | - | - | - | - |"),
         }
     }
     println!(
@@ -106,6 +117,16 @@ fn main() {
     for (name, optifine) in &under_iris {
         println!("- {name} rendered under Iris; under OptiFine: {optifine}");
     }
+}
+
+/// The water's cost to the pack at `path` under `loader` on `scene`, in pass-throughs.
+fn water_cost_of(path: &std::path::Path, loader: &str, scene: &str) -> Result<String, String> {
+    let loader: Loader = loader.parse().map_err(|e| format!("{e}"))?;
+    let pack = AnyPack::load(path, &Configuration { loader, ..Configuration::default() }).map_err(|e| e.to_string())?;
+    let scene = Scene::load(std::path::Path::new(scene)).map_err(|e| e.to_string())?;
+    let gpu = Gpu::new().map_err(|e| e.to_string())?;
+    let (cost, _) = water_cost::measure(&gpu, &pack, &scene, WATER_COST_FRAMES, WATER_COST_ROUNDS).map_err(|e| e.to_string())?;
+    Ok(format!("{:.1}x", cost.water_cost()))
 }
 
 /// Why a run does not count as rendered (`render` would not exit 0), or `None`.

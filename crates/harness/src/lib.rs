@@ -21,6 +21,7 @@ pub mod job;
 pub mod program;
 pub mod samplers;
 pub mod uniforms;
+pub mod water_cost;
 
 pub use gpu::{Frame, Gpu, StepReport};
 pub use images::{median, quartiles};
