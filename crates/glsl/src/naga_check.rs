@@ -223,6 +223,15 @@ fn validate_text(
         let (diagnostics, at) = match parsed {
             Ok(module) => match validated.expect("a parsed module is validated") {
                 Ok(info) if found.is_empty() => {
+                    if version < 130
+                        && !pre.lenient
+                        && let Some(span) = mix_of_bool_vector(&module, &info)
+                    {
+                        let message = "mix() with a bvec selector (taking each component from one side) came with GLSL 1.30; \
+                                       under 1.20 write each component with ?: or declare #version 130";
+                        let at = Some(span.location(&text));
+                        return Err(vec![diagnostic_at(pre, &text, provider, message.to_string(), at).refused_by(Drivers::ALL.without(Drivers::NVIDIA))]);
+                    }
                     if naga_stage == naga::ShaderStage::Compute
                         && let Some(diagnostic) = shared_memory_overflow(pre, &text, provider, &module)
                     {
@@ -1135,6 +1144,28 @@ fn bool_mix_selector(
     };
     let naga::Expression::Splat { size, value } = function.expressions[*selector] else { return None };
     Some((*handle, size, value))
+}
+
+/// Where a function of `module` selects between vectors by a bool vector: naga's reading of
+/// `mix(x, y, bvecN)`, as no other GLSL form has a vector condition.
+fn mix_of_bool_vector(module: &naga::Module, info: &ModuleInfo) -> Option<naga::Span> {
+    let in_function = |function: &naga::Function, function_info: &naga::valid::FunctionInfo| {
+        function.expressions.iter().find_map(|(handle, expression)| {
+            let naga::Expression::Select { condition, accept, reject } = *expression else { return None };
+            let bool_vector = matches!(
+                function_info[condition].ty.inner_with(&module.types),
+                naga::TypeInner::Vector { scalar: naga::Scalar { kind: naga::ScalarKind::Bool, .. }, .. }
+            );
+            // naga gives the selection itself no span: its operands have theirs.
+            let spans = [handle, condition, accept, reject].map(|e| function.expressions.get_span(e));
+            spans.into_iter().find(|span| span.is_defined()).filter(|_| bool_vector)
+        })
+    };
+    module
+        .functions
+        .iter()
+        .find_map(|(handle, function)| in_function(function, &info[handle]))
+        .or_else(|| module.entry_points.iter().enumerate().find_map(|(i, entry)| in_function(&entry.function, info.get_entry_point(i))))
 }
 
 /// The name of the variable (or uniform block member) a pointer expression designates.
