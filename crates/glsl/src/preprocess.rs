@@ -452,7 +452,12 @@ impl Preprocessor<'_> {
                         if !joined.is_empty() {
                             joined.push(Token { kind: TokenKind::Whitespace, text: " ", offset: 0, line: l.first_line });
                         }
-                        joined.extend_from_slice(l.tokens);
+                        // A line comment inside a call's arguments is a space there: kept, it
+                        // would end the one line the expansion is written on.
+                        joined.extend(l.tokens.iter().map(|t| match t.kind {
+                            TokenKind::LineComment if end > index => Token { kind: TokenKind::Whitespace, text: " ", ..*t },
+                            _ => *t,
+                        }));
                     }
                     let span: u32 = lines[index..=end].iter().map(|l| l.span).sum();
                     self.seen_code = true;
@@ -1806,6 +1811,17 @@ mod tests {
         let targets = out.render_targets.unwrap();
         assert_eq!((targets.modern, targets.buffers), (true, vec![Some(0), Some(4)]));
         assert_eq!(targets.line.line, 4);
+    }
+
+    /// A line comment between a multi-line macro call's arguments (Rinrin0413/Tempest-Shaders_JE's
+    /// `saturate(` … `// Subtract in shadow` … `)`) does not end the line the call is written on.
+    #[test]
+    fn a_line_comment_inside_a_macro_call_spanning_lines_is_a_space() {
+        let src = "#define S(x) clamp(x, 0.0, 1.0)\nfloat l = S(\n    a\n    // the rest\n    - b\n);\nfloat next;\n";
+        let out = run(&[("a.fsh", src)]).unwrap();
+        let first = out.text.lines().nth(1).unwrap();
+        assert!(first.contains("clamp") && first.contains("- b") && first.trim_end().ends_with(';') && !first.contains("//"), "{first}");
+        assert!(out.text.lines().nth(6).is_some_and(|l| l.contains("float next")), "{}", out.text);
     }
 
     /// `/* DRAWBUFFERS: */` names no buffer: the program draws into none, as Iris reads it.
