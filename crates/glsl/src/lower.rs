@@ -61,7 +61,7 @@
 //!
 //! Reserved names all start with `tp_`.
 
-use std::collections::{BTreeMap, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::preprocess::literal_integer_expression;
@@ -891,6 +891,7 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
         let (defaults, _) = crate::compat::default_arguments_spelled_out(&tokens, &significant);
         edits.extend(defaults.into_iter().map(|(i, with)| (tokens[i].offset..tokens[i].offset + tokens[i].text.len(), with)));
     }
+    edits.extend(struct_names_hidden_by_variables(&sig));
     // A local declaration of several arrays (`vec3 normals[6], points[6];`), each declarator
     // its own declaration: naga's front end sizes the first alone.
     edits.extend(local_array_declarators_split(&sig));
@@ -930,6 +931,33 @@ fn lower_any(text: &str, stage: Stage, compute: bool, varyings: &VaryingLayout, 
     };
     lowering.run()?;
     Ok(Lowered { text: lowering.render(), interface: lowering.interface })
+}
+
+/// Edits giving a struct type that a variable of the same name hides its own name (`struct
+/// maskData {…} mask;` beside a local `float maskData`, rre36/glsl_rshader): GLSL lets the
+/// variable hide the type in its scope, naga's front end reads the name as the type
+/// everywhere. The type's uses (after `struct`, before a declared name or `[`, before `(` of a
+/// constructor) become `tp_struct_NAME`; the variable's stay.
+fn struct_names_hidden_by_variables(sig: &[&Token]) -> Vec<(std::ops::Range<usize>, String)> {
+    let structs: BTreeSet<&str> = sig.windows(2).filter(|w| w[0].is_ident("struct") && w[1].kind == TokenKind::Ident).map(|w| w[1].text).collect();
+    let declares_variable = |k: usize, name: &str| {
+        k > 0
+            && sig[k].is_ident(name)
+            && (is_builtin_type(sig[k - 1].text) || structs.contains(sig[k - 1].text))
+            && sig.get(k + 1).is_some_and(|t| t.is_punct("=") || t.is_punct(";") || t.is_punct(","))
+    };
+    let mut edits = Vec::new();
+    for name in structs.iter().filter(|name| (0..sig.len()).any(|k| declares_variable(k, name))) {
+        for k in (0..sig.len()).filter(|&k| sig[k].is_ident(name)) {
+            let next = sig.get(k + 1);
+            let type_use = (k > 0 && sig[k - 1].is_ident("struct"))
+                || next.is_some_and(|t| t.kind == TokenKind::Ident || t.is_punct("(") || t.is_punct("["));
+            if type_use && !declares_variable(k, name) {
+                edits.push((sig[k].offset..sig[k].offset + sig[k].text.len(), format!("{RESERVED_PREFIX}struct_{name}")));
+            }
+        }
+    }
+    edits
 }
 
 /// Edits splitting each local declaration without initializers whose later declarators are
@@ -2730,7 +2758,7 @@ pub fn unlower_names(message: &str) -> String {
         } else if name == "main" {
             out.push_str("main");
         } else if let Some(x) =
-            ["sampler_", "bool_", "kw_", "init_", "scalar_", "rt_"].iter().find_map(|p| name.strip_prefix(p))
+            ["sampler_", "bool_", "kw_", "init_", "scalar_", "rt_", "struct_"].iter().find_map(|p| name.strip_prefix(p))
         {
             out.push_str(x);
         } else {
@@ -2747,6 +2775,18 @@ pub fn unlower_names(message: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A struct type hidden by a local variable of its name (rre36/glsl_rshader's `maskData`):
+    /// the type takes a name of its own, the variable keeps its own, and naga reads the stage.
+    #[test]
+    fn a_struct_type_hidden_by_a_variable_takes_its_own_name() {
+        let text = "#version 330\nstruct maskData { bool terrain; } mask;\nuniform float level;\nout vec4 colour;\nvoid main() {\n    maskData m = maskData(true);\n    float maskData = level;\n    mask.terrain = (maskData > 0.125);\n    colour = vec4(m.terrain && mask.terrain);\n}\n";
+        let lowered = lower(text, Stage::Fragment, &VaryingLayout::default(), false).expect("lowers").text;
+        assert!(lowered.contains("struct tp_struct_maskData {") && lowered.contains("tp_struct_maskData m = tp_struct_maskData(true)"), "{lowered}");
+        assert!(lowered.contains("float maskData = ") && lowered.contains("(maskData > 0.125)"), "{lowered}");
+        let module = naga::front::glsl::Frontend::default().parse(&naga::front::glsl::Options::from(naga::ShaderStage::Fragment), &lowered);
+        assert!(module.is_ok(), "{module:?}\n{lowered}");
+    }
 
     #[test]
     fn reserved_names_read_as_the_packs() {
