@@ -6,7 +6,7 @@
 //! - a function with a return type and no `return` anywhere in its body;
 //! - a fragment shader writing both `gl_FragData`/`gl_FragColor` and `out` variables of its own;
 //! - an assignment to a shader input (`in`, `varying`, `attribute`);
-//! - texture2D & co. on a `sampler2DShadow`, shadow2D & co. on a `sampler2D`;
+//! - texture2D & co. on a `sampler2DShadow` or an integer sampler, shadow2D & co. on a `sampler2D`;
 //! - and, as a warning (drivers compile it, each to its own value), a local variable that is
 //!   read but never assigned.
 
@@ -138,7 +138,7 @@ impl<'a> Globals<'a> {
         let input_qualifier = if stage == Stage::Vertex { "attribute" } else { "varying" };
         let is_input = qualifiers.contains("in") || qualifiers.contains(input_qualifier);
         let is_output = qualifiers.contains("out") || (stage == Stage::Vertex && qualifiers.contains("varying"));
-        let sampler = words.iter().find(|t| t.text.starts_with("sampler")).map(|t| t.text);
+        let sampler = words.iter().find(|t| ["sampler", "usampler", "isampler"].iter().any(|p| t.text.starts_with(p))).map(|t| t.text);
         for (i, t) in words.iter().enumerate() {
             // A name: an identifier after the type (an array type's `]` too: `vec3[9] names`) or
             // a `,`, before a `,`, `[`, `=` or the end; not the type of `vec3[9] names` itself.
@@ -384,6 +384,24 @@ fn shadow_lookups(pre: &Preprocessed, sig: &[&Token], globals: &Globals) -> Vec<
             (_, Some((colour_form, lookup)), "sampler2D") => Some((lookup, colour_form, "a colour lookup")),
             _ => None,
         };
+        // The 1.20 lookups take float samplers only; NVIDIA reads an integer one anyway.
+        let integer = ty.starts_with("usampler") || ty.starts_with("isampler");
+        if integer && is_sampler_argument && matches!(t.text, "texture2D" | "texture2DLod" | "texture3D" | "texture3DLod" | "texture2DProj") {
+            let at = place(pre, declared);
+            let modern = if t.text.contains("Lod") { "textureLod" } else if t.text.contains("Proj") { "textureProj" } else { "texture" };
+            found.push(
+                Diagnostic::error(
+                    Code::NoMatchingOverload,
+                    format!(
+                        "no overload of {}() takes a {ty}: `{}` is declared `{ty}` at {at} (Mesa: \"no matching function for call to \
+                         `{}'\"); an integer sampler is read with {modern}()",
+                        t.text, argument.text, t.text
+                    ),
+                    pre.location(t.line),
+                )
+                .refused_by(Drivers::ALL.without(Drivers::NVIDIA)),
+            );
+        }
         if let (Some((lookup, other, what)), true) = (problem, is_sampler_argument) {
             let at = place(pre, declared);
             found.push(Diagnostic::error(
