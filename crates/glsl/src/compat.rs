@@ -606,7 +606,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     let only_read = if stage == Stage::Fragment { outputs_only_read_beside_legacy_outputs(&met) } else { Vec::new() };
     {
         for (type_, name) in &only_read {
-            let Some(k) = sig.windows(4).position(|w| w[0].is_ident("out") && w[1].is_ident(type_) && w[2].is_ident(name) && w[3].is_punct(";")) else { continue };
+            let declares = |k: usize| {
+                (k == 0 || !sig[k - 1].is_punct(")")) && sig[k].is_ident("out") && sig[k + 1].is_ident(type_) && sig[k + 2].is_ident(name) && sig[k + 3].is_punct(";")
+            };
+            let Some(k) = (0..sig.len().saturating_sub(3)).find(|&k| declares(k)) else { continue };
             replaced[significant[k]] = Some(String::new());
             replaced[significant[k + 3]] = Some(format!(" = {type_}(0);"));
             rewrites.push(Rewrite {
@@ -1474,8 +1477,14 @@ fn outputs_only_read_beside_legacy_outputs(toks: &[&Token]) -> Vec<(String, Stri
         return Vec::new();
     }
     let depths = brace_depths(toks);
+    // A declaration of its own (no `layout(…)` before it, which a global cannot keep).
     let declared = toks.windows(4).enumerate().filter(|(k, w)| {
-        depths[*k] == 0 && w[0].is_ident("out") && VALUE_TYPES.contains(&w[1].text) && w[2].kind == TokenKind::Ident && w[3].is_punct(";")
+        depths[*k] == 0
+            && (*k == 0 || !toks[k - 1].is_punct(")"))
+            && w[0].is_ident("out")
+            && VALUE_TYPES.contains(&w[1].text)
+            && w[2].kind == TokenKind::Ident
+            && w[3].is_punct(";")
     });
     let assigns = |name: &str| {
         toks.iter().enumerate().filter(|(_, t)| t.is_ident(name)).any(|(k, _)| {
@@ -2034,9 +2043,10 @@ mod tests {
     /// output, never written, becomes a global holding 0.
     #[test]
     fn an_output_only_read_beside_frag_data_becomes_a_global() {
-        let text = "#version 130\nout float blockID;\nout vec4 written;\nvoid main() {\n    gl_FragData[0] = vec4(blockID);\n}\n";
+        let text = "#version 130\nout float blockID;\nout vec4 written;\nlayout(location = 8) out vec4 placed;\nvoid main() {\n    gl_FragData[0] = vec4(blockID);\n}\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("out float blockID;", " float blockID = float(0);").replace("out vec4 written;", " vec4 written = vec4(0);"));
+        // An output placed by `layout` stays one (DrDesten/Groundwork's locations 8 and 9).
         assert_eq!(rewrites.len(), 2, "{rewrites:?}");
         assert!(rewrites[0].what.starts_with("`out float blockID`, read and never written beside `gl_FragData`"), "{rewrites:?}");
         let writing = text.replace("gl_FragData[0] = vec4(blockID);", "gl_FragData[0] = vec4(1.0); written.x = 1.0;");
