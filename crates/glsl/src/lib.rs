@@ -12,6 +12,7 @@ pub mod diagnostic;
 pub mod known_valid;
 pub mod liveness;
 pub mod lower;
+pub mod messages;
 pub mod naga_check;
 pub mod preprocess;
 pub mod terminal;

@@ -262,7 +262,7 @@ impl LoadedPack {
 }
 
 fn diag_error(context: &str, diagnostics: &[Diagnostic]) -> HarnessError {
-    let list: Vec<String> = diagnostics.iter().map(|d| tidepack_glsl::lower::unlower_names(&d.to_string())).collect();
+    let list: Vec<String> = diagnostics.iter().map(|d| tidepack_glsl::messages::clarify(d.clone()).to_string()).collect();
     HarnessError::Pack(format!("{context}:\n{}", list.join("\n")))
 }
 

@@ -36,7 +36,6 @@ pub mod glslang;
 pub mod interface;
 pub mod levels;
 pub mod loader_text;
-mod messages;
 mod naga_pool;
 pub mod output;
 mod report;

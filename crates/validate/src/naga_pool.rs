@@ -11,7 +11,7 @@ use tidepack_glsl::known_valid::KnownValid;
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::{Code, Diagnostic, Location};
 
-use crate::messages::clarify;
+use tidepack_glsl::messages::clarify;
 use tidepack_loader::{PackFiles, SetProvider};
 
 /// One distinct lowered stage for naga, with the option set that produced it.

@@ -1,12 +1,12 @@
-//! naga's messages in the pack's terms: the lowering's reserved names turned back into the
+//! naga's messages in the pack's terms, for `validate` and `render` alike: the lowering's reserved names turned back into the
 //! GLSL names they stand for, and what naga cannot check said as such.
 
-use tidepack_glsl::{Code, Diagnostic, Severity};
+use crate::{Code, Diagnostic, Severity};
 
 /// Speaks of the pack's names instead of the lowering's reserved ones in naga's messages, and
 /// explains the messages that the lowering makes obscure.
-pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
-    diag.message = tidepack_glsl::lower::unlower_names(&diag.message);
+pub fn clarify(mut diag: Diagnostic) -> Diagnostic {
+    diag.message = crate::lower::unlower_names(&diag.message);
     let sampling = ["texture", "textureLod", "textureProj", "textureGrad", "texelFetch", "textureSize", "textureOffset"];
     // naga names a built-in whose arguments fit none of its own forms by its IR name (`Dot`).
     let invalid_arguments = diag
@@ -28,7 +28,7 @@ pub(crate) fn clarify(mut diag: Diagnostic) -> Diagnostic {
         diag.message = format!("{name}{call} is not checked: naga's GLSL front-end does not implement it (`--driver` compiles it with Mesa)");
         return diag;
     }
-    if let Some((operator, size)) = tidepack_glsl::naga_check::logical_operator_on_vectors(&diag.message) {
+    if let Some((operator, size)) = crate::naga_check::logical_operator_on_vectors(&diag.message) {
         diag.message = format!(
             "`{operator}` takes two bools, and here it meets bvec{size}s: GLSL has no `{operator}` of vectors (NVIDIA applies it to each component; elsewhere write `any()`, `all()`, or `notEqual(ivec{size}(a) + ivec{size}(b), ivec{size}(0))`)"
         );
