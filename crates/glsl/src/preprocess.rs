@@ -907,6 +907,23 @@ impl Preprocessor<'_> {
                 (paste_tokens(body, &name, self.lenient)?, close + 1 - at)
             }
         };
+        // An expansion that ends in the name of a function-like macro takes its arguments from
+        // the text after the invocation, as C rescans it (`#define depth_of load_depth` before
+        // `depth_of(texel)`, HaringPro/Revelation).
+        let (mut body, mut consumed) = (body, consumed);
+        let last = body.iter().rposition(|t| !is_trivia_kind(t.kind));
+        let calls_on = last.is_some_and(|l| {
+            let t = &body[l];
+            t.kind == TokenKind::Ident && t.text != name && !disabled.contains(&t.text) && self.macros.get(&t.text).is_some_and(|m| m.params.is_some())
+        });
+        if calls_on
+            && let Some(open) = (at + consumed..tokens.len()).find(|&i| !is_trivia_kind(tokens[i].kind))
+            && tokens[open].text == "("
+            && let Some((_, close)) = split_arguments(tokens, open)
+        {
+            body.extend(tokens[at + consumed..=close].iter().cloned());
+            consumed = close + 1 - at;
+        }
         disabled.push(name);
         let result = self.expand_all(&body, disabled, depth + 1);
         disabled.pop();
@@ -1811,6 +1828,17 @@ mod tests {
         let targets = out.render_targets.unwrap();
         assert_eq!((targets.modern, targets.buffers), (true, vec![Some(0), Some(4)]));
         assert_eq!(targets.line.line, 4);
+    }
+
+    /// An object-like macro naming a function-like one takes the arguments written after it,
+    /// as C rescans (HaringPro/Revelation's `#define loadDepthMacro loadDepth1`).
+    #[test]
+    fn a_macro_expanding_to_a_function_like_macro_name_takes_the_arguments_after_it() {
+        let src = "#define load(t) fetch(t, 0)\n#define loader load\nfloat d = loader(ivec2(1, 2)).x;\nfloat e = loader;\n";
+        let out = run(&[("a.fsh", src)]).unwrap();
+        let lines: Vec<&str> = out.text.lines().collect();
+        assert!(lines[2].contains("fetch(ivec2(1, 2), 0).x;") && !lines[2].contains("load"), "{}", out.text);
+        assert!(lines[3].contains("float e = load;"), "{}", out.text);
     }
 
     /// A line comment between a multi-line macro call's arguments (Rinrin0413/Tempest-Shaders_JE's
