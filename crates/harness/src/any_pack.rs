@@ -289,12 +289,12 @@ impl DeclaredBuffers {
     fn read(stages: &[&LoadedStage], fullscreen: &[LoadedProgram], not_modelled: &mut Vec<String>) -> DeclaredBuffers {
         let mut declared = DeclaredBuffers::default();
         for stage in stages {
-            read_formats(&stage.gl_text, "shadowcolor", shadow_colour_number, &mut declared.shadow_formats, not_modelled);
-            read_formats(&stage.gl_text, "colortex", colour_buffer_number, &mut declared.formats, not_modelled);
-            declared.shadow_clears.extend(declared_clears(&stage.gl_text, shadow_colour_number));
-            declared.clears.extend(declared_clears(&stage.gl_text, colour_buffer_number));
+            read_formats(&stage.settings_text, "shadowcolor", shadow_colour_number, &mut declared.shadow_formats, not_modelled);
+            read_formats(&stage.settings_text, "colortex", colour_buffer_number, &mut declared.formats, not_modelled);
+            declared.shadow_clears.extend(declared_clears(&stage.settings_text, shadow_colour_number));
+            declared.clears.extend(declared_clears(&stage.settings_text, colour_buffer_number));
             let shadow_mipmaps = ["shadowcolor", "shadowtex", "generateShadowMipmap", "generateShadowColorMipmap"];
-            if declared_switches(&stage.gl_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {
+            if declared_switches(&stage.settings_text).any(|name| name.contains("Mipmap") && shadow_mipmaps.iter().any(|s| name.starts_with(s))) {
                 not_modelled.push("mipmaps of the shadow maps are not generated".to_string());
             }
         }
@@ -303,7 +303,7 @@ impl DeclaredBuffers {
         for p in fullscreen {
             let buffers: BTreeSet<u8> = [&p.vertex, &p.fragment]
                 .iter()
-                .flat_map(|stage| declared_switches(&stage.gl_text).filter_map(|name| name.strip_suffix("MipmapEnabled").and_then(colour_buffer_number)).collect::<Vec<_>>())
+                .flat_map(|stage| declared_switches(&stage.settings_text).filter_map(|name| name.strip_suffix("MipmapEnabled").and_then(colour_buffer_number)).collect::<Vec<_>>())
                 .collect();
             if !buffers.is_empty() {
                 declared.mipmaps.insert(p.name.clone(), buffers);
@@ -466,7 +466,7 @@ impl AnyPack {
 
         let stages: Vec<&LoadedStage> =
             gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(fullscreen.iter()).flat_map(|p| [&p.vertex, &p.fragment]).collect();
-        let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.gl_text.as_str()));
+        let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.settings_text.as_str()));
         let buffers = DeclaredBuffers::read(&stages, &fullscreen, &mut not_modelled);
         if shadow_pass {
             let (drawn, multiplier) = shadow_settings.drawn_resolution();

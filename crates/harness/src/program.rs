@@ -65,6 +65,10 @@ pub struct LoadedStage {
     /// The pack file and line of each line of `gl_text` (see [`origins_of_rewritten`]), for
     /// saying a driver's complaint where the author wrote the code.
     pub gl_origins: Vec<Option<Location>>,
+    /// The stage with its includes expanded and its comments kept, where the loader reads the
+    /// settings a pack writes in comments (`const int colortex0Format = RGBA16F;`); under Iris
+    /// `gl_text` has no comments left.
+    pub settings_text: String,
     /// The lowered GLSL 450 exactly as the toolchain produces it.
     pub lowered_text: String,
     /// The text naga parsed for wgpu: the lowered text, plus (vertex stage only) a wrapper
@@ -339,13 +343,13 @@ fn expanded_as_loader_gives_it(
     seen: &str,
     reading: LoaderReading,
 ) -> Result<ExpandedStage, HarnessError> {
+    let (expanded, expanded_map) = preprocess::expand_includes_mapped(provider, path, defines, macros.include_rules)
+        .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
     if reading.preprocessed_for_driver {
         let (text, line_map, version_put_first) = iris::as_preprocessor_leaves_it(seen, preprocessed);
-        return Ok(ExpandedStage { text, line_map, version_put_first });
+        return Ok(ExpandedStage { text, line_map, version_put_first, settings_text: expanded });
     }
-    let (text, line_map) = preprocess::expand_includes_mapped(provider, path, defines, macros.include_rules)
-        .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
-    Ok(ExpandedStage { text, line_map, version_put_first: None })
+    Ok(ExpandedStage { text: expanded.clone(), line_map: expanded_map, version_put_first: None, settings_text: expanded })
 }
 
 /// The lines (1-based) of an expanded text, whose pack locations are `line_map`, that come from
@@ -375,6 +379,8 @@ struct ExpandedStage {
     line_map: Vec<Option<Location>>,
     /// What was done where the loader put a `#version` chosen in an `#if` first.
     version_put_first: Option<String>,
+    /// [`LoadedStage::settings_text`].
+    settings_text: String,
 }
 
 /// Lines a rewrite may move from where they were in the text it rewrote: the `#undef` lines it
@@ -480,7 +486,7 @@ pub(crate) fn load_program_files(
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
-        let ExpandedStage { text: expanded, line_map, version_put_first } =
+        let ExpandedStage { text: expanded, line_map, version_put_first, settings_text } =
             expanded_as_loader_gives_it(provider, &path, macros, &defines, &stage.preprocessed, &as_preprocessed[&stage.stage], reading)?;
         let lines_from = |at: &Location| lines_from(&line_map, at);
         let redefined = redefined_lines(&stage.preprocessed, &line_map);
@@ -575,6 +581,7 @@ pub(crate) fn load_program_files(
             gl_text,
             gl_rewrites,
             gl_origins,
+            settings_text,
             lowered_text,
             harness_text,
             interface,
@@ -608,7 +615,7 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let ExpandedStage { text: expanded, line_map, version_put_first } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, &preprocessed.text, reading)?;
+    let ExpandedStage { text: expanded, line_map, version_put_first, .. } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, &preprocessed.text, reading)?;
     let (expanded, raised) = iris::as_transformed(expanded, &preprocessed.text, iris::Transform { raises_version: reading.transform.raises_version, ..Default::default() }, None);
     let redefined = redefined_lines(&preprocessed, &line_map);
     let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
