@@ -404,12 +404,12 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             if !integer_samplers.contains(&first_argument) {
                 return None;
             }
-            Some(match name {
+            let modern = match name {
                 "texture2D" | "texture3D" => "texture",
                 "texture2DLod" | "texture3DLod" => "textureLod",
                 _ => return None,
-            })
-            .map(str::to_string)
+            };
+            Some(modern.to_string())
         };
         if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, of_integer_sampler) {
             rewrites.push(Rewrite {

@@ -121,7 +121,7 @@ fn main() {
 
 /// The water's cost to the pack at `path` under `loader` on `scene`, in pass-throughs.
 fn water_cost_of(path: &std::path::Path, loader: &str, scene: &str) -> Result<String, String> {
-    let loader: Loader = loader.parse().map_err(|e| format!("{e}"))?;
+    let loader: Loader = loader.parse()?;
     let pack = AnyPack::load(path, &Configuration { loader, ..Configuration::default() }).map_err(|e| e.to_string())?;
     let scene = Scene::load(std::path::Path::new(scene)).map_err(|e| e.to_string())?;
     let gpu = Gpu::new().map_err(|e| e.to_string())?;
