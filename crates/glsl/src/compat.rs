@@ -42,6 +42,17 @@ pub const REMOVED_IN_CORE: [&str; 22] = [
 /// Of [`REMOVED_IN_CORE`], the lookups whose successors a core profile has (`texture()` & co.).
 const LEGACY_LOOKUPS: [&str; 4] = ["texture2D", "texture2DLod", "shadow2D", "texture3D"];
 
+/// The GLSL 1.30 lookup that replaced a 1.20 one (`texture2D` → `texture`, `texture2DLod` →
+/// `textureLod`, `texture2DProj` → `textureProj`), which core profiles and integer samplers take.
+pub fn modern_lookup(legacy: &str) -> Option<&'static str> {
+    match legacy {
+        "texture2D" | "texture3D" => Some("texture"),
+        "texture2DLod" | "texture3DLod" => Some("textureLod"),
+        "texture2DProj" => Some("textureProj"),
+        _ => None,
+    }
+}
+
 /// Of [`REMOVED_IN_CORE`], the deprecated names Mesa still compiles in a core stage before
 /// GLSL 4.20 (measured with Mesa 25.0 in a compatibility context, `#version 330` to `410`);
 /// `attribute` and `varying` too. The fixed-function vertex state it refuses at any version.
@@ -374,15 +385,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             what: format!("`{}`, which a core profile lacks, taken by compiling the stage as `#version {version} compatibility`, as NVIDIA takes it", used.text),
         });
     } else if core {
-        let replacement = |_: usize, name: &str| {
-            Some(match name {
-                "texture2D" | "texture3D" => "texture",
-                "texture2DLod" | "texture3DLod" => "textureLod",
-                "texture2DProj" => "textureProj",
-                _ => return None,
-            })
-            .map(str::to_string)
-        };
+        let replacement = |_: usize, name: &str| modern_lookup(name).map(str::to_string);
         if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, replacement) {
             rewrites.push(Rewrite {
                 line: tokens[first].line,
@@ -404,12 +407,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             if !integer_samplers.contains(&first_argument) {
                 return None;
             }
-            let modern = match name {
-                "texture2D" | "texture3D" => "texture",
-                "texture2DLod" | "texture3DLod" => "textureLod",
-                _ => return None,
-            };
-            Some(modern.to_string())
+            modern_lookup(name).map(str::to_string)
         };
         if let Some((first, renamed)) = rename_calls(&tokens, &significant, &met, &mut replaced, of_integer_sampler) {
             rewrites.push(Rewrite {

@@ -386,9 +386,8 @@ fn shadow_lookups(pre: &Preprocessed, sig: &[&Token], globals: &Globals) -> Vec<
         };
         // The 1.20 lookups take float samplers only; NVIDIA reads an integer one anyway.
         let integer = ty.starts_with("usampler") || ty.starts_with("isampler");
-        if integer && is_sampler_argument && matches!(t.text, "texture2D" | "texture2DLod" | "texture3D" | "texture3DLod" | "texture2DProj") {
+        if integer && is_sampler_argument && let Some(modern) = tidepack_glsl::compat::modern_lookup(t.text) {
             let at = place(pre, declared);
-            let modern = if t.text.contains("Lod") { "textureLod" } else if t.text.contains("Proj") { "textureProj" } else { "texture" };
             found.push(
                 Diagnostic::error(
                     Code::NoMatchingOverload,
