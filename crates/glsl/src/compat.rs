@@ -161,11 +161,13 @@ pub struct Rewrite {
 ///   `textureLod()`, `textureProj()`;
 /// - before each line of `redefined` (1-based lines of `text`, with the macro each `#define`
 ///   there redefines with another body, as the lenient preprocessor found them) a line
-///   `#undef NAME` is inserted: the one rewrite that moves the lines after it down.
+///   `#undef NAME` is inserted: the one rewrite that moves the lines after it down;
+/// - and first, the expressions of [`lenient_expressions`].
 pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefined: &[(u32, String)]) -> (String, Vec<Rewrite>) {
-    let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), Vec::new()) };
+    let (text, mut rewrites) = lenient_expressions(text).unwrap_or_else(|| (text.to_string(), Vec::new()));
+    let text = text.as_str();
+    let (Ok(tokens), Ok(met)) = (tokenize(text), tokenize(preprocessed)) else { return (text.to_string(), rewrites) };
     let met: Vec<&Token> = met.iter().filter(|t| !t.is_trivia()).collect();
-    let mut rewrites = Vec::new();
     // Replacement text per token index.
     let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
     let significant = significant(&tokens);
@@ -952,6 +954,128 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
             (*written_as != read_as).then(|| (name.to_string(), written_as.to_string(), read_as.to_string()))
         })
         .collect()
+}
+
+/// Built-in functions giving a boolean vector of their arguments compared component-wise.
+const BOOLEAN_VECTOR_FUNCTIONS: [&str; 9] = ["lessThan", "lessThanEqual", "greaterThan", "greaterThanEqual", "equal", "notEqual", "not", "isnan", "isinf"];
+
+/// `text` with the expressions NVIDIA's compiler takes and GLSL refuses written as what they
+/// compute there, and the rewrites made; None where it holds none. Both keep every line where
+/// it was and evaluate each operand as often as before:
+/// - a lookup whose sampler is chosen by `?:` (`texture2D(c ? a : b, uv)`; samplers are
+///   opaque) becomes the choice of two lookups, `(c ? texture2D(a, uv) : texture2D(b, uv))`;
+/// - `any(p || q)` and `all(p && q)` of boolean vectors (`isnan(v) || isinf(v)`; `||` and `&&`
+///   take scalars) become `(any(p) || any(q))` and `(all(p) && all(q))`.
+pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
+    let tokens = tokenize(text).ok()?;
+    let sig = significant(&tokens);
+    let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
+    let mut rewrites = Vec::new();
+    // A run of significant tokens as written, each space, line break or comment within one space.
+    let joined = |range: &[usize]| match (range.first(), range.last()) {
+        (Some(&first), Some(&last)) => tokens[first..=last].iter().map(|t| if t.is_trivia() { " " } else { t.text }).collect::<String>(),
+        _ => String::new(),
+    };
+    let mut k = 0;
+    while k + 1 < sig.len() {
+        let name = &tokens[sig[k]];
+        let is_call = name.kind == TokenKind::Ident && tokens[sig[k + 1]].is_punct("(");
+        let Some(close) = is_call.then(|| matching_close(&sig, &tokens, k + 1)).flatten() else {
+            k += 1;
+            continue;
+        };
+        let inside = &sig[k + 2..close];
+        let rewritten = if ["texture", "texel", "shadow"].iter().any(|p| name.text.starts_with(p)) {
+            sampler_choice(&tokens, inside).map(|(condition, first, second, rest)| {
+                let rest = joined(rest);
+                let call = |sampler: &str| format!("{}({sampler}{}{rest})", name.text, if rest.is_empty() { "" } else { ", " });
+                let what = format!("`{}()` of a sampler chosen by `?:`, which GLSL refuses, made a choice of two lookups", name.text);
+                (format!("({} ? {} : {})", joined(condition), call(first), call(second)), what)
+            })
+        } else if let Some(operator) = [("any", "||"), ("all", "&&")].iter().find(|(f, _)| name.text == *f).map(|(_, o)| *o) {
+            boolean_vector_operands(&tokens, inside, operator).map(|operands| {
+                let reduced: Vec<String> = operands.iter().map(|o| format!("{}({})", name.text, joined(o))).collect();
+                let what = format!("`{}()` of boolean vectors joined by `{operator}`, which takes scalars, made `{operator}` of each one's `{}()`", name.text, name.text);
+                (format!("({})", reduced.join(&format!(" {operator} "))), what)
+            })
+        } else {
+            None
+        };
+        match rewritten {
+            Some((expression, what)) => {
+                // The call's line breaks follow it, so that every line after stays where it was.
+                let breaks = tokens[sig[k]..=sig[close]].iter().map(|t| t.text.matches('\n').count()).sum::<usize>();
+                replaced[sig[k]] = Some(expression + &"\n".repeat(breaks));
+                for r in &mut replaced[sig[k] + 1..=sig[close]] {
+                    *r = Some(String::new());
+                }
+                rewrites.push(Rewrite { line: name.line, what });
+                k = close + 1;
+            }
+            None => k += 1,
+        }
+    }
+    if rewrites.is_empty() {
+        return None;
+    }
+    Some((tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect(), rewrites))
+}
+
+/// Where each token of `inside` (indices of significant tokens) sits: at the top level of the
+/// list (not inside a bracket of its own).
+fn at_top_level(tokens: &[Token], inside: &[usize]) -> Vec<bool> {
+    let mut depth = 0i32;
+    inside
+        .iter()
+        .map(|&i| {
+            let t = &tokens[i];
+            let opens = t.kind == TokenKind::Punct && matches!(t.text, "(" | "[" | "{");
+            let closes = t.kind == TokenKind::Punct && matches!(t.text, ")" | "]" | "}");
+            if closes {
+                depth -= 1;
+            }
+            let top = depth == 0 && !closes;
+            if opens {
+                depth += 1;
+            }
+            top
+        })
+        .collect()
+}
+
+/// A call's arguments (`inside`) whose first is `condition ? first : second`, each of the two
+/// a name: the condition, the two names and the arguments after the first.
+fn sampler_choice<'a, 't>(tokens: &'a [Token<'t>], inside: &'a [usize]) -> Option<(&'a [usize], &'t str, &'t str, &'a [usize])> {
+    let top = at_top_level(tokens, inside);
+    let at = |text: &str| (0..inside.len()).filter(|&j| top[j] && tokens[inside[j]].is_punct(text)).collect::<Vec<_>>();
+    let end = at(",").first().copied().unwrap_or(inside.len());
+    let (questions, colons) = (at("?"), at(":"));
+    let (&[question], &[colon]) = (&questions[..], &colons[..]) else { return None };
+    let name = |j: usize| (tokens[inside[j]].kind == TokenKind::Ident).then_some(tokens[inside[j]].text);
+    if question == 0 || colon != question + 2 || end != colon + 2 {
+        return None;
+    }
+    Some((&inside[..question], name(question + 1)?, name(colon + 1)?, inside.get(end + 1..).unwrap_or(&[])))
+}
+
+/// The operands of `inside` (one argument) joined at the top level by `operator`, where there
+/// are two or more and each is a whole call of a built-in giving a boolean vector.
+fn boolean_vector_operands<'a>(tokens: &[Token], inside: &'a [usize], operator: &str) -> Option<Vec<&'a [usize]>> {
+    let top = at_top_level(tokens, inside);
+    let mut operands = Vec::new();
+    let mut start = 0;
+    for j in (0..inside.len()).filter(|&j| top[j] && tokens[inside[j]].is_punct(operator)) {
+        operands.push(&inside[start..j]);
+        start = j + 1;
+    }
+    operands.push(&inside[start..]);
+    let whole_call = |o: &[usize]| {
+        o.len() >= 3
+            && BOOLEAN_VECTOR_FUNCTIONS.iter().any(|f| tokens[o[0]].is_ident(f))
+            && tokens[o[1]].is_punct("(")
+            && matching_close(o, tokens, 1) == Some(o.len() - 1)
+    };
+    (operands.len() >= 2 && operands.iter().all(|o| whole_call(o))).then_some(operands)
 }
 
 /// `fragment` reading each varying of `resized` ([`varyings_resized`]) at the type the vertex
@@ -1913,6 +2037,34 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
         let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
         assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_sampler_chosen_by_a_condition_becomes_a_choice_of_lookups() {
+        let text = "uniform sampler2D a, b;\nvarying vec2 uv;\nuniform bool light;\nvoid main() {\n    gl_FragColor = texture2D(light ? a :\n        b, uv * 0.5);\n}\n";
+        let (out, rewrites) = lenient_expressions(text).expect("one rewrite");
+        assert_eq!(out.lines().nth(4), Some("    gl_FragColor = (light ? texture2D(a, uv * 0.5) : texture2D(b, uv * 0.5))"));
+        assert_eq!(out.lines().nth(5), Some(";"));
+        assert_eq!(out.lines().count(), text.lines().count(), "lines stay where they were");
+        assert_eq!(rewrites[0].line, 5);
+        assert!(rewrites[0].what.contains("`texture2D()` of a sampler chosen by `?:`"), "{}", rewrites[0].what);
+        // A choice of coordinates, or of samplers in an index, is GLSL.
+        for kept in ["texture2D(a, light ? uv : -uv)", "texture2D(s[light ? 0 : 1], uv)", "texture2D(light ? a : b[0], uv)"] {
+            assert_eq!(lenient_expressions(&format!("void main() {{ vec4 c = {kept}; }}")), None, "{kept}");
+        }
+    }
+
+    #[test]
+    fn boolean_vectors_joined_by_a_logical_operator_are_reduced_each() {
+        let text = "void main() { vec3 c = vec3(1.0); if (any(isinf(c) || isnan(c))) c = vec3(0.0); bool b = all(lessThan(c, vec3(1.0)) && greaterThan(c, vec3(0.0))); }";
+        let (out, rewrites) = lenient_expressions(text).expect("two rewrites");
+        assert!(out.contains("if ((any(isinf(c)) || any(isnan(c)))) c"), "{out}");
+        assert!(out.contains("bool b = (all(lessThan(c, vec3(1.0))) && all(greaterThan(c, vec3(0.0))));"), "{out}");
+        assert_eq!(rewrites.len(), 2);
+        // Scalars joined, or a vector not of a comparison, are left to the compiler.
+        for kept in ["any(b || c)", "any(isnan(c)) || any(isinf(c))", "any(isnan(c) || d)", "all(equal(a, b) || equal(a, c))"] {
+            assert_eq!(lenient_expressions(&format!("void main() {{ bool r = {kept}; }}")), None, "{kept}");
+        }
     }
 
     #[test]

@@ -466,6 +466,11 @@ pub(crate) fn load_program_files(
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
+        // What NVIDIA computes of expressions GLSL refuses, for naga as for OpenGL
+        // (`compat::for_strict_drivers` lists the rewrites).
+        if let Some((text, _)) = tidepack_glsl::compat::lenient_expressions(&p.text) {
+            p.text = text;
+        }
         pre.push((stage, Arc::new(p)));
     }
     // Varyings the stages declare at other float sizes, which NVIDIA links: the fragment stage
