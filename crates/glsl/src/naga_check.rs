@@ -14,7 +14,7 @@ use crate::diagnostic::{Diagnostic, Drivers, Location};
 use crate::known_valid::{self, KnownValid};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
-use crate::token::{TokenKind, blanked, brace_depths, function_definitions, tokenize};
+use crate::token::{TokenKind, blanked, brace_depths, function_definitions, matching_close, tokenize};
 
 /// One stage after lowering, ready for naga.
 #[derive(Clone, Debug)]
@@ -747,6 +747,8 @@ fn parse_repair(text: &str, e: &naga::front::glsl::Error, version: u32, scalar_s
         repaired(mixed_type_overloads(text, name, version))
     } else if message.as_ref() == "<< operation overflowed" {
         repaired(literal_shift(text, span))
+    } else if message.starts_with("Unknown function '") {
+        repaired(bool_vector_arguments(text, span))
     } else if let (true, Some((operator, size))) = (lenient, logical_operator_on_vectors(message)) {
         // The sum of the two vectors' ints says where one or both hold.
         let written = text.get(span.clone())?;
@@ -776,6 +778,70 @@ pub fn logical_operator_on_vectors(message: &str) -> Option<(&'static str, char)
     };
     let size = rest.chars().next().filter(|c| ('2'..='4').contains(c))?;
     rest[1..].starts_with("<bool>").then_some((operator, size))
+}
+
+/// `text` with each argument of the call at `span` that constructs a vector of one bool
+/// (`vec3(b)`, `ivec2(x > 0)`) converting the bool first (`vec3(float(b))`). GLSL makes such a
+/// vector of 0 or 1 in each component; naga's front end makes it a scalar and then finds no
+/// function taking it. A bool is told from the text: a comparison or logical operator at the
+/// argument's top level (not one choosing with `?:`), `!`, `true`, `false`, or a name the text
+/// declares `bool`.
+fn bool_vector_arguments(text: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let tokens = tokenize(text.get(span.clone())?).ok()?;
+    let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let open = sig.iter().position(|&i| tokens[i].is_punct("("))?;
+    let close = matching_close(&sig, &tokens, open)?;
+    let all_tokens = tokenize(text).ok()?;
+    let declared_bool = |name: &str| all_tokens.windows(3).any(|w| w[0].is_ident("bool") && w[1].is_trivia() && w[2].is_ident(name));
+    let mut insertions: Vec<(usize, String)> = Vec::new();
+    let mut k = open + 1;
+    while k < close {
+        let constructor = tokens[sig[k]].text;
+        let scalar = match constructor.strip_suffix(['2', '3', '4']) {
+            Some("vec") => "float",
+            Some("ivec") => "int",
+            Some("uvec") => "uint",
+            _ => "",
+        };
+        if !scalar.is_empty()
+            && tokens[sig[k + 1]].is_punct("(")
+            && let Some(end) = matching_close(&sig, &tokens, k + 1)
+        {
+            let inner = &sig[k + 2..end];
+            let mut depth = 0i32;
+            let (mut boolean, mut chosen) = (false, false);
+            let mut single = !inner.is_empty();
+            for &i in inner {
+                let t = &tokens[i];
+                match t.text {
+                    "(" | "[" => depth += 1,
+                    ")" | "]" => depth -= 1,
+                    "," if depth == 0 => single = false,
+                    "?" if depth == 0 => chosen = true,
+                    "==" | "!=" | "<" | ">" | "<=" | ">=" | "&&" | "||" | "^^" if depth == 0 && t.kind == TokenKind::Punct => boolean = true,
+                    _ => {}
+                }
+            }
+            let first = &tokens[inner.first().copied().unwrap_or(sig[end])];
+            boolean |= inner.len() == 1 && (first.is_ident("true") || first.is_ident("false") || declared_bool(first.text));
+            boolean |= first.is_punct("!");
+            if single && boolean && !chosen {
+                insertions.push((span.start + tokens[inner[0]].offset, format!("{scalar}(")));
+                insertions.push((span.start + tokens[sig[end]].offset, ")".to_string()));
+            }
+            k = end + 1;
+            continue;
+        }
+        k += 1;
+    }
+    if insertions.is_empty() {
+        return None;
+    }
+    let mut out = text.to_string();
+    for (at, inserted) in insertions.into_iter().rev() {
+        out.insert_str(at, &inserted);
+    }
+    Some(out)
 }
 
 /// `text` with `stand_in` on the lowering's header line (the line after `#version`), once.
@@ -1273,24 +1339,36 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
     }
     let repaired = |text: String| Some(Repair { text, lenient: None });
     // `vec3(b)` of a bool, which GLSL makes a vector of 0.0 or 1.0: naga's front end selects
-    // 1.0 or 0.0 and leaves the vector out. The bool is converted in the text first.
-    let stored = match source {
-        FunctionError::InvalidStoreTypes { value, .. } | FunctionError::InvalidReturnType { expression: Some(value), .. } => Some(*value),
-        FunctionError::LocalVariable { handle, source: naga::valid::LocalVariableError::InitializerType, .. } => function.local_variables[*handle].init,
-        _ => None,
-    };
-    if let Some(value) = stored
-        && let naga::Expression::Select { condition, .. } = function.expressions[value]
-        && matches!(type_of(condition), Some(naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Bool, .. })))
-        && let Some(scalar @ naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Float | naga::ScalarKind::Sint | naga::ScalarKind::Uint, .. })) =
-            type_of(value)
-        && let Some(span) = whole_span(text, function, condition)
-        && let Some(before) = text[..span.start].trim_end().strip_suffix('(')
-        // `vec3(`, `ivec2(`, `uvec4(`.
-        && before.trim_end().strip_suffix(['2', '3', '4']).is_some_and(|b| b.ends_with("vec"))
-    {
-        let scalar = glsl_type_name(&scalar)?;
-        return repaired(format!("{}{scalar}({}){}", &text[..span.start], &text[span.clone()], &text[span.end..]));
+    // 1.0 or 0.0 and leaves the vector out, so a scalar stands where the text has a vector (a
+    // store, a return, an argument, an operand). Every such bool of the failing function is
+    // converted in the text first (`vec3(float(b))`).
+    let bool_conversions: Vec<(std::ops::Range<usize>, String)> = function
+        .expressions
+        .iter()
+        .filter_map(|(value, expression)| {
+            let naga::Expression::Select { condition, .. } = *expression else { return None };
+            let is_bool = matches!(type_of(condition), Some(naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Bool, .. })));
+            let scalar @ naga::TypeInner::Scalar(naga::Scalar { kind: naga::ScalarKind::Float | naga::ScalarKind::Sint | naga::ScalarKind::Uint, .. }) =
+                type_of(value)?
+            else {
+                return None;
+            };
+            let span = whole_span(text, function, condition).filter(|_| is_bool)?;
+            let before = text[..span.start].trim_end().strip_suffix('(')?;
+            // `vec3(b)`, `ivec2(b)`, `uvec4(b)`: the condition alone between the brackets.
+            let constructs = before.trim_end().strip_suffix(['2', '3', '4']).is_some_and(|b| b.ends_with("vec"));
+            (constructs && text[span.end..].trim_start().starts_with(')')).then(|| Some((span, glsl_type_name(&scalar)?))).flatten()
+        })
+        .collect();
+    if !bool_conversions.is_empty() {
+        let mut converted = text.to_string();
+        let mut spans = bool_conversions;
+        spans.sort_by_key(|(span, _)| std::cmp::Reverse(span.start));
+        spans.dedup_by_key(|(span, _)| span.start);
+        for (span, scalar) in spans {
+            converted = format!("{}{scalar}({}){}", &converted[..span.start], &converted[span.clone()], &converted[span.end..]);
+        }
+        return repaired(converted);
     }
     // The value converted, its target type, and whether GLSL (from 1.20) converts it there.
     let (value, target, glsl_converts) = match source {
