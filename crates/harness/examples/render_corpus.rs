@@ -6,9 +6,10 @@
 //! the harness does not imitate, and why a pack failed. A pack that does not render under OptiFine is tried under
 //! Iris (a pack for Iris alone shows an "Iris required" screen under OptiFine); the row names
 //! the loader it rendered under, and a list after the table says why OptiFine did not.
-//! tools/render-corpus runs it.
+//! tools/render-corpus runs it. `--no-water-cost` leaves the water's cost out (a third of the
+//! time), for a run that asks only which packs render.
 //!
-//!     render_corpus SCENE.toml OUT_DIR PACK_DIR...
+//!     render_corpus [--no-water-cost] SCENE.toml OUT_DIR PACK_DIR...
 
 use std::path::PathBuf;
 
@@ -22,9 +23,16 @@ const WATER_COST_FRAMES: usize = 3;
 const WATER_COST_ROUNDS: usize = 2;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let water_costs = match args.first().map(String::as_str) {
+        Some("--no-water-cost") => {
+            args.remove(0);
+            false
+        }
+        _ => true,
+    };
     let [scene, out, packs @ ..] = args.as_slice() else {
-        eprintln!("usage: render_corpus SCENE.toml OUT_DIR PACK_DIR...");
+        eprintln!("usage: render_corpus [--no-water-cost] SCENE.toml OUT_DIR PACK_DIR...");
         std::process::exit(2);
     };
     println!("| pack | result | renderer | screen vs OpenGL: pixels over 1/255 (largest, x/255) | frame / pass-through | water / pass-through | not imitated |");
@@ -94,7 +102,7 @@ fn main() {
                     (None, _) => "wgpu".to_string(),
                 };
                 let t = &report.timing;
-                let water = if report.renderer.wgpu_cannot_draw.is_none() && report.pack_programs > 0 {
+                let water = if water_costs && report.renderer.wgpu_cannot_draw.is_none() && report.pack_programs > 0 {
                     water_cost_of(&path, &report.rendered.loader, scene).unwrap_or_else(|e| format!("- ({})", cell(&e)))
                 } else {
                     "-".to_string()

@@ -45,6 +45,7 @@ pub(crate) fn check_program(
                 diags.extend(no_buffer_under_iris(&pre, loader));
                 diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
                 diags.extend(version_rules::unknown_extensions(&pre));
+                diags.extend(version_rules::extensions_some_drivers_lack(&pre));
                 diags.extend(glsl_rules::check(&pre, *stage));
                 diags.extend(macos_refusals(&pre, false));
                 diags.extend(above_configured_glsl(&pre, macros));
@@ -253,6 +254,7 @@ pub(crate) fn check_compute(
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
     diags.extend(version_rules::check_compute(&pre).map(lenient_on_nvidia));
     diags.extend(version_rules::unknown_extensions(&pre));
+    diags.extend(version_rules::extensions_some_drivers_lack(&pre));
     diags.extend(macos_refusals(&pre, true));
     diags.extend(above_configured_glsl(&pre, macros));
     match naga_check::lower_compute(Arc::new(pre)) {

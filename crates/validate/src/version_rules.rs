@@ -87,6 +87,41 @@ pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
     found
 }
 
+/// Extensions that some drivers do not offer in OpenGL: the start of their names, the drivers
+/// without them, who those are in words, and the starts of the names of what they bring.
+const EXTENSIONS_SOME_DRIVERS_LACK: [(&str, Drivers, &str, &[&str]); 1] = [(
+    "GL_KHR_shader_subgroup_",
+    Drivers::MESA.union(Drivers::MACOS),
+    "Mesa's llvmpipe (OpenGL 4.5) and macOS (OpenGL 4.1)",
+    &["subgroup", "gl_Subgroup", "gl_NumSubgroups"],
+)];
+
+/// `#extension` lines naming an extension that some drivers lack, where the stage needs it:
+/// with `require` the driver refuses the stage at the line; with `enable` or `warn` it only
+/// warns, and refuses the first use of what the extension brings. An error naming the drivers
+/// without it, once per extension family and stage.
+pub fn extensions_some_drivers_lack(pre: &Preprocessed) -> Vec<Diagnostic> {
+    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
+    let mut found = Vec::new();
+    for (prefix, lacking, who, brought) in EXTENSIONS_SOME_DRIVERS_LACK {
+        let Some((index, name, behaviour)) = extension_directives(&pre.text).find(|(_, name, behaviour)| name.starts_with(prefix) && *behaviour != "disable") else {
+            continue;
+        };
+        let first_use = tokens.iter().find(|t| t.kind == TokenKind::Ident && brought.iter().any(|b| t.text.starts_with(b)));
+        let (line, what) = match (behaviour, first_use) {
+            ("require", _) => (index as u32 + 1, format!("`#extension {name} : require`")),
+            (_, Some(used)) => (used.line, format!("`{}`, of the {}* extensions,", used.text, prefix)),
+            (_, None) => continue,
+        };
+        found.push(
+            Diagnostic::error(Code::Extension, format!("{what} needs an extension that {who} do not offer: the stage does not compile there"), pre.location(line))
+                .with_note(format!("the drivers that have it define the macro `{name}`: `#ifdef {name}` keeps a fallback for the others"))
+                .refused_by(lacking),
+        );
+    }
+    found
+}
+
 /// A compute stage needs GLSL 4.30 or `GL_ARB_compute_shader`; the error is at `#version`.
 pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
     let number = pre.version.as_ref().map_or(110, |v| v.number);
