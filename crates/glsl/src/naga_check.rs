@@ -1490,7 +1490,7 @@ fn implicit_conversion(text: &str, module: &naga::Module, error: &naga::valid::V
         _ => return None,
     };
     let from = type_of(value)?;
-    let (constructor, beyond_glsl) = match implicit_target(&from, &target).filter(|_| glsl_converts && version >= 120) {
+    let (constructor, beyond_glsl) = match implicit_target(&from, &target, version).filter(|_| glsl_converts && version >= 120) {
         Some(constructor) => (constructor, false),
         None if lenient => (lenient_target(&from, &target)?, true),
         None => return None,
@@ -1578,16 +1578,17 @@ fn glsl_type_name(ty: &naga::TypeInner) -> Option<String> {
 }
 
 /// The GLSL constructor of `to` when GLSL converts `from` to it implicitly.
-fn implicit_target(from: &naga::TypeInner, to: &naga::TypeInner) -> Option<String> {
+fn implicit_target(from: &naga::TypeInner, to: &naga::TypeInner, version: u32) -> Option<String> {
     use naga::{ScalarKind, TypeInner};
-    let integer = |s: &naga::Scalar| matches!(s.kind, ScalarKind::Sint | ScalarKind::Uint);
+    // int and uint become float; from GLSL 4.00 on, int becomes uint too.
+    let converts = |a: &naga::Scalar, b: &naga::Scalar| match (a.kind, b.kind) {
+        (ScalarKind::Sint | ScalarKind::Uint, ScalarKind::Float) => b.width == 4,
+        (ScalarKind::Sint, ScalarKind::Uint) => version >= 400,
+        _ => false,
+    };
     match (from, to) {
-        (TypeInner::Scalar(a), TypeInner::Scalar(b)) if integer(a) && b.kind == ScalarKind::Float && b.width == 4 => Some("float".into()),
-        (TypeInner::Vector { size: n, scalar: a }, TypeInner::Vector { size: m, scalar: b })
-            if n == m && integer(a) && b.kind == ScalarKind::Float && b.width == 4 =>
-        {
-            glsl_type_name(to)
-        }
+        (TypeInner::Scalar(a), TypeInner::Scalar(b)) if converts(a, b) => glsl_type_name(to),
+        (TypeInner::Vector { size: n, scalar: a }, TypeInner::Vector { size: m, scalar: b }) if n == m && converts(a, b) => glsl_type_name(to),
         _ => None,
     }
 }
