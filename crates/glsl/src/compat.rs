@@ -14,7 +14,7 @@ use crate::Stage;
 use crate::lower::{float_components, is_implicit_level_lookup};
 use crate::preprocess::VersionDirective;
 use crate::token::{
-    Token, TokenKind, argument_count, argument_qualifiers, brace_depths, depth_read_never_written, function_definitions, matching_close, precision_qualifiers, significant,
+    FunctionDefinition, Token, TokenKind, argument_count, argument_qualifiers, brace_depths, depth_read_never_written, function_definitions, matching_close, precision_qualifiers, significant,
     tokenize,
 };
 
@@ -545,21 +545,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             replaced[significant[j]] = Some(String::new());
         }
     };
-    for k in 1..sig.len().saturating_sub(1) {
-        // `NAME =` or `NAME[N] =`.
-        let array_end = sig[k + 1].is_punct("[").then(|| (k + 2..sig.len()).find(|&j| sig[j].is_punct("]"))).flatten();
-        let assigned = sig[k + 1].is_punct("=") || array_end.is_some_and(|j| sig.get(j + 1).is_some_and(|t| t.is_punct("=")));
-        if sig[k].kind != TokenKind::Ident || !assigned || !declared_not_constant(k, sig[k].text) {
-            continue;
-        }
-        let mut start = sig[..k].iter().rposition(|t| t.ends_statement()).map_or(0, |p| p + 1);
-        // Past the directives' lines in between (`#endif`).
-        while start < k && sig[start].is_punct("#") {
-            let line = sig[start].line;
-            while start < k && sig[start].line == line {
-                start += 1;
-            }
-        }
+    for (k, start) in non_constant_declarators(&sig, &definitions, &not_constant) {
         if let Some(c) = (start..k).find(|&j| sig[j].is_ident("const")) {
             replaced[significant[c]] = Some(String::new());
         } else if let Some(type_) = without_const(start, k) {
@@ -570,13 +556,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         unconst.push((sig[k].line, sig[k].text));
     }
     if let Some(&(line, name)) = unconst.first() {
-        rewrites.push(Rewrite {
-            line,
-            what: format!(
-                "`const` dropped from `{name}`, whose initializer is not a constant expression, as NVIDIA takes it ({} declarations)",
-                unconst.len()
-            ),
-        });
+        rewrites.push(Rewrite { line, what: const_dropped(name, unconst.len()) });
     }
     let mut expanded_in_place = Vec::new();
     for s in 1..sig.len().saturating_sub(1) {
@@ -956,16 +936,11 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
         .collect()
 }
 
-/// Built-in functions giving a boolean vector of their arguments compared component-wise.
-const BOOLEAN_VECTOR_FUNCTIONS: [&str; 9] = ["lessThan", "lessThanEqual", "greaterThan", "greaterThanEqual", "equal", "notEqual", "not", "isnan", "isinf"];
-
 /// `text` with the expressions NVIDIA's compiler takes and GLSL refuses written as what they
-/// compute there, and the rewrites made; None where it holds none. Both keep every line where
-/// it was and evaluate each operand as often as before:
-/// - a lookup whose sampler is chosen by `?:` (`texture2D(c ? a : b, uv)`; samplers are
-///   opaque) becomes the choice of two lookups, `(c ? texture2D(a, uv) : texture2D(b, uv))`;
-/// - `any(p || q)` and `all(p && q)` of boolean vectors (`isnan(v) || isinf(v)`; `||` and `&&`
-///   take scalars) become `(any(p) || any(q))` and `(all(p) && all(q))`.
+/// compute there, and the rewrites made; None where it holds none: a lookup whose sampler is
+/// chosen by `?:` (`texture2D(c ? a : b, uv)`; samplers are opaque) becomes the choice of two
+/// lookups, `(c ? texture2D(a, uv) : texture2D(b, uv))`, which evaluates the condition and the
+/// coordinates once as before and keeps every line where it was.
 pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
     let tokens = tokenize(text).ok()?;
     let sig = significant(&tokens);
@@ -991,12 +966,6 @@ pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
                 let call = |sampler: &str| format!("{}({sampler}{}{rest})", name.text, if rest.is_empty() { "" } else { ", " });
                 let what = format!("`{}()` of a sampler chosen by `?:`, which GLSL refuses, made a choice of two lookups", name.text);
                 (format!("({} ? {} : {})", joined(condition), call(first), call(second)), what)
-            })
-        } else if let Some(operator) = [("any", "||"), ("all", "&&")].iter().find(|(f, _)| name.text == *f).map(|(_, o)| *o) {
-            boolean_vector_operands(&tokens, inside, operator).map(|operands| {
-                let reduced: Vec<String> = operands.iter().map(|o| format!("{}({})", name.text, joined(o))).collect();
-                let what = format!("`{}()` of boolean vectors joined by `{operator}`, which takes scalars, made `{operator}` of each one's `{}()`", name.text, name.text);
-                (format!("({})", reduced.join(&format!(" {operator} "))), what)
             })
         } else {
             None
@@ -1056,26 +1025,6 @@ fn sampler_choice<'a, 't>(tokens: &'a [Token<'t>], inside: &'a [usize]) -> Optio
         return None;
     }
     Some((&inside[..question], name(question + 1)?, name(colon + 1)?, inside.get(end + 1..).unwrap_or(&[])))
-}
-
-/// The operands of `inside` (one argument) joined at the top level by `operator`, where there
-/// are two or more and each is a whole call of a built-in giving a boolean vector.
-fn boolean_vector_operands<'a>(tokens: &[Token], inside: &'a [usize], operator: &str) -> Option<Vec<&'a [usize]>> {
-    let top = at_top_level(tokens, inside);
-    let mut operands = Vec::new();
-    let mut start = 0;
-    for j in (0..inside.len()).filter(|&j| top[j] && tokens[inside[j]].is_punct(operator)) {
-        operands.push(&inside[start..j]);
-        start = j + 1;
-    }
-    operands.push(&inside[start..]);
-    let whole_call = |o: &[usize]| {
-        o.len() >= 3
-            && BOOLEAN_VECTOR_FUNCTIONS.iter().any(|f| tokens[o[0]].is_ident(f))
-            && tokens[o[1]].is_punct("(")
-            && matching_close(o, tokens, 1) == Some(o.len() - 1)
-    };
-    (operands.len() >= 2 && operands.iter().all(|o| whole_call(o))).then_some(operands)
 }
 
 /// `fragment` reading each varying of `resized` ([`varyings_resized`]) at the type the vertex
@@ -1185,6 +1134,60 @@ pub(crate) fn functions_returning_samplers<'t>(toks: &[&'t Token]) -> Vec<Sample
             (returns_sampler && no_parameters).then_some(SamplerFunction { start: f.name - 1, close: f.close, name: toks[f.name].text, returned })
         })
         .collect()
+}
+
+/// The declarators of `sig` (a text's significant tokens, whose function definitions are
+/// `definitions`) that `not_constant` names ([`constants_not_constant`] of what the driver
+/// meets, per function): the position of each one's name and of its statement's start, past the
+/// directive lines before it (`#endif`).
+fn non_constant_declarators(sig: &[&Token], definitions: &[FunctionDefinition], not_constant: &HashSet<(Option<&str>, &str)>) -> Vec<(usize, usize)> {
+    let function_at = |k: usize| definitions.iter().find(|f| (f.open + 1..f.close).contains(&k)).map(|f| sig[f.name].text);
+    let mut found = Vec::new();
+    for k in 1..sig.len().saturating_sub(1) {
+        // `NAME =` or `NAME[N] =`.
+        let array_end = sig[k + 1].is_punct("[").then(|| (k + 2..sig.len()).find(|&j| sig[j].is_punct("]"))).flatten();
+        let assigned = sig[k + 1].is_punct("=") || array_end.is_some_and(|j| sig.get(j + 1).is_some_and(|t| t.is_punct("=")));
+        if sig[k].kind != TokenKind::Ident || !assigned || !not_constant.contains(&(function_at(k), sig[k].text)) {
+            continue;
+        }
+        let mut start = sig[..k].iter().rposition(|t| t.ends_statement()).map_or(0, |p| p + 1);
+        while start < k && sig[start].is_punct("#") {
+            let line = sig[start].line;
+            while start < k && sig[start].line == line {
+                start += 1;
+            }
+        }
+        found.push((k, start));
+    }
+    found
+}
+
+/// The rewrite that drops `const` from `count` declarations, the first of `name`.
+fn const_dropped(name: &str, count: usize) -> String {
+    format!("`const` dropped from `{name}`, whose initializer is not a constant expression, as NVIDIA takes it ({count} declarations)")
+}
+
+/// `text` (a stage as the preprocessor leaves it) with `const` dropped from each declaration
+/// whose initializer is not a constant expression, as NVIDIA takes it (a read-only variable),
+/// and the rewrite made; None where it has none. For naga, which refuses such a `const` as Mesa
+/// does; [`for_strict_drivers`] does the same for OpenGL, through macros too.
+pub fn constants_made_variables(text: &str) -> Option<(String, Rewrite)> {
+    let tokens = tokenize(text).ok()?;
+    let significant = significant(&tokens);
+    let sig: Vec<&Token> = significant.iter().map(|&i| &tokens[i]).collect();
+    let definitions = function_definitions(&sig);
+    let not_constant = constants_not_constant(&sig);
+    let dropped: Vec<(usize, usize)> = non_constant_declarators(&sig, &definitions, &not_constant)
+        .into_iter()
+        .filter_map(|(k, start)| Some(((start..k).find(|&j| sig[j].is_ident("const"))?, k)))
+        .collect();
+    let &(_, first) = dropped.first()?;
+    let mut replaced: Vec<Option<&str>> = vec![None; tokens.len()];
+    for &(c, _) in &dropped {
+        replaced[significant[c]] = Some("");
+    }
+    let text = tokens.iter().zip(&replaced).map(|(t, r)| r.unwrap_or(t.text)).collect();
+    Some((text, Rewrite { line: sig[first].line, what: const_dropped(sig[first].text, dropped.len()) }))
 }
 
 /// The `const` declarations of `toks` (significant tokens) whose initializer is not a constant
@@ -2051,19 +2054,6 @@ mod tests {
         // A choice of coordinates, or of samplers in an index, is GLSL.
         for kept in ["texture2D(a, light ? uv : -uv)", "texture2D(s[light ? 0 : 1], uv)", "texture2D(light ? a : b[0], uv)"] {
             assert_eq!(lenient_expressions(&format!("void main() {{ vec4 c = {kept}; }}")), None, "{kept}");
-        }
-    }
-
-    #[test]
-    fn boolean_vectors_joined_by_a_logical_operator_are_reduced_each() {
-        let text = "void main() { vec3 c = vec3(1.0); if (any(isinf(c) || isnan(c))) c = vec3(0.0); bool b = all(lessThan(c, vec3(1.0)) && greaterThan(c, vec3(0.0))); }";
-        let (out, rewrites) = lenient_expressions(text).expect("two rewrites");
-        assert!(out.contains("if ((any(isinf(c)) || any(isnan(c)))) c"), "{out}");
-        assert!(out.contains("bool b = (all(lessThan(c, vec3(1.0))) && all(greaterThan(c, vec3(0.0))));"), "{out}");
-        assert_eq!(rewrites.len(), 2);
-        // Scalars joined, or a vector not of a comparison, are left to the compiler.
-        for kept in ["any(b || c)", "any(isnan(c)) || any(isinf(c))", "any(isnan(c) || d)", "all(equal(a, b) || equal(a, c))"] {
-            assert_eq!(lenient_expressions(&format!("void main() {{ bool r = {kept}; }}")), None, "{kept}");
         }
     }
 

@@ -454,6 +454,7 @@ pub(crate) fn load_program_files(
     // Each stage as the loader's preprocessor leaves it, before Iris's transformer: what that
     // transformer decides its rewrites on, for the text OpenGL gets too.
     let mut as_preprocessed = BTreeMap::new();
+    let mut met_by_driver = BTreeMap::new();
     for (stage, path) in [(Stage::Vertex, &files.vertex), (Stage::Fragment, &files.fragment)] {
         provider.read(path).map_err(|_| HarnessError::Pack(format!("the pack has no {path}")))?;
         // The renderer draws what lenient drivers run (`PreprocessOptions::lenient`).
@@ -466,9 +467,13 @@ pub(crate) fn load_program_files(
         if stage == Stage::Vertex {
             p.text = with_lod_material_attribute(name, &p.text)?;
         }
-        // What NVIDIA computes of expressions GLSL refuses, for naga as for OpenGL
-        // (`compat::for_strict_drivers` lists the rewrites).
+        // What the driver meets, for `compat::for_strict_drivers`, which rewrites the text for
+        // OpenGL and lists the rewrites; naga gets what NVIDIA makes of it.
+        met_by_driver.insert(stage, p.text.clone());
         if let Some((text, _)) = tidepack_glsl::compat::lenient_expressions(&p.text) {
+            p.text = text;
+        }
+        if let Some((text, _)) = tidepack_glsl::compat::constants_made_variables(&p.text) {
             p.text = text;
         }
         pre.push((stage, Arc::new(p)));
@@ -498,7 +503,7 @@ pub(crate) fn load_program_files(
         let located = |line: u32, what: &str| located_rewrite(&line_map, &path, line, what);
         // What only lenient compilers accept, rewritten for OpenGL and located in the pack.
         let for_opengl = |expanded: &str| {
-            let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &stage.preprocessed.text, stage.stage, &redefined);
+            let (text, rewrites) = tidepack_glsl::compat::for_strict_drivers(expanded, &met_by_driver[&stage.stage], stage.stage, &redefined);
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
         let (mut expanded, transformed) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.transform, Some(stage.stage));
