@@ -937,10 +937,13 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
 }
 
 /// `text` with the expressions NVIDIA's compiler takes and GLSL refuses written as what they
-/// compute there, and the rewrites made; None where it holds none: a lookup whose sampler is
-/// chosen by `?:` (`texture2D(c ? a : b, uv)`; samplers are opaque) becomes the choice of two
-/// lookups, `(c ? texture2D(a, uv) : texture2D(b, uv))`, which evaluates the condition and the
-/// coordinates once as before and keeps every line where it was.
+/// compute there, and the rewrites made; None where it holds none. Every line stays where it
+/// was:
+/// - a lookup whose sampler is chosen by `?:` (`texture2D(c ? a : b, uv)`; samplers are opaque)
+///   becomes the choice of two lookups, `(c ? texture2D(a, uv) : texture2D(b, uv))`, which
+///   evaluates the condition and the coordinates once as before;
+/// - an integer with a float suffix (`37f`; GLSL's float literals need a `.` or an exponent)
+///   becomes the float it names, `37.0`.
 pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
     let tokens = tokenize(text).ok()?;
     let sig = significant(&tokens);
@@ -951,6 +954,20 @@ pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
         (Some(&first), Some(&last)) => tokens[first..=last].iter().map(|t| if t.is_trivia() { " " } else { t.text }).collect::<String>(),
         _ => String::new(),
     };
+    let suffixed: Vec<usize> = sig
+        .iter()
+        .copied()
+        .filter(|&i| tokens[i].kind == TokenKind::Number && tokens[i].text.strip_suffix(['f', 'F']).is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit())))
+        .collect();
+    for &i in &suffixed {
+        replaced[i] = Some(format!("{}.0", &tokens[i].text[..tokens[i].text.len() - 1]));
+    }
+    if let Some(&first) = suffixed.first() {
+        rewrites.push(Rewrite {
+            line: tokens[first].line,
+            what: format!("`{}`, an integer with a float suffix, which NVIDIA reads as a float, written `{}` ({} literals)", tokens[first].text, replaced[first].as_deref().unwrap_or(""), suffixed.len()),
+        });
+    }
     let mut k = 0;
     while k + 1 < sig.len() {
         let name = &tokens[sig[k]];
@@ -2051,6 +2068,10 @@ mod tests {
         assert_eq!(out.lines().count(), text.lines().count(), "lines stay where they were");
         assert_eq!(rewrites[0].line, 5);
         assert!(rewrites[0].what.contains("`texture2D()` of a sampler chosen by `?:`"), "{}", rewrites[0].what);
+        let suffixed = "void main() { vec2 l = vec2(1.0) * 37f / 32.0 - 1.05f / 32.0 + 0x1F; }";
+        let (out, rewrites) = lenient_expressions(suffixed).expect("one rewrite");
+        assert_eq!(out, "void main() { vec2 l = vec2(1.0) * 37.0 / 32.0 - 1.05f / 32.0 + 0x1F; }");
+        assert_eq!(rewrites[0].what, "`37f`, an integer with a float suffix, which NVIDIA reads as a float, written `37.0` (1 literals)");
         // A choice of coordinates, or of samplers in an index, is GLSL.
         for kept in ["texture2D(a, light ? uv : -uv)", "texture2D(s[light ? 0 : 1], uv)", "texture2D(light ? a : b[0], uv)"] {
             assert_eq!(lenient_expressions(&format!("void main() {{ vec4 c = {kept}; }}")), None, "{kept}");
