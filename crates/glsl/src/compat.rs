@@ -1692,9 +1692,10 @@ fn value_functions(toks: &[&Token]) -> Vec<Definition> {
     found
 }
 
-/// `#extension` lines after the first line of code and outside every `#if` moved to just after
-/// `#version` (or to the top without one), their old lines left empty, with the `added` lines
-/// after them; the rewrites are the moves.
+/// `#extension` lines after the first line of code and outside every `#if` (or in one the
+/// driver meets) moved to just after `#version` (or to the top without one), their old lines left
+/// empty, with the `added` lines after them; the rewrites are the moves. A `#pragma` counts as
+/// code: Mesa's grammar reads it as a declaration.
 fn extensions_after_version(text: &str, added: &[String], met: &[&str]) -> (String, Vec<Rewrite>) {
     let Ok(tokens) = tokenize(text) else { return (text.to_string(), Vec::new()) };
     // Per line: its first significant token, and whether the line holds any.
@@ -1724,6 +1725,7 @@ fn extensions_after_version(text: &str, added: &[String], met: &[&str]) -> (Stri
             (Some("if" | "ifdef" | "ifndef"), _) => depth += 1,
             (Some("endif"), _) => depth -= 1,
             (Some("version"), _) => version_line = Some(line),
+            (Some("pragma"), _) => code_seen = true,
             // Inside an `#if`, one the driver meets (its branch is taken).
             (Some("extension"), name) if code_seen && (depth == 0 || name.is_some_and(|n| met.contains(&n))) => moved_lines.push(line),
             _ => {}
@@ -2057,6 +2059,15 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
         let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
         assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn an_extension_after_a_pragma_is_moved_up() {
+        let text = "#version 120\n#pragma optimize (on)\n#ifdef MC_GL_ARB_gpu_shader5\n#extension GL_ARB_gpu_shader5 : require\n#endif\nvoid main() {}\n";
+        let preprocessed = "#version 120\n#pragma optimize (on)\n#extension GL_ARB_gpu_shader5 : require\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, preprocessed, Stage::Fragment, &[]);
+        assert_eq!(out, "#version 120\n#extension GL_ARB_gpu_shader5 : require\n#pragma optimize (on)\n#ifdef MC_GL_ARB_gpu_shader5\n\n#endif\nvoid main() {}\n");
+        assert_eq!(rewrites, [Rewrite { line: 4, what: "`#extension GL_ARB_gpu_shader5 : require` after code moved up to follow #version".into() }]);
     }
 
     #[test]
