@@ -720,6 +720,10 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     // Extensions the driver meets, active `#if` or not.
     let met_extensions: Vec<&str> =
         met.windows(3).filter(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].kind == TokenKind::Ident).map(|w| w[2].text).collect();
+    if let Some((first, rewrite)) = version_moved_first(&out) {
+        out = first;
+        rewrites.push(rewrite);
+    }
     let (out, moved) = extensions_after_version(&out, &added, &met_extensions);
     rewrites.extend(moved);
     rewrites.sort_by_key(|r| r.line);
@@ -1692,6 +1696,27 @@ fn value_functions(toks: &[&Token]) -> Vec<Definition> {
     found
 }
 
+/// `text` with a `#version` that directives precede (`#define` lines, an `#ifndef` it sits in)
+/// moved to the first line, each line before it one line down, so that the lines after it keep
+/// their numbers: NVIDIA takes such a `#version`, Mesa wants it before any directive. None where
+/// `#version` is first, or where code or a block comment precedes it.
+fn version_moved_first(text: &str) -> Option<(String, Rewrite)> {
+    let lines: Vec<&str> = text.split('\n').collect();
+    let is_directive = |line: &str, word: &str| line.trim_start().strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with(word));
+    let at = lines.iter().position(|l| is_directive(l, "version"))?;
+    let before = &lines[..at];
+    let only_directives = before.iter().all(|l| {
+        let t = l.trim();
+        t.is_empty() || t.starts_with("//") || t.starts_with('#')
+    });
+    if !only_directives || !before.iter().any(|l| l.trim_start().starts_with('#')) {
+        return None;
+    }
+    let moved: Vec<&str> = std::iter::once(lines[at].trim()).chain(before.iter().copied()).chain(lines[at + 1..].iter().copied()).collect();
+    let what = format!("`{}`, after directives, moved to the first line as NVIDIA takes it", lines[at].trim());
+    Some((moved.join("\n"), Rewrite { line: at as u32 + 1, what }))
+}
+
 /// `#extension` lines after the first line of code and outside every `#if` (or in one the
 /// driver meets) moved to just after `#version` (or to the top without one), their old lines left
 /// empty, with the `added` lines after them; the rewrites are the moves. A `#pragma` counts as
@@ -2059,6 +2084,16 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
         let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
         assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn a_version_after_directives_is_moved_first() {
+        let text = "#define BONUS\n#ifndef PATCHED\n#version 430 compatibility\n#endif\nvoid main() {}\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert_eq!(out, "#version 430 compatibility\n#define BONUS\n#ifndef PATCHED\n#endif\nvoid main() {}\n");
+        assert_eq!(rewrites, [Rewrite { line: 3, what: "`#version 430 compatibility`, after directives, moved to the first line as NVIDIA takes it".into() }]);
+        let commented = "// a pack\n#version 120\nvoid main() {}\n";
+        assert_eq!(for_strict_drivers(commented, commented, Stage::Fragment, &[]).1, []);
     }
 
     #[test]
