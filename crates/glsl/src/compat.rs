@@ -940,6 +940,49 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
         .collect()
 }
 
+/// `vertex` (a vertex stage as OpenGL gets it) with an output declared just before its `main`
+/// for each input of `fragment` (`varying` or `in` at file scope) whose name the vertex stage
+/// never names, and set to 0 first thing in `main`, and what was done; None where none is
+/// missing. NVIDIA links such a program and the input reads undefined; Mesa refuses to link it;
+/// wgpu reads 0.
+pub fn vertex_outputs_completed(vertex: &str, fragment: &str) -> Option<(String, String)> {
+    let (vertex_tokens, fragment_tokens) = (tokenize(vertex).ok()?, tokenize(fragment).ok()?);
+    let vertex_sig: Vec<&Token> = vertex_tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let fragment_sig: Vec<&Token> = fragment_tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let depths = brace_depths(&fragment_sig);
+    let mut missing: Vec<(&str, &str)> = Vec::new();
+    for k in 0..fragment_sig.len().saturating_sub(3) {
+        let (keyword, ty, name, end) = (fragment_sig[k], fragment_sig[k + 1], fragment_sig[k + 2], fragment_sig[k + 3]);
+        let declares = depths[k] == 0 && (keyword.is_ident("varying") || keyword.is_ident("in")) && VALUE_TYPES.contains(&ty.text);
+        if declares && name.kind == TokenKind::Ident && end.is_punct(";") && !vertex_sig.iter().any(|t| t.is_ident(name.text)) {
+            missing.push((ty.text, name.text));
+        }
+    }
+    let main = function_definitions(&vertex_sig).into_iter().find(|f| vertex_sig[f.name].is_ident("main"))?;
+    // The return type before `main`: the declarations go before it, on its line.
+    let return_type = vertex_sig[main.name.checked_sub(1)?];
+    if missing.is_empty() {
+        return None;
+    }
+    let version = vertex_sig.windows(3).find(|w| w[0].is_punct("#") && w[1].is_ident("version")).and_then(|w| w[2].text.parse::<u32>().ok()).unwrap_or(110);
+    let declarations: String = missing
+        .iter()
+        .map(|(ty, name)| match (version >= 130, ty.starts_with(['i', 'u'])) {
+            (false, _) => format!("varying {ty} {name}; "),
+            (true, false) => format!("out {ty} {name}; "),
+            (true, true) => format!("flat out {ty} {name}; "),
+        })
+        .collect();
+    let zeros: String = missing.iter().map(|(ty, name)| format!(" {name} = {ty}(0);")).collect();
+    let (at, body) = (return_type.offset, vertex_sig[main.open].offset + 1);
+    let names: Vec<String> = missing.iter().map(|(_, name)| format!("`{name}`")).collect();
+    let what = format!(
+        "inputs of the fragment stage the vertex stage never declares, which NVIDIA links, declared as outputs there and set to 0 (as wgpu has them): {}",
+        names.join(", ")
+    );
+    Some((format!("{}{declarations}{}{zeros}{}", &vertex[..at], &vertex[at..body], &vertex[body..]), what))
+}
+
 /// `text` with the expressions NVIDIA's compiler takes and GLSL refuses written as what they
 /// compute there, and the rewrites made; None where it holds none. Every line stays where it
 /// was:
@@ -2084,6 +2127,19 @@ mod tests {
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
         let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
         assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+    }
+
+    #[test]
+    fn fragment_inputs_the_vertex_stage_lacks_are_declared_there_and_zeroed() {
+        let vertex = "#version 120\nvarying vec2 uv;\nvoid main() {\n    uv = gl_MultiTexCoord0.xy;\n}\n";
+        let fragment = "#version 120\nvarying vec2 uv;\nvarying vec3 lightColor;\nvoid main() { gl_FragColor = vec4(lightColor, uv.x); }\n";
+        let (out, what) = vertex_outputs_completed(vertex, fragment).expect("one input missing");
+        assert_eq!(out, "#version 120\nvarying vec2 uv;\nvarying vec3 lightColor; void main() { lightColor = vec3(0);\n    uv = gl_MultiTexCoord0.xy;\n}\n");
+        assert!(what.ends_with("`lightColor`"), "{what}");
+        let modern = "#version 330\nflat in int id;\nin float fog;\nvoid main() {}\n";
+        let (out, _) = vertex_outputs_completed("#version 330\nvoid main() {}\n", modern).expect("two inputs missing");
+        assert_eq!(out, "#version 330\nflat out int id; out float fog; void main() { id = int(0); fog = float(0);}\n");
+        assert_eq!(vertex_outputs_completed(vertex, "varying vec2 uv;\nvoid main() {}\n"), None);
     }
 
     #[test]

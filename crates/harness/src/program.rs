@@ -514,6 +514,13 @@ pub(crate) fn load_program_files(
             expanded = text;
             loader_rewrites.push(format!("{path}: {what}"));
         }
+        if stage.stage == Stage::Vertex
+            && files.geometry.is_none()
+            && let Some((text, what)) = tidepack_glsl::compat::vertex_outputs_completed(&expanded, &met_by_driver[&Stage::Fragment])
+        {
+            expanded = text;
+            loader_rewrites.push(format!("{path}: {what}"));
+        }
         let (mut gl_text, mut gl_rewrites) = for_opengl(&expanded);
         gl_rewrites.extend(loader_rewrites.iter().cloned());
         // A fragment stage that writes no output 0 (one that only discards) leaves the test
