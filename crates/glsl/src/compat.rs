@@ -80,6 +80,8 @@ pub const VERTEX_ONLY_LOD: [&str; 7] =
 
 /// The extension that brings [`VERTEX_ONLY_LOD`] to fragment shaders.
 pub const TEXTURE_LOD: &str = "GL_ARB_shader_texture_lod";
+/// The extension that brings `layout(location = N)` on inputs and outputs before GLSL 3.30.
+pub const EXPLICIT_ATTRIB_LOCATION: &str = "GL_ARB_explicit_attrib_location";
 
 /// The extension that brings integer operations and the lookups below to GLSL 1.10 and 1.20.
 pub const GPU_SHADER4: &str = "GL_EXT_gpu_shader4";
@@ -444,9 +446,13 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
             .map(|t| format!("`{}`", t.text))
     };
     let arb_lookup = || met.windows(2).find(|w| is_texture_lod_arb(w[0].text) && w[1].is_punct("(")).map(|w| format!("`{}()`", w[0].text));
+    let placed = || {
+        met.windows(3).any(|w| w[0].is_ident("layout") && w[1].is_punct("(") && w[2].is_ident("location")).then(|| "`layout(location = …)`".to_string())
+    };
     let needed = [
         (TEXTURE_LOD, call_of(&VERTEX_ONLY_LOD).filter(|_| version < 130).or_else(arb_lookup)),
         (GPU_SHADER4, call_of(&GPU_SHADER4_FUNCTIONS).or_else(operator).filter(|_| version < 130)),
+        (EXPLICIT_ATTRIB_LOCATION, placed().filter(|_| version < 330)),
     ];
     for (extension, used) in needed {
         if let (true, Some(used)) = (!tokens.iter().any(|t| t.is_ident(extension)), used) {
@@ -2153,6 +2159,14 @@ mod tests {
     }
 
     #[test]
+    fn an_output_placed_by_layout_before_330_enables_its_extension() {
+        let text = "#version 120\nlayout(location = 1) out vec4 extra;\nvoid main() { gl_FragData[0] = vec4(1.0); extra = vec4(0.5); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
+        assert!(out.starts_with("#version 130\n#extension GL_ARB_explicit_attrib_location : enable\n"), "{out}");
+        assert!(rewrites.iter().any(|r| r.what == "GL_ARB_explicit_attrib_location enabled after #version for `layout(location = …)`"), "{rewrites:?}");
+    }
+
+    #[test]
     fn an_extension_after_a_pragma_is_moved_up() {
         let text = "#version 120\n#pragma optimize (on)\n#ifdef MC_GL_ARB_gpu_shader5\n#extension GL_ARB_gpu_shader5 : require\n#endif\nvoid main() {}\n";
         let preprocessed = "#version 120\n#pragma optimize (on)\n#extension GL_ARB_gpu_shader5 : require\nvoid main() {}\n";
@@ -2306,7 +2320,7 @@ mod tests {
     /// output, never written, becomes a global holding 0.
     #[test]
     fn an_output_only_read_beside_frag_data_becomes_a_global() {
-        let text = "#version 130\nout float blockID;\nout vec4 written;\nlayout(location = 8) out vec4 placed;\nvoid main() {\n    gl_FragData[0] = vec4(blockID);\n}\n";
+        let text = "#version 130\n#extension GL_ARB_explicit_attrib_location : enable\nout float blockID;\nout vec4 written;\nlayout(location = 8) out vec4 placed;\nvoid main() {\n    gl_FragData[0] = vec4(blockID);\n}\n";
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("out float blockID;", " float blockID = float(0);").replace("out vec4 written;", " vec4 written = vec4(0);"));
         // An output placed by `layout` stays one (DrDesten/Groundwork's locations 8 and 9).
