@@ -776,6 +776,19 @@ fn outputs_past_the_draw_buffers_are_dropped() {
     assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 0, 255, 255]);
 }
 
+/// A buffer block both stages declare at one binding (tests/packs/shared_buffer_block) is one
+/// buffer both see: wgpu draws the program, and OpenGL agrees.
+#[test]
+fn a_buffer_block_both_stages_declare_is_one_buffer() {
+    let (report, _) = render_job_with("shared_buffer_block", Configuration { loader: Loader::Iris, ..Configuration::default() });
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.renderer.wgpu_cannot_draw.is_none(), "{:?}", report.renderer.wgpu_cannot_draw);
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(report.step_renderers.iter().any(|(step, renderer)| step.starts_with("terrain") && matches!(renderer, tidepack_harness::job::StepRenderers::WgpuWithOpenGl)), "{:?}", report.step_renderers);
+}
+
 /// A storage image (tests/packs/storage_image: an Iris custom image that composite stores into)
 /// beside samplers of four other kinds: OpenGL draws the program, each sampler on a texture
 /// unit of its own and the image on an image unit, reading zero as wgpu's empty textures do; the

@@ -239,6 +239,7 @@ impl StandardMacros {
             ] {
                 out.push((name.to_string(), value));
             }
+            out.extend(BIOMES.iter().enumerate().map(|(value, name)| (format!("BIOME_{name}"), value.to_string())));
             for names in [&BIOME_CATEGORIES[..], &PRECIPITATIONS[..]] {
                 out.extend(names.iter().enumerate().map(|(value, name)| (name.to_string(), value.to_string())));
             }
@@ -291,6 +292,23 @@ pub const BIOME_CATEGORIES: [&str; 19] = [
     "CAT_NETHER",
     "CAT_MOUNTAIN",
     "CAT_UNDERGROUND",
+];
+
+/// The game's biomes in the order it registers them (1.21.4 on; `Biomes`), which is the order
+/// Iris numbers them in: each is defined as `BIOME_<NAME>` with its number (0 for `THE_VOID`).
+pub const BIOMES: [&str; 65] = [
+    "THE_VOID", "PLAINS", "SUNFLOWER_PLAINS", "SNOWY_PLAINS", "ICE_SPIKES", "DESERT", "SWAMP",
+    "MANGROVE_SWAMP", "FOREST", "FLOWER_FOREST", "BIRCH_FOREST", "DARK_FOREST", "PALE_GARDEN",
+    "OLD_GROWTH_BIRCH_FOREST", "OLD_GROWTH_PINE_TAIGA", "OLD_GROWTH_SPRUCE_TAIGA", "TAIGA",
+    "SNOWY_TAIGA", "SAVANNA", "SAVANNA_PLATEAU", "WINDSWEPT_HILLS", "WINDSWEPT_GRAVELLY_HILLS",
+    "WINDSWEPT_FOREST", "WINDSWEPT_SAVANNA", "JUNGLE", "SPARSE_JUNGLE", "BAMBOO_JUNGLE", "BADLANDS",
+    "ERODED_BADLANDS", "WOODED_BADLANDS", "MEADOW", "CHERRY_GROVE", "GROVE", "SNOWY_SLOPES",
+    "FROZEN_PEAKS", "JAGGED_PEAKS", "STONY_PEAKS", "RIVER", "FROZEN_RIVER", "BEACH", "SNOWY_BEACH",
+    "STONY_SHORE", "WARM_OCEAN", "LUKEWARM_OCEAN", "DEEP_LUKEWARM_OCEAN", "OCEAN", "DEEP_OCEAN",
+    "COLD_OCEAN", "DEEP_COLD_OCEAN", "FROZEN_OCEAN", "DEEP_FROZEN_OCEAN", "MUSHROOM_FIELDS",
+    "DRIPSTONE_CAVES", "LUSH_CAVES", "DEEP_DARK", "NETHER_WASTES", "WARPED_FOREST",
+    "CRIMSON_FOREST", "SOUL_SAND_VALLEY", "BASALT_DELTAS", "THE_END", "END_HIGHLANDS",
+    "END_MIDLANDS", "SMALL_END_ISLANDS", "END_BARRENS",
 ];
 
 /// Precipitation kinds by value, as `biome_precipitation` holds them (and Iris's macros).
@@ -400,10 +418,15 @@ mod tests {
         assert_eq!(value(&iris, "CAT_NETHER"), Some("16".into()));
         assert_eq!(value(&iris, "CAT_UNDERGROUND"), Some("18".into()));
         assert_eq!(value(&iris, "PPT_SNOW"), Some("2".into()));
+        // The biome the scenes are set in is the `biome` uniform's 1.
+        assert_eq!(value(&iris, "BIOME_PLAINS"), Some("1".into()));
+        assert_eq!(value(&iris, "BIOME_OCEAN"), Some("45".into()));
+        assert_eq!(value(&iris, "BIOME_THE_END"), Some("60".into()));
         let optifine = names(Loader::OptiFine1_12_2);
         assert_eq!(value(&optifine, "MC_VERSION"), Some("11202".into()));
         assert_eq!(value(&optifine, "IS_IRIS"), None);
         assert_eq!(value(&optifine, "CAT_NETHER"), None);
+        assert_eq!(value(&optifine, "BIOME_PLAINS"), None);
     }
 
     #[test]

@@ -434,8 +434,21 @@ fn binding_entries(
             entries.push((block.group, block.binding, Entry::Uniform(buffer)));
         }
         for (group, binding, entry) in entries {
-            if groups.entry(group).or_default().insert(binding, (visibility, entry)).is_some() {
-                return Err(HarnessError::Pack(format!("{}: binding {group}.{binding} used twice", stage.path)));
+            let slots = groups.entry(group).or_default();
+            match (slots.get_mut(&binding), entry) {
+                // A buffer block both stages declare at one binding is one buffer that both
+                // see, as in OpenGL: the larger of the two, read-only where both only read.
+                (Some((seen_by, Entry::Storage(kept, kept_read_only))), Entry::Storage(buffer, read_only)) => {
+                    *seen_by |= visibility;
+                    if buffer.size() > kept.size() {
+                        *kept = buffer;
+                    }
+                    *kept_read_only &= read_only;
+                }
+                (Some(_), _) => return Err(HarnessError::Pack(format!("{}: binding {group}.{binding} used twice", stage.path))),
+                (None, entry) => {
+                    slots.insert(binding, (visibility, entry));
+                }
             }
         }
     }

@@ -38,7 +38,9 @@ impl Gpu {
             | wgpu::Features::FLOAT32_FILTERABLE
             | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
             // Rgba16Unorm is renderable only with the adapter's own format capabilities.
-            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
+            // A pack's buffer blocks may be written from a vertex stage, as OpenGL allows.
+            | wgpu::Features::VERTEX_WRITABLE_STORAGE;
         let features = available & wanted;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("tidepack-harness"),
