@@ -16,7 +16,6 @@ use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
 use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
-use tidepack_loader::iris;
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::option_space::{declared_options, read_properties};
 use tidepack_loader::programs::{self, RunBy};
@@ -197,13 +196,7 @@ impl ProgramLoading<'_> {
         let reading = program::LoaderReading {
             undeclared: if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
             preprocessed_for_driver: loader.preprocesses_for_driver(),
-            // Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
-            // renamed sampler reads texture unit 0, colortex0, as `gcolor` does here already.
-            transform: iris::Transform {
-                renames_albedo_sampler: loader.renames_albedo_sampler() && programs::binds_as_gbuffers(name),
-                removes_unused_functions: loader.removes_unused_functions(),
-                raises_version: loader.raises_version_to_330(),
-            },
+            transform: loader.transform(name),
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {

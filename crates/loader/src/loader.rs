@@ -122,6 +122,17 @@ impl Loader {
         self == Loader::Iris
     }
 
+    /// What this loader's transformer does to the stages of `program` before the driver gets
+    /// them. Only the programs that draw the world bind `gtexture`; in full-screen passes Iris's
+    /// renamed sampler reads texture unit 0, colortex0, as `gcolor` does.
+    pub fn transform(self, program: &str) -> crate::iris::Transform {
+        crate::iris::Transform {
+            renames_albedo_sampler: self.renames_albedo_sampler() && crate::programs::binds_as_gbuffers(program),
+            removes_unused_functions: self.removes_unused_functions(),
+            raises_version: self.raises_version_to_330(),
+        }
+    }
+
     /// Reads `blend.<program>.<buffer>`: OptiFine from 1.16.5 HD U G7, Iris from 1.4 with
     /// OpenGL 4.0. Older OptiFine skips such keys without a word.
     pub fn per_buffer_blend(self) -> bool {

@@ -29,17 +29,13 @@ pub(crate) fn check_program(
                 if let std::borrow::Cow::Owned(declared) = with_loader_declarations(&program.name, *stage == Stage::Vertex, &pre.text) {
                     pre.text = declared;
                 }
-                if loader.removes_unused_functions()
-                    && let Some((removed, _)) = tidepack_loader::iris::unused_functions_removed(&pre.text, &pre.text)
-                {
-                    pre.text = removed;
-                }
-                // Iris's driver compiles the stage at 3.30 at least.
-                if loader.raises_version_to_330()
-                    && let Some((raised, _)) = tidepack_loader::iris::version_raised_to_330(&pre.text, Some(*stage))
-                {
-                    pre.text = raised;
-                    pre.version = pre.version.as_ref().and_then(tidepack_loader::iris::raised_to_330);
+                // What the loader's transformer does before the driver gets the stage; Iris's
+                // driver compiles it at 3.30 at least.
+                let transform = loader.transform(&program.name);
+                let seen = pre.text.clone();
+                (pre.text, _) = tidepack_loader::iris::as_transformed(seen.clone(), &seen, transform, Some(*stage));
+                if let (true, Some(raised)) = (transform.raises_version, pre.version.as_ref().and_then(tidepack_loader::iris::raised_to_330)) {
+                    pre.version = Some(raised);
                 }
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(no_buffer_under_iris(&pre, loader));
