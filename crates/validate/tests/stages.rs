@@ -145,15 +145,19 @@ fn image_atomics_naga_lacks_are_warnings_not_errors() {
 }
 
 #[test]
-fn subgroup_built_ins_naga_lacks_are_warnings_not_errors() {
+fn subgroup_built_ins_are_not_checked_by_naga_and_their_extension_is_refused_where_drivers_lack_it() {
     let text = COMPUTE_A.replace("#version 430\n", "#version 460 compatibility\n#extension GL_KHR_shader_subgroup_basic : enable\n").replace(
         "    ivec2 p = ivec2(gl_GlobalInvocationID.xy);",
         "    ivec2 p = ivec2(gl_GlobalInvocationID.xy) + int(gl_SubgroupSize);",
     );
     let files = with_common(text);
     let report = validate(&as_refs(&files), false);
-    assert_eq!(report.errors(), 0, "{}", show(&report));
     assert!(has(&report, false, "composite.csh", 7, "gl_SubgroupSize is not checked"), "{}", show(&report));
+    // The one error: Mesa's llvmpipe and macOS do not offer the extension.
+    assert_eq!(report.errors(), 1, "{}", show(&report));
+    let refused = report.diagnostics.iter().find(|d| d.is_error()).expect("an error");
+    assert!(refused.message.contains("needs an extension that Mesa's llvmpipe"), "{}", show(&report));
+    assert_eq!(refused.refused_by, tidepack_glsl::Drivers::MESA.union(tidepack_glsl::Drivers::MACOS));
 }
 
 #[test]
