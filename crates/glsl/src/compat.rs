@@ -114,6 +114,9 @@ pub fn glsl130_name(name: &str) -> String {
     format!("{}{rest}", if base == "shadow" { "texture" } else { base })
 }
 
+/// Qualifiers of an input's or output's interpolation, which both sides of a varying share.
+const INTERPOLATION_QUALIFIERS: [&str; 4] = ["flat", "smooth", "noperspective", "centroid"];
+
 /// The types a function can return that `T(0)` constructs.
 const VALUE_TYPES: [&str; 19] = [
     "float", "vec2", "vec3", "vec4", "int", "ivec2", "ivec3", "ivec4", "uint", "uvec2", "uvec3", "uvec4", "bool", "bvec2", "bvec3", "bvec4",
@@ -947,21 +950,24 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
 }
 
 /// `vertex` (a vertex stage as OpenGL gets it) with an output declared just before its `main`
-/// for each input of `fragment` (`varying` or `in` at file scope) whose name the vertex stage
-/// never names, and set to 0 first thing in `main`, and what was done; None where none is
-/// missing. NVIDIA links such a program and the input reads undefined; Mesa refuses to link it;
+/// for each input `fragment` reads (`varying` or `in` at file scope, with its interpolation
+/// qualifiers) whose name the vertex stage never names, and set to 0 first thing in `main`, and
+/// what was done; None where none is missing. NVIDIA links such a program and the input reads undefined; Mesa refuses to link it;
 /// wgpu reads 0.
 pub fn vertex_outputs_completed(vertex: &str, fragment: &str) -> Option<(String, String)> {
     let (vertex_tokens, fragment_tokens) = (tokenize(vertex).ok()?, tokenize(fragment).ok()?);
     let vertex_sig: Vec<&Token> = vertex_tokens.iter().filter(|t| !t.is_trivia()).collect();
     let fragment_sig: Vec<&Token> = fragment_tokens.iter().filter(|t| !t.is_trivia()).collect();
     let depths = brace_depths(&fragment_sig);
-    let mut missing: Vec<(&str, &str)> = Vec::new();
+    // (interpolation qualifiers, type, name) of each input the fragment stage reads.
+    let mut missing: Vec<(Vec<&str>, &str, &str)> = Vec::new();
     for k in 0..fragment_sig.len().saturating_sub(3) {
         let (keyword, ty, name, end) = (fragment_sig[k], fragment_sig[k + 1], fragment_sig[k + 2], fragment_sig[k + 3]);
         let declares = depths[k] == 0 && (keyword.is_ident("varying") || keyword.is_ident("in")) && VALUE_TYPES.contains(&ty.text);
-        if declares && name.kind == TokenKind::Ident && end.is_punct(";") && !vertex_sig.iter().any(|t| t.is_ident(name.text)) {
-            missing.push((ty.text, name.text));
+        let read = fragment_sig.iter().filter(|t| t.is_ident(name.text)).count() > 1;
+        if declares && read && name.kind == TokenKind::Ident && end.is_punct(";") && !vertex_sig.iter().any(|t| t.is_ident(name.text)) {
+            let qualifiers = fragment_sig[..k].iter().rev().take_while(|t| INTERPOLATION_QUALIFIERS.contains(&t.text)).map(|t| t.text).collect();
+            missing.push((qualifiers, ty.text, name.text));
         }
     }
     let main = function_definitions(&vertex_sig).into_iter().find(|f| vertex_sig[f.name].is_ident("main"))?;
@@ -971,17 +977,19 @@ pub fn vertex_outputs_completed(vertex: &str, fragment: &str) -> Option<(String,
         return None;
     }
     let version = vertex_sig.windows(3).find(|w| w[0].is_punct("#") && w[1].is_ident("version")).and_then(|w| w[2].text.parse::<u32>().ok()).unwrap_or(110);
+    // The fragment stage's interpolation qualifiers, which the two stages must share (`flat`
+    // for an integer from GLSL 1.30 on).
     let declarations: String = missing
         .iter()
-        .map(|(ty, name)| match (version >= 130, ty.starts_with(['i', 'u'])) {
+        .map(|(qualifiers, ty, name)| match (version >= 130, qualifiers.is_empty() && ty.starts_with(['i', 'u'])) {
             (false, _) => format!("varying {ty} {name}; "),
-            (true, false) => format!("out {ty} {name}; "),
+            (true, false) => format!("{}out {ty} {name}; ", qualifiers.iter().rev().map(|q| format!("{q} ")).collect::<String>()),
             (true, true) => format!("flat out {ty} {name}; "),
         })
         .collect();
-    let zeros: String = missing.iter().map(|(ty, name)| format!(" {name} = {ty}(0);")).collect();
+    let zeros: String = missing.iter().map(|(_, ty, name)| format!(" {name} = {ty}(0);")).collect();
     let (at, body) = (return_type.offset, vertex_sig[main.open].offset + 1);
-    let names: Vec<String> = missing.iter().map(|(_, name)| format!("`{name}`")).collect();
+    let names: Vec<String> = missing.iter().map(|(_, _, name)| format!("`{name}`")).collect();
     let what = format!(
         "inputs of the fragment stage the vertex stage never declares, which NVIDIA links, declared as outputs there and set to 0 (as wgpu has them): {}",
         names.join(", ")
@@ -2142,9 +2150,9 @@ mod tests {
         let (out, what) = vertex_outputs_completed(vertex, fragment).expect("one input missing");
         assert_eq!(out, "#version 120\nvarying vec2 uv;\nvarying vec3 lightColor; void main() { lightColor = vec3(0);\n    uv = gl_MultiTexCoord0.xy;\n}\n");
         assert!(what.ends_with("`lightColor`"), "{what}");
-        let modern = "#version 330\nflat in int id;\nin float fog;\nvoid main() {}\n";
-        let (out, _) = vertex_outputs_completed("#version 330\nvoid main() {}\n", modern).expect("two inputs missing");
-        assert_eq!(out, "#version 330\nflat out int id; out float fog; void main() { id = int(0); fog = float(0);}\n");
+        let modern = "#version 330\nflat in int id;\nin float fog;\nnoperspective in vec2 screen;\nflat in mat3 unread;\nvoid main() { gl_FragColor = vec4(id, fog, screen); }\n";
+        let (out, _) = vertex_outputs_completed("#version 330\nvoid main() {}\n", modern).expect("three inputs missing");
+        assert_eq!(out, "#version 330\nflat out int id; out float fog; noperspective out vec2 screen; void main() { id = int(0); fog = float(0); screen = vec2(0);}\n");
         assert_eq!(vertex_outputs_completed(vertex, "varying vec2 uv;\nvoid main() {}\n"), None);
     }
 
