@@ -952,8 +952,8 @@ pub fn varyings_resized(vertex: &str, fragment: &str) -> Vec<(String, String, St
 /// `vertex` (a vertex stage as OpenGL gets it) with an output declared just before its `main`
 /// for each input `fragment` reads (`varying` or `in` at file scope, with its interpolation
 /// qualifiers) whose name the vertex stage never names, and set to 0 first thing in `main`, and
-/// what was done; None where none is missing. NVIDIA links such a program and the input reads undefined; Mesa refuses to link it;
-/// wgpu reads 0.
+/// what was done; None where none is missing. NVIDIA links such a program and the input reads
+/// undefined; Mesa refuses to link it; wgpu reads 0.
 pub fn vertex_outputs_completed(vertex: &str, fragment: &str) -> Option<(String, String)> {
     let (vertex_tokens, fragment_tokens) = (tokenize(vertex).ok()?, tokenize(fragment).ok()?);
     let vertex_sig: Vec<&Token> = vertex_tokens.iter().filter(|t| !t.is_trivia()).collect();
@@ -1006,6 +1006,30 @@ pub fn vertex_outputs_completed(vertex: &str, fragment: &str) -> Option<(String,
 /// - an integer with a float suffix (`37f`; GLSL's float literals need a `.` or an exponent)
 ///   becomes the float it names, `37.0`.
 pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
+    let (chosen, mut rewrites) = samplers_chosen_as_lookups(text)?;
+    let tokens = tokenize(&chosen).ok()?;
+    let suffixed: Vec<&Token> = tokens
+        .iter()
+        .filter(|t| t.kind == TokenKind::Number && t.text.strip_suffix(['f', 'F']).is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit())))
+        .collect();
+    let as_float = |t: &Token| format!("{}.0", &t.text[..t.text.len() - 1]);
+    if let Some(first) = suffixed.first() {
+        rewrites.push(Rewrite {
+            line: first.line,
+            what: format!("`{}`, an integer with a float suffix, which NVIDIA reads as a float, written `{}` ({} literals)", first.text, as_float(first), suffixed.len()),
+        });
+    }
+    rewrites.sort_by_key(|r| r.line);
+    if rewrites.is_empty() {
+        return None;
+    }
+    let out = tokens.iter().map(|t| if suffixed.iter().any(|s| std::ptr::eq(*s, t)) { as_float(t) } else { t.text.to_string() }).collect();
+    Some((out, rewrites))
+}
+
+/// `text` with each lookup of a sampler chosen by `?:` made a choice of two lookups (see
+/// [`lenient_expressions`]), and the rewrites made; None where `text` does not tokenize.
+fn samplers_chosen_as_lookups(text: &str) -> Option<(String, Vec<Rewrite>)> {
     let tokens = tokenize(text).ok()?;
     let sig = significant(&tokens);
     let mut replaced: Vec<Option<String>> = vec![None; tokens.len()];
@@ -1015,20 +1039,6 @@ pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
         (Some(&first), Some(&last)) => tokens[first..=last].iter().map(|t| if t.is_trivia() { " " } else { t.text }).collect::<String>(),
         _ => String::new(),
     };
-    let suffixed: Vec<usize> = sig
-        .iter()
-        .copied()
-        .filter(|&i| tokens[i].kind == TokenKind::Number && tokens[i].text.strip_suffix(['f', 'F']).is_some_and(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit())))
-        .collect();
-    for &i in &suffixed {
-        replaced[i] = Some(format!("{}.0", &tokens[i].text[..tokens[i].text.len() - 1]));
-    }
-    if let Some(&first) = suffixed.first() {
-        rewrites.push(Rewrite {
-            line: tokens[first].line,
-            what: format!("`{}`, an integer with a float suffix, which NVIDIA reads as a float, written `{}` ({} literals)", tokens[first].text, replaced[first].as_deref().unwrap_or(""), suffixed.len()),
-        });
-    }
     let mut k = 0;
     while k + 1 < sig.len() {
         let name = &tokens[sig[k]];
@@ -1061,9 +1071,6 @@ pub fn lenient_expressions(text: &str) -> Option<(String, Vec<Rewrite>)> {
             }
             None => k += 1,
         }
-    }
-    if rewrites.is_empty() {
-        return None;
     }
     Some((tokens.iter().zip(&replaced).map(|(t, r)| r.as_deref().unwrap_or(t.text)).collect(), rewrites))
 }
@@ -2196,6 +2203,10 @@ mod tests {
         let (out, rewrites) = lenient_expressions(suffixed).expect("one rewrite");
         assert_eq!(out, "void main() { vec2 l = vec2(1.0) * 37.0 / 32.0 - 1.05f / 32.0 + 0x1F; }");
         assert_eq!(rewrites[0].what, "`37f`, an integer with a float suffix, which NVIDIA reads as a float, written `37.0` (1 literals)");
+        // Both at once: the literal is written as a float in each of the two lookups.
+        let (out, rewrites) = lenient_expressions("void main() { vec4 c = texture2D(b ? s : t, uv * 2f); }").expect("two rewrites");
+        assert_eq!(out, "void main() { vec4 c = (b ? texture2D(s, uv * 2.0) : texture2D(t, uv * 2.0)); }");
+        assert_eq!(rewrites.len(), 2);
         // A choice of coordinates, or of samplers in an index, is GLSL.
         for kept in ["texture2D(a, light ? uv : -uv)", "texture2D(s[light ? 0 : 1], uv)", "texture2D(light ? a : b[0], uv)"] {
             assert_eq!(lenient_expressions(&format!("void main() {{ vec4 c = {kept}; }}")), None, "{kept}");
