@@ -14,7 +14,7 @@ use crate::diagnostic::{Diagnostic, Drivers, Location};
 use crate::known_valid::{self, KnownValid};
 use crate::lower::{self, Lowered, Stage, VaryingLayout};
 use crate::preprocess::{FileProvider, Preprocessed, literal_integer_expression};
-use crate::token::{TokenKind, blanked, brace_depths, function_definitions, matching_close, tokenize};
+use crate::token::{TokenKind, blanked, brace_depths, function_definitions, matching_close, significant, tokenize};
 
 /// One stage after lowering, ready for naga.
 #[derive(Clone, Debug)]
@@ -788,7 +788,7 @@ pub fn logical_operator_on_vectors(message: &str) -> Option<(&'static str, char)
 /// declares `bool`.
 fn bool_vector_arguments(text: &str, span: std::ops::Range<usize>) -> Option<String> {
     let tokens = tokenize(text.get(span.clone())?).ok()?;
-    let sig: Vec<usize> = (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect();
+    let sig = significant(&tokens);
     let open = sig.iter().position(|&i| tokens[i].is_punct("("))?;
     let close = matching_close(&sig, &tokens, open)?;
     let all_tokens = tokenize(text).ok()?;

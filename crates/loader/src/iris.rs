@@ -42,7 +42,7 @@ fn file_scope_declarations(tokens: &[Token<'_>], order: &[usize], name: &str) ->
 }
 
 /// What Iris's transformer does to a stage, as far as it is imitated.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Transform {
     /// The albedo sampler named `gtexture` ([`albedo_sampler_as_gtexture`]).
     pub renames_albedo_sampler: bool,

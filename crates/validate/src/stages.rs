@@ -32,8 +32,10 @@ pub(crate) fn check_program(
                 // What the loader's transformer does before the driver gets the stage; Iris's
                 // driver compiles it at 3.30 at least.
                 let transform = loader.transform(&program.name);
-                let seen = pre.text.clone();
-                (pre.text, _) = tidepack_loader::iris::as_transformed(seen.clone(), &seen, transform, Some(*stage));
+                if transform != tidepack_loader::iris::Transform::default() {
+                    let seen = pre.text.clone();
+                    (pre.text, _) = tidepack_loader::iris::as_transformed(std::mem::take(&mut pre.text), &seen, transform, Some(*stage));
+                }
                 if let (true, Some(raised)) = (transform.raises_version, pre.version.as_ref().and_then(tidepack_loader::iris::raised_to_330)) {
                     pre.version = Some(raised);
                 }
