@@ -6,7 +6,10 @@
 //! it from different values (a bloom pass's `texture2D` inside the `if` that picks its tile, on
 //! the quads straddling the tile's edge). [`traced`] rewrites a fragment stage so that, instead
 //! of its colours, it writes 1 on the quads whose fragments ran different sequences of such
-//! calls and 0 elsewhere: there the stage's result is not GLSL's to define.
+//! calls and 0 elsewhere: there the stage's result is not GLSL's to define. A call is told
+//! apart by its site and by the path of function calls it was reached through: a bloom pass
+//! calls one `tile` function per tile, and the fragments of a quad straddling two tiles' edge
+//! run the same lookup site as often, each inside another call.
 
 use std::collections::BTreeMap;
 
@@ -27,12 +30,19 @@ const DERIVATIVES: &[&str] = &["dFdx", "dFdy", "fwidth", "dFdxFine", "dFdyFine",
 /// The global the traced stage accumulates each fragment's sequence of derivative calls in.
 const TRACE: &str = "tp_derivative_trace";
 
+/// The global a call of a function of the stage sets to the hash of its call path, which the
+/// function keeps in its local [`CONTEXT_HERE`] on entry.
+const CONTEXT: &str = "tp_derivative_context";
+
+/// Each function's copy of [`CONTEXT`] as it was entered: the path of calls that reached it.
+const CONTEXT_HERE: &str = "tp_context_here";
+
 /// `fragment` (a stage as OpenGL compiles it) rewritten to write, into each of `outputs` (by
 /// location: `gl_FragData[1]`, `gl_FragColor` or a declared output, whose type `output_type`
 /// gives), 1.0 where the fragment's 2x2 quad ran different sequences of implicit-derivative
-/// calls and 0.0 elsewhere. Each call adds its site to a running hash of the fragment's
-/// sequence; after the stage's own `main`, `fwidth` of the hash, taken in uniform flow, is
-/// nonzero exactly on such quads. A lookup in a sampler named directly that `level_free` says
+/// calls and 0.0 elsewhere. Each call adds its site and its function's call path to a running
+/// hash of the fragment's sequence; after the stage's own `main`, `fwidth` of the hash, taken
+/// in uniform flow, is nonzero exactly on such quads. A lookup in a sampler named directly that `level_free` says
 /// reads the same at every level (no mipmaps, one filter) is no such call. None where the text
 /// cannot be traced (it does not tokenize, has no `main`, or an output's type is unknown).
 pub fn traced(
@@ -58,11 +68,18 @@ pub fn traced(
     }
     // Insertions by byte offset; at one offset, in the order they are to appear.
     let mut insertions: Vec<(usize, String)> = Vec::new();
+    let defined: Vec<&str> = definitions.iter().map(|d| tokens[d.name].text).collect();
+    for definition in &definitions {
+        let open = &tokens[definition.open];
+        insertions.push((open.offset + open.text.len(), format!(" float {CONTEXT_HERE} = {CONTEXT};")));
+    }
+    let in_body = |i: usize| definitions.iter().any(|d| d.open < i && i < d.close);
     let mut site = 0u32;
     for (k, &i) in sig.iter().enumerate() {
         let t = &tokens[i];
         let lookup = IMPLICIT_LEVEL_LOOKUPS.contains(&t.text);
-        if t.kind != TokenKind::Ident || !(lookup || DERIVATIVES.contains(&t.text)) {
+        let derivative = lookup || DERIVATIVES.contains(&t.text);
+        if t.kind != TokenKind::Ident || !(derivative || defined.contains(&t.text)) {
             continue;
         }
         let before = k.checked_sub(1).map(|p| &tokens[sig[p]]);
@@ -77,8 +94,17 @@ pub fn traced(
         if lookup && sampler.is_some_and(|s| level_free(s.text)) {
             continue;
         }
+        // Outside a function (a global's initializer) there is no call path to keep.
+        let context_here = if in_body(i) { CONTEXT_HERE } else { "0.0" };
         site += 1;
-        insertions.push((t.offset, format!("({TRACE} = mod({TRACE} * 31.0 + {site}.0, 65521.0), ")));
+        let marked = if derivative {
+            format!("({TRACE} = mod({TRACE} * 31.0 + mod({context_here} * 37.0 + {site}.0, 65521.0), 65521.0), ")
+        } else if in_body(i) {
+            format!("({CONTEXT} = mod({context_here} * 31.0 + {site}.0, 65521.0), ")
+        } else {
+            continue;
+        };
+        insertions.push((t.offset, marked));
         let end = &tokens[sig[close]];
         insertions.push((end.offset + end.text.len(), ")".to_string()));
     }
@@ -86,7 +112,7 @@ pub fn traced(
         insertions.push((tokens[i].offset, "tp_".to_string()));
         insertions.push((tokens[i].offset + tokens[i].text.len(), "_traced".to_string()));
     }
-    insertions.push((declaration_offset(fragment, tokens[return_type].offset), format!("float {TRACE};\n")));
+    insertions.push((declaration_offset(fragment, tokens[return_type].offset), format!("float {TRACE};\nfloat {CONTEXT};\n")));
     let mut text = fragment.to_string();
     // From the end, so that earlier offsets stay valid; a stable sort keeps the order at one offset.
     insertions.sort_by_key(|(offset, _)| *offset);
@@ -94,7 +120,7 @@ pub fn traced(
         text.insert_str(*offset, insertion);
     }
     text.push_str(&format!(
-        "\nvoid main() {{ {TRACE} = 0.0; tp_main_traced(); float tp_undefined = fwidth({TRACE}) > 0.0 ? 1.0 : 0.0;{writes} }}\n"
+        "\nvoid main() {{ {TRACE} = 0.0; {CONTEXT} = 0.0; tp_main_traced(); float tp_undefined = fwidth({TRACE}) > 0.0 ? 1.0 : 0.0;{writes} }}\n"
     ));
     Some(text)
 }
@@ -129,17 +155,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn each_call_adds_its_site_and_main_writes_the_quads_that_ran_others() {
+    fn each_call_adds_its_site_and_call_path_and_main_writes_the_quads_that_ran_others() {
         let fragment = "#version 120\n#ifdef A\n#extension GL_EXT_gpu_shader4 : enable\n#endif\nuniform sampler2D tex;\n\
             vec4 tile(vec2 uv) { return texture2D(tex, uv * 2.0); }\n\
             void main() {\n    vec4 c = uv.x > 0.5 ? tile(texture2D(tex, uv).xy) : vec4(dFdx(uv.x));\n    gl_FragData[1] = c;\n}\n";
         let outputs = BTreeMap::from([(1, "gl_FragData[1]".to_string())]);
         let traced = traced(fragment, &outputs, |_| None, |_| false).expect("traced");
         let expected = "#version 120\n#ifdef A\n#extension GL_EXT_gpu_shader4 : enable\n#endif\nuniform sampler2D tex;\n\
-            float tp_derivative_trace;\nvec4 tile(vec2 uv) { return (tp_derivative_trace = mod(tp_derivative_trace * 31.0 + 1.0, 65521.0), texture2D(tex, uv * 2.0)); }\n\
-            void tp_main_traced() {\n    vec4 c = uv.x > 0.5 ? tile((tp_derivative_trace = mod(tp_derivative_trace * 31.0 + 2.0, 65521.0), texture2D(tex, uv)).xy) : \
-            vec4((tp_derivative_trace = mod(tp_derivative_trace * 31.0 + 3.0, 65521.0), dFdx(uv.x)));\n    gl_FragData[1] = c;\n}\n\n\
-            void main() { tp_derivative_trace = 0.0; tp_main_traced(); float tp_undefined = fwidth(tp_derivative_trace) > 0.0 ? 1.0 : 0.0; \
+            float tp_derivative_trace;\nfloat tp_derivative_context;\n\
+            vec4 tile(vec2 uv) { float tp_context_here = tp_derivative_context; return (tp_derivative_trace = mod(tp_derivative_trace * 31.0 + mod(tp_context_here * 37.0 + 1.0, 65521.0), 65521.0), texture2D(tex, uv * 2.0)); }\n\
+            void tp_main_traced() { float tp_context_here = tp_derivative_context;\n    vec4 c = uv.x > 0.5 ? \
+            (tp_derivative_context = mod(tp_context_here * 31.0 + 2.0, 65521.0), tile((tp_derivative_trace = mod(tp_derivative_trace * 31.0 + mod(tp_context_here * 37.0 + 3.0, 65521.0), 65521.0), texture2D(tex, uv)).xy)) : \
+            vec4((tp_derivative_trace = mod(tp_derivative_trace * 31.0 + mod(tp_context_here * 37.0 + 4.0, 65521.0), 65521.0), dFdx(uv.x)));\n    gl_FragData[1] = c;\n}\n\n\
+            void main() { tp_derivative_trace = 0.0; tp_derivative_context = 0.0; tp_main_traced(); float tp_undefined = fwidth(tp_derivative_trace) > 0.0 ? 1.0 : 0.0; \
             gl_FragData[1] = vec4(tp_undefined); }\n";
         assert_eq!(traced, expected);
     }
@@ -150,7 +178,7 @@ mod tests {
         let outputs = BTreeMap::from([(0, "colour".to_string())]);
         let traced = traced(fragment, &outputs, |location| (location == 0).then(|| "vec3".to_string()), |_| false).expect("traced");
         assert!(traced.ends_with("colour = vec3(tp_undefined); }\n"), "{traced}");
-        assert!(traced.contains("out vec3 colour;\nfloat tp_derivative_trace;\nvoid tp_main_traced()"), "{traced}");
+        assert!(traced.contains("out vec3 colour;\nfloat tp_derivative_trace;\nfloat tp_derivative_context;\nvoid tp_main_traced()"), "{traced}");
         assert_eq!(super::traced(fragment, &outputs, |_| None, |_| false), None);
     }
 
@@ -158,14 +186,14 @@ mod tests {
     fn the_trace_is_declared_ahead_of_the_conditional_holding_the_first_function() {
         let fragment = "#version 120\nuniform sampler2D tex;\n#ifdef B\n#define X 1\nvec4\nlookup(vec2 uv) { return texture2D(tex, uv); }\n#endif\nvoid main() {}\n";
         let traced = traced(fragment, &BTreeMap::new(), |_| None, |_| false).expect("traced");
-        assert!(traced.starts_with("#version 120\nuniform sampler2D tex;\nfloat tp_derivative_trace;\n#ifdef B\n"), "{traced}");
+        assert!(traced.starts_with("#version 120\nuniform sampler2D tex;\nfloat tp_derivative_trace;\nfloat tp_derivative_context;\n#ifdef B\n"), "{traced}");
     }
 
     #[test]
     fn a_lookup_in_a_sampler_without_levels_is_no_call() {
         let fragment = "void main() { if (gl_FragCoord.x > 3.0) gl_FragColor = texture2D(colortex1, vec2(0.5)) + texture2D(colortex2, vec2(0.5)); }\n";
         let traced = traced(fragment, &BTreeMap::from([(0, "gl_FragColor".to_string())]), |_| None, |name| name == "colortex1").expect("traced");
-        assert!(traced.contains("texture2D(colortex1, vec2(0.5)) + (tp_derivative_trace = mod(tp_derivative_trace * 31.0 + 1.0, 65521.0), texture2D(colortex2"), "{traced}");
+        assert!(traced.contains("texture2D(colortex1, vec2(0.5)) + (tp_derivative_trace = mod(tp_derivative_trace * 31.0 + mod(tp_context_here * 37.0 + 1.0, 65521.0), 65521.0), texture2D(colortex2"), "{traced}");
     }
 
     #[test]

@@ -115,8 +115,10 @@ fn opengl_draws_each_step_from_the_reference_frames_textures() {
 
 /// OpenGL drawing each full-screen step traced (tests/packs/tile_lookups): composite1's
 /// mipmapped lookup inside the `if` that splits the quads of columns 100 and 101 leaves exactly
-/// those two columns undefined; its other lookups (one in a buffer without mipmaps, one under an
-/// `if` every fragment takes) leave nothing undefined, nor does composite.
+/// those two columns undefined, and so does its tile function's lookup on columns 200 and 201,
+/// where each fragment of a quad runs it in another call; its other lookups (one in a buffer
+/// without mipmaps, one under an `if` every fragment takes) leave nothing undefined, nor does
+/// composite.
 #[test]
 fn opengl_traced_marks_the_quads_a_branch_splits_around_a_mipmapped_lookup() {
     let ctx = gl::context().unwrap_or_else(|e| panic!("{e}"));
@@ -146,7 +148,7 @@ fn opengl_traced_marks_the_quads_a_branch_splits_around_a_mipmapped_lookup() {
         }
         columns
     };
-    assert_eq!(undefined_columns("composite1", "colortex2"), std::collections::BTreeMap::from([(100, scene.height()), (101, scene.height())]));
+    assert_eq!(undefined_columns("composite1", "colortex2"), std::collections::BTreeMap::from([(100, scene.height()), (101, scene.height()), (200, scene.height()), (201, scene.height())]));
     assert!(undefined_columns("composite", "colortex1").is_empty());
 }
 
