@@ -350,6 +350,26 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
+    // `varying` on a member of an `in` or `out` block: Iris makes it the block's own direction
+    // (its storage-qualifier upgrade reaches block members); Mesa refuses it.
+    let mut block_members_varying = Vec::new();
+    for (k, w) in significant.windows(3).enumerate() {
+        if !(matches!(tokens[w[0]].text, "in" | "out") && tokens[w[1]].kind == TokenKind::Ident && tokens[w[2]].is_punct("{")) {
+            continue;
+        }
+        let Some(close) = matching_close(&significant, &tokens, k + 2) else { continue };
+        block_members_varying.extend(significant[k + 3..close].iter().copied().filter(|&i| tokens[i].is_ident("varying")));
+    }
+    if let Some(&first) = block_members_varying.first() {
+        for &i in &block_members_varying {
+            replaced[i] = Some(String::new());
+        }
+        rewrites.push(Rewrite {
+            line: tokens[first].line,
+            what: format!("`varying` on a member of an interface block, which takes the block's `in` or `out`, removed as Iris makes it the block's ({} members)", block_members_varying.len()),
+        });
+    }
+
     // A sampler called `texture` hides the built-in function from 1.30 on.
     if version >= 130 {
         let is_declaration = |w: [&Token; 3]| {
@@ -1875,6 +1895,15 @@ mod tests {
         assert_eq!(rewrites.len(), 1);
         assert_eq!(rewrites[0].line, 2);
         assert!(rewrites[0].what.contains("`CONVERT`"), "{}", rewrites[0].what);
+    }
+
+    #[test]
+    fn varying_on_a_block_member_is_removed_and_a_plain_varying_kept() {
+        let text = "#version 430 compatibility\nout VertexData {\n    vec2 uv;\n    varying vec3 shadowPos;\n} v;\nvarying vec3 loose;\nvoid main() { v.uv = vec2(0.0); v.shadowPos = vec3(0.0); loose = vec3(0.0); }\n";
+        let (out, rewrites) = for_strict_drivers(text, text, Stage::Vertex, &[]);
+        assert!(out.contains("out VertexData {\n    vec2 uv;\n     vec3 shadowPos;\n} v;\nvarying vec3 loose;"), "{out}");
+        assert_eq!(rewrites.len(), 1);
+        assert_eq!(rewrites[0].line, 4);
     }
 
     #[test]

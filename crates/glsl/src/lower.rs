@@ -52,7 +52,8 @@
 //!   functions, which naga's GLSL front-end lacks, get stand-ins of the same signature on line 2
 //!   when a stage calls them.
 //! - `in`/`out` interface blocks lose the qualifiers of their members (naga reads none there)
-//!   and each gets a location of its own from [`INTERFACE_BLOCK_LOCATION`].
+//!   and each gets the locations the program's [`VaryingLayout`] gives it beside the varyings
+//!   (matched across stages by block name), or, lowered alone, from [`INTERFACE_BLOCK_LOCATION`].
 //! - The pack's buffer and uniform blocks with a `binding` go to their own descriptor sets in
 //!   vertex and fragment stages ([`PACK_BUFFER_SET`]), clear of the lowered resources.
 //! - Compute stages ([`lower_compute`]): uniforms, samplers and images as above (descriptor set
@@ -104,9 +105,10 @@ pub const COMPUTE_DESCRIPTOR_SET: u32 = 2;
 /// binding take the next one (OpenGL numbers the two kinds of binding apart).
 pub const PACK_BUFFER_SET: u32 = 3;
 
-/// Location of the first `in`/`out` interface block: naga takes a block as one value whose
-/// members follow each other from location 0 unless told otherwise, where they would collide
-/// with the varyings. Each further block starts [`INTERFACE_BLOCK_STRIDE`] locations on.
+/// Location of the first `in`/`out` interface block of a stage lowered without its program's
+/// [`VaryingLayout`]: naga takes a block as one value whose members follow each other from
+/// location 0 unless told otherwise, where they would collide with the varyings. Each further
+/// block starts [`INTERFACE_BLOCK_STRIDE`] locations on.
 pub const INTERFACE_BLOCK_LOCATION: u32 = 64;
 pub const INTERFACE_BLOCK_STRIDE: u32 = 64;
 
@@ -457,39 +459,63 @@ fn struct_locations(sig: &[&Token<'_>]) -> BTreeMap<String, u32> {
             i += 1;
             continue;
         }
-        let name = sig[i + 1].text.to_string();
-        let mut total = 0u32;
-        let mut j = i + 3;
-        // One member declaration per `;`: qualifiers, a type, then names with array suffixes.
-        while j < sig.len() && !sig[j].is_punct("}") {
-            let end = (j..sig.len()).find(|&k| sig[k].is_punct(";") || sig[k].is_punct("}")).unwrap_or(sig.len());
-            let member = &sig[j..end];
-            let words: Vec<usize> = (0..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
-            let type_at = words.iter().copied().find(|&k| !is_precision(member[k].text) && !matches!(member[k].text, "flat" | "smooth" | "noperspective" | "centroid" | "const"));
-            if let Some(type_at) = type_at {
-                let per_value = type_locations(member[type_at].text, &structs);
-                let mut k = type_at + 1;
-                while k < member.len() {
-                    if member[k].kind == TokenKind::Ident {
-                        let mut count = 1u32;
-                        while k + 1 < member.len() && member[k + 1].is_punct("[") {
-                            let Some(close) = (k + 2..member.len()).find(|&c| member[c].is_punct("]")) else { break };
-                            let inner: Vec<&str> = member[k + 2..close].iter().map(|t| t.text).collect();
-                            let size = literal_integer_expression(&inner.join(" ")).and_then(|n| u32::try_from(n).ok()).unwrap_or(1);
-                            count = count.saturating_mul(size.max(1));
-                            k = close;
-                        }
-                        total = total.saturating_add(per_value.saturating_mul(count));
-                    }
-                    k += 1;
-                }
-            }
-            j = if end < sig.len() && sig[end].is_punct(";") { end + 1 } else { end };
-        }
-        structs.insert(name, total.max(1));
-        i = j;
+        let (total, after) = member_locations(sig, i + 3, &structs);
+        structs.insert(sig[i + 1].text.to_string(), total);
+        i = after;
     }
     structs
+}
+
+/// The locations the members of a struct or block take, from `sig[first]` (after its `{`) to
+/// its `}`, with at least one; and the index after the last member.
+fn member_locations(sig: &[&Token<'_>], first: usize, structs: &BTreeMap<String, u32>) -> (u32, usize) {
+    let mut total = 0u32;
+    let mut j = first;
+    // One member declaration per `;`: qualifiers, a type, then names with array suffixes.
+    while j < sig.len() && !sig[j].is_punct("}") {
+        let end = (j..sig.len()).find(|&k| sig[k].is_punct(";") || sig[k].is_punct("}")).unwrap_or(sig.len());
+        let member = &sig[j..end];
+        let words: Vec<usize> = (0..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
+        let type_at = words
+            .iter()
+            .copied()
+            .find(|&k| !is_precision(member[k].text) && !matches!(member[k].text, "flat" | "smooth" | "noperspective" | "centroid" | "const" | "varying" | "sample" | "invariant"));
+        if let Some(type_at) = type_at {
+            let per_value = type_locations(member[type_at].text, structs);
+            let mut k = type_at + 1;
+            while k < member.len() {
+                if member[k].kind == TokenKind::Ident {
+                    let mut count = 1u32;
+                    while k + 1 < member.len() && member[k + 1].is_punct("[") {
+                        let Some(close) = (k + 2..member.len()).find(|&c| member[c].is_punct("]")) else { break };
+                        let inner: Vec<&str> = member[k + 2..close].iter().map(|t| t.text).collect();
+                        let size = literal_integer_expression(&inner.join(" ")).and_then(|n| u32::try_from(n).ok()).unwrap_or(1);
+                        count = count.saturating_mul(size.max(1));
+                        k = close;
+                    }
+                    total = total.saturating_add(per_value.saturating_mul(count));
+                }
+                k += 1;
+            }
+        }
+        j = if end < sig.len() && sig[end].is_punct(";") { end + 1 } else { end };
+    }
+    (total.max(1), j)
+}
+
+/// The key of an `in`/`out` interface block in a [`VaryingLayout`]: GLSL matches blocks across
+/// stages by their block name, and no varying can be named with a space.
+fn interface_block_key(block_name: &str) -> String {
+    format!("block {block_name}")
+}
+
+/// Each `in`/`out` interface block of a stage (`out VertexData { … } v;`) by its
+/// [`interface_block_key`], with the locations its members take.
+fn interface_block_locations(sig: &[&Token<'_>], structs: &BTreeMap<String, u32>) -> Vec<(String, u32)> {
+    (0..sig.len().saturating_sub(2))
+        .filter(|&i| matches!(sig[i].text, "in" | "out") && sig[i + 1].kind == TokenKind::Ident && sig[i + 2].is_punct("{"))
+        .map(|i| (interface_block_key(sig[i + 1].text), member_locations(sig, i + 3, structs).0))
+        .collect()
 }
 
 /// A matrix varying, which travels as its columns: the matrix the stage reads and writes is
@@ -573,14 +599,16 @@ pub fn varying_declarations(text: &str, stage: Stage, version: u32) -> Result<Ve
     Ok(found)
 }
 
-/// Names of the varyings a stage declares or uses through legacy built-ins, with the number
-/// of locations each takes.
+/// Names of the varyings a stage declares or uses through legacy built-ins, and the
+/// [`interface_block_key`] of each of its `in`/`out` blocks, with the number of locations each
+/// takes.
 pub fn varyings_of(text: &str, stage: Stage, version: u32) -> Result<Vec<(String, u32)>, LowerError> {
     let tokens = tokenize(text).map_err(|e| LowerError { line: e.line, message: e.message })?;
     let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     let structs = struct_locations(&sig);
     let mut names: Vec<(String, u32)> =
         varying_declarations(text, stage, version)?.iter().map(|d| (d.name.clone(), d.locations(&structs))).collect();
+    names.extend(interface_block_locations(&sig, &structs));
     for (i, t) in sig.iter().enumerate() {
         if let Some(reserved) = legacy_varying(t.text, stage) {
             names.push((reserved.to_string(), 1));
@@ -1351,7 +1379,8 @@ impl<'a> Lowering<'_, 'a> {
             ));
         }
         if !head.contains(&"layout") {
-            let location = INTERFACE_BLOCK_LOCATION.saturating_add(self.interface_blocks.saturating_mul(INTERFACE_BLOCK_STRIDE));
+            let laid_out = self.varyings.locations.get(&interface_block_key(head[open - 1])).copied();
+            let location = laid_out.unwrap_or_else(|| INTERFACE_BLOCK_LOCATION.saturating_add(self.interface_blocks.saturating_mul(INTERFACE_BLOCK_STRIDE)));
             self.interface_blocks += 1;
             let at = sig[direction];
             self.replace(at, at + 1, format!("layout(location = {location}) {}", head[direction]));
@@ -2889,6 +2918,22 @@ mod tests {
         // A member's bracket left open is malformed, and stops nothing.
         for broken in ["struct S { vec2 a[", "struct S { vec2 a[3; }; out S s;", "struct S { vec2 a[]; }; out S s;"] {
             let _ = VaryingLayout::for_program(&[(Stage::Vertex, broken, 400)]);
+        }
+    }
+
+    #[test]
+    fn interface_blocks_take_their_members_locations_beside_the_varyings_in_both_stages() {
+        let vertex = "#version 430 compatibility\nout VertexData { vec4 color; flat int id; mat2 m; } v;\nout vec2 uv;\n\
+                      void main() { v.color = vec4(1.0); v.id = 1; v.m = mat2(1.0); uv = vec2(0.0); gl_Position = vec4(0.0); }\n";
+        let fragment = "#version 430 compatibility\nin VertexData { vec4 color; flat int id; mat2 m; } v;\nin vec2 uv;\n\
+                        void main() { gl_FragColor = v.color * float(v.id) + vec4(uv, v.m[0]); }\n";
+        let layout = VaryingLayout::for_program(&[(Stage::Vertex, vertex, 430), (Stage::Fragment, fragment, 430)]).unwrap();
+        // color 1, id 1, m two columns: 4 locations, then uv.
+        assert_eq!(layout.locations, BTreeMap::from([("block VertexData".to_string(), 0), ("uv".to_string(), 4)]));
+        for (stage, text) in [(Stage::Vertex, vertex), (Stage::Fragment, fragment)] {
+            let lowered = lower(text, stage, &layout, false).unwrap();
+            assert!(lowered.text.contains("layout(location = 0) "), "{}", lowered.text);
+            assert!(!lowered.text.contains(&format!("location = {INTERFACE_BLOCK_LOCATION}")), "{}", lowered.text);
         }
     }
 
