@@ -621,7 +621,8 @@ impl Preprocessor<'_> {
                     self.out.text.push_str(&text);
                 }
                 Some("extension") => {
-                    if self.seen_code && !self.lenient {
+                    // Iris's preprocessor collects every `#extension` ahead of the stage.
+                    if self.seen_code && !self.lenient && self.include_rules == IncludeRules::OptiFine {
                         return Err(err_at(
                             at,
                             "#extension after code: GLSL wants it before the first declaration; Mesa and AMD refuse it \

@@ -346,10 +346,10 @@ fn expanded_as_loader_gives_it(
     let (expanded, expanded_map) = preprocess::expand_includes_mapped(provider, path, defines, macros.include_rules)
         .map_err(|d| diag_error(&format!("{path} includes"), &[d]))?;
     if reading.preprocessed_for_driver {
-        let (text, line_map, version_put_first) = iris::as_preprocessor_leaves_it(seen, preprocessed);
-        return Ok(ExpandedStage { text, line_map, version_put_first, settings_text: expanded });
+        let (text, line_map, moved_first) = iris::as_preprocessor_leaves_it(seen, preprocessed);
+        return Ok(ExpandedStage { text, line_map, moved_first, settings_text: expanded });
     }
-    Ok(ExpandedStage { text: expanded.clone(), line_map: expanded_map, version_put_first: None, settings_text: expanded })
+    Ok(ExpandedStage { text: expanded.clone(), line_map: expanded_map, moved_first: None, settings_text: expanded })
 }
 
 /// The lines (1-based) of an expanded text, whose pack locations are `line_map`, that come from
@@ -377,8 +377,9 @@ struct ExpandedStage {
     text: String,
     /// The pack location of each line of `text`.
     line_map: Vec<Option<Location>>,
-    /// What was done where the loader put a `#version` chosen in an `#if` first.
-    version_put_first: Option<String>,
+    /// What was done where the loader put a `#version` chosen in an `#if` first, or moved
+    /// `#extension` lines after code up to follow it.
+    moved_first: Option<String>,
     /// [`LoadedStage::settings_text`].
     settings_text: String,
 }
@@ -496,7 +497,7 @@ pub(crate) fn load_program_files(
         let lowered_text = stage.lowered.text.clone();
         let mut narrow_outputs = BTreeMap::new();
         let mut interface = stage.lowered.interface.clone();
-        let ExpandedStage { text: expanded, line_map, version_put_first, settings_text } =
+        let ExpandedStage { text: expanded, line_map, moved_first, settings_text } =
             expanded_as_loader_gives_it(provider, &path, macros, &defines, &stage.preprocessed, &as_preprocessed[&stage.stage], reading)?;
         let lines_from = |at: &Location| lines_from(&line_map, at);
         let redefined = redefined_lines(&stage.preprocessed, &line_map);
@@ -507,7 +508,7 @@ pub(crate) fn load_program_files(
             (text, rewrites.iter().map(|r| located(r.line, &r.what)).collect::<Vec<_>>())
         };
         let (mut expanded, transformed) = iris::as_transformed(expanded, &as_preprocessed[&stage.stage], reading.transform, Some(stage.stage));
-        let mut loader_rewrites: Vec<String> = version_put_first.into_iter().chain(transformed).map(|what| format!("{path}: {what}")).collect();
+        let mut loader_rewrites: Vec<String> = moved_first.into_iter().chain(transformed).map(|what| format!("{path}: {what}")).collect();
         if stage.stage == Stage::Fragment
             && let Some((text, what)) = tidepack_glsl::compat::inputs_resized(&expanded, &resized)
         {
@@ -632,11 +633,11 @@ fn load_geometry_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
-    let ExpandedStage { text: expanded, line_map, version_put_first, .. } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, &preprocessed.text, reading)?;
+    let ExpandedStage { text: expanded, line_map, moved_first, .. } = expanded_as_loader_gives_it(provider, path, macros, defines, &preprocessed, &preprocessed.text, reading)?;
     let (expanded, raised) = iris::as_transformed(expanded, &preprocessed.text, iris::Transform { raises_version: reading.transform.raises_version, ..Default::default() }, None);
     let redefined = redefined_lines(&preprocessed, &line_map);
     let (gl_text, rewrites) = tidepack_glsl::compat::for_strict_drivers(&expanded, &preprocessed.text, Stage::Fragment, &redefined);
-    let mut gl_rewrites: Vec<String> = version_put_first.into_iter().chain(raised).map(|what| format!("{path}: {what}")).collect();
+    let mut gl_rewrites: Vec<String> = moved_first.into_iter().chain(raised).map(|what| format!("{path}: {what}")).collect();
     gl_rewrites.extend(rewrites.iter().map(|r| located_rewrite(&line_map, path, r.line, &r.what)));
     let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
     Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })

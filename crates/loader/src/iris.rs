@@ -238,17 +238,66 @@ pub fn unused_functions_removed(text: &str, seen: &str) -> Option<(String, Strin
 
 /// A stage as Iris hands it to its transformer, and then to the driver: `text`, its
 /// preprocessor's output for the stage `seen` (every directive resolved but `#version` and
-/// `#extension`), with the `#version` it chose on the first line; the pack location of each
-/// line; and what was moved, where that `#version` was not first.
+/// `#extension`), with the `#version` it chose on the first line and the `#extension` lines
+/// after it ([`extensions_hoisted`]); the pack location of each line; and what was moved.
 pub fn as_preprocessor_leaves_it(text: &str, seen: &preprocess::Preprocessed) -> (String, Vec<Option<Location>>, Option<String>) {
     let mut map: Vec<Option<Location>> = (1..=seen.lines.len() as u32).map(|line| seen.location(line)).collect();
-    match version_resolved_on_top(text, seen.version.as_ref()) {
+    let mut moved = Vec::new();
+    let mut text = match version_resolved_on_top(text, seen.version.as_ref()) {
         Some((resolved, what)) => {
             map.insert(0, seen.version_line().and_then(|line| seen.location(line)));
-            (resolved, map, Some(what))
+            moved.push(what);
+            resolved
         }
-        None => (text.to_string(), map, None),
+        None => text.to_string(),
+    };
+    if let Some((hoisted, from_lines, what)) = extensions_hoisted(&text) {
+        let at = extensions_go_before(&text);
+        let locations: Vec<Option<Location>> = from_lines.iter().map(|&line| map.get(line).cloned().flatten()).collect();
+        map.splice(at..at, locations);
+        text = hoisted;
+        moved.push(what);
     }
+    (text, map, (!moved.is_empty()).then(|| moved.join("; ")))
+}
+
+fn is_directive(line: &str, name: &str) -> bool {
+    line.trim_start().strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with(name))
+}
+
+/// The 0-based line of `text` before which [`extensions_hoisted`] puts the `#extension` lines:
+/// the one after `#version`, or the first where there is none.
+fn extensions_go_before(text: &str) -> usize {
+    text.lines().position(|l| is_directive(l, "version")).map_or(0, |at| at + 1)
+}
+
+/// `text` with its `#extension` lines moved up to follow `#version` (their old lines left
+/// empty), as Iris's preprocessor collects them ahead of the stage (IrisShaders/Iris
+/// `JcppProcessor`: packs written for lenient drivers put them after code, which Mesa
+/// refuses); the 0-based lines they came from; and what was done. `None` where no `#extension`
+/// comes after code, so nothing moves.
+pub fn extensions_hoisted(text: &str) -> Option<(String, Vec<usize>, String)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let extensions: Vec<usize> = (0..lines.len()).filter(|&i| is_directive(lines[i], "extension")).collect();
+    let is_code = |line: &str| {
+        let line = line.trim();
+        !line.is_empty() && !line.starts_with('#') && !line.starts_with("//")
+    };
+    let first_code = lines.iter().position(|l| is_code(l))?;
+    let late = extensions.iter().filter(|&&i| i > first_code).count();
+    if late == 0 {
+        return None;
+    }
+    let at = extensions_go_before(text);
+    let mut hoisted: Vec<&str> = Vec::with_capacity(lines.len() + extensions.len());
+    for (i, line) in lines.iter().enumerate() {
+        if i == at {
+            hoisted.extend(extensions.iter().map(|&e| lines[e].trim()));
+        }
+        hoisted.push(if extensions.contains(&i) { "" } else { line });
+    }
+    let what = format!("{late} `#extension` lines after code moved up to follow #version, as Iris's preprocessor collects them");
+    Some((hoisted.join("\n") + "\n", extensions, what))
 }
 
 /// A stage whose first directive is not `#version` (the pack chooses it in an `#if`, one per
@@ -267,8 +316,7 @@ pub fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionD
     };
     let mut resolved = format!("{directive}\n");
     for line in text.lines() {
-        let directive_line = line.trim_start().strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with("version"));
-        resolved.push_str(if directive_line { "" } else { line });
+        resolved.push_str(if is_directive(line, "version") { "" } else { line });
         resolved.push('\n');
     }
     Some((resolved, format!("`{directive}`, chosen inside an `#if`, put first as Iris's preprocessor leaves it")))
@@ -276,6 +324,19 @@ pub fn version_resolved_on_top(text: &str, version: Option<&preprocess::VersionD
 
 #[cfg(test)]
 mod tests {
+    /// Iris's preprocessor collects `#extension` lines ahead of the stage: those after code move
+    /// up to follow `#version`, with their old lines left empty; where none comes after code,
+    /// nothing moves.
+    #[test]
+    fn extensions_after_code_move_up_to_follow_version() {
+        let text = "#version 120\n#extension GL_EXT_gpu_shader4 : enable\nuniform float a;\n  #extension GL_ARB_shader_texture_lod : enable\nvoid main() {}\n";
+        let (hoisted, from, what) = super::extensions_hoisted(text).expect("moved");
+        assert_eq!(hoisted, "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n#extension GL_ARB_shader_texture_lod : enable\n\nuniform float a;\n\nvoid main() {}\n");
+        assert_eq!(from, [1, 3]);
+        assert!(what.starts_with("1 `#extension` lines after code"), "{what}");
+        assert_eq!(super::extensions_hoisted("#version 120\n#extension GL_EXT_gpu_shader4 : enable\nvoid main() {}\n"), None);
+    }
+
     /// Iris raises every stage to GLSL 3.30: an old stage becomes 3.30 compatibility with `in`
     /// and `out` for `attribute` and `varying` (MichuuMichuu18/minecraft-shaders' `flat
     /// varying`), a core one stays core, 3.30 and later is left as written; lines are kept.
