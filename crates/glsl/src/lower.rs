@@ -66,7 +66,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::fmt::Write as _;
 
 use crate::preprocess::literal_integer_expression;
-use crate::token::{Token, TokenKind, argument_count, brace_depths, function_definitions, tokenize};
+use crate::token::{Token, TokenKind, argument_count, brace_depths, function_definitions, matching_close, tokenize};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -316,6 +316,25 @@ const MISSING_BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
+/// The functions of `GL_AMD_shader_trinary_minmax`, built-ins where a stage enables it, which
+/// naga lacks.
+const TRINARY_MINMAX: [&str; 3] = ["min3", "max3", "mid3"];
+
+/// Stand-ins of a [`TRINARY_MINMAX`] function for every type it takes (genType, genIType,
+/// genUType), as the extension defines it.
+fn trinary_minmax_stand_in(name: &str) -> String {
+    let body = match name {
+        "min3" => "min(min(a, b), c)",
+        "max3" => "max(max(a, b), c)",
+        _ => "max(min(a, b), min(max(a, b), c))",
+    };
+    ["float", "vec2", "vec3", "vec4", "int", "ivec2", "ivec3", "ivec4", "uint", "uvec2", "uvec3", "uvec4"]
+        .iter()
+        .map(|ty| format!("{ty} {name}({ty} a, {ty} b, {ty} c) {{ return {body}; }}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// `textureGather*` and `textureQueryLod` on a `sampler2D`, which naga's GLSL front-end lacks.
 /// The gathers are exact for a texture that clamps to its edge (the frame's buffers): component
 /// `c` of the four texels bilinear filtering would weigh at `p`, in GLSL's order (i0 j1, i1 j1,
@@ -475,7 +494,9 @@ fn member_locations(sig: &[&Token<'_>], first: usize, structs: &BTreeMap<String,
     while j < sig.len() && !sig[j].is_punct("}") {
         let end = (j..sig.len()).find(|&k| sig[k].is_punct(";") || sig[k].is_punct("}")).unwrap_or(sig.len());
         let member = &sig[j..end];
-        let words: Vec<usize> = (0..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
+        // A member's own `layout(…)` (GLSL 4.40) names no type.
+        let after_layout = if member.first().is_some_and(|t| t.is_ident("layout")) { member.iter().position(|t| t.is_punct(")")).map_or(0, |c| c + 1) } else { 0 };
+        let words: Vec<usize> = (after_layout..member.len()).filter(|&k| member[k].kind == TokenKind::Ident).collect();
         let type_at = words
             .iter()
             .copied()
@@ -1396,6 +1417,16 @@ impl<'a> Lowering<'_, 'a> {
             let t = self.tokens[sig[k]];
             if t.is_punct(";") {
                 member_start = k + 1;
+            } else if k == member_start
+                && t.is_ident("layout")
+                && let Some(close) = sig.get(k + 1).filter(|&&i| self.tokens[i].is_punct("(")).and_then(|_| matching_close(&sig, self.tokens, k + 1))
+            {
+                // A member's own layout (`layout(location = 1) vec2 uv;`, GLSL 4.40): naga
+                // reads none, and places the members one after another from the block's.
+                let width = self.tokens[sig[k]..=sig[close]].iter().map(|t| t.text.len()).sum::<usize>();
+                self.replace(sig[k], sig[close] + 1, " ".repeat(width));
+                member_start = close + 1;
+                k = close;
             } else if k >= member_start && (is_varying_qualifier(t.text) || is_precision(t.text) || t.text == "sample") {
                 // Qualifiers lead the member; the first other word is its type.
                 if (member_start..k).all(|j| {
@@ -2506,10 +2537,15 @@ impl<'a> Lowering<'_, 'a> {
         let i = sig[k];
         let name = self.tokens[i].text;
         let stage = self.stage;
+        let called = sig.get(k + 1).is_some_and(|&j| self.tokens[j].is_punct("("));
         if let Some((_, stand_in)) = MISSING_BUILTINS.iter().find(|(n, _)| *n == name)
-            && sig.get(k + 1).is_some_and(|&j| self.tokens[j].is_punct("("))
+            && called
         {
             self.add_header((*stand_in).to_string());
+            return Ok(());
+        }
+        if called && TRINARY_MINMAX.contains(&name) && self.enables_extension("GL_AMD_shader_trinary_minmax") && !self.defines_function(name) {
+            self.add_header(trinary_minmax_stand_in(name));
             return Ok(());
         }
         if self.compute {
@@ -2631,6 +2667,17 @@ impl<'a> Lowering<'_, 'a> {
             }
         }
         declared.then(|| format!("uvec3({}u, {}u, {}u)", size[0], size[1], size[2]))
+    }
+
+    /// Whether the stage has an `#extension NAME` line (enabled or required).
+    fn enables_extension(&self, name: &str) -> bool {
+        let sig: Vec<&Token> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
+        sig.windows(4).any(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].is_ident(name) && w[3].is_punct(":"))
+    }
+
+    /// Whether the stage defines a function called `name` itself.
+    fn defines_function(&self, name: &str) -> bool {
+        function_definitions(self.tokens).iter().any(|d| self.tokens[d.name].is_ident(name))
     }
 
     fn add_header(&mut self, decl: String) {
@@ -2935,6 +2982,31 @@ mod tests {
             assert!(lowered.text.contains("layout(location = 0) "), "{}", lowered.text);
             assert!(!lowered.text.contains(&format!("location = {INTERFACE_BLOCK_LOCATION}")), "{}", lowered.text);
         }
+    }
+
+    #[test]
+    fn a_block_members_own_layout_is_blanked_and_its_type_still_counted() {
+        let vertex = "#version 460 compatibility\nout VertexData { layout(location = 0) noperspective vec2 coord; layout(location = 1) mat2 m; } v;\n\
+                      void main() { v.coord = vec2(0.0); v.m = mat2(1.0); gl_Position = vec4(0.0); }\n";
+        let layout = VaryingLayout::for_program(&[(Stage::Vertex, vertex, 460)]).unwrap();
+        assert_eq!(layout.locations, BTreeMap::from([("block VertexData".to_string(), 0)]));
+        let lowered = lower(vertex, Stage::Vertex, &layout, false).unwrap();
+        assert!(!lowered.text.contains("layout(location = 1)"), "{}", lowered.text);
+        assert_eq!(lowered.text.matches('\n').count(), vertex.matches('\n').count());
+    }
+
+    #[test]
+    fn trinary_minmax_gets_stand_ins_only_where_the_extension_is_enabled_and_the_stage_has_none() {
+        let enabled = "#version 450\n#extension GL_AMD_shader_trinary_minmax : require\nout vec4 color;\nuniform vec3 v;\n\
+                       void main() { color = vec4(max3(v.x, v.y, v.z), min3(v, v, v)); }\n";
+        let lowered = lower(enabled, Stage::Fragment, &VaryingLayout::default(), false).unwrap();
+        assert!(lowered.text.contains("float max3(float a, float b, float c) { return max(max(a, b), c); }"), "{}", lowered.text);
+        assert!(lowered.text.contains("vec3 min3(vec3 a, vec3 b, vec3 c) { return min(min(a, b), c); }"), "{}", lowered.text);
+        let own = "#version 450\n#extension GL_AMD_shader_trinary_minmax : enable\nout vec4 color;\nuniform vec3 v;\n\
+                   float max3(vec3 x) { return max(max(x.x, x.y), x.z); }\nvoid main() { color = vec4(max3(v)); }\n";
+        assert!(!lower(own, Stage::Fragment, &VaryingLayout::default(), false).unwrap().text.contains("max3(float a"));
+        let without = "#version 450\nout vec4 color;\nuniform vec3 v;\nvoid main() { color = vec4(max3(v.x, v.y, v.z)); }\n";
+        assert!(!lower(without, Stage::Fragment, &VaryingLayout::default(), false).unwrap().text.contains("max3(float a"));
     }
 
     /// Found by the `lower` fuzz target: a stage lowered alone uses legacy varyings the layout
