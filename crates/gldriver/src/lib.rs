@@ -52,6 +52,7 @@ pub enum ProgramStep {
     CompileVertex,
     CompileGeometry,
     CompileFragment,
+    CompileCompute,
     Link,
     /// Making a shader or program object, which fails with the context, whatever the text.
     CreateObject,
@@ -63,6 +64,7 @@ impl fmt::Display for ProgramStep {
             ProgramStep::CompileVertex => "vertex shader compilation",
             ProgramStep::CompileGeometry => "geometry shader compilation",
             ProgramStep::CompileFragment => "fragment shader compilation",
+            ProgramStep::CompileCompute => "compute shader compilation",
             ProgramStep::Link => "program link",
             ProgramStep::CreateObject => "creating a shader or program object",
         })
@@ -362,7 +364,13 @@ impl GlContext {
         attributes: &[(&str, u32)],
         frag_data: &[(&str, u32)],
     ) -> Result<GlProgram, DriverLog> {
-        self.link(vertex_text, geometry_text, Some(fragment_text), attributes, frag_data, &[])
+        self.link(&[(glow::VERTEX_SHADER, Some(vertex_text)), (glow::GEOMETRY_SHADER, geometry_text), (glow::FRAGMENT_SHADER, Some(fragment_text))], attributes, frag_data, &[])
+    }
+
+    /// Compiles a compute shader exactly as given and links it alone. A failure returns the
+    /// driver's log.
+    pub fn compile_compute_program(&self, compute_text: &str) -> Result<GlProgram, DriverLog> {
+        self.link(&[(glow::COMPUTE_SHADER, Some(compute_text))], &[], &[], &[])
     }
 
     /// Compiles a vertex shader exactly as given and links it alone, recording the named outputs
@@ -375,14 +383,14 @@ impl GlContext {
         attributes: &[(&str, u32)],
         captured: &[&str],
     ) -> Result<GlProgram, DriverLog> {
-        self.link(vertex_text, None, None, attributes, &[], captured)
+        self.link(&[(glow::VERTEX_SHADER, Some(vertex_text))], attributes, &[], captured)
     }
 
+    /// Compiles each of `sources` (a shader kind and its text, if the program has one) and
+    /// links them.
     fn link(
         &self,
-        vertex_text: &str,
-        geometry_text: Option<&str>,
-        fragment_text: Option<&str>,
+        sources: &[(u32, Option<&str>)],
         attributes: &[(&str, u32)],
         frag_data: &[(&str, u32)],
         captured: &[&str],
@@ -390,14 +398,15 @@ impl GlContext {
         let gl = self.gl();
         // SAFETY: plain GL calls on the current context with objects created here.
         unsafe {
-            let sources = [
-                (glow::VERTEX_SHADER, Some(vertex_text), ProgramStep::CompileVertex),
-                (glow::GEOMETRY_SHADER, geometry_text, ProgramStep::CompileGeometry),
-                (glow::FRAGMENT_SHADER, fragment_text, ProgramStep::CompileFragment),
-            ];
             let mut shaders = Vec::new();
-            for (kind, text, step) in sources {
+            for &(kind, text) in sources {
                 let Some(text) = text else { continue };
+                let step = match kind {
+                    glow::VERTEX_SHADER => ProgramStep::CompileVertex,
+                    glow::GEOMETRY_SHADER => ProgramStep::CompileGeometry,
+                    glow::COMPUTE_SHADER => ProgramStep::CompileCompute,
+                    _ => ProgramStep::CompileFragment,
+                };
                 match self.compile_shader(kind, text, step) {
                     Ok(shader) => shaders.push(shader),
                     Err(e) => {

@@ -27,7 +27,7 @@ use crate::HarnessError;
 use crate::samplers::{ProgramStage, SamplerNaming, Source, colour_buffers_read};
 use tidepack_scene::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
-    self, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
+    self, ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
 };
 use tidepack_scene::scene::Scene;
 use crate::uniforms::{self, Pass, Value};
@@ -78,6 +78,9 @@ pub struct AnyPack {
     pub gbuffers: BTreeMap<String, LoadedProgram>,
     /// prepare*, deferred*, composite* and final, in the order the loader runs them.
     pub fullscreen: Vec<LoadedProgram>,
+    /// The compute stages of those programs (and of those that have nothing else), in the
+    /// order the loader runs them, each before its program.
+    pub compute: Vec<ComputeStage>,
     /// The shadow pass's programs the loader's chains can draw with, by name.
     pub shadow: BTreeMap<String, LoadedProgram>,
     /// Distant Horizons' dh_terrain and dh_water, where the configuration has the mod beside
@@ -156,6 +159,8 @@ struct ProgramLoading<'a> {
     loader: Loader,
     not_modelled: Vec<String>,
     failed: Vec<(String, String)>,
+    /// The compute stages of the full-screen programs loaded, in the order the loader runs them.
+    compute: Vec<ComputeStage>,
 }
 
 impl ProgramLoading<'_> {
@@ -166,6 +171,24 @@ impl ProgramLoading<'_> {
             return None;
         }
         let program = self.present.get(name)?;
+        let reading = program::LoaderReading {
+            undeclared: if self.loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
+            preprocessed_for_driver: self.loader.preprocesses_for_driver(),
+            transform: self.loader.transform(name),
+        };
+        // Compute stages run before the program's own, in every program but the geometry ones.
+        if !program.compute.is_empty() {
+            if name.starts_with("gbuffers_") || name == "shadow" || name.starts_with("shadow_") || name.starts_with("dh_") {
+                self.not_modelled.push(format!("{name}: compute stages ({}), which the loader runs in no program that draws geometry", program.compute.join(", ")));
+            } else {
+                for path in &program.compute {
+                    match program::load_compute_stage(self.provider, name, path, &self.macros, reading) {
+                        Ok(stage) => self.compute.push(stage),
+                        Err(e) => self.failed.push((name.to_string(), e.to_string())),
+                    }
+                }
+            }
+        }
         let stage_file = |stage| program.stages.iter().find(|(s, _)| *s == stage).map(|(_, path)| path.clone());
         let (geometry, tessellation): (Vec<&String>, Vec<&String>) = program.other_stages.iter().partition(|path| path.ends_with(".gsh"));
         let files = ProgramFiles {
@@ -178,9 +201,6 @@ impl ProgramLoading<'_> {
             let files: Vec<&str> = tessellation.iter().map(|path| path.as_str()).collect();
             self.not_modelled.push(format!("{name}: tessellation stages ({})", files.join(", ")));
         }
-        if !program.compute.is_empty() {
-            self.not_modelled.push(format!("{name}: compute stages ({})", program.compute.join(", ")));
-        }
         let (loader, properties) = (self.loader, self.properties);
         let alpha_test = |fragment: &str| {
             // Whether the program writes gl_FragData/gl_FragColor decides OptiFine 1.17+'s test.
@@ -192,11 +212,6 @@ impl ProgramLoading<'_> {
             };
             // An `alphaTest.<program>` setting the harness cannot imitate leaves no test.
             directives::alpha_test(properties, name, default).unwrap_or(None)
-        };
-        let reading = program::LoaderReading {
-            undeclared: if loader == Loader::Iris { UndeclaredTargets::FirstOnly } else { UndeclaredTargets::Outputs },
-            preprocessed_for_driver: loader.preprocesses_for_driver(),
-            transform: loader.transform(name),
         };
         match program::load_program_files(self.provider, &files, &self.macros, &alpha_test, reading) {
             Ok(p) => {
@@ -393,7 +408,7 @@ impl AnyPack {
         let all = files.programs(loader);
         let world = files.world_folder(&configuration.dimension, loader);
         let present: BTreeMap<&str, &programs::Program> =
-            all.iter().filter(|p| p.world == world && p.stages.len() == 2).map(|p| (p.name.as_str(), p)).collect();
+            all.iter().filter(|p| p.world == world && (p.stages.len() == 2 || !p.compute.is_empty())).map(|p| (p.name.as_str(), p)).collect();
         let mut not_modelled: Vec<String> = properties.problems.iter().map(|(line, e)| format!("shaders.properties:{line}: {e}")).collect();
         let (disabled, problems) = programs::disabled_programs(&properties, &world, &declared, &options);
         not_modelled.extend(problems);
@@ -406,15 +421,19 @@ impl AnyPack {
             loader,
             not_modelled,
             failed: Vec::new(),
+            compute: Vec::new(),
         };
         let gbuffers = loading.gbuffers();
         let shadow = loading.shadow();
         let fullscreen = loading.fullscreen();
         let lod = if configuration.distant_horizons { loading.lod() } else { BTreeMap::new() };
-        let ProgramLoading { mut not_modelled, failed, .. } = loading;
+        let ProgramLoading { mut not_modelled, failed, compute, .. } = loading;
 
         for name in present.keys() {
-            let loaded = gbuffers.contains_key(*name) || shadow.contains_key(*name) || fullscreen.iter().any(|p| p.name == *name);
+            let loaded = gbuffers.contains_key(*name)
+                || shadow.contains_key(*name)
+                || fullscreen.iter().any(|p| p.name == *name)
+                || compute.iter().any(|c| c.program == *name);
             let skipped = failed.iter().any(|(f, _)| f == name) || disabled.iter().any(|d| d == name);
             if loaded || skipped || programs::run_by(name) != RunBy::OptiFine {
                 continue;
@@ -480,6 +499,7 @@ impl AnyPack {
             world,
             gbuffers,
             fullscreen,
+            compute,
             shadow,
             lod,
             shadow_pass,
@@ -519,6 +539,9 @@ impl AnyPack {
         self.shadow.retain(|_, p| keep(p));
         self.lod.retain(|_, p| keep(p));
         self.fullscreen.retain(|p| keep(p));
+        for compute in self.compute.drain(..) {
+            self.failed.push((compute.program, format!("{}: a compute stage, which only OpenGL dispatches here", compute.stage.path)));
+        }
         self.failed.len() > before
     }
 
@@ -676,6 +699,10 @@ pub enum PlannedWork<'a> {
     ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex], render_stage: &'static str },
     /// shadowtex0 to shadowtex1: the shadow map without translucents.
     ShadowDepthCopy,
+    /// A compute stage, dispatched over the frame before its program's own stages: it reads the
+    /// current textures and reads and writes the current texture of each buffer it names as an
+    /// image, in place (nothing flips).
+    Compute { stage: &'a ComputeStage, current: BTreeMap<u8, usize> },
     /// A full-screen program: reads the current textures, draws into the other texture of each
     /// of its render targets (which then becomes current); with `into_screen`, colortex0's
     /// output goes to the screen instead (final, or [`ScreenOutput::Unrounded`]), and colortex0
@@ -772,6 +799,9 @@ impl<'a> FramePlan<'a> {
             buffers.extend(program.drawn_buffers());
             buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame));
         }
+        for compute in &pack.compute {
+            buffers.extend(compute.images.iter().copied());
+        }
         for program in &pack.fullscreen {
             if !is_final(program) {
                 buffers.extend(program.drawn_buffers());
@@ -801,8 +831,9 @@ impl<'a> FramePlan<'a> {
             plan.shadow_geometry(pack, true, &mesh.translucent, "shadow water");
         }
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
-        for program in family("prepare") {
-            plan.fullscreen(pack, program, false);
+        for (name, program) in family_slots(pack, "prepare") {
+            plan.compute(pack, name);
+            plan.fullscreen_if_any(pack, program, false);
         }
         // The sky: the game's own colour where the pack has no skybasic program.
         plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks, "SKY");
@@ -820,8 +851,9 @@ impl<'a> FramePlan<'a> {
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         plan.forced_flips(pack, "deferred_pre");
-        for program in family("deferred") {
-            plan.fullscreen(pack, program, false);
+        for (name, program) in family_slots(pack, "deferred") {
+            plan.compute(pack, name);
+            plan.fullscreen_if_any(pack, program, false);
         }
         if lod {
             plan.steps.push(PlannedStep { label: "dhDepthTex0 to dhDepthTex1".into(), work: PlannedWork::LodDepthCopy });
@@ -837,9 +869,12 @@ impl<'a> FramePlan<'a> {
             (None, ScreenOutput::Unrounded) => composites.iter().rposition(|p| p.render_targets.contains(&Some(0))),
             _ => None,
         };
-        for (i, program) in composites.into_iter().enumerate() {
-            plan.fullscreen(pack, program, last_into_screen == Some(i));
+        let into_screen = last_into_screen.map(|i| composites[i].name.as_str());
+        for (name, program) in family_slots(pack, "composite") {
+            plan.compute(pack, name);
+            plan.fullscreen_if_any(pack, program, into_screen == Some(name));
         }
+        plan.compute(pack, "final");
         match final_program {
             Some(program) => plan.fullscreen(pack, program, true),
             None if last_into_screen.is_some() => {}
@@ -928,6 +963,20 @@ impl<'a> FramePlan<'a> {
         }
     }
 
+    /// The compute stages of the program `name`, each a step.
+    fn compute(&mut self, pack: &'a AnyPack, name: &str) {
+        for stage in pack.compute.iter().filter(|c| c.program == name) {
+            let label = format!("{name} ({})", stage.stage.path);
+            self.steps.push(PlannedStep { label, work: PlannedWork::Compute { stage, current: self.current.clone() } });
+        }
+    }
+
+    fn fullscreen_if_any(&mut self, pack: &AnyPack, program: Option<&'a LoadedProgram>, into_screen: bool) {
+        if let Some(program) = program {
+            self.fullscreen(pack, program, into_screen);
+        }
+    }
+
     fn fullscreen(&mut self, pack: &AnyPack, program: &'a LoadedProgram, into_screen: bool) {
         let current = self.current.clone();
         // Each render target flips, unless shaders.properties says otherwise for the program; a
@@ -943,6 +992,20 @@ impl<'a> FramePlan<'a> {
         let mipmaps = pack.mipmaps.get(&program.name).map(|m| m.intersection(&self.buffers).copied().collect()).unwrap_or_default();
         self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::Fullscreen { program, current, into_screen, mipmaps } });
     }
+}
+
+/// The programs of a family (`deferred`: deferred, deferred1, …) the loader runs, in its order,
+/// each with its full-screen program where it has one (a program may be compute stages alone).
+fn family_slots<'p>(pack: &'p AnyPack, family: &str) -> Vec<(&'p str, Option<&'p LoadedProgram>)> {
+    let number = |name: &str| match name.strip_prefix(family)? {
+        "" => Some(0),
+        rest => rest.parse::<u32>().ok(),
+    };
+    let names = pack.fullscreen.iter().map(|p| p.name.as_str()).chain(pack.compute.iter().map(|c| c.program.as_str()));
+    let mut slots: Vec<(u32, &str)> = names.filter_map(|name| Some((number(name)?, name))).collect();
+    slots.sort();
+    slots.dedup();
+    slots.into_iter().map(|(_, name)| (name, pack.fullscreen.iter().find(|p| p.name == name))).collect()
 }
 
 /// The names of `const bool <name> = true;` declarations.

@@ -22,11 +22,12 @@ use tidepack_gldriver::glow::{self, HasContext as _};
 use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
+use tidepack_glsl::Location;
 use crate::samplers::{ProgramStage, SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_loader::loader::MissingProgramDraws;
 use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
-use crate::program::{LoadedProgram, LoadedStage, PackResources};
+use crate::program::{ComputeStage, LoadedProgram, LoadedStage, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::{Blend, BlendFactor};
 use tidepack_scene::scene::Scene;
@@ -632,8 +633,14 @@ fn located_log(log: &tidepack_gldriver::DriverLog, program: &LoadedProgram) -> S
         ProgramStep::CompileVertex => Some(&program.vertex.gl_origins),
         ProgramStep::CompileGeometry => program.geometry.as_ref().map(|g| &g.gl_origins),
         ProgramStep::CompileFragment => Some(&program.fragment.gl_origins),
-        ProgramStep::Link | ProgramStep::CreateObject => None,
+        ProgramStep::CompileCompute | ProgramStep::Link | ProgramStep::CreateObject => None,
     };
+    located_at(log, origins)
+}
+
+/// A driver's log with each line it names said as the pack file and line in `origins` (the
+/// pack location of each line of the compiled text).
+fn located_at(log: &tidepack_gldriver::DriverLog, origins: Option<&Vec<Option<Location>>>) -> String {
     let lines: Vec<String> = log
         .log
         .trim_end()
@@ -723,7 +730,7 @@ pub(crate) fn compile(ctx: &GlContext, program: &LoadedProgram, depth: DepthMapp
 unsafe fn set_uniforms(
     gl: &glow::Context,
     pack: &dyn PackResources,
-    program: &LoadedProgram,
+    program: &str,
     raw: glow::Program,
     values: &BTreeMap<String, Value>,
     stage: ProgramStage,
@@ -792,6 +799,17 @@ unsafe fn set_uniforms(
                 unit += 1;
                 continue;
             }
+            // colorimgN is colortexN's current texture, read and written in place, in the
+            // buffer's own format (OptiFine's shaders.txt, "Image access").
+            if active.utype == glow::IMAGE_2D
+                && let Some((texture, format)) = name.strip_prefix("colorimg").and_then(|n| n.parse::<u8>().ok()).and_then(|n| textures.colors.get(&n))
+                && !format.is_integer()
+            {
+                gl.bind_image_texture(image_unit, Some(*texture), 0, false, 0, glow::READ_WRITE, internal_format(*format));
+                gl.uniform_1_i32(location.as_ref(), image_unit as i32);
+                image_unit += 1;
+                continue;
+            }
             // Samplers of the other kinds and images read zero from a texture of their own
             // kind, each on a unit of its own (samplers of two types on one unit are an error).
             if let Some(kind) = EmptyKind::of_uniform(active.utype) {
@@ -813,14 +831,48 @@ unsafe fn set_uniforms(
             // initial value, as the wgpu path leaves them zero or their initializer's.
             let Some(value) = values.get(&name) else { continue };
             set_uniform(gl, location.as_ref(), active.utype, value)
-                .map_err(|m| HarnessError::Uniform(format!("{} (OpenGL): uniform {name}: {m}", program.name)))?;
+                .map_err(|m| HarnessError::Uniform(format!("{program} (OpenGL): uniform {name}: {m}")))?;
         }
         gl.active_texture(glow::TEXTURE0);
         if !missing.is_empty() {
-            return Err(HarnessError::Uniform(format!("{} (OpenGL) declares what the harness cannot fill: {}", program.name, missing.join(", "))));
+            return Err(HarnessError::Uniform(format!("{program} (OpenGL) declares what the harness cannot fill: {}", missing.join(", "))));
         }
     }
     Ok(())
+}
+
+/// Dispatches a compute stage over a frame of `width` x `height` with the values and textures
+/// of a full-screen program, and waits for its image writes. Returns how long it took.
+pub(crate) unsafe fn dispatch_compute(
+    ctx: &GlContext,
+    pack: &dyn PackResources,
+    stage: &ComputeStage,
+    values: &BTreeMap<String, Value>,
+    textures: &Textures,
+    width: u32,
+    height: u32,
+) -> Result<f64, HarnessError> {
+    let gl = ctx.gl();
+    let compiled = ctx
+        .compile_compute_program(&stage.stage.gl_text)
+        .map_err(|e| HarnessError::Gl(format!("{} through {}: {}", stage.program, ctx.info(), located_at(&e, Some(&stage.stage.gl_origins)))))?;
+    let [x, y, z] = stage.work_groups.count(width, height, stage.local_size);
+    // SAFETY: the caller holds the current context; the program was made on it.
+    let dispatched = unsafe {
+        gl.use_program(Some(compiled.raw));
+        let set = set_uniforms(gl, pack, &stage.program, compiled.raw, values, ProgramStage::of(&stage.program), textures);
+        let mut ms = 0.0;
+        if set.is_ok() && x > 0 && y > 0 && z > 0 {
+            ms = crate::gl_frame::timed(gl, || {
+                gl.dispatch_compute(x, y, z);
+                gl.memory_barrier(glow::ALL_BARRIER_BITS);
+            });
+        }
+        gl.use_program(None);
+        set.map(|()| ms)
+    };
+    ctx.delete_program(compiled);
+    dispatched
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -843,7 +895,7 @@ pub(crate) unsafe fn draw_program(
     // SAFETY: the caller holds the current context.
     unsafe {
         gl.use_program(Some(first));
-        set_uniforms(gl, pack, program, first, values, stage, textures)?;
+        set_uniforms(gl, pack, &program.name, first, values, stage, textures)?;
         // Legacy matrices through the fixed-function stacks, as the wgpu path fills them.
         let matrix = |name: &str| {
             values.get(name).map(Value::as_f32).ok_or_else(|| HarnessError::Uniform(format!("the harness has no {name} for {}", program.name)))
@@ -947,7 +999,7 @@ pub(crate) unsafe fn draw_program(
             gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, None);
             // The shipped fragment stage behind the pass-through vertex shader.
             gl.use_program(Some(draw.raw));
-            set_uniforms(gl, pack, program, draw.raw, values, stage, textures)?;
+            set_uniforms(gl, pack, &program.name, draw.raw, values, stage, textures)?;
             gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
             let stride = components.iter().sum::<i32>() * 4;
             let mut offset = 0;

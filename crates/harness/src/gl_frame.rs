@@ -17,13 +17,13 @@ use tidepack_gldriver::{GlContext, legacy};
 use crate::HarnessError;
 use crate::any_pack::{AnyPack, DepthSeed, FramePlan, PassValues, PlannedWork, ScreenOutput};
 use crate::gl::{
-    Compiled, DepthMapping, GlHarnessTextures, Held, Textures, attach, clear_colour, compile, draw_own_colour, draw_program, internal_format, make_texture,
+    Compiled, DepthMapping, GlHarnessTextures, Held, Textures, attach, clear_colour, compile, dispatch_compute, draw_own_colour, draw_program, internal_format, make_texture,
     pixel_transfer, read, add_mip_levels, mask_unwritten, read_as_shadow_map, set_blends,
 };
 use crate::samplers::{ProgramStage, SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_scene::mesh::{self, PackVertex, SceneMesh, Sprites};
-use crate::program::{LoadedProgram, PackResources};
+use crate::program::{ComputeStage, LoadedProgram, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
@@ -231,6 +231,7 @@ fn render_plan(
                 }
                 PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => frame.fullscreen(program, current, *into_screen, mipmaps, &quad)?,
                 PlannedWork::ScreenCopy { current } => frame.screen_copy(*current)?,
+                PlannedWork::Compute { stage, current } => frame.compute(stage, current)?,
             };
             last_written = written.iter().map(|w| (w.name.clone(), w.texture)).collect();
             steps.push((step.label.clone(), written.into_iter().map(|w| (w.name, w.image)).collect()));
@@ -639,6 +640,34 @@ impl<'a> GlPlanFrame<'a> {
         }
     }
 
+    /// A compute stage dispatched over the frame: what it writes through its images is the
+    /// current texture of each buffer it names.
+    unsafe fn compute(&mut self, stage: &ComputeStage, current: &BTreeMap<u8, usize>) -> Result<Vec<Written>, HarnessError> {
+        let harness = self.harness.clone();
+        let textures = Textures {
+            naming: SamplerNaming::Frame,
+            harness: &harness,
+            colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
+            depth0: self.depth0,
+            depth1: self.depth1,
+            lod_depth: self.lod_depth,
+            shadow_depth: self.shadow_depth,
+            shadow_colours: self.shadow_colours.clone(),
+            sprites: Sprites::Blocks,
+            mipmapped: BTreeSet::new(),
+        };
+        // SAFETY: the textures are this frame's, on the current context.
+        unsafe {
+            self.step_ms += dispatch_compute(self.ctx, self.pack, stage, self.values.of_pass(Pass::Fullscreen), &textures, self.w as u32, self.h as u32)?;
+            stage
+                .images
+                .iter()
+                .filter_map(|b| self.buffers.get(b).map(|(textures, _, format)| (*b, textures[current[b]], *format)))
+                .map(|(b, texture, format)| Ok(Written { name: format!("colortex{b}"), texture, image: self.read_colour(texture, format)? }))
+                .collect()
+        }
+    }
+
     /// colortex0's current texture blitted to the screen, for a pack without final.
     unsafe fn screen_copy(&self, current: usize) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
@@ -727,7 +756,7 @@ impl<'a> GlPlanFrame<'a> {
 }
 
 /// Wall time of `work` between two `glFinish`, in ms.
-fn timed(gl: &glow::Context, work: impl FnOnce()) -> f64 {
+pub(crate) fn timed(gl: &glow::Context, work: impl FnOnce()) -> f64 {
     // SAFETY: glFinish takes no arguments; the caller holds the current context.
     unsafe { gl.finish() };
     let start = std::time::Instant::now();

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use tidepack_glsl::lower::{Interface, ResourceKind};
 use tidepack_glsl::naga_check::{self, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider};
-use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 use tidepack_loader::blocks;
 use tidepack_loader::buffers::BufferFormat;
@@ -83,10 +83,10 @@ pub struct LoadedStage {
     pub narrow_outputs: BTreeMap<u32, u8>,
 }
 
-/// A geometry stage as OpenGL compiles it: naga reads no geometry shaders, so wgpu cannot draw
-/// a program that has one.
+/// A stage only OpenGL runs, as it compiles it: a geometry stage (naga reads none, so wgpu
+/// cannot draw a program that has one) or a compute stage ([`ComputeStage`]).
 #[derive(Clone, Debug)]
-pub struct GeometryStage {
+pub struct OpenGlStage {
     /// Path inside `shaders/`.
     pub path: String,
     /// As [`LoadedStage::gl_text`].
@@ -163,7 +163,7 @@ pub struct LoadedProgram {
     pub name: String,
     pub vertex: LoadedStage,
     /// The program's geometry stage (`.gsh`), which only OpenGL runs.
-    pub geometry: Option<GeometryStage>,
+    pub geometry: Option<OpenGlStage>,
     pub fragment: LoadedStage,
     /// Buffer numbers the fragment outputs go to, in output order (RENDERTARGETS/DRAWBUFFERS);
     /// `None` where the list says `N`, an output drawn into no buffer.
@@ -610,7 +610,7 @@ pub(crate) fn load_program_files(
     let fragment = stages.pop().expect("two stages");
     let vertex = stages.pop().expect("two stages");
     let geometry = match &files.geometry {
-        Some(path) => Some(load_geometry_stage(provider, path, macros, &defines, reading)?),
+        Some(path) => Some(load_opengl_stage(provider, path, macros, &defines, reading)?),
         None => None,
     };
     let render_targets = match (declared_targets, reading.undeclared) {
@@ -621,15 +621,15 @@ pub(crate) fn load_program_files(
     Ok(LoadedProgram { name: name.to_string(), vertex, geometry, fragment, render_targets })
 }
 
-/// A geometry stage's text for OpenGL, read as the vertex and fragment stages are, with the
-/// rewrites for strict drivers that apply to any stage but the vertex stage.
-fn load_geometry_stage(
+/// A geometry or compute stage's text for OpenGL, read as the vertex and fragment stages are,
+/// with the rewrites for strict drivers that apply to any stage but the vertex stage.
+fn load_opengl_stage(
     provider: &dyn FileProvider,
     path: &str,
     macros: &preprocess::PreprocessOptions,
     defines: &str,
     reading: LoaderReading,
-) -> Result<GeometryStage, HarnessError> {
+) -> Result<OpenGlStage, HarnessError> {
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let mut preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     preprocess::assume_glsl_110(&mut preprocessed);
@@ -640,7 +640,97 @@ fn load_geometry_stage(
     let mut gl_rewrites: Vec<String> = moved_first.into_iter().chain(raised).map(|what| format!("{path}: {what}")).collect();
     gl_rewrites.extend(rewrites.iter().map(|r| located_rewrite(&line_map, path, r.line, &r.what)));
     let gl_origins = origins_of_rewritten(&gl_text, &expanded, &line_map);
-    Ok(GeometryStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
+    Ok(OpenGlStage { path: path.to_string(), gl_text, gl_rewrites, gl_origins })
+}
+
+/// A compute stage of a program (`composite1.csh`, `composite1_a.csh`): the loader runs it
+/// before the program's own stages, over the frame (OptiFine's shaders.txt, "Compute Shaders";
+/// Iris alike). Only OpenGL dispatches it.
+#[derive(Clone, Debug)]
+pub struct ComputeStage {
+    /// The program it belongs to (`composite1`), which may have no other stage.
+    pub program: String,
+    pub stage: OpenGlStage,
+    pub work_groups: WorkGroups,
+    /// `layout(local_size_x = …, local_size_y = …, local_size_z = …) in;`, 1 where unsaid.
+    pub local_size: [u32; 3],
+    /// The colour buffers it names as images (`colorimg3`: colortex3), which it reads and
+    /// writes in place.
+    pub images: Vec<u8>,
+}
+
+/// How many work groups a compute stage is dispatched with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WorkGroups {
+    /// `const ivec3 workGroups = ivec3(x, y, z);`
+    Fixed([u32; 3]),
+    /// `const vec2 workGroupsRender = vec2(x, y);`: enough groups of the stage's local size to
+    /// cover that share of the frame, one invocation per pixel at `vec2(1.0)`, the default.
+    Render([f32; 2]),
+}
+
+impl WorkGroups {
+    /// What `text` (the stage, preprocessed) declares; the default where it declares neither.
+    pub fn declared(text: &str) -> WorkGroups {
+        let Ok(tokens) = tokenize(text) else { return WorkGroups::Render([1.0, 1.0]) };
+        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+        let numbers = |name: &str, constructor: &str| -> Option<Vec<f64>> {
+            let at = sig.windows(4).position(|w| w[0].is_ident(name) && w[1].is_punct("=") && w[2].is_ident(constructor) && w[3].is_punct("("))?;
+            let close = (at + 4..sig.len()).find(|&k| sig[k].is_punct(")"))?;
+            sig[at + 4..close].iter().filter(|t| !t.is_punct(",")).map(|t| t.text.trim_end_matches(['f', 'F', 'u', 'U']).parse::<f64>().ok()).collect()
+        };
+        if let Some(n) = numbers("workGroups", "ivec3").filter(|n| n.len() == 3) {
+            return WorkGroups::Fixed([n[0], n[1], n[2]].map(|v| v.max(0.0) as u32));
+        }
+        match numbers("workGroupsRender", "vec2") {
+            Some(n) if n.len() == 2 => WorkGroups::Render([n[0] as f32, n[1] as f32]),
+            Some(n) if n.len() == 1 => WorkGroups::Render([n[0] as f32; 2]),
+            _ => WorkGroups::Render([1.0, 1.0]),
+        }
+    }
+
+    /// The groups to dispatch for a frame of `width` x `height` and a local size of `local`.
+    pub fn count(self, width: u32, height: u32, local: [u32; 3]) -> [u32; 3] {
+        match self {
+            WorkGroups::Fixed(groups) => groups,
+            WorkGroups::Render([x, y]) => {
+                let cover = |pixels: u32, share: f32, local: u32| ((pixels as f32 * share).ceil().max(0.0) as u32).div_ceil(local.max(1));
+                [cover(width, x, local[0]), cover(height, y, local[1]), 1]
+            }
+        }
+    }
+}
+
+/// Loads the compute stage at `path` of `program` as OpenGL compiles it, with `macros`
+/// predefined.
+pub(crate) fn load_compute_stage(
+    provider: &dyn FileProvider,
+    program: &str,
+    path: &str,
+    macros: &preprocess::PreprocessOptions,
+    reading: LoaderReading,
+) -> Result<ComputeStage, HarnessError> {
+    let defines: String = macros.predefined.iter().map(|(k, v)| format!("#define {k} {v}\n")).collect();
+    let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
+    let preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
+    let work_groups = WorkGroups::declared(&preprocessed.text);
+    let images = tokenize(&preprocessed.text)
+        .map(|tokens| tokens.iter().filter_map(|t| t.text.strip_prefix("colorimg")?.parse::<u8>().ok()).collect::<BTreeSet<u8>>().into_iter().collect())
+        .unwrap_or_default();
+    let local_size = local_size(&preprocessed.text);
+    let stage = load_opengl_stage(provider, path, macros, &defines, reading)?;
+    Ok(ComputeStage { program: program.to_string(), stage, work_groups, local_size, images })
+}
+
+/// The local size a compute stage declares (`local_size_x = 16`), 1 for each dimension it does
+/// not name.
+fn local_size(text: &str) -> [u32; 3] {
+    let Ok(tokens) = tokenize(text) else { return [1; 3] };
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let declared = |name: &str| {
+        sig.windows(3).find(|w| w[0].is_ident(name) && w[1].is_punct("=")).and_then(|w| w[2].text.trim_end_matches(['u', 'U']).parse::<u32>().ok()).unwrap_or(1)
+    };
+    [declared("local_size_x"), declared("local_size_y"), declared("local_size_z")]
 }
 
 /// `text`, a vertex stage of `program`, with `dhMaterialId` read as Iris gives it where a

@@ -807,6 +807,43 @@ fn a_storage_image_is_drawn_by_opengl_beside_samplers_of_other_kinds() {
     assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() - 10).0, [0, 255, 0, 255]);
 }
 
+/// Compute stages (tests/packs/compute): composite.csh runs before composite's own stages and
+/// changes colortex0 in place through `colorimg0`, one invocation per pixel; composite1_a.csh,
+/// a program of compute stages alone on fixed work groups, runs after composite on the texture
+/// composite wrote. OpenGL dispatches them and draws the frame; each compute step is its own.
+#[test]
+fn compute_stages_run_before_their_program_and_write_the_buffer_in_place() {
+    let pack = pack("compute", Loader::default());
+    assert!(pack.failed.is_empty(), "{:?}", pack.failed);
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
+    let labels: Vec<&str> = plan.steps.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(
+        labels,
+        [
+            "sky (the loader's own)",
+            "terrain (gbuffers_terrain)",
+            "depth copy",
+            "water (gbuffers_terrain)",
+            "composite (composite.csh)",
+            "composite",
+            "composite1 (composite1_a.csh)",
+            "colortex0 to the screen (no final)"
+        ]
+    );
+    let (report, screen) = render_job("compute");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.renderer.name.starts_with("OpenGL"), "{:?}", report.renderer);
+    assert!(report.renderer.wgpu_cannot_draw.as_deref().is_some_and(|why| why.contains("composite.csh: a compute stage")), "{:?}", report.renderer);
+    assert!(!report.not_modelled.iter().any(|n| n.contains("compute")), "{:?}", report.not_modelled);
+    let terrain = screen.get_pixel(screen.width() / 2, screen.height() - 10).0;
+    assert!(terrain[..2] == [255, 255] && terrain[2].abs_diff(128) <= 1, "{terrain:?}");
+    let row = screen.height() - 1;
+    assert_eq!(screen.get_pixel(3, row).0, [0, 0, 255, 255]);
+    assert_ne!(screen.get_pixel(16, row).0, [0, 0, 255, 255]);
+}
+
 /// A program naga refuses and OpenGL compiles (tests/packs/beyond_naga: textureLod on an
 /// unsigned-integer sampler) loads: OpenGL draws the frame, and the report gives naga's reason
 /// at the pack's file and line, in GLSL's words.

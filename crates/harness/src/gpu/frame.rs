@@ -437,6 +437,9 @@ impl<'p> PreparedSteps<'p> {
                     .collect();
                 (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
             }
+            PlannedWork::Compute { stage, .. } => {
+                return Err(HarnessError::Unsupported(format!("{}: a compute stage, which only OpenGL dispatches here", stage.stage.path)));
+            }
             PlannedWork::ScreenCopy { current } => {
                 let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
                 (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
@@ -714,6 +717,7 @@ fn texture_written(work: &PlannedWork, name: &str) -> Option<WrittenTexture> {
         PlannedWork::Fullscreen { .. } if name == "screen" => Some(WrittenTexture::Screen),
         PlannedWork::Fullscreen { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, 1 - current[&b])),
         PlannedWork::ScreenCopy { .. } if name == "screen" => Some(WrittenTexture::Screen),
+        PlannedWork::Compute { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, current[&b])),
         _ => None,
     }
 }
