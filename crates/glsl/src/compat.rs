@@ -73,6 +73,27 @@ pub const GLSL460_ADDITIONS: [&str; 15] = [
     "atomicCounterExchange", "atomicCounterCompSwap",
 ];
 
+/// What GLSL 4.60 took from an ARB extension, with its name there: a 4.50 compiler with the
+/// extension (Mesa's llvmpipe has all three) takes a 4.60 stage using them as 4.50 with the
+/// extension enabled, under the extension's names.
+const GLSL460_FROM_EXTENSIONS: [(&str, &str, &str); 15] = [
+    ("gl_BaseVertex", "gl_BaseVertexARB", "GL_ARB_shader_draw_parameters"),
+    ("gl_BaseInstance", "gl_BaseInstanceARB", "GL_ARB_shader_draw_parameters"),
+    ("gl_DrawID", "gl_DrawIDARB", "GL_ARB_shader_draw_parameters"),
+    ("anyInvocation", "anyInvocationARB", "GL_ARB_shader_group_vote"),
+    ("allInvocations", "allInvocationsARB", "GL_ARB_shader_group_vote"),
+    ("allInvocationsEqual", "allInvocationsEqualARB", "GL_ARB_shader_group_vote"),
+    ("atomicCounterAdd", "atomicCounterAddARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterSubtract", "atomicCounterSubtractARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterMin", "atomicCounterMinARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterMax", "atomicCounterMaxARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterAnd", "atomicCounterAndARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterOr", "atomicCounterOrARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterXor", "atomicCounterXorARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterExchange", "atomicCounterExchangeARB", "GL_ARB_shader_atomic_counter_ops"),
+    ("atomicCounterCompSwap", "atomicCounterCompSwapARB", "GL_ARB_shader_atomic_counter_ops"),
+];
+
 /// Lookups with an explicit level that GLSL 1.20 allows only in vertex shaders, unless
 /// `GL_ARB_shader_texture_lod` is enabled.
 pub const VERTEX_ONLY_LOD: [&str; 7] =
@@ -327,13 +348,32 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
     }
 
     // Mesa's OpenGL, llvmpipe's included, and macOS stop at GLSL 4.50 and 4.10.
+    let mut extensions_for_450: Vec<&str> = Vec::new();
     if version == 460
         && let Some(number) = version_number
-        && !met.iter().any(|t| GLSL460_ADDITIONS.contains(&t.text))
     {
-        replaced[number] = Some("450".into());
-        rewrites.push(Rewrite { line: tokens[number].line, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() });
-        version = 450;
+        let used: Vec<&str> = GLSL460_ADDITIONS.iter().copied().filter(|name| met.iter().any(|t| t.is_ident(name))).collect();
+        if used.is_empty() {
+            replaced[number] = Some("450".into());
+            rewrites.push(Rewrite { line: tokens[number].line, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() });
+            version = 450;
+        } else {
+            // Everything 4.60 added is in GLSL460_FROM_EXTENSIONS: under its extension's name.
+            for &(name, arb_name, extension) in GLSL460_FROM_EXTENSIONS.iter().filter(|(name, ..)| used.contains(name)) {
+                for &i in significant.iter().filter(|&&i| tokens[i].is_ident(name)) {
+                    replaced[i] = Some(arb_name.to_string());
+                }
+                if !extensions_for_450.contains(&extension) {
+                    extensions_for_450.push(extension);
+                }
+            }
+            replaced[number] = Some("450".into());
+            rewrites.push(Rewrite {
+                line: tokens[number].line,
+                what: format!("#version 460 lowered to 450 with {} enabled, which bring what the stage uses of 4.60 ({}) under their names", extensions_for_450.join(" and "), used.join(", ")),
+            });
+            version = 450;
+        }
     }
 
     // Precision qualifiers are reserved words before 1.30, and change nothing after it.
@@ -458,7 +498,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         }
     }
 
-    let mut added = Vec::new();
+    let mut added: Vec<String> = extensions_for_450.iter().map(|extension| format!("#extension {extension} : enable")).collect();
     let version_line = version_at.map_or(1, |at| tokens[significant[at]].line);
     let operator = || {
         met.iter()
@@ -2175,8 +2215,16 @@ mod tests {
         let (out, rewrites) = for_strict_drivers(text, text, Stage::Fragment, &[]);
         assert_eq!(out, text.replace("#version 460", "#version 450"));
         assert_eq!(rewrites, [Rewrite { line: 1, what: "#version 460 lowered to 450: the stage uses nothing GLSL 4.60 added".into() }]);
-        let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(0.0); }\n";
-        assert_eq!(for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]), (draw_id.to_string(), Vec::new()));
+        // What 4.60 took from ARB extensions: under their names, the extensions enabled.
+        let draw_id = "#version 460 core\nflat out int id;\nvoid main() { id = gl_DrawID; gl_Position = vec4(anyInvocation(id > 0) ? 1.0 : 0.0); }\n";
+        let (out, rewrites) = for_strict_drivers(draw_id, draw_id, Stage::Vertex, &[]);
+        assert_eq!(
+            out,
+            "#version 450 core\n#extension GL_ARB_shader_draw_parameters : enable\n#extension GL_ARB_shader_group_vote : enable\nflat out int id;\n\
+             void main() { id = gl_DrawIDARB; gl_Position = vec4(anyInvocationARB(id > 0) ? 1.0 : 0.0); }\n"
+        );
+        assert_eq!(rewrites.len(), 1);
+        assert!(rewrites[0].what.contains("(gl_DrawID, anyInvocation)"), "{}", rewrites[0].what);
     }
 
     #[test]

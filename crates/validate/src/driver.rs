@@ -283,7 +283,7 @@ impl Driver {
         let stage_text = match log.step {
             tidepack_gldriver::ProgramStep::CompileVertex => vertex,
             tidepack_gldriver::ProgramStep::CompileFragment => fragment,
-            tidepack_gldriver::ProgramStep::CompileGeometry | tidepack_gldriver::ProgramStep::Link => None,
+            tidepack_gldriver::ProgramStep::CompileGeometry | tidepack_gldriver::ProgramStep::CompileCompute | tidepack_gldriver::ProgramStep::Link => None,
             tidepack_gldriver::ProgramStep::CreateObject => return Err(format!("{}: {}", log.step, log.log.trim())),
         };
         let info = format!("{} by {}", log.step, self.describe());
