@@ -1683,12 +1683,17 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
     let statements = |open: usize, close: usize| {
         let (mut assigned, mut called, mut named) = (HashSet::new(), HashSet::new(), HashSet::new());
         let mut depth = 0i32;
+        // After a `return` (an early one inside an `if`), what the body assigns is left
+        // unassigned on the path that returned.
+        let mut returned = false;
         for k in open..close.min(toks.len()) {
             let t = toks[k];
             if t.is_punct("{") {
                 depth += 1;
             } else if t.is_punct("}") {
                 depth -= 1;
+            } else if t.is_ident("return") {
+                returned = true;
             } else if t.kind == TokenKind::Ident {
                 let statement_start = depth == 1 && toks[k - 1].ends_statement();
                 let (name, after): (Cow<str>, usize) = match frag_data(k) {
@@ -1698,14 +1703,14 @@ fn outputs_not_always_written(toks: &[&Token], stage: Stage) -> (Vec<(String, St
                 // Handed whole to an `out` parameter (`outputs(colour, outColor0);`).
                 let bare_argument = (toks[k - 1].is_punct("(") || toks[k - 1].is_punct(","))
                     && toks.get(after).is_some_and(|n| n.is_punct(",") || n.is_punct(")"));
-                if depth == 1 && bare_argument && !named.contains(&name) && argument_qualifiers(toks, k).is_some_and(|q| q.contains(&"out")) {
+                if depth == 1 && !returned && bare_argument && !named.contains(&name) && argument_qualifiers(toks, k).is_some_and(|q| q.contains(&"out")) {
                     assigned.insert(name.clone());
                 }
                 match toks.get(after) {
-                    Some(e) if statement_start && e.is_punct("=") && !named.contains(&name) => {
+                    Some(e) if statement_start && !returned && e.is_punct("=") && !named.contains(&name) => {
                         assigned.insert(name.clone());
                     }
-                    Some(p) if statement_start && p.is_punct("(") => {
+                    Some(p) if statement_start && !returned && p.is_punct("(") => {
                         called.insert(t.text);
                     }
                     _ => {}
@@ -2467,6 +2472,12 @@ mod tests {
         assert_eq!(out, text.replace("void main() {", "void main() { extra = vec4(0); gl_FragData[1] = vec4(0);"));
         assert_eq!(rewrites.len(), 1);
         assert!(rewrites[0].what.ends_with("`extra`, `gl_FragData[1]`"), "{rewrites:?}");
+        // After an early `return`, as Matyanson/boxeh-shader's water leaves non-water: what
+        // `main` assigns later is left unwritten on the path that returned.
+        let returning = "#version 120\nvarying float water;\nvoid main() {\n    gl_FragData[1] = vec4(1.0);\n    if (water < 0.5) { gl_FragData[0] = vec4(0.5); return; }\n    gl_FragData[2] = vec4(water);\n}\n";
+        let (out, rewrites) = for_strict_drivers(returning, returning, Stage::Fragment, &[]);
+        assert_eq!(out, returning.replace("void main() {", "void main() { gl_FragData[0] = vec4(0); gl_FragData[2] = vec4(0);"));
+        assert!(rewrites[0].what.ends_with("`gl_FragData[0]`, `gl_FragData[2]`"), "{rewrites:?}");
         // Outputs handed whole to `out` parameters, as our own water writes them, are written.
         let handed = "#version 330 compatibility\nout vec4 colour;\nout vec4 data;\nvoid outputs(in float a, out vec4 c, out vec4 d) { c = vec4(a); d = vec4(a); }\nvoid main() {\n    outputs(0.5, colour, data);\n}\n";
         assert_eq!(for_strict_drivers(handed, handed, Stage::Fragment, &[]), (handed.to_string(), Vec::new()));
