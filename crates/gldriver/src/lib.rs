@@ -181,6 +181,9 @@ pub struct LegacyGl {
     /// `glFogf` and `glFogfv`: the fixed-function fog state `gl_Fog` reads.
     pub fog_f: unsafe extern "system" fn(u32, f32),
     pub fog_fv: unsafe extern "system" fn(u32, *const f32),
+    /// `glClearTexImage` (OpenGL 4.4), when the driver has it: with a null pointer it clears a
+    /// texture's level to zero, whatever its format and dimensions.
+    pub clear_tex_image: Option<unsafe extern "system" fn(u32, i32, u32, u32, *const std::ffi::c_void)>,
 }
 
 /// Enums of the compatibility API that glow does not define.
@@ -232,6 +235,7 @@ impl LegacyGl {
             clip_control: get(egl, "glClipControl").ok(),
             fog_f: get(egl, "glFogf")?,
             fog_fv: get(egl, "glFogfv")?,
+            clear_tex_image: get(egl, "glClearTexImage").ok(),
         })
     }
 }

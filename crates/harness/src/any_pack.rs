@@ -14,7 +14,7 @@ use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::buffers::{BufferClear, BufferFormat, colour_buffer_number, shadow_colour_number};
 use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
-use tidepack_loader::directives::{self, Blend, BlendFactor, DEFAULT_TRANSLUCENT_BLEND};
+use tidepack_loader::directives::{self, Blend, BlendFactor, CustomImage, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::option_space::{declared_options, read_properties};
@@ -106,6 +106,8 @@ pub struct AnyPack {
     /// Blend modes per program and colour buffer from shaders.properties.
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
+    /// Iris's custom images (`image.<name>`), which OpenGL holds and wgpu does not.
+    pub custom_images: Vec<CustomImage>,
     pub block_ids: HashMap<String, i32>,
     /// shaders.properties under the configuration, for the custom uniforms of each pass.
     pub properties: Properties,
@@ -128,6 +130,10 @@ impl PackResources for AnyPack {
 
     fn custom_textures(&self) -> &[CustomTexture] {
         &self.custom_textures
+    }
+
+    fn custom_images(&self) -> &[CustomImage] {
+        &self.custom_images
     }
 
     fn shadow_settings(&self) -> ShadowSettings {
@@ -343,24 +349,28 @@ fn shadow_map_reads(
     fullscreen: &[LoadedProgram],
     shadow: &BTreeMap<String, LoadedProgram>,
     loader: Loader,
+    custom_images: &[CustomImage],
     not_modelled: &mut Vec<String>,
 ) -> (bool, bool) {
+    // colorimgN is colortexN; custom images are made as the loader makes them.
+    let holds_image = |name: &str| name.strip_prefix("colorimg").is_some_and(|n| n.parse::<u8>().is_ok()) || custom_images.iter().any(|i| i.name == name);
+    let holds_image_sampler = |name: &str| custom_images.iter().any(|i| i.sampler.as_deref() == Some(name));
     let mut reads_shadow_maps = false;
     let mut water_shadow = false;
     let all_programs = gbuffers.values().chain(fullscreen).map(|p| (p, SamplerNaming::Frame)).chain(shadow.values().map(|p| (p, SamplerNaming::ShadowPass)));
     for (program, naming) in all_programs {
         let program_stage = ProgramStage::of(&program.name);
         for stage in [&program.vertex, &program.fragment] {
-            for name in program::image_uniforms(&stage.gl_text) {
+            for name in program::image_uniforms(&stage.gl_text).into_iter().filter(|name| !holds_image(name)) {
                 not_modelled.push(format!(
-                    "image {name} in {}: bound empty (custom images are not held): it reads zero and what the program stores in it is not kept; OpenGL draws the program",
+                    "image {name} in {}: bound empty (neither a colour buffer's nor a custom image the loader makes): it reads zero and what the program stores in it is not kept; OpenGL draws the program",
                     program.name
                 ));
             }
             for (name, _) in program::texture_resources(&stage.interface) {
                 water_shadow |= name == "watershadow";
                 match naming.resolve(&NoCustomTextures(loader), &name, program_stage) {
-                    Ok(Source::Unbound) => {
+                    Ok(Source::Unbound) if !holds_image_sampler(&name) => {
                         not_modelled.push(format!("sampler {name} in {}: nothing the harness makes is bound to it; it reads zero", program.name))
                     }
                     Ok(Source::ShadowDepth(_) | Source::ShadowColour(_)) => reads_shadow_maps |= naming == SamplerNaming::Frame,
@@ -446,7 +456,18 @@ impl AnyPack {
             not_modelled.push(format!("{name}: {why}"));
         }
 
-        let (reads_shadow_maps, water_shadow) = shadow_map_reads(&gbuffers, &fullscreen, &shadow, loader, &mut not_modelled);
+        // OptiFine reads no `image.` lines.
+        let custom_images = if loader == Loader::Iris {
+            let (images, problems) = directives::custom_images(&properties);
+            not_modelled.extend(problems);
+            for image in images.iter().filter(|i| crate::gl::image_internal_format(&i.internal_format).is_none()) {
+                not_modelled.push(format!("image {}: internal format {} is not one the harness makes; it is bound empty", image.name, image.internal_format));
+            }
+            images
+        } else {
+            Vec::new()
+        };
+        let (reads_shadow_maps, water_shadow) = shadow_map_reads(&gbuffers, &fullscreen, &shadow, loader, &custom_images, &mut not_modelled);
         if !SKY_TEXTURED_CHAIN.iter().any(|name| gbuffers.contains_key(*name)) {
             not_modelled.push("the sun and the moon: without a program of gbuffers_skytextured's chain the game's own are not drawn".into());
         }
@@ -513,6 +534,7 @@ impl AnyPack {
             flips,
             blends,
             custom_textures,
+            custom_images,
             block_ids,
             properties,
             disabled,

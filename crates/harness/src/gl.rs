@@ -29,6 +29,7 @@ use tidepack_loader::loader::MissingProgramDraws;
 use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
 use crate::program::{ComputeStage, LoadedProgram, LoadedStage, PackResources};
 use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::directives::ImageSize;
 use tidepack_loader::directives::{Blend, BlendFactor};
 use tidepack_scene::scene::Scene;
 use crate::uniforms::Value;
@@ -137,6 +138,105 @@ pub(crate) struct GlHarnessTextures {
     /// Zero textures of the other kinds a program may declare (3D, cube, array, integer) and of
     /// its images, made at their first use, by [`EmptyKind`].
     empties: std::cell::RefCell<BTreeMap<EmptyKind, glow::Texture>>,
+    /// The pack's custom images ([`custom_images`]).
+    pub(crate) images: Vec<GlCustomImage>,
+}
+
+/// An Iris custom image as OpenGL holds it: bound as the image `name` and read through the
+/// sampler `sampler`.
+#[derive(Clone)]
+pub(crate) struct GlCustomImage {
+    name: String,
+    sampler: Option<String>,
+    texture: glow::Texture,
+    /// `TEXTURE_1D`, `TEXTURE_2D` or `TEXTURE_3D`.
+    target: u32,
+    internal: u32,
+}
+
+/// The OpenGL internal format an Iris custom image names (`RGBA16F`), and whether it holds
+/// integers; None for one the harness does not make.
+pub(crate) fn image_internal_format(name: &str) -> Option<(u32, bool)> {
+    Some(match name.to_ascii_uppercase().as_str() {
+        "R8" => (glow::R8, false),
+        "RG8" => (glow::RG8, false),
+        "RGBA8" => (glow::RGBA8, false),
+        "R8_SNORM" => (glow::R8_SNORM, false),
+        "RGBA8_SNORM" => (glow::RGBA8_SNORM, false),
+        "R16" => (glow::R16, false),
+        "RG16" => (glow::RG16, false),
+        "RGBA16" => (glow::RGBA16, false),
+        "R16F" => (glow::R16F, false),
+        "RG16F" => (glow::RG16F, false),
+        "RGBA16F" => (glow::RGBA16F, false),
+        "R32F" => (glow::R32F, false),
+        "RG32F" => (glow::RG32F, false),
+        "RGBA32F" => (glow::RGBA32F, false),
+        "R11F_G11F_B10F" => (glow::R11F_G11F_B10F, false),
+        "RGB10_A2" => (glow::RGB10_A2, false),
+        "R8I" => (glow::R8I, true),
+        "R8UI" => (glow::R8UI, true),
+        "R16I" => (glow::R16I, true),
+        "R16UI" => (glow::R16UI, true),
+        "R32I" => (glow::R32I, true),
+        "R32UI" => (glow::R32UI, true),
+        "RG8I" => (glow::RG8I, true),
+        "RG8UI" => (glow::RG8UI, true),
+        "RG16I" => (glow::RG16I, true),
+        "RG16UI" => (glow::RG16UI, true),
+        "RG32I" => (glow::RG32I, true),
+        "RG32UI" => (glow::RG32UI, true),
+        "RGBA8I" => (glow::RGBA8I, true),
+        "RGBA8UI" => (glow::RGBA8UI, true),
+        "RGBA16I" => (glow::RGBA16I, true),
+        "RGBA16UI" => (glow::RGBA16UI, true),
+        "RGBA32I" => (glow::RGBA32I, true),
+        "RGBA32UI" => (glow::RGBA32UI, true),
+        _ => return None,
+    })
+}
+
+/// The pack's custom images for a frame of `width` x `height`, each cleared to zero as Iris
+/// makes them, but those of an internal format the harness does not make (the pack's report
+/// says so).
+pub(crate) unsafe fn custom_images(ctx: &GlContext, pack: &dyn PackResources, width: u32, height: u32) -> Result<Vec<GlCustomImage>, HarnessError> {
+    let gl = ctx.gl();
+    let mut made = Vec::new();
+    for image in pack.custom_images() {
+        let Some((internal, integer)) = image_internal_format(&image.internal_format) else { continue };
+        let (target, [w, h, d]) = match image.size {
+            ImageSize::Relative([x, y]) => (glow::TEXTURE_2D, [((width as f32 * x).round() as i32).max(1), ((height as f32 * y).round() as i32).max(1), 1]),
+            ImageSize::Absolute { width, height: 0, .. } => (glow::TEXTURE_1D, [width.max(1) as i32, 1, 1]),
+            ImageSize::Absolute { width, height, depth: 0 } => (glow::TEXTURE_2D, [width.max(1) as i32, height as i32, 1]),
+            ImageSize::Absolute { width, height, depth } => (glow::TEXTURE_3D, [width.max(1) as i32, height as i32, depth as i32]),
+        };
+        // SAFETY: the caller holds the current context.
+        let texture = unsafe {
+            let texture = gl.create_texture().map_err(gl_err("texture"))?;
+            gl.bind_texture(target, Some(texture));
+            match target {
+                glow::TEXTURE_1D => gl.tex_storage_1d(target, 1, internal, w),
+                glow::TEXTURE_2D => gl.tex_storage_2d(target, 1, internal, w, h),
+                _ => gl.tex_storage_3d(target, 1, internal, w, h, d),
+            }
+            let filter = if integer { glow::NEAREST } else { glow::LINEAR } as i32;
+            gl.tex_parameter_i32(target, glow::TEXTURE_MIN_FILTER, filter);
+            gl.tex_parameter_i32(target, glow::TEXTURE_MAG_FILTER, filter);
+            for wrap in [glow::TEXTURE_WRAP_S, glow::TEXTURE_WRAP_T, glow::TEXTURE_WRAP_R] {
+                gl.tex_parameter_i32(target, wrap, glow::CLAMP_TO_EDGE as i32);
+            }
+            gl.bind_texture(target, None);
+            let Some(clear) = ctx.legacy().clear_tex_image else {
+                gl.delete_texture(texture);
+                return Err(HarnessError::Gl(format!("image {}: the driver has no glClearTexImage to clear it with", image.name)));
+            };
+            let (format, ty) = if integer { (glow::RED_INTEGER, glow::UNSIGNED_INT) } else { (glow::RED, glow::FLOAT) };
+            clear(texture.0.get(), 0, format, ty, std::ptr::null());
+            texture
+        };
+        made.push(GlCustomImage { name: image.name.clone(), sampler: image.sampler.clone(), texture, target, internal });
+    }
+    Ok(made)
 }
 
 /// A zero 1x1(x1) texture's target and the kind of value it holds. Samplers and images the
@@ -168,6 +268,9 @@ impl EmptyKind {
             glow::SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::FLOAT, false),
             glow::INT_SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::INT, false),
             glow::UNSIGNED_INT_SAMPLER_2D_ARRAY => (glow::TEXTURE_2D_ARRAY, glow::UNSIGNED_INT, false),
+            glow::IMAGE_1D => (glow::TEXTURE_1D, glow::FLOAT, true),
+            glow::INT_IMAGE_1D => (glow::TEXTURE_1D, glow::INT, true),
+            glow::UNSIGNED_INT_IMAGE_1D => (glow::TEXTURE_1D, glow::UNSIGNED_INT, true),
             glow::IMAGE_2D => (glow::TEXTURE_2D, glow::FLOAT, true),
             glow::INT_IMAGE_2D => (glow::TEXTURE_2D, glow::INT, true),
             glow::UNSIGNED_INT_IMAGE_2D => (glow::TEXTURE_2D, glow::UNSIGNED_INT, true),
@@ -194,7 +297,9 @@ impl EmptyKind {
 }
 
 impl GlHarnessTextures {
-    pub(crate) unsafe fn new(gl: &glow::Context, pack: &dyn PackResources) -> Result<GlHarnessTextures, HarnessError> {
+    /// The harness's textures for a frame of `width` x `height` of `pack`.
+    pub(crate) unsafe fn new(ctx: &GlContext, pack: &dyn PackResources, width: u32, height: u32) -> Result<GlHarnessTextures, HarnessError> {
+        let gl = ctx.gl();
         let rgba8 = |(tw, th, data): (u32, u32, Vec<u8>), linear: bool, repeat: bool| {
             // SAFETY: the caller holds the current context.
             unsafe { make_texture(gl, glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE, tw as i32, th as i32, Some(&data), linear, repeat) }
@@ -231,6 +336,8 @@ impl GlHarnessTextures {
             comparison,
             unbound: one_texel([0; 4])?,
             empties: Default::default(),
+            // SAFETY: the caller holds the current context.
+            images: unsafe { custom_images(ctx, pack, width, height)? },
         })
     }
 
@@ -279,7 +386,8 @@ impl GlHarnessTextures {
             self.empty_shadow_depth,
             self.unbound,
         ];
-        for t in own.into_iter().chain(self.custom.iter().copied()).chain(self.empties.borrow().values().copied()) {
+        let images = self.images.iter().map(|i| i.texture);
+        for t in own.into_iter().chain(self.custom.iter().copied()).chain(self.empties.borrow().values().copied()).chain(images) {
             // SAFETY: the caller holds the current context that made the texture.
             unsafe { gl.delete_texture(t) };
         }
@@ -747,6 +855,26 @@ unsafe fn set_uniforms(
             }
             let name = active.name.trim_end_matches("[0]").to_string();
             let location = gl.get_uniform_location(raw, &active.name);
+            // A custom image through its image uniform or its sampler, as Iris binds it.
+            let kind = EmptyKind::of_uniform(active.utype);
+            if let Some(image) = textures.harness.images.iter().find(|i| i.name == name)
+                && kind.is_some_and(|k| k.image)
+            {
+                gl.bind_image_texture(image_unit, Some(image.texture), 0, image.target == glow::TEXTURE_3D, 0, glow::READ_WRITE, image.internal);
+                gl.uniform_1_i32(location.as_ref(), image_unit as i32);
+                image_unit += 1;
+                continue;
+            }
+            if let Some(image) = textures.harness.images.iter().find(|i| i.sampler.as_deref() == Some(name.as_str()))
+                && !kind.is_some_and(|k| k.image)
+            {
+                gl.active_texture(glow::TEXTURE0 + unit);
+                gl.bind_texture(image.target, Some(image.texture));
+                gl.bind_sampler(unit, None);
+                gl.uniform_1_i32(location.as_ref(), unit as i32);
+                unit += 1;
+                continue;
+            }
             if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW | glow::UNSIGNED_INT_SAMPLER_2D | glow::INT_SAMPLER_2D) {
                 let shadow = active.utype == glow::SAMPLER_2D_SHADOW;
                 let resolved = textures.naming.resolve(pack, &name, stage);

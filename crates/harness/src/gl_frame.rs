@@ -314,7 +314,7 @@ impl<'a> GlPlanFrame<'a> {
                 shadow_depth,
                 shadow_colours,
                 screen: make_texture(gl, internal_format(SCREEN_FORMAT), glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
-                harness: GlHarnessTextures::new(gl, pack)?,
+                harness: GlHarnessTextures::new(ctx, pack, w as u32, h as u32)?,
                 fbo,
                 values,
                 own_depth_mapping: Vec::new(),

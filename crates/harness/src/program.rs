@@ -183,6 +183,10 @@ pub trait PackResources {
     fn format_of(&self, buffer: u8) -> BufferFormat;
     /// Custom textures from shaders.properties.
     fn custom_textures(&self) -> &[CustomTexture];
+    /// Iris's custom images from shaders.properties, which only OpenGL holds.
+    fn custom_images(&self) -> &[tidepack_loader::directives::CustomImage] {
+        &[]
+    }
     /// The pack's shadow-map constants.
     fn shadow_settings(&self) -> ShadowSettings {
         ShadowSettings::default()

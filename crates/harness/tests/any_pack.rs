@@ -844,6 +844,18 @@ fn compute_stages_run_before_their_program_and_write_the_buffer_in_place() {
     assert_ne!(screen.get_pixel(16, row).0, [0, 0, 255, 255]);
 }
 
+/// Under Iris the storage image of tests/packs/storage_image is the custom image its
+/// shaders.properties declares: composite stores 1 into each of its 16x16 texels, and final
+/// reads it back through `markSampler`, so the screen is white; OpenGL holds it and draws both.
+#[test]
+fn a_custom_image_is_held_under_iris_and_read_back_through_its_sampler() {
+    let (report, screen) = render_job_with("storage_image", Configuration { loader: Loader::Iris, ..Configuration::default() });
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(!report.not_modelled.iter().any(|n| n.contains("marks")), "{:?}", report.not_modelled);
+    assert!(report.step_renderers.iter().any(|(step, renderer)| step == "final" && matches!(renderer, tidepack_harness::job::StepRenderers::OpenGl)), "{:?}", report.step_renderers);
+    assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() - 10).0, [255, 255, 255, 255]);
+}
+
 /// A program naga refuses and OpenGL compiles (tests/packs/beyond_naga: textureLod on an
 /// unsigned-integer sampler) loads: OpenGL draws the frame, and the report gives naga's reason
 /// at the pack's file and line, in GLSL's words.

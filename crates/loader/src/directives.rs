@@ -210,9 +210,92 @@ pub fn custom_names(properties: &Properties) -> CustomNames {
     names
 }
 
+/// An Iris custom image (`image.<name> = <sampler> <format> <internalFormat> <pixelType>
+/// <clear> <relative> <width> <height> [<depth>]`, IrisShaders/Iris `ShaderProperties`): a
+/// texture programs store into through the image uniform `name` and read through the sampler
+/// `sampler`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CustomImage {
+    pub name: String,
+    /// `none` gives none.
+    pub sampler: Option<String>,
+    /// The internal format as written (`RGBA16F`, `R32UI`).
+    pub internal_format: String,
+    /// Whether the loader clears it every frame.
+    pub clear: bool,
+    pub size: ImageSize,
+    /// The line of shaders.properties.
+    pub line: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImageSize {
+    /// A share of the frame's width and height.
+    Relative([f32; 2]),
+    /// Texels: a 1D image has no height, a 2D one no depth (0 there).
+    Absolute { width: u32, height: u32, depth: u32 },
+}
+
+/// Iris's limit on custom images.
+pub const MAX_CUSTOM_IMAGES: usize = 16;
+
+/// Every `image.` entry of shaders.properties, in the order written, and why each one that
+/// cannot be read is not (Iris logs those and skips them).
+pub fn custom_images(properties: &Properties) -> (Vec<CustomImage>, Vec<String>) {
+    let (mut images, mut problems) = (Vec::new(), Vec::new());
+    for entry in properties.entries() {
+        let Some(name) = entry.key.strip_prefix("image.") else { continue };
+        let parts: Vec<&str> = entry.value.split_whitespace().collect();
+        let number = |i: usize| parts.get(i).and_then(|p| p.parse::<f32>().ok());
+        let relative = parts.get(5).is_some_and(|p| p.eq_ignore_ascii_case("true"));
+        let size = match (relative, parts.len()) {
+            (true, 8..) => number(6).zip(number(7)).map(|(w, h)| ImageSize::Relative([w, h])),
+            (false, 7..=9) => {
+                let texels = |i: usize| if i < parts.len() { number(i).map(|n| n.max(0.0) as u32) } else { Some(0) };
+                match (texels(6), texels(7), texels(8)) {
+                    (Some(width), Some(height), Some(depth)) => Some(ImageSize::Absolute { width, height, depth }),
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        let Some(size) = size else {
+            problems.push(format!("shaders.properties:{}: image.{name}: `{}` gives no size Iris reads; the image is not made", entry.line, entry.value));
+            continue;
+        };
+        if images.len() == MAX_CUSTOM_IMAGES {
+            problems.push(format!("shaders.properties:{}: image.{name}: past Iris's {MAX_CUSTOM_IMAGES} custom images; Iris skips it", entry.line));
+            continue;
+        }
+        images.push(CustomImage {
+            name: name.to_string(),
+            sampler: parts.first().filter(|s| **s != "none").map(|s| s.to_string()),
+            internal_format: parts.get(2).unwrap_or(&"").to_string(),
+            clear: parts.get(4).is_some_and(|p| p.eq_ignore_ascii_case("true")),
+            size,
+            line: entry.line,
+        });
+    }
+    (images, problems)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn custom_images_relative_and_absolute_and_one_without_a_size() {
+        let p = Properties::parse_plain(
+            "image.imgDepth = texDepth RED R16F HALF_FLOAT false true 0.5 0.5\nimage.voxels = none RGBA RGBA8 UNSIGNED_BYTE true false 64 32 16\nimage.broken = s RGBA RGBA8 UNSIGNED_BYTE true false\n",
+        );
+        let (images, problems) = custom_images(&p);
+        assert_eq!(images.len(), 2);
+        assert_eq!(images[0].sampler.as_deref(), Some("texDepth"));
+        assert_eq!((images[0].internal_format.as_str(), images[0].clear, images[0].size), ("R16F", false, ImageSize::Relative([0.5, 0.5])));
+        assert_eq!((images[1].sampler.clone(), images[1].size), (None, ImageSize::Absolute { width: 64, height: 32, depth: 16 }));
+        assert_eq!(problems.len(), 1);
+        assert!(problems[0].starts_with("shaders.properties:3: image.broken"), "{problems:?}");
+    }
 
     #[test]
     fn blend_modes_per_program_and_buffer() {

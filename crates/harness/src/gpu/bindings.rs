@@ -898,6 +898,10 @@ fn stage_entries(
     let mut beyond_wgpu = Vec::new();
     for (handle, global) in module.global_variables.iter() {
         let (Some(binding), Some(name)) = (&global.binding, &global.name) else { continue };
+        if let Some(image) = pack.custom_images().iter().find(|i| i.sampler.as_deref() == Some(name.as_str())) {
+            beyond_wgpu.push(format!("{name} reads the custom image {}, which the harness's wgpu frames do not hold", image.name));
+            continue;
+        }
         if let naga::TypeInner::Image { class, dim, arrayed, .. } = &module.types[global.ty].inner {
             // A shadow sampler's texture is a depth texture, sampled by comparison.
             let depth_class = matches!(class, naga::ImageClass::Depth { multi: false });
