@@ -622,31 +622,19 @@ impl<'a> GlPlanFrame<'a> {
             set_blends(gl, &program.render_targets, &|b| if self.step_traced { Blend::Off } else { self.pack.blend_of(Some(program), b, &Blend::Off) });
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
-            let textures = Textures {
-                naming: SamplerNaming::Frame,
-                harness: &harness,
-                colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
-                depth0: self.depth0,
-                depth1: self.depth1,
-                lod_depth: self.lod_depth,
-                shadow_depth: self.shadow_depth,
-                shadow_colours: self.shadow_colours.clone(),
-                sprites: Sprites::Blocks,
-                mipmapped: mipmaps.clone(),
-            };
+            let textures = self.frame_textures(&harness, current, mipmaps.clone());
             self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             targets.into_iter().flatten().map(|(name, texture, format)| Ok(Written { name, texture, image: self.read_colour(texture, format)? })).collect()
         }
     }
 
-    /// A compute stage dispatched over the frame: what it writes through its images is the
-    /// current texture of each buffer it names.
-    unsafe fn compute(&mut self, stage: &ComputeStage, current: &BTreeMap<u8, usize>) -> Result<Vec<Written>, HarnessError> {
-        let harness = self.harness.clone();
-        let textures = Textures {
+    /// What a full-screen program or compute stage reads: the current texture of each buffer
+    /// (`mipmapped`: those read through their mip chains), both depth buffers, the shadow maps.
+    fn frame_textures<'h>(&self, harness: &'h GlHarnessTextures, current: &BTreeMap<u8, usize>, mipmapped: BTreeSet<u8>) -> Textures<'h> {
+        Textures {
             naming: SamplerNaming::Frame,
-            harness: &harness,
+            harness,
             colors: self.buffers.iter().map(|(b, (textures, _, format))| (*b, (textures[current[b]], *format))).collect(),
             depth0: self.depth0,
             depth1: self.depth1,
@@ -654,8 +642,15 @@ impl<'a> GlPlanFrame<'a> {
             shadow_depth: self.shadow_depth,
             shadow_colours: self.shadow_colours.clone(),
             sprites: Sprites::Blocks,
-            mipmapped: BTreeSet::new(),
-        };
+            mipmapped,
+        }
+    }
+
+    /// A compute stage dispatched over the frame: what it writes through its images is the
+    /// current texture of each buffer it names.
+    unsafe fn compute(&mut self, stage: &ComputeStage, current: &BTreeMap<u8, usize>) -> Result<Vec<Written>, HarnessError> {
+        let harness = self.harness.clone();
+        let textures = self.frame_textures(&harness, current, BTreeSet::new());
         // SAFETY: the textures are this frame's, on the current context.
         unsafe {
             self.step_ms += dispatch_compute(self.ctx, self.pack, stage, self.values.of_pass(Pass::Fullscreen), &textures, self.w as u32, self.h as u32)?;
