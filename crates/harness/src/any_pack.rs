@@ -275,9 +275,22 @@ impl ProgramLoading<'_> {
         ["dh_terrain", "dh_water"].into_iter().filter_map(|name| Some((name.to_string(), self.load(name, LoaderAlphaTest::None)?))).collect()
     }
 
-    /// prepare*, deferred*, composite* and final, in the order the loader runs them.
+    /// prepare*, deferred*, composite* and final, in the order the loader runs them (their
+    /// compute stages, and under Iris those of setup* and begin*, go to `compute`).
     fn fullscreen(&mut self) -> Vec<LoadedProgram> {
         let mut fullscreen = Vec::new();
+        // Iris's passes of compute stages alone, run before everything else: setup once, when
+        // the pack loads, and begin at the start of every frame.
+        if self.loader == Loader::Iris {
+            for family in ["setup", "begin"] {
+                for n in 0..100 {
+                    let name = if n == 0 { family.to_string() } else { format!("{family}{n}") };
+                    if self.load(&name, LoaderAlphaTest::None).is_some() {
+                        self.not_modelled.push(format!("{name}: its vertex and fragment stages, which Iris does not run in a {family} pass"));
+                    }
+                }
+            }
+        }
         for family in FULLSCREEN_FAMILIES {
             for n in 0..100 {
                 let name = if n == 0 { family.to_string() } else { format!("{family}{n}") };
@@ -847,6 +860,12 @@ impl<'a> FramePlan<'a> {
         let mipmapped = pack.mipmaps.values().flatten().copied().filter(|b| buffers.contains(b)).collect();
         let mut plan =
             FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, shadow_buffers, mipmapped, steps: Vec::new() };
+        // The frame drawn is the first: Iris's setup passes have just run, then its begin passes.
+        for family in ["setup", "begin"] {
+            for (name, _) in family_slots(pack, family) {
+                plan.compute(pack, name);
+            }
+        }
         if pack.shadow_pass {
             plan.shadow_geometry(pack, false, &mesh.terrain, "shadow terrain");
             plan.steps.push(PlannedStep { label: "shadowtex0 to shadowtex1".into(), work: PlannedWork::ShadowDepthCopy });

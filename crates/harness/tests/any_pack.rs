@@ -811,6 +811,7 @@ fn a_storage_image_is_drawn_by_opengl_beside_samplers_of_other_kinds() {
 /// changes colortex0 in place through `colorimg0`, one invocation per pixel; composite1_a.csh,
 /// a program of compute stages alone on fixed work groups, runs after composite on the texture
 /// composite wrote. OpenGL dispatches them and draws the frame; each compute step is its own.
+/// Under Iris, begin.csh (Iris's begin pass) runs first.
 #[test]
 fn compute_stages_run_before_their_program_and_write_the_buffer_in_place() {
     let pack = pack("compute", Loader::default());
@@ -842,6 +843,15 @@ fn compute_stages_run_before_their_program_and_write_the_buffer_in_place() {
     let row = screen.height() - 1;
     assert_eq!(screen.get_pixel(3, row).0, [0, 0, 255, 255]);
     assert_ne!(screen.get_pixel(16, row).0, [0, 0, 255, 255]);
+    assert_eq!(screen.get_pixel(35, row).0, terrain, "OptiFine runs no begin pass");
+    // Iris runs begin.csh first, at the start of the frame.
+    let iris = Configuration { loader: Loader::Iris, ..Configuration::default() };
+    let pack = AnyPack::load(&root().join("tests/packs/compute"), &iris).unwrap_or_else(|e| panic!("{e}"));
+    let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
+    assert_eq!(plan.steps[0].label, "begin (begin.csh)");
+    let (report, screen) = render_job_with("compute", iris);
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert_eq!(screen.get_pixel(35, row).0, [255, 255, 255, 255]);
 }
 
 /// Under Iris the storage image of tests/packs/storage_image is the custom image its
