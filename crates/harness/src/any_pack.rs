@@ -14,7 +14,7 @@ use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::buffers::{BufferClear, BufferFormat, colour_buffer_number, shadow_colour_number};
 use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
-use tidepack_loader::directives::{self, Blend, BlendFactor, CustomImage, DEFAULT_TRANSLUCENT_BLEND};
+use tidepack_loader::directives::{self, Blend, BlendFactor, BufferObject, CustomImage, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
 use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::option_space::{declared_options, read_properties};
@@ -108,6 +108,9 @@ pub struct AnyPack {
     pub custom_textures: Vec<CustomTexture>,
     /// Iris's custom images (`image.<name>`), which OpenGL holds and wgpu does not.
     pub custom_images: Vec<CustomImage>,
+    /// Iris's shader storage buffers (`bufferObject.<index>`), which OpenGL holds across the
+    /// frame.
+    pub buffer_objects: Vec<BufferObject>,
     pub block_ids: HashMap<String, i32>,
     /// shaders.properties under the configuration, for the custom uniforms of each pass.
     pub properties: Properties,
@@ -134,6 +137,12 @@ impl PackResources for AnyPack {
 
     fn custom_images(&self) -> &[CustomImage] {
         &self.custom_images
+    }
+
+    fn buffers_shared_across_programs(&self) -> bool {
+        let programs = self.programs().filter(|p| [&p.vertex.gl_text, &p.fragment.gl_text].iter().any(|t| program::declares_buffer_block(t)));
+        let compute = self.compute.iter().filter(|c| program::declares_buffer_block(&c.stage.gl_text));
+        !self.buffer_objects.is_empty() && programs.count() + compute.count() > 1
     }
 
     fn shadow_settings(&self) -> ShadowSettings {
@@ -469,7 +478,14 @@ impl AnyPack {
             not_modelled.push(format!("{name}: {why}"));
         }
 
-        // OptiFine reads no `image.` lines.
+        // OptiFine reads no `image.` and `bufferObject.` lines.
+        let buffer_objects = if loader == Loader::Iris {
+            let (buffers, problems) = directives::buffer_objects(&properties);
+            not_modelled.extend(problems);
+            buffers
+        } else {
+            Vec::new()
+        };
         let custom_images = if loader == Loader::Iris {
             let (images, problems) = directives::custom_images(&properties);
             not_modelled.extend(problems);
@@ -548,6 +564,7 @@ impl AnyPack {
             blends,
             custom_textures,
             custom_images,
+            buffer_objects,
             block_ids,
             properties,
             disabled,

@@ -158,6 +158,8 @@ struct GlPlanFrame<'a> {
     shadow_colours: BTreeMap<u8, (glow::Texture, BufferFormat)>,
     screen: glow::Texture,
     harness: GlHarnessTextures,
+    /// The pack's `bufferObject`s, bound at their indices for the whole frame.
+    storage: Vec<glow::Buffer>,
     fbo: glow::Framebuffer,
     values: PassValues,
     own_depth_mapping: Vec<String>,
@@ -170,6 +172,10 @@ struct GlPlanFrame<'a> {
     /// Whether the current step's program was drawn traced.
     step_traced: bool,
 }
+
+/// The largest `bufferObject` the harness makes, in bytes (1 GiB): a larger one is refused
+/// rather than taken from a machine other work shares.
+const MAX_BUFFER_OBJECT_BYTES: u64 = 1 << 30;
 
 fn render_plan(
     ctx: &GlContext,
@@ -300,6 +306,22 @@ impl<'a> GlPlanFrame<'a> {
             }
             let fbo = gl.create_framebuffer().map_err(|e| HarnessError::Gl(format!("framebuffer: {e}")))?;
             let values = PassValues::of(pack, scene).0.nudged(nudge);
+            let mut storage = Vec::new();
+            for buffer in &pack.buffer_objects {
+                let bytes = buffer.bytes(w as u32, h as u32);
+                if bytes > MAX_BUFFER_OBJECT_BYTES {
+                    return Err(HarnessError::Unsupported(format!(
+                        "bufferObject.{}: {bytes} bytes, more than the {MAX_BUFFER_OBJECT_BYTES} the harness gives a buffer",
+                        buffer.index
+                    )));
+                }
+                let made = gl.create_buffer().map_err(|e| HarnessError::Gl(format!("buffer: {e}")))?;
+                gl.bind_buffer(glow::SHADER_STORAGE_BUFFER, Some(made));
+                gl.buffer_data_u8_slice(glow::SHADER_STORAGE_BUFFER, &vec![0u8; bytes.max(4) as usize], glow::DYNAMIC_COPY);
+                gl.bind_buffer_base(glow::SHADER_STORAGE_BUFFER, buffer.index, Some(made));
+                storage.push(made);
+            }
+            gl.bind_buffer(glow::SHADER_STORAGE_BUFFER, None);
             Ok(GlPlanFrame {
                 ctx,
                 pack,
@@ -315,6 +337,7 @@ impl<'a> GlPlanFrame<'a> {
                 shadow_colours,
                 screen: make_texture(gl, internal_format(SCREEN_FORMAT), glow::RGBA, glow::FLOAT, w, h, None, false, false)?,
                 harness: GlHarnessTextures::new(ctx, pack, w as u32, h as u32)?,
+                storage,
                 fbo,
                 values,
                 own_depth_mapping: Vec::new(),
@@ -707,6 +730,9 @@ impl<'a> GlPlanFrame<'a> {
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
             gl.delete_framebuffer(self.fbo);
             self.harness.delete(gl);
+            for buffer in self.storage {
+                gl.delete_buffer(buffer);
+            }
             let shadow_textures = self.shadow_depth.into_iter().chain(self.shadow_colours.values().map(|(t, _)| *t));
             let buffer_textures = self.buffers.values().flat_map(|(t, s, _)| [t[0], t[1], *s]);
             for t in [self.depth0, self.depth1, self.lod_depth[0], self.lod_depth[1], self.screen].into_iter().chain(buffer_textures).chain(shadow_textures) {

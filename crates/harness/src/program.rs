@@ -187,6 +187,11 @@ pub trait PackResources {
     fn custom_images(&self) -> &[tidepack_loader::directives::CustomImage] {
         &[]
     }
+    /// Whether more than one program (or compute stage) declares a buffer block of Iris's
+    /// `bufferObject`s, which OpenGL holds across the frame and wgpu gives each program apart.
+    fn buffers_shared_across_programs(&self) -> bool {
+        false
+    }
     /// The pack's shadow-map constants.
     fn shadow_settings(&self) -> ShadowSettings {
         ShadowSettings::default()
@@ -1026,6 +1031,13 @@ pub(crate) fn block_ids(provider: &dyn FileProvider, standard: &StandardMacros, 
 
 /// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the
 /// type) a stage's text declares at file scope, by name.
+/// Whether `text` declares a buffer block (`layout(std430, binding = 0) buffer Data { … }`).
+pub fn declares_buffer_block(text: &str) -> bool {
+    let Ok(tokens) = tokenize(text) else { return false };
+    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    sig.windows(3).any(|w| w[0].is_ident("buffer") && w[1].kind == TokenKind::Ident && w[2].is_punct("{"))
+}
+
 pub fn image_uniforms(text: &str) -> Vec<String> {
     use tidepack_glsl::lower::{is_image_type, is_memory_qualifier};
     let Ok(tokens) = tokenize(text) else { return Vec::new() };

@@ -791,6 +791,18 @@ fn a_buffer_block_both_stages_declare_is_one_buffer() {
     assert!(report.step_renderers.iter().any(|(step, renderer)| step.starts_with("terrain") && matches!(renderer, tidepack_harness::job::StepRenderers::WgpuWithOpenGl)), "{:?}", report.step_renderers);
 }
 
+/// Iris's buffer object shared by two programs (tests/packs/buffer_across_programs): the
+/// terrain stores blue into it, and composite reads that back over the whole screen. OpenGL
+/// holds it across the frame and draws both; wgpu, which gives each program a buffer of its
+/// own, says why it does not.
+#[test]
+fn a_buffer_object_written_by_one_program_is_read_by_the_next() {
+    let (report, screen) = render_job_with("buffer_across_programs", Configuration { loader: Loader::Iris, ..Configuration::default() });
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.renderer.wgpu_cannot_draw.as_deref().is_some_and(|why| why.contains("other programs share")), "{:?}", report.renderer);
+    assert_eq!(screen.get_pixel(screen.width() / 2, screen.height() / 2).0, [0, 0, 255, 255]);
+}
+
 /// A storage image (tests/packs/storage_image: an Iris custom image that composite stores into)
 /// beside samplers of four other kinds: OpenGL draws the program, each sampler on a texture
 /// unit of its own and the image on an image unit, reading zero as wgpu's empty textures do; the

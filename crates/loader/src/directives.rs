@@ -279,9 +279,78 @@ pub fn custom_images(properties: &Properties) -> (Vec<CustomImage>, Vec<String>)
     (images, problems)
 }
 
+/// An Iris shader storage buffer (`bufferObject.<index> = <bytes>`, or `= <bytes per pixel>
+/// <relative> <scale x> <scale y>`, IrisShaders/Iris `ShaderProperties`): zero-filled, bound at
+/// binding `index` for every program, kept across the frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BufferObject {
+    pub index: u32,
+    pub size: BufferObjectSize,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BufferObjectSize {
+    Bytes(u64),
+    /// Bytes per pixel of a frame scaled by these.
+    PerPixel { bytes: u64, scale: [f32; 2] },
+}
+
+impl BufferObject {
+    /// Its size in bytes for a frame of `width` x `height`, as Iris computes it.
+    pub fn bytes(&self, width: u32, height: u32) -> u64 {
+        match self.size {
+            BufferObjectSize::Bytes(bytes) => bytes,
+            BufferObjectSize::PerPixel { bytes, scale: [x, y] } => (width as f32 * x) as u64 * (height as f32 * y) as u64 * bytes,
+        }
+    }
+}
+
+/// Iris's highest buffer object index.
+pub const MAX_BUFFER_OBJECT_INDEX: u32 = 8;
+
+/// Every `bufferObject.` entry of shaders.properties Iris makes, and why each other one is not
+/// (Iris logs those and skips them; a size below 1 turns the buffer off).
+pub fn buffer_objects(properties: &Properties) -> (Vec<BufferObject>, Vec<String>) {
+    let (mut buffers, mut problems) = (Vec::new(), Vec::new());
+    for entry in properties.entries() {
+        let Some(index) = entry.key.strip_prefix("bufferObject.") else { continue };
+        let parts: Vec<&str> = entry.value.split_whitespace().collect();
+        let bytes = parts.first().and_then(|b| b.parse::<i64>().ok());
+        let scale = |i: usize| parts.get(i).and_then(|p| p.parse::<f32>().ok());
+        let size = match (bytes, parts.len()) {
+            (Some(b), 1..=2) => Some((b, BufferObjectSize::Bytes(b.max(0) as u64))),
+            (Some(b), _) if parts[1].eq_ignore_ascii_case("true") => {
+                scale(2).zip(scale(3)).map(|(x, y)| (b, BufferObjectSize::PerPixel { bytes: b.max(0) as u64, scale: [x, y] }))
+            }
+            (Some(b), _) => Some((b, BufferObjectSize::Bytes(b.max(0) as u64))),
+            _ => None,
+        };
+        match (index.parse::<u32>().ok().filter(|i| *i <= MAX_BUFFER_OBJECT_INDEX), size) {
+            (Some(_), Some((bytes, _))) if bytes < 1 => {}
+            (Some(index), Some((_, size))) => buffers.push(BufferObject { index, size }),
+            _ => problems.push(format!(
+                "shaders.properties:{}: bufferObject.{index} = {}: not an index up to {MAX_BUFFER_OBJECT_INDEX} and a size Iris reads; Iris makes no buffer",
+                entry.line, entry.value
+            )),
+        }
+    }
+    (buffers, problems)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn buffer_objects_fixed_relative_off_and_unreadable() {
+        let p = Properties::parse_plain("bufferObject.0=16384\nbufferObject.1=4 true 1.0 0.5\nbufferObject.2=0\nbufferObject.9=64\n");
+        let (buffers, problems) = buffer_objects(&p);
+        assert_eq!(buffers.len(), 2);
+        assert_eq!(buffers[0].bytes(640, 360), 16384);
+        assert_eq!((buffers[1].index, buffers[1].bytes(640, 360)), (1, 4 * 640 * 180));
+        assert_eq!(problems.len(), 1);
+        assert!(problems[0].starts_with("shaders.properties:4: bufferObject.9"), "{problems:?}");
+    }
 
     #[test]
     fn custom_images_relative_and_absolute_and_one_without_a_size() {

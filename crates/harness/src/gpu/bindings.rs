@@ -865,12 +865,19 @@ fn stage_entries(
 ) -> Result<Vec<(u32, u32, Entry)>, HarnessError> {
     let module = stage.module()?;
     let mut entries = Vec::new();
-    // Any pack's own buffer blocks read zero: nothing the harness runs writes them.
+    // A pack's own buffer blocks read zero, each program's its own, where no other program
+    // shares them.
     {
         let mut layouter = naga::proc::Layouter::default();
         if layouter.update(module.to_ctx()).is_ok() {
             for (_, global) in module.global_variables.iter() {
                 let (Some(binding), naga::AddressSpace::Storage { access }) = (&global.binding, global.space) else { continue };
+                if pack.buffers_shared_across_programs() {
+                    return Err(HarnessError::Unsupported(format!(
+                        "{}: a buffer block of the pack's bufferObjects, which other programs share and the harness's wgpu frames give each program apart",
+                        stage.path
+                    )));
+                }
                 // A runtime-sized array at the end gets 1024 elements.
                 let tail = match &module.types[global.ty].inner {
                     naga::TypeInner::Struct { members, .. } => members.last().map(|m| &module.types[m.ty].inner),

@@ -1,0 +1,4 @@
+#version 430 compatibility
+void main() {
+    gl_Position = ftransform();
+}
