@@ -446,9 +446,10 @@ pub const NOISE_BLOCK: u32 = 8;
 pub const NUDGE: f64 = 1.0 / (1u32 << 21) as f64;
 
 /// The nudges OpenGL's frame is drawn again with where the renderers part: up and down by
-/// [`NUDGE`], and up by twice it. Which pixels one nudge moves depends on its sign and size as
-/// much as on the arithmetic, so each samples other roundings a second compiler may make.
-pub const NUDGES: [f64; 3] = [NUDGE, -NUDGE, 2.0 * NUDGE];
+/// [`NUDGE`] and by twice it, and up by three times it. Which pixels one nudge moves depends on
+/// its sign and size as much as on the arithmetic, so each samples other roundings a second
+/// compiler may make.
+pub const NUDGES: [f64; 5] = [NUDGE, -NUDGE, 2.0 * NUDGE, -2.0 * NUDGE, 3.0 * NUDGE];
 
 /// The largest share of a texture OpenGL may move under [`NUDGE`] for its pixels to be compared
 /// one by one: past it the step is noise throughout (grain, a hash of every pixel), compared by
