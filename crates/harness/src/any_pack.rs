@@ -111,6 +111,8 @@ pub struct AnyPack {
     /// Iris's shader storage buffers (`bufferObject.<index>`), which OpenGL holds across the
     /// frame.
     pub buffer_objects: Vec<BufferObject>,
+    /// [`PackResources::buffers_shared_across_programs`].
+    buffers_shared: bool,
     pub block_ids: HashMap<String, i32>,
     /// shaders.properties under the configuration, for the custom uniforms of each pass.
     pub properties: Properties,
@@ -140,9 +142,7 @@ impl PackResources for AnyPack {
     }
 
     fn buffers_shared_across_programs(&self) -> bool {
-        let programs = self.programs().filter(|p| [&p.vertex.gl_text, &p.fragment.gl_text].iter().any(|t| program::declares_buffer_block(t)));
-        let compute = self.compute.iter().filter(|c| program::declares_buffer_block(&c.stage.gl_text));
-        !self.buffer_objects.is_empty() && programs.count() + compute.count() > 1
+        self.buffers_shared
     }
 
     fn shadow_settings(&self) -> ShadowSettings {
@@ -540,6 +540,11 @@ impl AnyPack {
             }
         }
         let block_ids = program::block_ids(&provider, &standard, &declared, &options);
+        // Programs and compute stages that declare a buffer block, which wgpu gives each its own.
+        let buffer_block_users = gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(&fullscreen)
+            .filter(|p| [&p.vertex.gl_text, &p.fragment.gl_text].iter().any(|t| program::declares_buffer_block(t)))
+            .count()
+            + compute.iter().filter(|c| program::declares_buffer_block(&c.stage.gl_text)).count();
         not_modelled.sort();
         not_modelled.dedup();
         Ok(AnyPack {
@@ -564,6 +569,7 @@ impl AnyPack {
             blends,
             custom_textures,
             custom_images,
+            buffers_shared: !buffer_objects.is_empty() && buffer_block_users > 1,
             buffer_objects,
             block_ids,
             properties,
