@@ -983,7 +983,7 @@ pub(crate) unsafe fn dispatch_compute(
     let gl = ctx.gl();
     let compiled = ctx
         .compile_compute_program(&stage.stage.gl_text)
-        .map_err(|e| HarnessError::Gl(format!("{} through {}: {}", stage.program, ctx.info(), located_at(&e, Some(&stage.stage.gl_origins)))))?;
+        .map_err(|e| HarnessError::Gl(format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(&e, Some(&stage.stage.gl_origins)))))?;
     let [x, y, z] = stage.work_groups.count(width, height, stage.local_size);
     // SAFETY: the caller holds the current context; the program was made on it.
     let dispatched = unsafe {

@@ -653,7 +653,14 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                 // load, and the report says so), wgpu may.
                 Err(refused) if pack.set_aside_unreadable() => match gpu::render(&gpu, &pack, &scene, &mesh, ScreenOutput::AsLoader, job.frames) {
                     Ok(frame) => (frame, PrimaryRenderer { opengl_refused: Some(refused.to_string()), ..wgpu_renderer }),
-                    Err(e) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {e}"))),
+                    Err(e) => {
+                        // The error is OpenGL's already: its message once.
+                        let refused = match refused {
+                            HarnessError::Gl(m) => m,
+                            other => other.to_string(),
+                        };
+                        return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {e}")));
+                    }
                 },
                 Err(HarnessError::NoGlDriver(_)) => return Err(cannot),
                 Err(HarnessError::Gl(refused)) => return Err(HarnessError::Gl(format!("{refused}; and wgpu cannot draw the frame: {cannot}"))),
