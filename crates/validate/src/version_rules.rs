@@ -88,13 +88,24 @@ pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
 }
 
 /// Extensions that some drivers do not offer in OpenGL: the start of their names, the drivers
-/// without them, who those are in words, and the starts of the names of what they bring.
-const EXTENSIONS_SOME_DRIVERS_LACK: [(&str, Drivers, &str, &[&str]); 1] = [(
-    "GL_KHR_shader_subgroup_",
-    Drivers::MESA.union(Drivers::MACOS),
-    "Mesa's llvmpipe (OpenGL 4.5) and macOS (OpenGL 4.1)",
-    &["subgroup", "gl_Subgroup", "gl_NumSubgroups"],
-)];
+/// without them, who those are in words, and the names of what they bring (`*`: every name
+/// that starts so).
+const EXTENSIONS_SOME_DRIVERS_LACK: [(&str, Drivers, &str, &[&str]); 2] = [
+    (
+        "GL_KHR_shader_subgroup_",
+        Drivers::MESA.union(Drivers::MACOS),
+        "Mesa's llvmpipe (OpenGL 4.5) and macOS (OpenGL 4.1)",
+        &["subgroup*", "gl_Subgroup*", "gl_NumSubgroups"],
+    ),
+    // AMD's and Mesa's drivers offer it; packs that call `max3` guard it on NVIDIA and on
+    // Intel's Windows driver (Luracasmus/renderpearl's prelude).
+    (
+        "GL_AMD_shader_trinary_minmax",
+        Drivers::NVIDIA.union(Drivers::INTEL).union(Drivers::MACOS),
+        "NVIDIA's driver, Intel's Windows driver and macOS",
+        &["min3", "max3", "mid3"],
+    ),
+];
 
 /// `#extension` lines naming an extension that some drivers lack, where the stage needs it:
 /// with `require` the driver refuses the stage at the line; with `enable` or `warn` it only
@@ -107,10 +118,13 @@ pub fn extensions_some_drivers_lack(pre: &Preprocessed) -> Vec<Diagnostic> {
         let Some((index, name, behaviour)) = extension_directives(&pre.text).find(|(_, name, behaviour)| name.starts_with(prefix) && *behaviour != "disable") else {
             continue;
         };
-        let first_use = tokens.iter().find(|t| t.kind == TokenKind::Ident && brought.iter().any(|b| t.text.starts_with(b)));
+        // A name ending in `*` is a prefix of what the family brings.
+        let brings = |word: &str| brought.iter().any(|b| b.strip_suffix('*').map_or(word == *b, |p| word.starts_with(p)));
+        let first_use = tokens.iter().find(|t| t.kind == TokenKind::Ident && brings(t.text));
+        let family = if prefix.ends_with('_') { format!("of the {prefix}* extensions") } else { format!("of {prefix}") };
         let (line, what) = match (behaviour, first_use) {
             ("require", _) => (index as u32 + 1, format!("`#extension {name} : require`")),
-            (_, Some(used)) => (used.line, format!("`{}`, of the {}* extensions,", used.text, prefix)),
+            (_, Some(used)) => (used.line, format!("`{}`, {family},", used.text)),
             (_, None) => continue,
         };
         found.push(
