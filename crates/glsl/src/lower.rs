@@ -620,6 +620,27 @@ pub fn varying_declarations(text: &str, stage: Stage, version: u32) -> Result<Ve
     Ok(found)
 }
 
+/// The work group size a compute stage declares (`layout(local_size_x = 16, …) in;`), sizes
+/// left out 1; None where it declares none, or one that is not a number.
+pub fn local_size(tokens: &[Token<'_>]) -> Option<[u32; 3]> {
+    let sig: Vec<&Token<'_>> = tokens.iter().filter(|t| !t.is_trivia()).collect();
+    let mut size = [1u32; 3];
+    let mut declared = false;
+    for w in sig.windows(3) {
+        let axis = match w[0].text {
+            "local_size_x" => 0,
+            "local_size_y" => 1,
+            "local_size_z" => 2,
+            _ => continue,
+        };
+        if w[1].is_punct("=") {
+            size[axis] = w[2].text.trim_end_matches(['u', 'U']).parse().ok()?;
+            declared = true;
+        }
+    }
+    declared.then_some(size)
+}
+
 /// Names of the varyings a stage declares or uses through legacy built-ins, and the
 /// [`interface_block_key`] of each of its `in`/`out` blocks, with the number of locations each
 /// takes.
@@ -2648,31 +2669,16 @@ impl<'a> Lowering<'_, 'a> {
         Ok(())
     }
 
-    /// The work group size a compute stage declares (`layout(local_size_x = 16, …) in;`) as a
-    /// `uvec3` constructor; sizes left out are 1.
+    /// The work group size the stage declares ([`local_size`]) as a `uvec3` constructor.
     fn local_size(&self) -> Option<String> {
-        let sig: Vec<&Token<'_>> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
-        let mut size = [1u32; 3];
-        let mut declared = false;
-        for w in sig.windows(3) {
-            let axis = match w[0].text {
-                "local_size_x" => 0,
-                "local_size_y" => 1,
-                "local_size_z" => 2,
-                _ => continue,
-            };
-            if w[1].is_punct("=") {
-                size[axis] = w[2].text.trim_end_matches(['u', 'U']).parse().ok()?;
-                declared = true;
-            }
-        }
-        declared.then(|| format!("uvec3({}u, {}u, {}u)", size[0], size[1], size[2]))
+        local_size(self.tokens).map(|size| format!("uvec3({}u, {}u, {}u)", size[0], size[1], size[2]))
     }
 
-    /// Whether the stage has an `#extension NAME` line (enabled or required).
+    /// Whether the stage has an `#extension NAME` line that does not disable it.
     fn enables_extension(&self, name: &str) -> bool {
         let sig: Vec<&Token> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
-        sig.windows(4).any(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].is_ident(name) && w[3].is_punct(":"))
+        sig.windows(5)
+            .any(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].is_ident(name) && w[3].is_punct(":") && !w[4].is_ident("disable"))
     }
 
     /// Whether the stage defines a function called `name` itself.

@@ -193,7 +193,7 @@ impl ProgramLoading<'_> {
         };
         // Compute stages run before the program's own, in every program but the geometry ones.
         if !program.compute.is_empty() {
-            if name.starts_with("gbuffers_") || name == "shadow" || name.starts_with("shadow_") || name.starts_with("dh_") {
+            if programs::binds_as_gbuffers(name) {
                 self.not_modelled.push(format!("{name}: compute stages ({}), which the loader runs in no program that draws geometry", program.compute.join(", ")));
             } else {
                 for path in &program.compute {
@@ -598,7 +598,8 @@ impl AnyPack {
         self.lod.retain(|_, p| keep(p));
         self.fullscreen.retain(|p| keep(p));
         for compute in self.compute.drain(..) {
-            self.failed.push((compute.program, format!("{}: a compute stage, which only OpenGL dispatches here", compute.stage.path)));
+            let why = compute.only_opengl();
+            self.failed.push((compute.program, why));
         }
         self.failed.len() > before
     }
@@ -885,9 +886,7 @@ impl<'a> FramePlan<'a> {
             FramePlan { current: buffers.iter().map(|b| (*b, 0)).collect(), buffers, shadow_buffers, mipmapped, steps: Vec::new() };
         // The frame drawn is the first: Iris's setup passes have just run, then its begin passes.
         for family in ["setup", "begin"] {
-            for (name, _) in family_slots(pack, family) {
-                plan.compute(pack, name);
-            }
+            plan.family(pack, family, None);
         }
         if pack.shadow_pass {
             plan.shadow_geometry(pack, false, &mesh.terrain, "shadow terrain");
@@ -895,10 +894,7 @@ impl<'a> FramePlan<'a> {
             plan.shadow_geometry(pack, true, &mesh.translucent, "shadow water");
         }
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
-        for (name, program) in family_slots(pack, "prepare") {
-            plan.compute(pack, name);
-            plan.fullscreen_if_any(pack, program, false);
-        }
+        plan.family(pack, "prepare", None);
         // The sky: the game's own colour where the pack has no skybasic program.
         plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks, "SKY");
         if let Some(program) = pack.resolve(&SKY_TEXTURED_CHAIN) {
@@ -915,10 +911,7 @@ impl<'a> FramePlan<'a> {
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         plan.forced_flips(pack, "deferred_pre");
-        for (name, program) in family_slots(pack, "deferred") {
-            plan.compute(pack, name);
-            plan.fullscreen_if_any(pack, program, false);
-        }
+        plan.family(pack, "deferred", None);
         if lod {
             plan.steps.push(PlannedStep { label: "dhDepthTex0 to dhDepthTex1".into(), work: PlannedWork::LodDepthCopy });
             plan.lod_geometry(pack, true, &mesh.lod_translucent, "LOD water", "TERRAIN_TRANSLUCENT");
@@ -933,11 +926,7 @@ impl<'a> FramePlan<'a> {
             (None, ScreenOutput::Unrounded) => composites.iter().rposition(|p| p.render_targets.contains(&Some(0))),
             _ => None,
         };
-        let into_screen = last_into_screen.map(|i| composites[i].name.as_str());
-        for (name, program) in family_slots(pack, "composite") {
-            plan.compute(pack, name);
-            plan.fullscreen_if_any(pack, program, into_screen == Some(name));
-        }
+        plan.family(pack, "composite", last_into_screen.map(|i| composites[i].name.as_str()));
         plan.compute(pack, "final");
         match final_program {
             Some(program) => plan.fullscreen(pack, program, true),
@@ -1035,9 +1024,14 @@ impl<'a> FramePlan<'a> {
         }
     }
 
-    fn fullscreen_if_any(&mut self, pack: &AnyPack, program: Option<&'a LoadedProgram>, into_screen: bool) {
-        if let Some(program) = program {
-            self.fullscreen(pack, program, into_screen);
+    /// The programs of `family` ([`family_slots`]), each its compute stages and then its
+    /// full-screen program; `into_screen` names the one drawing colortex0 into the screen.
+    fn family(&mut self, pack: &'a AnyPack, family: &str, into_screen: Option<&str>) {
+        for (name, program) in family_slots(pack, family) {
+            self.compute(pack, name);
+            if let Some(program) = program {
+                self.fullscreen(pack, program, into_screen == Some(name));
+            }
         }
     }
 

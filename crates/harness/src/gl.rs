@@ -860,19 +860,13 @@ unsafe fn set_uniforms(
             if let Some(image) = textures.harness.images.iter().find(|i| i.name == name)
                 && kind.is_some_and(|k| k.image)
             {
-                gl.bind_image_texture(image_unit, Some(image.texture), 0, image.target == glow::TEXTURE_3D, 0, glow::READ_WRITE, image.internal);
-                gl.uniform_1_i32(location.as_ref(), image_unit as i32);
-                image_unit += 1;
+                bind_image(gl, &mut image_unit, location.as_ref(), image.texture, image.target == glow::TEXTURE_3D, image.internal);
                 continue;
             }
             if let Some(image) = textures.harness.images.iter().find(|i| i.sampler.as_deref() == Some(name.as_str()))
                 && !kind.is_some_and(|k| k.image)
             {
-                gl.active_texture(glow::TEXTURE0 + unit);
-                gl.bind_texture(image.target, Some(image.texture));
-                gl.bind_sampler(unit, None);
-                gl.uniform_1_i32(location.as_ref(), unit as i32);
-                unit += 1;
+                bind_texture(gl, &mut unit, location.as_ref(), image.target, image.texture);
                 continue;
             }
             if matches!(active.utype, glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW | glow::UNSIGNED_INT_SAMPLER_2D | glow::INT_SAMPLER_2D) {
@@ -933,9 +927,7 @@ unsafe fn set_uniforms(
                 && let Some((texture, format)) = name.strip_prefix("colorimg").and_then(|n| n.parse::<u8>().ok()).and_then(|n| textures.colors.get(&n))
                 && !format.is_integer()
             {
-                gl.bind_image_texture(image_unit, Some(*texture), 0, false, 0, glow::READ_WRITE, internal_format(*format));
-                gl.uniform_1_i32(location.as_ref(), image_unit as i32);
-                image_unit += 1;
+                bind_image(gl, &mut image_unit, location.as_ref(), *texture, false, internal_format(*format));
                 continue;
             }
             // Samplers of the other kinds and images read zero from a texture of their own
@@ -943,15 +935,9 @@ unsafe fn set_uniforms(
             if let Some(kind) = EmptyKind::of_uniform(active.utype) {
                 let texture = textures.harness.empty(gl, kind)?;
                 if kind.image {
-                    gl.bind_image_texture(image_unit, Some(texture), 0, true, 0, glow::READ_WRITE, kind.formats().0);
-                    gl.uniform_1_i32(location.as_ref(), image_unit as i32);
-                    image_unit += 1;
+                    bind_image(gl, &mut image_unit, location.as_ref(), texture, true, kind.formats().0);
                 } else {
-                    gl.active_texture(glow::TEXTURE0 + unit);
-                    gl.bind_texture(kind.target, Some(texture));
-                    gl.bind_sampler(unit, None);
-                    gl.uniform_1_i32(location.as_ref(), unit as i32);
-                    unit += 1;
+                    bind_texture(gl, &mut unit, location.as_ref(), kind.target, texture);
                 }
                 continue;
             }
@@ -967,6 +953,30 @@ unsafe fn set_uniforms(
         }
     }
     Ok(())
+}
+
+/// Binds `texture` to the image unit `*unit` for the image uniform at `location`, read and
+/// written as `format` (all its layers where `layered`), and moves `*unit` on.
+unsafe fn bind_image(gl: &glow::Context, unit: &mut u32, location: Option<&glow::UniformLocation>, texture: glow::Texture, layered: bool, format: u32) {
+    // SAFETY: the caller holds the current context, with the program using `location` in use.
+    unsafe {
+        gl.bind_image_texture(*unit, Some(texture), 0, layered, 0, glow::READ_WRITE, format);
+        gl.uniform_1_i32(location, *unit as i32);
+    }
+    *unit += 1;
+}
+
+/// Binds `texture` (a `target` texture) to the texture unit `*unit`, with its own filtering,
+/// for the sampler at `location`, and moves `*unit` on.
+unsafe fn bind_texture(gl: &glow::Context, unit: &mut u32, location: Option<&glow::UniformLocation>, target: u32, texture: glow::Texture) {
+    // SAFETY: the caller holds the current context, with the program using `location` in use.
+    unsafe {
+        gl.active_texture(glow::TEXTURE0 + *unit);
+        gl.bind_texture(target, Some(texture));
+        gl.bind_sampler(*unit, None);
+        gl.uniform_1_i32(location, *unit as i32);
+    }
+    *unit += 1;
 }
 
 /// Dispatches a compute stage over a frame of `width` x `height` with the values and textures

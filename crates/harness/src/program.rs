@@ -668,6 +668,13 @@ pub struct ComputeStage {
     pub images: Vec<u8>,
 }
 
+impl ComputeStage {
+    /// Why wgpu does not draw this stage's step.
+    pub fn only_opengl(&self) -> String {
+        format!("{}: a compute stage, which only OpenGL dispatches here", self.stage.path)
+    }
+}
+
 /// How many work groups a compute stage is dispatched with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WorkGroups {
@@ -679,22 +686,18 @@ pub enum WorkGroups {
 }
 
 impl WorkGroups {
-    /// What `text` (the stage, preprocessed) declares; the default where it declares neither.
+    /// What `text` (the stage, preprocessed) declares, read as the loader reads its `const`
+    /// settings; the default where it declares neither.
     pub fn declared(text: &str) -> WorkGroups {
-        let Ok(tokens) = tokenize(text) else { return WorkGroups::Render([1.0, 1.0]) };
-        let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-        let numbers = |name: &str, constructor: &str| -> Option<Vec<f64>> {
-            let at = sig.windows(4).position(|w| w[0].is_ident(name) && w[1].is_punct("=") && w[2].is_ident(constructor) && w[3].is_punct("("))?;
-            let close = (at + 4..sig.len()).find(|&k| sig[k].is_punct(")"))?;
-            sig[at + 4..close].iter().filter(|t| !t.is_punct(",")).map(|t| t.text.trim_end_matches(['f', 'F', 'u', 'U']).parse::<f64>().ok()).collect()
+        let value = |name: &str, constructor: &str, components: usize| {
+            tidepack_loader::consts::declarations(text).find(|d| d.name == name).and_then(|d| d.vector(constructor, components))
         };
-        if let Some(n) = numbers("workGroups", "ivec3").filter(|n| n.len() == 3) {
+        if let Some(n) = value("workGroups", "ivec3", 3) {
             return WorkGroups::Fixed([n[0], n[1], n[2]].map(|v| v.max(0.0) as u32));
         }
-        match numbers("workGroupsRender", "vec2") {
-            Some(n) if n.len() == 2 => WorkGroups::Render([n[0] as f32, n[1] as f32]),
-            Some(n) if n.len() == 1 => WorkGroups::Render([n[0] as f32; 2]),
-            _ => WorkGroups::Render([1.0, 1.0]),
+        match value("workGroupsRender", "vec2", 2) {
+            Some(n) => WorkGroups::Render([n[0] as f32, n[1] as f32]),
+            None => WorkGroups::Render([1.0, 1.0]),
         }
     }
 
@@ -726,20 +729,9 @@ pub(crate) fn load_compute_stage(
     let images = tokenize(&preprocessed.text)
         .map(|tokens| tokens.iter().filter_map(|t| t.text.strip_prefix("colorimg")?.parse::<u8>().ok()).collect::<BTreeSet<u8>>().into_iter().collect())
         .unwrap_or_default();
-    let local_size = local_size(&preprocessed.text);
+    let local_size = tokenize(&preprocessed.text).ok().and_then(|tokens| tidepack_glsl::lower::local_size(&tokens)).unwrap_or([1; 3]);
     let stage = load_opengl_stage(provider, path, macros, &defines, reading)?;
     Ok(ComputeStage { program: program.to_string(), stage, work_groups, local_size, images })
-}
-
-/// The local size a compute stage declares (`local_size_x = 16`), 1 for each dimension it does
-/// not name.
-fn local_size(text: &str) -> [u32; 3] {
-    let Ok(tokens) = tokenize(text) else { return [1; 3] };
-    let sig: Vec<&Token> = tokens.iter().filter(|t| !t.is_trivia()).collect();
-    let declared = |name: &str| {
-        sig.windows(3).find(|w| w[0].is_ident(name) && w[1].is_punct("=")).and_then(|w| w[2].text.trim_end_matches(['u', 'U']).parse::<u32>().ok()).unwrap_or(1)
-    };
-    [declared("local_size_x"), declared("local_size_y"), declared("local_size_z")]
 }
 
 /// `text`, a vertex stage of `program`, with `dhMaterialId` read as Iris gives it where a

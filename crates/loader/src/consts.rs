@@ -115,11 +115,18 @@ impl ConstDecl<'_> {
 
     /// The components of a `vec4(...)` initialiser: one value repeated, or four.
     pub fn vec4(&self) -> Option<[f64; 4]> {
-        let inner = self.value.strip_prefix("vec4")?.trim_start().strip_prefix('(')?.strip_suffix(')')?;
-        let parts: Vec<f64> = inner.split(',').map(|p| p.trim().trim_end_matches(['f', 'F']).parse::<f64>().ok()).collect::<Option<_>>()?;
-        match parts.as_slice() {
-            [v] => Some([*v; 4]),
-            [r, g, b, a] => Some([*r, *g, *b, *a]),
+        let parts = self.vector("vec4", 4)?;
+        Some([parts[0], parts[1], parts[2], parts[3]])
+    }
+
+    /// The `components` numbers of a `constructor(...)` initialiser (`ivec3(50, 30, 1)`): one
+    /// value repeated, or each.
+    pub fn vector(&self, constructor: &str, components: usize) -> Option<Vec<f64>> {
+        let inner = self.value.strip_prefix(constructor)?.trim_start().strip_prefix('(')?.strip_suffix(')')?;
+        let parts: Vec<f64> = inner.split(',').map(|p| p.trim().trim_end_matches(['f', 'F', 'u', 'U']).parse::<f64>().ok()).collect::<Option<_>>()?;
+        match parts.len() {
+            1 => Some(vec![parts[0]; components]),
+            n if n == components => Some(parts),
             _ => None,
         }
     }

@@ -438,7 +438,7 @@ impl<'p> PreparedSteps<'p> {
                 (Work::Fullscreen { program, pipeline, current, into_screen: *into_screen, mipmaps }, written)
             }
             PlannedWork::Compute { stage, .. } => {
-                return Err(HarnessError::Unsupported(format!("{}: a compute stage, which only OpenGL dispatches here", stage.stage.path)));
+                return Err(HarnessError::Unsupported(stage.only_opengl()));
             }
             PlannedWork::ScreenCopy { current } => {
                 let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
