@@ -23,14 +23,15 @@ use tidepack_gldriver::{GlContext, GlProgram, legacy};
 
 use crate::HarnessError;
 use tidepack_glsl::Location;
-use crate::samplers::{ProgramStage, SamplerNaming, Source};
+use crate::samplers::{self, ProgramStage, SamplerNaming, Source};
 use crate::images::FloatImage;
 use tidepack_loader::loader::MissingProgramDraws;
 use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
-use crate::program::{ComputeStage, LoadedProgram, LoadedStage, PackResources};
+use crate::program::{ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources};
+use crate::raw_texture::Texels;
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::ImageSize;
-use tidepack_loader::directives::{Blend, BlendFactor};
+use tidepack_loader::directives::{Blend, BlendFactor, TextureTarget};
 use tidepack_scene::scene::Scene;
 use crate::uniforms::Value;
 
@@ -124,7 +125,8 @@ pub(crate) struct GlHarnessTextures {
     moon: glow::Texture,
     lightmap: glow::Texture,
     noise: glow::Texture,
-    custom: Vec<glow::Texture>,
+    /// Per custom texture of the pack: the texture and its target.
+    custom: Vec<(glow::Texture, u32)>,
     flat_normals: glow::Texture,
     no_specular: glow::Texture,
     /// What a shadow colour buffer the frame lacks reads: the white of its clear.
@@ -323,7 +325,8 @@ impl GlHarnessTextures {
             moon: rgba8(mesh::moon(), false, true)?,
             lightmap: rgba8(mesh::lightmap(), true, false)?,
             noise: rgba8(mesh::noise(256), true, true)?,
-            custom: pack.custom_textures().iter().map(|t| rgba8((t.width, t.height, t.rgba.clone()), t.blur, !t.clamp)).collect::<Result<_, _>>()?,
+            // SAFETY: the caller holds the current context.
+            custom: pack.custom_textures().iter().map(|t| unsafe { custom_texture(gl, t) }).collect::<Result<_, _>>()?,
             flat_normals: one_texel([128, 128, 255, 255])?,
             no_specular: one_texel([0; 4])?,
             white: one_texel([255; 4])?,
@@ -387,7 +390,7 @@ impl GlHarnessTextures {
             self.unbound,
         ];
         let images = self.images.iter().map(|i| i.texture);
-        for t in own.into_iter().chain(self.custom.iter().copied()).chain(self.empties.borrow().values().copied()).chain(images) {
+        for t in own.into_iter().chain(self.custom.iter().map(|(t, _)| *t)).chain(self.empties.borrow().values().copied()).chain(images) {
             // SAFETY: the caller holds the current context that made the texture.
             unsafe { gl.delete_texture(t) };
         }
@@ -504,6 +507,46 @@ pub(crate) unsafe fn make_texture(
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_WRAP_T, wrap);
         gl.tex_parameter_i32(glow::TEXTURE_2D, glow::TEXTURE_MAX_LEVEL, 0);
         Ok(t)
+    }
+}
+
+/// A custom texture of the pack as OpenGL holds it, RGBA8 or RGBA32F, with the filter and wrap
+/// its properties ask for: the texture and its target.
+unsafe fn custom_texture(gl: &glow::Context, t: &CustomTexture) -> Result<(glow::Texture, u32), HarnessError> {
+    let (internal, ty) = match t.texels {
+        Texels::Rgba8(_) => (glow::RGBA8, glow::UNSIGNED_BYTE),
+        Texels::Float(_) => (glow::RGBA32F, glow::FLOAT),
+    };
+    let data = || glow::PixelUnpackData::Slice(Some(t.texels.bytes()));
+    let (width, height, depth) = (t.width as i32, t.height as i32, t.depth as i32);
+    // SAFETY: the caller holds the current context.
+    unsafe {
+        let target = match t.target {
+            TextureTarget::D2 | TextureTarget::Rectangle => return Ok((make_texture(gl, internal, glow::RGBA, ty, width, height, Some(t.texels.bytes()), t.blur, !t.clamp)?, glow::TEXTURE_2D)),
+            TextureTarget::D1 => glow::TEXTURE_1D,
+            TextureTarget::D3 => glow::TEXTURE_3D,
+        };
+        let texture = gl.create_texture().map_err(gl_err("texture"))?;
+        gl.bind_texture(target, Some(texture));
+        gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+        if target == glow::TEXTURE_1D {
+            gl.tex_image_1d(target, 0, internal as i32, width, 0, glow::RGBA, ty, data());
+        } else {
+            gl.tex_image_3d(target, 0, internal as i32, width, height, depth, 0, glow::RGBA, ty, data());
+        }
+        let filter = if t.blur { glow::LINEAR } else { glow::NEAREST } as i32;
+        let wrap = if t.clamp { glow::CLAMP_TO_EDGE } else { glow::REPEAT } as i32;
+        for (parameter, value) in [
+            (glow::TEXTURE_MIN_FILTER, filter),
+            (glow::TEXTURE_MAG_FILTER, filter),
+            (glow::TEXTURE_WRAP_S, wrap),
+            (glow::TEXTURE_WRAP_T, wrap),
+            (glow::TEXTURE_WRAP_R, wrap),
+            (glow::TEXTURE_MAX_LEVEL, 0),
+        ] {
+            gl.tex_parameter_i32(target, parameter, value);
+        }
+        Ok((texture, target))
     }
 }
 
@@ -881,7 +924,7 @@ unsafe fn set_uniforms(
                     },
                     Ok(Source::Lightmap) => harness.lightmap,
                     Ok(Source::Noise) => harness.noise,
-                    Ok(Source::Custom(i)) => harness.custom[i],
+                    Ok(Source::Custom(i)) => harness.custom[i].0,
                     Ok(Source::FlatNormals) => harness.flat_normals,
                     Ok(Source::NoSpecular) => harness.no_specular,
                     Ok(Source::ShadowColour(n)) => textures.shadow_colours.get(&n).map_or(harness.white, |(t, _)| *t),
@@ -928,6 +971,17 @@ unsafe fn set_uniforms(
                 && !format.is_integer()
             {
                 bind_image(gl, &mut image_unit, location.as_ref(), *texture, false, internal_format(*format));
+                continue;
+            }
+            // A 1D or 3D float sampler reads the unit's custom texture of its type.
+            let custom_target = match active.utype {
+                glow::SAMPLER_1D => Some(TextureTarget::D1),
+                glow::SAMPLER_3D => Some(TextureTarget::D3),
+                _ => None,
+            };
+            if let Some(i) = custom_target.and_then(|target| samplers::custom_texture_of(pack, &name, stage, target)) {
+                let (texture, target) = textures.harness.custom[i];
+                bind_texture(gl, &mut unit, location.as_ref(), target, texture);
                 continue;
             }
             // Samplers of the other kinds and images read zero from a texture of their own

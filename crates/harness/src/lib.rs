@@ -19,6 +19,7 @@ pub mod gpu;
 pub mod images;
 pub mod job;
 pub mod program;
+pub mod raw_texture;
 pub mod samplers;
 pub mod uniforms;
 pub mod water_cost;

@@ -15,7 +15,7 @@ use tidepack_glsl::{Diagnostic, Location, Stage};
 use tidepack_loader::blocks;
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::consts;
-use tidepack_loader::directives;
+use tidepack_loader::directives::{self, RawLayout, TextureTarget};
 use tidepack_loader::input;
 use tidepack_loader::iris;
 use tidepack_loader::loader::Loader;
@@ -35,6 +35,7 @@ use tidepack_scene::mesh::{self, SceneMesh};
 use tidepack_scene::scene::Scene;
 
 use crate::HarnessError;
+use crate::raw_texture::{self, Texels};
 use crate::any_pack::AnyPack;
 
 /// Which pack text to render.
@@ -229,10 +230,14 @@ pub struct CustomTexture {
     /// The sampler name it replaces (`colortex7`, `noisetex`, …).
     pub unit: String,
     pub path: String,
+    /// What it is made as: an image file is TEXTURE_2D, a raw texture says.
+    pub target: TextureTarget,
     pub width: u32,
     pub height: u32,
-    /// RGBA8, first row of the file first (as OptiFine uploads it: row 0 at texture coordinate 0).
-    pub rgba: Vec<u8>,
+    /// 1 but for TEXTURE_3D.
+    pub depth: u32,
+    /// First row of the file first (as OptiFine uploads it: row 0 at texture coordinate 0).
+    pub texels: Texels,
     /// From `<path>.mcmeta`: linear filtering.
     pub blur: bool,
     /// From `<path>.mcmeta`: clamp instead of repeat.
@@ -253,9 +258,9 @@ impl LoadedPack {
         self.pack.format_of(buffer)
     }
 
-    /// The custom texture bound to a sampler name in the programs of `stage`.
+    /// The 2D custom texture bound to a sampler name in the programs of `stage`.
     pub fn custom_texture(&self, name: &str, stage: crate::samplers::ProgramStage) -> Option<&CustomTexture> {
-        self.pack.custom_textures.iter().find(|t| t.stage == stage.in_properties() && t.unit == name)
+        crate::samplers::custom_texture_of(&self.pack, name, stage, TextureTarget::D2).map(|i| &self.pack.custom_textures[i])
     }
 
     pub fn composite(&self) -> &LoadedProgram {
@@ -940,8 +945,9 @@ pub(crate) fn declared_format_names(text: &str, number: fn(&str) -> Option<u8>) 
         .collect()
 }
 
-/// The `texture.<stage>.<unit>` entries' images: the PNG `read_bytes` gives for the path, with
-/// the filter and wrap of its `.mcmeta`. Entries the harness cannot honour come back as
+/// The `texture.<stage>.<unit>` entries' textures: the image `read_bytes` gives for the path,
+/// or its raw texels as the words after the path lay them out, with the filter and wrap of its
+/// `.mcmeta`. Entries the harness cannot honour come back as
 /// messages naming the key, for the caller to refuse or report.
 pub(crate) fn custom_textures(
     read_bytes: &dyn Fn(&str) -> Result<Vec<u8>, String>,
@@ -956,10 +962,22 @@ pub(crate) fn custom_textures(
             unsupported.push(format!("{key}: the harness binds custom textures in gbuffers, prepare, deferred and composite programs only"));
             continue;
         }
-        if !entry.raw.is_empty() || path.ends_with(".dat") || entry.resource {
-            unsupported.push(format!("{key}={path}: only PNG textures inside the pack are read"));
+        if entry.resource {
+            unsupported.push(format!("{key}={path}: textures of the game's resources are not read"));
             continue;
         }
+        let raw = match (entry.raw.is_empty(), RawLayout::parse(&entry.raw)) {
+            (true, _) => None,
+            (false, Ok(layout)) if layout.target != TextureTarget::Rectangle => Some(layout),
+            (false, Ok(_)) => {
+                unsupported.push(format!("{key}={path}: TEXTURE_RECTANGLE raw textures are not made"));
+                continue;
+            }
+            (false, Err(e)) => {
+                unsupported.push(format!("{key}={path}: {e}"));
+                continue;
+            }
+        };
         let bytes = match read_bytes(path) {
             Ok(bytes) => bytes,
             Err(e) => {
@@ -967,7 +985,13 @@ pub(crate) fn custom_textures(
                 continue;
             }
         };
-        let decoded = decode_within_budget(&bytes, path).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
+        let (target, [width, height, depth], texels) = match raw {
+            Some(layout) => (layout.target, layout.size, raw_texture::decode(&bytes, &layout).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?),
+            None => {
+                let decoded = decode_within_budget(&bytes, path).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
+                (TextureTarget::D2, [decoded.width(), decoded.height(), 1], Texels::Rgba8(decoded.into_raw()))
+            }
+        };
         let meta = provider.read(&format!("{path}.mcmeta")).map(|t| t.to_string()).unwrap_or_default();
         let flag = |name: &str| {
             meta.split(&format!("\"{name}\"")).nth(1).is_some_and(|rest| rest.trim_start_matches([' ', ':']).starts_with("true"))
@@ -976,11 +1000,13 @@ pub(crate) fn custom_textures(
             stage: entry.stage.clone(),
             unit: entry.unit.clone(),
             path: path.clone(),
-            width: decoded.width(),
-            height: decoded.height(),
+            target,
+            width,
+            height,
+            depth,
             blur: flag("blur"),
             clamp: flag("clamp"),
-            rgba: decoded.into_raw(),
+            texels,
         });
     }
     Ok((found, unsupported))

@@ -5,6 +5,7 @@
 use std::collections::BTreeSet;
 
 use tidepack_loader::buffers::{colour_buffer_number, shadow_colour_number};
+use tidepack_loader::directives::TextureTarget;
 use tidepack_loader::loader::Loader;
 
 use crate::program::{LoadedProgram, PackResources, texture_resources};
@@ -101,7 +102,7 @@ impl SamplerNaming {
 /// buffer being drawn into) is read as depthtex1; a name OptiFine binds nothing to reads
 /// transparent black.
 pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) -> Result<Source, String> {
-    if let Some(i) = pack.custom_textures().iter().position(|t| t.stage == stage.in_properties() && t.unit == name) {
+    if let Some(i) = custom_texture_of(pack, name, stage, TextureTarget::D2) {
         return Ok(Source::Custom(i));
     }
     Ok(match (name, stage.is_gbuffers()) {
@@ -127,6 +128,15 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) ->
             (None, None) => Source::Unbound,
         },
     })
+}
+
+/// The custom texture made as `target` that the sampler `name` reads in programs of `stage`.
+/// A unit holds one texture per target, so a `sampler3D colortex7` reads the unit's 3D
+/// texture while a `sampler2D colortex7` still reads the buffer. A colour buffer's unit goes
+/// by both its names (`gaux1`, `colortex4`).
+pub fn custom_texture_of(pack: &dyn PackResources, name: &str, stage: ProgramStage, target: TextureTarget) -> Option<usize> {
+    let same_unit = |unit: &str| unit == name || colour_buffer_number(unit).is_some_and(|n| colour_buffer_number(name) == Some(n));
+    pack.custom_textures().iter().position(|t| t.stage == stage.in_properties() && t.target == target && same_unit(&t.unit))
 }
 
 /// Resolves a sampler name in the shadow pass: as in gbuffers programs, except that the

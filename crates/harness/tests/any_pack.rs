@@ -473,6 +473,19 @@ fn a_deferred_custom_texture_is_bound_in_deferred_programs_in_both_renderers() {
     assert_eq!(screen.get_pixel(10, 10).0, [255, 0, 255, 255], "deferred's red in the sky's corner");
 }
 
+/// Raw textures (tests/packs/raw_textures): a 3D RGBA8 volume and a 1D half-float line, each
+/// on a unit that also names a colour buffer, read by a `sampler3D` and a `sampler1D` in both
+/// renderers, and neither listed as not imitated.
+#[test]
+fn raw_textures_are_read_by_samplers_of_their_type_in_both_renderers() {
+    let (report, screen) = render_job("raw_textures");
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    assert!(!report.not_modelled.iter().any(|line| line.contains("texture.")), "{:?}", report.not_modelled);
+    assert!(screen.pixels().all(|p| p.0 == [200, 100, 51, 255]), "{:?}", screen.get_pixel(0, 0));
+}
+
 /// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so
 /// every face on screen is a front face, red; both renderers agree.
 #[test]

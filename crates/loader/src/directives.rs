@@ -136,7 +136,7 @@ pub struct TextureEntry {
     pub unit: String,
     /// The path inside `shaders/` (a leading `/` dropped, `a/../b` folded).
     pub path: String,
-    /// Words after the path: a raw texture's type, format and size.
+    /// Words after the path: a raw texture's type, format and size ([`RawLayout::parse`]).
     pub raw: Vec<String>,
     /// A path that names a resource outside the pack (`minecraft:textures/…`).
     pub resource: bool,
@@ -148,6 +148,11 @@ pub fn textures(properties: &Properties) -> Vec<TextureEntry> {
         .with_prefix("texture.")
         .filter_map(|(rest, entry)| {
             let (stage, unit) = rest.split_once('.')?;
+            // `.0` to `.9` after the unit only keep the keys apart.
+            let unit = match unit.rsplit_once('.') {
+                Some((unit, index)) if index.len() == 1 && index.as_bytes()[0].is_ascii_digit() => unit,
+                _ => unit,
+            };
             let mut words = entry.value.split_whitespace();
             let written = words.next().unwrap_or("");
             Some(TextureEntry {
@@ -162,17 +167,152 @@ pub fn textures(properties: &Properties) -> Vec<TextureEntry> {
         .collect()
 }
 
+/// The texture target a raw texture is made as (`TEXTURE_3D`); the sampler type that reads it
+/// follows (`sampler3D`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextureTarget {
+    D1,
+    D2,
+    D3,
+    Rectangle,
+}
+
+/// How a raw texture's texels are stored: the storage of its internal format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TexelStorage {
+    Unorm8,
+    Snorm8,
+    Unorm16,
+    Snorm16,
+    Half,
+    Float,
+}
+
+/// How the file's bytes hold a pixel: the pixel type's component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelComponent {
+    Byte,
+    UnsignedByte,
+    Short,
+    UnsignedShort,
+    Int,
+    UnsignedInt,
+    Half,
+    Float,
+}
+
+impl PixelComponent {
+    pub fn bytes(self) -> usize {
+        match self {
+            PixelComponent::Byte | PixelComponent::UnsignedByte => 1,
+            PixelComponent::Short | PixelComponent::UnsignedShort | PixelComponent::Half => 2,
+            PixelComponent::Int | PixelComponent::UnsignedInt | PixelComponent::Float => 4,
+        }
+    }
+}
+
+/// A raw texture's layout from `<type> <internalFormat> <dimensions> <pixelFormat>
+/// <pixelType>` (OptiFine's shaders.properties, "Raw textures"; Iris reads the same words).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RawLayout {
+    pub target: TextureTarget,
+    /// Width, height (1 for TEXTURE_1D) and depth (1 but for TEXTURE_3D).
+    pub size: [u32; 3],
+    /// The internal format's channels (1 to 4, red first) and storage.
+    pub channels: usize,
+    pub storage: TexelStorage,
+    /// For each component of a pixel in the file, in file order, the RGBA channel it fills
+    /// (`BGR` is `[2, 1, 0]`).
+    pub pixel_order: Vec<usize>,
+    pub component: PixelComponent,
+}
+
+impl RawLayout {
+    /// Reads the words after a raw texture's path. Integer formats and packed pixel types are
+    /// refused with what is not read.
+    pub fn parse(words: &[String]) -> Result<RawLayout, String> {
+        let words: Vec<&str> = words.iter().map(String::as_str).collect();
+        let (target, dimensions) = match words.first() {
+            Some(&"TEXTURE_1D") => (TextureTarget::D1, 1),
+            Some(&"TEXTURE_2D") => (TextureTarget::D2, 2),
+            Some(&"TEXTURE_3D") => (TextureTarget::D3, 3),
+            Some(&"TEXTURE_RECTANGLE") => (TextureTarget::Rectangle, 2),
+            Some(other) => return Err(format!("`{other}` is not a texture type: TEXTURE_1D, TEXTURE_2D, TEXTURE_3D or TEXTURE_RECTANGLE")),
+            None => return Err("a raw texture needs its type, internal format, size, pixel format and pixel type".into()),
+        };
+        if words.len() != 4 + dimensions {
+            return Err(format!("a {} needs {} words after the path (type, internal format, {dimensions} sizes, pixel format, pixel type), not {}", words[0], 4 + dimensions, words.len()));
+        }
+        let (channels, storage) = internal_format(words[1])?;
+        let mut size = [1u32; 3];
+        for (k, word) in words[2..2 + dimensions].iter().enumerate() {
+            size[k] = word.parse().ok().filter(|&n| n > 0).ok_or_else(|| format!("`{word}` is not a texture size"))?;
+        }
+        let pixel_order = match words[2 + dimensions] {
+            "RED" => vec![0],
+            "RG" => vec![0, 1],
+            "RGB" => vec![0, 1, 2],
+            "BGR" => vec![2, 1, 0],
+            "RGBA" => vec![0, 1, 2, 3],
+            "BGRA" => vec![2, 1, 0, 3],
+            other if other.ends_with("_INTEGER") => return Err(format!("integer pixel format {other} is not read")),
+            other => return Err(format!("`{other}` is not a pixel format: RED, RG, RGB, BGR, RGBA or BGRA")),
+        };
+        let component = match words[3 + dimensions] {
+            "BYTE" => PixelComponent::Byte,
+            "UNSIGNED_BYTE" => PixelComponent::UnsignedByte,
+            "SHORT" => PixelComponent::Short,
+            "UNSIGNED_SHORT" => PixelComponent::UnsignedShort,
+            "INT" => PixelComponent::Int,
+            "UNSIGNED_INT" => PixelComponent::UnsignedInt,
+            "HALF_FLOAT" => PixelComponent::Half,
+            "FLOAT" => PixelComponent::Float,
+            other => return Err(format!("pixel type {other} is not read (packed pixel types are not)")),
+        };
+        Ok(RawLayout { target, size, channels, storage, pixel_order, component })
+    }
+
+    /// Bytes the file must hold: every pixel, rows tightly packed.
+    pub fn file_bytes(&self) -> u64 {
+        self.texels() * (self.pixel_order.len() * self.component.bytes()) as u64
+    }
+
+    pub fn texels(&self) -> u64 {
+        self.size.iter().map(|&n| u64::from(n)).product()
+    }
+}
+
+/// The channels and storage of an internal format name of a raw texture.
+fn internal_format(name: &str) -> Result<(usize, TexelStorage), String> {
+    let (channels, rest) = ["RGBA", "RGB", "RG", "R"]
+        .iter()
+        .find_map(|prefix| name.strip_prefix(prefix).map(|rest| (prefix.len(), rest)))
+        .ok_or_else(|| format!("`{name}` is not a texture format"))?;
+    let storage = match rest {
+        "8" => TexelStorage::Unorm8,
+        "8_SNORM" => TexelStorage::Snorm8,
+        "16" => TexelStorage::Unorm16,
+        "16_SNORM" => TexelStorage::Snorm16,
+        "16F" => TexelStorage::Half,
+        "32F" => TexelStorage::Float,
+        _ if rest.ends_with("I") || rest.ends_with("UI") => return Err(format!("integer texture format {name} is not read")),
+        _ => return Err(format!("texture format {name} is not read")),
+    };
+    Ok((channels, storage))
+}
+
 /// A texture path of shaders.properties as a path inside `shaders/`: a leading `/` dropped,
-/// `a/../b` folded (`../shaders/x` climbs out of `shaders/` and back in).
+/// `a/../b` folded (`../shaders/x` and `/../shaders/x` climb out of `shaders/` and back in).
 fn normalise_pack_path(path: &str) -> String {
     let mut parts: Vec<&str> = Vec::new();
+    let mut climbed_out = false;
     for part in path.trim_start_matches('/').split('/') {
         match part {
             "" | "." => {}
             ".." => {
-                parts.pop();
+                climbed_out |= parts.pop().is_none();
             }
-            "shaders" if parts.is_empty() && path.starts_with("../") => {}
+            "shaders" if parts.is_empty() && climbed_out => climbed_out = false,
             other => parts.push(other),
         }
     }
@@ -364,6 +504,27 @@ mod tests {
         assert_eq!((images[1].sampler.clone(), images[1].size), (None, ImageSize::Absolute { width: 64, height: 32, depth: 16 }));
         assert_eq!(problems.len(), 1);
         assert!(problems[0].starts_with("shaders.properties:3: image.broken"), "{problems:?}");
+    }
+
+    #[test]
+    fn raw_texture_layouts_and_an_index_after_the_unit() {
+        let p = Properties::parse_plain(
+            "texture.deferred.colortex10.1 = image/curl.dat TEXTURE_3D RGB8 32 16 8 BGR UNSIGNED_BYTE\ntexture.composite.gaux1=lut.dat TEXTURE_1D RGBA32F 256 RGBA FLOAT\n",
+        );
+        let entries = textures(&p);
+        assert_eq!((entries[0].unit.as_str(), entries[0].path.as_str()), ("colortex10", "image/curl.dat"));
+        let curl = RawLayout::parse(&entries[0].raw).unwrap();
+        assert_eq!((curl.target, curl.size, curl.channels, curl.storage), (TextureTarget::D3, [32, 16, 8], 3, TexelStorage::Unorm8));
+        assert_eq!((curl.pixel_order.clone(), curl.file_bytes()), (vec![2, 1, 0], 32 * 16 * 8 * 3));
+        for written in ["/../shaders/lib/a.bin", "../shaders/lib/a.bin", "lib/x/../a.bin", "/lib/./a.bin"] {
+            assert_eq!(normalise_pack_path(written), "lib/a.bin", "{written}");
+        }
+        let lut = RawLayout::parse(&entries[1].raw).unwrap();
+        assert_eq!((lut.target, lut.size, lut.storage, lut.file_bytes()), (TextureTarget::D1, [256, 1, 1], TexelStorage::Float, 256 * 16));
+        let words = |text: &str| text.split_whitespace().map(str::to_string).collect::<Vec<_>>();
+        assert!(RawLayout::parse(&words("TEXTURE_2D R32UI 4 4 RED_INTEGER UNSIGNED_INT")).unwrap_err().contains("integer"));
+        assert!(RawLayout::parse(&words("TEXTURE_3D RGBA8 4 4 RGBA UNSIGNED_BYTE")).unwrap_err().contains("needs 7 words"));
+        assert!(RawLayout::parse(&words("TEXTURE_2D RGBA8 0 4 RGBA UNSIGNED_BYTE")).unwrap_err().contains("not a texture size"));
     }
 
     #[test]

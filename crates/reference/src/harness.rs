@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use tidepack_loader::option_lines::OptionValue;
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_harness::uniforms::{self, Pass, Value};
+use tidepack_harness::raw_texture::Texels;
 use tidepack_harness::{FloatImage, Frame, LoadedPack, Scene, mesh};
 
 use crate::{Filter, Inputs, ReferenceSettings, Texture, Uniforms, Wrap};
@@ -47,10 +48,11 @@ pub struct Textures {
 impl Textures {
     pub fn of(pack: &LoadedPack) -> Result<Textures, String> {
         let custom = pack.custom_texture("colortex7", tidepack_harness::samplers::ProgramStage::Composite).ok_or("the pack binds no water texture to colortex7")?;
+        let Texels::Rgba8(rgba) = &custom.texels else { return Err("the pack's water texture on colortex7 is not an RGBA8 image".into()) };
         let water = Texture::from_rgba8(
             custom.width as usize,
             custom.height as usize,
-            &custom.rgba,
+            rgba,
             if custom.blur { Filter::Linear } else { Filter::Nearest },
             if custom.clamp { Wrap::ClampToEdge } else { Wrap::Repeat },
         );

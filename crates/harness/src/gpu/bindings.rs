@@ -8,12 +8,13 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use wgpu::util::DeviceExt as _;
 
-use tidepack_loader::directives::{Blend, BlendFactor};
+use tidepack_loader::directives::{Blend, BlendFactor, TextureTarget};
 use tidepack_scene::mesh::{self, AttributeFormat, Sprites, offsets};
 
 use crate::HarnessError;
-use crate::program::{LoadedProgram, LoadedStage, PackResources};
-use crate::samplers::{ProgramStage, SamplerNaming, Source};
+use crate::program::{CustomTexture, LoadedProgram, LoadedStage, PackResources};
+use crate::raw_texture::Texels;
+use crate::samplers::{self, ProgramStage, SamplerNaming, Source};
 use crate::uniforms::{self, Value};
 
 use super::Gpu;
@@ -88,8 +89,9 @@ pub(crate) struct HarnessTextures {
     /// The sampler of shadow maps read through `sampler2D`: linear unless `shadowtexNearest`.
     shadow_depth_sampler: wgpu::Sampler,
     unbound: wgpu::TextureView,
-    /// Per custom texture of the pack: its view and the sampler its properties ask for.
-    custom: Vec<(wgpu::TextureView, wgpu::Sampler)>,
+    /// Per custom texture of the pack: its view, the sampler its properties ask for, and whether
+    /// it filters.
+    custom: Vec<(wgpu::TextureView, wgpu::Sampler, bool)>,
 }
 
 impl HarnessTextures {
@@ -128,7 +130,8 @@ impl HarnessTextures {
             .map(|t| {
                 let filter = if t.blur { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
                 let address = if t.clamp { wgpu::AddressMode::ClampToEdge } else { wgpu::AddressMode::Repeat };
-                (upload(&t.path, (t.width, t.height, t.rgba.clone())), sampler(filter, address))
+                let (view, filters) = custom_texture(gpu, t);
+                (view, sampler(filter, address), filters)
             })
             .collect();
         let one_texel = |label: &str, rgba: [u8; 4]| upload(label, (1, 1, rgba.to_vec()));
@@ -190,6 +193,37 @@ fn without_panics<T>(what: &str, f: impl FnOnce() -> Result<T, HarnessError>) ->
             why.unwrap_or_else(|| "no message".into())
         )))
     })
+}
+
+/// A custom texture of the pack as wgpu holds it, RGBA8 or RGBA32F: its view and whether it
+/// filters.
+fn custom_texture(gpu: &Gpu, t: &CustomTexture) -> (wgpu::TextureView, bool) {
+    let format = match t.texels {
+        Texels::Rgba8(_) => wgpu::TextureFormat::Rgba8Unorm,
+        Texels::Float(_) => wgpu::TextureFormat::Rgba32Float,
+    };
+    let (dimension, view_dimension) = match t.target {
+        TextureTarget::D1 => (wgpu::TextureDimension::D1, wgpu::TextureViewDimension::D1),
+        TextureTarget::D3 => (wgpu::TextureDimension::D3, wgpu::TextureViewDimension::D3),
+        TextureTarget::D2 | TextureTarget::Rectangle => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::D2),
+    };
+    let texture = gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some(&t.path),
+            size: wgpu::Extent3d { width: t.width, height: t.height, depth_or_array_layers: t.depth },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        t.texels.bytes(),
+    );
+    let view = texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(view_dimension), ..Default::default() });
+    (view, gpu.filterable(format))
 }
 
 /// An empty (zero) texture of a shader's texture type other than a plain 2D float texture:
@@ -338,7 +372,7 @@ impl BindableTextures<'_> {
             },
             Source::Lightmap => (harness.lightmap.clone(), true),
             Source::Noise => (harness.noise.clone(), true),
-            Source::Custom(i) => (harness.custom[i].0.clone(), true),
+            Source::Custom(i) => (harness.custom[i].0.clone(), harness.custom[i].2),
             Source::Depth0 => (view(self.depth0), false),
             Source::Depth1 => (view(self.depth1), false),
             Source::LodDepth(n) => (view(self.lod_depth[n as usize]), false),
@@ -916,8 +950,21 @@ fn stage_entries(
                 || *arrayed
                 || !(depth_class || matches!(class, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }))
             {
-                // Any pack's 3D, array, cube and integer textures are custom textures or
-                // images the harness does not make: they read an empty texture of their kind.
+                // A 1D or 3D float sampler reads the unit's custom texture of its type.
+                let target = match (dim, arrayed, class) {
+                    (naga::ImageDimension::D1, false, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }) => Some(TextureTarget::D1),
+                    (naga::ImageDimension::D3, false, naga::ImageClass::Sampled { kind: naga::ScalarKind::Float, multi: false }) => Some(TextureTarget::D3),
+                    _ => None,
+                };
+                if let Some(i) = target.and_then(|target| samplers::custom_texture_of(pack, name, program_stage, target)) {
+                    let (view, _, filters) = &textures.harness.custom[i];
+                    let view_dimension = if target == Some(TextureTarget::D1) { wgpu::TextureViewDimension::D1 } else { wgpu::TextureViewDimension::D3 };
+                    resolved.insert(name.clone(), (Source::Custom(i), *filters));
+                    entries.push((binding.group, binding.binding, Entry::Texture(view.clone(), wgpu::TextureSampleType::Float { filterable: *filters }, view_dimension)));
+                    continue;
+                }
+                // Any pack's other 3D, array, cube and integer textures are images the harness
+                // does not make: they read an empty texture of their kind.
                 match empty_texture_of(gpu, *dim, *arrayed, class) {
                     Some((view, sample_type, dimension)) => {
                         let filters = matches!(sample_type, wgpu::TextureSampleType::Float { filterable: true });
