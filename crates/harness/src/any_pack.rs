@@ -24,7 +24,7 @@ use tidepack_loader::shadow::{ShadowSettings, SunPath};
 use tidepack_loader::{Configuration, SetProvider};
 
 use crate::HarnessError;
-use crate::samplers::{ProgramStage, SamplerNaming, Source, colour_buffers_read};
+use crate::samplers::{GameTextureBinding, ProgramStage, SamplerNaming, Source, colour_buffers_read};
 use tidepack_scene::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
     self, ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
@@ -106,6 +106,7 @@ pub struct AnyPack {
     /// Blend modes per program and colour buffer from shaders.properties.
     pub blends: BTreeMap<String, BTreeMap<u8, Blend>>,
     pub custom_textures: Vec<CustomTexture>,
+    pub game_textures: Vec<GameTextureBinding>,
     /// Iris's custom images (`image.<name>`), which OpenGL holds and wgpu does not.
     pub custom_images: Vec<CustomImage>,
     /// Iris's shader storage buffers (`bufferObject.<index>`), which OpenGL holds across the
@@ -135,6 +136,10 @@ impl PackResources for AnyPack {
 
     fn custom_textures(&self) -> &[CustomTexture] {
         &self.custom_textures
+    }
+
+    fn game_textures(&self) -> &[GameTextureBinding] {
+        &self.game_textures
     }
 
     fn custom_images(&self) -> &[CustomImage] {
@@ -520,7 +525,7 @@ impl AnyPack {
             }
         }
         let read_bytes = |path: &str| files.files.get(path).map(|b| b.to_vec()).ok_or_else(|| format!("{path} is not in the pack"));
-        let (custom_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
+        let (custom_textures, game_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
         not_modelled.extend(unsupported);
         let (flips, unreadable_flips) = directives::flips(&properties);
         not_modelled.extend(unreadable_flips);
@@ -568,6 +573,7 @@ impl AnyPack {
             flips,
             blends,
             custom_textures,
+            game_textures,
             custom_images,
             buffers_shared: !buffer_objects.is_empty() && buffer_block_users > 1,
             buffer_objects,

@@ -922,6 +922,7 @@ unsafe fn set_uniforms(
                         Sprites::Sun => harness.sun,
                         Sprites::Moon => harness.moon,
                     },
+                    Ok(Source::BlockAtlas) => harness.atlas,
                     Ok(Source::Lightmap) => harness.lightmap,
                     Ok(Source::Noise) => harness.noise,
                     Ok(Source::Custom(i)) => harness.custom[i].0,

@@ -36,6 +36,7 @@ use tidepack_scene::scene::Scene;
 
 use crate::HarnessError;
 use crate::raw_texture::{self, Texels};
+use crate::samplers::{self, GameTextureBinding};
 use crate::any_pack::AnyPack;
 
 /// Which pack text to render.
@@ -184,6 +185,10 @@ pub trait PackResources {
     fn format_of(&self, buffer: u8) -> BufferFormat;
     /// Custom textures from shaders.properties.
     fn custom_textures(&self) -> &[CustomTexture];
+    /// Game textures shaders.properties binds to units (`minecraft:textures/atlas/blocks.png`).
+    fn game_textures(&self) -> &[GameTextureBinding] {
+        &[]
+    }
     /// Iris's custom images from shaders.properties, which only OpenGL holds.
     fn custom_images(&self) -> &[tidepack_loader::directives::CustomImage] {
         &[]
@@ -947,14 +952,15 @@ pub(crate) fn declared_format_names(text: &str, number: fn(&str) -> Option<u8>) 
 
 /// The `texture.<stage>.<unit>` entries' textures: the image `read_bytes` gives for the path,
 /// or its raw texels as the words after the path lay them out, with the filter and wrap of its
-/// `.mcmeta`. Entries the harness cannot honour come back as
-/// messages naming the key, for the caller to refuse or report.
+/// `.mcmeta`; and the game textures entries bind. Entries the harness cannot honour come back
+/// as messages naming the key, for the caller to refuse or report.
 pub(crate) fn custom_textures(
     read_bytes: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     provider: &dyn FileProvider,
     properties: &Properties,
-) -> Result<(Vec<CustomTexture>, Vec<String>), HarnessError> {
+) -> Result<(Vec<CustomTexture>, Vec<GameTextureBinding>, Vec<String>), HarnessError> {
     let mut found = Vec::new();
+    let mut game = Vec::new();
     let mut unsupported = Vec::new();
     for entry in directives::textures(properties) {
         let (key, path) = (&entry.key, &entry.path);
@@ -963,7 +969,10 @@ pub(crate) fn custom_textures(
             continue;
         }
         if entry.resource {
-            unsupported.push(format!("{key}={path}: textures of the game's resources are not read"));
+            match samplers::game_texture(path) {
+                Some(source) => game.push(GameTextureBinding { stage: entry.stage.clone(), unit: entry.unit.clone(), source }),
+                None => unsupported.push(format!("{key}={path}: the harness holds no textures of the game's assets")),
+            }
             continue;
         }
         let raw = match (entry.raw.is_empty(), RawLayout::parse(&entry.raw)) {
@@ -1009,7 +1018,7 @@ pub(crate) fn custom_textures(
             texels,
         });
     }
-    Ok((found, unsupported))
+    Ok((found, game, unsupported))
 }
 
 /// Most pixels a custom texture may have: 4096², 64 MiB decoded as RGBA8.

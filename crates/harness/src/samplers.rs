@@ -13,7 +13,10 @@ use crate::program::{LoadedProgram, PackResources, texture_resources};
 /// What a sampler name in a program refers to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Source {
+    /// The atlas of what is being drawn: blocks, or the sun's or moon's sprite.
     Atlas,
+    /// The block atlas wherever it is read (`minecraft:textures/atlas/blocks.png`).
+    BlockAtlas,
     Lightmap,
     Noise,
     Color(u8),
@@ -105,6 +108,9 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) ->
     if let Some(i) = custom_texture_of(pack, name, stage, TextureTarget::D2) {
         return Ok(Source::Custom(i));
     }
+    if let Some(bound) = pack.game_textures().iter().find(|t| t.stage == stage.in_properties() && same_unit(&t.unit, name)) {
+        return Ok(bound.source);
+    }
     Ok(match (name, stage.is_gbuffers()) {
         ("noisetex", _) => Source::Noise,
         ("gtexture" | "texture" | "tex", true) => Source::Atlas,
@@ -135,8 +141,35 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) ->
 /// texture while a `sampler2D colortex7` still reads the buffer. A colour buffer's unit goes
 /// by both its names (`gaux1`, `colortex4`).
 pub fn custom_texture_of(pack: &dyn PackResources, name: &str, stage: ProgramStage, target: TextureTarget) -> Option<usize> {
-    let same_unit = |unit: &str| unit == name || colour_buffer_number(unit).is_some_and(|n| colour_buffer_number(name) == Some(n));
-    pack.custom_textures().iter().position(|t| t.stage == stage.in_properties() && t.target == target && same_unit(&t.unit))
+    pack.custom_textures().iter().position(|t| t.stage == stage.in_properties() && t.target == target && same_unit(&t.unit, name))
+}
+
+/// Whether two sampler names are one texture unit: the same name, or a colour buffer's two
+/// names.
+fn same_unit(unit: &str, name: &str) -> bool {
+    unit == name || colour_buffer_number(unit).is_some_and(|n| colour_buffer_number(name) == Some(n))
+}
+
+/// A texture of the game that `texture.<stage>.<unit>=minecraft:…` binds to a unit.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GameTextureBinding {
+    pub stage: String,
+    pub unit: String,
+    pub source: Source,
+}
+
+/// The harness's stand-in for a game texture shaders.properties names (OptiFine's
+/// shaders.properties, "Resource pack" and "Dynamic"): the block atlas and its normal and
+/// specular variants (the harness's resource pack has neither map), and the lightmap. `None`
+/// for the textures of the game's assets, which the harness does not hold.
+pub fn game_texture(path: &str) -> Option<Source> {
+    match path.strip_prefix("minecraft:")?.trim_end_matches(".png") {
+        "textures/atlas/blocks" => Some(Source::BlockAtlas),
+        "textures/atlas/blocks_n" => Some(Source::FlatNormals),
+        "textures/atlas/blocks_s" => Some(Source::NoSpecular),
+        "dynamic/lightmap_1" => Some(Source::Lightmap),
+        _ => None,
+    }
 }
 
 /// Resolves a sampler name in the shadow pass: as in gbuffers programs, except that the

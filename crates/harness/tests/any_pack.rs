@@ -475,7 +475,8 @@ fn a_deferred_custom_texture_is_bound_in_deferred_programs_in_both_renderers() {
 
 /// Raw textures (tests/packs/raw_textures): a 3D RGBA8 volume and a 1D half-float line, each
 /// on a unit that also names a colour buffer, read by a `sampler3D` and a `sampler1D` in both
-/// renderers, and neither listed as not imitated.
+/// renderers, and the block atlas's normal map bound by its `minecraft:` path; none is listed
+/// as not imitated.
 #[test]
 fn raw_textures_are_read_by_samplers_of_their_type_in_both_renderers() {
     let (report, screen) = render_job("raw_textures");

@@ -370,6 +370,7 @@ impl BindableTextures<'_> {
                 Sprites::Sun => (harness.sun.clone(), true),
                 Sprites::Moon => (harness.moon.clone(), true),
             },
+            Source::BlockAtlas => (harness.atlas.clone(), true),
             Source::Lightmap => (harness.lightmap.clone(), true),
             Source::Noise => (harness.noise.clone(), true),
             Source::Custom(i) => (harness.custom[i].0.clone(), harness.custom[i].2),
@@ -393,7 +394,7 @@ impl BindableTextures<'_> {
         match source {
             _ if !filters => harness.nearest_clamp.clone(),
             Source::Custom(i) => harness.custom[i].1.clone(),
-            Source::Atlas => harness.nearest_repeat.clone(),
+            Source::Atlas | Source::BlockAtlas => harness.nearest_repeat.clone(),
             Source::Noise => harness.linear_repeat.clone(),
             Source::Lightmap | Source::FlatNormals | Source::NoSpecular | Source::Unbound => harness.linear_clamp.clone(),
             Source::Color(n) if self.mipmapped.contains(&n) => harness.linear_mipmap_clamp.clone(),
