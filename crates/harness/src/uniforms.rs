@@ -12,6 +12,7 @@ use naga::{AddressSpace, ScalarKind, TypeInner, VectorSize};
 
 use crate::HarnessError;
 use tidepack_glsl::lower::{BOOL_UNIFORM_PREFIX, Interface, ResourceKind};
+use tidepack_scene::mesh;
 use tidepack_scene::scene::Scene;
 use tidepack_loader::shadow::{ShadowSettings, SunPath};
 pub use tidepack_loader::uniform_value::{Kind, Value};
@@ -169,6 +170,76 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     put("rainfall", Value::float(0.4));
     // The game's fog is on (GL_LINEAR), but for the sun and moon; the pack's programs apply it.
     put("fogMode", Value::int(if pass == Pass::Celestial { 0 } else { GL_LINEAR }));
+    // The scenes' player as the game has it (the values Iris and OptiFine document): a
+    // right-handed survival player seen in first person, on the ground, at full health, hunger
+    // and air, without armour; no entity, block entity or item being drawn (-1 each); no
+    // lightning, thunder, boss fight or darkness.
+    let forward = model_view.inverse().transform_vector3(DVec3::NEG_Z).normalize();
+    let camera_int = camera.floor();
+    for (name, value) in [
+        ("entityId", Value::int(-1)),
+        ("blockEntityId", Value::int(-1)),
+        ("currentRenderedItemId", Value::int(-1)),
+        ("entityColor", Value::vec4(DVec4::ZERO)),
+        ("instanceId", Value::int(0)),
+        ("bossBattle", Value::int(0)),
+        ("darknessLightFactor", Value::float(0.0)),
+        ("thunderStrength", Value::float(0.0)),
+        ("lightningBoltPosition", Value::vec4(DVec4::ZERO)),
+        ("currentPlayerHealth", Value::float(1.0)),
+        ("maxPlayerHealth", Value::float(20.0)),
+        ("currentPlayerHunger", Value::float(1.0)),
+        ("maxPlayerHunger", Value::float(20.0)),
+        ("currentPlayerAir", Value::float(1.0)),
+        ("maxPlayerAir", Value::float(300.0)),
+        ("currentPlayerArmor", Value::float(0.0)),
+        ("maxPlayerArmor", Value::float(50.0)),
+        ("firstPersonCamera", Value::int(1)),
+        ("isSpectator", Value::int(0)),
+        ("isRightHanded", Value::int(1)),
+        ("is_sneaking", Value::int(0)),
+        ("is_sprinting", Value::int(0)),
+        ("is_hurt", Value::int(0)),
+        ("is_invisible", Value::int(0)),
+        ("is_burning", Value::int(0)),
+        ("is_on_ground", Value::int(1)),
+        ("constantMood", Value::float(0.0)),
+        ("eyePosition", Value::vec3(camera)),
+        ("relativeEyePosition", Value::vec3(DVec3::ZERO)),
+        ("playerLookVector", Value::vec3(forward)),
+        ("playerBodyVector", Value::vec3(forward)),
+        ("cameraPositionInt", Value::ivec3(camera_int.x as i64, camera_int.y as i64, camera_int.z as i64)),
+        ("cameraPositionFract", Value::vec3(camera - camera_int)),
+        ("previousCameraPositionInt", Value::ivec3(camera_int.x as i64, camera_int.y as i64, camera_int.z as i64)),
+        ("previousCameraPositionFract", Value::vec3(camera - camera_int)),
+        ("pi", Value::float(std::f64::consts::PI)),
+        // sRGB, the first of Iris's colour spaces.
+        ("currentColorSpace", Value::int(0)),
+    ] {
+        put(name, value);
+    }
+    // The overworld of 1.18 and later: bedrock at -64, 384 blocks high, clouds at 192, a sky
+    // and no ceiling, no ambient light of its own.
+    for (name, value) in [
+        ("bedrockLevel", Value::int(-64)),
+        ("heightLimit", Value::int(384)),
+        ("logicalHeightLimit", Value::int(384)),
+        ("cloudHeight", Value::float(192.0)),
+        ("hasCeiling", Value::int(0)),
+        ("hasSkylight", Value::int(1)),
+        ("ambientLight", Value::float(0.0)),
+    ] {
+        put(name, value);
+    }
+    // The game's fog is a cylinder around the camera above water and a sphere in it.
+    put("fogShape", Value::int(if scene.eye_in_water() { 0 } else { 1 }));
+    // The block atlas's size where it is bound (the world's draws); zero where another texture
+    // is (the sun and moon) or none (full-screen passes), as OptiFine sets it.
+    let (atlas_width, atlas_height) = match pass {
+        Pass::Gbuffers | Pass::Shadow | Pass::DistantHorizons => mesh::ATLAS_SIZE,
+        Pass::Fullscreen | Pass::Celestial => (0, 0),
+    };
+    put("atlasSize", Value::ivec2(i64::from(atlas_width), i64::from(atlas_height)));
     // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`with_render_stage`]).
     put("renderStage", Value::int(0));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
@@ -208,9 +279,10 @@ pub fn with_render_stage(values: &BTreeMap<String, Value>, stage: &str) -> BTree
     values
 }
 
-/// The 1.17+ core profile's names for the legacy matrices, and `renderStage`, which differ
-/// between passes and draws: never folded.
-const PER_PASS: [&str; 8] = [
+/// The 1.17+ core profile's names for the legacy matrices, `renderStage` and `atlasSize`, which
+/// differ between passes and draws: never folded.
+const PER_PASS: [&str; 9] = [
+    "atlasSize",
     "modelViewMatrix",
     "modelViewMatrixInverse",
     "projectionMatrix",
@@ -480,6 +552,19 @@ fn write_member(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A pack that divides by `atlasSize` (rayferric's generated normal maps step a tenth of a
+    /// texel) gets the atlas's size where the atlas is bound, and zero in full-screen passes.
+    #[test]
+    fn the_atlas_size_is_set_where_the_atlas_is_bound() {
+        let scene = Scene::load(std::path::Path::new("case4_above_near")).unwrap();
+        let (w, h) = mesh::ATLAS_SIZE;
+        assert_eq!(values(&scene, Pass::Gbuffers)["atlasSize"], Value::ivec2(i64::from(w), i64::from(h)));
+        assert_eq!(values(&scene, Pass::Fullscreen)["atlasSize"], Value::ivec2(0, 0));
+        assert_eq!(values(&scene, Pass::Celestial)["atlasSize"], Value::ivec2(0, 0));
+        let look = values(&scene, Pass::Gbuffers)["playerLookVector"].data.clone();
+        assert!((look.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-9, "{look:?}");
+    }
 
     #[test]
     fn initializers_of_literals_and_constructors_are_read() {

@@ -50,6 +50,9 @@ impl Value {
     pub fn ivec2(x: i64, y: i64) -> Value {
         Value { kind: Kind::Int, columns: 1, rows: 2, array: None, data: vec![x as f64, y as f64] }
     }
+    pub fn ivec3(x: i64, y: i64, z: i64) -> Value {
+        Value { kind: Kind::Int, columns: 1, rows: 3, array: None, data: vec![x as f64, y as f64, z as f64] }
+    }
     pub fn mat4(m: DMat4) -> Value {
         Value { kind: Kind::Float, columns: 4, rows: 4, array: None, data: m.to_cols_array().to_vec() }
     }

@@ -58,6 +58,8 @@ pub mod offsets {
 /// The generated block atlas (`gtexture`): a row of 16×16 sprites of our own, no game assets.
 const SPRITE: u32 = 16;
 const ATLAS_SPRITES: u32 = 8;
+/// Width and height of the block atlas ([`atlas`]).
+pub const ATLAS_SIZE: (u32, u32) = (SPRITE * ATLAS_SPRITES, SPRITE);
 
 /// The uv rectangle of sprite `index`, inset two texels from its edges so nearest sampling
 /// never reaches a neighbour.
@@ -445,7 +447,7 @@ fn box_faces(min: DVec3, max: DVec3) -> Vec<([DVec3; 4], DVec3)> {
 /// of a pattern would make the two renderers' texel choices at sprite edges matter there); the
 /// blocks of [`BLOCK_SPRITES`] are noisy, leaves with transparent holes.
 pub fn atlas() -> (u32, u32, Vec<u8>) {
-    let (w, h) = (SPRITE * ATLAS_SPRITES, SPRITE);
+    let (w, h) = ATLAS_SIZE;
     let mut rng = SplitMix64::seed_from_u64(0xA71A5);
     // Per sprite: base colour, texel-to-texel variation, and the share of transparent texels.
     let sprites: [([f64; 3], f64, f64); ATLAS_SPRITES as usize] = [
