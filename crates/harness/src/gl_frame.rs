@@ -311,8 +311,8 @@ impl<'a> GlPlanFrame<'a> {
                 let bytes = buffer.bytes(w as u32, h as u32);
                 if bytes > MAX_BUFFER_OBJECT_BYTES {
                     return Err(HarnessError::Unsupported(format!(
-                        "bufferObject.{}: {bytes} bytes, more than the {MAX_BUFFER_OBJECT_BYTES} the harness gives a buffer",
-                        buffer.index
+                        "shaders.properties:{}: bufferObject.{}: {bytes} bytes, more than the {MAX_BUFFER_OBJECT_BYTES} the harness gives a buffer",
+                        buffer.line, buffer.index
                     )));
                 }
                 let made = gl.create_buffer().map_err(|e| HarnessError::Gl(format!("buffer: {e}")))?;

@@ -426,6 +426,8 @@ pub fn custom_images(properties: &Properties) -> (Vec<CustomImage>, Vec<String>)
 pub struct BufferObject {
     pub index: u32,
     pub size: BufferObjectSize,
+    /// Its line in shaders.properties.
+    pub line: u32,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -467,7 +469,7 @@ pub fn buffer_objects(properties: &Properties) -> (Vec<BufferObject>, Vec<String
         };
         match (index.parse::<u32>().ok().filter(|i| *i <= MAX_BUFFER_OBJECT_INDEX), size) {
             (Some(_), Some((bytes, _))) if bytes < 1 => {}
-            (Some(index), Some((_, size))) => buffers.push(BufferObject { index, size }),
+            (Some(index), Some((_, size))) => buffers.push(BufferObject { index, size, line: entry.line }),
             _ => problems.push(format!(
                 "shaders.properties:{}: bufferObject.{index} = {}: not an index up to {MAX_BUFFER_OBJECT_INDEX} and a size Iris reads; Iris makes no buffer",
                 entry.line, entry.value
