@@ -787,8 +787,7 @@ pub fn for_strict_drivers(text: &str, preprocessed: &str, stage: Stage, redefine
         out = lines.concat();
     }
     // Extensions the driver meets, active `#if` or not.
-    let met_extensions: Vec<&str> =
-        met.windows(3).filter(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].kind == TokenKind::Ident).map(|w| w[2].text).collect();
+    let met_extensions: Vec<&str> = crate::token::extension_directives(&met).iter().map(|d| d.name).collect();
     if let Some((first, rewrite)) = version_moved_first(&out) {
         out = first;
         rewrites.push(rewrite);

@@ -2676,9 +2676,7 @@ impl<'a> Lowering<'_, 'a> {
 
     /// Whether the stage has an `#extension NAME` line that does not disable it.
     fn enables_extension(&self, name: &str) -> bool {
-        let sig: Vec<&Token> = self.tokens.iter().filter(|t| !t.is_trivia()).collect();
-        sig.windows(5)
-            .any(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].is_ident(name) && w[3].is_punct(":") && !w[4].is_ident("disable"))
+        crate::token::extension_directives(self.tokens).iter().any(|d| d.name == name && d.enables())
     }
 
     /// Whether the stage defines a function called `name` itself.

@@ -224,6 +224,33 @@ fn scan_number(bytes: &[u8], mut pos: usize) -> usize {
     pos
 }
 
+/// An `#extension NAME : BEHAVIOUR` directive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExtensionDirective<'a> {
+    /// 1-based line of the `#`.
+    pub line: u32,
+    pub name: &'a str,
+    /// `require`, `enable`, `warn` or `disable`.
+    pub behaviour: &'a str,
+}
+
+impl ExtensionDirective<'_> {
+    /// Whether it turns the extension on (every behaviour but `disable`).
+    pub fn enables(&self) -> bool {
+        self.behaviour != "disable"
+    }
+}
+
+/// The `#extension` directives among `tokens`, in order: the one reader of them, for the
+/// lowering, the rewrites for OpenGL and validation alike.
+pub fn extension_directives<'a, T: Borrow<Token<'a>>>(tokens: &[T]) -> Vec<ExtensionDirective<'a>> {
+    let sig: Vec<&Token<'a>> = tokens.iter().map(Borrow::borrow).filter(|t| !t.is_trivia()).collect();
+    sig.windows(5)
+        .filter(|w| w[0].is_punct("#") && w[1].is_ident("extension") && w[2].kind == TokenKind::Ident && w[3].is_punct(":") && w[4].kind == TokenKind::Ident)
+        .map(|w| ExtensionDirective { line: w[0].line, name: w[2].text, behaviour: w[4].text })
+        .collect()
+}
+
 /// Indices of the tokens that are not trivia, in order.
 pub fn significant(tokens: &[Token<'_>]) -> Vec<usize> {
     (0..tokens.len()).filter(|&i| !tokens[i].is_trivia()).collect()
@@ -434,6 +461,18 @@ mod tests {
 
     fn kinds(src: &str) -> Vec<(TokenKind, &str)> {
         tokenize(src).unwrap().into_iter().map(|t| (t.kind, t.text)).collect()
+    }
+
+    #[test]
+    fn extension_directives_with_their_lines_and_behaviours() {
+        let src = "#version 130\n#extension GL_EXT_gpu_shader4 : enable\n  #  extension\tGL_ARB_gpu_shader5:disable\nint extension = 1;\n#extension all\n";
+        let tokens = tokenize(src).unwrap();
+        let found = extension_directives(&tokens);
+        assert_eq!(found, vec![
+            ExtensionDirective { line: 2, name: "GL_EXT_gpu_shader4", behaviour: "enable" },
+            ExtensionDirective { line: 3, name: "GL_ARB_gpu_shader5", behaviour: "disable" },
+        ]);
+        assert!(found[0].enables() && !found[1].enables());
     }
 
     #[test]

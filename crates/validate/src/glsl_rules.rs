@@ -14,7 +14,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use tidepack_glsl::compat::{RESERVED, RESERVED_FROM_130};
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
+use tidepack_glsl::token::{Token, TokenKind, function_definitions};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
 
 /// Lookups that take a `sampler2D`, and the `sampler2DShadow` form of each.
@@ -25,9 +25,8 @@ const COLOUR_LOOKUPS: [(&str, &str); 4] =
 const ASSIGNMENTS: [&str; 11] = ["=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "<<=", ">>="];
 
 /// Errors a driver gives for the stage that naga does not give in GLSL terms.
-pub fn check(pre: &Preprocessed, stage: Stage) -> Vec<Diagnostic> {
-    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
-    let sig: Vec<&Token> = code_tokens(&tokens);
+pub fn check(pre: &Preprocessed, tokens: &[Token], stage: Stage) -> Vec<Diagnostic> {
+    let sig: Vec<&Token> = code_tokens(tokens);
     let version = pre.version.as_ref().map_or(110, |v| v.number);
     let globals = Globals::read(&sig, stage);
     // What these rules name, NVIDIA's compiler lets by (reported on pack trackers as "works on

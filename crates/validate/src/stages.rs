@@ -5,6 +5,7 @@ use std::sync::Arc;
 use tidepack_glsl::naga_check::{self, LoweredCompute, LoweredStage};
 use tidepack_glsl::preprocess::{self, FileProvider, PreprocessOptions, Preprocessed, assume_glsl_110};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Location, Stage};
+use tidepack_glsl::token::{Token, tokenize};
 
 use tidepack_loader::directives::CustomNames;
 use tidepack_loader::loader::Loader;
@@ -41,11 +42,15 @@ pub(crate) fn check_program(
                 }
                 diags.extend(pre.warnings.iter().cloned());
                 diags.extend(no_buffer_under_iris(&pre, loader));
-                diags.extend(version_rules::check(&pre, *stage, loader).into_iter().map(lenient_on_nvidia));
-                diags.extend(version_rules::unknown_extensions(&pre));
-                diags.extend(version_rules::extensions_some_drivers_lack(&pre));
-                diags.extend(glsl_rules::check(&pre, *stage));
-                diags.extend(macos_refusals(&pre, false));
+                // One reading of the text for every rule; text that does not tokenize gives none
+                // of them anything (the lowering reports it).
+                let tokens = tokenize(&pre.text).unwrap_or_default();
+                diags.extend(version_rules::check(&pre, &tokens, *stage, loader).into_iter().map(lenient_on_nvidia));
+                diags.extend(version_rules::unknown_extensions(&pre, &tokens));
+                diags.extend(version_rules::extensions_some_drivers_lack(&pre, &tokens));
+                diags.extend(glsl_rules::check(&pre, &tokens, *stage));
+                diags.extend(macos_refusals(&pre, &tokens, false));
+                drop(tokens);
                 diags.extend(above_configured_glsl(&pre, macros));
                 preprocessed.push((*stage, Arc::new(pre)));
             }
@@ -165,7 +170,7 @@ fn version_line(pre: &Preprocessed) -> u32 {
     pre.version_line().unwrap_or(1)
 }
 
-fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
+fn macos_refusals(pre: &Preprocessed, tokens: &[Token], compute: bool) -> Vec<Diagnostic> {
     let mut found = Vec::new();
     let entry = || pre.location(version_line(pre)).or_else(|| Some(Location::line(pre.files[0].clone(), 1)));
     let macos = |message: String, at: Option<Location>| Diagnostic::error(Code::Macos, message, at).refused_by(Drivers::MACOS);
@@ -179,7 +184,6 @@ fn macos_refusals(pre: &Preprocessed, compute: bool) -> Vec<Diagnostic> {
         ));
         return found;
     }
-    let Ok(tokens) = tidepack_glsl::token::tokenize(&pre.text) else { return found };
     let significant: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     for (k, t) in significant.iter().enumerate() {
         let storage_block = t.is_ident("buffer") && significant.get(k + 1).is_some_and(|n| n.kind == tidepack_glsl::token::TokenKind::Ident);
@@ -250,10 +254,12 @@ pub(crate) fn check_compute(
     };
     assume_glsl_110(&mut pre);
     let mut diags: Vec<Diagnostic> = pre.warnings.clone();
-    diags.extend(version_rules::check_compute(&pre).map(lenient_on_nvidia));
-    diags.extend(version_rules::unknown_extensions(&pre));
-    diags.extend(version_rules::extensions_some_drivers_lack(&pre));
-    diags.extend(macos_refusals(&pre, true));
+    let tokens = tokenize(&pre.text).unwrap_or_default();
+    diags.extend(version_rules::check_compute(&pre, &tokens).map(lenient_on_nvidia));
+    diags.extend(version_rules::unknown_extensions(&pre, &tokens));
+    diags.extend(version_rules::extensions_some_drivers_lack(&pre, &tokens));
+    diags.extend(macos_refusals(&pre, &tokens, true));
+    drop(tokens);
     diags.extend(above_configured_glsl(&pre, macros));
     match naga_check::lower_compute(Arc::new(pre)) {
         Ok(stage) => {

@@ -18,7 +18,7 @@ use tidepack_glsl::compat::{
 };
 use tidepack_glsl::lower::is_statement_keyword;
 use tidepack_glsl::preprocess::Preprocessed;
-use tidepack_glsl::token::{TokenKind, function_definitions, tokenize};
+use tidepack_glsl::token::{ExtensionDirective, Token, TokenKind, extension_directives, function_definitions};
 use tidepack_glsl::{Code, Diagnostic, Drivers, Stage};
 
 use crate::glsl_rules::{Globals, code_tokens, place};
@@ -30,20 +30,8 @@ const SHADING_LANGUAGE_420PACK: &str = "GL_ARB_shading_language_420pack";
 const GPU_SHADER5: &str = "GL_ARB_gpu_shader5";
 
 
-/// The `#extension NAME : BEHAVIOUR` lines of `text`: the 0-based line, the name and the
-/// behaviour.
-fn extension_directives(text: &str) -> impl Iterator<Item = (usize, &str, &str)> {
-    text.lines().enumerate().filter_map(|(index, line)| {
-        let words: Vec<&str> = line.split([' ', '\t', ':']).filter(|w| !w.is_empty()).collect();
-        match words.as_slice() {
-            ["#", "extension", name, behaviour, ..] | ["#extension", name, behaviour, ..] => Some((index, *name, *behaviour)),
-            _ => None,
-        }
-    })
-}
-
-fn enabled_extensions(text: &str) -> BTreeSet<String> {
-    extension_directives(text).filter(|(_, _, behaviour)| *behaviour != "disable").map(|(_, name, _)| name.to_string()).collect()
+fn enabled_extensions(tokens: &[Token]) -> BTreeSet<String> {
+    extension_directives(tokens).into_iter().filter(|d| d.enables()).map(|d| d.name.to_string()).collect()
 }
 
 /// The extension names GLSL compilers know: the union of the tables of Mesa's GLSL compiler
@@ -55,10 +43,10 @@ const KNOWN_EXTENSIONS: &str = include_str!("glsl_extensions.txt");
 /// in … shader"); with `enable` or `warn` a warning, since drivers only warn and go on. A
 /// vendor's own driver may know more names of that vendor's than the tables do, so it is not
 /// among the drivers said to refuse it.
-pub fn unknown_extensions(pre: &Preprocessed) -> Vec<Diagnostic> {
+pub fn unknown_extensions(pre: &Preprocessed, tokens: &[Token]) -> Vec<Diagnostic> {
     let mut found = Vec::new();
-    for (index, name, behaviour) in extension_directives(&pre.text) {
-        let at = pre.location(index as u32 + 1);
+    for ExtensionDirective { line, name, behaviour } in extension_directives(tokens) {
+        let at = pre.location(line);
         if name == "all" {
             if matches!(behaviour, "require" | "enable") {
                 found.push(Diagnostic::error(Code::Extension, format!("`#extension all : {behaviour}` is not allowed: `all` takes only `warn` or `disable`"), at));
@@ -111,11 +99,11 @@ const EXTENSIONS_SOME_DRIVERS_LACK: [(&str, Drivers, &str, &[&str]); 2] = [
 /// with `require` the driver refuses the stage at the line; with `enable` or `warn` it only
 /// warns, and refuses the first use of what the extension brings. An error naming the drivers
 /// without it, once per extension family and stage.
-pub fn extensions_some_drivers_lack(pre: &Preprocessed) -> Vec<Diagnostic> {
-    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
+pub fn extensions_some_drivers_lack(pre: &Preprocessed, tokens: &[Token]) -> Vec<Diagnostic> {
     let mut found = Vec::new();
+    let directives = extension_directives(tokens);
     for (prefix, lacking, who, brought) in EXTENSIONS_SOME_DRIVERS_LACK {
-        let Some((index, name, behaviour)) = extension_directives(&pre.text).find(|(_, name, behaviour)| name.starts_with(prefix) && *behaviour != "disable") else {
+        let Some(&ExtensionDirective { line, name, behaviour }) = directives.iter().find(|d| d.name.starts_with(prefix) && d.enables()) else {
             continue;
         };
         // A name ending in `*` is a prefix of what the family brings.
@@ -123,7 +111,7 @@ pub fn extensions_some_drivers_lack(pre: &Preprocessed) -> Vec<Diagnostic> {
         let first_use = tokens.iter().find(|t| t.kind == TokenKind::Ident && brings(t.text));
         let family = if prefix.ends_with('_') { format!("of the {prefix}* extensions") } else { format!("of {prefix}") };
         let (line, what) = match (behaviour, first_use) {
-            ("require", _) => (index as u32 + 1, format!("`#extension {name} : require`")),
+            ("require", _) => (line, format!("`#extension {name} : require`")),
             (_, Some(used)) => (used.line, format!("`{}`, {family},", used.text)),
             (_, None) => continue,
         };
@@ -137,9 +125,9 @@ pub fn extensions_some_drivers_lack(pre: &Preprocessed) -> Vec<Diagnostic> {
 }
 
 /// A compute stage needs GLSL 4.30 or `GL_ARB_compute_shader`; the error is at `#version`.
-pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
+pub fn check_compute(pre: &Preprocessed, tokens: &[Token]) -> Option<Diagnostic> {
     let number = pre.version.as_ref().map_or(110, |v| v.number);
-    if number >= 430 || enabled_extensions(&pre.text).contains("GL_ARB_compute_shader") {
+    if number >= 430 || enabled_extensions(tokens).contains("GL_ARB_compute_shader") {
         return None;
     }
     let line = pre.text.lines().position(|l| l.trim_start().starts_with('#') && l.contains("version")).map_or(1, |i| i as u32 + 1);
@@ -152,19 +140,18 @@ pub fn check_compute(pre: &Preprocessed) -> Option<Diagnostic> {
 
 /// Errors a driver gives for constructs the stage's `#version` does not have, and warnings for
 /// the ones only some drivers accept.
-pub fn check(pre: &Preprocessed, stage: Stage, loader: Loader) -> Vec<Diagnostic> {
+pub fn check(pre: &Preprocessed, tokens: &[Token], stage: Stage, loader: Loader) -> Vec<Diagnostic> {
     let Some(version) = &pre.version else { return Vec::new() };
     let number = version.number;
     let core = version.is_core();
-    let extensions = enabled_extensions(&pre.text);
+    let extensions = enabled_extensions(tokens);
     // Before 3.30, `layout(location = N)` on inputs and outputs needs an extension.
     let location_needs_extension = number < 330 && !extensions.contains(EXPLICIT_LOCATION);
     let legacy_rules = number < 130 || core;
     let gpu4 = extensions.contains(GPU_SHADER4);
     // GL_EXT_gpu_shader4 brings the `Lod` lookups to fragment shaders too.
     let lod = extensions.contains(TEXTURE_LOD) || gpu4;
-    let Ok(tokens) = tokenize(&pre.text) else { return Vec::new() };
-    let sig = code_tokens(&tokens);
+    let sig = code_tokens(tokens);
     let globals = Globals::read(&sig, stage);
     let mut found: Vec<Diagnostic> = Vec::new();
     let mut warnings: Vec<Diagnostic> = Vec::new();
@@ -585,16 +572,18 @@ pub(crate) mod tests {
     use std::collections::HashMap;
     use std::sync::Arc;
     use tidepack_glsl::preprocess::{PreprocessOptions, preprocess};
+    use tidepack_glsl::token::tokenize;
 
     /// What `rules` finds in `src` as file `a.fsh`, as `line: message`.
-    pub(crate) fn found_by(rules: fn(&Preprocessed, Stage) -> Vec<Diagnostic>, src: &str, stage: Stage) -> Vec<String> {
+    pub(crate) fn found_by(rules: fn(&Preprocessed, &[Token], Stage) -> Vec<Diagnostic>, src: &str, stage: Stage) -> Vec<String> {
         let files: HashMap<String, Arc<str>> = [("a.fsh".to_string(), Arc::from(src))].into();
         let pre = preprocess(&files, "a.fsh", &PreprocessOptions::default()).unwrap();
-        rules(&pre, stage).iter().map(|d| format!("{}: {}", d.location.as_ref().unwrap().line, d.message)).collect()
+        let tokens = tokenize(&pre.text).unwrap();
+        rules(&pre, &tokens, stage).iter().map(|d| format!("{}: {}", d.location.as_ref().unwrap().line, d.message)).collect()
     }
 
     fn errors(src: &str, stage: Stage) -> Vec<String> {
-        found_by(|pre, stage| check(pre, stage, Loader::default()), src, stage)
+        found_by(|pre, tokens, stage| check(pre, tokens, stage, Loader::default()), src, stage)
     }
 
     #[test]
@@ -603,7 +592,7 @@ pub(crate) mod tests {
                    #extension GL_EXT_made_up : warn\n#extension GL_EXT_gpu_shader4 : require\n#extension all : warn\nvoid main() {}\n";
         let files: HashMap<String, Arc<str>> = [("a.fsh".to_string(), Arc::from(src))].into();
         let pre = preprocess(&files, "a.fsh", &PreprocessOptions::default()).unwrap();
-        let found = unknown_extensions(&pre);
+        let found = unknown_extensions(&pre, &tokenize(&pre.text).unwrap());
         let lines: Vec<(u32, bool, Drivers)> = found.iter().map(|d| (d.location.as_ref().unwrap().line, d.is_error(), d.refused_by)).collect();
         assert_eq!(lines.len(), 3, "{found:?}");
         assert_eq!(lines[0], (2, true, Drivers::ALL));
@@ -631,7 +620,7 @@ pub(crate) mod tests {
         let src = "#version 330 compatibility\nuniform sampler2D texture;\nin vec2 uv;\nvoid main() { gl_FragData[0] = texture(texture, uv); }\n";
         let found = errors(src, Stage::Fragment);
         assert!(found.len() == 1 && found[0].starts_with("4: `texture` is a variable here"), "{found:?}");
-        let iris = found_by(|pre, stage| check(pre, stage, Loader::Iris), src, Stage::Fragment);
+        let iris = found_by(|pre, tokens, stage| check(pre, tokens, stage, Loader::Iris), src, Stage::Fragment);
         assert!(iris.is_empty(), "{iris:?}");
     }
 
