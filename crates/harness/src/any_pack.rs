@@ -11,12 +11,13 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 use tidepack_glsl::preprocess::PreprocessOptions;
+use tidepack_loader::blocks;
 use tidepack_loader::buffers::{BufferClear, BufferFormat, colour_buffer_number, shadow_colour_number};
 use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
 use tidepack_loader::directives::{self, Blend, BlendFactor, BufferObject, CustomImage, DEFAULT_TRANSLUCENT_BLEND};
 use tidepack_loader::input::{Limits, PackFiles, read_pack};
-use tidepack_loader::loader::{FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
+use tidepack_loader::loader::{ENTITY_CHAIN, FULLSCREEN_FAMILIES, Loader, OverlayKind, Phase, SKY_CHAIN, SKY_TEXTURED_CHAIN, TERRAIN_CHAIN, WATER_CHAIN};
 use tidepack_loader::option_space::{declared_options, read_properties};
 use tidepack_loader::programs::{self, RunBy};
 use tidepack_loader::properties::{self, Properties};
@@ -30,7 +31,7 @@ use crate::program::{
     self, ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
 };
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::{self, DrawUniforms, Pass, Value};
 
 /// The game's blending of the sun and the moon onto the sky: added, faded by alpha.
 const CELESTIAL_BLEND: Blend = Blend::Factors([BlendFactor::SrcAlpha, BlendFactor::One, BlendFactor::One, BlendFactor::Zero]);
@@ -115,6 +116,8 @@ pub struct AnyPack {
     /// [`PackResources::buffers_shared_across_programs`].
     buffers_shared: bool,
     pub block_ids: HashMap<String, i32>,
+    /// entity.properties under the configuration: entity name → `entityId`.
+    pub entity_ids: HashMap<String, i32>,
     /// shaders.properties under the configuration, for the custom uniforms of each pass.
     pub properties: Properties,
     /// What the pack uses that the frame does not imitate, one line each.
@@ -255,7 +258,7 @@ impl ProgramLoading<'_> {
     fn gbuffers(&mut self) -> BTreeMap<String, LoadedProgram> {
         let mut wanted: Vec<(&str, LoaderAlphaTest)> = TERRAIN_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Cutout)).collect();
         wanted.extend(WATER_CHAIN.iter().map(|n| (*n, LoaderAlphaTest::Water)));
-        wanted.extend(SKY_CHAIN.iter().chain(&SKY_TEXTURED_CHAIN).map(|n| (*n, LoaderAlphaTest::None)));
+        wanted.extend(SKY_CHAIN.iter().chain(&SKY_TEXTURED_CHAIN).chain(&ENTITY_CHAIN).map(|n| (*n, LoaderAlphaTest::None)));
         for kind in OverlayKind::ALL {
             wanted.extend(self.loader.program_chain(kind).iter().map(|n| (*n, LoaderAlphaTest::None)));
         }
@@ -544,7 +547,8 @@ impl AnyPack {
                 ));
             }
         }
-        let block_ids = program::block_ids(&provider, &standard, &declared, &options);
+        let block_ids = program::mapped_ids(&provider, blocks::BLOCK_PROPERTIES, "block", &standard, &declared, &options);
+        let entity_ids = program::mapped_ids(&provider, blocks::ENTITY_PROPERTIES, "entity", &standard, &declared, &options);
         // Programs and compute stages that declare a buffer block, which wgpu gives each its own.
         let buffer_block_users = gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(&fullscreen)
             .filter(|p| [&p.vertex.gl_text, &p.fragment.gl_text].iter().any(|t| program::declares_buffer_block(t)))
@@ -578,6 +582,7 @@ impl AnyPack {
             buffers_shared: !buffer_objects.is_empty() && buffer_block_users > 1,
             buffer_objects,
             block_ids,
+            entity_ids,
             properties,
             disabled,
             not_modelled,
@@ -752,8 +757,8 @@ pub enum PlannedWork<'a> {
         /// Whose uniform values: gbuffers, the sun and moon's, or Distant Horizons' (which also
         /// draws into Distant Horizons' own depth buffer).
         pass: Pass,
-        /// `renderStage` for the draw: the `MC_RENDER_STAGE_*` name.
-        render_stage: &'static str,
+        /// `renderStage` and `entityId` for the draw.
+        draw: DrawUniforms,
     },
     /// depthtex0 to depthtex1.
     DepthCopy,
@@ -761,7 +766,7 @@ pub enum PlannedWork<'a> {
     LodDepthCopy,
     /// Geometry drawn into the shadow map by a shadow program, under the shadow camera: its
     /// render targets are shadow colour buffers, its depth buffer shadowtex0; no blending.
-    ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex], render_stage: &'static str },
+    ShadowGeometry { program: &'a LoadedProgram, vertices: &'a [PackVertex], draw: DrawUniforms },
     /// shadowtex0 to shadowtex1: the shadow map without translucents.
     ShadowDepthCopy,
     /// A compute stage, dispatched over the frame before its program's own stages: it reads the
@@ -902,10 +907,10 @@ impl<'a> FramePlan<'a> {
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
         plan.family(pack, "prepare", None);
         // The sky: the game's own colour where the pack has no skybasic program.
-        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks, "SKY");
+        plan.geometry(pack, pack.resolve(&SKY_CHAIN), &mesh.sky, Blend::Off, false, "sky", Sprites::Blocks, DrawUniforms::stage("SKY"));
         if let Some(program) = pack.resolve(&SKY_TEXTURED_CHAIN) {
-            plan.geometry(pack, Some(program), &mesh.sun, CELESTIAL_BLEND, false, "sun", Sprites::Sun, "SUN");
-            plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon, "MOON");
+            plan.geometry(pack, Some(program), &mesh.sun, CELESTIAL_BLEND, false, "sun", Sprites::Sun, DrawUniforms::stage("SUN"));
+            plan.geometry(pack, Some(program), &mesh.moon, CELESTIAL_BLEND, false, "moon", Sprites::Moon, DrawUniforms::stage("MOON"));
         }
         plan.overlays(pack, scene, mesh, Phase::BeforeTerrain);
         // Iris draws Distant Horizons' LODs only with the pack's own programs.
@@ -913,7 +918,8 @@ impl<'a> FramePlan<'a> {
         if lod {
             plan.lod_geometry(pack, false, &mesh.lod_terrain, "LOD terrain", "TERRAIN_SOLID");
         }
-        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks, "TERRAIN_SOLID");
+        plan.geometry(pack, pack.resolve(&TERRAIN_CHAIN), &mesh.terrain, Blend::Off, true, "terrain", Sprites::Blocks, DrawUniforms::stage("TERRAIN_SOLID"));
+        plan.entities(pack, mesh);
         plan.overlays(pack, scene, mesh, Phase::BeforeWater);
         plan.steps.push(PlannedStep { label: "depth copy".into(), work: PlannedWork::DepthCopy });
         plan.forced_flips(pack, "deferred_pre");
@@ -922,7 +928,7 @@ impl<'a> FramePlan<'a> {
             plan.steps.push(PlannedStep { label: "dhDepthTex0 to dhDepthTex1".into(), work: PlannedWork::LodDepthCopy });
             plan.lod_geometry(pack, true, &mesh.lod_translucent, "LOD water", "TERRAIN_TRANSLUCENT");
         }
-        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks, "TERRAIN_TRANSLUCENT");
+        plan.geometry(pack, pack.resolve(&WATER_CHAIN), &mesh.translucent, DEFAULT_TRANSLUCENT_BLEND, true, "water", Sprites::Blocks, DrawUniforms::stage("TERRAIN_TRANSLUCENT"));
         plan.overlays(pack, scene, mesh, Phase::AfterWater);
         plan.forced_flips(pack, "composite_pre");
         let composites: Vec<&LoadedProgram> = family("composite").collect();
@@ -955,20 +961,21 @@ impl<'a> FramePlan<'a> {
         depth_write: bool,
         what: &str,
         sprites: Sprites,
-        render_stage: &'static str,
+        draw: DrawUniforms,
     ) {
         let snapshots = program.map(|p| colour_buffers_read(pack, p, SamplerNaming::Frame)).unwrap_or_default();
         let pass = if sprites == Sprites::Blocks { Pass::Gbuffers } else { Pass::Celestial };
         let current = self.current.clone();
         self.steps.push(PlannedStep {
             label: format!("{what} ({})", program.map_or("the loader's own", |p| p.name.as_str())),
-            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage },
+            work: PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, draw },
         });
     }
 
     /// Distant Horizons' LODs drawn by dh_terrain, or with `translucent` its water by dh_water's
     /// chain: under [`Pass::DistantHorizons`], into Distant Horizons' own depth buffer.
     fn lod_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str, render_stage: &'static str) {
+        let draw = DrawUniforms::stage(render_stage);
         let Some(program) = pack.resolve_lod(translucent) else { return };
         let default_blend = if translucent { DEFAULT_TRANSLUCENT_BLEND } else { Blend::Off };
         let snapshots = colour_buffers_read(pack, program, SamplerNaming::Frame);
@@ -984,7 +991,7 @@ impl<'a> FramePlan<'a> {
                 snapshots,
                 sprites: Sprites::Blocks,
                 pass: Pass::DistantHorizons,
-                render_stage,
+                draw,
             },
         });
     }
@@ -1000,9 +1007,21 @@ impl<'a> FramePlan<'a> {
 
     fn shadow_geometry(&mut self, pack: &'a AnyPack, translucent: bool, vertices: &'a [PackVertex], what: &str) {
         if let Some(program) = pack.resolve_shadow(translucent) {
-            let render_stage = if translucent { "TERRAIN_TRANSLUCENT" } else { "TERRAIN_SOLID" };
-            let work = PlannedWork::ShadowGeometry { program, vertices, render_stage };
+            let draw = DrawUniforms::stage(if translucent { "TERRAIN_TRANSLUCENT" } else { "TERRAIN_SOLID" });
+            let work = PlannedWork::ShadowGeometry { program, vertices, draw };
             self.steps.push(PlannedStep { label: format!("{what} ({})", program.name), work });
+        }
+    }
+
+    /// Each entity of the scene, after the opaque terrain as the game draws them, by
+    /// gbuffers_entities' chain with `entityId` from the pack's entity.properties (-1 for an
+    /// entity it does not list).
+    fn entities(&mut self, pack: &'a AnyPack, mesh: &'a SceneMesh) {
+        for (name, vertices) in &mesh.entities {
+            let program = pack.resolve(&ENTITY_CHAIN);
+            let entity_id = pack.entity_ids.get(&blocks::namespaced(name)).copied().unwrap_or(-1);
+            let draw = DrawUniforms { render_stage: "ENTITIES", entity_id };
+            self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, true, &format!("entity {name}"), Sprites::Blocks, draw);
         }
     }
 
@@ -1017,7 +1036,7 @@ impl<'a> FramePlan<'a> {
                     OverlayKind::Particles => "PARTICLES",
                     OverlayKind::Hand => "HAND_TRANSLUCENT",
                 };
-                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, depth_write, &format!("{kind:?}"), Sprites::Blocks, stage);
+                self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, depth_write, &format!("{kind:?}"), Sprites::Blocks, DrawUniforms::stage(stage));
             }
         }
     }
@@ -1185,7 +1204,7 @@ mod tests {
             .steps
             .iter()
             .filter_map(|s| match &s.work {
-                PlannedWork::Geometry { render_stage, .. } | PlannedWork::ShadowGeometry { render_stage, .. } => Some((s.label.as_str(), *render_stage)),
+                PlannedWork::Geometry { draw, .. } | PlannedWork::ShadowGeometry { draw, .. } => Some((s.label.as_str(), draw.render_stage)),
                 _ => None,
             })
             .collect();
@@ -1200,7 +1219,7 @@ mod tests {
                 ("Rain (the loader's own)", "RAIN_SNOW"),
             ]
         );
-        let values = uniforms::with_render_stage(&uniforms::values(&scene, Pass::Gbuffers), "TERRAIN_TRANSLUCENT");
+        let values = DrawUniforms::stage("TERRAIN_TRANSLUCENT").applied(&uniforms::values(&scene, Pass::Gbuffers));
         assert_eq!(values["renderStage"], Value::int(17));
     }
 

@@ -27,7 +27,7 @@ use crate::program::{ComputeStage, LoadedProgram, PackResources};
 use tidepack_loader::buffers::BufferFormat;
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass};
+use crate::uniforms::{DrawUniforms, Pass};
 use tidepack_loader::loader::MissingProgramDraws;
 
 /// A frame from the OpenGL driver, every image bottom row first.
@@ -218,8 +218,8 @@ fn render_plan(
             frame.step_ms = 0.0;
             frame.step_traced = false;
             let written = match &step.work {
-                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
-                    let draw = GeometryStep { program: *program, vertices, default_blend, depth_write: *depth_write, sprites: *sprites, pass: *pass, render_stage };
+                PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, draw } => {
+                    let draw = GeometryStep { program: *program, vertices, default_blend, depth_write: *depth_write, sprites: *sprites, pass: *pass, draw: *draw };
                     frame.geometry(&draw, current, snapshots)?
                 }
                 PlannedWork::DepthCopy => {
@@ -230,7 +230,7 @@ fn render_plan(
                     frame.copy(frame.lod_depth[0], frame.lod_depth[1], frame.w, frame.h);
                     Vec::new()
                 }
-                PlannedWork::ShadowGeometry { program, vertices, render_stage } => frame.shadow_geometry(program, vertices, render_stage)?,
+                PlannedWork::ShadowGeometry { program, vertices, draw } => frame.shadow_geometry(program, vertices, *draw)?,
                 PlannedWork::ShadowDepthCopy => {
                     frame.copy(frame.shadow_depth[0], frame.shadow_depth[1], frame.shadow_side, frame.shadow_side);
                     Vec::new()
@@ -264,7 +264,7 @@ struct GeometryStep<'s> {
     depth_write: bool,
     sprites: Sprites,
     pass: Pass,
-    render_stage: &'s str,
+    draw: DrawUniforms,
 }
 
 impl<'a> GlPlanFrame<'a> {
@@ -484,12 +484,11 @@ impl<'a> GlPlanFrame<'a> {
         }
     }
 
-    /// Compiles, draws and deletes `program` with the uniform values of `pass` and its
-    /// `MC_RENDER_STAGE_*`.
-    unsafe fn draw(&mut self, program: &LoadedProgram, pass: Pass, render_stage: &str, textures: &Textures, vertices: &[PackVertex]) -> Result<(), HarnessError> {
+    /// Compiles, draws and deletes `program` with the uniform values of `pass` and the draw's.
+    unsafe fn draw(&mut self, program: &LoadedProgram, pass: Pass, draw: DrawUniforms, textures: &Textures, vertices: &[PackVertex]) -> Result<(), HarnessError> {
         let (compiled, own_range) = self.build(program)?;
         let clip_control = self.ctx.legacy().clip_control.filter(|_| own_range);
-        let values = uniforms::with_render_stage(self.values.of_pass(pass), render_stage);
+        let values = draw.applied(self.values.of_pass(pass));
         // SAFETY: the program was compiled on this context; the textures are this frame's.
         let drawn = unsafe {
             if let Some(clip_control) = clip_control {
@@ -549,7 +548,7 @@ impl<'a> GlPlanFrame<'a> {
                         sprites: step.sprites,
                         mipmapped: BTreeSet::new(),
                     };
-                    self.draw(program, step.pass, step.render_stage, &textures, step.vertices)?;
+                    self.draw(program, step.pass, step.draw, &textures, step.vertices)?;
                 }
                 None => {
                     let mut drawn = Ok(());
@@ -570,7 +569,7 @@ impl<'a> GlPlanFrame<'a> {
     }
 
     /// A shadow program's draw into the shadow map, at the shadow map's size.
-    unsafe fn shadow_geometry(&mut self, program: &LoadedProgram, vertices: &[PackVertex], render_stage: &str) -> Result<Vec<Written>, HarnessError> {
+    unsafe fn shadow_geometry(&mut self, program: &LoadedProgram, vertices: &[PackVertex], draw: DrawUniforms) -> Result<Vec<Written>, HarnessError> {
         let gl = self.ctx.gl();
         let side = self.shadow_side;
         unsafe {
@@ -594,7 +593,7 @@ impl<'a> GlPlanFrame<'a> {
                 sprites: Sprites::Blocks,
                 mipmapped: BTreeSet::new(),
             };
-            self.draw(program, Pass::Shadow, render_stage, &textures, vertices)?;
+            self.draw(program, Pass::Shadow, draw, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             program
@@ -646,7 +645,7 @@ impl<'a> GlPlanFrame<'a> {
             gl.disable(glow::DEPTH_TEST);
             let harness = self.harness.clone();
             let textures = self.frame_textures(&harness, current, mipmaps.clone());
-            self.draw(program, Pass::Fullscreen, "NONE", &textures, quad)?;
+            self.draw(program, Pass::Fullscreen, DrawUniforms::stage("NONE"), &textures, quad)?;
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
             targets.into_iter().flatten().map(|(name, texture, format)| Ok(Written { name, texture, image: self.read_colour(texture, format)? })).collect()
         }

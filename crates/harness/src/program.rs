@@ -1049,11 +1049,18 @@ fn decode_within_budget(bytes: &[u8], path: &str) -> Result<image::RgbaImage, St
     Ok(reader.decode().map_err(|e| format!("is not a readable image: {e}"))?.to_rgba8())
 }
 
-/// A pack's block.properties read under `set` as the loader of `standard` reads it: block
-/// name → id.
-pub(crate) fn block_ids(provider: &dyn FileProvider, standard: &StandardMacros, declared: &BTreeMap<String, OptionKind>, set: &OptionSet) -> HashMap<String, i32> {
-    let text = provider.read(blocks::BLOCK_PROPERTIES).map(|t| t.to_string()).unwrap_or_default();
-    blocks::ids(&read_properties(&text, standard, declared, set), "block")
+/// A pack's `file` (block.properties or entity.properties) read under `set` as the loader of
+/// `standard` reads it: name → id of its `<prefix>.<id>` entries.
+pub(crate) fn mapped_ids(
+    provider: &dyn FileProvider,
+    file: &str,
+    prefix: &str,
+    standard: &StandardMacros,
+    declared: &BTreeMap<String, OptionKind>,
+    set: &OptionSet,
+) -> HashMap<String, i32> {
+    let text = provider.read(file).map(|t| t.to_string()).unwrap_or_default();
+    blocks::ids(&read_properties(&text, standard, declared, set), prefix)
 }
 
 /// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the

@@ -240,7 +240,7 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
         Pass::Fullscreen | Pass::Celestial => (0, 0),
     };
     put("atlasSize", Value::ivec2(i64::from(atlas_width), i64::from(atlas_height)));
-    // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`with_render_stage`]).
+    // MC_RENDER_STAGE_NONE; a draw of the world gets its own ([`DrawUniforms`]).
     put("renderStage", Value::int(0));
     // OptiFine from 1.17 tests the alpha of gbuffers programs against 0.1 (cutout textures).
     put("alphaTestRef", Value::float(if pass == Pass::Fullscreen { 0.0 } else { 0.1 }));
@@ -270,13 +270,29 @@ pub fn values_with_shadow(scene: &Scene, pass: Pass, shadow: &ShadowSettings) ->
     v
 }
 
-/// `values` with `renderStage` set to the `MC_RENDER_STAGE_*` named `stage` (`SKY`, `SUN`,
-/// `TERRAIN_SOLID`, …), as OptiFine 1.17+ and Iris set it for each kind of draw.
-pub fn with_render_stage(values: &BTreeMap<String, Value>, stage: &str) -> BTreeMap<String, Value> {
-    let number = tidepack_loader::macros::RENDER_STAGES.iter().position(|s| *s == stage).unwrap_or(0);
-    let mut values = values.clone();
-    values.insert("renderStage".to_string(), Value::int(number as i64));
-    values
+/// The uniforms a loader sets for each draw of the world (OptiFine 1.17+ and Iris):
+/// `renderStage`, the `MC_RENDER_STAGE_*` named `render_stage` (`SKY`, `SUN`, `TERRAIN_SOLID`,
+/// …), and `entityId`, the drawn entity's id from entity.properties or -1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawUniforms {
+    pub render_stage: &'static str,
+    pub entity_id: i32,
+}
+
+impl DrawUniforms {
+    /// A draw of no entity.
+    pub fn stage(render_stage: &'static str) -> DrawUniforms {
+        DrawUniforms { render_stage, entity_id: -1 }
+    }
+
+    /// `values` with this draw's.
+    pub fn applied(&self, values: &BTreeMap<String, Value>) -> BTreeMap<String, Value> {
+        let number = tidepack_loader::macros::RENDER_STAGES.iter().position(|s| *s == self.render_stage).unwrap_or(0);
+        let mut values = values.clone();
+        values.insert("renderStage".to_string(), Value::int(number as i64));
+        values.insert("entityId".to_string(), Value::int(i64::from(self.entity_id)));
+        values
+    }
 }
 
 /// The 1.17+ core profile's names for the legacy matrices, `renderStage` and `atlasSize`, which

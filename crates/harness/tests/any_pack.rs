@@ -487,6 +487,22 @@ fn raw_textures_are_read_by_samplers_of_their_type_in_both_renderers() {
     assert!(screen.pixels().all(|p| p.0 == [200, 100, 51, 255]), "{:?}", screen.get_pixel(0, 0));
 }
 
+/// Entities (tests/packs/entities, with its own scene): each drawn by gbuffers_entities after
+/// the terrain with its `entityId` from entity.properties: the zombie it lists (2000, red) on
+/// the right, the pig it does not (-1, green) on the left, in both renderers.
+#[test]
+fn entities_are_drawn_with_their_ids_in_both_renderers() {
+    let (report, screen) = render_job_in("entities", &root().join("tests/packs/entities/scene.toml"), Configuration::default());
+    let gl = report.gl.as_ref().expect("an OpenGL frame");
+    assert!(gl.refused.is_none(), "{:?}", gl.refused);
+    assert!(gl.steps.iter().all(|s| s.pixels_over_1_255.values().all(|&n| n == 0)), "{:?}", gl.steps);
+    let (w, h) = screen.dimensions();
+    let count = |rgb: [u8; 3], left: bool| screen.enumerate_pixels().filter(|(x, y, p)| p.0[..3] == rgb && (*x < w / 2) == left && *y < h).count();
+    assert!(count([255, 0, 0], false) > 100, "the zombie (2000) on the right: {}", count([255, 0, 0], false));
+    assert!(count([0, 255, 0], true) > 100, "the pig (-1) on the left: {}", count([0, 255, 0], true));
+    assert_eq!(count([255, 0, 0], true) + count([0, 255, 0], false), 0, "an entity drawn with the other's id");
+}
+
 /// gl_FrontFacing as the game has it (tests/packs/front_facing): the game culls back faces, so
 /// every face on screen is a front face, red; both renderers agree.
 #[test]
@@ -584,9 +600,14 @@ fn render_job(name: &str) -> (tidepack_harness::job::AnyPackReport, image::RgbaI
 
 /// [`render_job`] under `configuration`.
 fn render_job_with(name: &str, configuration: Configuration) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {
+    render_job_in(name, &root().join("tests/scenes/case4_above_near.toml"), configuration)
+}
+
+/// [`render_job_with`] of the scene file `scene`.
+fn render_job_in(name: &str, scene: &std::path::Path, configuration: Configuration) -> (tidepack_harness::job::AnyPackReport, image::RgbaImage) {
     let out = std::env::temp_dir().join(format!("tidepack-{name}-{}", std::process::id()));
     let job = tidepack_harness::job::AnyPackJob {
-        scene: root().join("tests/scenes/case4_above_near.toml"),
+        scene: scene.to_path_buf(),
         pack: root().join("tests/packs").join(name),
         configuration,
         out_dir: out.clone(),
@@ -599,7 +620,8 @@ fn render_job_with(name: &str, configuration: Configuration) -> (tidepack_harnes
         gl_max_pixels: None,
     };
     let report = tidepack_harness::job::run_any_pack(&job).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let screen = image::open(out.join("case4_above_near.png")).unwrap_or_else(|e| panic!("{e}")).to_rgba8();
+    let screen_file = format!("{}.png", tidepack_harness::Scene::load(scene).unwrap_or_else(|e| panic!("{e}")).name);
+    let screen = image::open(out.join(&screen_file)).unwrap_or_else(|e| panic!("{e}")).to_rgba8();
     std::fs::remove_dir_all(&out).ok();
     (report, screen)
 }

@@ -9,6 +9,13 @@ use crate::properties::Properties;
 
 /// The path of block.properties inside `shaders/`.
 pub const BLOCK_PROPERTIES: &str = "block.properties";
+/// The file that maps entities to `entityId`s (OptiFine's shaders.txt, "Entity ID mapping").
+pub const ENTITY_PROPERTIES: &str = "entity.properties";
+
+/// A block, item or entity name with `minecraft:` added where it has no namespace.
+pub fn namespaced(name: &str) -> String {
+    if name.contains(':') { name.to_string() } else { format!("minecraft:{name}") }
+}
 
 /// `<prefix>.<id>=<names>` entries (`prefix`: `block`, `item` or `entity`): each name, with
 /// `minecraft:` added where it has no namespace, to the first id that lists it.
@@ -18,8 +25,7 @@ pub fn ids(properties: &Properties, prefix: &str) -> HashMap<String, i32> {
     for (id, entry) in properties.with_prefix(&prefix) {
         let Ok(id) = id.parse::<i32>() else { continue };
         for name in entry.value.split_whitespace() {
-            let full = if name.contains(':') { name.to_string() } else { format!("minecraft:{name}") };
-            ids.entry(full).or_insert(id);
+            ids.entry(namespaced(name)).or_insert(id);
         }
     }
     ids

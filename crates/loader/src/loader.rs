@@ -13,6 +13,10 @@ pub const TERRAIN_CHAIN: [&str; 4] = ["gbuffers_terrain", "gbuffers_textured_lit
 /// gbuffers_water and its fallbacks, in order.
 pub const WATER_CHAIN: [&str; 5] = ["gbuffers_water", "gbuffers_terrain", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
 
+/// gbuffers_entities (mobs, item frames) and its fallbacks (OptiFine's shaders.txt; Iris's
+/// are the same for opaque entities).
+pub const ENTITY_CHAIN: [&str; 4] = ["gbuffers_entities", "gbuffers_textured_lit", "gbuffers_textured", "gbuffers_basic"];
+
 /// gbuffers_skybasic and its fallbacks.
 pub const SKY_CHAIN: [&str; 2] = ["gbuffers_skybasic", "gbuffers_basic"];
 

@@ -100,6 +100,8 @@ pub struct SceneMesh {
     pub translucent: Vec<PackVertex>,
     /// Rain, clouds, particles and the translucent hand: triangles per kind, back to front.
     pub overlay: Vec<(OverlayKind, Vec<PackVertex>)>,
+    /// Each entity of the scene, by its name: one draw each, opaque.
+    pub entities: Vec<(String, Vec<PackVertex>)>,
     /// The sky as the game draws it for gbuffers_skybasic: a box around the camera in the sky
     /// colour, inside the far plane, drawn before the terrain without writing depth.
     pub sky: Vec<PackVertex>,
@@ -252,6 +254,13 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
             .collect();
         mesh.overlay.push((kind, back_to_front(quads, local_camera, &rel)));
     }
+    for entity in &scene.entities {
+        let quads = box_faces(DVec3::from(entity.min), DVec3::from(entity.max))
+            .into_iter()
+            .map(|(corners, normal)| Quad { corners, normal, color: entity.color, sprite: WHITE_SPRITE, entity: [-1.0, -1.0, 0.0, 0.0] })
+            .collect();
+        mesh.entities.push((entity.name.clone(), back_to_front(quads, local_camera, &rel)));
+    }
     if let Some(lod) = &scene.distant_horizons {
         let cells = |min: [f64; 2], max: [f64; 2], y: f64| {
             let (nx, nz) = (((max[0] - min[0]) / LOD_CELL).ceil() as i64, ((max[1] - min[1]) / LOD_CELL).ceil() as i64);
@@ -288,7 +297,7 @@ pub fn build(scene: &Scene, ids: &dyn BlockIds) -> SceneMesh {
     mesh.sun = sun_quad;
     mesh.moon = moon_quad;
     let all = [&mut mesh.terrain, &mut mesh.translucent, &mut mesh.sky, &mut mesh.sun, &mut mesh.moon];
-    for vertices in all.into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)) {
+    for vertices in all.into_iter().chain(mesh.overlay.iter_mut().map(|(_, v)| v)).chain(mesh.entities.iter_mut().map(|(_, v)| v)) {
         add_tangents_and_sprite_centres(vertices);
     }
     mesh
@@ -633,6 +642,7 @@ impl SceneMesh {
             terrain: all(&self.terrain),
             translucent: all(&self.translucent),
             overlay: self.overlay.iter().map(|(kind, vertices)| (*kind, all(vertices))).collect(),
+            entities: self.entities.iter().map(|(name, vertices)| (name.clone(), all(vertices))).collect(),
             sky: all(&self.sky),
             sun: all(&self.sun),
             moon: all(&self.moon),

@@ -43,6 +43,10 @@ pub struct Scene {
     /// Boxes drawn as rain, clouds, particles or the translucent hand.
     #[serde(default)]
     pub overlay: Vec<OverlayBox>,
+    /// Entities (`[[entity]]`): mobs, item frames, each a box drawn through gbuffers_entities'
+    /// chain with its `entityId`.
+    #[serde(default, rename = "entity")]
+    pub entities: Vec<EntityBox>,
     /// Distant Horizons' LODs past the game's chunks, drawn by a pack's dh_* programs where the
     /// loader is Iris with the mod.
     pub distant_horizons: Option<DistantHorizons>,
@@ -265,6 +269,22 @@ pub struct OverlayBox {
     pub color: [f64; 4],
 }
 
+/// An entity as a box of one colour, drawn with the opaque world.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EntityBox {
+    /// Its name in the game (`minecraft:zombie`, `item_frame`), looked up in the pack's
+    /// entity.properties for `entityId`.
+    pub name: String,
+    #[serde(deserialize_with = "exact")]
+    pub min: [f64; 3],
+    #[serde(deserialize_with = "exact")]
+    pub max: [f64; 3],
+    /// Colour and opacity.
+    #[serde(deserialize_with = "exact")]
+    pub color: [f64; 4],
+}
+
 fn default_glass_block() -> String {
     "minecraft:white_stained_glass".into()
 }
@@ -440,6 +460,9 @@ impl Scene {
         if DVec3::from(self.sky.sun_direction).length() < 1e-9 {
             return Err("sky.sun_direction must not be zero".into());
         }
+        if let Some(entity) = self.entities.iter().find(|e| e.name.is_empty() || e.name.chars().any(|c| c.is_whitespace() || c.is_control())) {
+            return Err(format!("entity name {:?}: an entity is named as the game names it, one word such as minecraft:zombie", entity.name));
+        }
         let lod_blocks = self.distant_horizons.iter().flat_map(|lod| lod.ground.iter().map(|g| &g.block));
         let blocks = self.terrain.ground.iter().map(|g| &g.block).chain(self.terrain.boxes.iter().map(|b| &b.block)).chain(lod_blocks);
         for block in blocks.flatten() {
@@ -479,6 +502,7 @@ impl Scene {
         parts.extend(self.terrain.boxes.iter().map(|b| ("a terrain box", at(b.min).max(at(b.max)))));
         parts.extend(self.glass.iter().map(|g| ("a glass pane", at(g.min).max(at(g.max)))));
         parts.extend(self.overlay.iter().map(|o| ("an overlay box", at(o.min).max(at(o.max)))));
+        parts.extend(self.entities.iter().map(|e| ("an entity", at(e.min).max(at(e.max)))));
         if let Some(lod) = &self.distant_horizons {
             parts.extend(lod.water.iter().map(|w| ("the LOD water", flat(w.min, w.level).max(flat(w.max, w.level)))));
             parts.extend(lod.ground.iter().map(|g| ("the LOD ground", flat(g.min, g.height).max(flat(g.max, g.height)))));
@@ -495,7 +519,7 @@ impl Scene {
         let lod: f64 = self.distant_horizons.iter().map(|lod| {
             lod.water.iter().map(|w| cells(w.min, w.max, LOD_CELL)).sum::<f64>() + lod.ground.iter().map(|g| cells(g.min, g.max, LOD_CELL)).sum::<f64>()
         }).sum();
-        ground + water + lod + 6.0 * (self.terrain.boxes.len() + self.glass.len() + self.overlay.len()) as f64
+        ground + water + lod + 6.0 * (self.terrain.boxes.len() + self.glass.len() + self.overlay.len() + self.entities.len()) as f64
     }
 
     pub fn camera_position(&self) -> DVec3 {

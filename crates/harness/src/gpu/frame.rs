@@ -16,7 +16,7 @@ use tidepack_scene::mesh::{PackVertex, SceneMesh, Sprites};
 use crate::program::{LoadedProgram, PackResources};
 use tidepack_loader::directives::Blend;
 use tidepack_scene::scene::Scene;
-use crate::uniforms::{self, Pass, Value};
+use crate::uniforms::{Pass, Value};
 
 use super::Gpu;
 use super::bindings::{
@@ -380,8 +380,8 @@ impl<'p> PreparedSteps<'p> {
         values: &PassValues,
     ) -> Result<(Work<'p>, Vec<Written>), HarnessError> {
         Ok(match &step.work {
-            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, render_stage } => {
-                let values = uniforms::with_render_stage(values.of_pass(*pass), render_stage);
+            PlannedWork::Geometry { program, vertices, default_blend, depth_write, current, snapshots, sprites, pass, draw } => {
+                let values = draw.applied(values.of_pass(*pass));
                 let blend_of = |b: u8| pack.blend_of(*program, b, default_blend);
                 let state = DrawState { blend_of: &blend_of, depth_write: *depth_write };
                 // depthtex0 is the buffer being drawn into: gbuffers programs read depthtex1.
@@ -404,8 +404,8 @@ impl<'p> PreparedSteps<'p> {
             }
             PlannedWork::DepthCopy => (Work::DepthCopy, Vec::new()),
             PlannedWork::LodDepthCopy => (Work::LodDepthCopy, Vec::new()),
-            PlannedWork::ShadowGeometry { program, vertices, render_stage } => {
-                let values = uniforms::with_render_stage(&values.shadow, render_stage);
+            PlannedWork::ShadowGeometry { program, vertices, draw } => {
+                let values = draw.applied(&values.shadow);
                 let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
                 let state = DrawState { blend_of: &blend_of, depth_write: true };
                 // The shadow maps being drawn read as nothing drawn; the frame's buffers are not bound.
