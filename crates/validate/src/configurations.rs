@@ -4,7 +4,7 @@
 //! planned are dropped, so each distinct expanded text is validated once, and `--shard`
 //! keeps its share of the rest.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::sync::Mutex;
 
 use rayon::prelude::*;
@@ -98,8 +98,12 @@ pub(crate) struct Reader<'a> {
     pub declared: &'a BTreeMap<String, OptionKind>,
     pub standard: &'a tidepack_loader::macros::StandardMacros,
     pub macros: &'a PreprocessOptions,
-    /// Digest of the custom names per set, computed once per set.
+    /// Digest of the custom names per set of the options shaders.properties names, computed
+    /// once per such set.
     names: Mutex<HashMap<OptionSet, [u8; 32]>>,
+    /// The words of shaders.properties' conditional lines and `program.<name>.enabled`
+    /// expressions: the only places where an option's value changes what the file says.
+    properties_words: BTreeSet<String>,
 }
 
 impl<'a> Reader<'a> {
@@ -110,16 +114,37 @@ impl<'a> Reader<'a> {
         standard: &'a tidepack_loader::macros::StandardMacros,
         macros: &'a PreprocessOptions,
     ) -> Self {
-        Reader { pack, properties_text, declared, standard, macros, names: Mutex::new(HashMap::new()) }
+        // A line continued by a trailing `\` reads as much as the line it continues.
+        let mut continued = false;
+        let reads_options = |line: &&str| {
+            let trimmed = line.trim_start();
+            let reads = continued || trimmed.starts_with('#') || (trimmed.starts_with("program.") && trimmed.contains(".enabled"));
+            continued = reads && line.trim_end().ends_with('\\');
+            reads
+        };
+        let properties_words = properties_text
+            .lines()
+            .filter(reads_options)
+            .flat_map(|line| line.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')))
+            .filter(|w| !w.is_empty())
+            .map(str::to_string)
+            .collect();
+        Reader { pack, properties_text, declared, standard, macros, names: Mutex::new(HashMap::new()), properties_words }
+    }
+
+    /// `set` as shaders.properties sees it: the values of the options it names.
+    pub fn properties_key(&self, set: &OptionSet) -> OptionSet {
+        set.iter().filter(|(name, _)| self.properties_words.contains(name.as_str())).map(|(k, v)| (k.clone(), v.clone())).collect()
     }
 
     fn names_digest(&self, set: &OptionSet) -> [u8; 32] {
-        if let Some(digest) = self.names.lock().unwrap_or_else(|e| e.into_inner()).get(set) {
+        let named = self.properties_key(set);
+        if let Some(digest) = self.names.lock().unwrap_or_else(|e| e.into_inner()).get(&named) {
             return *digest;
         }
-        let properties = read_properties(self.properties_text, self.standard, self.declared, set);
+        let properties = read_properties(self.properties_text, self.standard, self.declared, &named);
         let digest: [u8; 32] = Sha256::digest(format!("{:?}", custom_names(&properties)).as_bytes()).into();
-        self.names.lock().unwrap_or_else(|e| e.into_inner()).insert(set.clone(), digest);
+        self.names.lock().unwrap_or_else(|e| e.into_inner()).insert(named, digest);
         digest
     }
 

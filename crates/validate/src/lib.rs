@@ -12,6 +12,7 @@
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::time::Instant;
+use std::sync::Arc;
 
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
@@ -274,23 +275,29 @@ pub fn validate_pack(pack: PackFiles, options: &Options) -> Result<Report, Diagn
     // Per set: the names shaders.properties declares and the programs it turns off per world
     // folder (`program.<name>.enabled`).
     let worlds: BTreeSet<&str> = runnable.iter().map(|&i| programs[i].world.as_str()).collect();
-    let contexts: Vec<SetContext> = pool.install(|| {
-        sets.par_iter()
-            .map(|(_, set)| {
-                let properties = read_properties(properties_text, &options.macros, &declared, set);
+    // shaders.properties reads only the options it names: sets that agree on those share one
+    // reading of it.
+    let keys: Vec<OptionSet> = sets.iter().map(|(_, set)| reader.properties_key(set)).collect();
+    let distinct: Vec<&OptionSet> = keys.iter().collect::<BTreeSet<_>>().into_iter().collect();
+    let read: BTreeMap<&OptionSet, Arc<SetContext>> = pool.install(|| {
+        distinct
+            .par_iter()
+            .map(|&key| {
+                let properties = read_properties(properties_text, &options.macros, &declared, key);
                 let mut problems = Vec::new();
                 let disabled = worlds
                     .iter()
                     .map(|world| {
-                        let (off, found) = programs::disabled_programs(&properties, world, &declared, set);
+                        let (off, found) = programs::disabled_programs(&properties, world, &declared, key);
                         problems.extend(found);
                         (world.to_string(), off)
                     })
                     .collect();
-                SetContext { names: custom_names(&properties), disabled, problems }
+                (key, Arc::new(SetContext { names: custom_names(&properties), disabled, problems }))
             })
             .collect()
     });
+    let contexts: Vec<Arc<SetContext>> = keys.iter().map(|key| read[key].clone()).collect();
     for problem in contexts.iter().flat_map(|c| &c.problems).map(|p| Diagnostic::warning(Code::Properties, p.clone(), None)) {
         if !diagnostics.contains(&problem) {
             diagnostics.push(problem);
@@ -544,7 +551,7 @@ fn reproductions(
     programs: &[Program],
     pack: &PackFiles,
     sets: &[(String, OptionSet)],
-    contexts: &[SetContext],
+    contexts: &[Arc<SetContext>],
     macros: &PreprocessOptions,
     options: &Options,
     known: &KnownValid,
