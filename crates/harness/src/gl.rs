@@ -1046,18 +1046,36 @@ pub(crate) unsafe fn dispatch_compute(
     height: u32,
 ) -> Result<f64, HarnessError> {
     let gl = ctx.gl();
+    let count = stage.work_groups.count(width, height, stage.local_size);
+    // SAFETY: the caller holds the current context.
+    let most = [0, 1, 2].map(|axis| unsafe { gl.get_parameter_indexed_i32(glow::MAX_COMPUTE_WORK_GROUP_COUNT, axis) }.max(1) as u32);
+    // llvmpipe dispatches at most 65,535 groups along an axis, the least OpenGL allows; NVIDIA's
+    // and AMD's drivers take 2^31 - 1 along x. A larger count is dispatched in parts.
+    let in_parts = count.iter().zip(&most).any(|(n, most)| n > most);
+    let text = if in_parts { dispatched_in_parts(&stage.stage.gl_text) } else { stage.stage.gl_text.clone() };
     let compiled = ctx
-        .compile_compute_program(&stage.stage.gl_text)
+        .compile_compute_program(&text)
         .map_err(|e| HarnessError::Gl(format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(&e, Some(&stage.stage.gl_origins)))))?;
-    let [x, y, z] = stage.work_groups.count(width, height, stage.local_size);
     // SAFETY: the caller holds the current context; the program was made on it.
     let dispatched = unsafe {
         gl.use_program(Some(compiled.raw));
         let set = set_uniforms(gl, pack, &stage.program, compiled.raw, values, ProgramStage::of(&stage.program), textures);
         let mut ms = 0.0;
-        if set.is_ok() && x > 0 && y > 0 && z > 0 {
+        if set.is_ok() && count.iter().all(|n| *n > 0) {
+            let offset_at = gl.get_uniform_location(compiled.raw, "tp_WorkGroupOffset");
+            let total_at = gl.get_uniform_location(compiled.raw, "tp_NumWorkGroups");
+            gl.uniform_3_u32(total_at.as_ref(), count[0], count[1], count[2]);
+            let starts = |axis: usize| (0..count[axis]).step_by(most[axis] as usize);
             ms = crate::gl_frame::timed(gl, || {
-                gl.dispatch_compute(x, y, z);
+                for oz in starts(2) {
+                    for oy in starts(1) {
+                        for ox in starts(0) {
+                            gl.uniform_3_u32(offset_at.as_ref(), ox, oy, oz);
+                            let part = |axis: usize, start: u32| (count[axis] - start).min(most[axis]);
+                            gl.dispatch_compute(part(0, ox), part(1, oy), part(2, oz));
+                        }
+                    }
+                }
                 gl.memory_barrier(glow::ALL_BARRIER_BITS);
             });
         }
@@ -1066,6 +1084,38 @@ pub(crate) unsafe fn dispatch_compute(
     };
     ctx.delete_program(compiled);
     dispatched
+}
+
+/// A compute stage's `text` for a dispatch in parts: `gl_WorkGroupID`, `gl_GlobalInvocationID`
+/// and `gl_NumWorkGroups` read as in one dispatch of the whole count, through the part's
+/// `tp_WorkGroupOffset` and the whole `tp_NumWorkGroups`. Their declarations follow the last
+/// `#version` or `#extension` line, and a `#line` keeps the numbers of the lines after them.
+fn dispatched_in_parts(text: &str) -> String {
+    let Ok(tokens) = tidepack_glsl::token::tokenize(text) else { return text.to_string() };
+    let rewritten: String = tokens
+        .iter()
+        .map(|t| match t.text {
+            "gl_WorkGroupID" if t.kind == tidepack_glsl::token::TokenKind::Ident => "(gl_WorkGroupID + tp_WorkGroupOffset)",
+            "gl_GlobalInvocationID" if t.kind == tidepack_glsl::token::TokenKind::Ident => {
+                "(gl_GlobalInvocationID + tp_WorkGroupOffset * gl_WorkGroupSize)"
+            }
+            "gl_NumWorkGroups" if t.kind == tidepack_glsl::token::TokenKind::Ident => "tp_NumWorkGroups",
+            other => other,
+        })
+        .collect();
+    let lines: Vec<&str> = rewritten.split_inclusive('\n').collect();
+    let directive = |line: &str| {
+        let line = line.trim_start();
+        line.strip_prefix('#').is_some_and(|rest| rest.trim_start().starts_with("version") || rest.trim_start().starts_with("extension"))
+    };
+    let at = lines.iter().rposition(|l| directive(l)).map_or(0, |i| i + 1);
+    let mut out = lines[..at].concat();
+    if !out.is_empty() && !out.ends_with('\n') {
+        out.push('\n');
+    }
+    out.push_str(&format!("uniform uvec3 tp_WorkGroupOffset;\nuniform uvec3 tp_NumWorkGroups;\n#line {}\n", at + 1));
+    out.push_str(&lines[at..].concat());
+    out
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -902,6 +902,17 @@ fn compute_stages_run_before_their_program_and_write_the_buffer_in_place() {
     assert_eq!(screen.get_pixel(35, row).0, [255, 255, 255, 255]);
 }
 
+/// A compute stage dispatched over more work groups along x than llvmpipe takes at once
+/// (tests/packs/many_work_groups: 230,400 against 65,535) runs in parts that see the group ids
+/// and count of the whole dispatch: every pixel of the screen is red.
+#[test]
+fn a_dispatch_past_the_drivers_group_count_runs_in_parts_as_one() {
+    let (report, screen) = render_job("many_work_groups");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    let red = screen.pixels().filter(|p| p.0 == [255, 0, 0, 255]).count();
+    assert_eq!(red, screen.pixels().len(), "pixels the parts left unpainted");
+}
+
 /// Under Iris the storage image of tests/packs/storage_image is the custom image its
 /// shaders.properties declares: composite stores 1 into each of its 16x16 texels, and final
 /// reads it back through `markSampler`, so the screen is white; OpenGL holds it and draws both.
