@@ -528,8 +528,9 @@ impl AnyPack {
             }
         }
         let read_bytes = |path: &str| files.files.get(path).map(|b| b.to_vec()).ok_or_else(|| format!("{path} is not in the pack"));
-        let (custom_textures, game_textures, unsupported) = custom_textures(&read_bytes, &provider, &properties)?;
-        not_modelled.extend(unsupported);
+        let textures = custom_textures(&read_bytes, &provider, &properties)?;
+        not_modelled.extend(textures.unsupported);
+        let (custom_textures, game_textures) = (textures.custom, textures.game);
         let (flips, unreadable_flips) = directives::flips(&properties);
         not_modelled.extend(unreadable_flips);
         not_modelled.extend(unimitated_keys(&properties));

@@ -968,7 +968,7 @@ pub(crate) fn custom_textures(
     read_bytes: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     provider: &dyn FileProvider,
     properties: &Properties,
-) -> Result<(Vec<CustomTexture>, Vec<GameTextureBinding>, Vec<String>), HarnessError> {
+) -> Result<PackTextures, HarnessError> {
     let mut found = Vec::new();
     let mut game = Vec::new();
     let mut unsupported = Vec::new();
@@ -1028,7 +1028,15 @@ pub(crate) fn custom_textures(
             texels,
         });
     }
-    Ok((found, game, unsupported))
+    Ok(PackTextures { custom: found, game, unsupported })
+}
+
+/// What the `texture.<stage>.<unit>` entries of a pack bind ([`custom_textures`]).
+pub(crate) struct PackTextures {
+    pub custom: Vec<CustomTexture>,
+    pub game: Vec<GameTextureBinding>,
+    /// A message per entry the harness cannot honour, naming its key.
+    pub unsupported: Vec<String>,
 }
 
 /// Most pixels a custom texture may have: 4096², 64 MiB decoded as RGBA8.
