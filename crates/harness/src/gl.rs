@@ -528,7 +528,7 @@ unsafe fn custom_texture(gl: &glow::Context, t: &CustomTexture) -> Result<(glow:
         };
         let texture = gl.create_texture().map_err(gl_err("texture"))?;
         gl.bind_texture(target, Some(texture));
-        gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+        // Rows of RGBA8 and RGBA32F texels are whole 4-byte words, as OpenGL unpacks them.
         if target == glow::TEXTURE_1D {
             gl.tex_image_1d(target, 0, internal as i32, width, 0, glow::RGBA, ty, data());
         } else {

@@ -987,6 +987,12 @@ pub(crate) fn custom_textures(
                 continue;
             }
         };
+        let side = raw.as_ref().map_or(0, |layout| layout.size.into_iter().max().unwrap_or(0));
+        if let Some(layout) = raw.as_ref().filter(|layout| side > largest_side(layout.target)) {
+            let [w, h, d] = layout.size;
+            unsupported.push(format!("{key}={path}: {w}x{h}x{d} texels, more along a side than the {} the harness's renderers take", largest_side(layout.target)));
+            continue;
+        }
         let bytes = match read_bytes(path) {
             Ok(bytes) => bytes,
             Err(e) => {
@@ -998,6 +1004,11 @@ pub(crate) fn custom_textures(
             Some(layout) => (layout.target, layout.size, raw_texture::decode(&bytes, &layout).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?),
             None => {
                 let decoded = decode_within_budget(&bytes, path).map_err(|e| HarnessError::Pack(format!("{key}: {path} {e}")))?;
+                if decoded.width().max(decoded.height()) > largest_side(TextureTarget::D2) {
+                    let (w, h) = decoded.dimensions();
+                    unsupported.push(format!("{key}={path}: {w}x{h} pixels, more along a side than the {} the harness's renderers take", largest_side(TextureTarget::D2)));
+                    continue;
+                }
                 (TextureTarget::D2, [decoded.width(), decoded.height(), 1], Texels::Rgba8(decoded.into_raw()))
             }
         };
@@ -1027,6 +1038,15 @@ pub(crate) struct PackTextures {
     pub game: Vec<GameTextureBinding>,
     /// A message per entry the harness cannot honour, naming its key.
     pub unsupported: Vec<String>,
+}
+
+/// The longest side of a custom texture of `target` that every wgpu device takes (WebGPU's
+/// defaults: 8192 for 1D and 2D, 2048 for 3D); OpenGL drivers take at least as much.
+fn largest_side(target: TextureTarget) -> u32 {
+    match target {
+        TextureTarget::D3 => 2048,
+        TextureTarget::D1 | TextureTarget::D2 | TextureTarget::Rectangle => 8192,
+    }
 }
 
 /// Most pixels a custom texture may have: 4096², 64 MiB decoded as RGBA8.
@@ -1146,6 +1166,25 @@ mod tests {
         let error = decode_within_budget(&encode(4097), "a.png").unwrap_err();
         assert!(error.contains("4097x4097") && error.contains("budget"), "{error}");
         assert!(decode_within_budget(b"\x89PNG\r\n\x1a\n truncated", "a.png").unwrap_err().contains("not a readable image"));
+    }
+
+    #[test]
+    fn raw_texture_entries_too_large_or_unread_are_named_not_made() {
+        let properties = Properties::parse_plain(
+            "texture.composite.colortex5=a.dat TEXTURE_1D RG16F 2 RG HALF_FLOAT\n\
+             texture.composite.colortex6=b.dat TEXTURE_3D R8 4096 1 1 RED UNSIGNED_BYTE\n\
+             texture.composite.colortex7=c.dat TEXTURE_2D R32UI 1 1 RED_INTEGER UNSIGNED_INT\n\
+             texture.composite.colortex8=minecraft:textures/atlas/blocks_n.png\n",
+        );
+        let read_bytes = |path: &str| if path == "a.dat" { Ok(vec![0u8; 8]) } else { Err(format!("{path} is not in the pack")) };
+        let files: HashMap<String, Arc<str>> = HashMap::new();
+        let textures = custom_textures(&read_bytes, &files, &properties).unwrap();
+        assert_eq!(textures.custom.len(), 1);
+        assert_eq!((textures.custom[0].target, textures.custom[0].width), (TextureTarget::D1, 2));
+        assert_eq!(textures.game.len(), 1);
+        assert_eq!(textures.unsupported.len(), 2, "{:?}", textures.unsupported);
+        assert!(textures.unsupported[0].contains("4096x1x1 texels, more along a side than the 2048"), "{:?}", textures.unsupported);
+        assert!(textures.unsupported[1].contains("integer"), "{:?}", textures.unsupported);
     }
 
     #[test]
