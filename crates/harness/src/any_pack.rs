@@ -1018,8 +1018,8 @@ impl<'a> FramePlan<'a> {
     /// gbuffers_entities' chain with `entityId` from the pack's entity.properties (-1 for an
     /// entity it does not list).
     fn entities(&mut self, pack: &'a AnyPack, mesh: &'a SceneMesh) {
+        let program = pack.resolve(&ENTITY_CHAIN);
         for (name, vertices) in &mesh.entities {
-            let program = pack.resolve(&ENTITY_CHAIN);
             let entity_id = pack.entity_ids.get(&blocks::namespaced(name)).copied().unwrap_or(-1);
             let draw = DrawUniforms { render_stage: "ENTITIES", entity_id };
             self.geometry(pack, program, vertices, DEFAULT_TRANSLUCENT_BLEND, true, &format!("entity {name}"), Sprites::Blocks, draw);

@@ -97,21 +97,8 @@ pub(crate) struct HarnessTextures {
 impl HarnessTextures {
     pub(crate) fn new(gpu: &Gpu, pack: &dyn PackResources) -> HarnessTextures {
         let upload_texture = |label: &str, (w, h, data): (u32, u32, Vec<u8>)| {
-            gpu.device.create_texture_with_data(
-                &gpu.queue,
-                &wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba8Unorm,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                    view_formats: &[],
-                },
-                wgpu::util::TextureDataOrder::LayerMajor,
-                &data,
-            )
+            let size = wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 };
+            texture_with_data(gpu, label, size, wgpu::TextureDimension::D2, wgpu::TextureFormat::Rgba8Unorm, &data)
         };
         let upload = |label: &str, image: (u32, u32, Vec<u8>)| view(&upload_texture(label, image));
         let sampler = |filter: wgpu::FilterMode, address: wgpu::AddressMode| {
@@ -207,11 +194,19 @@ fn custom_texture(gpu: &Gpu, t: &CustomTexture) -> (wgpu::TextureView, bool) {
         TextureTarget::D3 => (wgpu::TextureDimension::D3, wgpu::TextureViewDimension::D3),
         TextureTarget::D2 | TextureTarget::Rectangle => (wgpu::TextureDimension::D2, wgpu::TextureViewDimension::D2),
     };
-    let texture = gpu.device.create_texture_with_data(
+    let size = wgpu::Extent3d { width: t.width, height: t.height, depth_or_array_layers: t.depth };
+    let texture = texture_with_data(gpu, &t.path, size, dimension, format, t.texels.bytes());
+    let view = texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(view_dimension), ..Default::default() });
+    (view, gpu.filterable(format))
+}
+
+/// A single-level texture the harness samples, filled with `data` (layer after layer).
+fn texture_with_data(gpu: &Gpu, label: &str, size: wgpu::Extent3d, dimension: wgpu::TextureDimension, format: wgpu::TextureFormat, data: &[u8]) -> wgpu::Texture {
+    gpu.device.create_texture_with_data(
         &gpu.queue,
         &wgpu::TextureDescriptor {
-            label: Some(&t.path),
-            size: wgpu::Extent3d { width: t.width, height: t.height, depth_or_array_layers: t.depth },
+            label: Some(label),
+            size,
             mip_level_count: 1,
             sample_count: 1,
             dimension,
@@ -220,10 +215,8 @@ fn custom_texture(gpu: &Gpu, t: &CustomTexture) -> (wgpu::TextureView, bool) {
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        t.texels.bytes(),
-    );
-    let view = texture.create_view(&wgpu::TextureViewDescriptor { dimension: Some(view_dimension), ..Default::default() });
-    (view, gpu.filterable(format))
+        data,
+    )
 }
 
 /// An empty (zero) texture of a shader's texture type other than a plain 2D float texture:
