@@ -184,6 +184,10 @@ pub struct LegacyGl {
     /// `glClearTexImage` (OpenGL 4.4), when the driver has it: with a null pointer it clears a
     /// texture's level to zero, whatever its format and dimensions.
     pub clear_tex_image: Option<unsafe extern "system" fn(u32, i32, u32, u32, *const std::ffi::c_void)>,
+    /// `glGetProgramResourceiv` (OpenGL 4.3), when the driver has it: glow's wrapper asks for
+    /// the values with a buffer of none and is given none. Call it through
+    /// [`GlContext::program_resource_i32`].
+    program_resource_iv: Option<unsafe extern "system" fn(u32, u32, u32, i32, *const u32, i32, *mut i32, *mut i32)>,
 }
 
 /// Enums of the compatibility API that glow does not define.
@@ -236,6 +240,7 @@ impl LegacyGl {
             fog_f: get(egl, "glFogf")?,
             fog_fv: get(egl, "glFogfv")?,
             clear_tex_image: get(egl, "glClearTexImage").ok(),
+            program_resource_iv: get(egl, "glGetProgramResourceiv").ok(),
         })
     }
 }
@@ -330,6 +335,18 @@ impl GlContext {
             })
         };
         Ok((context, gl))
+    }
+
+    /// One integer property of resource `index` of `interface` in `program`
+    /// (`glGetProgramResourceiv`, OpenGL 4.3); None where the driver has no such call.
+    pub fn program_resource_i32(&self, program: glow::Program, interface: u32, index: u32, property: u32) -> Option<i32> {
+        let query = self.legacy.program_resource_iv?;
+        let mut value = 0i32;
+        let mut written = 0i32;
+        // SAFETY: the context is current on this thread (it is not Send); one property is asked
+        // for and one value's room given.
+        unsafe { query(program.0.get(), interface, index, 1, &property, 1, &mut written, &mut value) };
+        (written == 1).then_some(value)
     }
 
     /// The fixed-function entry points of the compatibility profile, this context current.

@@ -1034,30 +1034,69 @@ unsafe fn bind_texture(gl: &glow::Context, unit: &mut u32, location: Option<&glo
     *unit += 1;
 }
 
+/// A compute stage dispatched: how long it took, and what of its text was rewritten to run on
+/// this driver (`program: path: what`), if anything was.
+pub(crate) struct Dispatched {
+    pub ms: f64,
+    pub rewrite: Option<String>,
+}
+
+/// The most bytes the `shared` variables of one dispatch are given in storage buffers, all work
+/// groups together; a dispatch needing more runs in parts that reuse them.
+const MAX_MOVED_SHARED_BYTES: u64 = 1 << 28;
+
 /// Dispatches a compute stage over a frame of `width` x `height` with the values and textures
-/// of a full-screen program, and waits for its image writes. Returns how long it took.
+/// of a full-screen program, and waits for its image writes. The storage buffers at
+/// `reserved_bindings` (the pack's) are left bound as they are.
+#[allow(clippy::too_many_arguments)]
 pub(crate) unsafe fn dispatch_compute(
     ctx: &GlContext,
     pack: &dyn PackResources,
     stage: &ComputeStage,
     values: &BTreeMap<String, Value>,
     textures: &Textures,
+    reserved_bindings: &[u32],
     width: u32,
     height: u32,
-) -> Result<f64, HarnessError> {
+) -> Result<Dispatched, HarnessError> {
     let gl = ctx.gl();
     let count = stage.work_groups.count(width, height, stage.local_size);
     // SAFETY: the caller holds the current context.
-    let most = [0, 1, 2].map(|axis| unsafe { gl.get_parameter_indexed_i32(glow::MAX_COMPUTE_WORK_GROUP_COUNT, axis) }.max(1) as u32);
+    let mut most = [0, 1, 2].map(|axis| unsafe { gl.get_parameter_indexed_i32(glow::MAX_COMPUTE_WORK_GROUP_COUNT, axis) }.max(1) as u32);
     // llvmpipe dispatches at most 65,535 groups along an axis, the least OpenGL allows; NVIDIA's
     // and AMD's drivers take 2^31 - 1 along x. A larger count is dispatched in parts.
     let in_parts = count.iter().zip(&most).any(|(n, most)| n > most);
     let text = if in_parts { dispatched_in_parts(&stage.stage.gl_text) } else { stage.stage.gl_text.clone() };
-    let compiled = ctx
-        .compile_compute_program(&text)
-        .map_err(|e| HarnessError::Gl(format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(&e, Some(&stage.stage.gl_origins)))))?;
-    // SAFETY: the caller holds the current context; the program was made on it.
+    let refused = |e: &tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(e, Some(&stage.stage.gl_origins))));
+    let (compiled, moved) = match ctx.compile_compute_program(&text) {
+        Ok(compiled) => (compiled, None),
+        Err(e) => {
+            // A stage over llvmpipe's `shared` memory has its variables kept in storage buffers,
+            // always in parts, so that the parts can reuse one buffer's slices.
+            let over = crate::shared_memory::over_limit(&e.log);
+            let Some((moved, (used, given))) = over.and_then(|over| Some((crate::shared_memory::moved_to_buffers(&dispatched_in_parts(&stage.stage.gl_text))?, over))) else {
+                return Err(refused(&e));
+            };
+            let compiled = ctx.compile_compute_program(&moved.text).map_err(|e| refused(&e))?;
+            let rewrite = format!(
+                "{}: {}: `shared` variables of {used} bytes a work group, more than the {given} llvmpipe gives, kept in storage buffers with one slice per work group",
+                stage.program, stage.stage.path
+            );
+            (compiled, Some((moved, rewrite)))
+        }
+    };
+    // SAFETY: the caller holds the current context; the program and buffers are made on it.
     let dispatched = unsafe {
+        let slices = match &moved {
+            Some((moved, _)) => {
+                let slices = shared_slices(ctx, compiled.raw, &moved.blocks, reserved_bindings, count);
+                if let Ok((_, groups)) = &slices {
+                    most = part_of_at_most(count, *groups);
+                }
+                Some(slices.map_err(|why| HarnessError::Unsupported(format!("{} ({}): {why}", stage.program, stage.stage.path)))?)
+            }
+            None => None,
+        };
         gl.use_program(Some(compiled.raw));
         let set = set_uniforms(gl, pack, &stage.program, compiled.raw, values, ProgramStage::of(&stage.program), textures);
         let mut ms = 0.0;
@@ -1073,6 +1112,9 @@ pub(crate) unsafe fn dispatch_compute(
                             gl.uniform_3_u32(offset_at.as_ref(), ox, oy, oz);
                             let part = |axis: usize, start: u32| (count[axis] - start).min(most[axis]);
                             gl.dispatch_compute(part(0, ox), part(1, oy), part(2, oz));
+                            if slices.is_some() {
+                                gl.memory_barrier(glow::SHADER_STORAGE_BARRIER_BIT);
+                            }
                         }
                     }
                 }
@@ -1080,10 +1122,71 @@ pub(crate) unsafe fn dispatch_compute(
             });
         }
         gl.use_program(None);
+        for (binding, buffer) in slices.map(|(buffers, _)| buffers).unwrap_or_default() {
+            gl.bind_buffer_base(glow::SHADER_STORAGE_BUFFER, binding, None);
+            gl.delete_buffer(buffer);
+        }
         set.map(|()| ms)
     };
     ctx.delete_program(compiled);
-    dispatched
+    Ok(Dispatched { ms: dispatched?, rewrite: moved.map(|(_, rewrite)| rewrite) })
+}
+
+/// Storage buffers for the `blocks` holding a stage's `shared` variables, each bound at a
+/// binding outside `reserved`, from the last down, with as many slices as the work groups of
+/// a part: the whole `count`, or fewer where the slices would pass the driver's block size or
+/// [`MAX_MOVED_SHARED_BYTES`]. Returns the bindings and buffers, and the groups of a part.
+unsafe fn shared_slices(
+    ctx: &GlContext,
+    program: glow::Program,
+    blocks: &[String],
+    reserved: &[u32],
+    count: [u32; 3],
+) -> Result<(Vec<(u32, glow::Buffer)>, u64), String> {
+    let gl = ctx.gl();
+    // SAFETY: the caller holds the current context, on which `program` was made.
+    unsafe {
+        let bindings = gl.get_parameter_i32(glow::MAX_SHADER_STORAGE_BUFFER_BINDINGS).max(0) as u32;
+        let largest_block = gl.get_parameter_i64(glow::MAX_SHADER_STORAGE_BLOCK_SIZE).max(0) as u64;
+        // The pack's own blocks read the pack's buffers, bound at their bindings for the frame.
+        let mut free = (0..bindings).rev().filter(|b| !reserved.contains(b));
+        // Each block's slice: its size with a one-slice array, rounded up past any alignment.
+        let mut sliced = Vec::new();
+        for name in blocks {
+            // A variable the stage never uses has no block left after linking.
+            let Some(index) = gl.get_shader_storage_block_index(program, name) else { continue };
+            let size = ctx.program_resource_i32(program, glow::SHADER_STORAGE_BLOCK, index, glow::BUFFER_DATA_SIZE).ok_or("the driver does not say how large a storage block is")?.max(4) as u64;
+            let binding = free.next().ok_or_else(|| format!("no storage buffer binding is free for its `shared` variables ({bindings} in all)"))?;
+            sliced.push((index, binding, size.next_multiple_of(256)));
+        }
+        let groups = count.iter().map(|&n| u64::from(n)).product::<u64>().max(1);
+        let slice_bytes: u64 = sliced.iter().map(|(_, _, size)| size).sum::<u64>().max(1);
+        let largest_slice = sliced.iter().map(|(_, _, size)| *size).max().unwrap_or(1);
+        let part_groups = groups.min(MAX_MOVED_SHARED_BYTES / slice_bytes).min(largest_block / largest_slice);
+        if part_groups == 0 {
+            return Err(format!("its `shared` variables need {slice_bytes} bytes a work group, more than the {} a storage buffer holds here", largest_block.min(MAX_MOVED_SHARED_BYTES)));
+        }
+        let mut made = Vec::new();
+        for (index, binding, size) in sliced {
+            gl.shader_storage_block_binding(program, index, binding);
+            let buffer = gl.create_buffer()?;
+            gl.bind_buffer(glow::SHADER_STORAGE_BUFFER, Some(buffer));
+            gl.buffer_data_size(glow::SHADER_STORAGE_BUFFER, (size * part_groups) as i32, glow::DYNAMIC_COPY);
+            gl.bind_buffer_base(glow::SHADER_STORAGE_BUFFER, binding, Some(buffer));
+            made.push((binding, buffer));
+        }
+        gl.bind_buffer(glow::SHADER_STORAGE_BUFFER, None);
+        Ok((made, part_groups))
+    }
+}
+
+/// The most groups a part takes along each axis so that a part holds at most `groups` of
+/// `count`: whole rows along x first, then whole layers.
+fn part_of_at_most(count: [u32; 3], groups: u64) -> [u32; 3] {
+    let x = groups.min(u64::from(count[0])).max(1);
+    let y = (groups / x).min(u64::from(count[1])).max(1);
+    let z = (groups / (x * y)).min(u64::from(count[2])).max(1);
+    [x as u32, y as u32, z as u32]
 }
 
 /// A compute stage's `text` for a dispatch in parts: `gl_WorkGroupID`, `gl_GlobalInvocationID`
@@ -1305,4 +1408,17 @@ unsafe fn set_uniform(gl: &glow::Context, location: Option<&glow::UniformLocatio
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::part_of_at_most;
+
+    #[test]
+    fn a_part_takes_whole_rows_then_whole_layers_up_to_its_groups() {
+        assert_eq!(part_of_at_most([10, 360, 1], 10_000), [10, 360, 1]);
+        assert_eq!(part_of_at_most([10, 360, 1], 3_599), [10, 359, 1]);
+        assert_eq!(part_of_at_most([10, 360, 1], 7), [7, 1, 1]);
+        assert_eq!(part_of_at_most([4, 4, 4], 40), [4, 4, 2]);
+    }
 }

@@ -56,6 +56,10 @@ pub struct GlFrame {
     /// Wall time of a one-tap pass-through of colortex0 into the screen, timed as the steps
     /// are (the median of five draws).
     pub passthrough_ms: f64,
+    /// What of the stages' text was rewritten when the driver refused it over one of its own
+    /// limits (`program: path: what`); the stages' [`crate::program::LoadedStage::gl_rewrites`] hold the
+    /// rest.
+    pub rewrites: Vec<String>,
 }
 
 impl GlFrame {
@@ -171,6 +175,8 @@ struct GlPlanFrame<'a> {
     trace_derivatives: bool,
     /// Whether the current step's program was drawn traced.
     step_traced: bool,
+    /// [`GlFrame::rewrites`].
+    rewrites: Vec<String>,
 }
 
 /// The largest `bufferObject` the harness makes, in bytes (1 GiB): a larger one is refused
@@ -345,6 +351,7 @@ impl<'a> GlPlanFrame<'a> {
                 nudge,
                 trace_derivatives: false,
                 step_traced: false,
+                rewrites: Vec::new(),
             })
         }
     }
@@ -675,7 +682,10 @@ impl<'a> GlPlanFrame<'a> {
         let textures = self.frame_textures(&harness, current, BTreeSet::new());
         // SAFETY: the textures are this frame's, on the current context.
         unsafe {
-            self.step_ms += dispatch_compute(self.ctx, self.pack, stage, self.values.of_pass(Pass::Fullscreen), &textures, self.w as u32, self.h as u32)?;
+            let reserved: Vec<u32> = self.pack.buffer_objects.iter().map(|b| b.index).collect();
+            let dispatched = dispatch_compute(self.ctx, self.pack, stage, self.values.of_pass(Pass::Fullscreen), &textures, &reserved, self.w as u32, self.h as u32)?;
+            self.step_ms += dispatched.ms;
+            self.rewrites.extend(dispatched.rewrite.filter(|r| !self.rewrites.contains(r)));
             stage
                 .images
                 .iter()
@@ -740,7 +750,7 @@ impl<'a> GlPlanFrame<'a> {
             if error != glow::NO_ERROR {
                 return Err(HarnessError::Gl(format!("the driver reported error 0x{error:x} during the frame")));
             }
-            Ok(GlFrame { image, buffers, depth0, depth1, steps, depth_written, own_depth_mapping: self.own_depth_mapping, step_ms, traced, passthrough_ms })
+            Ok(GlFrame { image, buffers, depth0, depth1, steps, depth_written, own_depth_mapping: self.own_depth_mapping, step_ms, traced, passthrough_ms, rewrites: self.rewrites })
         }
     }
 

@@ -578,7 +578,8 @@ pub struct AnyPackReport {
     /// Where the renderers part beyond the job's limit, if they do.
     pub gl_disagreement: Option<Disagreement>,
     /// With `gl`: what the text given to OpenGL had rewritten of what only lenient compilers
-    /// accept (`program: path:line: what`); wgpu draws the program as the lowering reads it.
+    /// accept (`program: path:line: what`), and of what passes a limit of the driver's
+    /// (`program: path: what`); wgpu draws the program as the lowering reads it.
     pub gl_rewrites: Vec<String>,
     /// Per step, in frame order: which renderer drew it, and whether the other drew it too
     /// and was compared ([`StepRenderers`]).
@@ -678,6 +679,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let gl_context = if job.gl { Some(gl::context()?) } else { None };
     // (wgpu's frame drawn from OpenGL's steps, or why wgpu drew none of them), with OpenGL primary.
     let mut stepped = None;
+    let mut driver_limit_rewrites: Vec<String> = opengl_last.as_ref().map(|last| last.rewrites.clone()).unwrap_or_default();
     let gl = match (&gl_context, opengl_last) {
         (None, _) => None,
         (Some(ctx), None) => {
@@ -727,6 +729,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
                 _ => (&frame, &[][..]),
             };
             write(".gl", &gl_frame.image)?;
+            driver_limit_rewrites.extend(gl_frame.rewrites.iter().filter(|r| !driver_limit_rewrites.contains(r)).cloned().collect::<Vec<_>>());
             let mut comparison = compare_steps(renderer, &wgpu_frame.passes, &gl_frame)?;
             let mut nudged = Vec::new();
             let mut undefined = Vec::new();
@@ -791,7 +794,7 @@ pub fn run_any_pack(job: &AnyPackJob) -> Result<AnyPackReport, HarnessError> {
     let report = AnyPackReport {
         gl_disagreement: gl.as_ref().and_then(|g| g.first_disagreement(gl_max_pixels)).map(|d| Disagreement { file: step_file(&pack, &d.pass), ..d }),
         step_renderers: StepRenderers::of(&frame.passes, gl_primary, gl.as_ref()),
-        gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites() } else { Vec::new() },
+        gl_rewrites: if job.gl || gl_primary { pack.gl_rewrites().into_iter().chain(driver_limit_rewrites).collect() } else { Vec::new() },
         renderer,
         gl,
         expected,

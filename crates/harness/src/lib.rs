@@ -21,6 +21,7 @@ pub mod job;
 pub mod program;
 pub mod raw_texture;
 pub mod samplers;
+mod shared_memory;
 pub mod uniforms;
 pub mod water_cost;
 

@@ -913,6 +913,19 @@ fn a_dispatch_past_the_drivers_group_count_runs_in_parts_as_one() {
     assert_eq!(red, screen.pixels().len(), "pixels the parts left unpainted");
 }
 
+/// A compute stage needing more `shared` memory than llvmpipe gives a work group
+/// (tests/packs/large_shared_memory: 36,868 bytes against 32,768) runs with its `shared`
+/// variables in storage buffers, one slice per group, and the report lists the rewrite: every
+/// group sees its own table and its invocations see each other's writes, so the screen is green.
+#[test]
+fn shared_memory_past_llvmpipes_limit_is_kept_in_buffers_one_slice_per_group() {
+    let (report, screen) = render_job("large_shared_memory");
+    assert!(report.failed_programs.is_empty(), "{:?}", report.failed_programs);
+    assert!(report.gl_rewrites.iter().any(|r| r.starts_with("composite: composite.csh: `shared` variables of 36868 bytes")), "{:?}", report.gl_rewrites);
+    let green = screen.pixels().filter(|p| p.0 == [0, 255, 0, 255]).count();
+    assert_eq!(green, screen.pixels().len(), "pixels of groups that saw another's table or an unwritten row");
+}
+
 /// Under Iris the storage image of tests/packs/storage_image is the custom image its
 /// shaders.properties declares: composite stores 1 into each of its 16x16 texels, and final
 /// reads it back through `markSampler`, so the screen is white; OpenGL holds it and draws both.
