@@ -79,6 +79,9 @@ pub struct AnyPack {
     pub gbuffers: BTreeMap<String, LoadedProgram>,
     /// prepare*, deferred*, composite* and final, in the order the loader runs them.
     pub fullscreen: Vec<LoadedProgram>,
+    /// shadowcomp*, in the order the loader runs them: full-screen programs drawn after the
+    /// shadow pass into the shadow colour buffers, at the shadow map's size.
+    pub shadow_composite: Vec<LoadedProgram>,
     /// The compute stages of those programs (and of those that have nothing else), in the
     /// order the loader runs them, each before its program.
     pub compute: Vec<ComputeStage>,
@@ -292,6 +295,11 @@ impl ProgramLoading<'_> {
         ["dh_terrain", "dh_water"].into_iter().filter_map(|name| Some((name.to_string(), self.load(name, LoaderAlphaTest::None)?))).collect()
     }
 
+    /// shadowcomp*, in the order the loader runs them (their compute stages go to `compute`).
+    fn shadow_composite(&mut self) -> Vec<LoadedProgram> {
+        (0..100).filter_map(|n| self.load(&if n == 0 { "shadowcomp".to_string() } else { format!("shadowcomp{n}") }, LoaderAlphaTest::None)).collect()
+    }
+
     /// prepare*, deferred*, composite* and final, in the order the loader runs them (their
     /// compute stages, and under Iris those of setup* and begin*, go to `compute`).
     fn fullscreen(&mut self) -> Vec<LoadedProgram> {
@@ -382,8 +390,10 @@ fn shadow_map_reads(
     custom_images: &[CustomImage],
     not_modelled: &mut Vec<String>,
 ) -> (bool, bool) {
-    // colorimgN is colortexN; custom images are made as the loader makes them.
-    let holds_image = |name: &str| name.strip_prefix("colorimg").is_some_and(|n| n.parse::<u8>().is_ok()) || custom_images.iter().any(|i| i.name == name);
+    // colorimgN is colortexN and shadowcolorimgN shadowcolorN; custom images are made as the
+    // loader makes them.
+    let buffer_image = |name: &str, prefix: &str| name.strip_prefix(prefix).is_some_and(|n| n.parse::<u8>().is_ok());
+    let holds_image = |name: &str| buffer_image(name, "colorimg") || buffer_image(name, "shadowcolorimg") || custom_images.iter().any(|i| i.name == name);
     let holds_image_sampler = |name: &str| custom_images.iter().any(|i| i.sampler.as_deref() == Some(name));
     let mut reads_shadow_maps = false;
     let mut water_shadow = false;
@@ -465,6 +475,7 @@ impl AnyPack {
         };
         let gbuffers = loading.gbuffers();
         let shadow = loading.shadow();
+        let shadow_composite = loading.shadow_composite();
         let fullscreen = loading.fullscreen();
         let lod = if configuration.distant_horizons { loading.lod() } else { BTreeMap::new() };
         let ProgramLoading { mut not_modelled, failed, compute, .. } = loading;
@@ -472,14 +483,13 @@ impl AnyPack {
         for name in present.keys() {
             let loaded = gbuffers.contains_key(*name)
                 || shadow.contains_key(*name)
-                || fullscreen.iter().any(|p| p.name == *name)
+                || fullscreen.iter().chain(&shadow_composite).any(|p| p.name == *name)
                 || compute.iter().any(|c| c.program == *name);
             let skipped = failed.iter().any(|(f, _)| f == name) || disabled.iter().any(|d| d == name);
             if loaded || skipped || programs::run_by(name) != RunBy::OptiFine {
                 continue;
             }
             let why = match *name {
-                n if n.starts_with("shadowcomp") => "not run: the shadow colour buffers stay as the shadow pass drew them",
                 n if n.starts_with("shadow_") => "the loader draws the shadow pass with another program",
                 _ => "the scenes hold no geometry this program draws",
             };
@@ -518,8 +528,12 @@ impl AnyPack {
         if !reads_shadow_maps && let Some(name) = shadow_program {
             not_modelled.push(format!("{name}: no program reads a shadow map, so the loader draws none"));
         }
+        let shadow_composite_names = shadow_composite.iter().map(|p| p.name.as_str()).chain(compute.iter().map(|c| c.program.as_str()).filter(|n| n.starts_with("shadowcomp")));
+        for name in shadow_composite_names.collect::<BTreeSet<_>>().into_iter().filter(|_| !shadow_pass) {
+            not_modelled.push(format!("{name}: not run: the loader runs shadowcomp after the shadow pass, which this frame does not draw"));
+        }
         let mut blends = BTreeMap::new();
-        for name in gbuffers.keys().chain(shadow.keys()).chain(lod.keys()).chain(fullscreen.iter().map(|p| &p.name)) {
+        for name in gbuffers.keys().chain(shadow.keys()).chain(lod.keys()).chain(fullscreen.iter().chain(&shadow_composite).map(|p| &p.name)) {
             match directives::blend_modes(&properties, name, loader.per_buffer_blend()) {
                 Ok(modes) => {
                     blends.insert(name.clone(), modes);
@@ -536,7 +550,7 @@ impl AnyPack {
         not_modelled.extend(unimitated_keys(&properties));
 
         let stages: Vec<&LoadedStage> =
-            gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(fullscreen.iter()).flat_map(|p| [&p.vertex, &p.fragment]).collect();
+            gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(fullscreen.iter()).chain(&shadow_composite).flat_map(|p| [&p.vertex, &p.fragment]).collect();
         let shadow_settings = ShadowSettings::from_texts(stages.iter().map(|s| s.settings_text.as_str()));
         let buffers = DeclaredBuffers::read(&stages, &fullscreen, &mut not_modelled);
         if shadow_pass {
@@ -551,7 +565,7 @@ impl AnyPack {
         let block_ids = program::mapped_ids(&provider, blocks::BLOCK_PROPERTIES, "block", &standard, &declared, &options);
         let entity_ids = program::mapped_ids(&provider, blocks::ENTITY_PROPERTIES, "entity", &standard, &declared, &options);
         // Programs and compute stages that declare a buffer block, which wgpu gives each its own.
-        let buffer_block_users = gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(&fullscreen)
+        let buffer_block_users = gbuffers.values().chain(shadow.values()).chain(lod.values()).chain(&fullscreen).chain(&shadow_composite)
             .filter(|p| [&p.vertex.gl_text, &p.fragment.gl_text].iter().any(|t| program::declares_buffer_block(t)))
             .count()
             + compute.iter().filter(|c| program::declares_buffer_block(&c.stage.gl_text)).count();
@@ -564,6 +578,7 @@ impl AnyPack {
             world,
             gbuffers,
             fullscreen,
+            shadow_composite,
             compute,
             shadow,
             lod,
@@ -609,6 +624,7 @@ impl AnyPack {
         self.shadow.retain(|_, p| keep(p));
         self.lod.retain(|_, p| keep(p));
         self.fullscreen.retain(|p| keep(p));
+        self.shadow_composite.retain(|p| keep(p));
         for compute in self.compute.drain(..) {
             let why = compute.only_opengl();
             self.failed.push((compute.program, why));
@@ -616,9 +632,10 @@ impl AnyPack {
         self.failed.len() > before
     }
 
-    /// Every program loaded: gbuffers, shadow, Distant Horizons' and full-screen ones.
+    /// Every program loaded: gbuffers, shadow, Distant Horizons', shadow composite and full-screen
+    /// ones.
     pub fn programs(&self) -> impl Iterator<Item = &LoadedProgram> {
-        self.gbuffers.values().chain(self.shadow.values()).chain(self.lod.values()).chain(&self.fullscreen)
+        self.gbuffers.values().chain(self.shadow.values()).chain(self.lod.values()).chain(&self.shadow_composite).chain(&self.fullscreen)
     }
 
     /// What the OpenGL text of each program had rewritten for a strict driver, as
@@ -782,6 +799,10 @@ pub enum PlannedWork<'a> {
     Fullscreen { program: &'a LoadedProgram, current: BTreeMap<u8, usize>, into_screen: bool, mipmaps: BTreeSet<u8> },
     /// colortex0's current texture to the screen, for a pack without final.
     ScreenCopy { current: usize },
+    /// A shadowcomp program: the full-screen quad at the shadow map's size into the shadow
+    /// colour buffers it writes, reading each shadow colour buffer as it was before the draw
+    /// (the loaders flip the ones it writes) and the colour buffers' current textures.
+    ShadowComposite { program: &'a LoadedProgram, current: BTreeMap<u8, usize> },
 }
 
 #[derive(Debug)]
@@ -846,6 +867,11 @@ pub enum DepthSeed {
 }
 
 impl<'a> FramePlan<'a> {
+    /// Whether a shadowcomp program draws in the frame.
+    pub fn has_shadow_composite(&self) -> bool {
+        self.steps.iter().any(|s| matches!(s.work, PlannedWork::ShadowComposite { .. }))
+    }
+
     /// For a full-screen step `index`, which depth buffers of the reference's final ones hold
     /// what the step reads; None for other steps, or where neither does.
     pub fn depth_seed(&self, index: usize) -> Option<DepthSeed> {
@@ -882,8 +908,8 @@ impl<'a> FramePlan<'a> {
         let mut shadow_buffers = BTreeSet::new();
         if pack.shadow_pass {
             shadow_buffers.insert(0);
-            shadow_buffers.extend(pack.shadow.values().flat_map(|p| p.drawn_buffers()));
-            for program in pack.gbuffers.values().chain(&pack.fullscreen) {
+            shadow_buffers.extend(pack.shadow.values().chain(&pack.shadow_composite).flat_map(|p| p.drawn_buffers()));
+            for program in pack.gbuffers.values().chain(&pack.fullscreen).chain(&pack.shadow_composite) {
                 for stage in [&program.vertex, &program.fragment] {
                     for (name, _) in program::texture_resources(&stage.interface) {
                         if let Ok(Source::ShadowColour(n)) = SamplerNaming::Frame.resolve(pack, &name, ProgramStage::of(&program.name)) {
@@ -904,6 +930,7 @@ impl<'a> FramePlan<'a> {
             plan.shadow_geometry(pack, false, &mesh.terrain, "shadow terrain");
             plan.steps.push(PlannedStep { label: "shadowtex0 to shadowtex1".into(), work: PlannedWork::ShadowDepthCopy });
             plan.shadow_geometry(pack, true, &mesh.translucent, "shadow water");
+            plan.shadow_composite(pack);
         }
         let family = |prefix: &'a str| pack.fullscreen.iter().filter(move |p| p.name.starts_with(prefix));
         plan.family(pack, "prepare", None);
@@ -1050,10 +1077,21 @@ impl<'a> FramePlan<'a> {
         }
     }
 
+    /// shadowcomp* ([`family_slots`]), each its compute stages and then its program drawn into
+    /// the shadow colour buffers.
+    fn shadow_composite(&mut self, pack: &'a AnyPack) {
+        for (name, program) in family_slots(&pack.shadow_composite, &pack.compute, "shadowcomp") {
+            self.compute(pack, name);
+            if let Some(program) = program {
+                self.steps.push(PlannedStep { label: program.name.clone(), work: PlannedWork::ShadowComposite { program, current: self.current.clone() } });
+            }
+        }
+    }
+
     /// The programs of `family` ([`family_slots`]), each its compute stages and then its
     /// full-screen program; `into_screen` names the one drawing colortex0 into the screen.
     fn family(&mut self, pack: &'a AnyPack, family: &str, into_screen: Option<&str>) {
-        for (name, program) in family_slots(pack, family) {
+        for (name, program) in family_slots(&pack.fullscreen, &pack.compute, family) {
             self.compute(pack, name);
             if let Some(program) = program {
                 self.fullscreen(pack, program, into_screen == Some(name));
@@ -1079,17 +1117,18 @@ impl<'a> FramePlan<'a> {
 }
 
 /// The programs of a family (`deferred`: deferred, deferred1, …) the loader runs, in its order,
-/// each with its full-screen program where it has one (a program may be compute stages alone).
-fn family_slots<'p>(pack: &'p AnyPack, family: &str) -> Vec<(&'p str, Option<&'p LoadedProgram>)> {
+/// each with its program among `programs` where it has one (a program may be compute stages
+/// alone, among `compute`).
+fn family_slots<'p>(programs: &'p [LoadedProgram], compute: &'p [ComputeStage], family: &str) -> Vec<(&'p str, Option<&'p LoadedProgram>)> {
     let number = |name: &str| match name.strip_prefix(family)? {
         "" => Some(0),
         rest => rest.parse::<u32>().ok(),
     };
-    let names = pack.fullscreen.iter().map(|p| p.name.as_str()).chain(pack.compute.iter().map(|c| c.program.as_str()));
+    let names = programs.iter().map(|p| p.name.as_str()).chain(compute.iter().map(|c| c.program.as_str()));
     let mut slots: Vec<(u32, &str)> = names.filter_map(|name| Some((number(name)?, name))).collect();
     slots.sort();
     slots.dedup();
-    slots.into_iter().map(|(_, name)| (name, pack.fullscreen.iter().find(|p| p.name == name))).collect()
+    slots.into_iter().map(|(_, name)| (name, programs.iter().find(|p| p.name == name))).collect()
 }
 
 /// The names of `const bool <name> = true;` declarations.

@@ -965,13 +965,17 @@ unsafe fn set_uniforms(
                 unit += 1;
                 continue;
             }
-            // colorimgN is colortexN's current texture, read and written in place, in the
-            // buffer's own format (OptiFine's shaders.txt, "Image access").
+            // colorimgN is colortexN's current texture and shadowcolorimgN shadowcolorN, read and
+            // written in place, in the buffer's own format (OptiFine's shaders.txt, "Image
+            // access").
+            let buffer_image = |prefix: &str, buffers: &BTreeMap<u8, (glow::Texture, BufferFormat)>| {
+                name.strip_prefix(prefix).and_then(|n| n.parse::<u8>().ok()).and_then(|n| buffers.get(&n).copied())
+            };
             if active.utype == glow::IMAGE_2D
-                && let Some((texture, format)) = name.strip_prefix("colorimg").and_then(|n| n.parse::<u8>().ok()).and_then(|n| textures.colors.get(&n))
+                && let Some((texture, format)) = buffer_image("colorimg", &textures.colors).or_else(|| buffer_image("shadowcolorimg", &textures.shadow_colours))
                 && !format.is_integer()
             {
-                bind_image(gl, &mut image_unit, location.as_ref(), *texture, false, internal_format(*format));
+                bind_image(gl, &mut image_unit, location.as_ref(), texture, false, internal_format(format));
                 continue;
             }
             // A 1D or 3D float sampler reads the unit's custom texture of its type.

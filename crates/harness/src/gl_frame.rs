@@ -244,6 +244,7 @@ fn render_plan(
                 PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => frame.fullscreen(program, current, *into_screen, mipmaps, &quad)?,
                 PlannedWork::ScreenCopy { current } => frame.screen_copy(*current)?,
                 PlannedWork::Compute { stage, current } => frame.compute(stage, current)?,
+                PlannedWork::ShadowComposite { program, current } => frame.shadow_composite(program, current, &quad)?,
             };
             last_written = written.iter().map(|w| (w.name.clone(), w.texture)).collect();
             steps.push((step.label.clone(), written.into_iter().map(|w| (w.name, w.image)).collect()));
@@ -603,6 +604,45 @@ impl<'a> GlPlanFrame<'a> {
             self.draw(program, Pass::Shadow, draw, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
+            program
+                .render_targets
+                .iter()
+                .zip(&targets)
+                .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
+                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.shadow_colours[b].1), self.screen, side, side)? }))
+                .collect()
+        }
+    }
+
+    /// A shadowcomp program: the full-screen quad at the shadow map's size into the shadow
+    /// colour buffers it writes, every shadow colour buffer read from a copy made just before
+    /// (what the loaders' flip leaves it to read).
+    unsafe fn shadow_composite(&mut self, program: &LoadedProgram, current: &BTreeMap<u8, usize>, quad: &[PackVertex]) -> Result<Vec<Written>, HarnessError> {
+        let gl = self.ctx.gl();
+        let side = self.shadow_side;
+        unsafe {
+            let mut before = BTreeMap::new();
+            let shadow_colours: Vec<(u8, (glow::Texture, BufferFormat))> = self.shadow_colours.iter().map(|(b, t)| (*b, *t)).collect();
+            for (b, (texture, format)) in shadow_colours {
+                let (pixels, ty) = pixel_transfer(format);
+                let copy = make_texture(gl, internal_format(format), pixels, ty, side, side, None, !format.is_integer(), false)?;
+                self.copy(texture, copy, side, side);
+                before.insert(b, (copy, format));
+            }
+            let targets: Vec<Option<glow::Texture>> = program.render_targets.iter().map(|b| b.and_then(|b| self.shadow_colours.get(&b)).map(|t| t.0)).collect();
+            attach(gl, &targets, None)?;
+            set_blends(gl, &program.render_targets, &|b| self.pack.blend_of(Some(program), b, &Blend::Off));
+            gl.disable(glow::DEPTH_TEST);
+            gl.viewport(0, 0, side, side);
+            let harness = self.harness.clone();
+            let textures = Textures { shadow_colours: before.clone(), ..self.frame_textures(&harness, current, BTreeSet::new()) };
+            let drawn = self.draw(program, Pass::Fullscreen, DrawUniforms::stage("NONE"), &textures, quad);
+            gl.viewport(0, 0, self.w, self.h);
+            set_blends(gl, &program.render_targets, &|_| Blend::Off);
+            for (copy, _) in before.values() {
+                gl.delete_texture(*copy);
+            }
+            drawn?;
             program
                 .render_targets
                 .iter()

@@ -40,10 +40,12 @@ pub enum Source {
 
 /// Which programs a `texture.<stage>.<name>` line of shaders.properties binds in, by the
 /// program's name: OptiFine's `gbuffers` (the gbuffers programs and the shadow pass),
-/// `deferred` and `composite` (the composite programs and final), and Iris's `prepare`.
+/// `deferred` and `composite` (the composite programs and final), and Iris's `prepare` and
+/// `shadowcomp`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ProgramStage {
     Gbuffers,
+    ShadowComposite,
     Prepare,
     Deferred,
     Composite,
@@ -55,6 +57,8 @@ impl ProgramStage {
         let name = program.rsplit('/').next().unwrap_or(program);
         if name.starts_with("gbuffers_") || name.starts_with("dh_") || name == "shadow" || name.starts_with("shadow_") {
             ProgramStage::Gbuffers
+        } else if name.starts_with("shadowcomp") {
+            ProgramStage::ShadowComposite
         } else if name.starts_with("deferred") {
             ProgramStage::Deferred
         } else if name.starts_with("prepare") {
@@ -68,6 +72,7 @@ impl ProgramStage {
     pub fn in_properties(self) -> &'static str {
         match self {
             ProgramStage::Gbuffers => "gbuffers",
+            ProgramStage::ShadowComposite => "shadowcomp",
             ProgramStage::Prepare => "prepare",
             ProgramStage::Deferred => "deferred",
             ProgramStage::Composite => "composite",
@@ -77,6 +82,12 @@ impl ProgramStage {
     /// A geometry program: its sampler names read the game's textures and the depth being drawn.
     pub fn is_gbuffers(self) -> bool {
         self == ProgramStage::Gbuffers
+    }
+
+    /// prepare, deferred, composite and final: the passes that bind the colour buffers, colortex0
+    /// on unit 0.
+    pub fn is_fullscreen(self) -> bool {
+        matches!(self, ProgramStage::Prepare | ProgramStage::Deferred | ProgramStage::Composite)
     }
 }
 
@@ -102,8 +113,9 @@ impl SamplerNaming {
 
 /// Resolves a sampler name as OptiFine binds it in any pack, in a program of `stage`. In
 /// gbuffers programs colour buffers are read as they stood before the draw, and depthtex0 (the
-/// buffer being drawn into) is read as depthtex1; a name OptiFine binds nothing to reads
-/// transparent black.
+/// buffer being drawn into) is read as depthtex1. A name the loader binds nothing to keeps the
+/// uniform's initial value, texture unit 0: colortex0 in a full-screen pass (where both loaders
+/// bind it there, Iris calling it the pass's default sampler), and transparent black elsewhere.
 pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) -> Result<Source, String> {
     if let Some(i) = custom_texture_of(pack, name, stage, TextureTarget::D2) {
         return Ok(Source::Custom(i));
@@ -131,6 +143,7 @@ pub fn resolve_any(pack: &dyn PackResources, name: &str, stage: ProgramStage) ->
         _ => match (colour_buffer_number(name), shadow_colour_number(name)) {
             (Some(n), _) => Source::Color(n),
             (None, Some(n)) => Source::ShadowColour(n),
+            (None, None) if stage.is_fullscreen() => Source::Color(0),
             (None, None) => Source::Unbound,
         },
     })

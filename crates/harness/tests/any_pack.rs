@@ -913,6 +913,30 @@ fn a_dispatch_past_the_drivers_group_count_runs_in_parts_as_one() {
     assert_eq!(red, screen.pixels().len(), "pixels the parts left unpainted");
 }
 
+/// shadowcomp draws after the shadow pass into the shadow colour buffers, reading them as the
+/// shadow pass left them (tests/packs/shadow_composite: shadowcolor0 becomes its complement and
+/// shadowcolor1 its copy): composite shows one half the complement of the other, and both
+/// renderers draw the step alike.
+#[test]
+fn shadowcomp_draws_into_the_shadow_colour_buffers_reading_them_as_they_were() {
+    let pack = pack("shadow_composite", Loader::default());
+    assert!(pack.failed.is_empty() && pack.shadow_pass, "{:?}", pack.failed);
+    let scene = scene("case4_above_near");
+    let mesh = mesh::build(&scene, &pack);
+    let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
+    let labels: Vec<&str> = plan.steps.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(labels[..4], ["shadow terrain (shadow)", "shadowtex0 to shadowtex1", "shadow water (shadow)", "shadowcomp"]);
+    let (report, screen) = render_job("shadow_composite");
+    assert!(report.failed_programs.is_empty() && report.gl_disagreement.is_none(), "{:?} {:?}", report.failed_programs, report.gl_disagreement);
+    assert!(!report.not_modelled.iter().any(|n| n.contains("shadowcomp")), "{:?}", report.not_modelled);
+    let row = screen.height() / 2;
+    let (left, right) = (screen.get_pixel(10, row).0, screen.get_pixel(screen.width() - 10, row).0);
+    for channel in 0..3 {
+        assert!((i32::from(left[channel]) + i32::from(right[channel]) - 255).abs() <= 1, "{left:?} is not the complement of {right:?}");
+    }
+    assert_ne!(right, [255, 255, 255, 255], "shadowcolor1 as cleared: shadowcomp did not run");
+}
+
 /// A compute stage needing more `shared` memory than llvmpipe gives a work group
 /// (tests/packs/large_shared_memory: 36,868 bytes against 32,768) runs with its `shared`
 /// variables in storage buffers, one slice per group, and the report lists the rewrite: every

@@ -117,6 +117,8 @@ enum Work<'p> {
         mipmaps: &'p BTreeSet<u8>,
     },
     ScreenCopy(PassthroughPipeline),
+    /// A shadowcomp program, each shadow colour buffer copied to its copy as read first.
+    ShadowComposite { program: &'p LoadedProgram, pipeline: ProgramPipeline },
     /// A step wgpu cannot draw, with why: [`render_from`] takes what it wrote from the
     /// reference.
     Cannot(String),
@@ -164,6 +166,9 @@ struct FrameTextures {
     /// The shadow maps as `sampler2D` reads them (depth as luminance).
     shadow_depth_read: [wgpu::Texture; 2],
     shadow_colours: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
+    /// Each shadow colour buffer as a shadowcomp program reads it: copied just before the draw,
+    /// as the loaders' flip leaves it to read. Empty without shadowcomp programs.
+    shadow_colours_before: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)>,
 }
 
 /// Most bytes the textures of one frame may take (lavapipe keeps them in the machine's memory):
@@ -189,8 +194,9 @@ impl FrameTextures {
         }
         let shadow_side = if pack.shadow_pass { u64::from(pack.shadow_settings.drawn_resolution().0) } else { 1 };
         let mut per_shadow_texel = 2 * texel_bytes(DEPTH) + 2 * texel_bytes(OUT);
+        let copies = if plan.has_shadow_composite() { 2 } else { 1 };
         for &b in &plan.shadow_buffers {
-            per_shadow_texel += texel_bytes(gpu.texture_format(pack.shadow_format_of(b))?);
+            per_shadow_texel += copies * texel_bytes(gpu.texture_format(pack.shadow_format_of(b))?);
         }
         let bytes = pixels.saturating_mul(per_pixel).saturating_add(shadow_side * shadow_side * per_shadow_texel);
         if bytes > MAX_FRAME_TEXTURE_BYTES {
@@ -226,9 +232,13 @@ impl FrameTextures {
         let shadow_size = wgpu::Extent3d { width: shadow_side, height: shadow_side, depth_or_array_layers: 1 };
         let shadow_texture = |label: &str, format| gpu.texture(label, shadow_size, format, every_use());
         let mut shadow_colours = BTreeMap::new();
+        let mut shadow_colours_before = BTreeMap::new();
         for &b in &plan.shadow_buffers {
             let format = gpu.texture_format(pack.shadow_format_of(b))?;
             shadow_colours.insert(b, (shadow_texture(&format!("shadowcolor{b}"), format), format));
+            if plan.has_shadow_composite() {
+                shadow_colours_before.insert(b, (shadow_texture(&format!("shadowcolor{b} as shadowcomp reads it"), format), format));
+            }
         }
         Ok(FrameTextures {
             size,
@@ -244,6 +254,7 @@ impl FrameTextures {
             shadow_depth: [shadow_texture("shadowtex0", DEPTH), shadow_texture("shadowtex1", DEPTH)],
             shadow_depth_read: [shadow_texture("shadowtex0 as sampler2D reads it", OUT), shadow_texture("shadowtex1 as sampler2D reads it", OUT)],
             shadow_colours,
+            shadow_colours_before,
         })
     }
 
@@ -440,6 +451,29 @@ impl<'p> PreparedSteps<'p> {
             PlannedWork::Compute { stage, .. } => {
                 return Err(HarnessError::Unsupported(stage.only_opengl()));
             }
+            PlannedWork::ShadowComposite { program, current } => {
+                let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
+                    textures.buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
+                let formats: BTreeMap<u8, wgpu::TextureFormat> = textures.shadow_colours.iter().map(|(b, (_, format))| (*b, *format)).collect();
+                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
+                let bindable = BindableTextures {
+                    naming: SamplerNaming::Frame,
+                    harness,
+                    colors: &reading,
+                    depth0: &textures.depth0,
+                    depth1: &textures.depth1,
+                    depth_read: textures.depth_read([0, 1]),
+                    lod_depth: [&textures.lod_depth[0], &textures.lod_depth[1]],
+                    shadow: ShadowTextures { colours: &textures.shadow_colours_before, ..textures.shadow() },
+                    sprites: Sprites::Blocks,
+                    mipmapped: &NO_MIPMAPS,
+                };
+                let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
+                let pipeline = ProgramPipeline::new(gpu, pack, program, &values.fullscreen, kind, &bindable, UniformBinding::ReadOnlyStorage)?;
+                self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+                let written = program.drawn_buffers().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(b))).collect();
+                (Work::ShadowComposite { program, pipeline }, written)
+            }
             PlannedWork::ScreenCopy { current } => {
                 let copy = PassthroughPipeline::new(gpu, &textures.buffers[&0].textures[*current])?;
                 (Work::ScreenCopy(copy), vec![("screen".to_string(), WrittenTexture::Screen)])
@@ -575,6 +609,12 @@ impl Recorder<'_> {
                 pipeline.record_fullscreen_into(encoder, program, &target, wgpu::LoadOp::Load, &self.quad, stamps);
             }
             Work::ScreenCopy(copy) => copy.record(encoder, &t.screen, stamps),
+            Work::ShadowComposite { program, pipeline } => {
+                for (b, (texture, _)) in &t.shadow_colours {
+                    encoder.copy_texture_to_texture(texture.as_image_copy(), t.shadow_colours_before[b].0.as_image_copy(), t.shadow_size);
+                }
+                pipeline.record_fullscreen_into(encoder, program, &|b| &t.shadow_colours[&b].0, wgpu::LoadOp::Load, &self.quad, stamps);
+            }
             Work::Cannot(_) => {}
         }
     }
@@ -713,7 +753,7 @@ fn texture_written(work: &PlannedWork, name: &str) -> Option<WrittenTexture> {
     let buffer = |prefix: &str| name.strip_prefix(prefix).and_then(|n| n.parse::<u8>().ok());
     match work {
         PlannedWork::Geometry { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, current[&b])),
-        PlannedWork::ShadowGeometry { .. } => buffer("shadowcolor").map(WrittenTexture::ShadowColour),
+        PlannedWork::ShadowGeometry { .. } | PlannedWork::ShadowComposite { .. } => buffer("shadowcolor").map(WrittenTexture::ShadowColour),
         PlannedWork::Fullscreen { .. } if name == "screen" => Some(WrittenTexture::Screen),
         PlannedWork::Fullscreen { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, 1 - current[&b])),
         PlannedWork::ScreenCopy { .. } if name == "screen" => Some(WrittenTexture::Screen),
