@@ -157,45 +157,41 @@ pub(crate) struct GlCustomImage {
 }
 
 /// The OpenGL internal format an Iris custom image names (`RGBA16F`), and whether it holds
-/// integers; None for one the harness does not make.
+/// integers; None for a name the loaders do not know, or a format no image unit takes (three
+/// channels, the mixed formats but two).
 pub(crate) fn image_internal_format(name: &str) -> Option<(u32, bool)> {
-    Some(match name.to_ascii_uppercase().as_str() {
-        "R8" => (glow::R8, false),
-        "RG8" => (glow::RG8, false),
-        "RGBA8" => (glow::RGBA8, false),
-        "R8_SNORM" => (glow::R8_SNORM, false),
-        "RGBA8_SNORM" => (glow::RGBA8_SNORM, false),
-        "R16" => (glow::R16, false),
-        "RG16" => (glow::RG16, false),
-        "RGBA16" => (glow::RGBA16, false),
-        "R16F" => (glow::R16F, false),
-        "RG16F" => (glow::RG16F, false),
-        "RGBA16F" => (glow::RGBA16F, false),
-        "R32F" => (glow::R32F, false),
-        "RG32F" => (glow::RG32F, false),
-        "RGBA32F" => (glow::RGBA32F, false),
-        "R11F_G11F_B10F" => (glow::R11F_G11F_B10F, false),
-        "RGB10_A2" => (glow::RGB10_A2, false),
-        "R8I" => (glow::R8I, true),
-        "R8UI" => (glow::R8UI, true),
-        "R16I" => (glow::R16I, true),
-        "R16UI" => (glow::R16UI, true),
-        "R32I" => (glow::R32I, true),
-        "R32UI" => (glow::R32UI, true),
-        "RG8I" => (glow::RG8I, true),
-        "RG8UI" => (glow::RG8UI, true),
-        "RG16I" => (glow::RG16I, true),
-        "RG16UI" => (glow::RG16UI, true),
-        "RG32I" => (glow::RG32I, true),
-        "RG32UI" => (glow::RG32UI, true),
-        "RGBA8I" => (glow::RGBA8I, true),
-        "RGBA8UI" => (glow::RGBA8UI, true),
-        "RGBA16I" => (glow::RGBA16I, true),
-        "RGBA16UI" => (glow::RGBA16UI, true),
-        "RGBA32I" => (glow::RGBA32I, true),
-        "RGBA32UI" => (glow::RGBA32UI, true),
-        _ => return None,
-    })
+    use tidepack_loader::texture_formats::{Component::*, TextureFormat};
+    let format = TextureFormat::parse(name)?;
+    let internal = match format {
+        TextureFormat::R11fG11fB10f => glow::R11F_G11F_B10F,
+        TextureFormat::Rgb10A2 => glow::RGB10_A2,
+        TextureFormat::Uniform { channels, bits, component } => {
+            // By channel count (1, 2, 4), as GL's tables list them.
+            let of = |formats: [u32; 3]| match channels {
+                1 => Some(formats[0]),
+                2 => Some(formats[1]),
+                4 => Some(formats[2]),
+                _ => None,
+            };
+            match (bits, component) {
+                (8, Unorm) => of([glow::R8, glow::RG8, glow::RGBA8]),
+                (8, Snorm) => of([glow::R8_SNORM, glow::RG8_SNORM, glow::RGBA8_SNORM]),
+                (8, Int) => of([glow::R8I, glow::RG8I, glow::RGBA8I]),
+                (8, Uint) => of([glow::R8UI, glow::RG8UI, glow::RGBA8UI]),
+                (16, Unorm) => of([glow::R16, glow::RG16, glow::RGBA16]),
+                (16, Snorm) => of([glow::R16_SNORM, glow::RG16_SNORM, glow::RGBA16_SNORM]),
+                (16, Float) => of([glow::R16F, glow::RG16F, glow::RGBA16F]),
+                (16, Int) => of([glow::R16I, glow::RG16I, glow::RGBA16I]),
+                (16, Uint) => of([glow::R16UI, glow::RG16UI, glow::RGBA16UI]),
+                (32, Float) => of([glow::R32F, glow::RG32F, glow::RGBA32F]),
+                (32, Int) => of([glow::R32I, glow::RG32I, glow::RGBA32I]),
+                (32, Uint) => of([glow::R32UI, glow::RG32UI, glow::RGBA32UI]),
+                _ => None,
+            }?
+        }
+        TextureFormat::R3G3B2 | TextureFormat::Rgb5A1 | TextureFormat::Rgb9E5 => return None,
+    };
+    Some((internal, format.is_integer()))
 }
 
 /// The pack's custom images for a frame of `width` x `height`, each cleared to zero as Iris

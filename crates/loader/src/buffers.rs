@@ -1,6 +1,8 @@
 //! The buffers a loader gives a pack, as the pack names and configures them: colour buffers
 //! (`colortexN` and the legacy names), shadow colour buffers, their formats and clears.
 
+use crate::texture_formats::{Component, TextureFormat};
+
 /// The colour buffer a name refers to: `colortexN` (N < 16) or one of OptiFine's legacy names
 /// for buffers 0-7 (`gcolor`, `gdepth`, `gnormal`, `composite`, `gaux1`-`gaux4`).
 pub fn colour_buffer_number(name: &str) -> Option<u8> {
@@ -44,43 +46,26 @@ impl BufferFormat {
         matches!(self, BufferFormat::Rgba32Ui | BufferFormat::Rgba32I)
     }
 
-    /// The format a pack's format name is stored in, and whether exactly: formats the renderers
-    /// lack (fewer channels, packed, signed) are stored in the RGBA format that holds every
-    /// value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F, `RGB10_A2` in RGBA16,
-    /// `R32UI` in RGBA32UI).
+    /// The format a pack's format name ([`TextureFormat`]) is stored in, and whether exactly:
+    /// formats the renderers lack (fewer channels, packed, signed) are stored in the RGBA format
+    /// that holds every value they can (`R11F_G11F_B10F` in RGBA16F, `R32F` in RGBA32F,
+    /// `RGB10_A2` in RGBA16, `R32UI` in RGBA32UI). A three-channel format is stored exactly in
+    /// its four-channel one, alpha aside.
     pub fn stand_in(name: &str) -> Option<(BufferFormat, bool)> {
-        if let Some(exact) = BufferFormat::parse(name) {
-            return Some((exact, true));
-        }
-        let stand_in = match name {
-            "R8" | "RG8" | "RGB5_A1" | "RGBA2" | "RGBA4" | "R3_G3_B2" | "R16" | "RG16" | "RGB10_A2" | "RGB12" | "RGBA12" => {
-                BufferFormat::Rgba16
-            }
-            "R16F" | "RG16F" | "R11F_G11F_B10F" | "RGB9_E5" => BufferFormat::Rgba16F,
+        use Component::*;
+        Some(match TextureFormat::parse(name)? {
+            TextureFormat::Uniform { channels: 3 | 4, bits: 8, component: Unorm } => (BufferFormat::Rgba8, true),
+            TextureFormat::Uniform { channels: 3 | 4, bits: 16, component: Unorm } => (BufferFormat::Rgba16, true),
+            TextureFormat::Uniform { channels: 3 | 4, bits: 16, component: Float } => (BufferFormat::Rgba16F, true),
+            TextureFormat::Uniform { channels: 3 | 4, bits: 32, component: Float } => (BufferFormat::Rgba32F, true),
+            TextureFormat::Uniform { channels: 4, bits: 32, component: Uint } => (BufferFormat::Rgba32Ui, true),
+            TextureFormat::Uniform { channels: 4, bits: 32, component: Int } => (BufferFormat::Rgba32I, true),
+            TextureFormat::Uniform { component: Uint, .. } => (BufferFormat::Rgba32Ui, false),
+            TextureFormat::Uniform { component: Int, .. } => (BufferFormat::Rgba32I, false),
             // Signed normalised formats keep their negative values in a float buffer.
-            "R8_SNORM" | "RG8_SNORM" | "RGB8_SNORM" | "RGBA8_SNORM" | "R16_SNORM" | "RG16_SNORM" | "RGB16_SNORM" | "RGBA16_SNORM" => {
-                BufferFormat::Rgba32F
-            }
-            "R32F" | "RG32F" => BufferFormat::Rgba32F,
-            "R8UI" | "RG8UI" | "RGB8UI" | "RGBA8UI" | "R16UI" | "RG16UI" | "RGB16UI" | "RGBA16UI" | "R32UI" | "RG32UI" | "RGB32UI" | "RGB10_A2UI" => {
-                BufferFormat::Rgba32Ui
-            }
-            "R8I" | "RG8I" | "RGB8I" | "RGBA8I" | "R16I" | "RG16I" | "RGB16I" | "RGBA16I" | "R32I" | "RG32I" | "RGB32I" => BufferFormat::Rgba32I,
-            _ => return None,
-        };
-        Some((stand_in, false))
-    }
-
-    /// The formats stored exactly.
-    pub fn parse(name: &str) -> Option<BufferFormat> {
-        Some(match name {
-            "RGBA" | "RGBA8" | "RGB8" | "RGB" => BufferFormat::Rgba8,
-            "RGBA16" | "RGB16" => BufferFormat::Rgba16,
-            "RGBA16F" | "RGB16F" => BufferFormat::Rgba16F,
-            "RGBA32F" | "RGB32F" => BufferFormat::Rgba32F,
-            "RGBA32UI" => BufferFormat::Rgba32Ui,
-            "RGBA32I" => BufferFormat::Rgba32I,
-            _ => return None,
+            TextureFormat::Uniform { component: Snorm, .. } | TextureFormat::Uniform { bits: 32, component: Float, .. } => (BufferFormat::Rgba32F, false),
+            TextureFormat::Uniform { component: Float, .. } | TextureFormat::R11fG11fB10f | TextureFormat::Rgb9E5 => (BufferFormat::Rgba16F, false),
+            TextureFormat::Uniform { component: Unorm, .. } | TextureFormat::R3G3B2 | TextureFormat::Rgb5A1 | TextureFormat::Rgb10A2 => (BufferFormat::Rgba16, false),
         })
     }
 }

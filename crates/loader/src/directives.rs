@@ -284,21 +284,19 @@ impl RawLayout {
 
 /// The channels and storage of an internal format name of a raw texture.
 fn internal_format(name: &str) -> Result<(usize, TexelStorage), String> {
-    let (channels, rest) = ["RGBA", "RGB", "RG", "R"]
-        .iter()
-        .find_map(|prefix| name.strip_prefix(prefix).map(|rest| (prefix.len(), rest)))
-        .ok_or_else(|| format!("`{name}` is not a texture format"))?;
-    let storage = match rest {
-        "8" => TexelStorage::Unorm8,
-        "8_SNORM" => TexelStorage::Snorm8,
-        "16" => TexelStorage::Unorm16,
-        "16_SNORM" => TexelStorage::Snorm16,
-        "16F" => TexelStorage::Half,
-        "32F" => TexelStorage::Float,
-        _ if rest.ends_with("I") || rest.ends_with("UI") => return Err(format!("integer texture format {name} is not read")),
+    use crate::texture_formats::{Component, TextureFormat};
+    let format = TextureFormat::parse(name).ok_or_else(|| format!("`{name}` is not a texture format"))?;
+    let storage = match format {
+        TextureFormat::Uniform { bits: 8, component: Component::Unorm, .. } => TexelStorage::Unorm8,
+        TextureFormat::Uniform { bits: 8, component: Component::Snorm, .. } => TexelStorage::Snorm8,
+        TextureFormat::Uniform { bits: 16, component: Component::Unorm, .. } => TexelStorage::Unorm16,
+        TextureFormat::Uniform { bits: 16, component: Component::Snorm, .. } => TexelStorage::Snorm16,
+        TextureFormat::Uniform { bits: 16, component: Component::Float, .. } => TexelStorage::Half,
+        TextureFormat::Uniform { bits: 32, component: Component::Float, .. } => TexelStorage::Float,
+        _ if format.is_integer() => return Err(format!("integer texture format {name} is not read")),
         _ => return Err(format!("texture format {name} is not read")),
     };
-    Ok((channels, storage))
+    Ok((usize::from(format.channels()), storage))
 }
 
 /// A texture path of shaders.properties as a path inside `shaders/`: a leading `/` dropped,

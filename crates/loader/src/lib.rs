@@ -30,6 +30,7 @@ pub mod programs;
 pub mod properties;
 pub mod set_provider;
 pub mod shadow;
+pub mod texture_formats;
 pub mod uniform_value;
 
 pub use input::{Limits, PackFiles};
