@@ -223,6 +223,7 @@ pub(crate) fn preprocess_other_stages(
             Ok(pre) => {
                 diags.extend(pre.warnings.iter().cloned());
                 if !driver {
+                    diags.extend(built_ins_of_other_stages(&pre, other_stage_kind(path)));
                     diags.push(Diagnostic::warning(
                         Code::NotCompiled,
                         format!(
@@ -237,6 +238,42 @@ pub(crate) fn preprocess_other_stages(
         }
     }
     diags
+}
+
+/// Built-in variables only the fragment or the compute stage declares.
+const FRAGMENT_AND_COMPUTE_BUILT_INS: [(&str, &str); 17] = [
+    ("gl_FragCoord", "fragment"),
+    ("gl_FrontFacing", "fragment"),
+    ("gl_PointCoord", "fragment"),
+    ("gl_FragDepth", "fragment"),
+    ("gl_FragColor", "fragment"),
+    ("gl_FragData", "fragment"),
+    ("gl_SampleID", "fragment"),
+    ("gl_SamplePosition", "fragment"),
+    ("gl_SampleMaskIn", "fragment"),
+    ("gl_SampleMask", "fragment"),
+    ("gl_HelperInvocation", "fragment"),
+    ("gl_NumWorkGroups", "compute"),
+    ("gl_WorkGroupID", "compute"),
+    ("gl_LocalInvocationID", "compute"),
+    ("gl_GlobalInvocationID", "compute"),
+    ("gl_LocalInvocationIndex", "compute"),
+    ("gl_WorkGroupSize", "compute"),
+];
+
+/// A geometry or tessellation stage (`kind`), which naga cannot read, naming a built-in only
+/// the fragment or the compute stage declares: every driver refuses it as undeclared. The
+/// first use of each, at its line. Under `--driver`, Mesa says so itself.
+fn built_ins_of_other_stages(pre: &Preprocessed, kind: &str) -> Vec<Diagnostic> {
+    let tokens = tokenize(&pre.text).unwrap_or_default();
+    FRAGMENT_AND_COMPUTE_BUILT_INS
+        .iter()
+        .filter_map(|(name, owner)| {
+            let first = tokens.iter().find(|t| t.is_ident(name))?;
+            let message = format!("`{name}` is a {owner} shader built-in: a {kind} shader has no such variable (Mesa: \"`{name}' undeclared\")");
+            Some(Diagnostic::error(Code::Glsl, message, pre.location(first.line)))
+        })
+        .collect()
 }
 
 /// Preprocesses and lowers one compute stage and runs the checks that need no naga.

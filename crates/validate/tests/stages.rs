@@ -265,6 +265,16 @@ fn a_geometry_stage_without_driver_is_preprocessed_and_says_so() {
     assert!(summary.contains("only preprocessed, not compiled") && summary.contains("gbuffers_terrain.gsh"), "{summary}");
 }
 
+/// A geometry stage naming a fragment shader's built-in (`gl_FragCoord`, through an include),
+/// which every driver refuses as undeclared, is an error at its line without `--driver` too.
+#[test]
+fn a_fragment_built_in_in_a_geometry_stage_is_an_error_at_its_line() {
+    let lib = "vec2 shift(vec2 v) {\n    return v + gl_FragCoord.xy;\n}\n";
+    let report = validate(&as_refs(&geometry_pack(GEOMETRY, lib)), false);
+    assert_eq!(report.errors(), 1, "{}", show(&report));
+    assert!(has(&report, true, "lib/geometry.glsl", 2, "`gl_FragCoord` is a fragment shader built-in: a geometry shader has no such variable"), "{}", show(&report));
+}
+
 #[test]
 fn an_include_cycle_in_a_geometry_stage_is_reported() {
     let cyclic = format!("#include \"/lib/geometry.glsl\"\n{GEOMETRY_LIB}");
