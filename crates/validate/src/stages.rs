@@ -222,8 +222,8 @@ pub(crate) fn preprocess_other_stages(
         match preprocess::preprocess(provider, path, macros) {
             Ok(pre) => {
                 diags.extend(pre.warnings.iter().cloned());
+                diags.extend(built_ins_of_other_stages(&pre, other_stage_kind(path)));
                 if !driver {
-                    diags.extend(built_ins_of_other_stages(&pre, other_stage_kind(path)));
                     diags.push(Diagnostic::warning(
                         Code::NotCompiled,
                         format!(
@@ -263,7 +263,7 @@ const FRAGMENT_AND_COMPUTE_BUILT_INS: [(&str, &str); 17] = [
 
 /// A geometry or tessellation stage (`kind`), which naga cannot read, naming a built-in only
 /// the fragment or the compute stage declares: every driver refuses it as undeclared. The
-/// first use of each, at its line. Under `--driver`, Mesa says so itself.
+/// first use of each, at its line.
 fn built_ins_of_other_stages(pre: &Preprocessed, kind: &str) -> Vec<Diagnostic> {
     let tokens = tokenize(&pre.text).unwrap_or_default();
     FRAGMENT_AND_COMPUTE_BUILT_INS
