@@ -1067,7 +1067,8 @@ pub(crate) unsafe fn dispatch_compute(
     // and AMD's drivers take 2^31 - 1 along x. A larger count is dispatched in parts.
     let in_parts = count.iter().zip(&most).any(|(n, most)| n > most);
     let text = if in_parts { dispatched_in_parts(&stage.stage.gl_text) } else { stage.stage.gl_text.clone() };
-    let refused = |e: &tidepack_gldriver::DriverLog| HarnessError::Gl(format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(e, Some(&stage.stage.gl_origins))));
+    let said = |e: &tidepack_gldriver::DriverLog| format!("{} ({}) through {}: {}", stage.program, stage.stage.path, ctx.info(), located_at(e, Some(&stage.stage.gl_origins)));
+    let refused = |e: &tidepack_gldriver::DriverLog| HarnessError::Gl(said(e));
     let (compiled, moved) = match ctx.compile_compute_program(&text) {
         Ok(compiled) => (compiled, None),
         Err(e) => {
@@ -1077,7 +1078,10 @@ pub(crate) unsafe fn dispatch_compute(
             let Some((moved, (used, given))) = over.and_then(|over| Some((crate::shared_memory::moved_to_buffers(&dispatched_in_parts(&stage.stage.gl_text))?, over))) else {
                 return Err(refused(&e));
             };
-            let compiled = ctx.compile_compute_program(&moved.text).map_err(|e| refused(&e))?;
+            let compiled = ctx.compile_compute_program(&moved.text).map_err(|moved_refused| {
+                let why = located_at(&moved_refused, Some(&stage.stage.gl_origins));
+                HarnessError::Gl(format!("{}; with its `shared` variables kept in storage buffers instead, the driver refuses it too: {why}", said(&e)))
+            })?;
             let rewrite = format!(
                 "{}: {}: `shared` variables of {used} bytes a work group, more than the {given} llvmpipe gives, kept in storage buffers with one slice per work group",
                 stage.program, stage.stage.path

@@ -82,7 +82,7 @@ pub(crate) fn moved_to_buffers(text: &str) -> Option<MovedShared> {
             continue;
         }
         if let Some((name, _)) = moved.iter().find(|(name, declared_at)| *name == t.text && i > *declared_at) {
-            edits.push((t.offset..t.offset + t.text.len(), format!("{}[{SLICE}]", slices_of(name))));
+            edits.push((t.offset..t.offset + t.text.len(), format!("{}[{SLICE}].{SLICE_MEMBER}", slices_of(name))));
         }
     }
     Some(MovedShared { text: token::edited(text, edits), blocks })
@@ -92,6 +92,11 @@ pub(crate) fn moved_to_buffers(text: &str) -> Option<MovedShared> {
 fn slices_of(name: &str) -> String {
     format!("tp_shared_{name}")
 }
+
+/// The member of a slice that holds the variable. Each slice is a struct of its own, so that the
+/// variable's array sizes stay where GLSL read them (Mesa refuses some constant sizes, such as
+/// `const ivec2` components, after a runtime-sized dimension).
+const SLICE_MEMBER: &str = "value";
 
 /// Whether token `i` is the first on its line but for whitespace.
 fn first_on_line(tokens: &[Token<'_>], i: usize) -> bool {
@@ -202,8 +207,9 @@ impl<'a> Declaration<'a> {
         };
         let qualifiers: String = self.qualifiers.iter().map(|q| format!("{q} ")).collect();
         for d in &self.declarators {
-            let block = format!("tp_Shared_{}", d.name);
-            out.push_str(&format!("layout(std430) coherent buffer {block} {{ {qualifiers}{type_name} {}[]{}; }}; ", slices_of(d.name), d.sizes));
+            let (slice, block) = (format!("tp_SharedSlice_{}", d.name), format!("tp_Shared_{}", d.name));
+            out.push_str(&format!("struct {slice} {{ {qualifiers}{type_name} {SLICE_MEMBER}{}; }}; ", d.sizes));
+            out.push_str(&format!("layout(std430) coherent buffer {block} {{ {slice} {}[]; }}; ", slices_of(d.name)));
             blocks.push(block);
         }
         out.truncate(out.trim_end().len());
@@ -255,8 +261,11 @@ mod tests {
         let moved = moved(text);
         assert_eq!(moved.blocks, ["tp_Shared_sums"]);
         let lines: Vec<&str> = moved.text.lines().collect();
-        assert_eq!(lines[2], "layout(std430) coherent buffer tp_Shared_sums { vec3 tp_shared_sums[][256][9]; };");
-        assert_eq!(lines[4], format!("    tp_shared_sums[{SLICE}][0][1] = vec3(1.0);"));
+        assert_eq!(
+            lines[2],
+            "struct tp_SharedSlice_sums { vec3 value[256][9]; }; layout(std430) coherent buffer tp_Shared_sums { tp_SharedSlice_sums tp_shared_sums[]; };"
+        );
+        assert_eq!(lines[4], format!("    tp_shared_sums[{SLICE}].value[0][1] = vec3(1.0);"));
     }
 
     #[test]
@@ -264,9 +273,10 @@ mod tests {
         let moved = moved("shared highp vec3[9] coeffs[64], spare;\nvoid f() { coeffs[1][2] = spare[0]; }\n");
         assert_eq!(moved.blocks, ["tp_Shared_coeffs", "tp_Shared_spare"]);
         assert!(moved.text.starts_with(
-            "layout(std430) coherent buffer tp_Shared_coeffs { highp vec3[9] tp_shared_coeffs[][64]; }; layout(std430) coherent buffer tp_Shared_spare { highp vec3[9] tp_shared_spare[]; };\n"
+            "struct tp_SharedSlice_coeffs { highp vec3[9] value[64]; }; layout(std430) coherent buffer tp_Shared_coeffs { tp_SharedSlice_coeffs tp_shared_coeffs[]; }; \
+             struct tp_SharedSlice_spare { highp vec3[9] value; }; layout(std430) coherent buffer tp_Shared_spare { tp_SharedSlice_spare tp_shared_spare[]; };\n"
         ), "{}", moved.text);
-        assert!(moved.text.contains(&format!("tp_shared_coeffs[{SLICE}][1][2] = tp_shared_spare[{SLICE}][0]")), "{}", moved.text);
+        assert!(moved.text.contains(&format!("tp_shared_coeffs[{SLICE}].value[1][2] = tp_shared_spare[{SLICE}].value[0]")), "{}", moved.text);
     }
 
     #[test]
@@ -275,8 +285,11 @@ mod tests {
         let moved = moved(text);
         let lines: Vec<&str> = moved.text.lines().collect();
         assert_eq!(lines[0], "struct tp_SharedStruct_tally {");
-        assert_eq!(lines[3], "}; layout(std430) coherent buffer tp_Shared_tally { tp_SharedStruct_tally tp_shared_tally[]; };");
-        assert!(lines[4].contains(&format!("tp_shared_tally[{SLICE}].count = 0u; other.tally = 1;")), "{}", lines[4]);
+        assert_eq!(
+            lines[3],
+            "}; struct tp_SharedSlice_tally { tp_SharedStruct_tally value; }; layout(std430) coherent buffer tp_Shared_tally { tp_SharedSlice_tally tp_shared_tally[]; };"
+        );
+        assert!(lines[4].contains(&format!("tp_shared_tally[{SLICE}].value.count = 0u; other.tally = 1;")), "{}", lines[4]);
     }
 
     #[test]
