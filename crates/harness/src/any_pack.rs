@@ -905,6 +905,10 @@ impl<'a> FramePlan<'a> {
             }
             buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame));
         }
+        // shadowcomp draws into the shadow colour buffers, but may read colour buffers too.
+        for program in &pack.shadow_composite {
+            buffers.extend(colour_buffers_read(pack, program, SamplerNaming::Frame));
+        }
         let mut shadow_buffers = BTreeSet::new();
         if pack.shadow_pass {
             shadow_buffers.insert(0);

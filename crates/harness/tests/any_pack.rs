@@ -926,6 +926,7 @@ fn shadowcomp_draws_into_the_shadow_colour_buffers_reading_them_as_they_were() {
     let plan = FramePlan::new(&pack, &scene, &mesh, ScreenOutput::AsLoader);
     let labels: Vec<&str> = plan.steps.iter().map(|s| s.label.as_str()).collect();
     assert_eq!(labels[..4], ["shadow terrain (shadow)", "shadowtex0 to shadowtex1", "shadow water (shadow)", "shadowcomp"]);
+    assert!(plan.buffers.contains(&9), "the colour buffer only shadowcomp reads is made: {:?}", plan.buffers);
     let (report, screen) = render_job("shadow_composite");
     assert!(report.failed_programs.is_empty() && report.gl_disagreement.is_none(), "{:?} {:?}", report.failed_programs, report.gl_disagreement);
     assert!(!report.not_modelled.iter().any(|n| n.contains("shadowcomp")), "{:?}", report.not_modelled);
