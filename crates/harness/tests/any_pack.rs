@@ -244,6 +244,30 @@ fn shadow_names_the_map_without_water_where_the_pack_reads_watershadow() {
     assert!(with_water.not_modelled.iter().any(|l| l.contains("without a shadow program")), "{:?}", with_water.not_modelled);
 }
 
+/// A sampler name no loader binds keeps texture unit 0: colortex0 in a full-screen pass (final's
+/// `texture` in XorDev's DOF-Shaderpack), transparent black in gbuffers programs, where unit 0
+/// holds the atlas under its own names, and in shadowcomp.
+#[test]
+fn a_sampler_no_loader_binds_reads_unit_0_colortex0_in_full_screen_passes() {
+    use tidepack_harness::samplers::{ProgramStage, Source, resolve_any};
+    let files = tidepack_loader::input::pack_from_memory(
+        "test/shaders/",
+        [
+            ("final.fsh".to_string(), b"#version 120\nuniform sampler2D texture;\nvoid main() { gl_FragData[0] = texture2D(texture, vec2(0.5)); }\n".to_vec()),
+            ("final.vsh".to_string(), b"#version 120\nvoid main() { gl_Position = ftransform(); }\n".to_vec()),
+        ],
+    );
+    let pack = AnyPack::from_files(&files, &Configuration::default()).unwrap();
+    for stage in [ProgramStage::Prepare, ProgramStage::Deferred, ProgramStage::Composite] {
+        assert_eq!(resolve_any(&pack, "texture", stage), Ok(Source::Color(0)), "{stage:?}");
+        assert_eq!(resolve_any(&pack, "specular", stage), Ok(Source::Color(0)), "{stage:?}");
+    }
+    assert_eq!(resolve_any(&pack, "specular", ProgramStage::Gbuffers), Ok(Source::NoSpecular));
+    assert_eq!(resolve_any(&pack, "anything", ProgramStage::Gbuffers), Ok(Source::Unbound));
+    assert_eq!(resolve_any(&pack, "anything", ProgramStage::ShadowComposite), Ok(Source::Unbound));
+    assert!(!pack.not_modelled.iter().any(|n| n.contains("sampler texture")), "{:?}", pack.not_modelled);
+}
+
 #[test]
 fn a_program_that_asks_for_mipmaps_reads_them_and_the_others_do_not() {
     let pack = pack("mipmaps", Loader::default());
