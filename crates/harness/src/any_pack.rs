@@ -898,6 +898,12 @@ impl<'a> FramePlan<'a> {
         }
         for compute in &pack.compute {
             buffers.extend(compute.images.iter().copied());
+            let stage = ProgramStage::of(&compute.program);
+            let read = program::sampler_uniforms(&compute.stage.gl_text).into_iter().filter_map(|name| match SamplerNaming::Frame.resolve(pack, &name, stage) {
+                Ok(Source::Color(n)) => Some(n),
+                _ => None,
+            });
+            buffers.extend(read.collect::<Vec<_>>());
         }
         for program in &pack.fullscreen {
             if !is_final(program) {
@@ -913,6 +919,7 @@ impl<'a> FramePlan<'a> {
         if pack.shadow_pass {
             shadow_buffers.insert(0);
             shadow_buffers.extend(pack.shadow.values().chain(&pack.shadow_composite).flat_map(|p| p.drawn_buffers()));
+            shadow_buffers.extend(pack.compute.iter().flat_map(|c| c.shadow_images.iter().copied()));
             for program in pack.gbuffers.values().chain(&pack.fullscreen).chain(&pack.shadow_composite) {
                 for stage in [&program.vertex, &program.fragment] {
                     for (name, _) in program::texture_resources(&stage.interface) {

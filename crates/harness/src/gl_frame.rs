@@ -716,7 +716,7 @@ impl<'a> GlPlanFrame<'a> {
     }
 
     /// A compute stage dispatched over the frame: what it writes through its images is the
-    /// current texture of each buffer it names.
+    /// current texture of each buffer it names, and each shadow colour buffer it names.
     unsafe fn compute(&mut self, stage: &ComputeStage, current: &BTreeMap<u8, usize>) -> Result<Vec<Written>, HarnessError> {
         let harness = self.harness.clone();
         let textures = self.frame_textures(&harness, current, BTreeSet::new());
@@ -726,12 +726,18 @@ impl<'a> GlPlanFrame<'a> {
             let dispatched = dispatch_compute(self.ctx, self.pack, stage, self.values.of_pass(Pass::Fullscreen), &textures, &reserved, self.w as u32, self.h as u32)?;
             self.step_ms += dispatched.ms;
             self.rewrites.extend(dispatched.rewrite.filter(|r| !self.rewrites.contains(r)));
-            stage
+            let mut written: Vec<Written> = stage
                 .images
                 .iter()
                 .filter_map(|b| self.buffers.get(b).map(|(textures, _, format)| (*b, textures[current[b]], *format)))
                 .map(|(b, texture, format)| Ok(Written { name: format!("colortex{b}"), texture, image: self.read_colour(texture, format)? }))
-                .collect()
+                .collect::<Result<_, HarnessError>>()?;
+            let side = self.shadow_side;
+            for (b, (texture, format)) in stage.shadow_images.iter().filter_map(|b| Some((*b, *self.shadow_colours.get(b)?))) {
+                let image = read(self.ctx.gl(), texture, Held::Colour(format), self.screen, side, side)?;
+                written.push(Written { name: format!("shadowcolor{b}"), texture, image });
+            }
+            Ok(written)
         }
     }
 

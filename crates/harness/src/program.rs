@@ -676,6 +676,9 @@ pub struct ComputeStage {
     /// The colour buffers it names as images (`colorimg3`: colortex3), which it reads and
     /// writes in place.
     pub images: Vec<u8>,
+    /// The shadow colour buffers it names as images (`shadowcolorimg1`: shadowcolor1), read and
+    /// written in place likewise.
+    pub shadow_images: Vec<u8>,
 }
 
 impl ComputeStage {
@@ -736,12 +739,15 @@ pub(crate) fn load_compute_stage(
     let lenient = preprocess::PreprocessOptions { lenient: true, ..macros.clone() };
     let preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     let work_groups = WorkGroups::declared(&preprocessed.text);
-    let images = tokenize(&preprocessed.text)
-        .map(|tokens| tokens.iter().filter_map(|t| t.text.strip_prefix("colorimg")?.parse::<u8>().ok()).collect::<BTreeSet<u8>>().into_iter().collect())
-        .unwrap_or_default();
+    let tokens = tokenize(&preprocessed.text).unwrap_or_default();
+    let named = |prefix: &str| -> Vec<u8> {
+        let numbers: BTreeSet<u8> = tokens.iter().filter(|t| t.kind == TokenKind::Ident).filter_map(|t| t.text.strip_prefix(prefix)?.parse::<u8>().ok()).collect();
+        numbers.into_iter().collect()
+    };
+    let (images, shadow_images) = (named("colorimg"), named("shadowcolorimg"));
     let local_size = tokenize(&preprocessed.text).ok().and_then(|tokens| tidepack_glsl::lower::local_size(&tokens)).unwrap_or([1; 3]);
     let stage = load_opengl_stage(provider, path, macros, &defines, reading)?;
-    Ok(ComputeStage { program: program.to_string(), stage, work_groups, local_size, images })
+    Ok(ComputeStage { program: program.to_string(), stage, work_groups, local_size, images, shadow_images })
 }
 
 /// `text`, a vertex stage of `program`, with `dhMaterialId` read as Iris gives it where a
@@ -1091,8 +1097,6 @@ pub(crate) fn mapped_ids(
     blocks::ids(&read_properties(&text, standard, declared, set), prefix)
 }
 
-/// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the
-/// type) a stage's text declares at file scope, by name.
 /// Whether `text` declares a buffer block (`layout(std430, binding = 0) buffer Data { … }`).
 pub fn declares_buffer_block(text: &str) -> bool {
     let Ok(tokens) = tokenize(text) else { return false };
@@ -1100,8 +1104,22 @@ pub fn declares_buffer_block(text: &str) -> bool {
     sig.windows(3).any(|w| w[0].is_ident("buffer") && w[1].kind == TokenKind::Ident && w[2].is_punct("{"))
 }
 
+/// The image uniforms (`uniform image3D voxels;`, any layout and memory qualifiers before the
+/// type) a stage's text declares at file scope, by name.
 pub fn image_uniforms(text: &str) -> Vec<String> {
-    use tidepack_glsl::lower::{is_image_type, is_memory_qualifier};
+    uniforms_of_type(text, tidepack_glsl::lower::is_image_type)
+}
+
+/// The sampler uniforms (`uniform sampler2D colortex3;`, `usampler2D`, …) a stage's text
+/// declares at file scope, by name: what a compute stage reads, which naga's interface does not
+/// give for the stages only OpenGL runs.
+pub fn sampler_uniforms(text: &str) -> Vec<String> {
+    uniforms_of_type(text, |ty| ["sampler", "isampler", "usampler"].iter().any(|prefix| ty.starts_with(prefix)))
+}
+
+/// The uniforms of a type `is_type` takes, by name.
+fn uniforms_of_type(text: &str, is_type: fn(&str) -> bool) -> Vec<String> {
+    use tidepack_glsl::lower::is_memory_qualifier;
     let Ok(tokens) = tokenize(text) else { return Vec::new() };
     let sig: Vec<_> = tokens.iter().filter(|t| !t.is_trivia()).collect();
     let mut names = Vec::new();
@@ -1112,7 +1130,7 @@ pub fn image_uniforms(text: &str) -> Vec<String> {
         // Memory and precision qualifiers may stand between `uniform` and the type.
         let qualifier = |m: &usize| sig[*m].kind == TokenKind::Ident && (is_memory_qualifier(sig[*m].text) || matches!(sig[*m].text, "highp" | "mediump" | "lowp"));
         let Some(type_at) = (k + 1..sig.len()).find(|m| !qualifier(m)) else { continue };
-        if is_image_type(sig[type_at].text) && let Some(name) = sig.get(type_at + 1).filter(|n| n.kind == TokenKind::Ident) {
+        if is_type(sig[type_at].text) && let Some(name) = sig.get(type_at + 1).filter(|n| n.kind == TokenKind::Ident) {
             names.push(name.text.to_string());
         }
     }

@@ -757,7 +757,9 @@ fn texture_written(work: &PlannedWork, name: &str) -> Option<WrittenTexture> {
         PlannedWork::Fullscreen { .. } if name == "screen" => Some(WrittenTexture::Screen),
         PlannedWork::Fullscreen { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, 1 - current[&b])),
         PlannedWork::ScreenCopy { .. } if name == "screen" => Some(WrittenTexture::Screen),
-        PlannedWork::Compute { current, .. } => buffer("colortex").map(|b| WrittenTexture::Buffer(b, current[&b])),
+        PlannedWork::Compute { current, .. } => {
+            buffer("colortex").map(|b| WrittenTexture::Buffer(b, current[&b])).or_else(|| buffer("shadowcolor").map(WrittenTexture::ShadowColour))
+        }
         _ => None,
     }
 }

@@ -1,6 +1,7 @@
 #version 120
 // The left half of the screen shows shadowcolor0 at the middle of the shadow map, the right
-// half shadowcolor1 there: one is the other's complement once shadowcomp has run.
+// half shadowcolor1 there: both hold the complement of what the shadow pass drew once shadowcomp
+// and shadowcomp1.csh have run.
 uniform sampler2D shadowcolor0;
 uniform sampler2D shadowcolor1;
 varying vec2 uv;
