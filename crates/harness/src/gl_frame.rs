@@ -604,14 +604,19 @@ impl<'a> GlPlanFrame<'a> {
             self.draw(program, Pass::Shadow, draw, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            program
-                .render_targets
-                .iter()
-                .zip(&targets)
-                .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
-                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.shadow_colours[b].1), self.screen, side, side)? }))
-                .collect()
+            self.shadow_colours_drawn(program)
         }
+    }
+
+    /// The shadow colour buffers `program` drew into, read back.
+    unsafe fn shadow_colours_drawn(&self, program: &LoadedProgram) -> Result<Vec<Written>, HarnessError> {
+        let side = self.shadow_side;
+        program
+            .drawn_buffers()
+            .filter_map(|b| Some((b, *self.shadow_colours.get(&b)?)))
+            // SAFETY: the textures are this frame's, on the current context.
+            .map(|(b, (texture, format))| Ok(Written { name: format!("shadowcolor{b}"), texture, image: unsafe { read(self.ctx.gl(), texture, Held::Colour(format), self.screen, side, side)? } }))
+            .collect()
     }
 
     /// A shadowcomp program: the full-screen quad at the shadow map's size into the shadow
@@ -643,13 +648,7 @@ impl<'a> GlPlanFrame<'a> {
                 gl.delete_texture(*copy);
             }
             drawn?;
-            program
-                .render_targets
-                .iter()
-                .zip(&targets)
-                .filter_map(|(b, t)| Some((b.as_ref()?, t.as_ref()?)))
-                .map(|(b, t)| Ok(Written { name: format!("shadowcolor{b}"), texture: *t, image: read(gl, *t, Held::Colour(self.shadow_colours[b].1), self.screen, side, side)? }))
-                .collect()
+            self.shadow_colours_drawn(program)
         }
     }
 

@@ -438,7 +438,11 @@ impl<'p> PreparedSteps<'p> {
             }
             PlannedWork::ShadowDepthCopy => (Work::ShadowDepthCopy, Vec::new()),
             PlannedWork::Fullscreen { program, current, into_screen, mipmaps } => {
-                let pipeline = self.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, *into_screen, mipmaps)?;
+                let mut formats: BTreeMap<u8, wgpu::TextureFormat> = textures.buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect();
+                if *into_screen {
+                    formats.insert(0, OUT);
+                }
+                let pipeline = self.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, &formats, textures.shadow(), mipmaps)?;
                 let written = program
                     .drawn_buffers()
                     .map(|b| match (*into_screen, b) {
@@ -452,25 +456,9 @@ impl<'p> PreparedSteps<'p> {
                 return Err(HarnessError::Unsupported(stage.only_opengl()));
             }
             PlannedWork::ShadowComposite { program, current } => {
-                let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
-                    textures.buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
                 let formats: BTreeMap<u8, wgpu::TextureFormat> = textures.shadow_colours.iter().map(|(b, (_, format))| (*b, *format)).collect();
-                let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
-                let bindable = BindableTextures {
-                    naming: SamplerNaming::Frame,
-                    harness,
-                    colors: &reading,
-                    depth0: &textures.depth0,
-                    depth1: &textures.depth1,
-                    depth_read: textures.depth_read([0, 1]),
-                    lod_depth: [&textures.lod_depth[0], &textures.lod_depth[1]],
-                    shadow: ShadowTextures { colours: &textures.shadow_colours_before, ..textures.shadow() },
-                    sprites: Sprites::Blocks,
-                    mipmapped: &NO_MIPMAPS,
-                };
-                let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
-                let pipeline = ProgramPipeline::new(gpu, pack, program, &values.fullscreen, kind, &bindable, UniformBinding::ReadOnlyStorage)?;
-                self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
+                let shadow = ShadowTextures { colours: &textures.shadow_colours_before, ..textures.shadow() };
+                let pipeline = self.fullscreen(gpu, pack, textures, harness, &values.fullscreen, program, current, &formats, shadow, &NO_MIPMAPS)?;
                 let written = program.drawn_buffers().map(|b| (format!("shadowcolor{b}"), WrittenTexture::ShadowColour(b))).collect();
                 (Work::ShadowComposite { program, pipeline }, written)
             }
@@ -504,7 +492,8 @@ impl<'p> PreparedSteps<'p> {
         Ok(draw)
     }
 
-    /// A full-screen step's pipeline, reading the buffers' current textures.
+    /// A full-screen step's pipeline into targets of `formats`, reading the buffers' current
+    /// textures and `shadow`.
     #[allow(clippy::too_many_arguments)]
     fn fullscreen(
         &mut self,
@@ -515,16 +504,12 @@ impl<'p> PreparedSteps<'p> {
         values: &BTreeMap<String, Value>,
         program: &LoadedProgram,
         current: &BTreeMap<u8, usize>,
-        into_screen: bool,
+        formats: &BTreeMap<u8, wgpu::TextureFormat>,
+        shadow: ShadowTextures,
         mipmaps: &BTreeSet<u8>,
     ) -> Result<ProgramPipeline, HarnessError> {
-        let buffers = &textures.buffers;
         let reading: BTreeMap<u8, (wgpu::Texture, wgpu::TextureFormat)> =
-            buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
-        let mut formats: BTreeMap<u8, wgpu::TextureFormat> = buffers.iter().map(|(b, buffer)| (*b, buffer.format)).collect();
-        if into_screen {
-            formats.insert(0, OUT);
-        }
+            textures.buffers.iter().map(|(b, buffer)| (*b, (buffer.textures[current[b]].clone(), buffer.format))).collect();
         let blend_of = |b: u8| pack.blend_of(Some(program), b, &Blend::Off);
         let bindable = BindableTextures {
             naming: SamplerNaming::Frame,
@@ -534,11 +519,11 @@ impl<'p> PreparedSteps<'p> {
             depth1: &textures.depth1,
             depth_read: textures.depth_read([0, 1]),
             lod_depth: [&textures.lod_depth[0], &textures.lod_depth[1]],
-            shadow: textures.shadow(),
+            shadow,
             sprites: Sprites::Blocks,
             mipmapped: mipmaps,
         };
-        let kind = PassKind::FullscreenInto { formats: &formats, blend_of: &blend_of };
+        let kind = PassKind::FullscreenInto { formats, blend_of: &blend_of };
         let pipeline = ProgramPipeline::new(gpu, pack, program, values, kind, &bindable, UniformBinding::ReadOnlyStorage)?;
         self.zeroed_uniforms.extend(pipeline.zeroed_uniforms.iter().cloned());
         Ok(pipeline)
