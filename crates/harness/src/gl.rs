@@ -1079,7 +1079,7 @@ pub(crate) unsafe fn dispatch_compute(
                 return Err(refused(&e));
             };
             let compiled = ctx.compile_compute_program(&moved.text).map_err(|moved_refused| {
-                let why = located_at(&moved_refused, Some(&stage.stage.gl_origins));
+                let why = crate::shared_memory::in_the_packs_names(&located_at(&moved_refused, Some(&stage.stage.gl_origins)));
                 HarnessError::Gl(format!("{}; with its `shared` variables kept in storage buffers instead, the driver refuses it too: {why}", said(&e)))
             })?;
             let rewrite = format!(

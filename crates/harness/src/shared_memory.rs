@@ -88,6 +88,12 @@ pub(crate) fn moved_to_buffers(text: &str) -> Option<MovedShared> {
     Some(MovedShared { text: token::edited(text, edits), blocks })
 }
 
+/// `log` (a driver's complaint about a moved stage) with the names the move gave said as the
+/// pack's: `tp_shared_sums` is `sums`, and so are its block and slice types.
+pub(crate) fn in_the_packs_names(log: &str) -> String {
+    ["tp_SharedSlice_", "tp_SharedStruct_", "tp_Shared_", "tp_shared_"].iter().fold(log.to_string(), |log, prefix| log.replace(prefix, ""))
+}
+
 /// The array of slices that holds `name`.
 fn slices_of(name: &str) -> String {
     format!("tp_shared_{name}")
@@ -247,6 +253,11 @@ mod tests {
         let moved = moved_to_buffers(text).unwrap_or_else(|| panic!("nothing moved in {text}"));
         assert_eq!(moved.text.lines().count(), text.lines().count(), "{}", moved.text);
         moved
+    }
+
+    #[test]
+    fn a_complaint_about_a_moved_stage_names_the_packs_variables() {
+        assert_eq!(in_the_packs_names("0:3(5): error: `tp_shared_sums' undeclared in tp_Shared_sums"), "0:3(5): error: `sums' undeclared in sums");
     }
 
     #[test]
