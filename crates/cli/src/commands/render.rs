@@ -235,7 +235,7 @@ fn run_any_pack(args: &RenderArgs, pack: &std::path::Path) -> ExitCode {
             }
         }
         if !report.gl_rewrites.is_empty() {
-            say!("    rewritten for a strict driver, as lenient ones accept them ({}):", report.gl_rewrites.len());
+            say!("    rewritten for this driver, as lenient drivers take the text or where it passes this one's limits ({}):", report.gl_rewrites.len());
             for line in &report.gl_rewrites {
                 say!("      {line}");
             }
