@@ -1123,8 +1123,12 @@ fn built_in_of_another_stage(text: &str, error: &naga::valid::ValidationError, s
     let tokens = tokenize(text).ok()?;
     let first = tokens.iter().find(|t| t.is_ident(name))?;
     let span = naga::Span::new(first.offset as u32, (first.offset + first.text.len()) as u32);
-    let message = format!("`{name}` is a {owner} shader built-in: a {this} shader has no such variable (Mesa: \"`{name}' undeclared\")");
-    Some((message, Some(span)))
+    Some((built_in_of_another_stage_message(name, owner, this), Some(span)))
+}
+
+/// What a stage of kind `this` naming `name`, a built-in of `owner` stages only, is told.
+pub fn built_in_of_another_stage_message(name: &str, owner: &str, this: &str) -> String {
+    format!("`{name}` is a {owner} shader built-in: a {this} shader has no such variable (Mesa: \"`{name}' undeclared\")")
 }
 
 /// naga's validation errors that name expression handles, said with GLSL's types instead.

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use tidepack_glsl::preprocess::PreprocessOptions;
 use tidepack_loader::blocks;
-use tidepack_loader::buffers::{BufferClear, BufferFormat, colour_buffer_number, shadow_colour_number};
+use tidepack_loader::buffers::{BufferClear, BufferFormat, buffer_of_image, colour_buffer_number, shadow_colour_number};
 use tidepack_loader::consts;
 use tidepack_loader::custom_uniforms;
 use tidepack_loader::directives::{self, Blend, BlendFactor, BufferObject, CustomImage, DEFAULT_TRANSLUCENT_BLEND};
@@ -25,7 +25,7 @@ use tidepack_loader::shadow::{ShadowSettings, SunPath};
 use tidepack_loader::{Configuration, SetProvider};
 
 use crate::HarnessError;
-use crate::samplers::{GameTextureBinding, ProgramStage, SamplerNaming, Source, colour_buffers_read};
+use crate::samplers::{GameTextureBinding, ProgramStage, SamplerNaming, Source, colour_buffers_named, colour_buffers_read};
 use tidepack_scene::mesh::{BlockIds, PackVertex, SceneMesh, Sprites};
 use crate::program::{
     self, ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources, ProgramFiles, UndeclaredTargets, custom_textures, declared_format_names,
@@ -392,8 +392,7 @@ fn shadow_map_reads(
 ) -> (bool, bool) {
     // colorimgN is colortexN and shadowcolorimgN shadowcolorN; custom images are made as the
     // loader makes them.
-    let buffer_image = |name: &str, prefix: &str| name.strip_prefix(prefix).is_some_and(|n| n.parse::<u8>().is_ok());
-    let holds_image = |name: &str| buffer_image(name, "colorimg") || buffer_image(name, "shadowcolorimg") || custom_images.iter().any(|i| i.name == name);
+    let holds_image = |name: &str| buffer_of_image(name).is_some() || custom_images.iter().any(|i| i.name == name);
     let holds_image_sampler = |name: &str| custom_images.iter().any(|i| i.sampler.as_deref() == Some(name));
     let mut reads_shadow_maps = false;
     let mut water_shadow = false;
@@ -898,12 +897,8 @@ impl<'a> FramePlan<'a> {
         }
         for compute in &pack.compute {
             buffers.extend(compute.images.iter().copied());
-            let stage = ProgramStage::of(&compute.program);
-            let read = program::sampler_uniforms(&compute.stage.gl_text).into_iter().filter_map(|name| match SamplerNaming::Frame.resolve(pack, &name, stage) {
-                Ok(Source::Color(n)) => Some(n),
-                _ => None,
-            });
-            buffers.extend(read.collect::<Vec<_>>());
+            let names = program::sampler_uniforms(&compute.stage.gl_text);
+            buffers.extend(colour_buffers_named(pack, names, ProgramStage::of(&compute.program), SamplerNaming::Frame));
         }
         for program in &pack.fullscreen {
             if !is_final(program) {

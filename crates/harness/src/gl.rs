@@ -29,7 +29,7 @@ use tidepack_loader::loader::MissingProgramDraws;
 use tidepack_scene::mesh::{self, AttributeFormat, PackVertex, Sprites, offsets};
 use crate::program::{ComputeStage, CustomTexture, LoadedProgram, LoadedStage, PackResources};
 use crate::raw_texture::Texels;
-use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::buffers::{BufferFormat, ImageOf, buffer_of_image};
 use tidepack_loader::directives::ImageSize;
 use tidepack_loader::directives::{Blend, BlendFactor, TextureTarget};
 use tidepack_scene::scene::Scene;
@@ -964,11 +964,12 @@ unsafe fn set_uniforms(
             // colorimgN is colortexN's current texture and shadowcolorimgN shadowcolorN, read and
             // written in place, in the buffer's own format (OptiFine's shaders.txt, "Image
             // access").
-            let buffer_image = |prefix: &str, buffers: &BTreeMap<u8, (glow::Texture, BufferFormat)>| {
-                name.strip_prefix(prefix).and_then(|n| n.parse::<u8>().ok()).and_then(|n| buffers.get(&n).copied())
-            };
+            let buffer = buffer_of_image(&name).and_then(|image| match image {
+                ImageOf::Colour(n) => textures.colors.get(&n).copied(),
+                ImageOf::ShadowColour(n) => textures.shadow_colours.get(&n).copied(),
+            });
             if active.utype == glow::IMAGE_2D
-                && let Some((texture, format)) = buffer_image("colorimg", &textures.colors).or_else(|| buffer_image("shadowcolorimg", &textures.shadow_colours))
+                && let Some((texture, format)) = buffer
                 && !format.is_integer()
             {
                 bind_image(gl, &mut image_unit, location.as_ref(), texture, false, internal_format(format));
@@ -1090,17 +1091,21 @@ pub(crate) unsafe fn dispatch_compute(
         }
     };
     // SAFETY: the caller holds the current context; the program and buffers are made on it.
-    let dispatched = unsafe {
-        let slices = match &moved {
-            Some((moved, _)) => {
-                let slices = shared_slices(ctx, compiled.raw, &moved.blocks, reserved_bindings, count);
-                if let Ok((_, groups)) = &slices {
-                    most = part_of_at_most(count, *groups);
-                }
-                Some(slices.map_err(|why| HarnessError::Unsupported(format!("{} ({}): {why}", stage.program, stage.stage.path)))?)
+    let slices = match &moved {
+        Some((moved, _)) => match unsafe { shared_slices(ctx, compiled.raw, &moved.blocks, reserved_bindings, count) } {
+            Ok((buffers, groups)) => {
+                most = part_of_at_most(count, groups);
+                Some(buffers)
             }
-            None => None,
-        };
+            Err(why) => {
+                ctx.delete_program(compiled);
+                return Err(HarnessError::Unsupported(format!("{} ({}): {why}", stage.program, stage.stage.path)));
+            }
+        },
+        None => None,
+    };
+    // SAFETY: as above.
+    let dispatched = unsafe {
         gl.use_program(Some(compiled.raw));
         let set = set_uniforms(gl, pack, &stage.program, compiled.raw, values, ProgramStage::of(&stage.program), textures);
         let mut ms = 0.0;
@@ -1126,7 +1131,7 @@ pub(crate) unsafe fn dispatch_compute(
             });
         }
         gl.use_program(None);
-        for (binding, buffer) in slices.map(|(buffers, _)| buffers).unwrap_or_default() {
+        for (binding, buffer) in slices.unwrap_or_default() {
             gl.bind_buffer_base(glow::SHADER_STORAGE_BUFFER, binding, None);
             gl.delete_buffer(buffer);
         }

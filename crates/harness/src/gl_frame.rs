@@ -604,15 +604,14 @@ impl<'a> GlPlanFrame<'a> {
             self.draw(program, Pass::Shadow, draw, &textures, vertices)?;
             gl.viewport(0, 0, self.w, self.h);
             set_blends(gl, &program.render_targets, &|_| Blend::Off);
-            self.shadow_colours_drawn(program)
+            self.shadow_colours_read(program.drawn_buffers())
         }
     }
 
-    /// The shadow colour buffers `program` drew into, read back.
-    unsafe fn shadow_colours_drawn(&self, program: &LoadedProgram) -> Result<Vec<Written>, HarnessError> {
+    /// The shadow colour buffers `buffers` of the frame, read back.
+    unsafe fn shadow_colours_read(&self, buffers: impl Iterator<Item = u8>) -> Result<Vec<Written>, HarnessError> {
         let side = self.shadow_side;
-        program
-            .drawn_buffers()
+        buffers
             .filter_map(|b| Some((b, *self.shadow_colours.get(&b)?)))
             // SAFETY: the textures are this frame's, on the current context.
             .map(|(b, (texture, format))| Ok(Written { name: format!("shadowcolor{b}"), texture, image: unsafe { read(self.ctx.gl(), texture, Held::Colour(format), self.screen, side, side)? } }))
@@ -648,7 +647,7 @@ impl<'a> GlPlanFrame<'a> {
                 gl.delete_texture(*copy);
             }
             drawn?;
-            self.shadow_colours_drawn(program)
+            self.shadow_colours_read(program.drawn_buffers())
         }
     }
 
@@ -731,11 +730,7 @@ impl<'a> GlPlanFrame<'a> {
                 .filter_map(|b| self.buffers.get(b).map(|(textures, _, format)| (*b, textures[current[b]], *format)))
                 .map(|(b, texture, format)| Ok(Written { name: format!("colortex{b}"), texture, image: self.read_colour(texture, format)? }))
                 .collect::<Result<_, HarnessError>>()?;
-            let side = self.shadow_side;
-            for (b, (texture, format)) in stage.shadow_images.iter().filter_map(|b| Some((*b, *self.shadow_colours.get(b)?))) {
-                let image = read(self.ctx.gl(), texture, Held::Colour(format), self.screen, side, side)?;
-                written.push(Written { name: format!("shadowcolor{b}"), texture, image });
-            }
+            written.extend(self.shadow_colours_read(stage.shadow_images.iter().copied())?);
             Ok(written)
         }
     }

@@ -13,7 +13,7 @@ use tidepack_glsl::preprocess::{self, FileProvider};
 use tidepack_glsl::token::{Token, TokenKind, function_definitions, tokenize};
 use tidepack_glsl::{Diagnostic, Location, Stage};
 use tidepack_loader::blocks;
-use tidepack_loader::buffers::BufferFormat;
+use tidepack_loader::buffers::{BufferFormat, ImageOf, buffer_of_image};
 use tidepack_loader::consts;
 use tidepack_loader::directives::{self, RawLayout, TextureTarget};
 use tidepack_loader::input;
@@ -740,12 +740,10 @@ pub(crate) fn load_compute_stage(
     let preprocessed = preprocess::preprocess(provider, path, &lenient).map_err(|d| diag_error(path, &[d]))?;
     let work_groups = WorkGroups::declared(&preprocessed.text);
     let tokens = tokenize(&preprocessed.text).unwrap_or_default();
-    let named = |prefix: &str| -> Vec<u8> {
-        let numbers: BTreeSet<u8> = tokens.iter().filter(|t| t.kind == TokenKind::Ident).filter_map(|t| t.text.strip_prefix(prefix)?.parse::<u8>().ok()).collect();
-        numbers.into_iter().collect()
-    };
-    let (images, shadow_images) = (named("colorimg"), named("shadowcolorimg"));
-    let local_size = tokenize(&preprocessed.text).ok().and_then(|tokens| tidepack_glsl::lower::local_size(&tokens)).unwrap_or([1; 3]);
+    let named: BTreeSet<ImageOf> = tokens.iter().filter(|t| t.kind == TokenKind::Ident).filter_map(|t| buffer_of_image(t.text)).collect();
+    let images = named.iter().filter_map(|image| if let ImageOf::Colour(n) = image { Some(*n) } else { None }).collect();
+    let shadow_images = named.iter().filter_map(|image| if let ImageOf::ShadowColour(n) = image { Some(*n) } else { None }).collect();
+    let local_size = tidepack_glsl::lower::local_size(&tokens).unwrap_or([1; 3]);
     let stage = load_opengl_stage(provider, path, macros, &defines, reading)?;
     Ok(ComputeStage { program: program.to_string(), stage, work_groups, local_size, images, shadow_images })
 }

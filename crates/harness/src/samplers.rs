@@ -197,15 +197,17 @@ pub fn resolve_in_shadow_pass(pack: &dyn PackResources, name: &str) -> Result<So
 
 /// The colour buffers a program samples, its sampler names resolved under `naming`.
 pub fn colour_buffers_read(pack: &dyn PackResources, program: &LoadedProgram, naming: SamplerNaming) -> BTreeSet<u8> {
-    let stage = ProgramStage::of(&program.name);
-    [&program.vertex, &program.fragment]
+    let names = [&program.vertex, &program.fragment].into_iter().flat_map(|stage| texture_resources(&stage.interface)).map(|(name, _)| name);
+    colour_buffers_named(pack, names, ProgramStage::of(&program.name), naming)
+}
+
+/// The colour buffers the sampler `names` of a program of `stage` read, resolved under `naming`.
+pub fn colour_buffers_named(pack: &dyn PackResources, names: impl IntoIterator<Item = String>, stage: ProgramStage, naming: SamplerNaming) -> BTreeSet<u8> {
+    names
         .into_iter()
-        .flat_map(|stage| texture_resources(&stage.interface))
-        .filter_map(|(name, _)| {
-            match naming.resolve(pack, &name, stage) {
-                Ok(Source::Color(n)) => Some(n),
-                _ => None,
-            }
+        .filter_map(|name| match naming.resolve(pack, &name, stage) {
+            Ok(Source::Color(n)) => Some(n),
+            _ => None,
         })
         .collect()
 }

@@ -21,6 +21,21 @@ pub fn shadow_colour_number(name: &str) -> Option<u8> {
     }
 }
 
+/// A buffer read and written through an image (OptiFine's shaders.txt, "Image access").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ImageOf {
+    /// `colorimgN`: colortexN.
+    Colour(u8),
+    /// `shadowcolorimgN`: shadowcolorN.
+    ShadowColour(u8),
+}
+
+/// The buffer an image name refers to, if it names one.
+pub fn buffer_of_image(name: &str) -> Option<ImageOf> {
+    let number = |prefix: &str| name.strip_prefix(prefix)?.parse::<u8>().ok();
+    number("colorimg").map(ImageOf::Colour).or_else(|| number("shadowcolorimg").map(ImageOf::ShadowColour))
+}
+
 /// The number of mip levels of a full chain for `width` x `height`, as a buffer with
 /// `colortexNMipmapEnabled` gets them.
 pub fn mip_levels(width: u32, height: u32) -> u32 {
@@ -118,6 +133,10 @@ mod tests {
         assert_eq!(colour_buffer_number("gaux2"), Some(5));
         assert_eq!(shadow_colour_number("shadowcolor"), Some(0));
         assert_eq!(shadow_colour_number("shadowcolor1"), Some(1));
+        assert_eq!(buffer_of_image("colorimg3"), Some(ImageOf::Colour(3)));
+        assert_eq!(buffer_of_image("shadowcolorimg1"), Some(ImageOf::ShadowColour(1)));
+        assert_eq!(buffer_of_image("colorimg"), None);
+        assert_eq!(buffer_of_image("voxels"), None);
         assert_eq!(BufferFormat::stand_in("R11F_G11F_B10F"), Some((BufferFormat::Rgba16F, false)));
         assert_eq!(BufferFormat::stand_in("RGBA16F"), Some((BufferFormat::Rgba16F, true)));
         assert_eq!(BufferFormat::stand_in("R32UI"), Some((BufferFormat::Rgba32Ui, false)));

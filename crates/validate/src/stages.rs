@@ -270,7 +270,7 @@ fn built_ins_of_other_stages(pre: &Preprocessed, kind: &str) -> Vec<Diagnostic> 
         .iter()
         .filter_map(|(name, owner)| {
             let first = tokens.iter().find(|t| t.is_ident(name))?;
-            let message = format!("`{name}` is a {owner} shader built-in: a {kind} shader has no such variable (Mesa: \"`{name}' undeclared\")");
+            let message = naga_check::built_in_of_another_stage_message(name, owner, kind);
             Some(Diagnostic::error(Code::Glsl, message, pre.location(first.line)))
         })
         .collect()
